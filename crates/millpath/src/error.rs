@@ -1,0 +1,180 @@
+//! The two error families.
+//!
+//! * [`InputError`]: the user's input is wrong. It names the value, where it came from (file
+//!   and line, vertex index, command-line flag) and what would be accepted. The CLI exits with 2.
+//! * [`InternalError`]: an invariant of the engine broke. This is a bug to report; the CLI exits
+//!   with 1.
+//!
+//! Neither is ever shown as a panic.
+
+use std::fmt;
+
+/// Result alias used across the engine.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Any error the engine can return.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// The user's input is wrong.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// A bug in millpath.
+    #[error(transparent)]
+    Internal(#[from] InternalError),
+}
+
+impl Error {
+    /// The process exit code the CLI uses for this error: 2 for bad input, 1 for internal errors.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Input(_) => 2,
+            Error::Internal(_) => 1,
+        }
+    }
+
+    /// Shorthand for an internal error.
+    pub fn internal(message: impl Into<String>) -> Self {
+        Error::Internal(InternalError::new(message))
+    }
+}
+
+/// The user's input is wrong.
+///
+/// Build one with [`InputError::new`] and refine it with [`InputError::at`] and
+/// [`InputError::expected`]:
+///
+/// ```
+/// use millpath::InputError;
+/// let e = InputError::new("tolerance", -1.0)
+///     .at("--tolerance")
+///     .expected("a finite number > 0 mm");
+/// assert_eq!(
+///     e.to_string(),
+///     "invalid tolerance = -1 (from --tolerance): expected a finite number > 0 mm"
+/// );
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputError {
+    /// What the value is (`"tolerance"`, `"point"`, `"G-code word"`).
+    pub what: String,
+    /// The offending value as the user wrote it, or as it was read.
+    pub value: String,
+    /// Where it came from: a flag, `file:line`, a vertex index.
+    pub origin: Option<String>,
+    /// What would be accepted, or why the value is wrong.
+    pub expected: Option<String>,
+}
+
+impl InputError {
+    /// A new input error about `what`, whose value was `value`.
+    pub fn new(what: impl Into<String>, value: impl fmt::Display) -> Self {
+        InputError {
+            what: what.into(),
+            value: value.to_string(),
+            origin: None,
+            expected: None,
+        }
+    }
+
+    /// Where the value came from (a flag, `file:line`, `vertex 12`).
+    #[must_use]
+    pub fn at(mut self, origin: impl Into<String>) -> Self {
+        self.origin = Some(origin.into());
+        self
+    }
+
+    /// What would be accepted (or a short explanation of what is wrong).
+    #[must_use]
+    pub fn expected(mut self, expected: impl Into<String>) -> Self {
+        self.expected = Some(expected.into());
+        self
+    }
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "invalid {} = {}", self.what, self.value)?;
+        if let Some(origin) = &self.origin {
+            write!(f, " (from {origin})")?;
+        }
+        if let Some(expected) = &self.expected {
+            write!(f, ": expected {expected}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for InputError {}
+
+/// An invariant of the engine broke: a bug to report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InternalError {
+    /// What broke.
+    pub message: String,
+}
+
+impl InternalError {
+    /// A new internal error.
+    pub fn new(message: impl Into<String>) -> Self {
+        InternalError {
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for InternalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "internal error (a bug in millpath, please report it): {}",
+            self.message
+        )
+    }
+}
+
+impl std::error::Error for InternalError {}
+
+/// Checks that `value` is finite and strictly positive; otherwise an [`InputError`] naming it.
+pub fn require_positive(what: &str, value: f64, origin: &str) -> Result<f64, InputError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(InputError::new(what, value)
+            .at(origin)
+            .expected("a finite number > 0"))
+    }
+}
+
+/// Checks that `value` is finite; otherwise an [`InputError`] naming it.
+pub fn require_finite(what: &str, value: f64, origin: &str) -> Result<f64, InputError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(InputError::new(what, value)
+            .at(origin)
+            .expected("a finite number"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exit_codes_separate_the_families() {
+        assert_eq!(Error::from(InputError::new("x", 1)).exit_code(), 2);
+        assert_eq!(Error::internal("broken").exit_code(), 1);
+    }
+
+    #[test]
+    fn require_positive_rejects_nan_zero_negative() {
+        assert!(require_positive("feed", f64::NAN, "--feed").is_err());
+        assert!(require_positive("feed", 0.0, "--feed").is_err());
+        assert!(require_positive("feed", -1.0, "--feed").is_err());
+        assert_eq!(require_positive("feed", 2.0, "--feed"), Ok(2.0));
+        let msg = require_positive("feed", -1.0, "--feed")
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains("feed = -1") && msg.contains("--feed"), "{msg}");
+    }
+}

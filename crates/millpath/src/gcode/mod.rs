@@ -1,0 +1,1 @@
+//! G-code: writer with dialects, reader (lexer → modal interpreter → moves).

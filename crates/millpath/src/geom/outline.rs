@@ -1,0 +1,248 @@
+//! Closed outlines made of lines and exact circular arcs, over `cavalier_contours`.
+//!
+//! An [`Outline`] is a closed polyline whose vertices carry a *bulge*: `tan(θ/4)` for the arc
+//! of sweep `θ` that leaves the vertex (positive counter-clockwise, 0 for a straight segment).
+//! Arcs stay exact all the way to G2/G3 output.
+
+use super::{Aabb, LENGTH_EPS, Point};
+use crate::error::InputError;
+use cavalier_contours::polyline::{
+    PlineCreation, PlineOrientation, PlineSource, PlineSourceMut, PlineVertex, Polyline,
+};
+
+/// The direction an outline runs in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Winding {
+    /// Counter-clockwise: positive area. Pocket boundaries run this way once imported.
+    CounterClockwise,
+    /// Clockwise: negative area. Islands run this way once imported.
+    Clockwise,
+}
+
+/// A closed, non-self-intersecting outline of lines and arcs.
+#[derive(Debug, Clone)]
+pub struct Outline {
+    pline: Polyline<f64>,
+}
+
+impl Outline {
+    /// Builds an outline from `(point, bulge)` vertices, checking that it is a valid closed
+    /// loop: at least two vertices (three if all are straight), finite coordinates and bulges,
+    /// no zero-length segment, no self-intersection, non-zero area. `origin` names where the
+    /// vertices came from, for error messages.
+    pub fn new(vertices: &[(Point, f64)], origin: &str) -> Result<Self, InputError> {
+        for (i, (p, b)) in vertices.iter().enumerate() {
+            if !p.is_finite() || !b.is_finite() {
+                return Err(InputError::new(
+                    "outline vertex",
+                    format!("({}, {}, bulge {})", p.x, p.y, b),
+                )
+                .at(format!("{origin}, vertex {i}"))
+                .expected("finite coordinates and bulge"));
+            }
+        }
+        let mut pline = Polyline::with_capacity(vertices.len(), true);
+        for (p, b) in vertices {
+            pline.add(p.x, p.y, *b);
+        }
+        // A closing vertex repeated at the end is common in files: drop it.
+        if pline.vertex_count() > 1 {
+            let first = pline.at(0);
+            let last = pline.at(pline.vertex_count() - 1);
+            if (first.x - last.x).hypot(first.y - last.y) <= LENGTH_EPS {
+                pline.remove_last();
+            }
+        }
+        Self::from_polyline(pline, origin)
+    }
+
+    /// Builds an outline of straight segments through `points`.
+    pub fn from_points(points: &[Point], origin: &str) -> Result<Self, InputError> {
+        let v: Vec<(Point, f64)> = points.iter().map(|p| (*p, 0.0)).collect();
+        Self::new(&v, origin)
+    }
+
+    /// Wraps a `cavalier_contours` polyline after the same checks as [`Outline::new`].
+    pub fn from_polyline(mut pline: Polyline<f64>, origin: &str) -> Result<Self, InputError> {
+        pline.set_is_closed(true);
+        let n = pline.vertex_count();
+        let all_straight = pline.iter_vertexes().all(|v| v.bulge.abs() < 1e-12);
+        if n < 2 || (all_straight && n < 3) {
+            return Err(InputError::new("outline vertex count", n)
+                .at(origin)
+                .expected("a closed outline with at least 3 vertices (2 if joined by arcs)"));
+        }
+        for i in 0..n {
+            let a = pline.at(i);
+            let b = pline.at(pline.next_wrapping_index(i));
+            if (a.x - b.x).hypot(a.y - b.y) <= LENGTH_EPS {
+                return Err(
+                    InputError::new("outline vertex", format!("({}, {})", a.x, a.y))
+                        .at(format!("{origin}, vertex {i}"))
+                        .expected("distinct consecutive vertices (this one repeats the next)"),
+                );
+            }
+        }
+        if pline.scan_for_self_intersect() {
+            return Err(InputError::new("outline", "self-intersecting")
+                .at(origin)
+                .expected("a simple closed outline that does not cross itself"));
+        }
+        if pline.area().abs() <= LENGTH_EPS {
+            return Err(InputError::new("outline area", pline.area())
+                .at(origin)
+                .expected("an outline enclosing a non-zero area"));
+        }
+        Ok(Outline { pline })
+    }
+
+    /// The underlying `cavalier_contours` polyline.
+    pub fn polyline(&self) -> &Polyline<f64> {
+        &self.pline
+    }
+
+    /// The vertices as `(point, bulge)` pairs.
+    pub fn vertices(&self) -> impl Iterator<Item = (Point, f64)> + '_ {
+        self.pline
+            .iter_vertexes()
+            .map(|v: PlineVertex<f64>| (Point::new(v.x, v.y), v.bulge))
+    }
+
+    /// Number of vertices (= number of segments, the outline being closed).
+    pub fn len(&self) -> usize {
+        self.pline.vertex_count()
+    }
+
+    /// Always false: a valid outline has vertices.
+    pub fn is_empty(&self) -> bool {
+        self.pline.vertex_count() == 0
+    }
+
+    /// Signed area in mm²: positive for counter-clockwise.
+    pub fn signed_area(&self) -> f64 {
+        self.pline.area()
+    }
+
+    /// Perimeter in mm.
+    pub fn length(&self) -> f64 {
+        self.pline.path_length()
+    }
+
+    /// The direction the outline runs in.
+    pub fn winding(&self) -> Winding {
+        match self.pline.orientation() {
+            PlineOrientation::Clockwise => Winding::Clockwise,
+            _ => Winding::CounterClockwise,
+        }
+    }
+
+    /// This outline running in `winding` direction (reversed if needed).
+    #[must_use]
+    pub fn with_winding(mut self, winding: Winding) -> Self {
+        if self.winding() != winding {
+            self.pline.invert_direction_mut();
+        }
+        self
+    }
+
+    /// Bounding box of the outline, arcs included.
+    pub fn bounds(&self) -> Aabb {
+        match self.pline.extents() {
+            Some(e) => Aabb {
+                min: Point::new(e.min_x, e.min_y),
+                max: Point::new(e.max_x, e.max_y),
+            },
+            None => Aabb::EMPTY,
+        }
+    }
+
+    /// Winding number of `p` about the outline: non-zero inside.
+    pub fn winding_number(&self, p: Point) -> i32 {
+        self.pline
+            .winding_number(cavalier_contours::core::math::Vector2::new(p.x, p.y))
+    }
+
+    /// True when `p` is strictly inside (non-zero winding number).
+    pub fn contains(&self, p: Point) -> bool {
+        self.winding_number(p) != 0
+    }
+
+    /// Distance from `p` to the nearest point of the outline.
+    pub fn distance_to(&self, p: Point) -> f64 {
+        self.pline
+            .closest_point(cavalier_contours::core::math::Vector2::new(p.x, p.y), 1e-12)
+            .map_or(f64::INFINITY, |c| c.distance)
+    }
+
+    /// Parallel offsets at signed distance `d` (cavalier_contours convention: positive offsets
+    /// a counter-clockwise outline inward). Offsets keep exact arcs; loops that would gouge are
+    /// trimmed. May return several outlines, or none when the offset vanishes.
+    pub fn offset(&self, d: f64) -> Vec<Polyline<f64>> {
+        self.pline.parallel_offset(d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Outline {
+        Outline::from_points(
+            &[
+                Point::new(0.0, 0.0),
+                Point::new(10.0, 0.0),
+                Point::new(10.0, 10.0),
+                Point::new(0.0, 10.0),
+            ],
+            "test",
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn square_properties() {
+        let s = square();
+        assert!((s.signed_area() - 100.0).abs() < 1e-12);
+        assert!((s.length() - 40.0).abs() < 1e-12);
+        assert_eq!(s.winding(), Winding::CounterClockwise);
+        assert!(s.contains(Point::new(5.0, 5.0)));
+        assert!(!s.contains(Point::new(15.0, 5.0)));
+        assert!((s.distance_to(Point::new(5.0, 4.0)) - 4.0).abs() < 1e-12);
+        let cw = s.with_winding(Winding::Clockwise);
+        assert!((cw.signed_area() + 100.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rejects_bad_outlines() {
+        let bow = [
+            Point::new(0.0, 0.0),
+            Point::new(10.0, 10.0),
+            Point::new(10.0, 0.0),
+            Point::new(0.0, 10.0),
+        ];
+        let e = Outline::from_points(&bow, "bow.json").unwrap_err();
+        assert!(e.to_string().contains("self-intersecting"), "{e}");
+        let nan = [
+            Point::new(0.0, 0.0),
+            Point::new(f64::NAN, 1.0),
+            Point::new(1.0, 0.0),
+        ];
+        let e = Outline::from_points(&nan, "nan.json").unwrap_err();
+        assert!(e.to_string().contains("vertex 1"), "{e}");
+        let two = [Point::new(0.0, 0.0), Point::new(1.0, 0.0)];
+        assert!(Outline::from_points(&two, "two").is_err());
+    }
+
+    #[test]
+    fn circle_from_two_arcs() {
+        let c = Outline::new(
+            &[(Point::new(-5.0, 0.0), 1.0), (Point::new(5.0, 0.0), 1.0)],
+            "c",
+        )
+        .unwrap();
+        assert!((c.signed_area() - std::f64::consts::PI * 25.0).abs() < 1e-9);
+        let inner = c.offset(1.0);
+        assert_eq!(inner.len(), 1);
+        assert!((inner[0].area() - std::f64::consts::PI * 16.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,5 @@
+//! Importers (point lists, DXF, SVG) and atomic file output.
+
+mod atomic;
+
+pub use atomic::{write_atomic, write_atomic_with};

@@ -1,0 +1,3 @@
+//! Machines: per-axis limits, presets, TOML profiles, kinematics.
+
+pub mod kinematics;

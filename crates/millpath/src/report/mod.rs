@@ -1,0 +1,1 @@
+//! Reports: serde structs, SVG previews, plots, HTML.

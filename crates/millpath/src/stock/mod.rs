@@ -1,0 +1,1 @@
+//! Material-removal simulation: engagement, gouge and coverage checks.

@@ -1,0 +1,1 @@
+//! Contour strategy: cutter offset of a free-form outline, roughing layers and a finishing pass.

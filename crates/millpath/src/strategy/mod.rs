@@ -1,0 +1,4 @@
+//! Strategies: turn geometry into toolpaths (contour, pockets).
+
+pub mod contour;
+pub mod pocket;

@@ -1,0 +1,1 @@
+//! Pocket strategies: zigzag, contour-offset, adaptive spiral.

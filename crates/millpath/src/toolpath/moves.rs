@@ -1,0 +1,248 @@
+//! One move of a toolpath.
+
+use crate::geom::{Point3, Vec3};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// The plane an arc turns in (G17, G18, G19).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Plane {
+    /// G17: arcs in XY, helix axis Z.
+    #[default]
+    Xy,
+    /// G18: arcs in ZX, helix axis Y.
+    Zx,
+    /// G19: arcs in YZ, helix axis X.
+    Yz,
+}
+
+impl Plane {
+    /// Splits `v` into the two in-plane components (in the right-handed order of the plane:
+    /// (x, y) for XY, (z, x) for ZX, (y, z) for YZ) and the axial component.
+    pub fn split(self, v: Vec3) -> (f64, f64, f64) {
+        match self {
+            Plane::Xy => (v.x, v.y, v.z),
+            Plane::Zx => (v.z, v.x, v.y),
+            Plane::Yz => (v.y, v.z, v.x),
+        }
+    }
+
+    /// The inverse of [`Plane::split`].
+    pub fn join(self, u: f64, v: f64, w: f64) -> Vec3 {
+        match self {
+            Plane::Xy => Vec3::new(u, v, w),
+            Plane::Zx => Vec3::new(v, w, u),
+            Plane::Yz => Vec3::new(w, u, v),
+        }
+    }
+}
+
+/// How the controller may treat the corner at the end of a move.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Corner {
+    /// Whatever the machine's profile says (its path tolerance).
+    #[default]
+    Machine,
+    /// Exact stop at the end of the move (G61.1 / G09).
+    ExactStop,
+    /// Exact path, no stop required: the corner speed is limited by the axes (G61).
+    ExactPath,
+    /// Blend within this tolerance in mm (G64 P).
+    Blend(f64),
+}
+
+/// Where a move came from on a source curve: curve index and parameter at the move's end.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CurveTag {
+    /// Index of the curve (or curve piece) in the strategy's input.
+    pub curve: u32,
+    /// Curve parameter at the end point of the move.
+    pub u: f64,
+}
+
+/// The kind of a move.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case", tag = "type")]
+pub enum MoveKind {
+    /// G0: as fast as the machine goes, not cutting.
+    Rapid,
+    /// G1: a straight line at the feed.
+    Line,
+    /// G2/G3: a circular arc about `center` in `plane`; with a change along the plane's normal
+    /// axis it is a helix. An arc whose end equals its start is a full circle; `turns` adds
+    /// further full turns (see [`Move::sweep_from`]).
+    Arc {
+        /// Centre of the arc; its coordinate along the plane's normal is ignored.
+        center: Point3,
+        /// The plane the arc turns in.
+        plane: Plane,
+        /// Counter-clockwise (G3) seen from the plane's positive normal.
+        ccw: bool,
+        /// Full turns added to the sweep (0 for an ordinary arc or a single full circle).
+        turns: u32,
+    },
+    /// G4: stay still for `seconds`.
+    Dwell {
+        /// Dwell time in s.
+        seconds: f64,
+    },
+}
+
+/// One move: where it goes, how, and at what feed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Move {
+    /// The kind of move.
+    pub kind: MoveKind,
+    /// End point in mm.
+    pub to: Point3,
+    /// Programmed feed in mm/s (ignored for rapids and dwells).
+    pub feed: f64,
+    /// How the corner at the end of this move may be blended.
+    #[serde(default)]
+    pub corner: Corner,
+    /// The source curve parameter this move's end point came from, if any.
+    #[serde(default)]
+    pub tag: Option<CurveTag>,
+}
+
+impl Move {
+    /// A rapid move to `to`.
+    pub fn rapid(to: Point3) -> Self {
+        Move {
+            kind: MoveKind::Rapid,
+            to,
+            feed: 0.0,
+            corner: Corner::Machine,
+            tag: None,
+        }
+    }
+
+    /// A straight feed move to `to` at `feed` mm/s.
+    pub fn line(to: Point3, feed: f64) -> Self {
+        Move {
+            kind: MoveKind::Line,
+            to,
+            feed,
+            corner: Corner::Machine,
+            tag: None,
+        }
+    }
+
+    /// An arc (or helix, if `to.z` differs from the start) in the XY plane.
+    pub fn arc_xy(to: Point3, center: Point3, ccw: bool, feed: f64) -> Self {
+        Move {
+            kind: MoveKind::Arc {
+                center,
+                plane: Plane::Xy,
+                ccw,
+                turns: 0,
+            },
+            to,
+            feed,
+            corner: Corner::Machine,
+            tag: None,
+        }
+    }
+
+    /// A dwell of `seconds` at `at` (the current position).
+    pub fn dwell(at: Point3, seconds: f64) -> Self {
+        Move {
+            kind: MoveKind::Dwell { seconds },
+            to: at,
+            feed: 0.0,
+            corner: Corner::ExactStop,
+            tag: None,
+        }
+    }
+
+    /// This move tagged with a source-curve parameter.
+    #[must_use]
+    pub fn with_tag(mut self, curve: u32, u: f64) -> Self {
+        self.tag = Some(CurveTag { curve, u });
+        self
+    }
+
+    /// This move with a corner mode.
+    #[must_use]
+    pub fn with_corner(mut self, corner: Corner) -> Self {
+        self.corner = corner;
+        self
+    }
+
+    /// True for lines and arcs (moves that cut at the feed).
+    pub fn is_feed(&self) -> bool {
+        matches!(self.kind, MoveKind::Line | MoveKind::Arc { .. })
+    }
+
+    /// For an arc starting at `from`: (radius at the start, signed sweep in radians, positive
+    /// counter-clockwise). `None` for other moves.
+    pub fn sweep_from(&self, from: Point3) -> Option<(f64, f64)> {
+        let MoveKind::Arc {
+            center,
+            plane,
+            ccw,
+            turns,
+        } = self.kind
+        else {
+            return None;
+        };
+        let (su, sv, _) = plane.split(from - center);
+        let (eu, ev, _) = plane.split(self.to - center);
+        let r = su.hypot(sv);
+        let a0 = sv.atan2(su);
+        let a1 = ev.atan2(eu);
+        let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
+        sweep = sweep.rem_euclid(TAU);
+        if sweep <= 1e-12 {
+            sweep = TAU;
+        }
+        sweep += TAU * f64::from(turns);
+        Some((r, if ccw { sweep } else { -sweep }))
+    }
+
+    /// Path length of this move starting from `from`, in mm (helices included).
+    pub fn length_from(&self, from: Point3) -> f64 {
+        match self.kind {
+            MoveKind::Rapid | MoveKind::Line => from.distance(self.to),
+            MoveKind::Dwell { .. } => 0.0,
+            MoveKind::Arc { plane, .. } => {
+                let (r, sweep) = self.sweep_from(from).unwrap_or((0.0, 0.0));
+                let (_, _, axial) = plane.split(self.to - from);
+                (r * sweep).hypot(axial)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn arc_sweep_and_length() {
+        let from = Point3::new(10.0, 0.0, 0.0);
+        let c = Point3::ORIGIN;
+        let quarter_ccw = Move::arc_xy(Point3::new(0.0, 10.0, 0.0), c, true, 1.0);
+        let (r, s) = quarter_ccw.sweep_from(from).unwrap();
+        assert!((r - 10.0).abs() < 1e-12 && (s - PI / 2.0).abs() < 1e-12);
+        let three_quarter_cw = Move::arc_xy(Point3::new(0.0, 10.0, 0.0), c, false, 1.0);
+        let (_, s) = three_quarter_cw.sweep_from(from).unwrap();
+        assert!((s + 1.5 * PI).abs() < 1e-12);
+        let full = Move::arc_xy(from, c, true, 1.0);
+        assert!((full.length_from(from) - 20.0 * PI).abs() < 1e-9);
+        let helix = Move::arc_xy(Point3::new(10.0, 0.0, -3.0), c, true, 1.0);
+        assert!((helix.length_from(from) - (20.0 * PI).hypot(3.0)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn plane_split_join_round_trip() {
+        let v = Vec3::new(1.0, 2.0, 3.0);
+        for p in [Plane::Xy, Plane::Zx, Plane::Yz] {
+            let (a, b, c) = p.split(v);
+            assert_eq!(p.join(a, b, c), v);
+        }
+    }
+}
