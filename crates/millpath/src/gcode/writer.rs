@@ -440,9 +440,18 @@ impl<'a> Emitter<'a> {
     /// The block that selects `corner`, if the dialect has one.
     fn corner_block(&mut self, corner: Corner) -> Result<(), Error> {
         let d = self.dialect();
-        let pt = self.opts.path_tolerance;
-        let dec = self.decimals.max(4);
-        let text = match (d, corner) {
+        // Tolerances are in mm inside and in program units in the text.
+        // Rounded down to at least 6 decimals, so the controller never gets a looser one.
+        let dec = self.decimals.max(6);
+        let unit = self.unit;
+        let down =
+            |t: f64| (t / unit * 10f64.powi(dec as i32) + 1e-6).floor() / 10f64.powi(dec as i32);
+        let pt = self.opts.path_tolerance.map(down);
+        let corner_in_units = match corner {
+            Corner::Blend(t) => Corner::Blend(down(t)),
+            c => c,
+        };
+        let text = match (d, corner_in_units) {
             (Dialect::Grbl, _) => return Ok(()),
             (Dialect::LinuxCnc, Corner::ExactStop) => "G61.1".to_string(),
             (Dialect::LinuxCnc, Corner::ExactPath) => "G61".to_string(),

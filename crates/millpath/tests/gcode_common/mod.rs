@@ -74,3 +74,98 @@ pub fn varied_toolpath() -> Toolpath {
     tp.push(Move::rapid(p(-3.0, 4.0, 50.0)));
     tp
 }
+
+use millpath::gcode::Dialect;
+
+/// The corner a dialect reads back for `c` written without a path tolerance.
+pub fn corner_read_back(d: Dialect, c: Corner) -> Corner {
+    match (d, c) {
+        (Dialect::LinuxCnc | Dialect::Sinumerik, c) => c,
+        (Dialect::Fanuc, Corner::ExactStop | Corner::ExactPath) => Corner::ExactStop,
+        (Dialect::Fanuc, _) | (Dialect::Grbl, _) => Corner::Machine,
+    }
+}
+
+/// `tp` with multi-turn arcs split into full turns plus the last arc, as dialects without a
+/// turn count write them. Derived here independently of the writer: a helix of total sweep S
+/// and axial travel h advances h·2π/S per full turn.
+pub fn expand_turns(tp: &Toolpath) -> Toolpath {
+    let mut out = Toolpath::new(tp.tool, tp.start);
+    for (from, m) in tp.segments() {
+        match m.kind {
+            MoveKind::Arc {
+                center,
+                plane,
+                ccw,
+                turns,
+            } if turns > 0 => {
+                let (_, sweep) = m.sweep_from(from).unwrap();
+                let (_, _, h) = plane.split(m.to - from);
+                let (fu, fv, fw) = plane.split(from - Point3::ORIGIN);
+                for k in 1..=turns {
+                    let w = fw + h * std::f64::consts::TAU * f64::from(k) / sweep.abs();
+                    let to = Point3::ORIGIN + plane.join(fu, fv, w);
+                    out.push(Move {
+                        kind: MoveKind::Arc {
+                            center,
+                            plane,
+                            ccw,
+                            turns: 0,
+                        },
+                        to,
+                        ..*m
+                    });
+                }
+                out.push(Move {
+                    kind: MoveKind::Arc {
+                        center,
+                        plane,
+                        ccw,
+                        turns: 0,
+                    },
+                    ..*m
+                });
+            }
+            _ => out.push(*m),
+        }
+    }
+    out
+}
+
+/// Largest difference between two moves' numbers (end, centre, feed, dwell), or infinity when
+/// their kinds, planes, directions or turns differ. Centres compare in-plane only.
+pub fn move_difference(a: &Move, b: &Move) -> f64 {
+    let d3 = |p: Point3, q: Point3| {
+        (p.x - q.x)
+            .abs()
+            .max((p.y - q.y).abs())
+            .max((p.z - q.z).abs())
+    };
+    let ends = d3(a.to, b.to);
+    match (a.kind, b.kind) {
+        (MoveKind::Rapid, MoveKind::Rapid) => ends,
+        (MoveKind::Line, MoveKind::Line) => ends.max((a.feed - b.feed).abs()),
+        (MoveKind::Dwell { seconds: s }, MoveKind::Dwell { seconds: t }) => (s - t).abs(),
+        (
+            MoveKind::Arc {
+                center: c1,
+                plane: p1,
+                ccw: w1,
+                turns: t1,
+            },
+            MoveKind::Arc {
+                center: c2,
+                plane: p2,
+                ccw: w2,
+                turns: t2,
+            },
+        ) if p1 == p2 && w1 == w2 && t1 == t2 => {
+            let (u1, v1, _) = p1.split(c1 - Point3::ORIGIN);
+            let (u2, v2, _) = p2.split(c2 - Point3::ORIGIN);
+            ends.max((u1 - u2).abs())
+                .max((v1 - v2).abs())
+                .max((a.feed - b.feed).abs())
+        }
+        _ => f64::INFINITY,
+    }
+}
