@@ -159,3 +159,35 @@ fn a_failing_output_is_an_error_not_a_panic() {
             .unwrap_err();
     assert!(e.to_string().contains("disk full"), "{e}");
 }
+
+#[test]
+fn arcs_too_small_for_the_decimals_become_lines_and_still_read_back() {
+    use millpath::gcode::{ReaderOptions, read_str};
+    let start = Point3::new(5.0, 0.0, 0.0);
+    let mut tp = Toolpath::new(Tool::default(), start);
+    // Radius below LinuxCNC's zero-radius limit.
+    tp.push(Move::arc_xy(
+        Point3::new(5.0, 0.0008, 0.0),
+        Point3::new(5.0, 0.0004, 0.0),
+        true,
+        5.0,
+    ));
+    // A 0.0001 rad sweep of radius 1 whose end rounds onto its start at 3 decimals: as an
+    // arc it would read back as a full circle.
+    let (a, c) = (0.0001f64, Point3::new(4.0, 0.0008, 0.0));
+    tp.push(Move::arc_xy(
+        Point3::new(4.0 + a.cos(), 0.0008 + a.sin(), 0.0),
+        c,
+        true,
+        5.0,
+    ));
+    let (text, s) = write_to_string(&tp, &WriterOptions::default()).unwrap();
+    assert_eq!(s.arcs_as_lines, 2, "{text}");
+    let ropts = ReaderOptions {
+        start,
+        ..ReaderOptions::default()
+    };
+    let (read, _) = read_str(&text, ropts).unwrap();
+    let len: f64 = read.segments().map(|(f, m)| m.length_from(f)).sum();
+    assert!(len < 0.01, "no full circle sneaked in: {len} mm\n{text}");
+}

@@ -39,7 +39,7 @@
 //! in a separate block"); Grbl 1.1 `G4 P` seconds.
 //!
 //! # Numbers and the tolerance budget
-//! See [`format`]: trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
+//! See [`format`](mod@format): trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
 //! a point rounds by at most `√2·½·10^(−d)` in XY, and [`required_decimals`] keeps that within
 //! 10 % of a tolerance so that chordal deviation plus rounding stays within it.
 //!
