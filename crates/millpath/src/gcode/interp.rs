@@ -204,7 +204,11 @@ impl Block {
         mut warn: impl FnMut(BlockError),
         lenient: bool,
     ) -> Result<(), BlockError> {
-        *self = Block::default();
+        self.g.clear();
+        self.m.clear();
+        self.words = [None; 26];
+        self.turn = None;
+        self.cycle832 = None;
         for t in tokens {
             let r = self.gather_one(t, line, dialect);
             match r {

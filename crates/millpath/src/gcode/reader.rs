@@ -172,8 +172,9 @@ impl<R: BufRead> Reader<R> {
                 |e| skipped.push(format!("skipped {} ({})", e.value, e.expected)),
                 self.opts.lenient,
             );
-            let origin = self.origin();
-            gathered.map_err(|e| e.into_input(origin.clone()))?;
+            if let Err(e) = gathered {
+                return Err(e.into_input(self.origin()).into());
+            }
             for s in skipped {
                 self.warn(s);
             }
@@ -184,7 +185,7 @@ impl<R: BufRead> Reader<R> {
                 Err(e) if e.unsupported && self.opts.lenient => {
                     self.warn(format!("skipped {} ({})", e.value, e.expected));
                 }
-                Err(e) => return Err(e.into_input(origin).into()),
+                Err(e) => return Err(e.into_input(self.origin()).into()),
                 Ok(()) => {}
             }
         }
