@@ -39,13 +39,21 @@ fn bench(c: &mut Criterion) {
         g.bench_function(name, |b| {
             b.iter(|| {
                 let r = Reader::new(black_box(text.as_bytes()), ReaderOptions::default());
-                r.map(|m| m.map(|m| m.mv.to.x)).sum::<Result<f64, _>>().expect("reads")
+                r.map(|m| m.map(|m| m.mv.to.x))
+                    .sum::<Result<f64, _>>()
+                    .expect("reads")
             });
         });
     }
     let tp = toolpath(n, true);
     g.bench_function("write_g1_g3", |b| {
-        b.iter(|| write_program(black_box(&tp), &WriterOptions::default(), &mut std::io::sink()));
+        b.iter(|| {
+            write_program(
+                black_box(&tp),
+                &WriterOptions::default(),
+                &mut std::io::sink(),
+            )
+        });
     });
     g.finish();
 }

@@ -288,3 +288,14 @@ fn a_huge_line_is_refused_not_buffered() {
     let line = format!("G1 X1 F60 ({})\n", "x".repeat(200_000));
     assert!(error(&line).contains("longer than"));
 }
+
+#[test]
+fn units_in_the_same_block_apply_to_its_feed() {
+    let tp = read("G21 F600\nG20 G1 X1 F60\nG21 G1 X30\n");
+    assert!((tp.moves[0].feed - 25.4).abs() < 1e-12, "60 in/min");
+    assert!(
+        (tp.moves[1].feed - 25.4).abs() < 1e-12,
+        "the feed keeps its physical value"
+    );
+    assert!(close(tp.moves[1].to, Point3::new(30.0, 0.0, 0.0)));
+}

@@ -2,7 +2,9 @@
 
 mod gcode_common;
 
-use gcode_common::{corner_read_back, expand_turns, move_difference, varied_toolpath};
+use gcode_common::{
+    corner_read_back, expand_turns, move_difference, varied_toolpath, with_start_rapid,
+};
 use millpath::gcode::{Dialect, ReaderOptions, Units, WriterOptions, read_str, write_to_string};
 use millpath::toolpath::{Corner, MoveKind, Toolpath};
 
@@ -29,6 +31,7 @@ fn round_trip(
     let (read, warnings) =
         read_str(&text, ropts).unwrap_or_else(|e| panic!("{d} {units}: {e}\n{text}"));
     assert!(warnings.is_empty(), "{warnings:?}");
+    let tp = &with_start_rapid(tp);
     let expected = if matches!(d, Dialect::Fanuc | Dialect::Grbl) {
         expand_turns(tp)
     } else {

@@ -191,3 +191,34 @@ fn arcs_too_small_for_the_decimals_become_lines_and_still_read_back() {
     let len: f64 = read.segments().map(|(f, m)| m.length_from(f)).sum();
     assert!(len < 0.01, "no full circle sneaked in: {len} mm\n{text}");
 }
+
+#[test]
+fn near_full_circles_stay_near_full_after_rounding() {
+    use millpath::gcode::{ReaderOptions, read_str};
+    // Sweeps a hair short of a full turn, both directions, at many start angles: whatever
+    // the rounding does to the end, the program read back still goes (almost) all the way round.
+    for k in 0..40 {
+        for ccw in [true, false] {
+            let a0 = f64::from(k) * 0.157;
+            let r = 10.0;
+            let start = Point3::new(r * a0.cos(), r * a0.sin(), 0.0);
+            let short = 3e-5;
+            let a1 = if ccw { a0 - short } else { a0 + short };
+            let end = Point3::new(r * a1.cos(), r * a1.sin(), 0.0);
+            let mut tp = Toolpath::new(Tool::default(), start);
+            tp.push(Move::arc_xy(end, Point3::ORIGIN, ccw, 5.0));
+            let want = tp.cut_length();
+            let (text, _) = write_to_string(&tp, &WriterOptions::default()).unwrap();
+            let ropts = ReaderOptions {
+                start,
+                ..ReaderOptions::default()
+            };
+            let (read, _) = read_str(&text, ropts).unwrap();
+            let got = read.cut_length();
+            assert!(
+                (got - want).abs() < 0.01,
+                "k {k} ccw {ccw}: {got} vs {want}\n{text}"
+            );
+        }
+    }
+}

@@ -2,7 +2,8 @@
 //! from block to block.
 //!
 //! # Modal rules
-//! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"):
+//! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"),
+//! except that units (G20/G21) apply before F so that `G20 F10` means 10 in/min:
 //! feed mode (G93/G94) → F → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell (G4) → plane
 //! (G17–G19) → units (G20/G21) → cutter compensation off (G40) → tool length (G43/G49) →
 //! work offset (G54–G59) → path mode (G61, G61.1, G64; G60/G642/CYCLE832 on Sinumerik) →
@@ -389,6 +390,15 @@ impl State {
         {
             self.modal.feed_mode = mode;
             self.feed = None;
+        }
+        // Units first, so that `G20 F10` in one block is 10 in/min (an F read earlier keeps its
+        // physical value: it is stored in mm/s).
+        for &(g, _) in &b.g {
+            match g {
+                200 | 700 | 7000 => self.modal.units = Units::Inch,
+                210 | 710 | 7100 => self.modal.units = Units::Mm,
+                _ => {}
+            }
         }
         let f_is_dwell = dwell && dialect == Dialect::Sinumerik;
         let mut block_f = None;

@@ -31,7 +31,8 @@
 //! reads back as: LinuxCNC keeps all four exactly (`G64 P`tol reads as `Blend(tol)`, so a
 //! `Machine` move written under a header `G64 P` reads back as the blend it means); Fanuc
 //! reads `G61` as exact stop and `G64` as machine; Sinumerik `G60` exact stop, `G64` exact
-//! path, `CYCLE832(t,..)` blend, `G642` machine; Grbl always machine.
+//! path, `CYCLE832(t,..)` blend, `G642` machine; Grbl programs carry no corner mode (the
+//! writer writes none), so they read back as machine.
 //!
 //! Sources for the dwell words: LinuxCNC's G-code reference (`G4 P` seconds); Siemens'
 //! ISO-dialect manual (840D, `G04 X_` seconds with decimal point, `P_` in ms without) and

@@ -169,3 +169,25 @@ pub fn move_difference(a: &Move, b: &Move) -> f64 {
         _ => f64::INFINITY,
     }
 }
+
+/// `tp` as the writer writes it when its first motion is an arc: a rapid to the start first.
+pub fn with_start_rapid(tp: &Toolpath) -> Toolpath {
+    let first_motion = tp
+        .moves
+        .iter()
+        .find(|m| !matches!(m.kind, MoveKind::Dwell { .. }));
+    let mut out = tp.clone();
+    if let Some(Move {
+        kind: MoveKind::Arc { .. },
+        ..
+    }) = first_motion
+    {
+        let at = tp
+            .moves
+            .iter()
+            .position(|m| !matches!(m.kind, MoveKind::Dwell { .. }))
+            .unwrap_or(0);
+        out.moves.insert(at, Move::rapid(tp.start));
+    }
+    out
+}
