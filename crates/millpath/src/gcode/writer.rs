@@ -232,6 +232,7 @@ struct Emitter<'a> {
     corner: Corner,
     corner_text: String,
     feed: String,
+    scratch: String,
     /// Emitted (rounded) position in program units; `None` until first written.
     pos: [Option<f64>; 3],
     first_motion: bool,
@@ -258,6 +259,7 @@ impl<'a> Emitter<'a> {
             corner: Corner::Machine,
             corner_text: String::new(),
             feed: String::new(),
+            scratch: String::with_capacity(32),
             pos: [None; 3],
             first_motion: true,
             tool: 0,
@@ -521,14 +523,18 @@ impl<'a> Emitter<'a> {
     /// value in program units.
     fn axis(&mut self, axis: usize, mm: f64, force: bool) -> f64 {
         let v = mm / self.unit;
-        let rounded = round(v, self.decimals);
+        // Format once; the reader's value is the parse of exactly this text.
+        self.scratch.clear();
+        push_number(&mut self.scratch, v, self.decimals, self.keep_point);
+        let rounded: f64 = self.scratch.parse().unwrap_or(v);
         let known = self.pos.get(axis).copied().flatten();
         if force || known.is_none_or(|k| k.to_bits() != rounded.to_bits()) {
-            self.word(
-                ["X", "Y", "Z"].get(axis).copied().unwrap_or("X"),
-                v,
-                self.decimals,
-            );
+            if !self.line.is_empty() {
+                self.line.push(' ');
+            }
+            self.line
+                .push_str(["X", "Y", "Z"].get(axis).copied().unwrap_or("X"));
+            self.line.push_str(&self.scratch);
         }
         if let Some(p) = self.pos.get_mut(axis) {
             *p = Some(rounded);
@@ -538,10 +544,15 @@ impl<'a> Emitter<'a> {
 
     fn feed_word(&mut self, feed_mm_s: f64) {
         let f = feed_mm_s * 60.0 / self.unit;
-        let text = num(f, self.decimals, self.keep_point);
-        if text != self.feed {
-            self.raw(&format!("F{text}"));
-            self.feed = text;
+        self.scratch.clear();
+        push_number(&mut self.scratch, f, self.decimals, self.keep_point);
+        if self.scratch != self.feed {
+            if !self.line.is_empty() {
+                self.line.push(' ');
+            }
+            self.line.push('F');
+            self.line.push_str(&self.scratch);
+            std::mem::swap(&mut self.feed, &mut self.scratch);
         }
     }
 
