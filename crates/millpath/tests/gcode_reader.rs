@@ -66,6 +66,10 @@ fn errors_name_the_file_line_and_word() {
         e.contains("part.ngc:1") && e.contains("e5"),
         "exponent: {e}"
     );
+    let e = error("G21\nG1 X1e300 F100\n");
+    assert!(e.contains(":2"), "{e}");
+    let e = error(&format!("G21\nG1 X1{} F100\n", "0".repeat(30)));
+    assert!(e.contains(":2") && e.contains("magnitude"), "{e}");
     let e = error("G21\nG1 X#1 F100\n");
     assert!(e.contains("part.ngc:2") && e.contains("#1"), "{e}");
     let e = error("G21\nG38.2 Z-5 F100\n");
@@ -298,4 +302,107 @@ fn units_in_the_same_block_apply_to_its_feed() {
         "the feed keeps its physical value"
     );
     assert!(close(tp.moves[1].to, Point3::new(30.0, 0.0, 0.0)));
+}
+
+#[test]
+fn lenient_skips_unused_words_but_keeps_the_motion() {
+    let o = ReaderOptions {
+        lenient: true,
+        ..ReaderOptions::default()
+    };
+    let (tp, warnings) = read_str("G21 G1 X1 F60 Q3\n", o).unwrap();
+    assert_eq!(tp.moves.len(), 1);
+    assert!(warnings[0].message.contains("Q3"), "{warnings:?}");
+    assert!(error("G21 G1 X1 F60 Q3\n").contains("Q3"));
+    // Arc words without axis words and without G2/G3 in the block are an error.
+    assert!(error("G21 G0 X1\nG2 X2 I0.5 F60\nI0.5\n").contains(":3"));
+}
+
+mod no_panics {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn words() -> impl Strategy<Value = String> {
+        let word = (
+            prop::sample::select(vec![
+                "G",
+                "M",
+                "X",
+                "Y",
+                "Z",
+                "I",
+                "J",
+                "K",
+                "R",
+                "F",
+                "P",
+                "Q",
+                "S",
+                "T",
+                "N",
+                "A",
+                "(",
+                ";",
+                "%",
+                "/",
+                "#",
+                "TURN=",
+                "CYCLE832(",
+            ]),
+            prop::sample::select(vec![
+                "0",
+                "1",
+                "2",
+                "3",
+                "4",
+                "17",
+                "18",
+                "19",
+                "20",
+                "21",
+                "61.1",
+                "64",
+                "90.1",
+                "91",
+                "93",
+                "-1.5",
+                ".5",
+                "1e3",
+                "",
+                "-",
+                "99999999999999999999",
+            ]),
+        );
+        prop::collection::vec(prop::collection::vec(word, 0..8), 1..12).prop_map(|lines| {
+            lines
+                .iter()
+                .map(|l| {
+                    l.iter()
+                        .map(|(a, b)| format!("{a}{b}"))
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                })
+                .collect::<Vec<_>>()
+                .join("\n")
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 400, rng_seed: proptest::test_runner::RngSeed::Fixed(11), ..ProptestConfig::default() })]
+
+        /// Word soup and random bytes: errors are fine, panics and non-finite moves are not.
+        #[test]
+        fn the_reader_never_panics_or_yields_non_finite_moves(text in words(), bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+            for d in Dialect::ALL {
+                for lenient in [false, true] {
+                    let o = ReaderOptions { dialect: d, lenient, ..ReaderOptions::default() };
+                    for m in Reader::new(text.as_bytes(), o.clone()).flatten() {
+                        prop_assert!(m.mv.to.is_finite() && m.mv.feed.is_finite());
+                        prop_assert!(!m.mv.is_feed() || m.mv.feed > 0.0);
+                    }
+                    let _ = Reader::new(bytes.as_slice(), o).count();
+                }
+            }
+        }
+    }
 }

@@ -128,6 +128,8 @@ pub(crate) struct State {
     spindle_set: f64,
     pending_tool: u32,
     pub(crate) ended: bool,
+    /// Warnings of the last block (lenient mode), for the reader to collect.
+    pub(crate) notes: Vec<String>,
 }
 
 /// One block's words, gathered before execution.
@@ -172,6 +174,10 @@ impl BlockError {
             .expected(self.expected)
     }
 }
+
+/// Largest magnitude of a word's number: a kilometre in µm, far beyond any machine, and small
+/// enough that squares of it (arc geometry) stay finite.
+pub const MAX_WORD_VALUE: f64 = 1e9;
 
 const LETTERS_OK: &[u8] = b"DFHIJKNOPQRSTXYZ";
 
@@ -229,6 +235,13 @@ impl Block {
                 end,
             } => {
                 let text = line.get(*start..*end).unwrap_or("?").trim();
+                if value.abs() > MAX_WORD_VALUE {
+                    return Err(BlockError::new(
+                        "G-code number",
+                        text,
+                        format!("a magnitude of at most {MAX_WORD_VALUE:e}"),
+                    ));
+                }
                 match letter {
                     b'G' => {
                         let code = (value * 10.0).round();
@@ -353,6 +366,7 @@ impl State {
             spindle_set: 0.0,
             pending_tool: 0,
             ended: false,
+            notes: Vec::new(),
         }
     }
 

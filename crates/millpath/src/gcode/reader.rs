@@ -188,6 +188,9 @@ impl<R: BufRead> Reader<R> {
                 Err(e) => return Err(e.into_input(self.origin()).into()),
                 Ok(()) => {}
             }
+            for note in std::mem::take(&mut self.state.notes) {
+                self.warn(note);
+            }
         }
         Ok(())
     }
