@@ -222,3 +222,13 @@ fn near_full_circles_stay_near_full_after_rounding() {
         }
     }
 }
+
+#[test]
+fn absurd_coordinates_are_refused() {
+    let mut tp = varied_toolpath();
+    tp.moves[3].to.x = 1e300;
+    let e = write_to_string(&tp, &WriterOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("move 3"), "{e}");
+}

@@ -163,11 +163,14 @@ pub fn write_program(
 
 fn check_move(i: usize, m: &Move, from: Point3) -> Result<(), InputError> {
     let at = || format!("move {i}");
-    if !m.to.is_finite() {
+    let in_range = |p: Point3| {
+        p.is_finite() && p.x.abs().max(p.y.abs()).max(p.z.abs()) <= super::interp::MAX_WORD_VALUE
+    };
+    if !in_range(m.to) {
         return Err(
             InputError::new("move end point", format_args!("{:?}", m.to))
                 .at(at())
-                .expected("finite coordinates"),
+                .expected("finite coordinates within ±1e9 mm"),
         );
     }
     if !from.is_finite() {
@@ -184,7 +187,7 @@ fn check_move(i: usize, m: &Move, from: Point3) -> Result<(), InputError> {
                     .expected("a finite feed > 0 mm/s on a feed move"));
             }
             if let MoveKind::Arc { center, .. } = m.kind
-                && !center.is_finite()
+                && !in_range(center)
             {
                 return Err(InputError::new("arc centre", format_args!("{center:?}"))
                     .at(at())
