@@ -232,3 +232,29 @@ fn absurd_coordinates_are_refused() {
         .to_string();
     assert!(e.contains("move 3"), "{e}");
 }
+
+#[test]
+fn with_tolerance_raises_the_decimals_only_when_needed() {
+    use millpath::gcode::{required_decimals, rounding_error_mm};
+    let o = WriterOptions::default().with_tolerance(0.1);
+    assert_eq!(
+        o.effective_decimals(),
+        3,
+        "the default already holds 0.1 mm"
+    );
+    for tol in [1e-2, 1e-3, 1e-4, 4e-5] {
+        for units in [Units::Mm, Units::Inch] {
+            let o = WriterOptions {
+                units,
+                ..WriterOptions::default()
+            }
+            .with_tolerance(tol);
+            let d = o.effective_decimals();
+            assert!(d >= required_decimals(tol, units));
+            assert!(
+                rounding_error_mm(d, units) <= 0.1 * tol,
+                "{tol} {units}: {d}"
+            );
+        }
+    }
+}

@@ -91,6 +91,16 @@ impl WriterOptions {
             .unwrap_or_else(|| self.dialect.default_decimals(self.units))
     }
 
+    /// These options with enough decimals for a path tolerance of `tolerance_mm`: the larger
+    /// of the current decimals and [`super::required_decimals`] (rounding within 10 % of the
+    /// tolerance, see [`super::format`]).
+    #[must_use]
+    pub fn with_tolerance(mut self, tolerance_mm: f64) -> Self {
+        let need = super::required_decimals(tolerance_mm, self.units);
+        self.decimals = Some(self.effective_decimals().max(need));
+        self
+    }
+
     fn validate(&self) -> Result<(), InputError> {
         if !(54..=59).contains(&self.work_offset) {
             return Err(InputError::new("work offset", self.work_offset)
