@@ -4,8 +4,8 @@
 //! # Modal rules
 //! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"),
 //! except that units (G20/G21) apply before F so that `G20 F10` means 10 in/min:
-//! feed mode (G93/G94) → F → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell (G4) → plane
-//! (G17–G19) → units (G20/G21) → cutter compensation off (G40) → tool length (G43/G49) →
+//! units (G20/G21) → feed mode (G93/G94) → F → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell
+//! (G4) → plane (G17–G19) → cutter compensation off (G40) → tool length (G43/G49) →
 //! work offset (G54–G59) → path mode (G61, G61.1, G64; G60/G642/CYCLE832 on Sinumerik) →
 //! distance mode (G90/G91) → arc-centre mode (G90.1/G91.1) → G53 → motion (G0–G3, G80) →
 //! program end (M2/M30; the reader stops there). A block may therefore yield a dwell and a
@@ -31,7 +31,8 @@
 //!   (Sinumerik; F in a G4 block is no feed).
 //! * Arcs: `I J K` centre offsets, incremental (G91.1, default) or absolute (G90.1), or `R`
 //!   (negative for more than half a turn); a full circle is end = start with offsets; `P n`
-//!   (LinuxCNC) or `TURN=n−1` (Sinumerik) adds turns; an axis move along the plane's normal
+//!   (LinuxCNC: n turns in all) or `TURN=n` (Sinumerik: n extra full turns) makes a
+//!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
 //!   G40, G49, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
