@@ -165,3 +165,108 @@ fn reader_agrees_with_rs274_on_bad_programs() {
         );
     }
 }
+
+/// One motion of rs274's canonical output, in program units: (kind, end, centre, rotation).
+#[derive(Debug)]
+enum Canon {
+    Straight(bool, Point3),
+    Arc(Point3, (f64, f64), i32),
+    Dwell(f64),
+}
+
+fn numbers(line: &str) -> Vec<f64> {
+    let inside = line
+        .split_once('(')
+        .and_then(|(_, r)| r.rsplit_once(')'))
+        .map_or("", |(a, _)| a);
+    inside
+        .split(',')
+        .filter_map(|t| t.trim().parse().ok())
+        .collect()
+}
+
+/// Parses rs274's canonical commands (its own interpretation, independent of our reader).
+fn canon_motions(canon: &str) -> Vec<Canon> {
+    use millpath::toolpath::Plane;
+    let mut plane = Plane::Xy;
+    let mut out = Vec::new();
+    for l in canon.lines() {
+        let n = numbers(l);
+        if l.contains("SELECT_PLANE(CANON_PLANE_XZ)") {
+            plane = Plane::Zx;
+        } else if l.contains("SELECT_PLANE(CANON_PLANE_YZ)") {
+            plane = Plane::Yz;
+        } else if l.contains("SELECT_PLANE(CANON_PLANE_XY)") {
+            plane = Plane::Xy;
+        } else if l.contains("STRAIGHT_TRAVERSE(") || l.contains("STRAIGHT_FEED(") {
+            out.push(Canon::Straight(
+                l.contains("TRAVERSE"),
+                Point3::new(n[0], n[1], n[2]),
+            ));
+        } else if l.contains("ARC_FEED(") {
+            // ARC_FEED(first_end, second_end, first_centre, second_centre, rotation, axis_end, ...)
+            let end = Point3::ORIGIN + plane.join(n[0], n[1], n[5]);
+            out.push(Canon::Arc(end, (n[2], n[3]), n[4] as i32));
+        } else if l.contains("DWELL(") {
+            out.push(Canon::Dwell(n[0]));
+        }
+    }
+    out
+}
+
+#[test]
+fn rs274_interprets_the_program_as_the_toolpath() {
+    use millpath::toolpath::MoveKind;
+    let tp = varied_toolpath();
+    for units in [Units::Mm, Units::Inch] {
+        let opts = WriterOptions {
+            units,
+            decimals: Some(6),
+            ..WriterOptions::default()
+        };
+        let (text, _) = write_to_string(&tp, &opts).unwrap();
+        let canon = rs274(&text).unwrap_or_else(|e| panic!("{e}"));
+        let got = canon_motions(&canon);
+        assert_eq!(got.len(), tp.moves.len(), "{canon}");
+        // rs274 prints 4 decimals of the program unit.
+        let k = units.mm_per_unit();
+        let tol = 0.6e-4 * k;
+        for (i, (m, c)) in tp.moves.iter().zip(&got).enumerate() {
+            let close = |p: Point3| {
+                (p.x * k - m.to.x)
+                    .abs()
+                    .max((p.y * k - m.to.y).abs())
+                    .max((p.z * k - m.to.z).abs())
+                    <= tol
+            };
+            match (m.kind, c) {
+                (MoveKind::Rapid, Canon::Straight(true, p))
+                | (MoveKind::Line, Canon::Straight(false, p)) => {
+                    assert!(close(*p), "move {i}: {m:?} vs {c:?}");
+                }
+                (
+                    MoveKind::Arc {
+                        center,
+                        plane,
+                        ccw,
+                        turns,
+                    },
+                    Canon::Arc(p, (cu, cv), rot),
+                ) => {
+                    assert!(close(*p), "move {i}: {m:?} vs {c:?}");
+                    let (u, v, _) = plane.split(center - Point3::ORIGIN);
+                    assert!(
+                        (cu * k - u).abs() <= tol && (cv * k - v).abs() <= tol,
+                        "move {i}: centre {m:?} vs {c:?}"
+                    );
+                    let want = (turns as i32 + 1) * if ccw { 1 } else { -1 };
+                    assert_eq!(*rot, want, "move {i}: rotation");
+                }
+                (MoveKind::Dwell { seconds }, Canon::Dwell(s)) => {
+                    assert!((seconds - s).abs() < 1e-4)
+                }
+                _ => panic!("move {i}: {m:?} interpreted by rs274 as {c:?}"),
+            }
+        }
+    }
+}
