@@ -263,7 +263,7 @@ fn rs274_interprets_the_program_as_the_toolpath() {
                     assert_eq!(*rot, want, "move {i}: rotation");
                 }
                 (MoveKind::Dwell { seconds }, Canon::Dwell(s)) => {
-                    assert!((seconds - s).abs() < 1e-4)
+                    assert!((seconds - s).abs() < 1e-4);
                 }
                 _ => panic!("move {i}: {m:?} interpreted by rs274 as {c:?}"),
             }
