@@ -116,85 +116,15 @@ fn default_decimals_round_trip_within_the_rounding_bound() {
 
 mod random {
     use super::*;
-    use millpath::geom::Point3;
-    use millpath::toolpath::{Move, Plane, Tool};
+    use gcode_common::{build_random, random_step};
     use proptest::prelude::*;
-    use std::f64::consts::PI;
-
-    type Step = (u8, f64, f64, f64, f64, bool, u8);
-
-    fn step() -> impl Strategy<Value = Step> {
-        (
-            0u8..5,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            -1.0..1.0f64,
-            any::<bool>(),
-            0u8..3,
-        )
-    }
-
-    /// Builds a toolpath of rapids, lines, arcs and helices in all planes (sweeps 0.05..6.15
-    /// rad), full circles with 0..2 extra turns, and dwells.
-    fn build(steps: &[Step]) -> Toolpath {
-        let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 20.0));
-        let mut p = tp.start;
-        for &(kind, a, b, c, d, ccw, pl) in steps {
-            let plane = [Plane::Xy, Plane::Zx, Plane::Yz][usize::from(pl)];
-            let m = match kind {
-                0 => Move::rapid(Point3::new(a * 500.0, b * 500.0, c * 100.0)),
-                1 => Move::line(
-                    Point3::new(a * 500.0, b * 500.0, c * 100.0),
-                    d.abs() * 100.0 + 0.1,
-                ),
-                2 | 3 => {
-                    let r = 0.5 + a.abs() * 200.0;
-                    let t0 = b * PI;
-                    let (pu, pv, pw) = plane.split(p - Point3::ORIGIN);
-                    let (cu, cv) = (pu - r * t0.cos(), pv - r * t0.sin());
-                    let (to, turns) = if kind == 2 {
-                        let sweep = 0.05 + c.abs() * 6.1;
-                        let t1 = if ccw { t0 + sweep } else { t0 - sweep };
-                        (
-                            Point3::ORIGIN
-                                + plane.join(cu + r * t1.cos(), cv + r * t1.sin(), pw + d * 10.0),
-                            0,
-                        )
-                    } else {
-                        (
-                            Point3::ORIGIN + plane.join(pu, pv, pw + d * 5.0),
-                            (c.abs() * 2.99) as u32,
-                        )
-                    };
-                    let center = Point3::ORIGIN + plane.join(cu, cv, pw);
-                    Move {
-                        kind: MoveKind::Arc {
-                            center,
-                            plane,
-                            ccw,
-                            turns,
-                        },
-                        to,
-                        feed: d.abs() * 50.0 + 0.5,
-                        corner: Corner::Machine,
-                        tag: None,
-                    }
-                }
-                _ => Move::dwell(p, a.abs() * 5.0),
-            };
-            p = m.to;
-            tp.push(m);
-        }
-        tp
-    }
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 48, rng_seed: proptest::test_runner::RngSeed::Fixed(7), ..ProptestConfig::default() })]
 
         #[test]
-        fn random_toolpaths_round_trip_in_every_dialect(steps in proptest::collection::vec(step(), 1..16)) {
-            let tp = build(&steps);
+        fn random_toolpaths_round_trip_in_every_dialect(steps in proptest::collection::vec(random_step(), 1..16)) {
+            let tp = build_random(&steps);
             for d in Dialect::ALL {
                 for units in [Units::Mm, Units::Inch] {
                     let dec = if units == Units::Inch { 11 } else { 10 };

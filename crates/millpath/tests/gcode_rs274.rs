@@ -270,3 +270,27 @@ fn rs274_interprets_the_program_as_the_toolpath() {
         }
     }
 }
+
+mod random {
+    use super::*;
+    use gcode_common::{build_random, random_step};
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 12, rng_seed: proptest::test_runner::RngSeed::Fixed(3), ..ProptestConfig::default() })]
+
+        /// Random toolpaths (arcs in all planes, helices, multi-turn circles) written at the
+        /// default decimals pass rs274, in mm and inch.
+        #[test]
+        fn random_toolpaths_pass_rs274(steps in proptest::collection::vec(random_step(), 1..20)) {
+            let tp = build_random(&steps);
+            for units in [Units::Mm, Units::Inch] {
+                let opts = WriterOptions { units, ..WriterOptions::default() };
+                let (text, _) = write_to_string(&tp, &opts).unwrap();
+                if let Err(e) = rs274(&text) {
+                    prop_assert!(false, "rs274 refused: {}\n{}", e, text);
+                }
+            }
+        }
+    }
+}
