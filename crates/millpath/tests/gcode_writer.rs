@@ -258,3 +258,16 @@ fn with_tolerance_raises_the_decimals_only_when_needed() {
         }
     }
 }
+
+#[test]
+fn comments_off_means_no_comments_in_any_dialect() {
+    for d in Dialect::ALL {
+        let o = WriterOptions {
+            comments: false,
+            ..opts(d)
+        };
+        let (t, _) = write_to_string(&varied_toolpath(), &o).unwrap();
+        let code = t.replace("CYCLE832(", "");
+        assert!(!code.contains('(') && !code.contains(';'), "{d}:\n{t}");
+    }
+}
