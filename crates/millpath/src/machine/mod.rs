@@ -9,7 +9,7 @@
 //!
 //! | preset | v_max x/y/z (mm/s) | a_max (mm/s²) | j_max (mm/s³) | max feed (mm/s) | rapid (mm/s) | tolerance (mm) | IPO (ms) |
 //! |---|---|---|---|---|---|---|---|
-//! | `hsm` | 500 / 500 / 500 | 2000 | 100 000 | 500 | 500 | 0 (exact stop at corners) | 2 |
+//! | `hsm` | 500 / 500 / 500 | 5000 | 200 000 | 500 | 500 | 0 (exact stop at corners) | 2 |
 //! | `linuxcnc-sim` | 101.6 (4 in/s) | 2540 (100 in/s²) | unlimited | 30.48 (1.2 in/s) | 30.48 | 0.0254 (0.001 in) | 1 |
 //! | `router` | 250 / 250 / 100 | 500 / 500 / 300 | 10 000 / 10 000 / 5 000 | 200 | 250 / 250 / 100 | 0.05 | 1 |
 //!
@@ -17,19 +17,20 @@
 //!
 //! * **`hsm`** — a Huron-class high-speed vertical mill with a Siemens 840D, the machine of the
 //!   adaptive-spiral paper's Table 2. Rapid 30 m/min (500 mm/s) and axis acceleration
-//!   2 m/s² are the published class of such machines (Huron KX/MX series: 30–40 m/min rapids,
-//!   2–5 m/s² acceleration). The acceleration and jerk are chosen to be consistent with the
-//!   paper's Table 2: on the long squares (L = 6 in), the time the square loses over
-//!   length/feed grows linearly with the feed, 0.06 s per side at 200 in/min and 0.11 s per side
-//!   at 400 in/min; for a rest-to-rest move that loss is `v/a + a/j`, whose slope in `v` gives
-//!   `a ≈ 1.7–2 m/s²` and whose intercept gives `a/j ≈ 0.01–0.02 s`, so `j ≈ 100 m/s³`
-//!   (the 840D's `MAX_AX_JERK`, MD32431, is typically set between 50 and 200 m/s³). The
-//!   squares are run with exact stops at the corners (path tolerance 0): the paper does not
-//!   give the 840D's continuous-path settings, and the measured corner losses are those of a
-//!   stop (see [`crate::motion::table2`]). Interpolation cycle 2 ms (the 840D's IPO cycle is
-//!   typically 2–4 ms, MD10071). On curved paths the 840D shares the axis acceleration
-//!   between the tangential and the centripetal direction (`CURV_EFFECT_ON_PATH_ACCEL`,
-//!   MD20602); the preset gives 3/4 of it to the centripetal part.
+//!   5 m/s² are the published class of such machines (Huron KX/MX high-speed series:
+//!   30–40 m/min rapids, 3–6 m/s²); jerk 200 m/s³ is within the range the 840D's
+//!   `MAX_AX_JERK` (MD32431) is set to on such machines (50–500 m/s³). Both are chosen to be
+//!   consistent with Table 2: at 400 in/min (169 mm/s) on the r = 0.318 in (8.08 mm) circle
+//!   the 840D took 0.52 s for 0.30 s of path at feed, i.e. it kept nearly full feed with a
+//!   centripetal acceleration `v²/r ≈ 3.5 m/s²` and `v³/r² ≈ 74 m/s³`, so the axes allow at
+//!   least that; the squares' corner losses then fix the pair (A, J) = (5 m/s², 200 m/s³)
+//!   as the grid point that reproduces the table's trends with the smallest error (see
+//!   [`crate::motion::table2`] for the fit and the remaining error). The squares are run with
+//!   exact stops at the corners (path tolerance 0): the paper does not give the 840D's
+//!   continuous-path settings. Interpolation cycle 2 ms (the 840D's IPO cycle is typically
+//!   2–4 ms, MD10071). On curved paths the 840D shares the axis acceleration between the
+//!   tangential and the centripetal direction (`CURV_EFFECT_ON_PATH_ACCEL`, MD20602); the
+//!   preset gives 3/4 of it (and of the jerk) to the curvature terms.
 //! * **`linuxcnc-sim`** — LinuxCNC's sample simulator configuration
 //!   `configs/sim/axis/axis.ini` (inch units): every axis `MAX_VELOCITY = 4` in/s,
 //!   `MAX_ACCELERATION = 100.0` in/s², `[TRAJ] MAX_LINEAR_VELOCITY = 1.2` in/s (which caps
@@ -122,7 +123,7 @@ impl Machine {
                 description: "high-speed 3-axis aerospace mill, Siemens 840D-class controller \
                               (Huron, the adaptive-spiral paper's Table 2)"
                     .into(),
-                axes: [axis(500.0, 2000.0, 100_000.0); 3],
+                axes: [axis(500.0, 5000.0, 200_000.0); 3],
                 max_feed: 500.0,
                 rapid: [500.0; 3],
                 path_tolerance: 0.0,
