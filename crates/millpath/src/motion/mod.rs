@@ -7,6 +7,7 @@ pub mod plan;
 pub mod profile;
 pub mod sample;
 pub mod table2;
+pub mod verify;
 
 pub use sample::Sample;
 pub use plan::{BlockPlan, Plan, PlanOptions, Span, plan_moves, plan_toolpath, plan_toolpath_opt};

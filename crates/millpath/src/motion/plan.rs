@@ -4,7 +4,8 @@
 //! Consecutive blocks whose junction does not bind (the junction cap is at least both blocks'
 //! speed caps) and whose speed caps are equal form one **span**: the S-curve runs through
 //! their junctions without constraint. The span's path acceleration and jerk limits are the
-//! smallest of its blocks' (conservative where the direction changes within the span). A
+//! smallest of its blocks' (conservative where the direction changes within the span; blocks
+//! whose limits differ by more than a factor 2 are separated by a knot instead). A
 //! **knot** separates spans; its speed cap is the junction cap (and both spans' caps); the
 //! program's start and end, dwells and exact stops are knots at speed 0.
 //!
@@ -217,7 +218,12 @@ where
                         let cap = junction_cap(pg, g, junction_mode(pm.corner, machine), machine);
                         let vmin = pl.v.min(lim.v);
                         let same = (pl.v - lim.v).abs() <= 1e-12 * lim.v;
-                        if same && cap >= vmin {
+                        // Blocks with very different path acceleration or jerk limits (a line
+                        // into an arc) get a knot (a = 0) rather than sharing the smaller
+                        // limit over a whole span.
+                        let near = |x: f64, y: f64| x <= 2.0 * y && y <= 2.0 * x;
+                        let alike = near(pl.a, lim.a) && (pl.j == lim.j || near(pl.j, lim.j));
+                        if same && alike && cap >= vmin {
                             None
                         } else {
                             Some(cap.min(vmin))

@@ -219,6 +219,11 @@ impl SpanProfile {
         }
         let vp = if d(lim.v) <= length {
             lim.v
+        } else if dlo >= length {
+            // No room to speed up: the velocity change alone fills the span. (Near `vlo`,
+            // `d` grows like `√(vp − vlo)`, so a peak a rounding error above `vlo` would
+            // overshoot the span by ~`vlo·√(ε/J)`.)
+            vlo
         } else if v0 == v1 {
             reachable_velocity(v0, 0.5 * length, a, j).min(lim.v)
         } else {
@@ -227,6 +232,9 @@ impl SpanProfile {
             let mut x = 0.5 * (lo + hi);
             for _ in 0..200 {
                 let f = d(x) - length;
+                if f.abs() <= 1e-15 * length {
+                    break;
+                }
                 if f > 0.0 {
                     hi = x;
                 } else {
@@ -235,16 +243,19 @@ impl SpanProfile {
                 let h = 1e-7 * x.max(1e-12);
                 let fp = (d(x + h) - d(x - h).max(0.0)) / (2.0 * h);
                 let xn = x - f / fp;
-                x = if fp > 0.0 && xn > lo && xn < hi {
+                x = if fp > 0.0 && xn >= lo && xn <= hi {
                     xn
                 } else {
                     0.5 * (lo + hi)
                 };
-                if hi - lo <= 4.0 * f64::EPSILON * hi || f.abs() <= 1e-15 * length {
+                if hi - lo <= 4.0 * f64::EPSILON * hi {
                     break;
                 }
             }
-            x.clamp(vlo, lim.v)
+            // `lo` always has D(lo) ≤ L: if the last iterate overshoots (D grows like
+            // √(vp − vlo) near vlo, beyond what f64 resolves), keep `lo` and let the
+            // cruise take up the rest.
+            if d(x) > length { lo } else { x.clamp(vlo, lim.v) }
         };
         let mut phases = [Phase::default(); 7];
         change_phases(v0, vp, a, j, &mut phases[0..3]);
@@ -372,7 +383,7 @@ impl SpanProfile {
         if (st.v - self.v1).abs() > tol * lim.v.max(1.0) || (st.s - self.length).abs() > 1e-8 * scale
         {
             return Err(Error::internal(format!(
-                "span profile misses its end: reached s {} v {}, wanted {} {}",
+                "span profile misses its end: reached s {} v {}, wanted {} {} ({self:?}, {lim:?})",
                 st.s, st.v, self.length, self.v1
             )));
         }
