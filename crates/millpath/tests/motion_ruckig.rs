@@ -67,6 +67,9 @@ fn trapezoidal_limit_of_ruckig_as_jerk_grows() {
         .unwrap();
         let j = 1e9;
         let fin = ruckig_time(d, Limits1 { v, a, j });
-        assert!(fin >= inf - 1e-12 && fin - inf <= a / j + 4.0 * (d / j).cbrt(), "{fin} {inf}");
+        assert!(
+            fin >= inf - 1e-12 && fin - inf <= a / j + 4.0 * (d / j).cbrt(),
+            "{fin} {inf}"
+        );
     }
 }

@@ -16,11 +16,7 @@ fn check(tp: &Toolpath, m: &Machine, what: &str) -> f64 {
     let moves: Vec<_> = tp.segments().map(|(f, mv)| (f, *mv)).collect();
     let rep = verify_plan(&plan, &moves, m, &VerifyOptions::default()).unwrap();
     assert!(rep.samples > 10, "{what}");
-    assert_eq!(
-        rep.violations, 0,
-        "{what} on {}: {:#?}",
-        m.name, rep.first
-    );
+    assert_eq!(rep.violations, 0, "{what} on {}: {:#?}", m.name, rep.first);
     // The plan is never faster than the programmed feeds allow.
     let naive: f64 = tp
         .segments()
@@ -53,12 +49,20 @@ fn arcs_and_helices(rng: &mut ChaCha8Rng) -> Toolpath {
     for k in 0..6 {
         let r = rng.random_range(0.5..20.0);
         let c = Point3::new(p.x - r, p.y, 0.0);
-        let dz = if k % 2 == 0 { -rng.random_range(0.0..3.0) } else { 0.0 };
+        let dz = if k % 2 == 0 {
+            -rng.random_range(0.0..3.0)
+        } else {
+            0.0
+        };
         let ang: f64 = rng.random_range(0.3..6.0);
         let to = Point3::new(c.x + r * ang.cos(), c.y + r * ang.sin(), p.z + dz);
         tp.push(Move::arc_xy(to, c, true, rng.random_range(20.0..200.0)));
         p = to;
-        let q = p + Vec3::new(rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0), 0.0);
+        let q = p + Vec3::new(
+            rng.random_range(-5.0..5.0),
+            rng.random_range(-5.0..5.0),
+            0.0,
+        );
         tp.push(Move::line(q, 80.0));
         p = q;
     }
@@ -89,7 +93,11 @@ fn corpus_has_no_violations() {
         }
         for side in [12.7, 50.8] {
             check(&square(side, 169.0), m, "square");
-            check(&circle(side * 4.0 / std::f64::consts::TAU, 169.0), m, "circle");
+            check(
+                &circle(side * 4.0 / std::f64::consts::TAU, 169.0),
+                m,
+                "circle",
+            );
         }
         // Rapids, a dwell, a tangent line → arc → line slot.
         let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 10.0));
@@ -116,7 +124,10 @@ fn long_colinear_short_segments_reach_the_feed() {
     let m = Machine::preset("hsm").unwrap();
     let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
     for i in 1..=1000 {
-        tp.push(Move::line(Point3::new(0.05 * f64::from(i), 0.0, 0.0), 100.0));
+        tp.push(Move::line(
+            Point3::new(0.05 * f64::from(i), 0.0, 0.0),
+            100.0,
+        ));
     }
     let plan = plan_toolpath(&tp, &m).unwrap();
     let peak = plan.blocks.iter().map(|b| b.peak_feed).fold(0.0, f64::max);

@@ -192,11 +192,16 @@ impl Machine {
         };
         for (axis, name) in self.axes.iter().zip(["x", "y", "z"]) {
             pos(format!("axes.{name}.max_velocity"), axis.max_velocity)?;
-            pos(format!("axes.{name}.max_acceleration"), axis.max_acceleration)?;
+            pos(
+                format!("axes.{name}.max_acceleration"),
+                axis.max_acceleration,
+            )?;
             if !(axis.max_jerk > 0.0) {
-                return Err(InputError::new(format!("axes.{name}.max_jerk"), axis.max_jerk)
-                    .at(origin)
-                    .expected("a finite number > 0 or \"unlimited\""));
+                return Err(
+                    InputError::new(format!("axes.{name}.max_jerk"), axis.max_jerk)
+                        .at(origin)
+                        .expected("a finite number > 0 or \"unlimited\""),
+                );
             }
         }
         for (r, name) in self.rapid.iter().zip(["x", "y", "z"]) {
@@ -373,19 +378,35 @@ rapid = 1
     #[test]
     fn toml_errors_name_the_key() {
         let bad = PROFILE.replace("max_acceleration = 50", "max_acceleration = -5");
-        let e = Machine::from_toml_str(&bad, "t.toml").unwrap_err().to_string();
-        assert!(e.contains("axes.z.max_acceleration") && e.contains("t.toml"), "{e}");
+        let e = Machine::from_toml_str(&bad, "t.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("axes.z.max_acceleration") && e.contains("t.toml"),
+            "{e}"
+        );
         let bad = PROFILE.replace("max_feed = 2", "max_feed = \"fast\"");
-        let e = Machine::from_toml_str(&bad, "t.toml").unwrap_err().to_string();
+        let e = Machine::from_toml_str(&bad, "t.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("max_feed"), "{e}");
         let bad = PROFILE.replace("units = \"in\"", "units = \"ft\"");
-        let e = Machine::from_toml_str(&bad, "t.toml").unwrap_err().to_string();
+        let e = Machine::from_toml_str(&bad, "t.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("units"), "{e}");
         let bad = PROFILE.replace("max_velocity = 2\n", "");
-        let e = Machine::from_toml_str(&bad, "t.toml").unwrap_err().to_string();
-        assert!(e.contains("axes.z.max_velocity") && e.contains("missing"), "{e}");
+        let e = Machine::from_toml_str(&bad, "t.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("axes.z.max_velocity") && e.contains("missing"),
+            "{e}"
+        );
         let bad = PROFILE.replace("max_jerk = 1000\nrapid", "max_jerk = nan\nrapid");
-        let e = Machine::from_toml_str(&bad, "t.toml").unwrap_err().to_string();
+        let e = Machine::from_toml_str(&bad, "t.toml")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("axes.z.max_jerk"), "{e}");
     }
 }

@@ -9,5 +9,5 @@ pub mod sample;
 pub mod table2;
 pub mod verify;
 
-pub use sample::Sample;
 pub use plan::{BlockPlan, Plan, PlanOptions, Span, plan_moves, plan_toolpath, plan_toolpath_opt};
+pub use sample::Sample;

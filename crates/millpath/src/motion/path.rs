@@ -144,10 +144,7 @@ impl Geom {
 
     /// Curvature vector (κ·N) at the start and at the end (zero for lines).
     pub fn curvature_ends(&self) -> (Vec3, Vec3) {
-        (
-            self.derivatives(0.0)[2],
-            self.derivatives(self.length())[2],
-        )
+        (self.derivatives(0.0)[2], self.derivatives(self.length())[2])
     }
 
     /// Curvature κ and torsion τ (constant on a helix; 0 for lines).
@@ -155,11 +152,7 @@ impl Geom {
         match *self {
             Geom::Line { .. } => (0.0, 0.0),
             Geom::Helix {
-                sweep,
-                r0,
-                r1,
-                dw,
-                ..
+                sweep, r0, r1, dw, ..
             } => {
                 let r = r0.min(r1);
                 let c = dw / sweep; // pitch / 2π

@@ -321,11 +321,7 @@ where
             bp.start_time = t + tb;
             bp.time = (te - tb).max(0.0);
             let tpk = p.t_peak.clamp(tb, te);
-            bp.peak_feed = if bp.length > 0.0 {
-                p.state(tpk).v
-            } else {
-                0.0
-            };
+            bp.peak_feed = if bp.length > 0.0 { p.state(tpk).v } else { 0.0 };
             tb = te;
         }
         t += p.duration;

@@ -255,7 +255,11 @@ impl SpanProfile {
             // `lo` always has D(lo) ≤ L: if the last iterate overshoots (D grows like
             // √(vp − vlo) near vlo, beyond what f64 resolves), keep `lo` and let the
             // cruise take up the rest.
-            if d(x) > length { lo } else { x.clamp(vlo, lim.v) }
+            if d(x) > length {
+                lo
+            } else {
+                x.clamp(vlo, lim.v)
+            }
         };
         let mut phases = [Phase::default(); 7];
         change_phases(v0, vp, a, j, &mut phases[0..3]);
@@ -380,7 +384,8 @@ impl SpanProfile {
             }
         }
         let scale = self.length.max(1e-9);
-        if (st.v - self.v1).abs() > tol * lim.v.max(1.0) || (st.s - self.length).abs() > 1e-8 * scale
+        if (st.v - self.v1).abs() > tol * lim.v.max(1.0)
+            || (st.s - self.length).abs() > 1e-8 * scale
         {
             return Err(Error::internal(format!(
                 "span profile misses its end: reached s {} v {}, wanted {} {} ({self:?}, {lim:?})",
@@ -432,8 +437,12 @@ mod tests {
             a: 1000.0,
             j: 20000.0,
         };
-        for &(v0, v1, l) in &[(0.0, 0.0, 1.0), (0.0, 0.0, 100.0), (50.0, 0.0, 30.0), (20.0, 90.0, 40.0)]
-        {
+        for &(v0, v1, l) in &[
+            (0.0, 0.0, 1.0),
+            (0.0, 0.0, 100.0),
+            (50.0, 0.0, 30.0),
+            (20.0, 90.0, 40.0),
+        ] {
             let p = SpanProfile::new(v0, v1, l, lim).unwrap();
             p.check(lim).unwrap();
             let end = p.state(p.duration);

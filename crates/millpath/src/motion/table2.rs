@@ -39,9 +39,27 @@ pub const SIDES_IN: [f64; 5] = [0.5, 1.0, 2.0, 4.0, 6.0];
 pub const FEEDS_IPM: [f64; 3] = [200.0, 300.0, 400.0];
 /// Measured (square, circle) times in s, by feed then side, from the paper's Table 2.
 pub const MEASURED: [[(f64, f64); 5]; 3] = [
-    [(0.82, 0.79), (1.44, 1.41), (2.62, 2.59), (5.04, 4.99), (7.44, 7.40)],
-    [(0.75, 0.60), (1.16, 1.00), (1.96, 1.81), (3.55, 3.41), (5.15, 5.00)],
-    [(0.74, 0.52), (1.08, 0.81), (1.63, 1.41), (2.88, 2.66), (4.04, 3.82)],
+    [
+        (0.82, 0.79),
+        (1.44, 1.41),
+        (2.62, 2.59),
+        (5.04, 4.99),
+        (7.44, 7.40),
+    ],
+    [
+        (0.75, 0.60),
+        (1.16, 1.00),
+        (1.96, 1.81),
+        (3.55, 3.41),
+        (5.15, 5.00),
+    ],
+    [
+        (0.74, 0.52),
+        (1.08, 0.81),
+        (1.63, 1.41),
+        (2.88, 2.66),
+        (4.04, 3.82),
+    ],
 ];
 
 /// One row of the comparison.
@@ -161,13 +179,19 @@ mod tests {
         for fi in 0..3 {
             for si in 1..5 {
                 // gain falls with size
-                assert!(rows[fi * 5 + si].gain_planned < rows[fi * 5 + si - 1].gain_planned, "{table}");
+                assert!(
+                    rows[fi * 5 + si].gain_planned < rows[fi * 5 + si - 1].gain_planned,
+                    "{table}"
+                );
             }
         }
         for si in 0..5 {
             for fi in 1..3 {
                 // gain rises with feed
-                assert!(rows[fi * 5 + si].gain_planned > rows[(fi - 1) * 5 + si].gain_planned, "{table}");
+                assert!(
+                    rows[fi * 5 + si].gain_planned > rows[(fi - 1) * 5 + si].gain_planned,
+                    "{table}"
+                );
             }
         }
     }

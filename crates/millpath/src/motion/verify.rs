@@ -131,7 +131,11 @@ impl Shape {
             }
             _ => {
                 let d = m.to - self.from;
-                let dir = if self.len > 0.0 { d / self.len } else { Vec3::ZERO };
+                let dir = if self.len > 0.0 {
+                    d / self.len
+                } else {
+                    Vec3::ZERO
+                };
                 let p = self.from + dir * s.clamp(0.0, self.len);
                 [p - Point3::ORIGIN, dir, Vec3::ZERO, Vec3::ZERO]
             }
@@ -169,7 +173,11 @@ pub fn verify_plan(
     let samples = plan.sample(dt)?;
     rep.samples = samples.len();
     let jmax_any = machine.axes.iter().map(|a| a.max_jerk).fold(0.0, f64::max);
-    let amax_any = machine.axes.iter().map(|a| a.max_acceleration).fold(0.0, f64::max);
+    let amax_any = machine
+        .axes
+        .iter()
+        .map(|a| a.max_acceleration)
+        .fold(0.0, f64::max);
     let mut prev: Option<(f64, usize, f64, f64, f64)> = None;
     for smp in &samples {
         let Some(sh) = shapes.get(smp.block) else {
@@ -190,7 +198,12 @@ pub fn verify_plan(
             };
             let checks = [
                 (ViolationKind::Velocity, v.to_array()[i].abs(), vlim, 0),
-                (ViolationKind::Acceleration, a.to_array()[i].abs(), ax.max_acceleration, 1),
+                (
+                    ViolationKind::Acceleration,
+                    a.to_array()[i].abs(),
+                    ax.max_acceleration,
+                    1,
+                ),
                 (ViolationKind::Jerk, j.to_array()[i].abs(), ax.max_jerk, 2),
             ];
             for (kind, val, lim, w) in checks {
@@ -223,7 +236,8 @@ pub fn verify_plan(
         }
         // Integration consistency of the path state within a span.
         if let Some((t0, b0, s0, v0, a0)) = prev {
-            let span_same = plan.blocks.get(b0).map(|b| b.span) == plan.blocks.get(smp.block).map(|b| b.span);
+            let span_same =
+                plan.blocks.get(b0).map(|b| b.span) == plan.blocks.get(smp.block).map(|b| b.span);
             let h = smp.t - t0;
             if span_same && h > 0.0 {
                 let ds = st.s - s0;
@@ -329,7 +343,10 @@ fn check_junction(
         Corner::ExactPath => {
             for (i, d) in du.to_array().iter().enumerate() {
                 let ax = machine.axes[i];
-                bad(v * d.abs(), (ax.max_acceleration * tipo).min(ax.max_jerk * tipo * tipo));
+                bad(
+                    v * d.abs(),
+                    (ax.max_acceleration * tipo).min(ax.max_jerk * tipo * tipo),
+                );
             }
             return;
         }
@@ -338,8 +355,16 @@ fn check_junction(
         bad(v, 0.0);
         return;
     }
-    let amin = machine.axes.iter().map(|x| x.max_acceleration).fold(f64::INFINITY, f64::min);
-    let jmin = machine.axes.iter().map(|x| x.max_jerk).fold(f64::INFINITY, f64::min);
+    let amin = machine
+        .axes
+        .iter()
+        .map(|x| x.max_acceleration)
+        .fold(f64::INFINITY, f64::min);
+    let jmin = machine
+        .axes
+        .iter()
+        .map(|x| x.max_jerk)
+        .fold(f64::INFINITY, f64::min);
     let mut r = v * v / amin;
     if jmin.is_finite() {
         r = r.max((v * v * v / jmin).sqrt());
