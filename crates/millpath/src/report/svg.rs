@@ -3,9 +3,21 @@
 //! The picture is in the workpiece frame (Y up): the SVG's own Y axis points down, so the
 //! drawing is wrapped in a group that flips Y. Arcs are drawn as SVG elliptical arcs with
 //! equal radii, so what the picture shows is exactly what the G2/G3 blocks command.
+//!
+//! Cutting moves are coloured by feed in five equal bins between the slowest and the fastest
+//! feed of the picture. The feed is the **achieved** peak feed of each move when the planner's
+//! per-move peaks are given ([`PreviewOptions::achieved_feed`], e.g. `Plan::blocks[i].peak_feed`),
+//! the programmed feed otherwise; the legend says which. Rapids are dashed grey; helical entries
+//! (XY arcs that change Z) get a magenta ring at their start and plunges (Z-only feed moves) a
+//! magenta cross.
+//!
+//! Structure for the HTML viewer: each level is a `<g class="mp-level" data-level="i">`
+//! (moves outside every level are in `data-level="-1"`), and the Y-flipped drawing group holds
+//! a hidden `<circle class="mp-tool">` whose `cx`/`cy` are workpiece millimetres, so a script
+//! can move the tool marker without knowing the transform.
 
 use crate::geom::{Aabb, Outline, Point};
-use crate::toolpath::{MoveKind, Plane, Toolpath};
+use crate::toolpath::{Move, MoveKind, Plane, Toolpath};
 use std::fmt::Write;
 
 /// Options of [`toolpath_svg`].
@@ -19,6 +31,9 @@ pub struct PreviewOptions {
     pub title: Option<String>,
     /// Only the moves of this level (index into `Toolpath::levels`); all levels when `None`.
     pub level: Option<usize>,
+    /// Achieved peak feed of each move in mm/s (index = move index), from the planner; moves
+    /// without an entry (or a non-finite one) fall back to their programmed feed.
+    pub achieved_feed: Option<Vec<f64>>,
 }
 
 impl Default for PreviewOptions {
@@ -28,6 +43,7 @@ impl Default for PreviewOptions {
             margin_mm: 5.0,
             title: None,
             level: None,
+            achieved_feed: None,
         }
     }
 }
@@ -35,51 +51,70 @@ impl Default for PreviewOptions {
 /// Colours of cutting moves, from slowest to fastest feed.
 const FEED_COLOURS: [&str; 5] = ["#2c7bb6", "#00a6ca", "#90c53f", "#f9a12b", "#d7191c"];
 
-/// Draws `toolpath` over `outlines`: outlines black, cutting moves coloured by programmed feed
-/// (legend at the bottom), rapids dashed grey.
+/// Draws `toolpath` over `outlines`: outlines black, cutting moves coloured by achieved (or
+/// programmed) feed with a legend at the bottom, rapids dashed grey, entries marked magenta.
 pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOptions) -> String {
     let range = opts
         .level
         .and_then(|i| toolpath.levels.get(i))
         .map_or(0..toolpath.moves.len(), |l| l.start..l.end);
+    let achieved = opts.achieved_feed.as_deref();
+    let feed_of = |i: usize, m: &Move| -> f64 {
+        achieved
+            .and_then(|a| a.get(i))
+            .copied()
+            .filter(|f| f.is_finite() && *f >= 0.0)
+            .unwrap_or(m.feed)
+    };
     let mut bounds = outlines
         .iter()
         .map(Outline::bounds)
         .fold(Aabb::EMPTY, Aabb::union);
-    let mut feeds: Vec<f64> = Vec::new();
+    let (mut fmin, mut fmax) = (f64::INFINITY, f64::NEG_INFINITY);
     for (i, (from, m)) in toolpath.segments().enumerate() {
         if range.contains(&i) {
             bounds = bounds.with_point(from.xy()).with_point(m.to.xy());
-            if m.is_feed() && m.feed > 0.0 {
-                feeds.push(m.feed);
+            if let MoveKind::Arc { center, .. } = m.kind {
+                let r = from.xy().distance(center.xy());
+                if r.is_finite() {
+                    bounds = bounds
+                        .with_point(Point::new(center.x - r, center.y - r))
+                        .with_point(Point::new(center.x + r, center.y + r));
+                }
+            }
+            let f = feed_of(i, m);
+            if m.is_feed() && f > 0.0 && f.is_finite() {
+                fmin = fmin.min(f);
+                fmax = fmax.max(f);
             }
         }
     }
-    if bounds.is_empty() {
+    if bounds.is_empty() || !(bounds.width().is_finite() && bounds.height().is_finite()) {
         bounds = Aabb::from_points([Point::ORIGIN, Point::new(1.0, 1.0)]);
     }
     let b = bounds.inflate(opts.margin_mm.max(1e-3));
-    let (fmin, fmax) = feeds
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), f| {
-            (lo.min(*f), hi.max(*f))
-        });
-    let scale = opts.width_px / b.width().max(1e-9);
+    let width_px = if opts.width_px.is_finite() && opts.width_px > 10.0 {
+        opts.width_px
+    } else {
+        PreviewOptions::default().width_px
+    };
+    let scale = width_px / b.width().max(1e-9);
     let legend_px = 40.0;
-    let height_px = b.height() * scale + legend_px;
+    let title_px = if opts.title.is_some() { 24.0 } else { 0.0 };
+    let height_px = b.height() * scale + legend_px + title_px;
     let stroke = 1.2 / scale;
     let mut s = String::new();
     let _ = write!(
         s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.0} {h:.0}" font-family="sans-serif" font-size="12">"#,
-        w = opts.width_px,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" class="mp-preview" width="{w:.0}" height="{h:.0}" viewBox="0 0 {w:.0} {h:.0}" font-family="sans-serif" font-size="12">"#,
+        w = width_px,
         h = height_px
     );
     s.push_str(r##"<rect width="100%" height="100%" fill="#ffffff"/>"##);
     let _ = write!(
         s,
         r#"<g transform="translate(0 {ty:.4}) scale({scale:.6} {neg:.6}) translate({tx:.6} {ty2:.6})" fill="none" stroke-linecap="round" stroke-linejoin="round">"#,
-        ty = b.height() * scale,
+        ty = b.height() * scale + title_px,
         neg = -scale,
         tx = -b.min.x,
         ty2 = -b.min.y,
@@ -92,8 +127,57 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             2.0 * stroke
         );
     }
+    // Level of each move (-1: outside every level).
+    let level_of = |i: usize| -> i64 {
+        toolpath
+            .levels
+            .iter()
+            .position(|l| (l.start..l.end).contains(&i))
+            .map_or(-1, |k| k as i64)
+    };
+    let mut open_level: Option<i64> = None;
+    let mut entries = String::new();
+    let mut n_entries = 0usize;
     for (i, (from, m)) in toolpath.segments().enumerate() {
-        if !range.contains(&i) || from.xy().distance(m.to.xy()) < 1e-12 && !is_arc(m) {
+        if !range.contains(&i) || matches!(m.kind, MoveKind::Dwell { .. }) {
+            continue;
+        }
+        let lv = level_of(i);
+        if open_level != Some(lv) {
+            if open_level.is_some() {
+                s.push_str("</g>");
+            }
+            let _ = write!(s, r#"<g class="mp-level" data-level="{lv}">"#);
+            open_level = Some(lv);
+        }
+        let dz = (m.to.z - from.z).abs();
+        let xy_len = from.xy().distance(m.to.xy());
+        if m.is_feed() && dz > 1e-9 {
+            if is_arc(m) {
+                n_entries += 1;
+                let _ = write!(
+                    entries,
+                    r##"<circle cx="{:.4}" cy="{:.4}" r="{:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
+                    from.x,
+                    from.y,
+                    5.0 * stroke,
+                    1.5 * stroke
+                );
+            } else if xy_len < 1e-9 {
+                n_entries += 1;
+                let k = 4.0 * stroke;
+                let _ = write!(
+                    entries,
+                    r##"<path d="M{:.4} {:.4}l{k:.5} {k:.5}m0 {:.5}l{:.5} {k:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
+                    from.x - k / 2.0,
+                    from.y - k / 2.0,
+                    -k,
+                    -k,
+                    1.5 * stroke
+                );
+            }
+        }
+        if xy_len < 1e-12 && !is_arc(m) {
             continue;
         }
         let (colour, dash) = match m.kind {
@@ -105,8 +189,7 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
                     3.0 * stroke
                 ),
             ),
-            MoveKind::Dwell { .. } => continue,
-            _ => (feed_colour(m.feed, fmin, fmax), String::new()),
+            _ => (feed_colour(feed_of(i, m), fmin, fmax), String::new()),
         };
         let d = match m.kind {
             MoveKind::Arc {
@@ -122,26 +205,46 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             r#"<path d="{d}" stroke="{colour}" stroke-width="{stroke:.5}"{dash}/>"#
         );
     }
+    if open_level.is_some() {
+        s.push_str("</g>");
+    }
+    s.push_str(&entries);
+    let _ = write!(
+        s,
+        r##"<circle class="mp-tool" cx="{:.4}" cy="{:.4}" r="{:.5}" fill="#ff2020" fill-opacity="0.6" stroke="#000000" stroke-width="{:.5}" visibility="hidden"/>"##,
+        toolpath.start.x,
+        toolpath.start.y,
+        (toolpath.tool.diameter / 2.0).max(4.0 * stroke),
+        stroke
+    );
     s.push_str("</g>");
     // Legend.
-    let y = b.height() * scale + 25.0;
+    let y = height_px - 15.0;
     let mut x = 10.0;
     if let Some(t) = &opts.title {
         let _ = write!(s, r#"<text x="10" y="16">{}</text>"#, xml_escape(t));
     }
     if fmax.is_finite() {
-        let _ = write!(s, r#"<text x="{x}" y="{y}">feed (mm/min):</text>"#);
-        x += 95.0;
+        let what = if achieved.is_some() {
+            "achieved feed (mm/min):"
+        } else {
+            "programmed feed (mm/min):"
+        };
+        let _ = write!(s, r#"<text x="{x}" y="{y}">{what}</text>"#);
+        x += 160.0;
         for (k, c) in FEED_COLOURS.iter().enumerate() {
-            let f = fmin + (fmax - fmin) * (k as f64 + 0.5) / FEED_COLOURS.len() as f64;
+            let n = FEED_COLOURS.len() as f64;
+            let lo = fmin + (fmax - fmin) * k as f64 / n;
+            let hi = fmin + (fmax - fmin) * (k as f64 + 1.0) / n;
             let _ = write!(
                 s,
-                r#"<rect x="{x}" y="{ry}" width="14" height="10" fill="{c}"/><text x="{tx}" y="{y}">{f:.0}</text>"#,
+                r#"<rect x="{x}" y="{ry}" width="14" height="10" fill="{c}"/><text x="{tx}" y="{y}">{lo:.0}–{hi:.0}</text>"#,
                 ry = y - 10.0,
                 tx = x + 18.0,
-                f = f * 60.0
+                lo = lo * 60.0,
+                hi = hi * 60.0,
             );
-            x += 70.0;
+            x += 100.0;
         }
     }
     let _ = write!(
@@ -151,11 +254,21 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
         x2 = x + 25.0,
         tx = x + 30.0
     );
+    if n_entries > 0 {
+        x += 75.0;
+        let _ = write!(
+            s,
+            r##"<circle cx="{cx}" cy="{cy}" r="5" fill="none" stroke="#c000c0" stroke-width="1.5"/><text x="{tx}" y="{y}">entry ({n_entries})</text>"##,
+            cx = x + 6.0,
+            cy = y - 5.0,
+            tx = x + 16.0
+        );
+    }
     s.push_str("</svg>\n");
     s
 }
 
-fn is_arc(m: &crate::toolpath::Move) -> bool {
+fn is_arc(m: &Move) -> bool {
     matches!(m.kind, MoveKind::Arc { .. })
 }
 
@@ -230,7 +343,7 @@ fn xml_escape(s: &str) -> String {
 mod tests {
     use super::*;
     use crate::geom::Point3;
-    use crate::toolpath::{Move, Tool};
+    use crate::toolpath::Tool;
 
     #[test]
     fn preview_draws_outline_cuts_and_rapids() {
@@ -263,8 +376,50 @@ mod tests {
         );
         assert_eq!(
             svg.matches("<path").count(),
-            1 + 3,
-            "outline + rapid + line + arc"
+            1 + 3 + 1,
+            "outline + rapid + line + arc + plunge cross"
         );
+        assert!(svg.contains("entry (1)"));
+        assert!(svg.contains("programmed feed"));
+    }
+
+    #[test]
+    fn achieved_feed_colours_helix_marked_levels_grouped() {
+        use crate::toolpath::{Level, LevelKind};
+        let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 5.0));
+        tp.push(Move::rapid(Point3::new(10.0, 0.0, 1.0)));
+        // Helical entry: a full turn about the origin descending to z = -1.
+        tp.push(Move::arc_xy(
+            Point3::new(10.0, 0.0, -1.0),
+            Point3::new(0.0, 0.0, 0.0),
+            true,
+            10.0,
+        ));
+        tp.push(Move::line(Point3::new(20.0, 0.0, -1.0), 10.0));
+        tp.push(Move::line(Point3::new(30.0, 0.0, -1.0), 10.0));
+        tp.levels.push(Level {
+            z: -1.0,
+            kind: LevelKind::Roughing,
+            start: 1,
+            end: 4,
+        });
+        let opts = PreviewOptions {
+            // Same programmed feed, but the planner reached only 2 mm/s on the second line.
+            achieved_feed: Some(vec![0.0, 8.0, 10.0, 2.0]),
+            title: Some("a <b> & c".into()),
+            ..PreviewOptions::default()
+        };
+        let svg = toolpath_svg(&tp, &[], &opts);
+        assert!(svg.contains("achieved feed"));
+        assert!(svg.contains("a &lt;b&gt; &amp; c"));
+        assert!(svg.contains(r#"class="mp-level" data-level="-1""#));
+        assert!(svg.contains(r#"class="mp-level" data-level="0""#));
+        assert!(svg.contains("entry (1)"));
+        assert!(svg.contains(r#"<circle class="mp-tool""#));
+        // Slowest and fastest bins both used although the programmed feeds are equal.
+        assert!(svg.contains(&format!("stroke=\"{}\"", FEED_COLOURS[0])));
+        assert!(svg.contains(&format!("stroke=\"{}\"", FEED_COLOURS[4])));
+        // The full helix circle lies inside the picture: x from -10 mm (minus the 5 mm margin) is visible.
+        assert!(svg.contains("translate(15.0"), "{svg}");
     }
 }

@@ -1,0 +1,499 @@
+//! Plots over plain data series, drawn with `plotters` (SVG string, or PNG written to a path).
+//!
+//! Every plot is first described as a [`Chart`] (title, axis labels, series, horizontal limit
+//! lines), then rendered by [`render_svg`] or [`render_png`]. The builders below turn the data
+//! of the papers' figures into charts; they take plain slices, so they are independent of the
+//! strategies and of the planner:
+//!
+//! - [`feed_along_path`]: achieved (and programmed) feed against the distance travelled
+//!   (the adaptive-spiral paper's Figure 15);
+//! - [`cycle_time_vs_transition`]: cycle time against the transition parameter C, one curve per
+//!   feed (its Figure 10);
+//! - [`square_circle_gain`]: time gain of the circle over the square of equal area, in %,
+//!   against the side length, measured and planned, one colour per feed (its Figures 22–23);
+//! - [`axis_kinematics`]: per-axis velocity, acceleration or jerk against time with the
+//!   ±limits drawn (the five-axis paper's Figures 6–7);
+//! - [`chordal_deviation`]: chordal deviation per segment against the tolerance (the die-cavity
+//!   paper's Figure 10).
+//!
+//! ## Text and fonts
+//! Labels are laid out with plotters' `ttf` feature, which finds a system font through
+//! fontconfig (`sans-serif`). On a headless machine with no font at all plotters cannot measure
+//! text and [`render_svg`]/[`render_png`] return an [`Error::Internal`] naming the cause;
+//! `.ci/run` relies on Debian's `fonts-dejavu-core` (pulled in by `chromium`), which the
+//! tests here need anyway. Non-finite values are dropped from series before drawing; an empty
+//! chart is drawn with unit axes rather than failing.
+
+use crate::error::Error;
+use crate::motion::table2::Row;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SeriesStyle {
+    /// Solid polyline.
+    #[default]
+    Line,
+    /// Dashed polyline.
+    Dashed,
+    /// Markers only (measured points).
+    Points,
+}
+
+/// One data series of a chart.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Series {
+    /// Legend text.
+    pub label: String,
+    /// (x, y) points, in drawing order.
+    pub points: Vec<(f64, f64)>,
+    /// How to draw it.
+    pub style: SeriesStyle,
+    /// Colour index into the palette (series sharing a colour belong together, e.g. measured
+    /// and planned at one feed).
+    pub colour: usize,
+}
+
+/// A horizontal reference line (a limit, a tolerance).
+#[derive(Debug, Clone, PartialEq)]
+pub struct HLine {
+    /// Legend text.
+    pub label: String,
+    /// Height in the chart's y unit.
+    pub y: f64,
+}
+
+/// A chart described as data; render with [`render_svg`] or [`render_png`].
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Chart {
+    /// Caption above the chart.
+    pub title: String,
+    /// Label of the x axis (with unit).
+    pub x_label: String,
+    /// Label of the y axis (with unit).
+    pub y_label: String,
+    /// The series.
+    pub series: Vec<Series>,
+    /// Horizontal reference lines, drawn red dashed.
+    pub hlines: Vec<HLine>,
+}
+
+/// Size of a rendered chart.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlotOptions {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+impl Default for PlotOptions {
+    fn default() -> Self {
+        PlotOptions {
+            width: 800,
+            height: 420,
+        }
+    }
+}
+
+/// Colour-blind-friendly palette (Okabe–Ito).
+const PALETTE: [RGBColor; 7] = [
+    RGBColor(0, 114, 178),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 0, 0),
+];
+
+fn colour(i: usize) -> RGBColor {
+    PALETTE[i % PALETTE.len()]
+}
+
+impl Chart {
+    /// The data range (x0, x1, y0, y1) over the finite points and limit lines, padded by 5 %
+    /// in y and never empty.
+    pub fn ranges(&self) -> (f64, f64, f64, f64) {
+        let mut x = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut y = (f64::INFINITY, f64::NEG_INFINITY);
+        for s in &self.series {
+            for &(px, py) in &s.points {
+                if px.is_finite() && py.is_finite() {
+                    x = (x.0.min(px), x.1.max(px));
+                    y = (y.0.min(py), y.1.max(py));
+                }
+            }
+        }
+        for h in &self.hlines {
+            if h.y.is_finite() {
+                y = (y.0.min(h.y), y.1.max(h.y));
+            }
+        }
+        let fix = |(lo, hi): (f64, f64)| {
+            if !(lo.is_finite() && hi.is_finite()) {
+                (0.0, 1.0)
+            } else if hi - lo < 1e-12 * (1.0 + lo.abs()) {
+                (lo - 0.5 - lo.abs() * 0.05, hi + 0.5 + hi.abs() * 0.05)
+            } else {
+                (lo, hi)
+            }
+        };
+        let x = fix(x);
+        let y = fix(y);
+        let pad = 0.05 * (y.1 - y.0);
+        (x.0, x.1, y.0 - pad, y.1 + pad)
+    }
+}
+
+fn plot_err(e: impl std::fmt::Display) -> Error {
+    Error::internal(format!(
+        "plot rendering failed: {e} (text needs a system font through fontconfig, \
+         e.g. Debian's fonts-dejavu-core)"
+    ))
+}
+
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    chart: &Chart,
+) -> Result<(), Error>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(plot_err)?;
+    let (x0, x1, y0, y1) = chart.ranges();
+    let mut cc = ChartBuilder::on(&root)
+        .caption(&chart.title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(plot_err)?;
+    cc.configure_mesh()
+        .x_desc(&chart.x_label)
+        .y_desc(&chart.y_label)
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(plot_err)?;
+    for s in &chart.series {
+        let c = colour(s.colour);
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .collect();
+        let legend_style = c.stroke_width(2);
+        let anno = match s.style {
+            SeriesStyle::Line => cc
+                .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                .map_err(plot_err)?,
+            SeriesStyle::Dashed => cc
+                .draw_series(DashedLineSeries::new(pts, 6, 4, c.stroke_width(2)))
+                .map_err(plot_err)?,
+            SeriesStyle::Points => cc
+                .draw_series(pts.into_iter().map(|p| Circle::new(p, 4, c.filled())))
+                .map_err(plot_err)?,
+        };
+        if !s.label.is_empty() {
+            let points = s.style == SeriesStyle::Points;
+            anno.label(s.label.as_str()).legend(move |(x, y)| {
+                let path = if points {
+                    Vec::new()
+                } else {
+                    vec![(0, 0), (20, 0)]
+                };
+                EmptyElement::at((x, y))
+                    + PathElement::new(path, legend_style)
+                    + Circle::new((10, 0), if points { 4 } else { 0 }, c.filled())
+            });
+        }
+    }
+    for h in &chart.hlines {
+        let red = RGBColor(200, 0, 0);
+        cc.draw_series(DashedLineSeries::new(
+            vec![(x0, h.y), (x1, h.y)],
+            8,
+            4,
+            red.stroke_width(1),
+        ))
+        .map_err(plot_err)?
+        .label(h.label.as_str())
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], red));
+    }
+    if chart.series.iter().any(|s| !s.label.is_empty()) || !chart.hlines.is_empty() {
+        cc.configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(plot_err)?;
+    }
+    root.present().map_err(plot_err)?;
+    Ok(())
+}
+
+/// Renders `chart` as an SVG document string.
+pub fn render_svg(chart: &Chart, opts: &PlotOptions) -> Result<String, Error> {
+    let mut s = String::new();
+    {
+        let root = SVGBackend::with_string(&mut s, (opts.width, opts.height)).into_drawing_area();
+        draw(root, chart)?;
+    }
+    Ok(s)
+}
+
+/// Renders `chart` as a PNG file at `path` (through plotters' bitmap backend).
+pub fn render_png(chart: &Chart, opts: &PlotOptions, path: &Path) -> Result<(), Error> {
+    let root = BitMapBackend::new(path, (opts.width, opts.height)).into_drawing_area();
+    draw(root, chart)
+}
+
+/// Feed along the path (adaptive-spiral paper, Figure 15): `achieved` are (distance travelled
+/// in mm, achieved feed in mm/s) pairs, e.g. from plan samples; `programmed` the same for the
+/// programmed feed (drawn dashed). Feeds are shown in mm/min.
+pub fn feed_along_path(achieved: &[(f64, f64)], programmed: Option<&[(f64, f64)]>) -> Chart {
+    let to_min = |p: &[(f64, f64)]| p.iter().map(|&(s, f)| (s, f * 60.0)).collect();
+    let mut series = vec![Series {
+        label: "achieved feed".into(),
+        points: to_min(achieved),
+        style: SeriesStyle::Line,
+        colour: 0,
+    }];
+    if let Some(p) = programmed {
+        series.push(Series {
+            label: "programmed feed".into(),
+            points: to_min(p),
+            style: SeriesStyle::Dashed,
+            colour: 1,
+        });
+    }
+    Chart {
+        title: "Feed along the path".into(),
+        x_label: "path position (mm)".into(),
+        y_label: "feed (mm/min)".into(),
+        series,
+        hlines: Vec::new(),
+    }
+}
+
+/// Cycle time against the transition parameter C (adaptive-spiral paper, Figure 10): one curve
+/// per `(feed label, [(C, cycle time in s)])`.
+pub fn cycle_time_vs_transition(curves: &[(String, Vec<(f64, f64)>)]) -> Chart {
+    Chart {
+        title: "Cycle time against the transition C".into(),
+        x_label: "transition C".into(),
+        y_label: "cycle time (s)".into(),
+        series: curves
+            .iter()
+            .enumerate()
+            .map(|(i, (label, pts))| Series {
+                label: label.clone(),
+                points: pts.clone(),
+                style: SeriesStyle::Line,
+                colour: i,
+            })
+            .collect(),
+        hlines: Vec::new(),
+    }
+}
+
+/// Time gain of the circle over the square (adaptive-spiral paper, Figures 22–23): gain in %
+/// against the square's side in inches, one colour per feed; measured as points, ours
+/// (planned) as lines. Rows are grouped by `feed_ipm` in order of first appearance.
+pub fn square_circle_gain(rows: &[Row]) -> Chart {
+    let mut feeds: Vec<f64> = Vec::new();
+    for r in rows {
+        if !feeds.contains(&r.feed_ipm) {
+            feeds.push(r.feed_ipm);
+        }
+    }
+    let mut series = Vec::new();
+    for (i, f) in feeds.iter().enumerate() {
+        let mut rs: Vec<&Row> = rows.iter().filter(|r| r.feed_ipm == *f).collect();
+        rs.sort_by(|a, b| a.side_in.total_cmp(&b.side_in));
+        series.push(Series {
+            label: format!("{f:.0} in/min measured"),
+            points: rs.iter().map(|r| (r.side_in, r.gain_measured)).collect(),
+            style: SeriesStyle::Points,
+            colour: i,
+        });
+        series.push(Series {
+            label: format!("{f:.0} in/min ours"),
+            points: rs.iter().map(|r| (r.side_in, r.gain_planned)).collect(),
+            style: SeriesStyle::Line,
+            colour: i,
+        });
+    }
+    Chart {
+        title: "Circle against square: time gain".into(),
+        x_label: "side of the square (in)".into(),
+        y_label: "gain (%)".into(),
+        series,
+        hlines: Vec::new(),
+    }
+}
+
+/// Which derivative [`axis_kinematics`] shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// Velocity (unit per s).
+    Velocity,
+    /// Acceleration (unit per s²).
+    Acceleration,
+    /// Jerk (unit per s³).
+    Jerk,
+}
+
+impl Quantity {
+    fn name(self) -> &'static str {
+        match self {
+            Quantity::Velocity => "velocity",
+            Quantity::Acceleration => "acceleration",
+            Quantity::Jerk => "jerk",
+        }
+    }
+    fn power(self) -> &'static str {
+        match self {
+            Quantity::Velocity => "s",
+            Quantity::Acceleration => "s²",
+            Quantity::Jerk => "s³",
+        }
+    }
+}
+
+/// One axis of [`axis_kinematics`]: its name (`"X"`, `"A"`...), unit (`"mm"`, `"rad"`), the
+/// values at the common time stamps, and its limit (drawn as ±limit).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisSeries {
+    /// Axis name.
+    pub name: String,
+    /// Length unit of the axis.
+    pub unit: String,
+    /// Values, one per time stamp.
+    pub values: Vec<f64>,
+    /// The axis limit for this quantity, if any.
+    pub limit: Option<f64>,
+}
+
+/// Per-axis velocity, acceleration or jerk against time with ±limits (five-axis paper,
+/// Figures 6–7). `t` are the common time stamps; values beyond `t.len()` are ignored.
+pub fn axis_kinematics(quantity: Quantity, t: &[f64], axes: &[AxisSeries]) -> Chart {
+    let mut series = Vec::new();
+    let mut hlines = Vec::new();
+    for (i, a) in axes.iter().enumerate() {
+        series.push(Series {
+            label: a.name.clone(),
+            points: t.iter().copied().zip(a.values.iter().copied()).collect(),
+            style: SeriesStyle::Line,
+            colour: i,
+        });
+        if let Some(l) = a.limit.filter(|l| l.is_finite()) {
+            hlines.push(HLine {
+                label: format!("{} limit ±{l:.4}", a.name),
+                y: l.abs(),
+            });
+            hlines.push(HLine {
+                label: String::new(),
+                y: -l.abs(),
+            });
+        }
+    }
+    let units: Vec<&str> = {
+        let mut u: Vec<&str> = axes.iter().map(|a| a.unit.as_str()).collect();
+        u.dedup();
+        u
+    };
+    Chart {
+        title: format!("Per-axis {}", quantity.name()),
+        x_label: "time (s)".into(),
+        y_label: format!(
+            "{} ({}/{})",
+            quantity.name(),
+            units.join(", "),
+            quantity.power()
+        ),
+        series,
+        hlines,
+    }
+}
+
+/// Chordal deviation per segment against the tolerance (die-cavity paper, Figure 10):
+/// `deviation[i]` is the largest distance (mm) between segment `i` and the curve it
+/// approximates; shown in µm as markers, the tolerance as a limit line.
+pub fn chordal_deviation(deviation: &[f64], tolerance: f64) -> Chart {
+    Chart {
+        title: "Chordal deviation per segment".into(),
+        x_label: "segment".into(),
+        y_label: "deviation (µm)".into(),
+        series: vec![Series {
+            label: "deviation".into(),
+            points: deviation
+                .iter()
+                .enumerate()
+                .map(|(i, d)| (i as f64, d * 1000.0))
+                .collect(),
+            style: SeriesStyle::Points,
+            colour: 0,
+        }],
+        hlines: vec![HLine {
+            label: format!("tolerance {:.1} µm", tolerance * 1000.0),
+            y: tolerance * 1000.0,
+        }],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn charts_render_to_svg_with_their_text() {
+        let c = chordal_deviation(&[0.001, 0.004, f64::NAN, 0.002], 0.005);
+        let svg = render_svg(&c, &PlotOptions::default()).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("</svg>"));
+        assert!(svg.contains("Chordal deviation per segment"));
+        assert!(svg.contains("tolerance 5.0 µm"));
+        // Three finite markers plus the legend marker.
+        assert_eq!(svg.matches("<circle").count(), 3 + 1, "{svg}");
+    }
+
+    #[test]
+    fn empty_and_constant_charts_have_valid_ranges() {
+        let (x0, x1, y0, y1) = Chart::default().ranges();
+        assert!(x1 > x0 && y1 > y0);
+        let c = feed_along_path(&[(0.0, 10.0), (5.0, 10.0)], None);
+        let (_, _, y0, y1) = c.ranges();
+        assert!(y0 < 600.0 && y1 > 600.0);
+        assert!(render_svg(&Chart::default(), &PlotOptions::default()).is_ok());
+    }
+
+    #[test]
+    fn kinematics_limits_are_symmetric_lines() {
+        let c = axis_kinematics(
+            Quantity::Acceleration,
+            &[0.0, 1.0],
+            &[AxisSeries {
+                name: "X".into(),
+                unit: "mm".into(),
+                values: vec![0.0, 100.0],
+                limit: Some(500.0),
+            }],
+        );
+        let ys: Vec<f64> = c.hlines.iter().map(|h| h.y).collect();
+        assert_eq!(ys, vec![500.0, -500.0]);
+        let (_, _, y0, y1) = c.ranges();
+        assert!(y0 < -500.0 && y1 > 500.0);
+    }
+
+    #[test]
+    fn png_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("c.png");
+        let c = cycle_time_vs_transition(&[("100 mm/min".into(), vec![(0.1, 3.0), (0.5, 2.0)])]);
+        render_png(&c, &PlotOptions::default(), &p).unwrap();
+        let bytes = std::fs::read(&p).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG");
+    }
+}
