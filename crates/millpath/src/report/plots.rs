@@ -155,7 +155,7 @@ fn plot_err(e: impl std::fmt::Display) -> Error {
 }
 
 fn draw<DB: DrawingBackend>(
-    root: DrawingArea<DB, plotters::coord::Shift>,
+    root: &DrawingArea<DB, plotters::coord::Shift>,
     chart: &Chart,
 ) -> Result<(), Error>
 where
@@ -163,7 +163,7 @@ where
 {
     root.fill(&WHITE).map_err(plot_err)?;
     let (x0, x1, y0, y1) = chart.ranges();
-    let mut cc = ChartBuilder::on(&root)
+    let mut cc = ChartBuilder::on(root)
         .caption(&chart.title, ("sans-serif", 20))
         .margin(12)
         .x_label_area_size(40)
@@ -239,7 +239,7 @@ pub fn render_svg(chart: &Chart, opts: &PlotOptions) -> Result<String, Error> {
     let mut s = String::new();
     {
         let root = SVGBackend::with_string(&mut s, (opts.width, opts.height)).into_drawing_area();
-        draw(root, chart)?;
+        draw(&root, chart)?;
     }
     Ok(s)
 }
@@ -247,7 +247,7 @@ pub fn render_svg(chart: &Chart, opts: &PlotOptions) -> Result<String, Error> {
 /// Renders `chart` as a PNG file at `path` (through plotters' bitmap backend).
 pub fn render_png(chart: &Chart, opts: &PlotOptions, path: &Path) -> Result<(), Error> {
     let root = BitMapBackend::new(path, (opts.width, opts.height)).into_drawing_area();
-    draw(root, chart)
+    draw(&root, chart)
 }
 
 /// Feed along the path (adaptive-spiral paper, Figure 15): `achieved` are (distance travelled
@@ -305,13 +305,16 @@ pub fn cycle_time_vs_transition(curves: &[(String, Vec<(f64, f64)>)]) -> Chart {
 pub fn square_circle_gain(rows: &[Row]) -> Chart {
     let mut feeds: Vec<f64> = Vec::new();
     for r in rows {
-        if !feeds.contains(&r.feed_ipm) {
+        if !feeds.iter().any(|f| f.to_bits() == r.feed_ipm.to_bits()) {
             feeds.push(r.feed_ipm);
         }
     }
     let mut series = Vec::new();
     for (i, f) in feeds.iter().enumerate() {
-        let mut rs: Vec<&Row> = rows.iter().filter(|r| r.feed_ipm == *f).collect();
+        let mut rs: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.feed_ipm.to_bits() == f.to_bits())
+            .collect();
         rs.sort_by(|a, b| a.side_in.total_cmp(&b.side_in));
         series.push(Series {
             label: format!("{f:.0} in/min measured"),

@@ -62,6 +62,7 @@
     root.querySelector('.mp-zoom-out').addEventListener('click', function () { zoom(1.5); });
     root.querySelector('.mp-reset').addEventListener('click', function () { vb = vb0.slice(); applyVb(); });
     api.zoom = zoom;
+    api.reset = function () { vb = vb0.slice(); applyVb(); };
     api.viewBox = function () { return vb.slice(); };
 
     // Level selector: one level, or all (links between levels only with all).
@@ -138,6 +139,7 @@
     v.zoom(0.5);
     var after = v.viewBox();
     if (!(after[2] < before[2])) { return 'MP-SELFTEST-FAIL zoom'; }
+    v.reset();
     v.showLevel('all');
     return 'MP-SELFTEST-OK t=' + Number(v.slider.value).toFixed(6) + ' x=' + x.toFixed(4) +
       ' y=' + y.toFixed(4) + ' z=' + p[3].toFixed(4) + ' errors=' + window.mpErrors.length;
