@@ -25,7 +25,7 @@ fn log_uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
 
 #[test]
 fn rest_to_rest_matches_ruckig() {
-    let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_3);
+    let mut rng = ChaCha8Rng::seed_from_u64(0x0005_eed3);
     let mut worst: f64 = 0.0;
     for _ in 0..3000 {
         let lim = Limits1 {

@@ -23,6 +23,7 @@
 //!   `b = 2va + A²/J`, `c = 2va·A²/J − 2LA < 0`; the positive root in the stable form
 //!   `x = −2c/(b + √(b² − 4c))`.
 //! * `J = ∞`: `x² + 2va·x − 2AL = 0`, `x = 4AL/(2va + √(4va² + 8AL))`.
+//!
 //! Each closed form is polished with one Newton step on `d(va, va + x) − L`.
 //!
 //! # Span profile (from `v0` to `v1` over a distance `L`, `v ≤ V`)
@@ -224,7 +225,7 @@ impl SpanProfile {
             // `d` grows like `√(vp − vlo)`, so a peak a rounding error above `vlo` would
             // overshoot the span by ~`vlo·√(ε/J)`.)
             vlo
-        } else if v0 == v1 {
+        } else if (v0 - v1).abs() <= 0.0 {
             reachable_velocity(v0, 0.5 * length, a, j).min(lim.v)
         } else {
             // Bracketed Newton on D(vp) = length over [vlo, V].
@@ -327,6 +328,10 @@ impl SpanProfile {
         for ph in &self.phases {
             let end = advance(st, ph, ph.duration);
             if end.s >= s && ph.duration > 0.0 {
+                if ph.jerk == 0.0 && ph.a0 == 0.0 && st.v > 0.0 {
+                    // Cruise: s is linear in t.
+                    return t0 + ((s - st.s) / st.v).clamp(0.0, ph.duration);
+                }
                 let (mut lo, mut hi) = (0.0, ph.duration);
                 let mut tau = if st.v > 0.0 {
                     ((s - st.s) / st.v).min(hi)

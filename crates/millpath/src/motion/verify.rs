@@ -151,7 +151,7 @@ pub fn verify_plan(
     machine: &Machine,
     opts: &VerifyOptions,
 ) -> Result<VerifyReport, Error> {
-    if !(opts.rate >= 1000.0) {
+    if opts.rate.is_nan() || opts.rate < 1000.0 {
         return Err(crate::InputError::new("verifier rate", opts.rate)
             .expected("at least 1000 Hz")
             .into());
