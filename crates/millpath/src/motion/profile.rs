@@ -460,6 +460,33 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
+        /// Any feasible (v0, v1, L) gets a profile that ends exactly and respects its limits,
+        /// and whose duration is no longer than a slower-peak alternative (cruise at vlo).
+        #[test]
+        fn span_profiles_are_feasible(
+            v0 in 0.0f64..200.0, v1 in 0.0f64..200.0, extra in 0.0f64..100.0,
+            a in 10.0f64..1e4, lj in 2.0f64..7.0, unlimited in proptest::bool::ANY,
+        ) {
+            let j = if unlimited { f64::INFINITY } else { 10f64.powf(lj) };
+            let lim = Limits1 { v: 200.0, a, j };
+            let l = change_distance(v0, v1, a, j) + extra + 1e-6;
+            let p = SpanProfile::new(v0, v1, l, lim).unwrap();
+            p.check(lim).unwrap();
+            let vlo = v0.max(v1);
+            if vlo > 0.0 {
+                let slow = change_distance(v0, vlo, a, j) + change_distance(vlo, v1, a, j);
+                let t_slow = change_time((vlo - v0).abs(), a, j)
+                    + change_time((vlo - v1).abs(), a, j)
+                    + (l - slow) / vlo;
+                proptest::prop_assert!(p.duration <= t_slow * (1.0 + 1e-12) + 1e-12);
+            }
+            let r = reachable_velocity(v0, l, a, j);
+            proptest::prop_assert!((change_distance(v0, r, a, j) - l).abs() <= 1e-9 * l.max(1.0));
+        }
+    }
+
     #[test]
     fn long_trapezoid_time_is_closed_form() {
         // J = ∞, cruise reached: T = L/V + V/A.
