@@ -253,14 +253,19 @@ impl SpanProfile {
                     break;
                 }
             }
-            // `lo` always has D(lo) ≤ L: if the last iterate overshoots (D grows like
-            // √(vp − vlo) near vlo, beyond what f64 resolves), keep `lo` and let the
-            // cruise take up the rest.
-            if d(x) > length {
-                lo
-            } else {
-                x.clamp(vlo, lim.v)
+            // If the last iterate overshoots by rounding (D grows like √(vp − vlo) near vlo,
+            // beyond what f64 resolves), step down geometrically until D ≤ L (`lo` always
+            // qualifies) and let a cruise of a few ulps take up the rest.
+            let mut y = x.clamp(vlo, lim.v);
+            let mut step = 4.0 * f64::EPSILON * y;
+            for _ in 0..60 {
+                if d(y) <= length {
+                    break;
+                }
+                y = (y - step).max(lo);
+                step *= 4.0;
             }
+            if d(y) > length { lo } else { y }
         };
         let mut phases = [Phase::default(); 7];
         change_phases(v0, vp, a, j, &mut phases[0..3]);
