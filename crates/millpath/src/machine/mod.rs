@@ -28,7 +28,7 @@
 //!   [`crate::motion::table2`] for the fit and the remaining error). Path tolerance 0.01 mm
 //!   (a typical G642/`CYCLE832` finishing tolerance; the paper does not give the 840D's
 //!   continuous-path settings; on Table 2's 90° corners it leaves the corner speed so low
-//!   that the squares behave as with exact stops, and the fit is the same with tolerance 0).
+//!   that the squares behave almost as with exact stops; the grid search picks the same (A, J) with tolerance 0).
 //!   Interpolation cycle 2 ms (the 840D's IPO cycle is typically
 //!   2–4 ms, MD10071). On curved paths the 840D shares the axis acceleration between the
 //!   tangential and the centripetal direction (`CURV_EFFECT_ON_PATH_ACCEL`, MD20602); the

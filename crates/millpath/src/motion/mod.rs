@@ -37,13 +37,18 @@
 //! # Precision and range
 //! * A rest-to-rest straight move's time equals rsruckig's minimum duration within 1e-9 s
 //!   (`tests/motion_ruckig.rs`, 3000 seeded moves, distances 1 µm–2 m, v 1–2000 mm/s,
-//!   a 50–50 000 mm/s², j 500–5·10⁶ mm/s³).
+//!   a 50–50 000 mm/s², j 500–5·10⁶ mm/s³); so does every span between junction speeds,
+//!   from `(v0, a = 0)` to `(v1, a = 0)` over any feasible distance (2000 seeded cases,
+//!   relative 1e-9).
 //! * Span profiles end within 1e-8 (relative) of their length and 1e-9 of their end speed,
 //!   and never exceed the span's limits by more than 1e-9 relative ([`profile::SpanProfile::check`]).
 //! * With jerk unlimited, plans of exact-stop polylines and tangent line–arc paths are within
 //!   1% of an independent time-optimal reference (`tests/motion_topp.rs`).
 //! * Every plan of the test corpus sampled at 1 kHz has 0 violations of per-axis v/a/j
 //!   (relative 1e-6), feed, and corner rules (`tests/motion_verify.rs`).
+//! * Speed: ≥ 2 million planned moves per second on one core for short-segment G1 programs
+//!   (`benches/planner.rs`); a 1-million-line program is read and planned in about 1.2 s
+//!   (`millpath estimate --no-verify`), 3.3 s with the 1 kHz verifier.
 //! * Input range: lengths from 1e-12 mm (shorter moves are skipped with zero time), limits
 //!   any finite positive values (jerk may be infinite), arcs with radius > 1e-12 mm.
 //!
