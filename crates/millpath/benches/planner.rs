@@ -40,6 +40,30 @@ fn bench(c: &mut Criterion) {
             });
         });
     }
+    // Worst case: a staircase of 0.1 mm G1 moves with a 90° corner at every junction (every
+    // block its own span, a profile and a check per block).
+    let mut stairs = Vec::with_capacity(n);
+    let mut p = Point3::ORIGIN;
+    for i in 0..n {
+        let d = if i % 2 == 0 {
+            Vec3::new(0.1, 0.0, 0.0)
+        } else {
+            Vec3::new(0.0, 0.1, 0.0)
+        };
+        stairs.push((p, Move::line(p + d, 100.0)));
+        p = p + d;
+    }
+    let m = Machine::preset("hsm").expect("preset");
+    let opts = PlanOptions {
+        keep_geometry: false,
+        ..PlanOptions::default()
+    };
+    g.bench_function("staircase_corners_hsm", |b| {
+        b.iter(|| {
+            let plan = plan_moves(stairs.iter().map(|x| Ok(*x)), &m, &opts).expect("plan");
+            black_box(plan.total_time())
+        });
+    });
     g.finish();
 }
 
