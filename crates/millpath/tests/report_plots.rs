@@ -91,7 +91,10 @@ fn planner_plots_show_data_within_limits() {
             assert!(a.values.iter().all(|v| *v >= y0 && *v <= y1));
         }
         let svg = render(&chart, name, &dir);
-        assert!(svg.contains("X limit"), "{name}: limit label missing");
+        assert!(
+            svg.contains("X, Y, Z limit ±"),
+            "{name}: limit label missing"
+        );
     }
 }
 

@@ -212,15 +212,18 @@ where
     }
     for h in &chart.hlines {
         let red = RGBColor(200, 0, 0);
-        cc.draw_series(DashedLineSeries::new(
-            vec![(x0, h.y), (x1, h.y)],
-            8,
-            4,
-            red.stroke_width(1),
-        ))
-        .map_err(plot_err)?
-        .label(h.label.as_str())
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], red));
+        let anno = cc
+            .draw_series(DashedLineSeries::new(
+                vec![(x0, h.y), (x1, h.y)],
+                8,
+                4,
+                red.stroke_width(1),
+            ))
+            .map_err(plot_err)?;
+        if !h.label.is_empty() {
+            anno.label(h.label.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], red));
+        }
     }
     if chart.series.iter().any(|s| !s.label.is_empty()) || !chart.hlines.is_empty() {
         cc.configure_series_labels()
@@ -248,6 +251,15 @@ pub fn render_svg(chart: &Chart, opts: &PlotOptions) -> Result<String, Error> {
 pub fn render_png(chart: &Chart, opts: &PlotOptions, path: &Path) -> Result<(), Error> {
     let root = BitMapBackend::new(path, (opts.width, opts.height)).into_drawing_area();
     draw(&root, chart)
+}
+
+/// Writes `stem.svg` and `stem.png` (the SVG atomically) and returns the SVG, for a report
+/// that both embeds the plot and ships the pictures beside it.
+pub fn render_files(chart: &Chart, opts: &PlotOptions, stem: &Path) -> Result<String, Error> {
+    let svg = render_svg(chart, opts)?;
+    crate::io::write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
+    render_png(chart, opts, &stem.with_extension("png"))?;
+    Ok(svg)
 }
 
 /// Feed along the path (adaptive-spiral paper, Figure 15): `achieved` are (distance travelled
@@ -338,6 +350,13 @@ pub fn square_circle_gain(rows: &[Row]) -> Chart {
     }
 }
 
+/// A number with at most 4 significant decimals and no trailing zeros.
+fn short(v: f64) -> String {
+    let s = format!("{v:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.to_string()
+}
+
 /// Which derivative [`axis_kinematics`] shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Quantity {
@@ -384,7 +403,8 @@ pub struct AxisSeries {
 /// Figures 6–7). `t` are the common time stamps; values beyond `t.len()` are ignored.
 pub fn axis_kinematics(quantity: Quantity, t: &[f64], axes: &[AxisSeries]) -> Chart {
     let mut series = Vec::new();
-    let mut hlines = Vec::new();
+    // Axes sharing a limit share one pair of lines: (limit, names).
+    let mut limits: Vec<(f64, Vec<&str>)> = Vec::new();
     for (i, a) in axes.iter().enumerate() {
         series.push(Series {
             label: a.name.clone(),
@@ -392,16 +412,23 @@ pub fn axis_kinematics(quantity: Quantity, t: &[f64], axes: &[AxisSeries]) -> Ch
             style: SeriesStyle::Line,
             colour: i,
         });
-        if let Some(l) = a.limit.filter(|l| l.is_finite()) {
-            hlines.push(HLine {
-                label: format!("{} limit ±{l:.4}", a.name),
-                y: l.abs(),
-            });
-            hlines.push(HLine {
-                label: String::new(),
-                y: -l.abs(),
-            });
+        if let Some(l) = a.limit.filter(|l| l.is_finite()).map(f64::abs) {
+            match limits.iter_mut().find(|(v, _)| v.to_bits() == l.to_bits()) {
+                Some((_, names)) => names.push(&a.name),
+                None => limits.push((l, vec![&a.name])),
+            }
         }
+    }
+    let mut hlines = Vec::new();
+    for (l, names) in limits {
+        hlines.push(HLine {
+            label: format!("{} limit ±{}", names.join(", "), short(l)),
+            y: l,
+        });
+        hlines.push(HLine {
+            label: String::new(),
+            y: -l,
+        });
     }
     let units: Vec<&str> = {
         let mut u: Vec<&str> = axes.iter().map(|a| a.unit.as_str()).collect();
@@ -498,5 +525,11 @@ mod tests {
         render_png(&c, &PlotOptions::default(), &p).unwrap();
         let bytes = std::fs::read(&p).unwrap();
         assert_eq!(&bytes[1..4], b"PNG");
+        let svg = render_files(&c, &PlotOptions::default(), &dir.path().join("both")).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("both.svg")).unwrap(),
+            svg
+        );
+        assert!(dir.path().join("both.png").is_file());
     }
 }
