@@ -1,0 +1,1 @@
+//! Biarcs within a tolerance (placeholder, filled below).
