@@ -198,6 +198,8 @@ pub fn deviation<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64) -> f64 {
 }
 
 const PARAM_EPS: f64 = 1e-12;
+/// Relative margin the flattener keeps below the tolerance (see [`flatten_opt`]).
+pub const TOL_MARGIN: f64 = 1e-6;
 
 fn farthest<C: PlanarCurve + ?Sized>(run: &mut Run<'_, C>, s: f64, tol: f64, h0: f64, probe: bool) -> f64 {
     let hi = run.hi;
@@ -297,6 +299,9 @@ pub fn flatten_opt<C: PlanarCurve + ?Sized>(c: &C, tol: f64, opt: &FlattenOption
     let mut stops: Vec<f64> = b.iter().map(|x| if *x < start { x + n as f64 } else { *x }).collect();
     stops.sort_by(f64::total_cmp);
     stops.push(start + n as f64);
+    // Aim a hair below tol so that floating-point differences between evaluators (about
+    // 1e-13 mm at 400 mm) cannot push an independently verified deviation over tol.
+    let tol = tol * (1.0 - TOL_MARGIN);
     let mut params = vec![start];
     let mut h = 0.01;
     let mut s = start;
@@ -318,7 +323,7 @@ pub fn flatten_opt<C: PlanarCurve + ?Sized>(c: &C, tol: f64, opt: &FlattenOption
         let run = Run { c, hi: start + n as f64, n, buf: Vec::new() };
         params.iter().map(|s| run.pt(*s)).collect()
     };
-    Ok(Flattening { params, points, max_deviation: max_dev, tolerance: tol })
+    Ok(Flattening { params, points, max_deviation: max_dev, tolerance: tol / (1.0 - TOL_MARGIN) })
 }
 
 /// The asymptotic optimum `∫√(|κ|/(8·tol)) ds` over the curve (composite Simpson, 512
