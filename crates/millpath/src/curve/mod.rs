@@ -20,11 +20,12 @@ pub mod catmull_rom;
 mod cubic;
 pub mod flatten;
 pub mod four_point;
+pub mod intersect;
 pub mod spline;
 pub mod verify;
 
 pub use cubic::Cubic;
-pub use flatten::{Flattening, PlanarCurve, flatten, flatten_curve};
+pub use flatten::{Flattening, PlanarCurve};
 
 use crate::error::InputError;
 use crate::geom::{Aabb, LENGTH_EPS, Point, Vec2};
@@ -281,7 +282,7 @@ pub fn build(groups: &[Vec<LabeledPoint>], kind: CurveKind, origin: &str) -> Res
                     }
                 }
             }
-            CompositeCurve::new(pieces, kinds, origin)
+            intersect::remove_fishtails(CompositeCurve::new(pieces, kinds, origin)?, origin)
         }
         CurveKind::CatmullRom | CurveKind::Spline => {
             check_points(&all)?;
@@ -302,7 +303,7 @@ pub fn build(groups: &[Vec<LabeledPoint>], kind: CurveKind, origin: &str) -> Res
                 catmull_rom::closed(&pts)
             };
             let kinds = vec![PieceKind::Interpolating; pieces.len()];
-            CompositeCurve::new(pieces, kinds, origin)
+            intersect::remove_fishtails(CompositeCurve::new(pieces, kinds, origin)?, origin)
         }
     }
 }

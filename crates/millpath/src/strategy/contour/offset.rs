@@ -156,54 +156,6 @@ pub struct OffsetVertex {
     pub s: f64,
 }
 
-/// Segment–segment intersection parameters `(ta, tb)` in `[0, 1)` (proper or touching).
-fn seg_intersect(a0: Point, a1: Point, b0: Point, b1: Point) -> Option<(f64, f64)> {
-    let (r, s) = (a1 - a0, b1 - b0);
-    let den = r.cross(s);
-    if den.abs() <= 1e-300 {
-        return None;
-    }
-    let w = b0 - a0;
-    let ta = w.cross(s) / den;
-    let tb = w.cross(r) / den;
-    ((0.0..1.0).contains(&ta) && (0.0..1.0).contains(&tb)).then_some((ta, tb))
-}
-
-/// All self-intersections of the closed polyline `v` as `(i, ta, j, tb)` with `i < j`,
-/// segments not adjacent.
-pub fn self_intersections(v: &[Point]) -> Vec<(usize, f64, usize, f64)> {
-    let m = v.len();
-    let mut segs: Vec<(f64, f64, usize)> = (0..m)
-        .map(|i| {
-            let (a, b) = (v[i], v[(i + 1) % m]);
-            (a.x.min(b.x), a.x.max(b.x), i)
-        })
-        .collect();
-    segs.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut out = Vec::new();
-    for k in 0..segs.len() {
-        let (_, xmax, i) = segs[k];
-        for &(xmin2, _, j) in &segs[k + 1..] {
-            if xmin2 > xmax {
-                break;
-            }
-            let (i, j) = if i < j { (i, j) } else { (j, i) };
-            if j == i + 1 || (i == 0 && j == m - 1) {
-                continue;
-            }
-            let (a0, a1, b0, b1) = (v[i], v[(i + 1) % m], v[j], v[(j + 1) % m]);
-            let (ylo, yhi) = (a0.y.min(a1.y), a0.y.max(a1.y));
-            if b0.y.max(b1.y) < ylo || b0.y.min(b1.y) > yhi {
-                continue;
-            }
-            if let Some((ta, tb)) = seg_intersect(a0, a1, b0, b1) {
-                out.push((i, ta, j, tb));
-            }
-        }
-    }
-    out
-}
-
 /// Result of trimming: the kept loops and the dropped slices.
 #[derive(Debug, Clone, Default)]
 pub struct Trimmed {
@@ -218,7 +170,7 @@ pub struct Trimmed {
 pub fn trim(base: &CompositeCurve, raw: &[OffsetVertex], keep: f64) -> Trimmed {
     let m = raw.len();
     let pts: Vec<Point> = raw.iter().map(|v| v.p).collect();
-    let xs = self_intersections(&pts);
+    let xs = crate::curve::intersect::self_intersections(&pts);
     let too_close = |v: &OffsetVertex| distance_to(base, v.p, v.s) < keep;
     let mut out = Trimmed::default();
     if xs.is_empty() {
