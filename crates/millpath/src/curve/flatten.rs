@@ -55,6 +55,13 @@ pub trait PlanarCurve {
     fn critical(&self, i: usize, dir: Vec2, u0: f64, u1: f64, out: &mut Vec<f64>);
     /// Pieces whose start must be a vertex (corners, discontinuities), ascending.
     fn breaks(&self) -> Vec<usize>;
+    /// Unit tangent (direction of travel) of piece `i` at `u`; by default a central
+    /// difference of [`PlanarCurve::point_at`].
+    fn tangent_at(&self, i: usize, u: f64) -> Vec2 {
+        let h = 1e-7;
+        let (a, b) = ((u - h).max(0.0), (u + h).min(1.0));
+        (self.point_at(i, b) - self.point_at(i, a)).normalize().unwrap_or(Vec2::new(1.0, 0.0))
+    }
 }
 
 impl PlanarCurve for CompositeCurve {
@@ -69,6 +76,10 @@ impl PlanarCurve for CompositeCurve {
     }
     fn breaks(&self) -> Vec<usize> {
         self.corners().to_vec()
+    }
+    fn tangent_at(&self, i: usize, u: f64) -> Vec2 {
+        let c = &self.pieces()[i % self.len()];
+        c.d1(u).normalize().or_else(|| c.d2(u).normalize()).unwrap_or(Vec2::new(1.0, 0.0))
     }
 }
 

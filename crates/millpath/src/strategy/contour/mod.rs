@@ -198,8 +198,9 @@ pub fn contour(curve: &CompositeCurve, opt: &ContourOptions) -> Result<ContourRe
     let clear = opt.top_z + opt.clearance_height;
     for (li, (z, pass, kind)) in plan.iter().enumerate() {
         let start = tp.moves.len();
-        for lp in &pass.loops {
-            let (entry, path) = pass::loop_moves(lp, *z, opt, curve.len());
+        for (k, lp) in pass.loops.iter().enumerate() {
+            let arcs = pass.arcs.get(k).map(Vec::as_slice);
+            let (entry, path) = pass::loop_moves(lp, arcs, *z, opt, curve.len());
             let here = tp.end();
             if here.xy().distance(entry) > 1e-9 || here.z > clear + 1e-9 {
                 if here.z < safe - 1e-9 {

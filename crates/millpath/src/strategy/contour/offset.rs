@@ -106,6 +106,11 @@ impl PlanarCurve for OffsetCurve<'_> {
     fn breaks(&self) -> Vec<usize> {
         self.base.corners().to_vec()
     }
+    fn tangent_at(&self, i: usize, u: f64) -> Vec2 {
+        // O' = P'(1 − dκ): the base tangent, reversed where the offset runs backwards.
+        let t = self.base.tangent_at(i, u);
+        if self.forward(i, u) { t } else { -t }
+    }
 }
 
 /// Approximate distance from `q` to the base curve (bounding-box pruning, 32 samples per

@@ -4,6 +4,7 @@
 use super::offset::{self, OffsetCurve, OffsetVertex};
 use super::{ContourOptions, Side};
 use crate::curve::flatten::{self, FlattenOptions};
+use crate::curve::biarc::{self, ArcSeg};
 use crate::curve::{CompositeCurve, PlanarCurve};
 use crate::error::{Error, InputError};
 use crate::geom::{Point, Point3, Vec2};
@@ -22,12 +23,19 @@ pub struct Pass {
     pub max_deviation: f64,
     /// Places the tool cannot reach.
     pub warnings: Vec<String>,
+    /// With `--arcs`: per loop, the biarcs (and connecting lines) that replace its chords,
+    /// starting at the loop's first vertex. Empty for line output.
+    pub arcs: Vec<Vec<ArcSeg>>,
 }
 
 impl Pass {
     /// Segments of one pass around the outline (all loops).
     pub fn segments(&self) -> usize {
-        self.loops.iter().map(Vec::len).sum()
+        if self.arcs.is_empty() {
+            self.loops.iter().map(Vec::len).sum()
+        } else {
+            self.arcs.iter().map(Vec::len).sum()
+        }
     }
 }
 
@@ -72,7 +80,10 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
             .zip(&f.points)
             .map(|(s, p)| OffsetVertex { p: *p, s: *s })
             .collect();
-        let mut pass = Pass { distance: 0.0, loops: vec![lp], max_deviation: 0.0, warnings: Vec::new() };
+        let mut pass = Pass { distance: 0.0, loops: vec![lp], max_deviation: 0.0, warnings: Vec::new(), arcs: Vec::new() };
+        if opt.arcs {
+            pass.arcs = pass.loops.iter().map(|l| loop_arcs(curve, curve, l, t)).collect();
+        }
         pass.max_deviation = measure(curve, &pass);
         return Ok(pass);
     }
@@ -127,14 +138,79 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
             ))
             .into());
     }
-    let mut pass = Pass { distance: d, loops, max_deviation: 0.0, warnings };
+    let mut pass = Pass { distance: d, loops, max_deviation: 0.0, warnings, arcs: Vec::new() };
+    if opt.arcs {
+        pass.arcs = pass.loops.iter().map(|l| loop_arcs(curve, &oc, l, t)).collect();
+    }
     pass.max_deviation = measure(curve, &pass);
     Ok(pass)
+}
+
+/// Replaces the chords of a loop by biarcs on every smooth stretch: consecutive vertices
+/// that lie on the offset curve at their own parameter, with the parameter increasing by at
+/// most one piece and no corner in between. Other links (trim cuts, corner joins) stay lines.
+fn loop_arcs(curve: &CompositeCurve, oc: &dyn PlanarCurve, lp: &[OffsetVertex], t: f64) -> Vec<ArcSeg> {
+    let m = lp.len();
+    let n = curve.len();
+    let nf = n as f64;
+    let on_curve = |v: &OffsetVertex| {
+        let w = v.s.rem_euclid(nf);
+        let i = (w.floor() as usize).min(n - 1);
+        v.p.distance(oc.point_at(i, w - i as f64)) <= 1e-9 * (1.0 + v.p.to_vec2().length())
+    };
+    let reg: Vec<bool> = lp.iter().map(on_curve).collect();
+    let ds = |i: usize| (lp[(i + 1) % m].s - lp[i].s).rem_euclid(nf);
+    let link = |i: usize| {
+        let j = (i + 1) % m;
+        let d = ds(i);
+        reg[i] && reg[j] && d > 0.0 && d <= 1.0 && {
+            let a = lp[i].s;
+            !curve.corners().iter().any(|&k| {
+                let x = (k as f64 - a).rem_euclid(nf);
+                x > 0.0 && x < d
+            })
+        }
+    };
+    let start = (0..m).find(|&i| !link((i + m - 1) % m)).unwrap_or(0);
+    let mut out = Vec::new();
+    let mut i = start;
+    let mut count = 0;
+    while count < m {
+        if link(i) {
+            let sa = lp[i].s;
+            let mut sb = sa;
+            while count < m && link(i) {
+                sb += ds(i);
+                i = (i + 1) % m;
+                count += 1;
+            }
+            out.extend(biarc::fit(oc, sa, sb, t));
+        } else {
+            let j = (i + 1) % m;
+            out.push(ArcSeg { start: lp[i].p, end: lp[j].p, center: None, ccw: true, s_end: lp[j].s });
+            i = j;
+            count += 1;
+        }
+    }
+    // Rotate so that the elements start at the loop's first vertex.
+    if let Some(k) = out.iter().position(|a| a.start.distance(lp[0].p) <= 1e-9 * (1.0 + lp[0].p.to_vec2().length())) {
+        out.rotate_left(k);
+    }
+    out
 }
 
 fn measure(curve: &CompositeCurve, pass: &Pass) -> f64 {
     let d = pass.distance.abs();
     let mut worst = 0.0_f64;
+    if !pass.arcs.is_empty() {
+        for a in pass.arcs.iter().flatten() {
+            for j in 0..16 {
+                let q = a.at(f64::from(j) / 16.0);
+                worst = worst.max((offset::distance_to(curve, q, a.s_end) - d).abs());
+            }
+        }
+        return worst;
+    }
     for lp in &pass.loops {
         let m = lp.len();
         for i in 0..m {
@@ -150,14 +226,18 @@ fn measure(curve: &CompositeCurve, pass: &Pass) -> f64 {
 
 /// The moves of one closed loop at depth `z`: the XY entry point (start of the lead-in) and
 /// the feed moves (lead-in arc, the loop tagged with the curve parameter, lead-out arc).
-pub fn loop_moves(lp: &[OffsetVertex], z: f64, opt: &ContourOptions, pieces: usize) -> (Point, Vec<Move>) {
+pub fn loop_moves(lp: &[OffsetVertex], arcs: Option<&[ArcSeg]>, z: f64, opt: &ContourOptions, pieces: usize) -> (Point, Vec<Move>) {
     let tag = |m: Move, s: f64| {
         let w = s.rem_euclid(pieces as f64);
         let i = w.floor();
         m.with_tag(i as u32, w - i)
     };
     let v0 = lp[0];
-    let dir = lp.get(1).map_or(Vec2::new(1.0, 0.0), |v1| v1.p - v0.p).normalize().unwrap_or(Vec2::new(1.0, 0.0));
+    let first_dir = match arcs.and_then(|a| a.first()) {
+        Some(a) => a.at(0.001) - a.start,
+        None => lp.get(1).map_or(Vec2::new(1.0, 0.0), |v1| v1.p - v0.p),
+    };
+    let dir = first_dir.normalize().unwrap_or(Vec2::new(1.0, 0.0));
     // The free side: left of travel inside (towards the cavity's middle), right outside.
     let left = opt.side != Side::Outside;
     let nrm = if left { dir.perp() } else { -dir.perp() };
@@ -172,14 +252,35 @@ pub fn loop_moves(lp: &[OffsetVertex], z: f64, opt: &ContourOptions, pieces: usi
     } else {
         entry = v0.p;
     }
-    for v in lp.iter().skip(1) {
-        moves.push(tag(Move::line(p3(v.p), opt.feed), v.s));
+    let mut last_dir = None;
+    match arcs {
+        Some(arcs) if !arcs.is_empty() => {
+            for a in arcs {
+                let m = match a.center {
+                    Some(c) => Move::arc_xy(p3(a.end), p3(c), a.ccw, opt.feed),
+                    None => Move::line(p3(a.end), opt.feed),
+                };
+                moves.push(tag(m, a.s_end));
+            }
+            if let Some(a) = arcs.last() {
+                last_dir = (a.end - a.at(0.999)).normalize();
+            }
+            let end = arcs.last().map_or(v0.p, |a| a.end);
+            if end.distance(v0.p) > 0.0 {
+                moves.push(tag(Move::line(p3(v0.p), opt.feed), v0.s));
+            }
+        }
+        _ => {
+            for v in lp.iter().skip(1) {
+                moves.push(tag(Move::line(p3(v.p), opt.feed), v.s));
+            }
+            moves.push(tag(Move::line(p3(v0.p), opt.feed), v0.s));
+        }
     }
-    moves.push(tag(Move::line(p3(v0.p), opt.feed), v0.s));
     if rl > 0.0 {
         let m = lp.len();
         let last = lp[m - 1];
-        let dir_end = (v0.p - last.p).normalize().unwrap_or(dir);
+        let dir_end = last_dir.or_else(|| (v0.p - last.p).normalize()).unwrap_or(dir);
         let nrm_end = if left { dir_end.perp() } else { -dir_end.perp() };
         let c = v0.p + nrm_end * rl;
         moves.push(Move::arc_xy(p3(c + dir_end * rl), p3(c), left, opt.feed));
