@@ -2,21 +2,34 @@
 //! true curve through kurbo), one-sided tolerance band, loop trimming with warnings, tool too
 //! large, invariance under reversal and start rotation.
 
+// The figures are printed for the benchmark notes (`cargo test -- --nocapture`).
+#![allow(clippy::print_stderr)]
+
 use millpath::curve::{self, CompositeCurve, CurveKind, LabeledPoint, verify};
 use millpath::geom::Point;
 use millpath::strategy::contour::{self, ContourOptions, Side, offset_pass};
 
 fn opts(tol: f64, side: Side) -> ContourOptions {
-    ContourOptions { tolerance: tol, side, ..ContourOptions::default() }
+    ContourOptions {
+        tolerance: tol,
+        side,
+        ..ContourOptions::default()
+    }
 }
 
 fn loop_points(p: &contour::Pass) -> Vec<Vec<Point>> {
-    p.loops.iter().map(|l| l.iter().map(|v| v.p).collect()).collect()
+    p.loops
+        .iter()
+        .map(|l| l.iter().map(|v| v.p).collect())
+        .collect()
 }
 
 fn area(pts: &[Point]) -> f64 {
     let n = pts.len();
-    (0..n).map(|i| pts[i].to_vec2().cross(pts[(i + 1) % n].to_vec2())).sum::<f64>() * 0.5
+    (0..n)
+        .map(|i| pts[i].to_vec2().cross(pts[(i + 1) % n].to_vec2()))
+        .sum::<f64>()
+        * 0.5
 }
 
 #[test]
@@ -32,9 +45,18 @@ fn paper_outline_offsets_keep_their_distance() {
                 .iter()
                 .map(|l| verify::polyline_min_distance(&c, l, 8))
                 .fold(f64::INFINITY, f64::min);
-            eprintln!("{side:?} T={tol}: {} segments, min distance {min:.9} (d = {d}), measured dev {:.3e}, warnings {}", pass.segments(), pass.max_deviation, pass.warnings.len());
+            eprintln!(
+                "{side:?} T={tol}: {} segments, min distance {min:.9} (d = {d}), measured dev {:.3e}, warnings {}",
+                pass.segments(),
+                pass.max_deviation,
+                pass.warnings.len()
+            );
             assert!(min >= d - 1e-6, "{side:?} T={tol}: {min} < {d}");
-            assert!(pass.max_deviation <= tol, "{side:?} T={tol}: {}", pass.max_deviation);
+            assert!(
+                pass.max_deviation <= tol,
+                "{side:?} T={tol}: {}",
+                pass.max_deviation
+            );
         }
     }
 }
@@ -45,7 +67,11 @@ fn the_spike_of_the_paper_outline_is_reported_unreachable() {
     let o = opts(1e-2, Side::Inside);
     let pass = offset_pass(&c, 5.2, &o).unwrap();
     assert!(!pass.warnings.is_empty());
-    assert!(pass.warnings.iter().any(|w| w.contains("cannot reach")), "{:?}", pass.warnings);
+    assert!(
+        pass.warnings.iter().any(|w| w.contains("cannot reach")),
+        "{:?}",
+        pass.warnings
+    );
 }
 
 #[test]
@@ -54,7 +80,10 @@ fn a_tool_too_large_is_an_input_error() {
         [(0.0, 0.0), (6.0, 0.0), (6.0, 6.0), (0.0, 6.0)]
             .iter()
             .enumerate()
-            .map(|(i, (x, y))| LabeledPoint { p: Point::new(*x, *y), origin: format!("p{i}") })
+            .map(|(i, (x, y))| LabeledPoint {
+                p: Point::new(*x, *y),
+                origin: format!("p{i}"),
+            })
             .collect(),
     ];
     let c = curve::build(&pts, CurveKind::Spline, "square").unwrap();
@@ -65,12 +94,27 @@ fn a_tool_too_large_is_an_input_error() {
 }
 
 fn groups(pts: &[(f64, f64)]) -> Vec<Vec<LabeledPoint>> {
-    vec![pts.iter().enumerate().map(|(i, (x, y))| LabeledPoint { p: Point::new(*x, *y), origin: format!("p{i}") }).collect()]
+    vec![
+        pts.iter()
+            .enumerate()
+            .map(|(i, (x, y))| LabeledPoint {
+                p: Point::new(*x, *y),
+                origin: format!("p{i}"),
+            })
+            .collect(),
+    ]
 }
 
 #[test]
 fn reversed_and_rotated_input_give_the_same_result() {
-    let base = [(0.0, 0.0), (120.0, -10.0), (160.0, 60.0), (110.0, 140.0), (40.0, 90.0), (-20.0, 110.0)];
+    let base = [
+        (0.0, 0.0),
+        (120.0, -10.0),
+        (160.0, 60.0),
+        (110.0, 140.0),
+        (40.0, 90.0),
+        (-20.0, 110.0),
+    ];
     let mut rev = base.to_vec();
     rev.reverse();
     let mut rot = base.to_vec();
@@ -89,8 +133,14 @@ fn reversed_and_rotated_input_give_the_same_result() {
             let (n, d, a, ca) = summary(other);
             assert!(n.abs_diff(n0) <= 1, "{kind:?}: {n} vs {n0}");
             assert!(d <= 1e-3 && d0 <= 1e-3);
-            assert!((ca - c0).abs() < 1e-6 * c0.abs(), "{kind:?}: curve area {ca} vs {c0}");
-            assert!((a - a0).abs() < 1e-3 * a0.abs(), "{kind:?}: offset area {a} vs {a0}");
+            assert!(
+                (ca - c0).abs() < 1e-6 * c0.abs(),
+                "{kind:?}: curve area {ca} vs {c0}"
+            );
+            assert!(
+                (a - a0).abs() < 1e-3 * a0.abs(),
+                "{kind:?}: offset area {a} vs {a0}"
+            );
         }
     }
 }
@@ -98,7 +148,10 @@ fn reversed_and_rotated_input_give_the_same_result() {
 #[test]
 fn full_contour_layers_and_report() {
     let c = curve::paper_outline().unwrap();
-    let o = ContourOptions { tolerance: 1e-2, ..ContourOptions::default() };
+    let o = ContourOptions {
+        tolerance: 1e-2,
+        ..ContourOptions::default()
+    };
     let r = contour::contour(&c, &o).unwrap();
     // 20 mm at 2.5 mm: 8 roughing layers, then the finishing pass.
     assert_eq!(r.report.layers.len(), 9);

@@ -2,6 +2,9 @@
 //! dense sampling through kurbo (≥ 1000 samples per chord), compared with kurbo's flatten,
 //! the asymptotic optimum and the greedy lower bound.
 
+// The figures are printed for the benchmark notes (`cargo test -- --nocapture`).
+#![allow(clippy::print_stderr)]
+
 use millpath::curve::{self, flatten, verify};
 
 #[test]
@@ -21,7 +24,10 @@ fn tolerance_sweep_on_the_paper_outline() {
         assert!(dense <= tol, "T={tol}: dense deviation {dense}");
         assert!(f.max_deviation <= tol);
         assert!(n <= kurbo, "T={tol}: {n} > kurbo {kurbo}");
-        assert!(n as f64 <= 1.02 * lower as f64, "T={tol}: {n} vs lower bound {lower}");
+        assert!(
+            n as f64 <= 1.02 * lower as f64,
+            "T={tol}: {n} vs lower bound {lower}"
+        );
         assert!(c.corners().is_empty() || (f.params[0] - f.params[0].round()).abs() < 1e-12);
     }
 }
@@ -35,7 +41,10 @@ fn every_curve_kind_flattens_within_tolerance() {
             let f = flatten::flatten(&c, tol).unwrap();
             let dense = verify::chordal_deviation(&c, &f.params, &f.points, 1000);
             assert!(dense <= tol, "{kind:?} T={tol}: {dense}");
-            assert!(f.segments() <= flatten::kurbo_count(&c, tol), "{kind:?} T={tol}");
+            assert!(
+                f.segments() <= flatten::kurbo_count(&c, tol),
+                "{kind:?} T={tol}"
+            );
         }
     }
 }

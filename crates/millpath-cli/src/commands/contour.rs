@@ -130,24 +130,56 @@ pub fn run(args: &Args) -> Result<(), Error> {
             if kind == CurveKind::FourPoint {
                 groups = millpath::io::points::regroup_for_four_point(groups);
             }
-            (curve::build(&groups, kind, &name)?, ContourOptions::default(), name)
+            (
+                curve::build(&groups, kind, &name)?,
+                ContourOptions::default(),
+                name,
+            )
         }
         (None, true) => {
             let (c, o) = contour::sample()?;
             (c, o, "paper sample".to_owned())
         }
-        (Some(_), true) => return Err(input("POINTS", "given with --sample", "command line", "either a points file or --sample")),
-        (None, false) => return Err(input("POINTS", "missing", "command line", "a points file (CSV or JSON) or --sample")),
+        (Some(_), true) => {
+            return Err(input(
+                "POINTS",
+                "given with --sample",
+                "command line",
+                "either a points file or --sample",
+            ));
+        }
+        (None, false) => {
+            return Err(input(
+                "POINTS",
+                "missing",
+                "command line",
+                "a points file (CSV or JSON) or --sample",
+            ));
+        }
     };
     if let Some(d) = args.tool_diameter {
         if !(d.is_finite() && d > 0.0) {
-            return Err(input("tool diameter", d, "--tool-diameter", "a finite number > 0 mm"));
+            return Err(input(
+                "tool diameter",
+                d,
+                "--tool-diameter",
+                "a finite number > 0 mm",
+            ));
         }
-        opt.tool = Tool { diameter: d, flute_length: opt.tool.flute_length.max(3.0 * d), ..opt.tool };
+        opt.tool = Tool {
+            diameter: d,
+            flute_length: opt.tool.flute_length.max(3.0 * d),
+            ..opt.tool
+        };
     }
     if let Some(t) = args.tolerance {
         if !(t.is_finite() && t > 0.0) {
-            return Err(input("tolerance", t, "--tolerance", "a finite number > 0 mm"));
+            return Err(input(
+                "tolerance",
+                t,
+                "--tolerance",
+                "a finite number > 0 mm",
+            ));
         }
         opt.tolerance = t;
     }
@@ -164,7 +196,10 @@ pub fn run(args: &Args) -> Result<(), Error> {
     };
     opt.finish_allowance = args.finish_allowance;
     opt.arcs = args.arcs;
-    for (what, v, flag) in [("feed", args.feed, "--feed"), ("plunge feed", args.plunge_feed, "--plunge-feed")] {
+    for (what, v, flag) in [
+        ("feed", args.feed, "--feed"),
+        ("plunge feed", args.plunge_feed, "--plunge-feed"),
+    ] {
         if !(v.is_finite() && v > 0.0) {
             return Err(input(what, v, flag, "a finite number > 0 mm/min"));
         }
@@ -192,7 +227,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
             }
             d
         }
-        None => gcode::required_decimals(opt.tolerance, args.units).max(args.dialect.default_decimals(args.units)),
+        None => gcode::required_decimals(opt.tolerance, args.units)
+            .max(args.dialect.default_decimals(args.units)),
     };
     opt.rounding = gcode::rounding_error_mm(decimals, args.units);
     if opt.tolerance <= 2.0 * opt.rounding {
@@ -200,7 +236,10 @@ pub fn run(args: &Args) -> Result<(), Error> {
             "tolerance",
             opt.tolerance,
             "--tolerance",
-            &format!("a tolerance the G-code can hold: even {decimals} decimals round by {:.3e} mm", opt.rounding),
+            &format!(
+                "a tolerance the G-code can hold: even {decimals} decimals round by {:.3e} mm",
+                opt.rounding
+            ),
         ));
     }
     let result = contour::contour(&curve, &opt)?;
@@ -226,7 +265,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
     report.blocks = summary.blocks;
     report.lines = summary.lines;
     report.decimals = summary.decimals;
-    let json = serde_json::to_string_pretty(&report).map_err(|e| Error::internal(format!("report: {e}")))?;
+    let json = serde_json::to_string_pretty(&report)
+        .map_err(|e| Error::internal(format!("report: {e}")))?;
     if let Some(out) = &args.output {
         millpath::io::write_atomic_with(out, |w| {
             w.write_all(text.as_bytes())

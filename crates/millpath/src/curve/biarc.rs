@@ -44,7 +44,11 @@ impl ArcSeg {
     pub fn sweep(&self) -> f64 {
         let Some(c) = self.center else { return 0.0 };
         let (a0, a1) = ((self.start - c).angle(), (self.end - c).angle());
-        if self.ccw { (a1 - a0).rem_euclid(TAU) } else { -(a0 - a1).rem_euclid(TAU) }
+        if self.ccw {
+            (a1 - a0).rem_euclid(TAU)
+        } else {
+            -(a0 - a1).rem_euclid(TAU)
+        }
     }
 
     /// The point at fraction `f ∈ [0, 1]` of the arc.
@@ -64,7 +68,11 @@ impl ArcSeg {
         let sw = self.sweep();
         let a0 = (self.start - c).angle();
         let th = (p - c).angle();
-        let delta = if sw >= 0.0 { (th - a0).rem_euclid(TAU) } else { (a0 - th).rem_euclid(TAU) };
+        let delta = if sw >= 0.0 {
+            (th - a0).rem_euclid(TAU)
+        } else {
+            (a0 - th).rem_euclid(TAU)
+        };
         if delta <= sw.abs() {
             ((p - c).length() - r).abs()
         } else {
@@ -86,11 +94,23 @@ fn one_arc(p: Point, t: Vec2, j: Point, from_start: bool, s_end: f64) -> Option<
     let k = t.cross(w);
     let (start, end) = if from_start { (p, j) } else { (j, p) };
     if k.abs() <= 1e-12 * w.length_squared().max(1e-300) {
-        return Some(ArcSeg { start, end, center: None, ccw: true, s_end });
+        return Some(ArcSeg {
+            start,
+            end,
+            center: None,
+            ccw: true,
+            s_end,
+        });
     }
     let rho = w.length_squared() / (2.0 * k);
     let c = p + t.perp() * rho;
-    let a = ArcSeg { start, end, center: Some(c), ccw: rho > 0.0, s_end };
+    let a = ArcSeg {
+        start,
+        end,
+        center: Some(c),
+        ccw: rho > 0.0,
+        s_end,
+    };
     (a.sweep().abs() < std::f64::consts::PI && rho.abs() < 1e7).then_some(a)
 }
 
@@ -117,7 +137,10 @@ pub fn biarc(p0: Point, t0: Vec2, p1: Point, t1: Vec2, s0: f64, s1: f64) -> Opti
     let j = ((p0 + t0 * d).to_vec2() + (p1 - t1 * d).to_vec2()).to_point();
     let j = Point::new(j.x * 0.5, j.y * 0.5);
     let sm = 0.5 * (s0 + s1);
-    Some([one_arc(p0, t0, j, true, sm)?, one_arc(p1, t1, j, false, s1)?])
+    Some([
+        one_arc(p0, t0, j, true, sm)?,
+        one_arc(p1, t1, j, false, s1)?,
+    ])
 }
 
 struct Sampler<'a, C: PlanarCurve + ?Sized> {
@@ -132,7 +155,10 @@ impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
         if s >= self.hi && self.hi.fract() == 0.0 {
             k = self.hi - 1.0;
         }
-        ((k.rem_euclid(self.n as f64) as usize).min(self.n - 1), (s - k).clamp(0.0, 1.0))
+        (
+            (k.rem_euclid(self.n as f64) as usize).min(self.n - 1),
+            (s - k).clamp(0.0, 1.0),
+        )
     }
     fn pt(&self, s: f64) -> Point {
         let (i, u) = self.loc(s);
@@ -146,9 +172,13 @@ impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
         biarc(self.pt(s0), self.tan(s0), self.pt(s1), self.tan(s1), s0, s1)
     }
     fn dev(&self, s0: f64, s1: f64) -> f64 {
-        let Some(arcs) = self.fit(s0, s1) else { return f64::INFINITY };
+        let Some(arcs) = self.fit(s0, s1) else {
+            return f64::INFINITY;
+        };
         let m = 64;
-        let pts: Vec<Point> = (0..=m).map(|j| self.pt(s0 + (s1 - s0) * f64::from(j) / f64::from(m))).collect();
+        let pts: Vec<Point> = (0..=m)
+            .map(|j| self.pt(s0 + (s1 - s0) * f64::from(j) / f64::from(m)))
+            .collect();
         let mut worst = 0.0_f64;
         for p in &pts {
             worst = worst.max(arcs[0].distance(*p).min(arcs[1].distance(*p)));
@@ -170,7 +200,11 @@ impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
 /// Fits biarcs within `tol` to the smooth stretch `[s0, s1]` (unwrapped global parameters,
 /// no corner strictly inside) of `c`.
 pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<ArcSeg> {
-    let sm = Sampler { c, hi: s1, n: c.piece_count() };
+    let sm = Sampler {
+        c,
+        hi: s1,
+        n: c.piece_count(),
+    };
     let mut out = Vec::new();
     let mut s = s0;
     let mut h = (s1 - s0).min(0.05);
@@ -204,10 +238,16 @@ pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<Ar
                 }
                 up = t;
             }
-            if lo == s {
+            if lo <= s {
                 // Cannot fit even a tiny biarc: fall back to a chord.
                 let t = (s + eps).min(s1);
-                out.push(ArcSeg { start: sm.pt(s), end: sm.pt(t), center: None, ccw: true, s_end: t });
+                out.push(ArcSeg {
+                    start: sm.pt(s),
+                    end: sm.pt(t),
+                    center: None,
+                    ccw: true,
+                    s_end: t,
+                });
                 s = t;
                 continue;
             }

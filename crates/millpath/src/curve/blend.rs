@@ -62,8 +62,14 @@ mod tests {
         assert!((seg3.d1(0.0) - Vec2::new(-5.0, 49.75)).length() < 1e-12);
         let (p2, p3) = inner_points(seg1.p3, seg1.d1(1.0), seg3.p0, seg3.d1(0.0));
         // Table 1 prints two decimals (4.38 for 4.3889: truncated, not rounded).
-        assert!((p2.x - 10.33).abs() < 0.01 && (p2.y - 4.38).abs() < 0.01, "{p2:?}");
-        assert!((p3.x - 14.11).abs() < 0.01 && (p3.y - 0.44).abs() < 0.01, "{p3:?}");
+        assert!(
+            (p2.x - 10.33).abs() < 0.01 && (p2.y - 4.38).abs() < 0.01,
+            "{p2:?}"
+        );
+        assert!(
+            (p3.x - 14.11).abs() < 0.01 && (p3.y - 0.44).abs() < 0.01,
+            "{p3:?}"
+        );
         let b = blend(&seg1, &seg3);
         assert!(b.p0.distance(seg1.p3) < 1e-12 && b.p3.distance(seg3.p0) < 1e-12);
         assert!((b.d1(0.0) - seg1.d1(1.0)).length() < 1e-9);

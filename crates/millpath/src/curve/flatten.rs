@@ -60,7 +60,9 @@ pub trait PlanarCurve {
     fn tangent_at(&self, i: usize, u: f64) -> Vec2 {
         let h = 1e-7;
         let (a, b) = ((u - h).max(0.0), (u + h).min(1.0));
-        (self.point_at(i, b) - self.point_at(i, a)).normalize().unwrap_or(Vec2::new(1.0, 0.0))
+        (self.point_at(i, b) - self.point_at(i, a))
+            .normalize()
+            .unwrap_or(Vec2::new(1.0, 0.0))
     }
 }
 
@@ -79,7 +81,10 @@ impl PlanarCurve for CompositeCurve {
     }
     fn tangent_at(&self, i: usize, u: f64) -> Vec2 {
         let c = &self.pieces()[i % self.len()];
-        c.d1(u).normalize().or_else(|| c.d2(u).normalize()).unwrap_or(Vec2::new(1.0, 0.0))
+        c.d1(u)
+            .normalize()
+            .or_else(|| c.d2(u).normalize())
+            .unwrap_or(Vec2::new(1.0, 0.0))
     }
 }
 
@@ -121,7 +126,11 @@ impl Flattening {
     /// the module docs: greedy is within one chord of the optimum on a closed smooth curve
     /// and optimal between corners).
     pub fn lower_bound(&self, corners: usize) -> usize {
-        if corners == 0 { self.segments().saturating_sub(1) } else { self.segments() }
+        if corners == 0 {
+            self.segments().saturating_sub(1)
+        } else {
+            self.segments()
+        }
     }
 }
 
@@ -137,7 +146,10 @@ pub struct FlattenOptions {
 
 impl Default for FlattenOptions {
     fn default() -> Self {
-        FlattenOptions { start: 0.0, probe: true }
+        FlattenOptions {
+            start: 0.0,
+            probe: true,
+        }
     }
 }
 
@@ -175,7 +187,8 @@ impl<C: PlanarCurve + ?Sized> Run<'_, C> {
                 self.c.critical(i, dir, u0, u1, &mut self.buf);
             } else {
                 // A closed chord: its "line" is a point; sample the extremes instead.
-                self.buf.extend((1..32).map(|j| u0 + (u1 - u0) * f64::from(j) / 32.0));
+                self.buf
+                    .extend((1..32).map(|j| u0 + (u1 - u0) * f64::from(j) / 32.0));
             }
             if k + 1.0 < s1 {
                 // A piece boundary strictly inside the chord (possibly only C0).
@@ -204,7 +217,12 @@ pub fn dist_to_segment(p: Point, a: Point, b: Point) -> f64 {
 /// The exact chordal deviation of the chord from global parameter `s0` to `s1` (`s0 < s1`,
 /// unwrapped; no corner strictly inside).
 pub fn deviation<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64) -> f64 {
-    let mut run = Run { c, hi: s1, n: c.piece_count(), buf: Vec::new() };
+    let mut run = Run {
+        c,
+        hi: s1,
+        n: c.piece_count(),
+        buf: Vec::new(),
+    };
     run.dev(s0, s1)
 }
 
@@ -212,7 +230,13 @@ const PARAM_EPS: f64 = 1e-12;
 /// Relative margin the flattener keeps below the tolerance (see [`flatten_opt`]).
 pub const TOL_MARGIN: f64 = 1e-6;
 
-fn farthest<C: PlanarCurve + ?Sized>(run: &mut Run<'_, C>, s: f64, tol: f64, h0: f64, probe: bool) -> f64 {
+fn farthest<C: PlanarCurve + ?Sized>(
+    run: &mut Run<'_, C>,
+    s: f64,
+    tol: f64,
+    h0: f64,
+    probe: bool,
+) -> f64 {
     let hi = run.hi;
     let eps = PARAM_EPS * (1.0 + s.abs());
     let mut lo;
@@ -291,7 +315,11 @@ pub fn flatten_curve(c: &CompositeCurve, tol: f64) -> Result<Flattening, InputEr
 }
 
 /// Flattens the closed curve `c` within `tol` (mm).
-pub fn flatten_opt<C: PlanarCurve + ?Sized>(c: &C, tol: f64, opt: &FlattenOptions) -> Result<Flattening, InputError> {
+pub fn flatten_opt<C: PlanarCurve + ?Sized>(
+    c: &C,
+    tol: f64,
+    opt: &FlattenOptions,
+) -> Result<Flattening, InputError> {
     crate::error::require_positive("tolerance", tol, "flattening")?;
     let n = c.piece_count();
     if n == 0 {
@@ -302,12 +330,19 @@ pub fn flatten_opt<C: PlanarCurve + ?Sized>(c: &C, tol: f64, opt: &FlattenOption
         opt.start
     } else {
         let s = opt.start.rem_euclid(n as f64);
-        let first = b.iter().copied().find(|x| *x >= s - 1e-12).unwrap_or(b[0] + n as f64);
-        b.retain(|x| *x != first && *x != first - n as f64);
+        let first = b
+            .iter()
+            .copied()
+            .find(|x| *x >= s - 1e-12)
+            .unwrap_or(b[0] + n as f64);
+        b.retain(|x| (*x - first).abs() > 0.5 && (*x - (first - n as f64)).abs() > 0.5);
         first
     };
     // Break points in (start, start + n), ascending, then the end.
-    let mut stops: Vec<f64> = b.iter().map(|x| if *x < start { x + n as f64 } else { *x }).collect();
+    let mut stops: Vec<f64> = b
+        .iter()
+        .map(|x| if *x < start { x + n as f64 } else { *x })
+        .collect();
     stops.sort_by(f64::total_cmp);
     stops.push(start + n as f64);
     // Aim a hair below tol so that floating-point differences between evaluators (about
@@ -318,7 +353,12 @@ pub fn flatten_opt<C: PlanarCurve + ?Sized>(c: &C, tol: f64, opt: &FlattenOption
     let mut s = start;
     let mut max_dev = 0.0_f64;
     for hi in stops {
-        let mut run = Run { c, hi, n, buf: Vec::new() };
+        let mut run = Run {
+            c,
+            hi,
+            n,
+            buf: Vec::new(),
+        };
         while s < hi {
             let t = farthest(&mut run, s, tol, h, opt.probe);
             max_dev = max_dev.max(run.dev(s, t));
@@ -331,10 +371,20 @@ pub fn flatten_opt<C: PlanarCurve + ?Sized>(c: &C, tol: f64, opt: &FlattenOption
         s = hi;
     }
     let points = {
-        let run = Run { c, hi: start + n as f64, n, buf: Vec::new() };
+        let run = Run {
+            c,
+            hi: start + n as f64,
+            n,
+            buf: Vec::new(),
+        };
         params.iter().map(|s| run.pt(*s)).collect()
     };
-    Ok(Flattening { params, points, max_deviation: max_dev, tolerance: tol / (1.0 - TOL_MARGIN) })
+    Ok(Flattening {
+        params,
+        points,
+        max_deviation: max_dev,
+        tolerance: tol / (1.0 - TOL_MARGIN),
+    })
 }
 
 /// The asymptotic optimum `∫√(|κ|/(8·tol)) ds` over the curve (composite Simpson, 512
@@ -371,11 +421,7 @@ pub fn kurbo_count(c: &CompositeCurve, tol: f64) -> usize {
             count += 1;
             last = p;
         }
-        kurbo::PathEl::ClosePath => {
-            if last.distance(first) > 0.0 {
-                count += 1;
-            }
-        }
+        kurbo::PathEl::ClosePath if last.distance(first) > 0.0 => count += 1,
         _ => {}
     });
     count
@@ -387,7 +433,9 @@ mod tests {
 
     fn circleish() -> CompositeCurve {
         let pts: Vec<Point> = (0..8)
-            .map(|i| Point::ORIGIN + Vec2::from_angle(f64::from(i) * std::f64::consts::TAU / 8.0) * 100.0)
+            .map(|i| {
+                Point::ORIGIN + Vec2::from_angle(f64::from(i) * std::f64::consts::TAU / 8.0) * 100.0
+            })
             .collect();
         let pieces = super::super::spline::closed(&pts).unwrap();
         let kinds = vec![super::super::PieceKind::Interpolating; 8];
@@ -404,7 +452,10 @@ mod tests {
                 .map(|j| dist_to_segment(c.eval(s0 + (s1 - s0) * f64::from(j) / 10000.0), a, b))
                 .fold(0.0, f64::max);
             // Exact is never below sampling, and sampling misses at most its own grid error.
-            assert!(d >= dense - 1e-12 && d - dense < 1e-7 * (1.0 + d), "{d} vs {dense}");
+            assert!(
+                d >= dense - 1e-12 && d - dense < 1e-7 * (1.0 + d),
+                "{d} vs {dense}"
+            );
         }
     }
 
@@ -416,7 +467,10 @@ mod tests {
         // Circle of radius ~100: optimum ≈ 2π/(2·acos(1 − 0.01/100)).
         let opt = std::f64::consts::TAU / (2.0 * (1.0 - 0.01 / 100.0_f64).acos());
         let n = f.segments() as f64;
-        assert!(n <= opt.ceil() + 1.0 && n >= opt.floor() - 1.0, "{n} vs {opt}");
+        assert!(
+            n <= opt.ceil() + 1.0 && n >= opt.floor() - 1.0,
+            "{n} vs {opt}"
+        );
         assert!(f.segments() <= kurbo_count(&c, 0.01));
     }
 }

@@ -103,7 +103,12 @@ mod tests {
             let d = basis_d1(u);
             for k in 0..4 {
                 let fd = (a[k] - b[k]) / (2.0 * h);
-                assert!((fd - d[k]).abs() < 1e-6, "G{}'({u}): {fd} vs {}", k + 1, d[k]);
+                assert!(
+                    (fd - d[k]).abs() < 1e-6,
+                    "G{}'({u}): {fd} vs {}",
+                    k + 1,
+                    d[k]
+                );
             }
         }
         // The paper's 41.5 fails the same check.

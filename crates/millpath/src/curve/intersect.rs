@@ -63,7 +63,6 @@ pub fn self_intersections(v: &[Point]) -> Vec<(usize, f64, usize, f64)> {
     out
 }
 
-
 fn sub(c: &Cubic, t0: f64, t1: f64) -> Cubic {
     use kurbo::ParamCurve;
     let k = c.to_kurbo().subsegment(t0..t1);
@@ -99,7 +98,9 @@ pub fn remove_fishtails(c: CompositeCurve, origin: &str) -> Result<CompositeCurv
                     }
                 }
             }
-            let Some((mut ua, mut ub)) = found else { continue };
+            let Some((mut ua, mut ub)) = found else {
+                continue;
+            };
             for _ in 0..30 {
                 let r = pa.eval(ua) - pb.eval(ub);
                 let (da, db) = (pa.d1(ua), -pb.d1(ub));
@@ -122,16 +123,25 @@ pub fn remove_fishtails(c: CompositeCurve, origin: &str) -> Result<CompositeCurv
             cut = true;
         }
     }
-    let c = if cut { CompositeCurve::new(pieces, kinds, origin)? } else { c };
+    let c = if cut {
+        CompositeCurve::new(pieces, kinds, origin)?
+    } else {
+        c
+    };
     let b = c.bounds();
     let tol = 1e-4 * b.width().hypot(b.height()).max(1e-9);
-    let Ok(f) = super::flatten::flatten(&c, tol) else { return Ok(c) };
+    let Ok(f) = super::flatten::flatten(&c, tol) else {
+        return Ok(c);
+    };
     let pts = &f.points[..f.points.len() - 1];
     if let Some(&(i, ta, _, _)) = self_intersections(pts).first() {
         let at = pts[i].lerp(pts[(i + 1) % pts.len()], ta);
-        return Err(InputError::new("outline", format!("self-intersecting near ({:.4}, {:.4})", at.x, at.y))
-            .at(origin)
-            .expected("a closed curve that does not cross itself (check the point order)"));
+        return Err(InputError::new(
+            "outline",
+            format!("self-intersecting near ({:.4}, {:.4})", at.x, at.y),
+        )
+        .at(origin)
+        .expected("a closed curve that does not cross itself (check the point order)"));
     }
     Ok(c)
 }
@@ -146,7 +156,10 @@ mod tests {
         // The corner moved from (1, 15)·20 + (40, 45) = (60, 345) to the crossing near
         // x = 1.03 units (about 0.6 mm to the right), and nothing crosses any more.
         let x = c.pieces()[0].p0;
-        assert!(x.x > 60.1 && x.x < 61.5 && (x.y - 345.0).abs() < 1.0, "{x:?}");
+        assert!(
+            x.x > 60.1 && x.x < 61.5 && (x.y - 345.0).abs() < 1.0,
+            "{x:?}"
+        );
         assert!(c.pieces()[2].p3.distance(x) < 1e-12);
         let f = super::super::flatten::flatten(&c, 1e-4).unwrap();
         assert!(self_intersections(&f.points[..f.points.len() - 1]).is_empty());

@@ -82,20 +82,33 @@ pub struct CompositeCurve {
 impl CompositeCurve {
     /// A closed curve from pieces whose ends meet (within [`LENGTH_EPS`]); reversed to run
     /// counter-clockwise if needed.
-    pub fn new(pieces: Vec<Cubic>, kinds: Vec<PieceKind>, origin: &str) -> Result<Self, InputError> {
+    pub fn new(
+        pieces: Vec<Cubic>,
+        kinds: Vec<PieceKind>,
+        origin: &str,
+    ) -> Result<Self, InputError> {
         let n = pieces.len();
         if n == 0 || kinds.len() != n {
-            return Err(InputError::new("curve pieces", n).at(origin).expected("at least one piece"));
+            return Err(InputError::new("curve pieces", n)
+                .at(origin)
+                .expected("at least one piece"));
         }
         for i in 0..n {
             let (a, b) = (pieces[i].p3, pieces[(i + 1) % n].p0);
             if a.distance(b) > LENGTH_EPS * (1.0 + a.to_vec2().length()) {
-                return Err(InputError::new("curve piece end", format!("({}, {})", a.x, a.y))
-                    .at(format!("{origin}, piece {i}"))
-                    .expected("pieces that meet end to start"));
+                return Err(
+                    InputError::new("curve piece end", format!("({}, {})", a.x, a.y))
+                        .at(format!("{origin}, piece {i}"))
+                        .expected("pieces that meet end to start"),
+                );
             }
         }
-        let mut c = CompositeCurve { pieces, kinds, corners: Vec::new(), reversed: false };
+        let mut c = CompositeCurve {
+            pieces,
+            kinds,
+            corners: Vec::new(),
+            reversed: false,
+        };
         let area = c.signed_area();
         if !area.is_finite() || area.abs() <= LENGTH_EPS {
             return Err(InputError::new("outline area", area)
@@ -211,7 +224,10 @@ impl CompositeCurve {
             .iter()
             .map(|c| Cubic::new(f(c.p0), f(c.p1), f(c.p2), f(c.p3)))
             .collect();
-        CompositeCurve { pieces, ..self.clone() }
+        CompositeCurve {
+            pieces,
+            ..self.clone()
+        }
     }
 }
 
@@ -225,9 +241,14 @@ fn check_points(pts: &[LabeledPoint]) -> Result<(), InputError> {
     }
     for w in pts.windows(2) {
         if w[0].p.distance(w[1].p) <= LENGTH_EPS {
-            return Err(InputError::new("point", format!("({}, {})", w[1].p.x, w[1].p.y))
-                .at(w[1].origin.clone())
-                .expected(format!("a point distinct from the previous one ({})", w[0].origin)));
+            return Err(
+                InputError::new("point", format!("({}, {})", w[1].p.x, w[1].p.y))
+                    .at(w[1].origin.clone())
+                    .expected(format!(
+                        "a point distinct from the previous one ({})",
+                        w[0].origin
+                    )),
+            );
         }
     }
     Ok(())
@@ -243,7 +264,11 @@ fn check_points(pts: &[LabeledPoint]) -> Result<(), InputError> {
 ///
 /// Errors name the offending point: NaN, a repeated consecutive point, too few points, a
 /// group that is not 4 points.
-pub fn build(groups: &[Vec<LabeledPoint>], kind: CurveKind, origin: &str) -> Result<CompositeCurve, InputError> {
+pub fn build(
+    groups: &[Vec<LabeledPoint>],
+    kind: CurveKind,
+    origin: &str,
+) -> Result<CompositeCurve, InputError> {
     let all: Vec<LabeledPoint> = groups.iter().flatten().cloned().collect();
     if all.len() < 4 {
         return Err(InputError::new("number of points", all.len())
@@ -258,7 +283,9 @@ pub fn build(groups: &[Vec<LabeledPoint>], kind: CurveKind, origin: &str) -> Res
                 let pts: [Point; 4] = match g.as_slice() {
                     [a, b, c, d] => [a.p, b.p, c.p, d.p],
                     _ => {
-                        let at = g.first().map_or_else(|| origin.to_owned(), |p| p.origin.clone());
+                        let at = g
+                            .first()
+                            .map_or_else(|| origin.to_owned(), |p| p.origin.clone());
                         return Err(InputError::new(format!("size of point group {}", gi + 1), g.len())
                             .at(at)
                             .expected("exactly 4 points per group in four-point mode (or --curve catmull-rom|spline)"));
@@ -297,7 +324,9 @@ pub fn build(groups: &[Vec<LabeledPoint>], kind: CurveKind, origin: &str) -> Res
             }
             let pieces = if kind == CurveKind::Spline {
                 spline::closed(&pts).ok_or_else(|| {
-                    InputError::new("points", "degenerate").at(origin).expected("points that span a closed curve")
+                    InputError::new("points", "degenerate")
+                        .at(origin)
+                        .expected("points that span a closed curve")
                 })?
             } else {
                 catmull_rom::closed(&pts)
@@ -354,7 +383,10 @@ mod tests {
         assert_eq!(c.piece_kinds()[1], PieceKind::Blend);
         assert!(!c.reversed);
         let b = c.bounds();
-        assert!(b.min.x >= 40.0 && b.min.y >= 40.0 && b.max.x <= 360.0 && b.max.y <= 410.0, "{b:?}");
+        assert!(
+            b.min.x >= 40.0 && b.min.y >= 40.0 && b.max.x <= 360.0 && b.max.y <= 410.0,
+            "{b:?}"
+        );
         // Segment 3 arrives at (1, 15) heading (−5, 2.5) and segment 1 leaves heading
         // (6, −2.75): the paper's outline has a (nearly reversing) corner there.
         assert_eq!(c.corners(), &[0]);

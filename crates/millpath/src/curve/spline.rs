@@ -114,7 +114,9 @@ mod tests {
     fn circle_points_give_a_near_circle() {
         let n = 16;
         let pts: Vec<Point> = (0..n)
-            .map(|i| Point::ORIGIN + Vec2::from_angle(f64::from(i) * std::f64::consts::TAU / 16.0) * 50.0)
+            .map(|i| {
+                Point::ORIGIN + Vec2::from_angle(f64::from(i) * std::f64::consts::TAU / 16.0) * 50.0
+            })
             .collect();
         let c = closed(&pts).unwrap();
         for piece in &c {

@@ -16,7 +16,11 @@ fn kpieces(c: &CompositeCurve) -> Vec<CubicBez> {
 fn seg_dist(p: kurbo::Point, a: kurbo::Point, b: kurbo::Point) -> f64 {
     let (abx, aby) = (b.x - a.x, b.y - a.y);
     let l2 = abx * abx + aby * aby;
-    let t = if l2 > 0.0 { (((p.x - a.x) * abx + (p.y - a.y) * aby) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if l2 > 0.0 {
+        (((p.x - a.x) * abx + (p.y - a.y) * aby) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     (p.x - a.x - t * abx).hypot(p.y - a.y - t * aby)
 }
 
@@ -25,7 +29,7 @@ fn seg_dist(p: kurbo::Point, a: kurbo::Point, b: kurbo::Point) -> f64 {
 fn eval(k: &[CubicBez], s: f64, end_side: bool) -> kurbo::Point {
     let n = k.len() as f64;
     let mut i = s.floor();
-    if end_side && s == i {
+    if end_side && s.fract() == 0.0 {
         i -= 1.0;
     }
     let u = s - i;
@@ -36,7 +40,12 @@ fn eval(k: &[CubicBez], s: f64, end_side: bool) -> kurbo::Point {
 /// The largest distance from the curve to its own chord, sampling `samples` (≥ 1000 in the
 /// tests) points per chord uniformly in the parameter, for vertices at the global parameters
 /// `params` (as [`super::Flattening::params`]) joined in order.
-pub fn chordal_deviation(c: &CompositeCurve, params: &[f64], points: &[Point], samples: usize) -> f64 {
+pub fn chordal_deviation(
+    c: &CompositeCurve,
+    params: &[f64],
+    points: &[Point],
+    samples: usize,
+) -> f64 {
     let k = kpieces(c);
     let mut worst = 0.0_f64;
     for (w, pw) in params.windows(2).zip(points.windows(2)) {
@@ -65,7 +74,7 @@ pub fn polyline_min_distance(c: &CompositeCurve, poly: &[Point], per_segment: us
     let k = kpieces(c);
     let boxes: Vec<kurbo::Rect> = k
         .iter()
-        .map(|q| kurbo::ParamCurveExtrema::bounding_box(q))
+        .map(kurbo::ParamCurveExtrema::bounding_box)
         .collect();
     let mut worst = f64::INFINITY;
     let n = poly.len();

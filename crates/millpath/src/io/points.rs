@@ -56,10 +56,14 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Vec<Vec<LabeledPoint>>, Input
             continue;
         }
         let fields: Vec<&str> = line
-            .split(|c: char| c == ',' || c == ';' || c == '\t' || c == ' ')
+            .split([',', ';', '\t', ' '])
             .filter(|f| !f.is_empty())
             .collect();
-        let nums: Vec<Option<f64>> = fields.iter().take(2).map(|f| f.parse::<f64>().ok()).collect();
+        let nums: Vec<Option<f64>> = fields
+            .iter()
+            .take(2)
+            .map(|f| f.parse::<f64>().ok())
+            .collect();
         if !seen_data && nums.iter().all(Option::is_none) {
             continue; // header
         }
@@ -74,7 +78,9 @@ pub fn parse_csv(text: &str, name: &str) -> Result<Vec<Vec<LabeledPoint>>, Input
         };
         let p = finite(x, y, &origin)?;
         if let Some(g) = fields.get(2) {
-            if last_group.as_deref().is_some_and(|l| l != *g) && groups.last().is_some_and(|g| !g.is_empty()) {
+            if last_group.as_deref().is_some_and(|l| l != *g)
+                && groups.last().is_some_and(|g| !g.is_empty())
+            {
                 groups.push(Vec::new());
             }
             last_group = Some((*g).to_owned());
@@ -102,7 +108,9 @@ pub fn parse_json(text: &str, name: &str) -> Result<Vec<Vec<LabeledPoint>>, Inpu
     let j: JsonPoints = serde_json::from_str(text).map_err(|e| {
         InputError::new("JSON points file", name)
             .at(format!("{name}:{}:{}", e.line(), e.column()))
-            .expected(format!(r#"{{"groups": [[[x, y], ...], ...]}} or {{"points": [[x, y], ...]}} ({e})"#))
+            .expected(format!(
+                r#"{{"groups": [[[x, y], ...], ...]}} or {{"points": [[x, y], ...]}} ({e})"#
+            ))
     })?;
     let (groups, key) = match (j.groups, j.points) {
         (Some(g), None) => (g, "groups"),
@@ -124,7 +132,10 @@ pub fn parse_json(text: &str, name: &str) -> Result<Vec<Vec<LabeledPoint>>, Inpu
                     } else {
                         format!("{name}: points[{i}]")
                     };
-                    Ok(LabeledPoint { p: finite(*x, *y, &origin)?, origin })
+                    Ok(LabeledPoint {
+                        p: finite(*x, *y, &origin)?,
+                        origin,
+                    })
                 })
                 .collect()
         })
@@ -161,10 +172,18 @@ mod tests {
 
     #[test]
     fn csv_groups_by_blank_line_and_column() {
-        let g = parse("x,y\n1,15\n3,14\n5,12.5\n7,10\n\n15,8\n11,17\n5,16.5\n1,15\n", "a.csv").unwrap();
+        let g = parse(
+            "x,y\n1,15\n3,14\n5,12.5\n7,10\n\n15,8\n11,17\n5,16.5\n1,15\n",
+            "a.csv",
+        )
+        .unwrap();
         assert_eq!(g.len(), 2);
         assert_eq!(g[1][0].origin, "a.csv:7");
-        let g = parse("1,15,a\n3,14,a\n5,12.5,a\n7,10,a\n15,8,b\n11,17,b\n", "b.csv").unwrap();
+        let g = parse(
+            "1,15,a\n3,14,a\n5,12.5,a\n7,10,a\n15,8,b\n11,17,b\n",
+            "b.csv",
+        )
+        .unwrap();
         assert_eq!((g.len(), g[0].len(), g[1].len()), (2, 4, 2));
     }
 

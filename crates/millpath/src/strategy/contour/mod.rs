@@ -121,14 +121,19 @@ impl ContourOptions {
             ("clearance height", self.clearance_height),
         ] {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(InputError::new(what, v).at("contour options").expected("a finite number >= 0"));
+                return Err(InputError::new(what, v)
+                    .at("contour options")
+                    .expected("a finite number >= 0"));
             }
         }
         crate::error::require_finite("top Z", self.top_z, "contour options")?;
         if !(self.safe_height.is_finite() && self.safe_height >= self.clearance_height) {
             return Err(InputError::new("safe height", self.safe_height)
                 .at("contour options")
-                .expected(format!("a finite number >= the clearance height {}", self.clearance_height)));
+                .expected(format!(
+                    "a finite number >= the clearance height {}",
+                    self.clearance_height
+                )));
         }
         if self.tolerance <= 2.0 * self.rounding {
             return Err(InputError::new("tolerance", self.tolerance)
@@ -143,7 +148,11 @@ impl ContourOptions {
 
     /// The chord tolerance `t` of the budget (module docs) for an offset of `d` mm.
     pub fn chord_tolerance(&self, d: f64) -> f64 {
-        if d == 0.0 { self.tolerance - self.rounding } else { 0.5 * (self.tolerance - 2.0 * self.rounding) }
+        if d == 0.0 {
+            self.tolerance - self.rounding
+        } else {
+            0.5 * (self.tolerance - 2.0 * self.rounding)
+        }
     }
 }
 
@@ -170,11 +179,16 @@ fn signed_offset(side: Side, d: f64) -> f64 {
 /// The Z levels: roughing at each step-down, the last at full depth.
 pub fn layer_depths(top_z: f64, depth: f64, step: f64) -> Vec<f64> {
     let n = (depth / step - 1e-9).ceil().max(1.0) as usize;
-    (1..=n).map(|k| top_z - (k as f64 * step).min(depth)).collect()
+    (1..=n)
+        .map(|k| top_z - (k as f64 * step).min(depth))
+        .collect()
 }
 
 /// Runs the contour strategy on a closed curve.
-pub fn contour(curve: &CompositeCurve, opt: &ContourOptions) -> Result<ContourResult, crate::Error> {
+pub fn contour(
+    curve: &CompositeCurve,
+    opt: &ContourOptions,
+) -> Result<ContourResult, crate::Error> {
     opt.validate()?;
     let r = opt.tool.radius();
     let rough_d = signed_offset(opt.side, r + opt.finish_allowance);
@@ -192,7 +206,11 @@ pub fn contour(curve: &CompositeCurve, opt: &ContourOptions) -> Result<ContourRe
     let plan: Vec<(f64, &Pass, LevelKind)> = zs
         .iter()
         .map(|z| (*z, &rough, LevelKind::Roughing))
-        .chain(std::iter::once((opt.top_z - opt.depth, &finish, LevelKind::Finishing)))
+        .chain(std::iter::once((
+            opt.top_z - opt.depth,
+            &finish,
+            LevelKind::Finishing,
+        )))
         .collect();
     let safe = opt.top_z + opt.safe_height;
     let clear = opt.top_z + opt.clearance_height;
@@ -214,8 +232,21 @@ pub fn contour(curve: &CompositeCurve, opt: &ContourOptions) -> Result<ContourRe
             tp.push(Move::rapid(Point3::from_xy(tp.end().xy(), clear)));
         }
         let end = tp.moves.len();
-        tp.levels.push(Level { z: *z, kind: *kind, start, end });
-        let sub = Toolpath { moves: tp.moves[start..end].to_vec(), start: if start > 0 { tp.moves[start - 1].to} else { tp.start }, ..tp.clone() };
+        tp.levels.push(Level {
+            z: *z,
+            kind: *kind,
+            start,
+            end,
+        });
+        let sub = Toolpath {
+            moves: tp.moves[start..end].to_vec(),
+            start: if start > 0 {
+                tp.moves[start - 1].to
+            } else {
+                tp.start
+            },
+            ..tp.clone()
+        };
         layers.push(LayerReport {
             index: li + 1,
             z: *z,
@@ -234,7 +265,11 @@ pub fn contour(curve: &CompositeCurve, opt: &ContourOptions) -> Result<ContourRe
         ));
     }
     let report = ContourReport::build(curve, opt, &finish, layers, &tp, warnings.clone());
-    Ok(ContourResult { toolpath: tp, report, warnings })
+    Ok(ContourResult {
+        toolpath: tp,
+        report,
+        warnings,
+    })
 }
 
 /// The paper's example as a built-in sample: its outline scaled onto the 400 × 450 × 50 mm
@@ -260,5 +295,10 @@ pub const SAMPLE_BLOCK: (f64, f64, f64) = (400.0, 450.0, 50.0);
 /// Point helper for tests and previews: the block's corner points.
 pub fn sample_block_corners() -> [Point; 4] {
     let (w, h, _) = SAMPLE_BLOCK;
-    [Point::new(0.0, 0.0), Point::new(w, 0.0), Point::new(w, h), Point::new(0.0, h)]
+    [
+        Point::new(0.0, 0.0),
+        Point::new(w, 0.0),
+        Point::new(w, h),
+        Point::new(0.0, h),
+    ]
 }

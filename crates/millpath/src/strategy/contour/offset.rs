@@ -45,7 +45,11 @@ pub struct OffsetCurve<'a> {
 fn unit_normal(base: &CompositeCurve, i: usize, u: f64) -> Vec2 {
     let c = &base.pieces()[i];
     let t = c.d1(u);
-    let t = if t.length() > 1e-12 { t } else { c.d2(u) * if u < 0.5 { 1.0 } else { -1.0 } };
+    let t = if t.length() > 1e-12 {
+        t
+    } else {
+        c.d2(u) * if u < 0.5 { 1.0 } else { -1.0 }
+    };
     t.normalize().map_or(Vec2::ZERO, Vec2::perp)
 }
 
@@ -67,7 +71,11 @@ impl<'a> OffsetCurve<'a> {
                         let (mut a, mut b) = (prev.0, u);
                         for _ in 0..60 {
                             let mid = 0.5 * (a + b);
-                            if (g(mid) > 0.0) == (prev.1 > 0.0) { a = mid } else { b = mid }
+                            if (g(mid) > 0.0) == (prev.1 > 0.0) {
+                                a = mid;
+                            } else {
+                                b = mid;
+                            }
                         }
                         roots.push(0.5 * (a + b));
                     }
@@ -118,8 +126,14 @@ impl PlanarCurve for OffsetCurve<'_> {
 pub fn distance_to(base: &CompositeCurve, q: Point, hint: f64) -> f64 {
     let mut best = q.distance(base.eval(hint));
     for c in base.pieces() {
-        let lo = Point::new(c.p0.x.min(c.p1.x).min(c.p2.x).min(c.p3.x), c.p0.y.min(c.p1.y).min(c.p2.y).min(c.p3.y));
-        let hi = Point::new(c.p0.x.max(c.p1.x).max(c.p2.x).max(c.p3.x), c.p0.y.max(c.p1.y).max(c.p2.y).max(c.p3.y));
+        let lo = Point::new(
+            c.p0.x.min(c.p1.x).min(c.p2.x).min(c.p3.x),
+            c.p0.y.min(c.p1.y).min(c.p2.y).min(c.p3.y),
+        );
+        let hi = Point::new(
+            c.p0.x.max(c.p1.x).max(c.p2.x).max(c.p3.x),
+            c.p0.y.max(c.p1.y).max(c.p2.y).max(c.p3.y),
+        );
         let dx = (lo.x - q.x).max(q.x - hi.x).max(0.0);
         let dy = (lo.y - q.y).max(q.y - hi.y).max(0.0);
         if dx.hypot(dy) >= best {
@@ -224,7 +238,10 @@ pub fn trim(base: &CompositeCurve, raw: &[OffsetVertex], keep: f64) -> Trimmed {
         .map(|s| {
             let inner = &s[1..s.len() - 1];
             if inner.is_empty() {
-                let mid = OffsetVertex { p: s[0].p.midpoint(s[s.len() - 1].p), s: s[0].s };
+                let mid = OffsetVertex {
+                    p: s[0].p.midpoint(s[s.len() - 1].p),
+                    s: s[0].s,
+                };
                 !too_close(&mid)
             } else {
                 !inner.iter().any(too_close)
@@ -253,7 +270,13 @@ pub fn trim(base: &CompositeCurve, raw: &[OffsetVertex], keep: f64) -> Trimmed {
             lp.extend_from_slice(&s[..s.len() - 1]);
             let end_cut = (k + 1) % nc;
             let cross = partner[end_cut];
-            let next = if kept[cross] { cross } else if kept[end_cut] { end_cut } else { break };
+            let next = if kept[cross] {
+                cross
+            } else if kept[end_cut] {
+                end_cut
+            } else {
+                break;
+            };
             if next == start {
                 break;
             }
@@ -277,5 +300,8 @@ pub fn trim(base: &CompositeCurve, raw: &[OffsetVertex], keep: f64) -> Trimmed {
 /// Signed area of a closed loop (shoelace).
 pub fn loop_area(v: &[OffsetVertex]) -> f64 {
     let n = v.len();
-    (0..n).map(|i| v[i].p.to_vec2().cross(v[(i + 1) % n].p.to_vec2())).sum::<f64>() * 0.5
+    (0..n)
+        .map(|i| v[i].p.to_vec2().cross(v[(i + 1) % n].p.to_vec2()))
+        .sum::<f64>()
+        * 0.5
 }

@@ -3,8 +3,8 @@
 
 use super::offset::{self, OffsetCurve, OffsetVertex};
 use super::{ContourOptions, Side};
-use crate::curve::flatten::{self, FlattenOptions};
 use crate::curve::biarc::{self, ArcSeg};
+use crate::curve::flatten::{self, FlattenOptions};
 use crate::curve::{CompositeCurve, PlanarCurve};
 use crate::error::{Error, InputError};
 use crate::geom::{Point, Point3, Vec2};
@@ -39,7 +39,14 @@ impl Pass {
     }
 }
 
-fn join_corner(curve: &CompositeCurve, k: usize, d_eff: f64, d_nom: f64, t: f64, out: &mut Vec<OffsetVertex>) {
+fn join_corner(
+    curve: &CompositeCurve,
+    k: usize,
+    d_eff: f64,
+    d_nom: f64,
+    t: f64,
+    out: &mut Vec<OffsetVertex>,
+) {
     let c = curve.pieces()[k].p0;
     let n = curve.len();
     let oc = OffsetCurve::new(curve, d_eff);
@@ -53,10 +60,10 @@ fn join_corner(curve: &CompositeCurve, k: usize, d_eff: f64, d_nom: f64, t: f64,
     let long = short - TAU * short.signum();
     let mid = |sw: f64| c + Vec2::from_angle(a0 + 0.5 * sw) * r;
     let score = |sw: f64| offset::distance_to(curve, mid(sw), k as f64);
-    let (best, dist) = [short, long]
-        .into_iter()
-        .map(|sw| (sw, score(sw)))
-        .fold((0.0, f64::NEG_INFINITY), |acc, x| if x.1 > acc.1 { x } else { acc });
+    let (best, dist) = [short, long].into_iter().map(|sw| (sw, score(sw))).fold(
+        (0.0, f64::NEG_INFINITY),
+        |acc, x| if x.1 > acc.1 { x } else { acc },
+    );
     if dist < d_nom.abs() || r <= 0.0 {
         return; // concave: straight crossing, trimmed later
     }
@@ -64,7 +71,10 @@ fn join_corner(curve: &CompositeCurve, k: usize, d_eff: f64, d_nom: f64, t: f64,
     let steps = (best.abs() / phi.max(1e-9)).ceil().max(1.0) as usize;
     for j in 1..steps {
         let ang = a0 + best * j as f64 / steps as f64;
-        out.push(OffsetVertex { p: c + Vec2::from_angle(ang) * r, s: k as f64 });
+        out.push(OffsetVertex {
+            p: c + Vec2::from_angle(ang) * r,
+            s: k as f64,
+        });
     }
 }
 
@@ -80,9 +90,19 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
             .zip(&f.points)
             .map(|(s, p)| OffsetVertex { p: *p, s: *s })
             .collect();
-        let mut pass = Pass { distance: 0.0, loops: vec![lp], max_deviation: 0.0, warnings: Vec::new(), arcs: Vec::new() };
+        let mut pass = Pass {
+            distance: 0.0,
+            loops: vec![lp],
+            max_deviation: 0.0,
+            warnings: Vec::new(),
+            arcs: Vec::new(),
+        };
         if opt.arcs {
-            pass.arcs = pass.loops.iter().map(|l| loop_arcs(curve, curve, l, t)).collect();
+            pass.arcs = pass
+                .loops
+                .iter()
+                .map(|l| loop_arcs(curve, curve, l, t))
+                .collect();
         }
         pass.max_deviation = measure(curve, &pass);
         return Ok(pass);
@@ -92,13 +112,19 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
     let f = flatten::flatten_opt(&oc, t, &FlattenOptions::default())?;
     let corners = curve.corners();
     let is_corner = |s: f64| s.fract() == 0.0 && corners.contains(&((s as usize) % n));
-    let mut raw = vec![OffsetVertex { p: f.points[0], s: f.params[0] }];
+    let mut raw = vec![OffsetVertex {
+        p: f.points[0],
+        s: f.params[0],
+    }];
     let last = f.params.len() - 1;
     for j in 1..=last {
         let s = f.params[j];
         if is_corner(s) {
             let k = (s as usize) % n;
-            raw.push(OffsetVertex { p: oc.point_at((k + n - 1) % n, 1.0), s });
+            raw.push(OffsetVertex {
+                p: oc.point_at((k + n - 1) % n, 1.0),
+                s,
+            });
             join_corner(curve, k, d_eff, d, t, &mut raw);
             if j < last {
                 raw.push(OffsetVertex { p: f.points[j], s });
@@ -114,7 +140,9 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
     let trimmed = offset::trim(curve, &raw, keep);
     let mut warnings = Vec::new();
     for s in &trimmed.dropped {
-        let (Some(first), Some(lastv)) = (s.first(), s.last()) else { continue };
+        let (Some(first), Some(lastv)) = (s.first(), s.last()) else {
+            continue;
+        };
         let at = curve.eval(first.s);
         let to = curve.eval(lastv.s);
         warnings.push(format!(
@@ -124,23 +152,40 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
     }
     // Keep loops running the same way as the outline (counter-clockwise); an inverted loop
     // is an offset that collapsed.
-    let loops: Vec<Vec<OffsetVertex>> = trimmed.loops.into_iter().filter(|l| offset::loop_area(l) > 0.0).collect();
+    let loops: Vec<Vec<OffsetVertex>> = trimmed
+        .loops
+        .into_iter()
+        .filter(|l| offset::loop_area(l) > 0.0)
+        .collect();
     if loops.is_empty() {
-        return Err(InputError::new("tool diameter", format!("{:.4} mm", 2.0 * opt.tool.radius()))
-            .at(match opt.side {
-                Side::Inside => "contour inside the outline",
-                Side::Outside => "contour outside the outline",
-                Side::On => "contour on the outline",
-            })
-            .expected(format!(
-                "a tool whose radius plus allowance ({:.4} mm) fits inside the outline",
-                d.abs()
-            ))
-            .into());
+        return Err(InputError::new(
+            "tool diameter",
+            format!("{:.4} mm", 2.0 * opt.tool.radius()),
+        )
+        .at(match opt.side {
+            Side::Inside => "contour inside the outline",
+            Side::Outside => "contour outside the outline",
+            Side::On => "contour on the outline",
+        })
+        .expected(format!(
+            "a tool whose radius plus allowance ({:.4} mm) fits inside the outline",
+            d.abs()
+        ))
+        .into());
     }
-    let mut pass = Pass { distance: d, loops, max_deviation: 0.0, warnings, arcs: Vec::new() };
+    let mut pass = Pass {
+        distance: d,
+        loops,
+        max_deviation: 0.0,
+        warnings,
+        arcs: Vec::new(),
+    };
     if opt.arcs {
-        pass.arcs = pass.loops.iter().map(|l| loop_arcs(curve, &oc, l, t)).collect();
+        pass.arcs = pass
+            .loops
+            .iter()
+            .map(|l| loop_arcs(curve, &oc, l, t))
+            .collect();
     }
     pass.max_deviation = measure(curve, &pass);
     Ok(pass)
@@ -149,7 +194,12 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
 /// Replaces the chords of a loop by biarcs on every smooth stretch: consecutive vertices
 /// that lie on the offset curve at their own parameter, with the parameter increasing by at
 /// most one piece and no corner in between. Other links (trim cuts, corner joins) stay lines.
-fn loop_arcs(curve: &CompositeCurve, oc: &dyn PlanarCurve, lp: &[OffsetVertex], t: f64) -> Vec<ArcSeg> {
+fn loop_arcs(
+    curve: &CompositeCurve,
+    oc: &dyn PlanarCurve,
+    lp: &[OffsetVertex],
+    t: f64,
+) -> Vec<ArcSeg> {
     let m = lp.len();
     let n = curve.len();
     let nf = n as f64;
@@ -187,13 +237,22 @@ fn loop_arcs(curve: &CompositeCurve, oc: &dyn PlanarCurve, lp: &[OffsetVertex], 
             out.extend(biarc::fit(oc, sa, sb, t));
         } else {
             let j = (i + 1) % m;
-            out.push(ArcSeg { start: lp[i].p, end: lp[j].p, center: None, ccw: true, s_end: lp[j].s });
+            out.push(ArcSeg {
+                start: lp[i].p,
+                end: lp[j].p,
+                center: None,
+                ccw: true,
+                s_end: lp[j].s,
+            });
             i = j;
             count += 1;
         }
     }
     // Rotate so that the elements start at the loop's first vertex.
-    if let Some(k) = out.iter().position(|a| a.start.distance(lp[0].p) <= 1e-9 * (1.0 + lp[0].p.to_vec2().length())) {
+    if let Some(k) = out
+        .iter()
+        .position(|a| a.start.distance(lp[0].p) <= 1e-9 * (1.0 + lp[0].p.to_vec2().length()))
+    {
         out.rotate_left(k);
     }
     out
@@ -226,7 +285,13 @@ fn measure(curve: &CompositeCurve, pass: &Pass) -> f64 {
 
 /// The moves of one closed loop at depth `z`: the XY entry point (start of the lead-in) and
 /// the feed moves (lead-in arc, the loop tagged with the curve parameter, lead-out arc).
-pub fn loop_moves(lp: &[OffsetVertex], arcs: Option<&[ArcSeg]>, z: f64, opt: &ContourOptions, pieces: usize) -> (Point, Vec<Move>) {
+pub fn loop_moves(
+    lp: &[OffsetVertex],
+    arcs: Option<&[ArcSeg]>,
+    z: f64,
+    opt: &ContourOptions,
+    pieces: usize,
+) -> (Point, Vec<Move>) {
     let tag = |m: Move, s: f64| {
         let w = s.rem_euclid(pieces as f64);
         let i = w.floor();
@@ -280,8 +345,14 @@ pub fn loop_moves(lp: &[OffsetVertex], arcs: Option<&[ArcSeg]>, z: f64, opt: &Co
     if rl > 0.0 {
         let m = lp.len();
         let last = lp[m - 1];
-        let dir_end = last_dir.or_else(|| (v0.p - last.p).normalize()).unwrap_or(dir);
-        let nrm_end = if left { dir_end.perp() } else { -dir_end.perp() };
+        let dir_end = last_dir
+            .or_else(|| (v0.p - last.p).normalize())
+            .unwrap_or(dir);
+        let nrm_end = if left {
+            dir_end.perp()
+        } else {
+            -dir_end.perp()
+        };
         let c = v0.p + nrm_end * rl;
         moves.push(Move::arc_xy(p3(c + dir_end * rl), p3(c), left, opt.feed));
     }

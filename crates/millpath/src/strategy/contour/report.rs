@@ -5,8 +5,8 @@
 //! `layers`, `blocks`.
 
 use super::{ContourOptions, Pass};
-use crate::curve::{self, CompositeCurve};
 use crate::curve::flatten as fl_;
+use crate::curve::{self, CompositeCurve};
 use crate::toolpath::{LevelKind, Toolpath};
 use serde::{Deserialize, Serialize};
 
@@ -103,7 +103,10 @@ impl ContourReport {
         };
         ContourReport {
             segments: finish.segments(),
-            max_deviation_mm: layers.iter().map(|l| l.max_deviation_mm).fold(0.0, f64::max),
+            max_deviation_mm: layers
+                .iter()
+                .map(|l| l.max_deviation_mm)
+                .fold(0.0, f64::max),
             layers,
             blocks: tp.moves.len(),
             lines: 0,
