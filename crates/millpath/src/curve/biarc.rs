@@ -179,10 +179,31 @@ impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
         let pts: Vec<Point> = (0..=m)
             .map(|j| self.pt(s0 + (s1 - s0) * f64::from(j) / f64::from(m)))
             .collect();
+        let dist = |p: Point| arcs[0].distance(p).min(arcs[1].distance(p));
         let mut worst = 0.0_f64;
-        for p in &pts {
-            worst = worst.max(arcs[0].distance(*p).min(arcs[1].distance(*p)));
+        let mut at = 0;
+        for (j, p) in pts.iter().enumerate() {
+            let d = dist(*p);
+            if d > worst {
+                worst = d;
+                at = j;
+            }
         }
+        // Refine the largest sample by golden-section search on its two neighbouring
+        // intervals: the distance is smooth there, and the samples alone can miss its peak.
+        let step = (s1 - s0) / f64::from(m);
+        let centre = s0 + step * at as f64;
+        let (mut a, mut b) = ((centre - step).max(s0), (centre + step).min(s1));
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..40 {
+            let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+            if dist(self.pt(x1)) > dist(self.pt(x2)) {
+                b = x2;
+            } else {
+                a = x1;
+            }
+        }
+        worst = worst.max(dist(self.pt(0.5 * (a + b))));
         for a in &arcs {
             for j in 1..16 {
                 let q = a.at(f64::from(j) / 16.0);
@@ -206,6 +227,8 @@ pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<Ar
         n: c.piece_count(),
     };
     let mut out = Vec::new();
+    // Sampling-based: aim 1 % below tol for what the samples may still miss.
+    let tol = tol * 0.99;
     let mut s = s0;
     let mut h = (s1 - s0).min(0.05);
     let eps = 1e-7;
