@@ -294,3 +294,66 @@ pub fn run(args: &Args) -> Result<(), Error> {
     ));
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    fn run_with(dir: &std::path::Path, csv: &str, extra: &[&str]) -> (Result<(), Error>, bool, bool) {
+        let pts = dir.join("pts.csv");
+        std::fs::write(&pts, csv).unwrap();
+        let (out, rep) = (dir.join("out.ngc"), dir.join("out.json"));
+        let mut argv = vec!["contour".to_owned(), pts.display().to_string()];
+        argv.extend(extra.iter().map(|s| (*s).to_owned()));
+        argv.extend(["-o".into(), out.display().to_string(), "--report".into(), rep.display().to_string()]);
+        let cli = Cli::try_parse_from(argv).unwrap();
+        let r = run(&cli.args);
+        (r, out.exists(), rep.exists())
+    }
+
+    const PAPER: &str = "x,y,group\n60,345,1\n100,325,1\n140,295,1\n180,245,1\n340,205,2\n260,385,2\n140,375,2\n60,345,2\n";
+
+    #[test]
+    fn bad_input_exits_2_and_writes_nothing() {
+        let cases: [(&str, &[&str], &str); 6] = [
+            ("1,2\n3,4\n5,7\n", &[], "at least 4"),
+            ("1,2\n3,nan\n5,6\n7,1\n", &[], "pts.csv:2"),
+            ("0,0\n10,0\n10,0\n10,10\n0,10\n", &["--curve", "spline"], "pts.csv:3"),
+            (PAPER, &["--tolerance", "0"], "tolerance"),
+            (PAPER, &["--tool-diameter", "400"], "tool diameter"),
+            (PAPER, &["--tolerance", "0.0001", "--decimals", "3"], "decimals"),
+        ];
+        for (csv, extra, needle) in cases {
+            let dir = tempfile::tempdir().unwrap();
+            let (r, o, j) = run_with(dir.path(), csv, extra);
+            let e = r.unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{e}");
+            assert!(e.to_string().contains(needle), "{needle}: {e}");
+            assert!(!o && !j, "{needle}: output written");
+        }
+    }
+
+    #[test]
+    fn writes_gcode_that_reads_back_and_a_report() {
+        let dir = tempfile::tempdir().unwrap();
+        let (r, o, j) = run_with(dir.path(), PAPER, &["--tolerance", "0.01", "--arcs"]);
+        r.unwrap();
+        assert!(o && j);
+        let rep: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.json")).unwrap()).unwrap();
+        for k in ["segments", "max_deviation_mm", "layers", "blocks"] {
+            assert!(rep.get(k).is_some(), "{k}");
+        }
+        assert!(rep["max_deviation_mm"].as_f64().unwrap() <= 0.01);
+        let text = std::fs::read_to_string(dir.path().join("out.ngc")).unwrap();
+        let (tp, _) = gcode::read_str(&text, gcode::ReaderOptions::default()).unwrap();
+        assert_eq!(tp.moves.len(), rep["blocks"].as_u64().unwrap() as usize);
+    }
+}
