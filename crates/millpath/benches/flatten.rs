@@ -13,9 +13,13 @@ fn bench(c: &mut Criterion) {
     let path = outline.to_bez_path();
     let mut g = c.benchmark_group("flatten_paper_outline");
     for tol in [1e-2, 1e-4, 4e-5] {
-        g.bench_with_input(BenchmarkId::new("millpath_exact_greedy", tol), &tol, |b, &t| {
-            b.iter(|| flatten::flatten(black_box(&outline), t).map(|f| f.segments()));
-        });
+        g.bench_with_input(
+            BenchmarkId::new("millpath_exact_greedy", tol),
+            &tol,
+            |b, &t| {
+                b.iter(|| flatten::flatten(black_box(&outline), t).map(|f| f.segments()));
+            },
+        );
         g.bench_with_input(BenchmarkId::new("kurbo_flatten", tol), &tol, |b, &t| {
             b.iter(|| {
                 let mut n = 0usize;
@@ -27,8 +31,16 @@ fn bench(c: &mut Criterion) {
     g.finish();
     let mut g = c.benchmark_group("offset_paper_outline");
     for tol in [1e-2, 1e-3, 4e-5] {
-        let rounding = if tol < 1e-4 { 0.5e-6 * std::f64::consts::SQRT_2 } else { 0.5e-4 * std::f64::consts::SQRT_2 };
-        let opt = ContourOptions { tolerance: tol, rounding, ..ContourOptions::default() };
+        let rounding = if tol < 1e-4 {
+            0.5e-6 * std::f64::consts::SQRT_2
+        } else {
+            0.5e-4 * std::f64::consts::SQRT_2
+        };
+        let opt = ContourOptions {
+            tolerance: tol,
+            rounding,
+            ..ContourOptions::default()
+        };
         g.bench_with_input(BenchmarkId::new("inside_5.2mm", tol), &opt, |b, o| {
             b.iter(|| offset_pass(black_box(&outline), 5.2, o).map(|p| p.segments()));
         });

@@ -14,7 +14,10 @@ fn star(radii: &[f64], jitter: &[f64]) -> Vec<Vec<LabeledPoint>> {
         (0..n)
             .map(|i| {
                 let a = (i as f64 + 0.3 * jitter[i]) * std::f64::consts::TAU / n as f64;
-                LabeledPoint { p: Point::new(200.0, 200.0) + Vec2::from_angle(a) * radii[i], origin: format!("p{i}") }
+                LabeledPoint {
+                    p: Point::new(200.0, 200.0) + Vec2::from_angle(a) * radii[i],
+                    origin: format!("p{i}"),
+                }
             })
             .collect(),
     ]

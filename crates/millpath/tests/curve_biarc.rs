@@ -20,7 +20,10 @@ fn biarcs_on_the_outline_are_within_tolerance_and_fewer_than_lines() {
                 let s = s0 + (a.s_end - s0) * f64::from(j) / 1000.0;
                 let p = c.eval(s.min(corner + c.len() as f64 - 1e-12));
                 let near = [k.saturating_sub(1), k, (k + 1).min(arcs.len() - 1)];
-                let d = near.iter().map(|&i| arcs[i].distance(p)).fold(f64::INFINITY, f64::min);
+                let d = near
+                    .iter()
+                    .map(|&i| arcs[i].distance(p))
+                    .fold(f64::INFINITY, f64::min);
                 worst = worst.max(d);
             }
             s0 = a.s_end;
@@ -35,7 +38,11 @@ fn biarcs_on_the_outline_are_within_tolerance_and_fewer_than_lines() {
         assert!(worst <= tol * 1.0001, "T={tol}: {worst}");
         // Arc counts grow like T^(-1/3) against T^(-1/2) for lines: the gap widens as T shrinks.
         let factor = if tol >= 0.1 { 1 } else { 2 };
-        assert!(arcs.len() * factor < lines, "T={tol}: {} arcs vs {lines} lines", arcs.len());
+        assert!(
+            arcs.len() * factor < lines,
+            "T={tol}: {} arcs vs {lines} lines",
+            arcs.len()
+        );
     }
 }
 
@@ -43,10 +50,18 @@ fn biarcs_on_the_outline_are_within_tolerance_and_fewer_than_lines() {
 fn arc_passes_keep_the_offset_distance() {
     let c = curve::paper_outline().unwrap();
     for side in [Side::Inside, Side::Outside] {
-        let o = ContourOptions { tolerance: 1e-3, side, arcs: true, ..ContourOptions::default() };
+        let o = ContourOptions {
+            tolerance: 1e-3,
+            side,
+            arcs: true,
+            ..ContourOptions::default()
+        };
         let d = 5.2;
         let pass = offset_pass(&c, if side == Side::Inside { d } else { -d }, &o).unwrap();
-        let lines = ContourOptions { arcs: false, ..o.clone() };
+        let lines = ContourOptions {
+            arcs: false,
+            ..o.clone()
+        };
         let line_pass = offset_pass(&c, if side == Side::Inside { d } else { -d }, &lines).unwrap();
         assert!(pass.segments() * 2 < line_pass.segments(), "{side:?}");
         let mut min = f64::INFINITY;
@@ -56,6 +71,10 @@ fn arc_passes_keep_the_offset_distance() {
             }
         }
         assert!(min >= d - 1e-6, "{side:?}: {min}");
-        assert!(pass.max_deviation <= 1e-3, "{side:?}: {}", pass.max_deviation);
+        assert!(
+            pass.max_deviation <= 1e-3,
+            "{side:?}: {}",
+            pass.max_deviation
+        );
     }
 }

@@ -306,13 +306,22 @@ mod tests {
         args: Args,
     }
 
-    fn run_with(dir: &std::path::Path, csv: &str, extra: &[&str]) -> (Result<(), Error>, bool, bool) {
+    fn run_with(
+        dir: &std::path::Path,
+        csv: &str,
+        extra: &[&str],
+    ) -> (Result<(), Error>, bool, bool) {
         let pts = dir.join("pts.csv");
         std::fs::write(&pts, csv).unwrap();
         let (out, rep) = (dir.join("out.ngc"), dir.join("out.json"));
         let mut argv = vec!["contour".to_owned(), pts.display().to_string()];
         argv.extend(extra.iter().map(|s| (*s).to_owned()));
-        argv.extend(["-o".into(), out.display().to_string(), "--report".into(), rep.display().to_string()]);
+        argv.extend([
+            "-o".into(),
+            out.display().to_string(),
+            "--report".into(),
+            rep.display().to_string(),
+        ]);
         let cli = Cli::try_parse_from(argv).unwrap();
         let r = run(&cli.args);
         (r, out.exists(), rep.exists())
@@ -325,10 +334,18 @@ mod tests {
         let cases: [(&str, &[&str], &str); 6] = [
             ("1,2\n3,4\n5,7\n", &[], "at least 4"),
             ("1,2\n3,nan\n5,6\n7,1\n", &[], "pts.csv:2"),
-            ("0,0\n10,0\n10,0\n10,10\n0,10\n", &["--curve", "spline"], "pts.csv:3"),
+            (
+                "0,0\n10,0\n10,0\n10,10\n0,10\n",
+                &["--curve", "spline"],
+                "pts.csv:3",
+            ),
             (PAPER, &["--tolerance", "0"], "tolerance"),
             (PAPER, &["--tool-diameter", "400"], "tool diameter"),
-            (PAPER, &["--tolerance", "0.0001", "--decimals", "3"], "decimals"),
+            (
+                PAPER,
+                &["--tolerance", "0.0001", "--decimals", "3"],
+                "decimals",
+            ),
         ];
         for (csv, extra, needle) in cases {
             let dir = tempfile::tempdir().unwrap();
@@ -347,7 +364,8 @@ mod tests {
         r.unwrap();
         assert!(o && j);
         let rep: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.json")).unwrap()).unwrap();
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.json")).unwrap())
+                .unwrap();
         for k in ["segments", "max_deviation_mm", "layers", "blocks"] {
             assert!(rep.get(k).is_some(), "{k}");
         }

@@ -17,9 +17,10 @@
 //! scans `u` with a fixed `du`; here each deviation is a handful of root evaluations.
 //!
 //! # Farthest reachable end, and why greedy is optimal
-//! From a vertex `s0` we take the largest `s1` with `dev(s0, s1) ≤ tol`: the step is doubled
-//! from the previous step while feasible, then bisected to a relative 1e-12 in the
-//! parameter. `dev(s0, ·)` is not monotone in general: past an inflection the chord can cross
+//! From a vertex `s0` we take the largest `s1` with `dev(s0, s1) ≤ tol`: a square-law
+//! predictor (`dev ∝ step²` on a smooth arc) scales the previous step to the tolerance, the
+//! end is bracketed (doubling while feasible, halving while not) and bisected to a relative
+//! 1e-7 of the step. `dev(s0, ·)` is not monotone in general: past an inflection the chord can cross
 //! the curve and become feasible again. After bisecting, four probes at 1.25…2× the found
 //! length test for such a return; a feasible probe restarts the doubling from it.
 //!
@@ -227,6 +228,7 @@ pub fn deviation<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64) -> f64 {
 }
 
 const PARAM_EPS: f64 = 1e-12;
+const BISECT_REL: f64 = 1e-7;
 /// Relative margin the flattener keeps below the tolerance (see [`flatten_opt`]).
 pub const TOL_MARGIN: f64 = 1e-6;
 
@@ -242,9 +244,23 @@ fn farthest<C: PlanarCurve + ?Sized>(
     let mut lo;
     let mut up;
     let mut h = h0.clamp(eps, hi - s);
+    // Predictor: on a smooth arc the deviation grows like the square of the step, so
+    // h·√(tol/dev(h)) lands close to the end; a few rounds, then a tight bracket.
+    for _ in 0..3 {
+        let d = run.dev(s, s + h);
+        if !(d > 0.0) || h >= hi - s {
+            break;
+        }
+        let ratio = (tol / d).sqrt();
+        if (ratio - 1.0).abs() < 2e-3 {
+            break;
+        }
+        h = (h * ratio * 0.999).clamp(eps, hi - s);
+    }
     if run.dev(s, s + h) <= tol {
         lo = s + h;
-        up = hi;
+        let t = s + h * 1.002;
+        up = if t < hi && run.dev(s, t) > tol { t } else { hi };
     } else {
         loop {
             h *= 0.5;
@@ -275,8 +291,8 @@ fn farthest<C: PlanarCurve + ?Sized>(
                 up = t;
             }
         }
-        // Bisect.
-        while up - lo > eps {
+        // Bisect to a relative 1e-7 of the step (the count cannot notice less).
+        while up - lo > (BISECT_REL * (up - s)).max(eps) {
             let m = 0.5 * (lo + up);
             if run.dev(s, m) <= tol {
                 lo = m;

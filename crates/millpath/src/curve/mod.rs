@@ -11,6 +11,9 @@
 //! * [`blend`]: the C1 blend between groups that do not meet and to close the outline;
 //! * [`catmull_rom`], [`spline`]: closed curves through scattered points;
 //! * [`flatten`]: the fewest chords within a tolerance, with an exact deviation;
+//! * [`intersect`]: self-intersection checks, and the cut of the tiny inverted "fish-tail"
+//!   lobe interpolating cubics leave at a nearly reversing corner (the paper's own outline
+//!   has one at (1, 15));
 //! * [`verify`]: dense-sampling verifiers that share no code with [`flatten`];
 //! * [`biarc`]: arcs within a tolerance for G2/G3 output.
 
