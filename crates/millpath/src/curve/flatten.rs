@@ -248,7 +248,7 @@ fn farthest<C: PlanarCurve + ?Sized>(
     // h·√(tol/dev(h)) lands close to the end; a few rounds, then a tight bracket.
     for _ in 0..3 {
         let d = run.dev(s, s + h);
-        if !(d > 0.0) || h >= hi - s {
+        if d.is_nan() || d <= 0.0 || h >= hi - s {
             break;
         }
         let ratio = (tol / d).sqrt();
