@@ -162,3 +162,34 @@ fn full_contour_layers_and_report() {
     }
     assert!(r.toolpath.moves.iter().filter(|m| m.tag.is_some()).count() >= 9 * r.report.segments);
 }
+
+#[test]
+fn on_the_outline_lines_and_arcs_stay_within_tolerance() {
+    let c = curve::paper_outline().unwrap();
+    for arcs in [false, true] {
+        let o = ContourOptions {
+            tolerance: 1e-3,
+            side: Side::On,
+            arcs,
+            ..ContourOptions::default()
+        };
+        let r = contour::contour(&c, &o).unwrap();
+        assert!(
+            r.report.max_deviation_mm <= 1e-3,
+            "arcs {arcs}: {}",
+            r.report.max_deviation_mm
+        );
+        assert!(r.report.segments > 0);
+        // Every cutting move at depth is tagged with the curve parameter it came from.
+        let finish = r.toolpath.levels.last().unwrap();
+        let tagged = r.toolpath.moves[finish.start..finish.end]
+            .iter()
+            .filter(|m| m.tag.is_some())
+            .count();
+        assert!(
+            tagged >= r.report.segments,
+            "arcs {arcs}: {tagged} tagged of {}",
+            r.report.segments
+        );
+    }
+}

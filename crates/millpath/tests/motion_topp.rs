@@ -145,7 +145,10 @@ fn polylines_within_one_percent_of_topp() {
         let ours = plan_toolpath(&tp, &mach).expect("plan").total_time();
         let reference = topp_time(&tp, &mach, 2000);
         let rel = (ours - reference) / reference;
-        assert!(rel.abs() < 0.01, "case {case}: ours {ours} topp {reference}");
+        assert!(
+            rel.abs() < 0.01,
+            "case {case}: ours {ours} topp {reference}"
+        );
     }
 }
 
