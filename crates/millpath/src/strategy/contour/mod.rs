@@ -222,17 +222,17 @@ pub fn contour(
         .collect();
     let safe = opt.top_z + opt.safe_height;
     let clear = opt.top_z + opt.clearance_height;
+    tp.start = Point3::new(tp.start.x, tp.start.y, safe);
     for (li, (z, pass, kind)) in plan.iter().enumerate() {
         let start = tp.moves.len();
         for (k, lp) in pass.loops.iter().enumerate() {
             let arcs = pass.arcs.get(k).map(Vec::as_slice);
             let (entry, path) = pass::loop_moves(lp, arcs, *z, opt, curve.len());
             let here = tp.end();
-            if here.xy().distance(entry) > 1e-9 || here.z > clear + 1e-9 {
-                if here.z < safe - 1e-9 {
-                    tp.push(Move::rapid(Point3::from_xy(here.xy(), safe)));
-                }
-                tp.push(Move::rapid(Point3::from_xy(entry, safe)));
+            // The first approach comes down from the safe height; between passes the tool
+            // stays at the clearance height (above the stock top) to reach the next entry.
+            if here.xy().distance(entry) > 1e-9 {
+                tp.push(Move::rapid(Point3::from_xy(entry, here.z.max(clear))));
             }
             tp.push(Move::rapid(Point3::from_xy(entry, clear)));
             tp.push(Move::line(Point3::from_xy(entry, *z), opt.plunge_feed));
