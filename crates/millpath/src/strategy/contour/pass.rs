@@ -156,6 +156,7 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
         .loops
         .into_iter()
         .filter(|l| offset::loop_area(l) > 0.0)
+        .map(smooth_start)
         .collect();
     if loops.is_empty() {
         return Err(InputError::new(
@@ -210,7 +211,12 @@ fn loop_arcs(
     };
     let reg: Vec<bool> = lp.iter().map(on_curve).collect();
     let ds = |i: usize| (lp[(i + 1) % m].s - lp[i].s).rem_euclid(nf);
+    // No run wraps through the loop's first vertex, so the elements start exactly there
+    // (where the lead-in arrives).
     let link = |i: usize| {
+        if i + 1 == m {
+            return false;
+        }
         let j = (i + 1) % m;
         let d = ds(i);
         reg[i] && reg[j] && d > 0.0 && d <= 1.0 && {
@@ -256,6 +262,29 @@ fn loop_arcs(
         out.rotate_left(k);
     }
     out
+}
+
+/// The loop rotated to start where it is straightest: the vertex with the least turning
+/// summed over its ±5 neighbours, away from trim cuts and corner joins, so that the lead
+/// arcs sit beside a smooth stretch of the path.
+fn smooth_start(mut lp: Vec<OffsetVertex>) -> Vec<OffsetVertex> {
+    let m = lp.len();
+    if m < 3 {
+        return lp;
+    }
+    let turn = |i: usize| {
+        let (a, b, c) = (lp[(i + m - 1) % m].p, lp[i].p, lp[(i + 1) % m].p);
+        let (u, v) = (b - a, c - b);
+        u.cross(v).atan2(u.dot(v)).abs()
+    };
+    let turns: Vec<f64> = (0..m).map(turn).collect();
+    let w = 5.min(m / 2);
+    let score = |i: usize| (0..=2 * w).map(|k| turns[(i + m + k - w) % m]).sum::<f64>();
+    let best = (0..m)
+        .min_by(|a, b| score(*a).total_cmp(&score(*b)))
+        .unwrap_or(0);
+    lp.rotate_left(best);
+    lp
 }
 
 fn measure(curve: &CompositeCurve, pass: &Pass) -> f64 {
