@@ -193,3 +193,60 @@ fn on_the_outline_lines_and_arcs_stay_within_tolerance() {
         );
     }
 }
+
+#[test]
+fn every_feed_move_including_lead_arcs_keeps_the_tool_off_the_outline() {
+    use millpath::toolpath::{LevelKind, MoveKind};
+    let c = curve::paper_outline().unwrap();
+    for side in [Side::Inside, Side::Outside] {
+        for arcs in [false, true] {
+            let o = ContourOptions {
+                tolerance: 1e-2,
+                side,
+                arcs,
+                ..ContourOptions::default()
+            };
+            let r = contour::contour(&c, &o).unwrap();
+            let segs: Vec<_> = r.toolpath.segments().collect();
+            for lv in &r.toolpath.levels {
+                let need = o.tool.radius()
+                    + if lv.kind == LevelKind::Roughing {
+                        o.finish_allowance
+                    } else {
+                        0.0
+                    };
+                let mut min = f64::INFINITY;
+                for (from, m) in &segs[lv.start..lv.end] {
+                    if !m.is_feed() {
+                        continue;
+                    }
+                    let samples: Vec<Point> = match m.kind {
+                        MoveKind::Arc { center, .. } => {
+                            let (rad, sweep) = m.sweep_from(*from).unwrap();
+                            let a0 = (from.xy() - center.xy()).angle();
+                            (0..=16)
+                                .map(|j| {
+                                    center.xy()
+                                        + millpath::Vec2::from_angle(
+                                            a0 + sweep * f64::from(j) / 16.0,
+                                        ) * rad
+                                })
+                                .collect()
+                        }
+                        _ => (0..=4)
+                            .map(|j| from.xy().lerp(m.to.xy(), f64::from(j) / 4.0))
+                            .collect(),
+                    };
+                    for p in samples {
+                        min = min.min(verify::distance_to_curve(&c, p));
+                    }
+                }
+                assert!(
+                    min >= need - 1e-6,
+                    "{side:?} arcs {arcs} z {}: {min} < {need}",
+                    lv.z
+                );
+            }
+        }
+    }
+}
