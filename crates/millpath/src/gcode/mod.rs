@@ -1,1 +1,2 @@
 //! G-code: writer with dialects, reader (lexer → modal interpreter → moves).
+pub mod five_axis;
