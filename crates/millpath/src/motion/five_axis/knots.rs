@@ -23,7 +23,10 @@
 //! 3. an interval with no feasible time lowers the speed factor `γ` of both its knots and is
 //!    re-solved with its neighbours — a backward/forward repair that propagates until every
 //!    interval is feasible (at `γ = 0` the interval is rest-to-rest, always feasible);
-//! 4. factors that were not lowered grow again slightly, and the best total time is kept.
+//! 4. factors that were not lowered grow again slightly, and the best total time is kept;
+//!    stop when [`KnotOptions::patience`] iterations in a row gain less than
+//!    [`KnotOptions::rel_gain`]. The total falls geometrically (by about half the remaining
+//!    gap per iteration on the paper's case: 5.904 → 5.635 → 5.519 → … → 5.42598 s).
 //!
 //! Any extra candidate knot states (the baseline's fixed states) are evaluated too, so the
 //! result is never slower than the exact minimum for those states.
@@ -88,6 +91,8 @@ pub struct Schedule {
     pub times: Vec<f64>,
     /// Check of each interval at its duration.
     pub checks: Vec<Check>,
+    /// Total time after each outer iteration (the first entry is the best starting candidate).
+    pub history: Vec<f64>,
 }
 
 impl Schedule {
@@ -100,8 +105,13 @@ impl Schedule {
 /// Options of [`optimize`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct KnotOptions {
-    /// Outer iterations. Default 40.
+    /// Largest number of outer iterations. Default 40.
     pub iterations: usize,
+    /// Stop after `patience` iterations in a row that gain less than `rel_gain` (relative).
+    /// Default 3.
+    pub patience: usize,
+    /// See `patience`. Default 1e-7 (0.5 µs on the paper's case).
+    pub rel_gain: f64,
     /// Factor applied to γ of the knots of an infeasible interval. Default 0.97.
     pub shrink: f64,
     /// Factor applied to the other γ after each iteration (capped at 1). Default 1.01.
@@ -114,6 +124,8 @@ impl Default for KnotOptions {
     fn default() -> Self {
         KnotOptions {
             iterations: 40,
+            patience: 3,
+            rel_gain: 1e-7,
             shrink: 0.97,
             grow: 1.01,
             min_time: MinTimeOptions::default(),
@@ -139,6 +151,7 @@ pub fn solve_fixed(
         states: states.to_vec(),
         times,
         checks,
+        history: vec![],
     })
 }
 
@@ -180,6 +193,8 @@ pub fn optimize(
             best = s;
         }
     }
+    let mut history = vec![best.total()];
+    let mut stall = 0;
     let mut times = best.times.clone();
     let mut gamma = vec![1.0; n];
     gamma[0] = 0.0;
@@ -230,12 +245,22 @@ pub fn optimize(
         let new_times: Vec<f64> = sol.iter().flatten().map(|s| s.0).collect();
         let checks: Vec<Check> = sol.iter().flatten().map(|s| s.1).collect();
         let total: f64 = new_times.iter().sum();
+        history.push(total);
+        if total < best.total() * (1.0 - opts.rel_gain) {
+            stall = 0;
+        } else {
+            stall += 1;
+        }
         if total < best.total() {
             best = Schedule {
                 states,
                 times: new_times.clone(),
                 checks,
+                history: vec![],
             };
+        }
+        if stall >= opts.patience {
+            break;
         }
         times = new_times;
         for k in 1..n - 1 {
@@ -244,5 +269,6 @@ pub fn optimize(
             }
         }
     }
+    best.history = history;
     Ok(best)
 }

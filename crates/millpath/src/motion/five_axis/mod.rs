@@ -102,6 +102,8 @@ pub struct FiveAxisResult {
     pub max_feed_mm_s: f64,
     /// Largest distance between the planned tip path and the reference curve, mm.
     pub max_path_deviation_mm: f64,
+    /// Total time after each iteration of our optimiser, s.
+    pub optimizer_history_s: Vec<f64>,
     /// Wall time of our optimiser, s.
     pub compute_time_s: f64,
     /// Wall time of the baseline, s.
@@ -228,6 +230,7 @@ pub fn plan(
         baseline_violations: brep.map(|r| r.violations).unwrap_or_default(),
         max_feed_mm_s: rep.max_feed,
         max_path_deviation_mm: deviation,
+        optimizer_history_s: schedule.history.clone(),
         compute_time_s: compute,
         baseline_compute_time_s: baseline.as_ref().map(|b| b.2),
         ik_warnings: warnings
