@@ -311,8 +311,9 @@ pub enum IkWarning {
     },
 }
 
-/// Inverse kinematics along a path of poses, each solution nearest its predecessor.
-/// Returns the joints and `(pose index, warning)` pairs.
+/// Inverse kinematics along a path of poses, each solution nearest its predecessor (the first
+/// nearest the first off-pole pose when the path starts at a pole). Returns the joints and
+/// `(pose index, warning)` pairs.
 pub fn inverse_path(
     kin: &dyn Kinematics,
     poses: &[Pose],
@@ -320,9 +321,21 @@ pub fn inverse_path(
 ) -> Result<(Vec<Joints>, Vec<(usize, IkWarning)>), InputError> {
     let mut out: Vec<Joints> = Vec::with_capacity(poses.len());
     let mut warnings = Vec::new();
+    // A path that starts at the pole takes the free angle from its first pose off the pole
+    // (looking ahead), so the free axis does not have to swing round in the first interval.
+    let mut seed: Option<Joints> = None;
+    if let Some(first) = poses.first()
+        && kin.orientation(first.axis, 0.0).pole_distance <= opts.pole_eps
+        && let Some(next) = poses
+            .iter()
+            .find(|p| kin.orientation(p.axis, 0.0).pole_distance > opts.pole_eps)
+    {
+        seed = kin.inverse_near(next, None, opts).ok().map(|o| o.joints);
+    }
     for (i, p) in poses.iter().enumerate() {
+        let prev = out.last().or(seed.as_ref());
         let o = kin
-            .inverse_near(p, out.last(), opts)
+            .inverse_near(p, prev, opts)
             .map_err(|e| e.at(format!("{} (path point {i})", kin.name())))?;
         warnings.extend(o.warnings.into_iter().map(|w| (i, w)));
         out.push(o.joints);
