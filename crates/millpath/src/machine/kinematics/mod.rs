@@ -311,6 +311,9 @@ pub enum IkWarning {
     },
 }
 
+/// Joints along a path and `(pose index, warning)` pairs.
+pub type PathIk = (Vec<Joints>, Vec<(usize, IkWarning)>);
+
 /// Inverse kinematics along a path of poses, each solution nearest its predecessor (the first
 /// nearest the first off-pole pose when the path starts at a pole). Returns the joints and
 /// `(pose index, warning)` pairs.
@@ -318,7 +321,7 @@ pub fn inverse_path(
     kin: &dyn Kinematics,
     poses: &[Pose],
     opts: &IkOptions,
-) -> Result<(Vec<Joints>, Vec<(usize, IkWarning)>), InputError> {
+) -> Result<PathIk, InputError> {
     let mut out: Vec<Joints> = Vec::with_capacity(poses.len());
     let mut warnings = Vec::new();
     // A path that starts at the pole takes the free angle from its first pose off the pole

@@ -130,8 +130,11 @@ impl Kinematics for TableTable {
         let w = sub(pm, self.pivot);
         let rot = mm(&rzm, &r1m);
         let mut j = [[0.0; 5]; 6];
-        for c in 0..3 {
-            set_col(&mut j, c, [rot[0][c], rot[1][c], rot[2][c]], [0.0; 3]);
+        for (c, col) in [0usize, 1, 2]
+            .into_iter()
+            .map(|c| (c, [rot[0][c], rot[1][c], rot[2][c]]))
+        {
+            set_col(&mut j, c, col, [0.0; 3]);
         }
         let g1 = self.g1();
         let rzg1r1 = mm(&rzm, &mm(&g1, &r1m));

@@ -61,7 +61,7 @@ pub fn fixed_states(
 ) -> Vec<KnotState> {
     let n = geo.q.len();
     let mut sd = vec![0.0; n];
-    for k in 1..n.saturating_sub(1) {
+    for (k, sdk) in sd.iter_mut().enumerate().take(n.saturating_sub(1)).skip(1) {
         let j = kin.jacobian(&geo.q[k]);
         let tip_s: f64 = (0..3)
             .map(|r| {
@@ -71,7 +71,7 @@ pub fn fixed_states(
             .sum::<f64>()
             .sqrt();
         if tip_s > 0.0 {
-            sd[k] = opts.knot_feed_fraction * lim.feed / tip_s;
+            *sdk = opts.knot_feed_fraction * lim.feed / tip_s;
         }
     }
     geo.states(&sd, &[])

@@ -212,7 +212,7 @@ pub fn check(
             }
         }
     }
-    if early_exit && !(best.margin >= 0.0) {
+    if early_exit && (best.margin < 0.0 || best.margin.is_nan()) {
         return best;
     }
     let fm = 1.0 - max_feed(seg, kin, opts.feed_samples, early_exit.then_some(lim.feed)) / lim.feed;
