@@ -16,6 +16,13 @@
 //! holds if `D3` were `(r''(k+1) − 2C2)/2`. (It also writes `r(k)'''` for `r(k)''` among the
 //! givens.) In time, `c_n = C_n / Tⁿ`.
 //!
+//! Two more misprints in the paper's equations (7d)–(7e), which map the parameter `u` to time
+//! (we do not need them: our quintics are in time directly, `u = t/T`):
+//! * (7d) divides by `√(x_w² + y_w² + z_w²)`; the chain rule `u̇ = v/|r'(u)|` needs the
+//!   derivatives `√(x_w'² + y_w'² + z_w'²)`, and `ü = v̇/|r'| − v² (r'·r'')/|r'|⁴` likewise;
+//! * (7e) gives the jerk as `w''' u̇³ + 3 w'' u̇ ü`; differentiating
+//!   `a = w'' u̇² + w' ü` gives `w''' u̇³ + 3 w'' u̇ ü + w' u⃛` — the last term is missing.
+//!
 //! # Exact extrema
 //! Velocity is a quartic, acceleration a cubic, jerk a quadratic. The largest `|v|` on `[0, T]`
 //! is at an end or at a root of the acceleration (a cubic), the largest `|a|` at an end or at a
