@@ -65,6 +65,12 @@ fn machine(name: &str) -> Result<Box<dyn Kinematics>, Error> {
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
     let kin = machine(&args.machine)?;
+    if args.gcode.is_some() && !matches!(kin.name(), "ac-trt" | "bc-trt") {
+        return Err(InputError::new("--machine", kin.name())
+            .at("--gcode")
+            .expected("ac-trt or bc-trt: five-axis G-code is written for table-table machines")
+            .into());
+    }
     let (poses, default_deflection) = match (&args.case, &args.path) {
         (Some(c), _) if c == "paper" => (case::paper_path(), Some(case::paper_deflection())),
         (Some(c), _) => {
