@@ -20,7 +20,8 @@
 //! derivatives scale as `T⁻ⁿ`) but not in general: high end velocities make a long interval
 //! overshoot. So the search is:
 //! 1. a proven lower bound `T_lb = max(|Δq_i| / v_max,i, |Δtip| / F)` (the mean velocity over
-//!    the interval is at most the peak, and the chord is at most the arc);
+//!    the interval is at most the peak, and the chord is at most the arc); between rest states
+//!    also the bang-bang times `2√(|Δq_i|/A_i)` and `(32|Δq_i|/J_i)^⅓`;
 //! 2. an upward scan `T_lb·ρᵏ` (ρ = [`MinTimeOptions::scan_ratio`]) to the first feasible
 //!    `T`;
 //! 3. bisection between the last infeasible and the first feasible scan point to a relative
@@ -291,8 +292,17 @@ fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
 /// Proven lower bound of the interval time (see the module docs).
 pub fn lower_bound(s0: &KnotState, s1: &KnotState, kin: &dyn Kinematics, lim: &Limits) -> f64 {
     let mut t: f64 = 1e-9;
+    let at_rest = [s0, s1]
+        .iter()
+        .all(|s| s.v.iter().chain(&s.a).all(|x| *x == 0.0));
     for i in 0..5 {
-        t = t.max((s1.q[i] - s0.q[i]).abs() / lim.vel[i]);
+        let dq = (s1.q[i] - s0.q[i]).abs();
+        t = t.max(dq / lim.vel[i]);
+        if at_rest {
+            // Rest to rest: bang-bang acceleration needs 2√(Δq/A), bang-bang jerk (32Δq/J)^⅓.
+            t = t.max(2.0 * (dq / lim.acc[i]).sqrt());
+            t = t.max((32.0 * dq / lim.jerk[i]).cbrt());
+        }
     }
     let chord = kin.forward(&s0.q).tip.distance(kin.forward(&s1.q).tip);
     t.max(chord / lim.feed)
@@ -345,4 +355,36 @@ pub fn min_time(
         }
     }
     Some((hi, hi_check))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::machine::kinematics::HeadHead;
+
+    /// Rest to rest along X on a head-head machine (workpiece frame = machine frame, rotaries
+    /// fixed): the quintic is `L·(10s³ − 15s⁴ + 6s⁵)`, peak speed `15L/(8T)`, so with the feed
+    /// binding `T* = 15L/(8F)` exactly; with the jerk binding (peak `60L/T³`)
+    /// `T* = (60L/J)^(1/3)`.
+    #[test]
+    fn rest_to_rest_minimum_time_is_exact() {
+        let kin = HeadHead::typical();
+        let s0 = KnotState::default();
+        let mut s1 = KnotState::default();
+        s1.q[0] = 10.0;
+        let lim = Limits::paper();
+        let (t, c) = min_time(&s0, &s1, &kin, &lim, &MinTimeOptions::default()).unwrap();
+        let want = 15.0 * 10.0 / (8.0 * 30.0);
+        assert!((t - want).abs() < 1e-12 * want, "{t} vs {want}");
+        assert_eq!(c.binding, Binding::Feed);
+        let mut lim = Limits::paper();
+        lim.feed = 1e6;
+        lim.vel[0] = 1e6;
+        lim.acc[0] = 1e9;
+        lim.jerk[0] = 1000.0;
+        let (t, c) = min_time(&s0, &s1, &kin, &lim, &MinTimeOptions::default()).unwrap();
+        let want = (60.0 * 10.0 / 1000.0f64).cbrt();
+        assert!((t - want).abs() < 1e-12 * want, "{t} vs {want}");
+        assert_eq!(c.binding, Binding::Jerk(0));
+    }
 }
