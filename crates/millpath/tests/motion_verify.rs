@@ -105,6 +105,8 @@ fn corpus_has_no_violations() {
         tp.push(Move::line(Point3::new(30.0, 5.0, 0.0), 20.0));
         tp.push(Move::dwell(Point3::new(30.0, 5.0, 0.0), 0.3));
         tp.push(Move::line(Point3::new(60.0, 5.0, 0.0), 100.0));
+        // A zero-length move (a repeated point) inside the program.
+        tp.push(Move::line(Point3::new(60.0, 5.0, 0.0), 100.0));
         tp.push(Move::arc_xy(
             Point3::new(60.0, 25.0, 0.0),
             Point3::new(60.0, 15.0, 0.0),

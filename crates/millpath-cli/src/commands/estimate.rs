@@ -7,8 +7,27 @@ use millpath::motion::table2;
 use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves};
 use millpath::{Error, InputError, Point3};
-use std::io::BufReader;
+use std::cell::Cell;
+use std::io::{BufReader, IsTerminal, Read};
 use std::path::PathBuf;
+use std::rc::Rc;
+
+/// Counts the bytes read, for the progress bar.
+struct Counting<R> {
+    inner: R,
+    count: Rc<Cell<u64>>,
+}
+
+impl<R: Read> Read for Counting<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.count.set(self.count.get() + n as u64);
+        Ok(n)
+    }
+}
+
+/// Files larger than this get a progress bar on a terminal.
+const PROGRESS_BYTES: u64 = 4 << 20;
 
 /// Arguments of `millpath estimate`.
 #[derive(Debug, clap::Args)]
@@ -89,12 +108,30 @@ pub fn run(args: &Args) -> Result<(), Error> {
         ..ReaderOptions::default()
     };
     let start = opts.start;
-    let mut reader = Reader::new(BufReader::new(file), opts);
+    let size = file.metadata().map_or(0, |m| m.len());
+    let count = Rc::new(Cell::new(0));
+    let bar = (size > PROGRESS_BYTES && std::io::stderr().is_terminal()).then(|| {
+        let b = indicatif::ProgressBar::new(size);
+        b.set_message("reading and planning");
+        b
+    });
+    let counting = Counting {
+        inner: file,
+        count: Rc::clone(&count),
+    };
+    let mut reader = Reader::new(BufReader::new(counting), opts);
+    let mut n_read: u64 = 0;
     let keep = !args.no_verify || args.samples.is_some();
     let mut moves: Vec<(Point3, millpath::Move)> = Vec::new();
     let mut from = start;
     let stream = std::iter::from_fn(|| {
         let item = reader.next()?;
+        n_read += 1;
+        if let Some(b) = &bar
+            && n_read % 65_536 == 0
+        {
+            b.set_position(count.get());
+        }
         Some(item.map(|rm| {
             let f = from;
             from = rm.mv.to;
@@ -112,6 +149,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
             ..PlanOptions::default()
         },
     )?;
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
     let violations = if args.no_verify {
         None
     } else {

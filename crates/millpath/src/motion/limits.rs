@@ -65,8 +65,7 @@ pub fn block_limits(g: &Geom, m: &Move, machine: &Machine) -> Limits1 {
     let mut v = prog;
     let (mut a_ax, mut j_ax, mut a_line, mut j_line) =
         (f64::INFINITY, f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    for i in 0..3 {
-        let d = dir[i];
+    for (i, &d) in dir.iter().enumerate() {
         if d <= 1e-15 {
             continue;
         }

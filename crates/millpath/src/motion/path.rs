@@ -49,7 +49,7 @@ impl Geom {
             MoveKind::Rapid | MoveKind::Line => {
                 let d = m.to - from;
                 let length = d.length();
-                if !(length > 1e-12) {
+                if length.is_nan() || length <= 1e-12 {
                     return None;
                 }
                 Some(Geom::Line {
@@ -66,7 +66,7 @@ impl Geom {
                 let r1 = (eu - cu).hypot(ev - cv);
                 let dw = w1 - w0;
                 let length = (0.5 * (r0 + r1) * sweep).hypot(dw);
-                if !(length > 1e-12) || !(r0 > 1e-12) {
+                if length.is_nan() || length <= 1e-12 || r0.is_nan() || r0 <= 1e-12 {
                     return None;
                 }
                 Some(Geom::Helix {

@@ -222,7 +222,8 @@ where
                         // into an arc) get a knot (a = 0) rather than sharing the smaller
                         // limit over a whole span.
                         let near = |x: f64, y: f64| x <= 2.0 * y && y <= 2.0 * x;
-                        let alike = near(pl.a, lim.a) && (pl.j == lim.j || near(pl.j, lim.j));
+                        let alike = near(pl.a, lim.a)
+                            && ((pl.j.is_infinite() && lim.j.is_infinite()) || near(pl.j, lim.j));
                         if same && alike && cap >= vmin {
                             None
                         } else {

@@ -23,6 +23,7 @@
 //!   `b = 2va + A²/J`, `c = 2va·A²/J − 2LA < 0`; the positive root in the stable form
 //!   `x = −2c/(b + √(b² − 4c))`.
 //! * `J = ∞`: `x² + 2va·x − 2AL = 0`, `x = 4AL/(2va + √(4va² + 8AL))`.
+//!
 //! Each closed form is polished with one Newton step on `d(va, va + x) − L`.
 //!
 //! # Span profile (from `v0` to `v1` over a distance `L`, `v ≤ V`)
@@ -224,7 +225,7 @@ impl SpanProfile {
             // `d` grows like `√(vp − vlo)`, so a peak a rounding error above `vlo` would
             // overshoot the span by ~`vlo·√(ε/J)`.)
             vlo
-        } else if v0 == v1 {
+        } else if (v0 - v1).abs() <= 0.0 {
             reachable_velocity(v0, 0.5 * length, a, j).min(lim.v)
         } else {
             // Bracketed Newton on D(vp) = length over [vlo, V].
@@ -252,14 +253,19 @@ impl SpanProfile {
                     break;
                 }
             }
-            // `lo` always has D(lo) ≤ L: if the last iterate overshoots (D grows like
-            // √(vp − vlo) near vlo, beyond what f64 resolves), keep `lo` and let the
-            // cruise take up the rest.
-            if d(x) > length {
-                lo
-            } else {
-                x.clamp(vlo, lim.v)
+            // If the last iterate overshoots by rounding (D grows like √(vp − vlo) near vlo,
+            // beyond what f64 resolves), step down geometrically until D ≤ L (`lo` always
+            // qualifies) and let a cruise of a few ulps take up the rest.
+            let mut y = x.clamp(vlo, lim.v);
+            let mut step = 4.0 * f64::EPSILON * y;
+            for _ in 0..60 {
+                if d(y) <= length {
+                    break;
+                }
+                y = (y - step).max(lo);
+                step *= 4.0;
             }
+            if d(y) > length { lo } else { y }
         };
         let mut phases = [Phase::default(); 7];
         change_phases(v0, vp, a, j, &mut phases[0..3]);
@@ -327,6 +333,10 @@ impl SpanProfile {
         for ph in &self.phases {
             let end = advance(st, ph, ph.duration);
             if end.s >= s && ph.duration > 0.0 {
+                if ph.jerk == 0.0 && ph.a0 == 0.0 && st.v > 0.0 {
+                    // Cruise: s is linear in t.
+                    return t0 + ((s - st.s) / st.v).clamp(0.0, ph.duration);
+                }
                 let (mut lo, mut hi) = (0.0, ph.duration);
                 let mut tau = if st.v > 0.0 {
                     ((s - st.s) / st.v).min(hi)
@@ -452,6 +462,33 @@ mod tests {
                 let t = p.time_at(s);
                 assert!((p.state(t).s - s).abs() < 1e-9 * l.max(1.0), "{s}");
             }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
+        /// Any feasible (v0, v1, L) gets a profile that ends exactly and respects its limits,
+        /// and whose duration is no longer than a slower-peak alternative (cruise at vlo).
+        #[test]
+        fn span_profiles_are_feasible(
+            v0 in 0.0f64..200.0, v1 in 0.0f64..200.0, extra in 0.0f64..100.0,
+            a in 10.0f64..1e4, lj in 2.0f64..7.0, unlimited in proptest::bool::ANY,
+        ) {
+            let j = if unlimited { f64::INFINITY } else { 10f64.powf(lj) };
+            let lim = Limits1 { v: 200.0, a, j };
+            let l = change_distance(v0, v1, a, j) + extra + 1e-6;
+            let p = SpanProfile::new(v0, v1, l, lim).unwrap();
+            p.check(lim).unwrap();
+            let vlo = v0.max(v1);
+            if vlo > 0.0 {
+                let slow = change_distance(v0, vlo, a, j) + change_distance(vlo, v1, a, j);
+                let t_slow = change_time((vlo - v0).abs(), a, j)
+                    + change_time((vlo - v1).abs(), a, j)
+                    + (l - slow) / vlo;
+                proptest::prop_assert!(p.duration <= t_slow * (1.0 + 1e-12) + 1e-12);
+            }
+            let r = reachable_velocity(v0, l, a, j);
+            proptest::prop_assert!((change_distance(v0, r, a, j) - l).abs() <= 1e-9 * l.max(1.0));
         }
     }
 

@@ -70,12 +70,14 @@ impl Plan {
         let st = p.state(t - span.start_time);
         // The block containing st.s (the last one starting at or before it).
         let blocks = self.blocks.get(span.first..span.end).unwrap_or_default();
-        let mut bi = span.first;
-        for (n, b) in blocks.iter().enumerate() {
-            if b.length > 0.0 && b.span_offset <= st.s {
-                bi = span.first + n;
-            }
+        // The last block with positive length starting at or before st.s (binary search).
+        let mut n = blocks
+            .partition_point(|b| b.span_offset <= st.s)
+            .saturating_sub(1);
+        while n > 0 && blocks.get(n).is_some_and(|b| b.length <= 0.0) {
+            n -= 1;
         }
+        let bi = span.first + n;
         let (geom, (from, _)) = match (self.geometry.get(bi), self.ends.get(bi)) {
             (Some(g), Some(e)) => (*g, *e),
             _ => return Err(Error::internal("block index out of range")),
@@ -112,12 +114,28 @@ impl Plan {
 
     /// Samples the plan every `dt` seconds from 0 to the total time (both included).
     pub fn sample(&self, dt: f64) -> Result<Vec<Sample>, Error> {
+        let mut out = Vec::new();
+        self.for_each_sample(dt, |s| {
+            out.push(s);
+            Ok(())
+        })?;
+        Ok(out)
+    }
+
+    /// Calls `f` with a sample every `dt` seconds from 0 to the total time (both included),
+    /// without storing them (memory independent of the program's duration).
+    pub fn for_each_sample<F>(&self, dt: f64, mut f: F) -> Result<(), Error>
+    where
+        F: FnMut(Sample) -> Result<(), Error>,
+    {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(crate::InputError::new("sample interval", dt)
                 .expected("a finite number of seconds > 0")
                 .into());
         }
-        let mut out = Vec::new();
+        if self.spans.is_empty() {
+            return Ok(());
+        }
         let n = (self.total_time / dt).ceil() as usize;
         let mut k = 0;
         let mut cache = None;
@@ -130,11 +148,8 @@ impl Plan {
             {
                 k += 1;
             }
-            if self.spans.is_empty() {
-                break;
-            }
-            out.push(self.sample_in(k, t, &mut cache)?);
+            f(self.sample_in(k, t, &mut cache)?)?;
         }
-        Ok(out)
+        Ok(())
     }
 }

@@ -151,7 +151,7 @@ pub fn verify_plan(
     machine: &Machine,
     opts: &VerifyOptions,
 ) -> Result<VerifyReport, Error> {
-    if !(opts.rate >= 1000.0) {
+    if opts.rate.is_nan() || opts.rate < 1000.0 {
         return Err(crate::InputError::new("verifier rate", opts.rate)
             .expected("at least 1000 Hz")
             .into());
@@ -170,8 +170,6 @@ pub fn verify_plan(
     let tol = opts.rel_tol;
     let mut rep = VerifyReport::default();
     let dt = 1.0 / opts.rate;
-    let samples = plan.sample(dt)?;
-    rep.samples = samples.len();
     let jmax_any = machine.axes.iter().map(|a| a.max_jerk).fold(0.0, f64::max);
     let amax_any = machine
         .axes
@@ -179,7 +177,10 @@ pub fn verify_plan(
         .map(|a| a.max_acceleration)
         .fold(0.0, f64::max);
     let mut prev: Option<(f64, usize, f64, f64, f64)> = None;
-    for smp in &samples {
+    let mut last_sample = None;
+    plan.for_each_sample(dt, |smp| {
+        rep.samples += 1;
+        last_sample = Some(smp);
         let Some(sh) = shapes.get(smp.block) else {
             return Err(Error::internal("verifier: sample outside the program"));
         };
@@ -260,9 +261,10 @@ pub fn verify_plan(
             }
         }
         prev = Some((smp.t, smp.block, st.s, st.v, st.a));
-    }
+        Ok(())
+    })?;
     // Every block completed, and the junctions.
-    if let (Some(last), Some(sh)) = (samples.last(), shapes.last()) {
+    if let (Some(last), Some(sh)) = (last_sample, shapes.last()) {
         let end = sh.eval(sh.len)[0];
         let got = last.position - Point3::ORIGIN;
         if (end - got).length() > 1e-6 {
