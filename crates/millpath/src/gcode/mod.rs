@@ -82,6 +82,7 @@
 
 pub mod arc;
 mod dialect;
+pub mod five_axis;
 pub mod format;
 pub mod interp;
 mod lexer;

@@ -1,5 +1,6 @@
 //! Importers (point lists, DXF, SVG) and atomic file output.
 
 mod atomic;
+pub mod points;
 
 pub use atomic::{write_atomic, write_atomic_with};
