@@ -298,6 +298,22 @@ const SCRIPT: &str = include_str!("viewer.js");
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, rng_seed: proptest::test_runner::RngSeed::Fixed(6), ..ProptestConfig::default() })]
+        /// Whatever text goes into a table, no markup character survives unescaped.
+        #[test]
+        fn escaped_text_has_no_markup(key in ".{0,40}", value in "[<>&\"' a-z]{0,40}") {
+            let mut r = HtmlReport::new("t");
+            r.section("s", vec![(key.clone(), value.clone())]);
+            let h = r.to_html();
+            let row = h.split("<tr><th>").nth(1).and_then(|s| s.split("</td></tr>").next()).unwrap();
+            let text = row.replacen("</th><td>", "", 1);
+            prop_assert!(!text.contains(['<', '>', '"', '\'']));
+            prop_assert_eq!(text.matches('&').count(), text.matches(';').count() - (key.matches(';').count() + value.matches(';').count()));
+        }
+    }
 
     #[test]
     fn text_is_escaped_and_svg_checked() {

@@ -422,4 +422,20 @@ mod tests {
         // The full helix circle lies inside the picture: x from -10 mm (minus the 5 mm margin) is visible.
         assert!(svg.contains("translate(15.0"), "{svg}");
     }
+
+    #[test]
+    fn bad_numbers_do_not_panic() {
+        let mut tp = Toolpath::new(Tool::default(), Point3::new(f64::NAN, 0.0, 0.0));
+        tp.push(Move::line(Point3::new(f64::INFINITY, 1.0, 0.0), f64::NAN));
+        tp.push(Move::line(Point3::new(1.0, 1.0, 0.0), -3.0));
+        let opts = PreviewOptions {
+            width_px: f64::NAN,
+            margin_mm: f64::NAN,
+            level: Some(99),
+            achieved_feed: Some(vec![f64::NAN]),
+            ..PreviewOptions::default()
+        };
+        let svg = toolpath_svg(&tp, &[], &opts);
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    }
 }

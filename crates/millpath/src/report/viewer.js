@@ -140,7 +140,18 @@
     var after = v.viewBox();
     if (!(after[2] < before[2])) { return 'MP-SELFTEST-FAIL zoom'; }
     v.reset();
-    v.showLevel('all');
+    var select = document.querySelector('.mp-level-select');
+    if (select && select.options.length > 1) {
+      select.value = select.options[1].value;
+      select.dispatchEvent(new Event('change'));
+      var hidden = document.querySelectorAll('.mp-viewer g.mp-level[style*="none"]').length;
+      var shown = document.querySelectorAll('.mp-viewer g.mp-level[data-level="' + select.value + '"]');
+      if (hidden === 0 || shown.length === 0 || shown[0].style.display === 'none') {
+        return 'MP-SELFTEST-FAIL level selector';
+      }
+      select.value = 'all';
+      select.dispatchEvent(new Event('change'));
+    }
     return 'MP-SELFTEST-OK t=' + Number(v.slider.value).toFixed(6) + ' x=' + x.toFixed(4) +
       ' y=' + y.toFixed(4) + ' z=' + p[3].toFixed(4) + ' errors=' + window.mpErrors.length;
   }
