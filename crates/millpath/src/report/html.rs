@@ -190,6 +190,39 @@ impl HtmlReport {
         Ok(self)
     }
 
+    /// Convenience for [`Self::viewer`]: previews `toolpath` over `outlines` coloured by the
+    /// plan's achieved peak feeds, names the levels by kind and depth, and samples the plan
+    /// for playback (about 4000 samples, never closer than 1 ms). Returns the preview SVG so
+    /// it can also be written to a file.
+    pub fn toolpath_viewer(
+        &mut self,
+        name: impl Into<String>,
+        toolpath: &crate::toolpath::Toolpath,
+        outlines: &[crate::geom::Outline],
+        plan: &crate::motion::Plan,
+    ) -> Result<String, Error> {
+        let name = name.into();
+        let preview = super::toolpath_svg(
+            toolpath,
+            outlines,
+            &super::PreviewOptions {
+                title: Some(name.clone()),
+                achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
+                ..super::PreviewOptions::default()
+            },
+        );
+        let dt = (plan.total_time / 4000.0).max(1e-3);
+        let samples = plan.sample(dt)?;
+        let levels = toolpath
+            .levels
+            .iter()
+            .enumerate()
+            .map(|(i, l)| format!("{} {:?} z = {:.3} mm", i + 1, l.kind, l.z))
+            .collect();
+        self.viewer(name, &preview, levels, &trajectory_of(&samples))?;
+        Ok(preview)
+    }
+
     /// The HTML document.
     pub fn to_html(&self) -> String {
         let mut h = String::new();
@@ -332,6 +365,38 @@ mod tests {
         let ok = r#"<?xml version="1.0"?><svg xmlns="http://www.w3.org/2000/svg"></svg>"#;
         r.plot("p", ok).unwrap();
         assert!(!r.to_html().contains("<?xml"));
+    }
+
+    #[test]
+    fn toolpath_viewer_embeds_plan_and_levels() {
+        use crate::geom::Point3;
+        use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
+        let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
+        tp.push(Move::line(Point3::new(20.0, 0.0, -1.0), 30.0));
+        tp.push(Move::line(Point3::new(20.0, 10.0, -1.0), 30.0));
+        tp.levels.push(Level {
+            z: -1.0,
+            kind: LevelKind::Finishing,
+            start: 0,
+            end: 2,
+        });
+        let m = crate::machine::Machine::preset("hsm").unwrap();
+        let plan = crate::motion::plan_toolpath(&tp, &m).unwrap();
+        let mut r = HtmlReport::new("t");
+        let svg = r.toolpath_viewer("square", &tp, &[], &plan).unwrap();
+        assert!(svg.contains("achieved feed"));
+        let h = r.to_html();
+        assert!(h.contains("1 Finishing z = -1.000 mm"));
+        let json = h
+            .split("class=\"mp-trajectory\">")
+            .nth(1)
+            .and_then(|s| s.split("</script>").next())
+            .unwrap();
+        let traj: Vec<[f64; 4]> = serde_json::from_str(json).unwrap();
+        let last = traj.last().unwrap();
+        assert!((last[0] - plan.total_time).abs() < 1e-9);
+        assert!((last[1] - 20.0).abs() < 1e-6 && (last[2] - 10.0).abs() < 1e-6);
+        assert!(traj.len() <= 4000 && traj.len() > 100);
     }
 
     #[test]
