@@ -251,3 +251,8 @@ fn five_axis(out: &Path) -> Result<Row, Error> {
         check: format!("{} violations (dense + analytic)", r.violations.len()),
     })
 }
+
+/// The sample part's pockets in all three strategies.
+fn pockets(_out: &Path, _machine: &Machine) -> Result<Vec<Row>, Error> {
+    Ok(Vec::new())
+}
