@@ -62,16 +62,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     ));
     let mut rows = Vec::new();
     rows.push(die_cavity(&args.out, &machine)?);
-    rows.extend(
-        super::pocket::demo_rows(&args.out, &machine)?
-            .into_iter()
-            .map(|(what, cycle_s, blocks, check)| Row {
-                what,
-                cycle_s,
-                blocks,
-                check,
-            }),
-    );
+    rows.extend(pockets(&args.out, &machine)?);
     table_two(&args.out)?;
     rows.push(five_axis(&args.out)?);
 
