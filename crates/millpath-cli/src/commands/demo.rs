@@ -17,7 +17,8 @@ use millpath::geom::Outline;
 use millpath::machine::Machine;
 use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{plan_toolpath, table2};
-use millpath::report::{PreviewOptions, toolpath_svg};
+use millpath::report::html::HtmlReport;
+use millpath::report::{PreviewOptions, plots, series, toolpath_svg};
 use millpath::strategy::contour;
 use millpath::{Error, InputError, Toolpath};
 use std::path::{Path, PathBuf};
@@ -60,11 +61,33 @@ pub fn run(args: &Args) -> Result<(), Error> {
         args.out.display(),
         machine.name
     ));
+    let plots_dir = args.out.join("plots");
+    std::fs::create_dir_all(&plots_dir).map_err(|e| {
+        Error::Input(
+            InputError::new("output folder", plots_dir.display())
+                .at("--out")
+                .expected(format!("a folder that can be created ({e})")),
+        )
+    })?;
+    let mut html = HtmlReport::new("millpath demo");
     let mut rows = Vec::new();
-    rows.push(die_cavity(&args.out, &machine)?);
-    rows.extend(pockets(&args.out, &machine)?);
-    table_two(&args.out)?;
-    rows.push(five_axis(&args.out)?);
+    rows.push(die_cavity(&args.out, &machine, &mut html)?);
+    rows.extend(pockets(&args.out, &machine, &mut html)?);
+    table_two(&args.out, &mut html)?;
+    rows.push(five_axis(&args.out, &mut html)?);
+    let mut summary = vec![("machine".to_owned(), describe_machine(&machine))];
+    summary.extend(rows.iter().map(|r| {
+        (
+            r.what.clone(),
+            format!(
+                "{:.2} s planned, {} blocks; {}",
+                r.cycle_s, r.blocks, r.check
+            ),
+        )
+    }));
+    html.section("summary", summary);
+    let html_path = args.out.join("report.html");
+    millpath::io::write_atomic(&html_path, html.to_html().as_bytes())?;
 
     print("");
     print(&format!(
@@ -77,6 +100,40 @@ pub fn run(args: &Args) -> Result<(), Error> {
             r.what, r.cycle_s, r.blocks, r.check
         ));
     }
+    print(&format!("report: {}", html_path.display()));
+    Ok(())
+}
+
+fn describe_machine(m: &Machine) -> String {
+    let a = &m.axes[0];
+    format!(
+        "{}: X v {:.0} mm/s, a {:.0} mm/s², j {} mm/s³, path tolerance {} mm",
+        m.name,
+        a.max_velocity,
+        a.max_acceleration,
+        if a.max_jerk.is_finite() {
+            format!("{:.0}", a.max_jerk)
+        } else {
+            "unlimited".to_owned()
+        },
+        m.path_tolerance
+    )
+}
+
+/// Renders `chart` to `plots/NAME.svg` and `.png` and adds it to the report.
+fn add_plot(
+    out: &Path,
+    html: &mut HtmlReport,
+    name: &str,
+    caption: &str,
+    chart: &plots::Chart,
+) -> Result<(), Error> {
+    let svg = plots::render_files(
+        chart,
+        &plots::PlotOptions::default(),
+        &out.join("plots").join(name),
+    )?;
+    html.plot(caption, &svg)?;
     Ok(())
 }
 
@@ -119,7 +176,7 @@ pub(crate) fn time_and_verify(tp: &Toolpath, machine: &Machine) -> Result<(f64, 
     Ok((plan.total_time(), check))
 }
 
-fn die_cavity(out: &Path, machine: &Machine) -> Result<Row, Error> {
+fn die_cavity(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Row, Error> {
     let pb = spinner("die cavity: curve, exact offset, flattening at 0.00004 mm");
     let (curve, opt) = contour::sample()?;
     let result = contour::contour(&curve, &opt)?;
@@ -136,9 +193,7 @@ fn die_cavity(out: &Path, machine: &Machine) -> Result<Row, Error> {
     let report = serde_json::to_string_pretty(&result.report)
         .map_err(|e| Error::internal(format!("report JSON: {e}")))?;
     millpath::io::write_atomic(&out.join("die_cavity.json"), report.as_bytes())?;
-    // The outline for the picture: the curve flattened coarsely (drawing only).
-    let flat = millpath::curve::flatten::flatten_curve(&curve, 0.01)?;
-    let outline = Outline::from_points(&flat.points, "die cavity curve")?;
+    let outline = outline_for_viewer(&curve)?;
     let svg = toolpath_svg(
         &result.toolpath,
         &[outline],
@@ -152,6 +207,43 @@ fn die_cavity(out: &Path, machine: &Machine) -> Result<Row, Error> {
         },
     );
     millpath::io::write_atomic(&out.join("die_cavity.svg"), svg.as_bytes())?;
+    pb.set_message("die cavity: plots and viewer");
+    // Chordal deviation of every segment of one pass at the sample's tolerance (the paper's
+    // Figure 10), measured by dense sampling (200 points per segment), not by the flattener.
+    let pass = millpath::curve::flatten::flatten_curve(&curve, opt.tolerance)?;
+    let per_segment: Vec<f64> = pass
+        .params
+        .windows(2)
+        .zip(pass.points.windows(2))
+        .map(|(p, q)| millpath::curve::verify::chordal_deviation(&curve, p, q, 200))
+        .collect();
+    add_plot(
+        out,
+        html,
+        "die_cavity_deviation",
+        "Die cavity: chordal deviation of each segment of the curve against the tolerance (cf. the die-cavity paper's Figure 10)",
+        &plots::chordal_deviation(&per_segment, opt.tolerance),
+    )?;
+    // Feed along the path of the finishing level: the planned (achieved) feed.
+    let finishing = level_toolpath(
+        &result.toolpath,
+        result.toolpath.levels.len().saturating_sub(1),
+    );
+    let plan = plan_toolpath(&finishing, machine)?;
+    let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
+    add_plot(
+        out,
+        html,
+        "die_cavity_feed",
+        "Die cavity, finishing pass: planned feed along the path",
+        &plots::feed_along_path(&series::feed_along_path(&samples), None),
+    )?;
+    html.toolpath_viewer(
+        "die cavity: finishing pass (colour: achieved feed)",
+        &finishing,
+        &[outline_for_viewer(&curve)?],
+        &plan,
+    )?;
     pb.finish_and_clear();
     print(&format!(
         "die cavity: {} segments per pass (T = {} mm, max deviation {:.2e} mm), {} layers, {} blocks; \
@@ -178,11 +270,18 @@ fn die_cavity(out: &Path, machine: &Machine) -> Result<Row, Error> {
     })
 }
 
-fn table_two(out: &Path) -> Result<(), Error> {
+fn table_two(out: &Path, html: &mut HtmlReport) -> Result<(), Error> {
     let hsm = Machine::preset("hsm")?;
     let rows = table2::compare(&hsm)?;
     let text = table2::format_table(&rows);
     millpath::io::write_atomic(&out.join("table2.txt"), text.as_bytes())?;
+    add_plot(
+        out,
+        html,
+        "square_circle_gain",
+        "Square against circle of equal perimeter: time gain of the circle, measured on the 840D (points) and planned by millpath on `hsm` (lines) (cf. the adaptive-spiral paper's Figures 22-23)",
+        &plots::square_circle_gain(&rows),
+    )?;
     let wins = rows
         .iter()
         .filter(|r| r.circle_planned < r.square_planned)
@@ -194,7 +293,7 @@ fn table_two(out: &Path) -> Result<(), Error> {
     Ok(())
 }
 
-fn five_axis(out: &Path) -> Result<Row, Error> {
+fn five_axis(out: &Path, html: &mut HtmlReport) -> Result<Row, Error> {
     use millpath::machine::kinematics::PaperAb;
     use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, case};
     let pb = spinner("five-axis: minimum-time plan and the paper's GA baseline");
@@ -220,6 +319,52 @@ fn five_axis(out: &Path) -> Result<Row, Error> {
         )
         .map_err(|e| Error::internal(format!("CSV: {e}")))
     })?;
+    let names = millpath::machine::kinematics::Kinematics::axis_names(&kin);
+    let limits = Limits::paper();
+    for (quantity, values, lim, file, fig) in [
+        (
+            plots::Quantity::Velocity,
+            &samples.v,
+            limits.vel,
+            "five_axis_velocity",
+            "6",
+        ),
+        (
+            plots::Quantity::Acceleration,
+            &samples.a,
+            limits.acc,
+            "five_axis_acceleration",
+            "7",
+        ),
+        (
+            plots::Quantity::Jerk,
+            &samples.j,
+            limits.jerk,
+            "five_axis_jerk",
+            "7",
+        ),
+    ] {
+        // Linear axes (mm) and rotary axes (rad) differ by three orders of magnitude: each axis
+        // is drawn as a share of its own limit, so the limit line is ±1 for all five.
+        let axes: Vec<plots::AxisSeries> = (0..5)
+            .map(|k| plots::AxisSeries {
+                name: format!("{} / {}", names[k], lim[k]),
+                unit: "limit".to_owned(),
+                values: values.iter().map(|q| q[k] / lim[k]).collect(),
+                limit: Some(1.0),
+            })
+            .collect();
+        add_plot(
+            out,
+            html,
+            file,
+            &format!(
+                "Five-axis quarter circle: per-axis {} against time, as a share of each axis's limit (linear axes in mm, rotary in rad; cf. the five-axis paper's Figure {fig})",
+                quantity.name()
+            ),
+            &plots::axis_kinematics(quantity, &samples.t, &axes),
+        )?;
+    }
     pb.finish_and_clear();
     let baseline = r.baseline_time_s.map_or_else(
         || "no baseline".to_owned(),
@@ -243,7 +388,33 @@ fn five_axis(out: &Path) -> Result<Row, Error> {
     })
 }
 
+/// The moves of one level as a toolpath of their own (starting where the level starts).
+fn level_toolpath(tp: &Toolpath, level: usize) -> Toolpath {
+    let Some(l) = tp.levels.get(level) else {
+        return tp.clone();
+    };
+    let start = if l.start == 0 {
+        tp.start
+    } else {
+        tp.moves.get(l.start - 1).map_or(tp.start, |m| m.to)
+    };
+    let mut out = Toolpath::new(tp.tool, start);
+    out.moves = tp.moves.get(l.start..l.end).unwrap_or_default().to_vec();
+    out.levels = vec![millpath::toolpath::Level {
+        start: 0,
+        end: out.moves.len(),
+        ..l.clone()
+    }];
+    out
+}
+
+/// The curve as an outline for drawing (flattened coarsely: the picture only).
+fn outline_for_viewer(curve: &millpath::curve::CompositeCurve) -> Result<Outline, Error> {
+    let flat = millpath::curve::flatten::flatten_curve(curve, 0.01)?;
+    Ok(Outline::from_points(&flat.points, "die cavity curve")?)
+}
+
 /// The sample part's pockets in all three strategies.
-fn pockets(_out: &Path, _machine: &Machine) -> Result<Vec<Row>, Error> {
+fn pockets(_out: &Path, _machine: &Machine, _html: &mut HtmlReport) -> Result<Vec<Row>, Error> {
     Ok(Vec::new())
 }

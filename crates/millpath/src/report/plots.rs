@@ -369,7 +369,8 @@ pub enum Quantity {
 }
 
 impl Quantity {
-    fn name(self) -> &'static str {
+    /// The quantity's name in lower case ("velocity", ...).
+    pub fn name(self) -> &'static str {
         match self {
             Quantity::Velocity => "velocity",
             Quantity::Acceleration => "acceleration",
@@ -468,9 +469,23 @@ pub fn chordal_deviation(deviation: &[f64], tolerance: f64) -> Chart {
             colour: 0,
         }],
         hlines: vec![HLine {
-            label: format!("tolerance {:.1} µm", tolerance * 1000.0),
+            label: format!("tolerance {} µm", significant(tolerance * 1000.0, 3)),
             y: tolerance * 1000.0,
         }],
+    }
+}
+
+/// `x` with `digits` significant digits, trailing zeros trimmed (0.04, 5, 12.5).
+fn significant(x: f64, digits: i32) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let decimals = (digits - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_owned()
+    } else {
+        s
     }
 }
 
@@ -479,12 +494,19 @@ mod tests {
     use super::*;
 
     #[test]
+    fn significant_digits() {
+        assert_eq!(significant(0.04, 3), "0.04");
+        assert_eq!(significant(5.0, 3), "5");
+        assert_eq!(significant(12.345, 3), "12.3");
+    }
+
+    #[test]
     fn charts_render_to_svg_with_their_text() {
         let c = chordal_deviation(&[0.001, 0.004, f64::NAN, 0.002], 0.005);
         let svg = render_svg(&c, &PlotOptions::default()).unwrap();
         assert!(svg.starts_with("<svg") && svg.contains("</svg>"));
         assert!(svg.contains("Chordal deviation per segment"));
-        assert!(svg.contains("tolerance 5.0 µm"));
+        assert!(svg.contains("tolerance 5 µm"));
         // Three finite markers plus the legend marker.
         assert_eq!(svg.matches("<circle").count(), 3 + 1, "{svg}");
     }
