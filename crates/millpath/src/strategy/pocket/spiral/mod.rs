@@ -1,0 +1,289 @@
+//! The adaptive spiral (the paper's method, made valid for any simply connected pocket).
+//!
+//! 1. **Boundary offset** `B`: the outline offset inward by `r + stock` (exact arcs). It must be
+//!    one loop; pockets with islands, or whose offset splits, are refused with a message that
+//!    suggests `offset`.
+//! 2. **Centre**: `c`, the centre of the largest circle inscribed in `B` (the maximum of the
+//!    distance field, found on a grid and refined), radius `ρ_B`.
+//! 3. **Central spiral**: an Archimedean spiral `ρ(θ) = ρ_h + (R₀ − ρ_h)·θ/(2πn)` about `c`,
+//!    entered by a helix of radius `ρ_h`, out to `R₀ = C·ρ_B` (clamped to `[ρ_h, 0.9·ρ_B]`),
+//!    with `n = ⌈(R₀ − ρ_h)/s'⌉` turns so that its pitch is at most `s' = 0.95·s`. The paper
+//!    defines `C` against the pocket width `l` (`φ = C·l`); in tool-centre space the width
+//!    available is `2ρ_B`, so `C = 1` means the spiral touches `B`. For the 150 × 100 pocket
+//!    and a 12.7 mm tool, the paper's `C = 0.5` (φ = 50 mm) corresponds to `C ≈ 0.57` here.
+//! 4. **Morph**: loops `L_k` on level sets `u = t_k` of the harmonic function of
+//!    [`harmonic`]; `L_{k+1}` is the image of `L_k` along the gradient's streamlines, and
+//!    `Δt` is chosen lap by lap so that the longest streamline between the two loops is at
+//!    most `s'`: the distance from any point of `L_{k+1}` to `L_k` is at most the streamline's
+//!    length, so the stepover bound holds *measured*, also where `|∇u|` is small (the corners
+//!    of `B`: more loops are added there automatically). Once `B` is within `s'` of `L_k` both
+//!    ways (Hausdorff distance, sampled), the next lap goes onto `B_ε` (below).
+//! 5. **One spiral**: lap `k` runs from `L_k` to `L_{k+1}`: its point at arc-length fraction
+//!    `f` of `L_k` is `p + f·(q − p)`, `q` the image of `p`; it ends where `L_{k+1}` starts,
+//!    so the laps join without a retract or a corner. The last lap's images are the points of
+//!    `B_ε` at the same arc-length fraction (this keeps the corners of `B` covered).
+//! 6. **Last loop**: `B_ε`, the boundary offset moved inward by `ε` = 5 µm so that the chords of
+//!    the last lap (spaced at most `√(8·(r+stock)·ε)`) cannot cross it at concave arcs; it is
+//!    cut once, with exact arcs. The 5 µm is extra wall stock, far below any roughing
+//!    tolerance; `--finish` cuts the exact wall.
+//!
+//! **Limits.** Interior loops are level sets of a harmonic function, smooth (real-analytic)
+//! in the exact problem; on the grid they are smooth to about `h²`. Their curvature is not
+//! bounded by `--min-radius` by construction: near a sharp convex corner of `B` the level sets
+//! tighten. The last loop is `B` itself, with its corners, so that no material is left beyond
+//! the tool's own cusp. Islands are not handled.
+
+pub mod harmonic;
+
+use super::chain::{Seg, segs_from_points, segs_from_vertices};
+use super::levels::{Cut, CutEntry, LevelPlan};
+use super::offset::too_large;
+use super::options::{Direction, Entry, PocketOptions};
+use super::shape::{PocketShape, closed_chain, inscribed_centre, loop_distance, restart_near, reversed};
+use crate::error::InputError;
+use crate::geom::{Point, Vec2};
+use crate::toolpath::Tool;
+use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
+use harmonic::Harmonic;
+use std::f64::consts::TAU;
+
+/// Inward margin of the spiral's last loop, mm (see the module docs).
+pub const LAST_LOOP_MARGIN: f64 = 0.005;
+/// Most laps the morph may take.
+const MAX_LAPS: usize = 400;
+
+/// What the spiral planner measured.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpiralStats {
+    /// Turns of the central Archimedean spiral.
+    pub central_turns: usize,
+    /// Laps of the harmonic morph (the last onto the boundary offset included).
+    pub morph_laps: usize,
+    /// Largest measured distance between consecutive loops, mm.
+    pub max_loop_distance: f64,
+    /// Radius of the central spiral, mm.
+    pub r0: f64,
+}
+
+/// The spiral strategy's plan for one level.
+pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<LevelPlan, InputError> {
+    plan_with_stats(shape, tool, opts).map(|(p, _)| p)
+}
+
+/// The plan and what was measured on the way.
+pub fn plan_with_stats(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<(LevelPlan, SpiralStats), InputError> {
+    if !shape.islands.is_empty() {
+        return Err(InputError::new("islands", shape.islands.len())
+            .at("--strategy spiral")
+            .expected("a pocket without islands for the spiral (use --strategy offset)"));
+    }
+    let s = opts.stepover_mm(tool);
+    let sp = 0.95 * s;
+    let d0 = tool.radius() + opts.wall_stock;
+    let region = shape.offset(d0);
+    let b = match region.outers.as_slice() {
+        [] => return Err(too_large(tool)),
+        [one] => one.clone(),
+        _ => {
+            return Err(InputError::new("boundary offset loops", region.outers.len())
+                .at("--strategy spiral")
+                .expected("a pocket whose tool-centre region is one piece (use --strategy offset)"))
+        }
+    };
+    let b_eps = match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
+        [one] => one.clone(),
+        _ => b.clone(),
+    };
+    let (c, rho_b) = inscribed_centre(&b, &[], 48);
+    let helix = match opts.entry {
+        Entry::Helix { radius, .. } => radius,
+        Entry::Ramp { .. } => 0.25 * tool.radius(),
+    };
+    let rho_h = helix.min(0.45 * rho_b);
+    if rho_h < 1e-3 {
+        return Err(too_large(tool));
+    }
+    let r0 = (opts.transition * rho_b).max(rho_h).min(0.9 * rho_b);
+    let ccw = opts.direction == Direction::Climb;
+    let sign = if ccw { 1.0 } else { -1.0 };
+    let mut stats = SpiralStats {
+        r0,
+        ..SpiralStats::default()
+    };
+
+    // Sample spacing: a fraction of the stepover, and fine enough on the last lap that chords
+    // stay within B_ε at concave arcs of radius ≥ d0.
+    let ds = (s / 3.0).clamp(0.05, 2.0);
+    let ds_last = ds.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt());
+
+    // Central Archimedean spiral.
+    let mut pts: Vec<Point> = Vec::new();
+    let turns = ((r0 - rho_h) / sp).ceil().max(0.0) as usize;
+    stats.central_turns = turns;
+    if turns > 0 {
+        let total = TAU * turns as f64;
+        let mut th = 0.0;
+        while th < total {
+            let rho = rho_h + (r0 - rho_h) * th / total;
+            pts.push(c + Vec2::from_angle(sign * th) * rho);
+            th += (ds / rho.max(1e-3)).min(0.2);
+        }
+    }
+    // L_0: the circle of radius r0, from angle 0.
+    let n0 = ((TAU * r0 / ds).ceil() as usize).max(16);
+    let mut lap: Vec<Point> = (0..n0)
+        .map(|i| c + Vec2::from_angle(sign * TAU * i as f64 / n0 as f64) * r0)
+        .collect();
+    let hm = Harmonic::solve(&b, c, r0, grid_spacing(&b, s));
+    let b_dir = if ccw { b_eps.clone() } else { reversed(&b_eps) };
+    let b_samples = sample_loop(&b, ds);
+    let mut t = 0.0;
+    let mut dt: f64 = 0.25;
+    for _ in 0..MAX_LAPS {
+        let fr = fractions(&lap);
+        let lap_poly = closed_pline(&lap);
+        let haus_b = b_samples.iter().map(|&q| loop_distance(&lap_poly, q)).fold(0.0, f64::max);
+        let haus_l = lap.iter().map(|&p| loop_distance(&b, p)).fold(0.0, f64::max);
+        if haus_b <= sp && haus_l <= sp {
+            // The last lap: onto B_ε at equal arc-length fractions.
+            let fine = resample(&lap, ds_last);
+            let fr = fractions(&fine);
+            let start = restart_near(&b_dir, fine[0]);
+            let blen = start.path_length();
+            for (p, f) in fine.iter().zip(&fr) {
+                let q = point_at_length(&start, f * blen);
+                pts.push(*p + (q - *p) * *f);
+            }
+            let close = start.at(0).pos();
+            pts.push(Point::new(close.x, close.y));
+            stats.morph_laps += 1;
+            stats.max_loop_distance = stats.max_loop_distance.max(haus_b.max(haus_l));
+            let mut path = segs_from_points(&pts);
+            path.extend(segs_from_vertices(&closed_chain(&start)));
+            let plan = LevelPlan {
+                cuts: vec![Cut {
+                    entry: CutEntry::Helix {
+                        center: c,
+                        radius: rho_h,
+                    },
+                    path,
+                }],
+            };
+            return Ok((plan, stats));
+        }
+        // An intermediate lap: grow Δt until the longest streamline reaches s'.
+        let mut step = dt.min(1.0 - t);
+        let mut images;
+        let mut longest;
+        let mut tries = 0;
+        loop {
+            let target = (t + step).min(1.0 - 1e-6);
+            let traced: Vec<(Point, f64)> = lap.iter().map(|&p| hm.trace(p, target)).collect();
+            longest = traced.iter().map(|x| x.1).fold(0.0, f64::max);
+            images = traced;
+            tries += 1;
+            if longest <= sp || tries > 12 {
+                break;
+            }
+            step *= 0.9 * sp / longest.max(1e-9);
+        }
+        stats.max_loop_distance = stats.max_loop_distance.max(longest);
+        for ((p, f), (q, _)) in lap.iter().zip(&fr).zip(&images) {
+            pts.push(*p + (*q - *p) * *f);
+        }
+        t = (t + step).min(1.0 - 1e-6);
+        dt = step * (0.95 * sp / longest.max(1e-9)).min(2.0);
+        let next: Vec<Point> = images.into_iter().map(|x| x.0).collect();
+        lap = resample(&next, ds);
+        stats.morph_laps += 1;
+    }
+    Err(InputError::new("pocket shape", "spiral did not converge")
+        .at("--strategy spiral")
+        .expected("a pocket the spiral can morph into within 400 laps (use --strategy offset)"))
+}
+
+/// Grid spacing of the harmonic solve: about 160 cells across, at most a third of the
+/// stepover, and no more than ~60 000 nodes.
+fn grid_spacing(b: &Polyline<f64>, s: f64) -> f64 {
+    let e = b.extents().map_or((1.0, 1.0), |e| (e.max_x - e.min_x, e.max_y - e.min_y));
+    let h = (e.0.max(e.1) / 160.0).min(s / 3.0);
+    h.max((e.0 * e.1 / 60_000.0).sqrt()).max(1e-3)
+}
+
+/// Arc-length fraction of each point of a closed loop (the closing chord included).
+fn fractions(pts: &[Point]) -> Vec<f64> {
+    let mut acc = 0.0;
+    let mut out = Vec::with_capacity(pts.len());
+    for (i, p) in pts.iter().enumerate() {
+        if i > 0 {
+            acc += pts[i - 1].distance(*p);
+        }
+        out.push(acc);
+    }
+    let total = acc + pts.last().zip(pts.first()).map_or(0.0, |(a, b)| a.distance(*b));
+    out.iter().map(|a| a / total.max(1e-12)).collect()
+}
+
+/// The closed loop through `pts` resampled at spacing at most `ds`, keeping the first point.
+fn resample(pts: &[Point], ds: f64) -> Vec<Point> {
+    let mut closed = pts.to_vec();
+    if let Some(&p0) = pts.first() {
+        closed.push(p0);
+    }
+    let total: f64 = closed.windows(2).map(|w| w[0].distance(w[1])).sum();
+    let n = ((total / ds).ceil() as usize).max(8);
+    let step = total / n as f64;
+    let mut out = Vec::with_capacity(n);
+    let mut seg = 0;
+    let mut seg_start = 0.0;
+    for k in 0..n {
+        let target = step * k as f64;
+        while seg + 1 < closed.len() - 1 && seg_start + closed[seg].distance(closed[seg + 1]) < target {
+            seg_start += closed[seg].distance(closed[seg + 1]);
+            seg += 1;
+        }
+        let l = closed[seg].distance(closed[seg + 1]);
+        let f = if l > 0.0 { ((target - seg_start) / l).clamp(0.0, 1.0) } else { 0.0 };
+        out.push(closed[seg].lerp(closed[seg + 1], f));
+    }
+    out
+}
+
+/// A closed polyline through `pts` (for distance queries).
+fn closed_pline(pts: &[Point]) -> Polyline<f64> {
+    let mut pl = Polyline::with_capacity(pts.len(), true);
+    for p in pts {
+        pl.add(p.x, p.y, 0.0);
+    }
+    pl
+}
+
+/// Points along a closed loop at spacing at most `ds` (arcs sampled on the arc).
+fn sample_loop(pl: &Polyline<f64>, ds: f64) -> Vec<Point> {
+    let mut out = Vec::new();
+    for sg in segs_from_vertices(&closed_chain(pl)) {
+        let n = ((sg.length() / ds).ceil() as usize).max(1);
+        for k in 0..n {
+            out.push(sg.point_at(sg.length() * k as f64 / n as f64));
+        }
+    }
+    out
+}
+
+/// The point at arc length `t` along a closed loop from its start.
+fn point_at_length(pl: &Polyline<f64>, t: f64) -> Point {
+    let segs: Vec<Seg> = segs_from_vertices(&closed_chain(pl));
+    let mut left = t;
+    for sg in &segs {
+        let l = sg.length();
+        if left <= l {
+            return sg.point_at(left);
+        }
+        left -= l;
+    }
+    segs.last().map_or(Point::ORIGIN, |sg| sg.b)
+}
