@@ -37,3 +37,20 @@ fn aerospace_pocket_all_strategies_verify() {
         assert!(v.problems().is_empty(), "{kind:?}: {:?}", v.problems());
     }
 }
+
+#[test]
+#[allow(clippy::print_stderr)]
+fn spiral_debug() {
+    let shape = samples::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap();
+    let opts = PocketOptions::default();
+    let (plan, stats) = pocket::spiral::plan_with_stats(&shape, &tool, &opts).unwrap();
+    eprintln!("{stats:?}");
+    let path = &plan.cuts[0].path;
+    let mut worst = (f64::INFINITY, 0);
+    for (i, s) in path.iter().enumerate() {
+        let d = shape.outer.distance_to(s.b);
+        if d < worst.0 { worst = (d, i); }
+    }
+    eprintln!("n {} worst {:?} at {:?}", path.len(), worst, path[worst.1]);
+}

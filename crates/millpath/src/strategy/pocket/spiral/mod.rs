@@ -39,7 +39,7 @@ use super::chain::{Seg, segs_from_points, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
 use super::offset::too_large;
 use super::options::{Direction, Entry, PocketOptions};
-use super::shape::{PocketShape, closed_chain, inscribed_centre, loop_distance, restart_near, reversed};
+use super::shape::{PocketShape, closed_chain, inscribed_centre, loop_distance, restart_near, reversed, v2};
 use crate::error::InputError;
 use crate::geom::{Point, Vec2};
 use crate::toolpath::Tool;
@@ -139,6 +139,13 @@ pub fn plan_with_stats(
         .map(|i| c + Vec2::from_angle(sign * TAU * i as f64 / n0 as f64) * r0)
         .collect();
     let hm = Harmonic::solve(&b, c, r0, grid_spacing(&b, s));
+    // Intermediate laps stay at least `margin` inside B: next to B the discrete level sets
+    // are only good to the grid spacing, and may even cross it.
+    let margin = 2.0 * hm.spacing();
+    let b_inner = match b.parallel_offset(margin).as_slice() {
+        [one] => Some(one.clone()),
+        _ => None,
+    };
     let b_dir = if ccw { b_eps.clone() } else { reversed(&b_eps) };
     let b_samples = sample_loop(&b, ds);
     let mut t = 0.0;
@@ -182,21 +189,28 @@ pub fn plan_with_stats(
         let mut tries = 0;
         loop {
             let target = (t + step).min(1.0 - 1e-6);
-            let traced: Vec<(Point, f64)> = lap.iter().map(|&p| hm.trace(p, target)).collect();
+            let traced: Vec<(Point, f64)> = lap
+                .iter()
+                .map(|&p| {
+                    let (q, _) = hm.trace(p, target);
+                    let q = clamp_inside(b_inner.as_ref(), q);
+                    (q, q.distance(p))
+                })
+                .collect();
             longest = traced.iter().map(|x| x.1).fold(0.0, f64::max);
             images = traced;
             tries += 1;
             if longest <= sp || tries > 12 {
                 break;
             }
-            step *= 0.9 * sp / longest.max(1e-9);
+            step *= 0.97 * sp / longest.max(1e-9);
         }
         stats.max_loop_distance = stats.max_loop_distance.max(longest);
         for ((p, f), (q, _)) in lap.iter().zip(&fr).zip(&images) {
             pts.push(*p + (*q - *p) * *f);
         }
         t = (t + step).min(1.0 - 1e-6);
-        dt = step * (0.95 * sp / longest.max(1e-9)).min(2.0);
+        dt = step * (0.99 * sp / longest.max(1e-9)).min(2.0);
         let next: Vec<Point> = images.into_iter().map(|x| x.0).collect();
         lap = resample(&next, ds);
         stats.morph_laps += 1;
@@ -204,6 +218,17 @@ pub fn plan_with_stats(
     Err(InputError::new("pocket shape", "spiral did not converge")
         .at("--strategy spiral")
         .expected("a pocket the spiral can morph into within 400 laps (use --strategy offset)"))
+}
+
+/// `q` if it lies inside `inner`, else its closest point on `inner`.
+fn clamp_inside(inner: Option<&Polyline<f64>>, q: Point) -> Point {
+    let Some(inner) = inner else { return q };
+    if inner.winding_number(v2(q)) != 0 {
+        return q;
+    }
+    inner
+        .closest_point(v2(q), 1e-12)
+        .map_or(q, |c| Point::new(c.seg_point.x, c.seg_point.y))
 }
 
 /// Grid spacing of the harmonic solve: about 160 cells across, at most a third of the
