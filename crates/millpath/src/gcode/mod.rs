@@ -1,1 +1,79 @@
-//! G-code: writer with dialects, reader (lexer → modal interpreter → moves).
+//! G-code: a writer with four dialects, and a streaming reader (lexer → modal interpreter →
+//! [`Move`](crate::Move)s).
+//!
+//! ```text
+//! Toolpath ──write_program──▶ text ──Reader (lexer → interp → arc)──▶ ReadMove { Move, line, modal }
+//! ```
+//!
+//! Inside everything is mm, mm/s, s and rad. Inches and per-minute feeds exist only in the
+//! text: with G20 the writer divides coordinates by 25.4 and writes F in in/min; the reader
+//! multiplies back. A program's rounding error is the only difference between a toolpath and
+//! what is read back from its G-code (the round-trip tests check 1e-9 mm with 10 decimals and
+//! the rounding bound with the defaults).
+//!
+//! # What each dialect gets
+//! | | LinuxCNC (default) | Fanuc | Sinumerik 840D | Grbl 1.1 |
+//! |---|---|---|---|---|
+//! | framing | – | `%`, `O0001 (NAME)`, `%` | – | – |
+//! | comments | `( )` | `( )`, upper case | `;` | `;` |
+//! | units | G21/G20 | G21/G20 | G710/G700 (feeds follow) | G21/G20 |
+//! | numbers | `X10` | `X10.` (keeps the point: without decimal point programming `X10` means 10 increments) | `X10` | `X10` |
+//! | tool | `T1 M6`, `G43` on the first move | `T1 M6`, `G43 H1` on the first move | `T1 M6` (D1 is active by default) | a comment: no M6 |
+//! | dwell | `G4 P`s | `G04 X`s (X with a decimal point is seconds; P would be ms) | `G4 F`s (own block; F does not change the feed) | `G4 P`s |
+//! | path tolerance | `G64 P`tol | `G05.1 Q1` (AI contour control; its tolerance is a machine parameter, written as a comment), `G05.1 Q0` at the end | `CYCLE832(tol,_FINISH,1)` | none (a comment) |
+//! | exact stop / exact path | `G61.1` / `G61` | `G61` / `G61` (no exact-path mode) | `G60` / `G64` (continuous path without rounding) | – (grbl has only its planner) |
+//! | blend / machine | `G64 P`t / `G64 P`path or `G64` | `G64` / `G64` | `CYCLE832(t,_FINISH,1)` / CYCLE832 with the path tolerance, or `G642` | – |
+//! | multi-turn arcs | `P`turns+1 | split into full turns | `TURN=`n | split into full turns |
+//! | end | `M2` | `M30` | `M30` | `M2` |
+//!
+//! Corner modes are modal: the writer writes one on its own line only when a move's
+//! [`Corner`](crate::toolpath::Corner) differs from the last one written. What a corner mode
+//! reads back as: LinuxCNC keeps all four exactly (`G64 P`tol reads as `Blend(tol)`, so a
+//! `Machine` move written under a header `G64 P` reads back as the blend it means); Fanuc
+//! reads `G61` as exact stop and `G64` as machine; Sinumerik `G60` exact stop, `G64` exact
+//! path, `CYCLE832(t,..)` blend, `G642` machine; Grbl always machine.
+//!
+//! Sources for the dwell words: LinuxCNC's G-code reference (`G4 P` seconds); Siemens'
+//! ISO-dialect manual (840D, `G04 X_` seconds with decimal point, `P_` in ms without) and
+//! Fanuc's identical convention; Sinumerik's Siemens mode `G4 F…` (seconds, "must be programmed
+//! in a separate block"); Grbl 1.1 `G4 P` seconds.
+//!
+//! # Numbers and the tolerance budget
+//! See [`format`]: trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
+//! a point rounds by at most `√2·½·10^(−d)` in XY, and [`required_decimals`] keeps that within
+//! 10 % of a tolerance so that chordal deviation plus rounding stays within it.
+//!
+//! # The reader's modal rules
+//! See [`interp`]: the state machine follows RS274/NGC's order of execution within a block,
+//! accepts each dialect's own forms of what the writer emits, and refuses every word it does
+//! not understand with the line and the word (or skips it with a warning when lenient).
+//!
+//! # The arc-radius rule
+//! See [`arc`]: LinuxCNC's `arc_data_ijk` rule (`Δ > 100τ` or (`Δ/r > 0.1 %` and `Δ > τ`),
+//! `τ = 0.0283 mm` or `0.00283 in`), cited from its source and checked against `rs274`.
+
+pub mod arc;
+mod dialect;
+pub mod format;
+pub mod interp;
+mod lexer;
+mod reader;
+mod writer;
+
+pub use dialect::{Coolant, Dialect, Units};
+pub use format::{required_decimals, rounding_error_mm};
+pub use interp::{FeedMode, Modal, ReadMove, ReaderOptions};
+pub use reader::{MAX_LINE_BYTES, MAX_WARNINGS, Reader, Warning, read_str, read_toolpath};
+pub use writer::{MIN_ARC_RADIUS_MM, WriteSummary, WriterOptions, write_program};
+
+/// Writes `tp` into a `String` (convenience for tests and small programs).
+pub fn write_to_string(
+    tp: &crate::Toolpath,
+    opts: &WriterOptions,
+) -> Result<(String, WriteSummary), crate::Error> {
+    let mut buf = Vec::new();
+    let summary = write_program(tp, opts, &mut buf)?;
+    let text = String::from_utf8(buf)
+        .map_err(|e| crate::Error::internal(format!("writer produced invalid UTF-8: {e}")))?;
+    Ok((text, summary))
+}

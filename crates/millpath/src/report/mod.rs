@@ -1,1 +1,5 @@
-//! Reports: serde structs, SVG previews, plots, HTML.
+//! Reports: SVG previews of toolpaths (plots and the HTML report build on these).
+
+mod svg;
+
+pub use svg::{PreviewOptions, toolpath_svg};

@@ -1,0 +1,148 @@
+//! Dialects, units and coolant: the vocabulary shared by the writer and the reader.
+//!
+//! What each dialect gets (and why) is tabled in the [module docs](super).
+
+use crate::error::InputError;
+use std::fmt;
+use std::str::FromStr;
+
+/// A G-code dialect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum Dialect {
+    /// LinuxCNC (RS274/NGC): the reference dialect, checked with its own interpreter `rs274`.
+    #[default]
+    LinuxCnc,
+    /// Fanuc 0i/30i-style ISO G-code.
+    Fanuc,
+    /// Siemens Sinumerik 840D (sl) in Siemens mode.
+    Sinumerik,
+    /// Grbl 1.1.
+    Grbl,
+}
+
+impl Dialect {
+    /// All dialects, in a stable order.
+    pub const ALL: [Dialect; 4] = [
+        Dialect::LinuxCnc,
+        Dialect::Fanuc,
+        Dialect::Sinumerik,
+        Dialect::Grbl,
+    ];
+
+    /// The name used on the command line and in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::LinuxCnc => "linuxcnc",
+            Dialect::Fanuc => "fanuc",
+            Dialect::Sinumerik => "sinumerik",
+            Dialect::Grbl => "grbl",
+        }
+    }
+
+    /// Default decimals of coordinates: 3 in mm and 4 in inches (1 µm / 0.1 thou: the IS-B
+    /// least input increment of Fanuc, and what all four controls accept).
+    pub fn default_decimals(self, units: Units) -> u32 {
+        match units {
+            Units::Mm => 3,
+            Units::Inch => 4,
+        }
+    }
+
+    /// Whether comments use `;` to the end of the line (otherwise `( )`).
+    pub fn semicolon_comments(self) -> bool {
+        matches!(self, Dialect::Sinumerik | Dialect::Grbl)
+    }
+
+    /// Whether integral values keep their decimal point (`X10.`): Fanuc, see [`super::format`].
+    pub fn keeps_decimal_point(self) -> bool {
+        matches!(self, Dialect::Fanuc)
+    }
+}
+
+impl fmt::Display for Dialect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Dialect {
+    type Err = InputError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Dialect::ALL
+            .into_iter()
+            .find(|d| d.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| {
+                InputError::new("G-code dialect", s)
+                    .expected("one of linuxcnc, fanuc, sinumerik, grbl")
+            })
+    }
+}
+
+/// Program units: G21 (mm) or G20 (inch).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum Units {
+    /// G21: millimetres, feeds in mm/min.
+    #[default]
+    Mm,
+    /// G20: inches, feeds in in/min.
+    Inch,
+}
+
+impl Units {
+    /// Millimetres per program unit.
+    pub fn mm_per_unit(self) -> f64 {
+        match self {
+            Units::Mm => 1.0,
+            Units::Inch => super::format::MM_PER_INCH,
+        }
+    }
+}
+
+impl fmt::Display for Units {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Units::Mm => "mm",
+            Units::Inch => "in",
+        })
+    }
+}
+
+impl FromStr for Units {
+    type Err = InputError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "mm" => Ok(Units::Mm),
+            "in" | "inch" => Ok(Units::Inch),
+            _ => Err(InputError::new("units", s).expected("mm or in")),
+        }
+    }
+}
+
+/// Coolant: M9 (off), M8 (flood), M7 (mist).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum Coolant {
+    /// M9.
+    #[default]
+    Off,
+    /// M8.
+    Flood,
+    /// M7.
+    Mist,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dialect_names_round_trip() {
+        for d in Dialect::ALL {
+            assert_eq!(d.to_string().parse::<Dialect>(), Ok(d));
+        }
+        assert_eq!("FANUC".parse::<Dialect>(), Ok(Dialect::Fanuc));
+        let e = "haas".parse::<Dialect>().unwrap_err().to_string();
+        assert!(e.contains("haas") && e.contains("linuxcnc"), "{e}");
+    }
+}

@@ -1,0 +1,566 @@
+//! The modal interpreter: lexed words of one block → moves, with the modal state carried
+//! from block to block.
+//!
+//! # Modal rules
+//! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"):
+//! feed mode (G93/G94) → F → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell (G4) → plane
+//! (G17–G19) → units (G20/G21) → cutter compensation off (G40) → tool length (G43/G49) →
+//! work offset (G54–G59) → path mode (G61, G61.1, G64; G60/G642/CYCLE832 on Sinumerik) →
+//! distance mode (G90/G91) → arc-centre mode (G90.1/G91.1) → G53 → motion (G0–G3, G80) →
+//! program end (M2/M30; the reader stops there). A block may therefore yield a dwell and a
+//! move, in that order.
+//!
+//! * Motion (G0–G3) is modal: axis words without a motion code move in the last one; after
+//!   G80 (or before any motion code) axis words are an error.
+//! * F is modal in G94 (units per minute, converted to mm/s when it is read, in the units then
+//!   active). In G93 (inverse time) each feed move needs its own F (1/min: the move takes
+//!   60/F s) and the move's feed becomes `length · F / 60` mm/s. Switching G93/G94 forgets F,
+//!   so the next feed move needs a new F. A feed move without F, or with F ≤ 0, is an error
+//!   naming the line.
+//! * Work offsets G54–G59 and tool length compensation (G43 H) are zero unless offsets are
+//!   given in [`ReaderOptions::work_offsets`]; positions are machine positions, program
+//!   position plus the active offset. G53 moves the block in machine coordinates (G90 only).
+//! * Corner modes: G61.1 → exact stop, G61 → exact path (Fanuc: exact stop, its G61 is the
+//!   exact stop check mode), `G64 P t` → blend within t (LinuxCNC; its Q "naive CAM" tolerance
+//!   is accepted and ignored), G64 without P → machine (LinuxCNC, Fanuc, Grbl; Sinumerik:
+//!   exact path, its G64 is continuous path without rounding), G60 → exact stop, G642 →
+//!   machine, `CYCLE832(t, …)` → blend within t (`CYCLE832(0,_OFF,…)` → machine), G9/G09 →
+//!   exact stop for its block only. Dwells are exact stops.
+//! * Dwell: `G4 P` seconds (Fanuc: milliseconds), `G4 X` seconds (Fanuc), `G4 F` seconds
+//!   (Sinumerik; F in a G4 block is no feed).
+//! * Arcs: `I J K` centre offsets, incremental (G91.1, default) or absolute (G90.1), or `R`
+//!   (negative for more than half a turn); a full circle is end = start with offsets; `P n`
+//!   (LinuxCNC) or `TURN=n−1` (Sinumerik) adds turns; an axis move along the plane's normal
+//!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
+//! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
+//!   G40, G49, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
+//!   [`ReaderOptions::block_delete`] is on). Anything else is refused with its line and word,
+//!   or skipped with a warning when [`ReaderOptions::lenient`].
+
+use super::arc::ArcProblem;
+use super::dialect::{Dialect, Units};
+use super::lexer::Token;
+use crate::error::InputError;
+use crate::geom::{Point3, Vec3};
+use crate::toolpath::{Corner, Move, Plane};
+
+/// How the reader reads.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReaderOptions {
+    /// The dialect: decides what G64, G61, `G4 P` and G70/G71 mean.
+    pub dialect: Dialect,
+    /// Skip unsupported words with a warning instead of refusing them.
+    pub lenient: bool,
+    /// Where the tool is before the first move (machine coordinates, mm).
+    pub start: Point3,
+    /// Offsets of G54..G59 in mm (zero by default).
+    pub work_offsets: [Vec3; 6],
+    /// The block-delete switch: when on, lines starting with `/` are skipped.
+    pub block_delete: bool,
+    /// Name of the source for messages (`part.ngc`).
+    pub origin: String,
+}
+
+impl Default for ReaderOptions {
+    fn default() -> Self {
+        ReaderOptions {
+            dialect: Dialect::LinuxCnc,
+            lenient: false,
+            start: Point3::ORIGIN,
+            work_offsets: [Vec3::ZERO; 6],
+            block_delete: false,
+            origin: "G-code".to_string(),
+        }
+    }
+}
+
+/// Feed mode (G94 units per minute or G93 inverse time).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FeedMode {
+    /// G94.
+    #[default]
+    PerMinute,
+    /// G93.
+    InverseTime,
+}
+
+/// The modal state that matters downstream, as it was for a move.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Modal {
+    /// Program units.
+    pub units: Units,
+    /// Feed mode.
+    pub feed_mode: FeedMode,
+    /// Active plane.
+    pub plane: Plane,
+    /// G90 (true) or G91.
+    pub absolute: bool,
+    /// The corner mode in effect (before a per-block G9).
+    pub corner: Corner,
+    /// Tool number (after the last M6; 0 before).
+    pub tool: u32,
+    /// Spindle speed in rev/min (0 when stopped).
+    pub spindle_rpm: f64,
+}
+
+/// A move read from a program.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReadMove {
+    /// The move, in mm and mm/s.
+    pub mv: Move,
+    /// Its line number (1-based).
+    pub line: usize,
+    /// The modal state it ran in.
+    pub modal: Modal,
+}
+
+/// The interpreter's state between blocks.
+#[derive(Debug, Clone)]
+pub(crate) struct State {
+    pub(crate) modal: Modal,
+    pos: Point3,
+    motion: Option<u16>,
+    /// Feed in mm/s (G94) or the last F number (G93); `None` when unset.
+    feed: Option<f64>,
+    arc_absolute: bool,
+    offset: usize,
+    spindle_set: f64,
+    pending_tool: u32,
+    pub(crate) ended: bool,
+}
+
+/// One block's words, gathered before execution.
+#[derive(Debug, Default)]
+pub(crate) struct Block {
+    g: Vec<(u16, usize)>,
+    m: Vec<u16>,
+    words: [Option<f64>; 26],
+    turn: Option<f64>,
+    cycle832: Option<String>,
+}
+
+/// What went wrong in a block: the word (or what) and what would be accepted.
+pub(crate) struct BlockError {
+    pub(crate) what: String,
+    pub(crate) value: String,
+    pub(crate) expected: String,
+    /// True when `lenient` may skip it (an unsupported word).
+    pub(crate) unsupported: bool,
+}
+
+impl BlockError {
+    fn new(what: &str, value: impl std::fmt::Display, expected: impl Into<String>) -> Self {
+        BlockError {
+            what: what.to_string(),
+            value: value.to_string(),
+            expected: expected.into(),
+            unsupported: false,
+        }
+    }
+
+    fn unsupported(value: impl std::fmt::Display, expected: &str) -> Self {
+        BlockError {
+            unsupported: true,
+            ..BlockError::new("G-code word", value, expected)
+        }
+    }
+
+    pub(crate) fn into_input(self, origin: String) -> InputError {
+        InputError::new(self.what, self.value)
+            .at(origin)
+            .expected(self.expected)
+    }
+}
+
+const LETTERS_OK: &[u8] = b"DFHIJKNOPQRSTXYZ";
+
+fn letter_index(l: u8) -> usize {
+    usize::from(l.saturating_sub(b'A')).min(25)
+}
+
+impl Block {
+    fn take(&mut self, l: u8) -> Option<f64> {
+        self.words.get_mut(letter_index(l)).and_then(Option::take)
+    }
+
+    /// A word the block gathered but nothing used (N and O are always fine).
+    fn leftover(&self) -> Option<(u8, f64)> {
+        (b'A'..=b'Z')
+            .zip(self.words.iter())
+            .find_map(|(l, w)| w.filter(|_| l != b'N' && l != b'O').map(|v| (l, v)))
+    }
+
+    fn has_g(&self, code: u16) -> bool {
+        self.g.iter().any(|&(g, _)| g == code)
+    }
+
+    /// Gathers `tokens` into a block; unsupported words are refused (or, with `skip`, left
+    /// out and reported through `warn`).
+    pub(crate) fn gather(
+        &mut self,
+        tokens: &[Token],
+        line: &str,
+        dialect: Dialect,
+        mut warn: impl FnMut(BlockError),
+        lenient: bool,
+    ) -> Result<(), BlockError> {
+        *self = Block::default();
+        for t in tokens {
+            let r = self.gather_one(t, line, dialect);
+            match r {
+                Err(e) if e.unsupported && lenient => warn(e),
+                other => other?,
+            }
+        }
+        Ok(())
+    }
+
+    fn gather_one(&mut self, t: &Token, line: &str, dialect: Dialect) -> Result<(), BlockError> {
+        match t {
+            Token::Word {
+                letter,
+                value,
+                start,
+                end,
+            } => {
+                let text = line.get(*start..*end).unwrap_or("?").trim();
+                match letter {
+                    b'G' => {
+                        let code = (value * 10.0).round();
+                        if (value * 10.0 - code).abs() > 1e-6 || !(0.0..=9999.0).contains(&code) {
+                            return Err(BlockError::unsupported(text, "a supported G code"));
+                        }
+                        let code = code as u16;
+                        if !g_supported(code, dialect) {
+                            return Err(BlockError::unsupported(
+                                text,
+                                "a supported G code (see the reader docs)",
+                            ));
+                        }
+                        self.g.push((code, *start));
+                    }
+                    b'M' => {
+                        let code = value.round();
+                        if (value - code).abs() > 1e-9 || !matches!(code as i64, 0..=9 | 30) {
+                            return Err(BlockError::unsupported(
+                                text,
+                                "M0, M1, M2, M3, M4, M5, M6, M7, M8, M9 or M30",
+                            ));
+                        }
+                        self.m.push(code as u16);
+                    }
+                    l if LETTERS_OK.contains(l) => {
+                        let slot = self.words.get_mut(letter_index(*l));
+                        match slot {
+                            Some(Some(_)) => {
+                                return Err(BlockError::new(
+                                    "G-code word",
+                                    text,
+                                    format!("one {} word per block", char::from(*l)),
+                                ));
+                            }
+                            Some(s) => *s = Some(*value),
+                            None => {}
+                        }
+                    }
+                    _ => {
+                        return Err(BlockError::unsupported(
+                            text,
+                            "words G, M, N, O, X, Y, Z, I, J, K, R, F, S, T, P, Q, H, D",
+                        ));
+                    }
+                }
+            }
+            Token::Assign { name, value } if name == "TURN" && dialect == Dialect::Sinumerik => {
+                self.turn = Some(*value);
+            }
+            Token::Call { name, args } if name == "CYCLE832" && dialect == Dialect::Sinumerik => {
+                self.cycle832 = Some(args.clone());
+            }
+            Token::Assign { name, value } => {
+                return Err(BlockError::unsupported(
+                    format!("{name}={value}"),
+                    "TURN= (sinumerik)",
+                ));
+            }
+            Token::Call { name, args } => {
+                return Err(BlockError::unsupported(
+                    format!("{name}({args})"),
+                    "CYCLE832 (sinumerik)",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// G codes (×10) the reader understands in `dialect`.
+fn g_supported(code: u16, dialect: Dialect) -> bool {
+    let common = matches!(
+        code,
+        0 | 10
+            | 20
+            | 30
+            | 40
+            | 90
+            | 170
+            | 180
+            | 190
+            | 400
+            | 430
+            | 490
+            | 530
+            | 540
+            | 550
+            | 560
+            | 570
+            | 580
+            | 590
+            | 610
+            | 640
+            | 800
+            | 900
+            | 910
+            | 930
+            | 940
+    );
+    common
+        || match dialect {
+            Dialect::LinuxCnc => matches!(code, 200 | 210 | 611 | 901 | 911),
+            Dialect::Grbl => matches!(code, 200 | 210 | 911),
+            Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
+            Dialect::Sinumerik => matches!(code, 90 | 600 | 6420 | 700 | 710 | 7000 | 7100),
+        }
+}
+
+impl State {
+    pub(crate) fn new(opts: &ReaderOptions) -> Self {
+        State {
+            modal: Modal {
+                absolute: true,
+                ..Modal::default()
+            },
+            pos: opts.start,
+            motion: None,
+            feed: None,
+            arc_absolute: false,
+            offset: 0,
+            spindle_set: 0.0,
+            pending_tool: 0,
+            ended: false,
+        }
+    }
+
+    /// The current position (machine coordinates, mm).
+    pub(crate) fn position(&self) -> Point3 {
+        self.pos
+    }
+
+    fn unit(&self) -> f64 {
+        self.modal.units.mm_per_unit()
+    }
+
+    /// Executes `b`; pushes the moves it makes (at most two: a dwell, then a motion).
+    pub(crate) fn execute(
+        &mut self,
+        b: &mut Block,
+        line: usize,
+        opts: &ReaderOptions,
+        out: &mut Vec<ReadMove>,
+    ) -> Result<(), BlockError> {
+        let dialect = opts.dialect;
+        b.take(b'N');
+        b.take(b'O');
+        let dwell = b.has_g(40);
+        // Feed mode, then F.
+        let mode = if b.has_g(930) {
+            Some(FeedMode::InverseTime)
+        } else if b.has_g(940) {
+            Some(FeedMode::PerMinute)
+        } else {
+            None
+        };
+        if let Some(mode) = mode
+            && mode != self.modal.feed_mode
+        {
+            self.modal.feed_mode = mode;
+            self.feed = None;
+        }
+        let f_is_dwell = dwell && dialect == Dialect::Sinumerik;
+        let mut block_f = None;
+        if !f_is_dwell && let Some(f) = b.take(b'F') {
+            if f < 0.0 {
+                return Err(BlockError::new("feed", format!("F{f}"), "F >= 0"));
+            }
+            match self.modal.feed_mode {
+                FeedMode::PerMinute => self.feed = Some(f * self.unit() / 60.0),
+                FeedMode::InverseTime => block_f = Some(f),
+            }
+        }
+        if let Some(s) = b.take(b'S') {
+            if s < 0.0 {
+                return Err(BlockError::new("spindle speed", format!("S{s}"), "S >= 0"));
+            }
+            self.spindle_set = s;
+        }
+        if let Some(t) = b.take(b'T') {
+            if t < 0.0 || t.fract() != 0.0 {
+                return Err(BlockError::new(
+                    "tool",
+                    format!("T{t}"),
+                    "a tool number >= 0",
+                ));
+            }
+            self.pending_tool = t as u32;
+        }
+        b.take(b'D');
+        if b.m.contains(&6) {
+            self.modal.tool = self.pending_tool;
+        }
+        if b.m.contains(&3) || b.m.contains(&4) {
+            self.modal.spindle_rpm = self.spindle_set;
+        }
+        if b.m.contains(&5) {
+            self.modal.spindle_rpm = 0.0;
+        }
+        if dwell {
+            let seconds = self.dwell_seconds(b, dialect)?;
+            out.push(ReadMove {
+                mv: Move::dwell(self.pos, seconds),
+                line,
+                modal: self.modal,
+            });
+        }
+        self.modal_groups(b, dialect)?;
+        self.motion(b, block_f, line, opts, out)?;
+        if b.m.contains(&2) || b.m.contains(&30) {
+            self.ended = true;
+        }
+        Ok(())
+    }
+
+    fn dwell_seconds(&self, b: &mut Block, dialect: Dialect) -> Result<f64, BlockError> {
+        let p = b.take(b'P');
+        let x = if dialect == Dialect::Fanuc {
+            b.take(b'X')
+        } else {
+            None
+        };
+        let f = if dialect == Dialect::Sinumerik {
+            b.take(b'F')
+        } else {
+            None
+        };
+        let seconds = match (p, x, f) {
+            (Some(p), None, None) if dialect == Dialect::Fanuc => p / 1000.0,
+            (Some(s), None, None) | (None, Some(s), None) | (None, None, Some(s)) => s,
+            _ => {
+                return Err(BlockError::new(
+                    "dwell",
+                    "G4",
+                    match dialect {
+                        Dialect::Fanuc => "one of G04 X (s) or G04 P (ms)",
+                        Dialect::Sinumerik => "G4 F (s)",
+                        _ => "G4 P (s)",
+                    },
+                ));
+            }
+        };
+        if seconds < 0.0 {
+            return Err(BlockError::new("dwell", seconds, "a time >= 0 s"));
+        }
+        Ok(seconds)
+    }
+
+    fn modal_groups(&mut self, b: &mut Block, dialect: Dialect) -> Result<(), BlockError> {
+        let gs = std::mem::take(&mut b.g);
+        let r = self.modal_codes(&gs, b, dialect);
+        b.g = gs;
+        r?;
+        if let Some(args) = b.cycle832.take() {
+            self.modal.corner = cycle832(&args, self.unit())?;
+        }
+        Ok(())
+    }
+
+    fn modal_codes(
+        &mut self,
+        gs: &[(u16, usize)],
+        b: &mut Block,
+        dialect: Dialect,
+    ) -> Result<(), BlockError> {
+        for &(g, _) in gs {
+            match g {
+                170 => self.modal.plane = Plane::Xy,
+                180 => self.modal.plane = Plane::Zx,
+                190 => self.modal.plane = Plane::Yz,
+                200 | 700 | 7000 => self.modal.units = Units::Inch,
+                210 | 710 | 7100 => self.modal.units = Units::Mm,
+                540..=590 => self.offset = usize::from((g - 540) / 10),
+                611 | 600 => self.modal.corner = Corner::ExactStop,
+                610 if dialect == Dialect::Fanuc => self.modal.corner = Corner::ExactStop,
+                610 => self.modal.corner = Corner::ExactPath,
+                640 if dialect == Dialect::Sinumerik => self.modal.corner = Corner::ExactPath,
+                640 => {
+                    b.take(b'Q');
+                    self.modal.corner = match b.take(b'P') {
+                        Some(p) if p < 0.0 => {
+                            return Err(BlockError::new("G64 P", p, "a tolerance >= 0"));
+                        }
+                        Some(p) if dialect == Dialect::LinuxCnc => Corner::Blend(p * self.unit()),
+                        _ => Corner::Machine,
+                    };
+                }
+                6420 => self.modal.corner = Corner::Machine,
+                900 => self.modal.absolute = true,
+                910 => self.modal.absolute = false,
+                901 => self.arc_absolute = true,
+                911 => self.arc_absolute = false,
+                430 => {
+                    b.take(b'H');
+                }
+                51 => {
+                    b.take(b'Q');
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `CYCLE832(tol, mode, …)`: blend within tol, or machine for `_OFF` / tol 0.
+fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
+    let mut parts = args.split(',').map(str::trim);
+    let tol = parts.next().unwrap_or("");
+    let tol: f64 = tol
+        .parse()
+        .ok()
+        .filter(|t: &f64| t.is_finite() && *t >= 0.0)
+        .ok_or_else(|| BlockError::new("CYCLE832 tolerance", tol, "a number >= 0"))?;
+    let mode = parts.next().unwrap_or("").to_ascii_uppercase();
+    Ok(if tol == 0.0 || mode == "_OFF" || mode == "0" {
+        Corner::Machine
+    } else {
+        Corner::Blend(tol * unit)
+    })
+}
+
+mod motion;
+
+/// The axis indices `(u, v, normal)` of a plane (0 = X), in [`Plane::split`] order.
+pub(crate) fn plane_axes(plane: Plane) -> (usize, usize, usize) {
+    match plane {
+        Plane::Xy => (0, 1, 2),
+        Plane::Zx => (2, 0, 1),
+        Plane::Yz => (1, 2, 0),
+    }
+}
+
+fn arc_error(p: ArcProblem) -> BlockError {
+    BlockError::new(
+        "arc",
+        p,
+        "an arc LinuxCNC accepts (see millpath::gcode::arc)",
+    )
+}

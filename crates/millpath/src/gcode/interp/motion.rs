@@ -1,0 +1,248 @@
+//! The motion part of a block: G0/G1/G2/G3 and G80, targets, feeds and arc centres.
+
+use super::{Block, BlockError, FeedMode, ReadMove, ReaderOptions, State, arc_error, plane_axes};
+use crate::gcode::arc;
+use crate::geom::Point3;
+use crate::toolpath::{Corner, Move, MoveKind};
+
+fn at(a: &[f64; 3], k: usize) -> f64 {
+    a.get(k).copied().unwrap_or(0.0)
+}
+
+impl State {
+    /// Executes the motion of `b` (after the modal groups); `block_f` is the block's F in G93.
+    pub(crate) fn motion(
+        &mut self,
+        b: &mut Block,
+        block_f: Option<f64>,
+        line: usize,
+        opts: &ReaderOptions,
+        out: &mut Vec<ReadMove>,
+    ) -> Result<(), BlockError> {
+        let mut code = None;
+        for &(g, _) in &b.g {
+            if matches!(g, 0 | 10 | 20 | 30 | 800) {
+                if code.is_some() {
+                    return Err(BlockError::new(
+                        "G-code block",
+                        "two motion codes",
+                        "at most one of G0, G1, G2, G3, G80 per block",
+                    ));
+                }
+                code = Some(g);
+            }
+        }
+        if let Some(c) = code {
+            self.motion = (c != 800).then_some(c);
+        }
+        let g53 = b.has_g(530);
+        let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+        let has_axes = axes.iter().any(Option::is_some);
+        let ijk = [b.take(b'I'), b.take(b'J'), b.take(b'K')];
+        let r = b.take(b'R');
+        let is_arc = matches!(self.motion, Some(20 | 30));
+        let arc_words = ijk.iter().any(Option::is_some) || r.is_some();
+        let p = if is_arc { b.take(b'P') } else { None };
+        let turn = b.turn.take();
+        if let Some((l, v)) = b.leftover() {
+            return Err(BlockError {
+                unsupported: true,
+                ..BlockError::new(
+                    "G-code word",
+                    format!("{}{v}", char::from(l)),
+                    "a word this block uses (this one has no effect here)",
+                )
+            });
+        }
+        let moves = has_axes || (is_arc && code.is_some() && arc_words);
+        if !moves {
+            if arc_words && !is_arc {
+                return Err(BlockError::new(
+                    "G-code word",
+                    if r.is_some() { "R" } else { "I/J/K" },
+                    "arc words only with G2/G3",
+                ));
+            }
+            return Ok(());
+        }
+        let Some(motion) = self.motion else {
+            return Err(BlockError::new(
+                "G-code block",
+                "axis words without a motion mode",
+                "G0, G1, G2 or G3 in effect (not after G80 or before the first motion code)",
+            ));
+        };
+        if !is_arc && arc_words {
+            return Err(BlockError::new(
+                "G-code word",
+                if r.is_some() { "R" } else { "I/J/K" },
+                "arc words only with G2/G3",
+            ));
+        }
+        if g53 && !self.modal.absolute {
+            return Err(BlockError::new("G53", "in G91", "G53 with G90"));
+        }
+        let unit = self.unit();
+        let offset = opts
+            .work_offsets
+            .get(self.offset)
+            .copied()
+            .unwrap_or_default();
+        let off = [offset.x, offset.y, offset.z];
+        let cur = [self.pos.x, self.pos.y, self.pos.z];
+        let mut target = cur;
+        for (k, v) in axes.iter().enumerate() {
+            if let (Some(v), Some(t)) = (v, target.get_mut(k)) {
+                *t = if !self.modal.absolute {
+                    at(&cur, k) + v * unit
+                } else if g53 {
+                    v * unit
+                } else {
+                    v * unit + at(&off, k)
+                };
+            }
+        }
+        let to = Point3::new(target[0], target[1], target[2]);
+        let corner = if b.has_g(90) {
+            Corner::ExactStop
+        } else {
+            self.modal.corner
+        };
+        let kind = match motion {
+            0 => MoveKind::Rapid,
+            10 => MoveKind::Line,
+            _ => self.arc_kind(motion == 30, &cur, &target, ijk, r, p, turn, &off)?,
+        };
+        let mut mv = Move {
+            kind,
+            to,
+            feed: 0.0,
+            corner,
+            tag: None,
+        };
+        if mv.is_feed() {
+            mv.feed = self.feed_for(&mv, block_f)?;
+        }
+        self.pos = to;
+        out.push(ReadMove {
+            mv,
+            line,
+            modal: self.modal,
+        });
+        Ok(())
+    }
+
+    fn feed_for(&self, mv: &Move, block_f: Option<f64>) -> Result<f64, BlockError> {
+        match self.modal.feed_mode {
+            FeedMode::PerMinute => match self.feed {
+                Some(f) if f > 0.0 => Ok(f),
+                Some(f) => Err(BlockError::new(
+                    "feed",
+                    format!("F{}", f * 60.0 / self.unit()),
+                    "a feed > 0 on a feed move (G1/G2/G3)",
+                )),
+                None => Err(BlockError::new(
+                    "feed",
+                    "missing",
+                    "an F word before the first feed move (G1/G2/G3), and after G93/G94",
+                )),
+            },
+            FeedMode::InverseTime => match block_f {
+                Some(f) if f > 0.0 => Ok(mv.length_from(self.pos).max(1e-9) * f / 60.0),
+                Some(f) => Err(BlockError::new(
+                    "inverse-time feed",
+                    format!("F{f}"),
+                    "F > 0",
+                )),
+                None => Err(BlockError::new(
+                    "inverse-time feed",
+                    "missing",
+                    "an F word on every feed move in G93",
+                )),
+            },
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn arc_kind(
+        &self,
+        ccw: bool,
+        cur: &[f64; 3],
+        target: &[f64; 3],
+        ijk: [Option<f64>; 3],
+        r: Option<f64>,
+        p: Option<f64>,
+        turn: Option<f64>,
+        off: &[f64; 3],
+    ) -> Result<MoveKind, BlockError> {
+        let plane = self.modal.plane;
+        let (ua, va, na) = plane_axes(plane);
+        let unit = self.unit();
+        let s = (at(cur, ua), at(cur, va));
+        let e = (at(target, ua), at(target, va));
+        let letter = |k: usize| char::from(b"IJK".get(k).copied().unwrap_or(b'I'));
+        let center = if let Some(r) = r {
+            if ijk.iter().any(Option::is_some) {
+                return Err(BlockError::new("arc", "R with I/J/K", "either R or I/J/K"));
+            }
+            arc::center_from_radius(s, e, r * unit, ccw).map_err(arc_error)?
+        } else {
+            if ijk.get(na).copied().flatten().is_some() {
+                return Err(BlockError::new(
+                    "arc",
+                    format!("{} word", letter(na)),
+                    "only the centre offsets of the active plane's axes",
+                ));
+            }
+            let (iu, iv) = (
+                ijk.get(ua).copied().flatten(),
+                ijk.get(va).copied().flatten(),
+            );
+            if iu.is_none() && iv.is_none() {
+                return Err(BlockError::new(
+                    "arc",
+                    "no centre",
+                    format!("{} or {} (or R)", letter(ua), letter(va)),
+                ));
+            }
+            let (iu, iv) = (iu.unwrap_or(0.0) * unit, iv.unwrap_or(0.0) * unit);
+            let c = if self.arc_absolute {
+                (iu + at(off, ua), iv + at(off, va))
+            } else {
+                (s.0 + iu, s.1 + iv)
+            };
+            let r1 = (s.0 - c.0).hypot(s.1 - c.1);
+            let r2 = (e.0 - c.0).hypot(e.1 - c.1);
+            arc::check_radii(r1, r2, self.modal.units).map_err(arc_error)?;
+            c
+        };
+        let turns = match (p, turn) {
+            (Some(p), None) if p >= 1.0 && p.fract() == 0.0 && p <= 1e6 => p as u32 - 1,
+            (None, Some(t)) if t >= 0.0 && t.fract() == 0.0 && t <= 1e6 => t as u32,
+            (None, None) => 0,
+            _ => {
+                return Err(BlockError::new(
+                    "arc turns",
+                    format!("{:?}", p.or(turn)),
+                    "P = an integer >= 1 (LinuxCNC) or TURN = an integer >= 0 (Sinumerik)",
+                ));
+            }
+        };
+        let mut cc = [0.0; 3];
+        if let Some(x) = cc.get_mut(ua) {
+            *x = center.0;
+        }
+        if let Some(x) = cc.get_mut(va) {
+            *x = center.1;
+        }
+        if let Some(x) = cc.get_mut(na) {
+            *x = at(cur, na);
+        }
+        Ok(MoveKind::Arc {
+            center: Point3::new(cc[0], cc[1], cc[2]),
+            plane,
+            ccw,
+            turns,
+        })
+    }
+}

@@ -1,0 +1,282 @@
+//! The lexer: one line of G-code → words.
+//!
+//! A line is `[/] [N…] word*` with comments `( … )` (not nested) and `;` to the end of the
+//! line. A word is a letter and a number (`G1`, `X-1.5`, `x .5`: case and spaces between
+//! letter and number do not matter, as in RS274/NGC). Numbers are decimal without exponent:
+//! `[+-]? digits [. digits]` or `[+-]? . digits`; anything else (`NaN`, `1e5`, `#1`,
+//! `[1+2]`) is an error naming the column and the text. Two Sinumerik forms are lexed too:
+//! assignments `NAME=number` (`TURN=2`) and calls `NAME(args)` (`CYCLE832(0.01,_FINISH,1)`).
+//! A `%` line (Fanuc framing) is reported as such.
+
+/// One token of a line.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Token {
+    /// A letter (upper case) and its number; `start..end` is its text in the line.
+    Word {
+        /// The letter, upper case.
+        letter: u8,
+        /// The number.
+        value: f64,
+        /// Byte offset of the letter.
+        start: usize,
+        /// Byte offset one past the number.
+        end: usize,
+    },
+    /// `NAME=number` (upper case name).
+    Assign {
+        /// The name.
+        name: String,
+        /// The value.
+        value: f64,
+    },
+    /// `NAME(args)` (upper case name; `args` as written).
+    Call {
+        /// The name.
+        name: String,
+        /// The text between the parentheses.
+        args: String,
+    },
+}
+
+/// What kind of line was lexed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LineKind {
+    /// A block (possibly empty: blank or comment only).
+    Block {
+        /// The line started with `/` (block delete).
+        block_delete: bool,
+    },
+    /// A `%` line.
+    Percent,
+}
+
+/// A lexing error: where and what.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LexError {
+    /// Byte offset in the line.
+    pub column: usize,
+    /// The offending text.
+    pub text: String,
+    /// What would be accepted.
+    pub expected: &'static str,
+}
+
+/// Lexes `line` into `tokens` (cleared first).
+pub fn lex(line: &str, tokens: &mut Vec<Token>) -> Result<LineKind, LexError> {
+    tokens.clear();
+    let b = line.as_bytes();
+    let trimmed = line.trim();
+    if trimmed.starts_with('%') {
+        return if trimmed == "%" {
+            Ok(LineKind::Percent)
+        } else {
+            Err(LexError {
+                column: 0,
+                text: trimmed.to_string(),
+                expected: "a line with '%' alone",
+            })
+        };
+    }
+    let mut i = skip_ws(b, 0);
+    let block_delete = b.get(i) == Some(&b'/');
+    if block_delete {
+        i += 1;
+    }
+    loop {
+        i = skip_ws(b, i);
+        let Some(&c) = b.get(i) else { break };
+        match c {
+            b';' => break,
+            b'(' => {
+                let close = line.get(i..).and_then(|s| s.find(')'));
+                let Some(close) = close else {
+                    return Err(err(line, i, "a comment closed by ')'"));
+                };
+                if line.get(i + 1..i + close).is_some_and(|s| s.contains('(')) {
+                    return Err(err(line, i, "a comment without nested '('"));
+                }
+                i += close + 1;
+            }
+            c if c.is_ascii_alphabetic() => {
+                let start = i;
+                let j = skip_ws(b, i + 1);
+                if b.get(j)
+                    .is_some_and(|n| n.is_ascii_alphabetic() || *n == b'_')
+                {
+                    i = keyword(line, start, tokens)?;
+                } else {
+                    let (value, end) = number(line, j)
+                        .ok_or_else(|| err(line, start, "a letter followed by a number"))?;
+                    tokens.push(Token::Word {
+                        letter: c.to_ascii_uppercase(),
+                        value,
+                        start,
+                        end,
+                    });
+                    i = end;
+                }
+            }
+            _ => return Err(err(line, i, "a word (letter and number), a comment or ';'")),
+        }
+    }
+    Ok(LineKind::Block { block_delete })
+}
+
+fn skip_ws(b: &[u8], mut i: usize) -> usize {
+    while b.get(i).is_some_and(|c| c.is_ascii_whitespace()) {
+        i += 1;
+    }
+    i
+}
+
+/// The text from `at` to the next space (for messages).
+fn err(line: &str, at: usize, expected: &'static str) -> LexError {
+    let rest = line.get(at..).unwrap_or("");
+    let text: String = rest
+        .chars()
+        .take_while(|c| !c.is_whitespace())
+        .take(24)
+        .collect();
+    LexError {
+        column: at,
+        text,
+        expected,
+    }
+}
+
+/// A number at `i` (after optional spaces): `[+-]? digits [. digits]` or `[+-]? . digits`.
+fn number(line: &str, i: usize) -> Option<(f64, usize)> {
+    let b = line.as_bytes();
+    let mut j = skip_ws(b, i);
+    let negative = b.get(j) == Some(&b'-');
+    if matches!(b.get(j), Some(b'+' | b'-')) {
+        j = skip_ws(b, j + 1);
+    }
+    let start = j;
+    let mut digits = 0;
+    while b.get(j).is_some_and(u8::is_ascii_digit) {
+        j += 1;
+        digits += 1;
+    }
+    if b.get(j) == Some(&b'.') {
+        j += 1;
+        while b.get(j).is_some_and(u8::is_ascii_digit) {
+            j += 1;
+            digits += 1;
+        }
+    }
+    if digits == 0 {
+        return None;
+    }
+    // A number glued to a letter other than the next word's (`1e5`, `1x`) is still fine:
+    // the letter starts the next word. Rust's parser accepts every form we let through.
+    let text = line.get(start..j)?;
+    let value: f64 = text.parse().ok()?;
+    let value = if negative { -value } else { value };
+    value.is_finite().then_some((value, j))
+}
+
+/// `NAME=number` or `NAME(args)` at `start`.
+fn keyword(line: &str, start: usize, tokens: &mut Vec<Token>) -> Result<usize, LexError> {
+    let b = line.as_bytes();
+    let mut j = start;
+    while b
+        .get(j)
+        .is_some_and(|c| c.is_ascii_alphanumeric() || *c == b'_')
+    {
+        j += 1;
+    }
+    let name = line.get(start..j).unwrap_or("").to_ascii_uppercase();
+    let k = skip_ws(b, j);
+    match b.get(k) {
+        Some(b'=') => {
+            let (value, end) =
+                number(line, k + 1).ok_or_else(|| err(line, start, "NAME=number"))?;
+            tokens.push(Token::Assign { name, value });
+            Ok(end)
+        }
+        Some(b'(') => {
+            let close = line
+                .get(k..)
+                .and_then(|s| s.find(')'))
+                .ok_or_else(|| err(line, start, "NAME(arguments)"))?;
+            let args = line.get(k + 1..k + close).unwrap_or("").to_string();
+            tokens.push(Token::Call { name, args });
+            Ok(k + close + 1)
+        }
+        _ => Err(err(line, start, "a word: one letter and a number")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn words(line: &str) -> Vec<(char, f64)> {
+        let mut t = Vec::new();
+        lex(line, &mut t).unwrap();
+        t.iter()
+            .filter_map(|t| match t {
+                Token::Word { letter, value, .. } => Some((char::from(*letter), *value)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn lexes_words_comments_and_spacing() {
+        assert_eq!(
+            words("N10 g1x-1.5 Y .5 (comment) Z+2 ; rest X9"),
+            vec![('N', 10.0), ('G', 1.0), ('X', -1.5), ('Y', 0.5), ('Z', 2.0)]
+        );
+        assert_eq!(words("X10."), vec![('X', 10.0)]);
+        assert_eq!(words("G 1 X - 3"), vec![('G', 1.0), ('X', -3.0)]);
+        let mut t = Vec::new();
+        assert_eq!(lex(" % ", &mut t), Ok(LineKind::Percent));
+        assert_eq!(
+            lex("/G0 X1", &mut t),
+            Ok(LineKind::Block { block_delete: true })
+        );
+    }
+
+    #[test]
+    fn lexes_sinumerik_calls_and_assignments() {
+        let mut t = Vec::new();
+        lex("CYCLE832(0.01,_FINISH,1)", &mut t).unwrap();
+        assert_eq!(
+            t,
+            vec![Token::Call {
+                name: "CYCLE832".into(),
+                args: "0.01,_FINISH,1".into()
+            }]
+        );
+        lex("G2 X1 I1 TURN=3", &mut t).unwrap();
+        assert_eq!(
+            t.last(),
+            Some(&Token::Assign {
+                name: "TURN".into(),
+                value: 3.0
+            })
+        );
+    }
+
+    #[test]
+    fn refuses_garbage_with_the_column() {
+        let mut t = Vec::new();
+        for (line, col) in [
+            ("G1 XNaN", 3),
+            ("G1 X#1", 3),
+            ("G1 X[1+2]", 3),
+            ("G1 X1 (open", 6),
+            ("G1 X", 3),
+            ("G1 X1 @", 6),
+            ("G1 X-", 3),
+        ] {
+            let e = lex(line, &mut t).unwrap_err();
+            assert_eq!(e.column, col, "{line}: {e:?}");
+        }
+        // A number too large for f64 is garbage, not infinity.
+        let big = format!("X1{}", "0".repeat(400));
+        assert!(lex(&big, &mut t).is_err());
+    }
+}

@@ -1,0 +1,810 @@
+//! The G-code writer: a [`Toolpath`] streamed to any [`Write`] in one of four dialects.
+//!
+//! See the [module docs](super) for what each dialect gets. The writer keeps the modal state
+//! it has emitted (motion code, plane, corner mode, feed, and each axis's *rounded* position)
+//! and writes a word only when it changes. Arc centre offsets are computed from the rounded
+//! start the reader will see, so the centre a reader reconstructs differs from the true one by
+//! the rounding of `I`/`J`/`K` alone.
+
+use super::arc;
+use super::dialect::{Coolant, Dialect, Units};
+use super::format::{MAX_DECIMALS, push_number};
+use crate::error::{Error, InputError};
+use crate::geom::Point3;
+use crate::toolpath::{Corner, Move, MoveKind, Plane, Toolpath};
+use std::f64::consts::{PI, TAU};
+use std::io::{BufWriter, Write};
+
+/// Largest `N` number written; numbering wraps around after it (LinuxCNC refuses N > 99999,
+/// Fanuc 0i accepts five digits).
+pub const MAX_LINE_NUMBER: u64 = 99_999;
+
+/// Smallest arc radius written as G2/G3, in mm: LinuxCNC's `RADIUS_TOLERANCE` (0.00005 in =
+/// 0.00127 mm) below which it calls an arc "zero radius". Smaller arcs are written as lines
+/// (the chord is within one diameter, 0.0025 mm, of the arc).
+pub const MIN_ARC_RADIUS_MM: f64 = 0.00127;
+
+/// How to write a program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WriterOptions {
+    /// The dialect.
+    pub dialect: Dialect,
+    /// G21 (mm) or G20 (inch): coordinates and feeds are converted on output.
+    pub units: Units,
+    /// Decimals of coordinates, offsets and feeds; `None`: the dialect's default
+    /// ([`Dialect::default_decimals`]). Use [`super::required_decimals`] to derive it from a
+    /// tolerance.
+    pub decimals: Option<u32>,
+    /// Write `N` numbers.
+    pub line_numbers: bool,
+    /// Step between `N` numbers.
+    pub line_number_step: u32,
+    /// Work offset: 54..=59 (G54..G59).
+    pub work_offset: u8,
+    /// Spindle speed in rev/min; 0 leaves the spindle alone (no S, no M3/M4/M5).
+    pub spindle_rpm: f64,
+    /// Spindle clockwise (M3) or counter-clockwise (M4).
+    pub spindle_cw: bool,
+    /// Coolant.
+    pub coolant: Coolant,
+    /// Path tolerance in mm for the controller's blending: `G64 P` (LinuxCNC),
+    /// `CYCLE832(tol,_FINISH,1)` (Sinumerik), `G05.1 Q1` (Fanuc AI contour control; its
+    /// tolerance is a machine parameter, so the value goes into a comment), nothing (Grbl).
+    pub path_tolerance: Option<f64>,
+    /// Program name: a header comment (and the Fanuc `O` line's comment).
+    pub program_name: Option<String>,
+    /// Fanuc program number (`O0001`).
+    pub program_number: u32,
+    /// Write header comments.
+    pub comments: bool,
+    /// Extra header comment lines (tolerances, sources...).
+    pub header_notes: Vec<String>,
+    /// Write the tool change (`T.. M6`, a comment for Grbl) and tool length compensation.
+    pub tool_change: bool,
+}
+
+impl Default for WriterOptions {
+    fn default() -> Self {
+        WriterOptions {
+            dialect: Dialect::LinuxCnc,
+            units: Units::Mm,
+            decimals: None,
+            line_numbers: false,
+            line_number_step: 10,
+            work_offset: 54,
+            spindle_rpm: 10_000.0,
+            spindle_cw: true,
+            coolant: Coolant::Flood,
+            path_tolerance: None,
+            program_name: None,
+            program_number: 1,
+            comments: true,
+            header_notes: Vec::new(),
+            tool_change: true,
+        }
+    }
+}
+
+impl WriterOptions {
+    /// The decimals actually used.
+    pub fn effective_decimals(&self) -> u32 {
+        self.decimals
+            .unwrap_or_else(|| self.dialect.default_decimals(self.units))
+    }
+
+    fn validate(&self) -> Result<(), InputError> {
+        if !(54..=59).contains(&self.work_offset) {
+            return Err(InputError::new("work offset", self.work_offset)
+                .at("writer options")
+                .expected("54 to 59 (G54..G59)"));
+        }
+        if self.effective_decimals() > MAX_DECIMALS {
+            return Err(InputError::new("decimals", self.effective_decimals())
+                .at("writer options")
+                .expected(format!("0 to {MAX_DECIMALS}")));
+        }
+        if !(self.spindle_rpm.is_finite() && self.spindle_rpm >= 0.0) {
+            return Err(InputError::new("spindle speed", self.spindle_rpm)
+                .at("writer options")
+                .expected("a finite number >= 0 rev/min"));
+        }
+        if let Some(t) = self.path_tolerance
+            && !(t.is_finite() && t > 0.0)
+        {
+            return Err(InputError::new("path tolerance", t)
+                .at("writer options")
+                .expected("a finite number > 0 mm"));
+        }
+        Ok(())
+    }
+}
+
+/// What [`write_program`] wrote.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct WriteSummary {
+    /// Lines written (including `%`, comments and the header).
+    pub lines: usize,
+    /// Motion blocks (G0/G1/G2/G3) and dwell blocks.
+    pub blocks: usize,
+    /// Decimals used.
+    pub decimals: u32,
+    /// Arcs written as lines because they were too small to survive rounding (radius below
+    /// [`MIN_ARC_RADIUS_MM`], or a sweep that rounding would turn into a full circle).
+    pub arcs_as_lines: usize,
+    /// Multi-turn arcs split into single turns (dialects without a turn count).
+    pub split_turns: usize,
+}
+
+/// Writes `tp` as a G-code program to `out`, streaming (nothing but one line is buffered
+/// beyond [`BufWriter`]'s buffer).
+///
+/// Errors: an [`InputError`] naming the move index for non-finite coordinates, a feed move
+/// without a positive finite feed, a negative or non-finite dwell, or an arc that rounding to
+/// the chosen decimals would make unreadable; a failing output (I/O error) as an input error.
+pub fn write_program(
+    tp: &Toolpath,
+    opts: &WriterOptions,
+    out: &mut dyn Write,
+) -> Result<WriteSummary, Error> {
+    opts.validate()?;
+    let mut w = Emitter::new(opts, out);
+    w.header(tp)?;
+    let mut from = tp.start;
+    for (i, m) in tp.moves.iter().enumerate() {
+        check_move(i, m, from)?;
+        w.motion(i, m, from)?;
+        from = m.to;
+    }
+    w.footer()?;
+    w.finish()
+}
+
+fn check_move(i: usize, m: &Move, from: Point3) -> Result<(), InputError> {
+    let at = || format!("move {i}");
+    if !m.to.is_finite() {
+        return Err(
+            InputError::new("move end point", format_args!("{:?}", m.to))
+                .at(at())
+                .expected("finite coordinates"),
+        );
+    }
+    if !from.is_finite() {
+        return Err(InputError::new("toolpath start", format_args!("{from:?}"))
+            .at("toolpath")
+            .expected("finite coordinates"));
+    }
+    match m.kind {
+        MoveKind::Rapid => {}
+        MoveKind::Line | MoveKind::Arc { .. } => {
+            if !(m.feed.is_finite() && m.feed > 0.0) {
+                return Err(InputError::new("feed", m.feed)
+                    .at(at())
+                    .expected("a finite feed > 0 mm/s on a feed move"));
+            }
+            if let MoveKind::Arc { center, .. } = m.kind
+                && !center.is_finite()
+            {
+                return Err(InputError::new("arc centre", format_args!("{center:?}"))
+                    .at(at())
+                    .expected("finite coordinates"));
+            }
+        }
+        MoveKind::Dwell { seconds } => {
+            if !(seconds.is_finite() && seconds >= 0.0) {
+                return Err(InputError::new("dwell", seconds)
+                    .at(at())
+                    .expected("a finite time >= 0 s"));
+            }
+        }
+    }
+    if let Corner::Blend(t) = m.corner
+        && !(t.is_finite() && t >= 0.0)
+    {
+        return Err(InputError::new("blend tolerance", t)
+            .at(at())
+            .expected("a finite tolerance >= 0 mm"));
+    }
+    Ok(())
+}
+
+/// Motion codes the writer tracks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Motion {
+    G0,
+    G1,
+    G2,
+    G3,
+}
+
+struct Emitter<'a> {
+    out: BufWriter<&'a mut dyn Write>,
+    opts: &'a WriterOptions,
+    line: String,
+    decimals: u32,
+    keep_point: bool,
+    unit: f64,
+    n: u64,
+    summary: WriteSummary,
+    motion: Option<Motion>,
+    plane: Plane,
+    corner: Corner,
+    corner_text: String,
+    feed: String,
+    /// Emitted (rounded) position in program units; `None` until first written.
+    pos: [Option<f64>; 3],
+    first_motion: bool,
+    tool: u32,
+}
+
+impl<'a> Emitter<'a> {
+    fn new(opts: &'a WriterOptions, out: &'a mut dyn Write) -> Self {
+        let decimals = opts.effective_decimals();
+        Emitter {
+            out: BufWriter::new(out),
+            opts,
+            line: String::with_capacity(128),
+            decimals,
+            keep_point: opts.dialect.keeps_decimal_point(),
+            unit: opts.units.mm_per_unit(),
+            n: 0,
+            summary: WriteSummary {
+                decimals,
+                ..WriteSummary::default()
+            },
+            motion: None,
+            plane: Plane::Xy,
+            corner: Corner::Machine,
+            corner_text: String::new(),
+            feed: String::new(),
+            pos: [None; 3],
+            first_motion: true,
+            tool: 0,
+        }
+    }
+
+    fn dialect(&self) -> Dialect {
+        self.opts.dialect
+    }
+
+    /// Starts a block (with its N number when numbering).
+    fn begin(&mut self) {
+        self.line.clear();
+        if self.opts.line_numbers {
+            self.n += u64::from(self.opts.line_number_step.max(1));
+            if self.n > MAX_LINE_NUMBER {
+                self.n = u64::from(self.opts.line_number_step.max(1));
+            }
+            self.line.push('N');
+            self.line.push_str(&self.n.to_string());
+        }
+    }
+
+    fn raw(&mut self, s: &str) {
+        if !self.line.is_empty() {
+            self.line.push(' ');
+        }
+        self.line.push_str(s);
+    }
+
+    fn word(&mut self, letter: &str, value: f64, decimals: u32) {
+        if !self.line.is_empty() {
+            self.line.push(' ');
+        }
+        self.line.push_str(letter);
+        push_number(&mut self.line, value, decimals, self.keep_point);
+    }
+
+    fn end(&mut self) -> Result<(), Error> {
+        self.line.push('\n');
+        let r = self.out.write_all(self.line.as_bytes());
+        self.line.clear();
+        self.summary.lines += 1;
+        r.map_err(io_error)
+    }
+
+    /// A line without N number (`%`, `O0001`).
+    fn bare(&mut self, s: &str) -> Result<(), Error> {
+        self.line.clear();
+        self.line.push_str(s);
+        self.end()
+    }
+
+    fn block(&mut self, s: &str) -> Result<(), Error> {
+        self.begin();
+        self.raw(s);
+        self.end()
+    }
+
+    fn comment(&mut self, text: &str) -> Result<(), Error> {
+        if !self.opts.comments {
+            return Ok(());
+        }
+        let text = sanitize_comment(text, self.dialect());
+        if self.dialect().semicolon_comments() {
+            self.block(&format!("; {text}"))
+        } else {
+            self.block(&format!("({text})"))
+        }
+    }
+
+    fn header(&mut self, tp: &Toolpath) -> Result<(), Error> {
+        let d = self.dialect();
+        let o = self.opts;
+        self.tool = tp.tool.number;
+        if d == Dialect::Fanuc {
+            self.bare("%")?;
+            let mut l = format!("O{:04}", o.program_number);
+            if let Some(name) = &o.program_name
+                && o.comments
+            {
+                l.push_str(&format!(" ({})", sanitize_comment(name, d)));
+            }
+            self.bare(&l)?;
+        } else if let Some(name) = &o.program_name {
+            self.comment(name)?;
+        }
+        self.comment(&format!(
+            "millpath {} - dialect {d}, units {}, {} decimals",
+            env!("CARGO_PKG_VERSION"),
+            o.units,
+            self.decimals
+        ))?;
+        self.comment(&format!(
+            "tool T{}: flat end mill D{} mm, {} flutes",
+            tp.tool.number, tp.tool.diameter, tp.tool.flutes
+        ))?;
+        for note in &o.header_notes {
+            self.comment(note)?;
+        }
+        let units = match (d, o.units) {
+            (Dialect::Sinumerik, Units::Mm) => "G710",
+            (Dialect::Sinumerik, Units::Inch) => "G700",
+            (_, Units::Mm) => "G21",
+            (_, Units::Inch) => "G20",
+        };
+        let safety = match d {
+            Dialect::LinuxCnc => format!("G17 {units} G90 G91.1 G94 G40 G49 G80"),
+            Dialect::Fanuc => format!("G17 {units} G90 G94 G40 G49 G80"),
+            Dialect::Sinumerik => format!("G17 {units} G90 G94 G40"),
+            Dialect::Grbl => format!("G17 {units} G90 G94"),
+        };
+        self.block(&safety)?;
+        self.block(&format!("G{}", o.work_offset))?;
+        if let Some(t) = o.path_tolerance {
+            match d {
+                Dialect::LinuxCnc => self.corner_block(Corner::Blend(t))?,
+                Dialect::Sinumerik => self.corner_block(Corner::Blend(t))?,
+                Dialect::Fanuc => {
+                    self.comment(&format!(
+                        "path tolerance {t} mm: AI contour control parameters"
+                    ))?;
+                    self.block("G05.1 Q1")?;
+                    self.corner_text = "G64".to_string();
+                }
+                Dialect::Grbl => {
+                    self.comment(&format!("path tolerance {t} mm: not programmable in grbl"))?;
+                }
+            }
+            // Moves with `Corner::Machine` run in the mode just set.
+            self.corner = Corner::Machine;
+        }
+        if o.tool_change && tp.tool.number > 0 {
+            if d == Dialect::Grbl {
+                self.comment(&format!(
+                    "tool change: load T{} by hand, grbl has no tool-change command",
+                    tp.tool.number
+                ))?;
+            } else {
+                self.block(&format!("T{} M6", tp.tool.number))?;
+            }
+        }
+        if o.spindle_rpm > 0.0 {
+            self.begin();
+            self.raw(&format!("S{}", num(o.spindle_rpm, 0, false)));
+            self.raw(if o.spindle_cw { "M3" } else { "M4" });
+            self.end()?;
+        }
+        match o.coolant {
+            Coolant::Off => Ok(()),
+            Coolant::Flood => self.block("M8"),
+            Coolant::Mist => self.block("M7"),
+        }
+    }
+
+    fn footer(&mut self) -> Result<(), Error> {
+        let d = self.dialect();
+        if self.opts.coolant != Coolant::Off {
+            self.block("M9")?;
+        }
+        if self.opts.spindle_rpm > 0.0 {
+            self.block("M5")?;
+        }
+        if d == Dialect::Fanuc && self.opts.path_tolerance.is_some() {
+            self.block("G05.1 Q0")?;
+        }
+        match d {
+            Dialect::LinuxCnc | Dialect::Grbl => self.block("M2")?,
+            Dialect::Fanuc | Dialect::Sinumerik => self.block("M30")?,
+        }
+        if d == Dialect::Fanuc {
+            self.bare("%")?;
+        }
+        Ok(())
+    }
+
+    fn finish(mut self) -> Result<WriteSummary, Error> {
+        self.out.flush().map_err(io_error)?;
+        Ok(self.summary)
+    }
+
+    /// The block that selects `corner`, if the dialect has one.
+    fn corner_block(&mut self, corner: Corner) -> Result<(), Error> {
+        let d = self.dialect();
+        // Tolerances are in mm inside and in program units in the text.
+        // Rounded down to at least 6 decimals, so the controller never gets a looser one.
+        let dec = self.decimals.max(6);
+        let unit = self.unit;
+        let down =
+            |t: f64| (t / unit * 10f64.powi(dec as i32) + 1e-6).floor() / 10f64.powi(dec as i32);
+        let pt = self.opts.path_tolerance.map(down);
+        let corner_in_units = match corner {
+            Corner::Blend(t) => Corner::Blend(down(t)),
+            c => c,
+        };
+        let text = match (d, corner_in_units) {
+            (Dialect::Grbl, _) => return Ok(()),
+            (Dialect::LinuxCnc, Corner::ExactStop) => "G61.1".to_string(),
+            (Dialect::LinuxCnc, Corner::ExactPath) => "G61".to_string(),
+            (Dialect::LinuxCnc, Corner::Blend(t)) => format!("G64 P{}", num(t, dec, false)),
+            (Dialect::LinuxCnc, Corner::Machine) => match pt {
+                Some(t) => format!("G64 P{}", num(t, dec, false)),
+                None => "G64".to_string(),
+            },
+            (Dialect::Fanuc, Corner::ExactStop | Corner::ExactPath) => "G61".to_string(),
+            (Dialect::Fanuc, Corner::Blend(_) | Corner::Machine) => "G64".to_string(),
+            (Dialect::Sinumerik, Corner::ExactStop) => "G60".to_string(),
+            (Dialect::Sinumerik, Corner::ExactPath) => "G64".to_string(),
+            (Dialect::Sinumerik, Corner::Blend(t)) => {
+                format!("CYCLE832({},_FINISH,1)", num(t, dec, false))
+            }
+            (Dialect::Sinumerik, Corner::Machine) => match pt {
+                Some(t) => format!("CYCLE832({},_FINISH,1)", num(t, dec, false)),
+                None => "G642".to_string(),
+            },
+        };
+        self.corner = corner;
+        if text == self.corner_text {
+            return Ok(());
+        }
+        self.block(&text)?;
+        self.corner_text = text;
+        Ok(())
+    }
+
+    fn set_corner(&mut self, corner: Corner) -> Result<(), Error> {
+        if !same_corner(self.corner, corner) {
+            self.corner_block(corner)?;
+        }
+        Ok(())
+    }
+
+    fn motion_word(&mut self, m: Motion) {
+        if self.motion != Some(m) {
+            self.raw(match m {
+                Motion::G0 => "G0",
+                Motion::G1 => "G1",
+                Motion::G2 => "G2",
+                Motion::G3 => "G3",
+            });
+            self.motion = Some(m);
+        }
+    }
+
+    /// Tool length compensation on the first motion block.
+    fn first_motion_words(&mut self, tool: u32) {
+        if !self.first_motion {
+            return;
+        }
+        self.first_motion = false;
+        if self.opts.tool_change && tool > 0 {
+            match self.dialect() {
+                Dialect::LinuxCnc => self.raw("G43"),
+                Dialect::Fanuc => self.raw(&format!("G43 H{tool}")),
+                Dialect::Sinumerik | Dialect::Grbl => {}
+            }
+        }
+    }
+
+    /// Writes axis `axis` (0 = X) at `mm` if it changed (or `force`); returns the rounded
+    /// value in program units.
+    fn axis(&mut self, axis: usize, mm: f64, force: bool) -> f64 {
+        let v = mm / self.unit;
+        let rounded = round(v, self.decimals);
+        let known = self.pos.get(axis).copied().flatten();
+        if force || known.is_none_or(|k| k.to_bits() != rounded.to_bits()) {
+            self.word(
+                ["X", "Y", "Z"].get(axis).copied().unwrap_or("X"),
+                v,
+                self.decimals,
+            );
+        }
+        if let Some(p) = self.pos.get_mut(axis) {
+            *p = Some(rounded);
+        }
+        rounded
+    }
+
+    fn feed_word(&mut self, feed_mm_s: f64) {
+        let f = feed_mm_s * 60.0 / self.unit;
+        let text = num(f, self.decimals, self.keep_point);
+        if text != self.feed {
+            self.raw(&format!("F{text}"));
+            self.feed = text;
+        }
+    }
+
+    /// Rounded emitted position, or `from` rounded when nothing was written yet.
+    fn emitted(&self, from: Point3) -> [f64; 3] {
+        let f = [from.x, from.y, from.z];
+        let mut r = [0.0; 3];
+        for (k, out) in r.iter_mut().enumerate() {
+            let fallback = round(f.get(k).copied().unwrap_or(0.0) / self.unit, self.decimals);
+            *out = self.pos.get(k).copied().flatten().unwrap_or(fallback);
+        }
+        r
+    }
+
+    fn motion(&mut self, i: usize, m: &Move, from: Point3) -> Result<(), Error> {
+        match m.kind {
+            MoveKind::Dwell { seconds } => self.dwell(seconds),
+            MoveKind::Rapid => {
+                self.set_corner(m.corner)?;
+                self.linear(Motion::G0, m, 0.0)
+            }
+            MoveKind::Line => {
+                self.set_corner(m.corner)?;
+                self.linear(Motion::G1, m, m.feed)
+            }
+            MoveKind::Arc { .. } => {
+                self.set_corner(m.corner)?;
+                self.arc(i, m, from)
+            }
+        }
+    }
+
+    fn linear(&mut self, motion: Motion, m: &Move, feed: f64) -> Result<(), Error> {
+        self.begin();
+        self.motion_word(motion);
+        self.first_motion_words(self.tool_number());
+        let force = self.pos.iter().any(Option::is_none);
+        let before = self.line.len();
+        let c = [m.to.x, m.to.y, m.to.z];
+        for (k, v) in c.iter().enumerate() {
+            self.axis(k, *v, force);
+        }
+        if self.line.len() == before {
+            // A zero-length move after rounding: still one block, so readers see one move.
+            self.axis(0, m.to.x, true);
+        }
+        if motion == Motion::G1 {
+            self.feed_word(feed);
+        }
+        self.summary.blocks += 1;
+        self.end()
+    }
+
+    fn tool_number(&self) -> u32 {
+        self.tool
+    }
+
+    fn dwell(&mut self, seconds: f64) -> Result<(), Error> {
+        let dec = self.decimals.max(3);
+        self.begin();
+        match self.dialect() {
+            Dialect::LinuxCnc | Dialect::Grbl => {
+                self.raw(&format!("G4 P{}", num(seconds, dec, false)));
+            }
+            Dialect::Fanuc => self.raw(&format!("G04 X{}", num(seconds, dec, true))),
+            Dialect::Sinumerik => self.raw(&format!("G4 F{}", num(seconds, dec, false))),
+        }
+        self.summary.blocks += 1;
+        self.end()
+    }
+}
+
+/// Axis indices `(u, v, normal)` of a plane (0 = X).
+fn plane_axes(plane: Plane) -> (usize, usize, usize) {
+    match plane {
+        Plane::Xy => (0, 1, 2),
+        Plane::Zx => (2, 0, 1),
+        Plane::Yz => (1, 2, 0),
+    }
+}
+
+fn get(a: &[f64; 3], k: usize) -> f64 {
+    a.get(k).copied().unwrap_or(0.0)
+}
+
+impl Emitter<'_> {
+    fn arc(&mut self, i: usize, m: &Move, from: Point3) -> Result<(), Error> {
+        let MoveKind::Arc {
+            center,
+            plane,
+            ccw,
+            turns,
+        } = m.kind
+        else {
+            return Ok(());
+        };
+        let (r_mm, sweep) = m.sweep_from(from).unwrap_or((0.0, 0.0));
+        let (ua, va, na) = plane_axes(plane);
+        let s = self.emitted(from);
+        let to = [m.to.x / self.unit, m.to.y / self.unit, m.to.z / self.unit];
+        let e = to.map(|v| round(v, self.decimals));
+        let c = [
+            center.x / self.unit,
+            center.y / self.unit,
+            center.z / self.unit,
+        ];
+        let off = (
+            round(get(&c, ua) - get(&s, ua), self.decimals),
+            round(get(&c, va) - get(&s, va), self.decimals),
+        );
+        let (su, sv) = (get(&s, ua), get(&s, va));
+        let cr = (su + off.0, sv + off.1);
+        let (eu, ev) = (get(&e, ua), get(&e, va));
+        let r1 = (su - cr.0).hypot(sv - cr.1) * self.unit;
+        let r2 = (eu - cr.0).hypot(ev - cr.1) * self.unit;
+        let single = sweep.abs() - TAU * f64::from(turns);
+        let read_sweep = arc::unsigned_sweep((su, sv), (eu, ev), cr, ccw);
+        if r_mm < MIN_ARC_RADIUS_MM || (single < PI && read_sweep - single > PI) {
+            // Too small to survive rounding: the chord is within the arc's sagitta.
+            self.summary.arcs_as_lines += 1;
+            return self.linear(Motion::G1, m, m.feed);
+        }
+        if let Err(problem) = arc::check_radii(r1, r2, self.opts.units) {
+            return Err(InputError::new("arc", problem)
+                .at(format!("move {i}"))
+                .expected(format!(
+                    "an arc that survives rounding to {} decimals: raise the decimals",
+                    self.decimals
+                ))
+                .into());
+        }
+        let axial_mm = get(&[m.to.x, m.to.y, m.to.z], na) - get(&[from.x, from.y, from.z], na);
+        let near_full_flipped = single > PI && single - read_sweep > PI;
+        let native_turns = matches!(self.dialect(), Dialect::LinuxCnc | Dialect::Sinumerik);
+        let split = if native_turns { 0 } else { turns };
+        if split > 0 {
+            self.summary.split_turns += 1;
+        }
+        // Full turns first (dialects without a turn count), then the last (partial) turn.
+        let total = sweep.abs();
+        let start_normal = get(&[from.x, from.y, from.z], na);
+        for k in 1..=split {
+            let normal_mm = start_normal + axial_mm * (TAU * f64::from(k)) / total;
+            let normal = round(normal_mm / self.unit, self.decimals);
+            self.arc_block(plane, ccw, (su, sv), normal, off, 0, m.feed)?;
+        }
+        let turn_word = if native_turns { turns } else { 0 };
+        if near_full_flipped {
+            // Rounding moved the end past the start: a full circle, then the last step.
+            self.summary.arcs_as_lines += 1;
+            self.arc_block(plane, ccw, (su, sv), get(&e, na), off, turn_word, m.feed)?;
+            return self.linear(Motion::G1, m, m.feed);
+        }
+        self.arc_block(plane, ccw, (eu, ev), get(&e, na), off, turn_word, m.feed)
+    }
+
+    /// One G2/G3 block ending at in-plane `(eu, ev)` and `normal` (program units, rounded),
+    /// with centre offsets `off` from the current emitted position.
+    #[allow(clippy::too_many_arguments)]
+    fn arc_block(
+        &mut self,
+        plane: Plane,
+        ccw: bool,
+        end: (f64, f64),
+        normal: f64,
+        off: (f64, f64),
+        turns: u32,
+        feed: f64,
+    ) -> Result<(), Error> {
+        let (ua, va, na) = plane_axes(plane);
+        self.begin();
+        if plane != self.plane {
+            self.raw(match plane {
+                Plane::Xy => "G17",
+                Plane::Zx => "G18",
+                Plane::Yz => "G19",
+            });
+            self.plane = plane;
+            self.motion = None;
+        }
+        self.motion_word(if ccw { Motion::G3 } else { Motion::G2 });
+        self.first_motion_words(self.tool_number());
+        let mut ends = [0.0; 3];
+        if let Some(x) = ends.get_mut(ua) {
+            *x = end.0;
+        }
+        if let Some(x) = ends.get_mut(va) {
+            *x = end.1;
+        }
+        if let Some(x) = ends.get_mut(na) {
+            *x = normal;
+        }
+        for k in 0..3 {
+            let force = k != na || self.pos.get(k).copied().flatten().is_none();
+            self.axis(k, get(&ends, k) * self.unit, force);
+        }
+        let mut offs = [None; 3];
+        if let Some(x) = offs.get_mut(ua) {
+            *x = Some(off.0);
+        }
+        if let Some(x) = offs.get_mut(va) {
+            *x = Some(off.1);
+        }
+        for (k, o) in offs.iter().enumerate() {
+            if let Some(o) = o {
+                self.word(
+                    ["I", "J", "K"].get(k).copied().unwrap_or("I"),
+                    *o,
+                    self.decimals,
+                );
+            }
+        }
+        if turns > 0 {
+            match self.dialect() {
+                Dialect::LinuxCnc => self.raw(&format!("P{}", turns + 1)),
+                Dialect::Sinumerik => self.raw(&format!("TURN={turns}")),
+                Dialect::Fanuc | Dialect::Grbl => {}
+            }
+        }
+        self.feed_word(feed);
+        self.summary.blocks += 1;
+        self.end()
+    }
+}
+
+/// `v` rounded to `decimals` as a reader of the printed value gets it.
+fn round(v: f64, decimals: u32) -> f64 {
+    super::format::round_to(v, decimals)
+}
+
+fn num(v: f64, decimals: u32, keep_point: bool) -> String {
+    super::format::format_number(v, decimals, keep_point)
+}
+
+/// Corners compare by mode, and blends by tolerance.
+fn same_corner(a: Corner, b: Corner) -> bool {
+    match (a, b) {
+        (Corner::Blend(x), Corner::Blend(y)) => (x - y).abs() <= 1e-12,
+        _ => a == b,
+    }
+}
+
+/// Comment text safe for the dialect: no line breaks, no parentheses inside `( )`, no `%`;
+/// upper case for Fanuc.
+fn sanitize_comment(text: &str, dialect: Dialect) -> String {
+    let paren = !dialect.semicolon_comments();
+    let s: String = text
+        .chars()
+        .map(|c| match c {
+            '\n' | '\r' | '\t' => ' ',
+            '(' | ')' if paren => ' ',
+            '%' => ' ',
+            c if c.is_control() => ' ',
+            c => c,
+        })
+        .collect();
+    if dialect == Dialect::Fanuc {
+        s.to_uppercase()
+    } else {
+        s
+    }
+}
+
+fn io_error(e: std::io::Error) -> Error {
+    InputError::new("G-code output", e)
+        .expected("a destination that accepts the whole program")
+        .into()
+}
