@@ -22,7 +22,11 @@ fn aerospace_pocket_all_strategies_verify() {
         step_down: 6.0,
         ..PocketOptions::default()
     };
-    for kind in [StrategyKind::Zigzag, StrategyKind::Offset, StrategyKind::Spiral] {
+    for kind in [
+        StrategyKind::Zigzag,
+        StrategyKind::Offset,
+        StrategyKind::Spiral,
+    ] {
         let r = pocket::generate(kind, &shape, &tool, &opts, &coarse()).unwrap();
         let v = &r.verification;
         let t = pocket::cycle_time(&r.toolpath).unwrap();
@@ -50,7 +54,9 @@ fn spiral_debug() {
     let mut worst = (f64::INFINITY, 0);
     for (i, s) in path.iter().enumerate() {
         let d = shape.outer.distance_to(s.b);
-        if d < worst.0 { worst = (d, i); }
+        if d < worst.0 {
+            worst = (d, i);
+        }
     }
     eprintln!("n {} worst {:?} at {:?}", path.len(), worst, path[worst.1]);
 }

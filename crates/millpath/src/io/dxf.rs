@@ -45,7 +45,9 @@ type Piece = Vec<(Point, f64)>;
 pub fn parse(bytes: &[u8], origin: &str, opts: &DxfOptions) -> Result<Loops, InputError> {
     let mut reader = std::io::Cursor::new(bytes);
     let drawing = dxf::Drawing::load(&mut reader).map_err(|e| {
-        InputError::new("DXF", e.to_string()).at(origin).expected("a readable DXF drawing")
+        InputError::new("DXF", e.to_string())
+            .at(origin)
+            .expected("a readable DXF drawing")
     })?;
     let mut closed: Vec<Outline> = Vec::new();
     let mut open: Vec<Piece> = Vec::new();
@@ -53,7 +55,11 @@ pub fn parse(bytes: &[u8], origin: &str, opts: &DxfOptions) -> Result<Loops, Inp
         let at = format!("{origin}, entity {n}");
         match &ent.specific {
             EntityType::LwPolyline(lw) => {
-                let v: Piece = lw.vertices.iter().map(|v| (Point::new(v.x, v.y), v.bulge)).collect();
+                let v: Piece = lw
+                    .vertices
+                    .iter()
+                    .map(|v| (Point::new(v.x, v.y), v.bulge))
+                    .collect();
                 let ends_meet = match (v.first(), v.last()) {
                     (Some(a), Some(b)) => v.len() > 2 && a.0.distance(b.0) <= opts.join_tolerance,
                     _ => false,
@@ -72,7 +78,8 @@ pub fn parse(bytes: &[u8], origin: &str, opts: &DxfOptions) -> Result<Loops, Inp
                 let sweep = (a.end_angle - a.start_angle).rem_euclid(360.0);
                 let sweep = if sweep <= 1e-12 { 360.0 } else { sweep }.to_radians();
                 let c = Point::new(a.center.x, a.center.y);
-                let at_angle = |t: f64| Point::new(c.x + a.radius * t.cos(), c.y + a.radius * t.sin());
+                let at_angle =
+                    |t: f64| Point::new(c.x + a.radius * t.cos(), c.y + a.radius * t.sin());
                 let t0 = a.start_angle.to_radians();
                 // Split in halves so that no bulge exceeds tan(90°).
                 let half = 0.5 * sweep;
@@ -84,13 +91,18 @@ pub fn parse(bytes: &[u8], origin: &str, opts: &DxfOptions) -> Result<Loops, Inp
             }
             EntityType::Circle(c) => {
                 let p = |s: f64| Point::new(c.center.x + s * c.radius, c.center.y);
-                closed.push(Outline::new(&[(p(-1.0), 1.0), (p(1.0), 1.0)], &format!("{at} (CIRCLE)"))?);
+                closed.push(Outline::new(
+                    &[(p(-1.0), 1.0), (p(1.0), 1.0)],
+                    &format!("{at} (CIRCLE)"),
+                )?);
             }
             EntityType::Spline(s) => {
                 let pts = flatten_spline(s, opts.tolerance, &at)?;
                 let piece: Piece = pts.into_iter().map(|p| (p, 0.0)).collect();
                 let ends_meet = match (piece.first(), piece.last()) {
-                    (Some(a), Some(b)) => piece.len() > 2 && a.0.distance(b.0) <= opts.join_tolerance,
+                    (Some(a), Some(b)) => {
+                        piece.len() > 2 && a.0.distance(b.0) <= opts.join_tolerance
+                    }
                     _ => false,
                 };
                 if s.is_closed() || ends_meet {
@@ -113,7 +125,9 @@ fn chain(mut open: Vec<Piece>, tol: f64, origin: &str) -> Result<Vec<Piece>, Inp
     let mut loops = Vec::new();
     while let Some(mut cur) = open.pop() {
         loop {
-            let (Some(&(start, _)), Some(&(end, _))) = (cur.first(), cur.last()) else { break };
+            let (Some(&(start, _)), Some(&(end, _))) = (cur.first(), cur.last()) else {
+                break;
+            };
             if cur.len() > 2 && start.distance(end) <= tol {
                 cur.pop();
                 loops.push(cur);
@@ -124,9 +138,12 @@ fn chain(mut open: Vec<Piece>, tol: f64, origin: &str) -> Result<Vec<Piece>, Inp
                     || p.last().is_some_and(|v| v.0.distance(end) <= tol)
             });
             let Some(i) = next else {
-                return Err(InputError::new("outline", format!("open at ({:.4}, {:.4})", end.x, end.y))
-                    .at(origin)
-                    .expected("closed outlines: every LINE/ARC end must meet another piece's end"));
+                return Err(InputError::new(
+                    "outline",
+                    format!("open at ({:.4}, {:.4})", end.x, end.y),
+                )
+                .at(origin)
+                .expected("closed outlines: every LINE/ARC end must meet another piece's end"));
             };
             let mut p = open.swap_remove(i);
             if p.first().is_some_and(|v| v.0.distance(end) > tol) {
@@ -153,21 +170,39 @@ fn reverse(p: &Piece) -> Piece {
 
 /// Flattens a DXF spline within `tol`.
 fn flatten_spline(s: &dxf::entities::Spline, tol: f64, at: &str) -> Result<Vec<Point>, InputError> {
-    let ctrl: Vec<Point> = s.control_points.iter().map(|p| Point::new(p.x, p.y)).collect();
+    let ctrl: Vec<Point> = s
+        .control_points
+        .iter()
+        .map(|p| Point::new(p.x, p.y))
+        .collect();
     if ctrl.is_empty() {
         let fit: Vec<Point> = s.fit_points.iter().map(|p| Point::new(p.x, p.y)).collect();
         if fit.len() < 2 {
-            return Err(InputError::new("SPLINE", "no control or fit points").at(at).expected("a spline with points"));
+            return Err(InputError::new("SPLINE", "no control or fit points")
+                .at(at)
+                .expected("a spline with points"));
         }
         return Ok(fit);
     }
     let p = usize::try_from(s.degree_of_curve).unwrap_or(0);
     let knots = &s.knot_values;
-    let w: Vec<f64> = if s.weight_values.len() == ctrl.len() { s.weight_values.clone() } else { vec![1.0; ctrl.len()] };
-    if p == 0 || knots.len() != ctrl.len() + p + 1 || w.iter().any(|x| !x.is_finite() || *x <= 0.0) {
-        return Err(InputError::new("SPLINE", format!("degree {p}, {} knots, {} control points", knots.len(), ctrl.len()))
-            .at(at)
-            .expected("knots = control points + degree + 1, positive weights"));
+    let w: Vec<f64> = if s.weight_values.len() == ctrl.len() {
+        s.weight_values.clone()
+    } else {
+        vec![1.0; ctrl.len()]
+    };
+    if p == 0 || knots.len() != ctrl.len() + p + 1 || w.iter().any(|x| !x.is_finite() || *x <= 0.0)
+    {
+        return Err(InputError::new(
+            "SPLINE",
+            format!(
+                "degree {p}, {} knots, {} control points",
+                knots.len(),
+                ctrl.len()
+            ),
+        )
+        .at(at)
+        .expected("knots = control points + degree + 1, positive weights"));
     }
     let eval = |u: f64| de_boor(p, knots, &ctrl, &w, u);
     let (u0, u1) = (knots[p], knots[ctrl.len()]);
@@ -188,7 +223,11 @@ fn bisect(eval: &dyn Fn(f64) -> Point, a: f64, b: f64, tol: f64, depth: u32, out
         let p = eval(a + (b - a) * t);
         let chord = pb - pa;
         let l = chord.length();
-        if l < 1e-12 { p.distance(pa) } else { ((p - pa).cross(chord) / l).abs() }
+        if l < 1e-12 {
+            p.distance(pa)
+        } else {
+            ((p - pa).cross(chord) / l).abs()
+        }
     };
     if depth < 24 && (depth < 2 || dev(0.5).max(dev(0.25)).max(dev(0.75)) > tol) {
         let m = 0.5 * (a + b);
@@ -206,15 +245,21 @@ fn de_boor(p: usize, t: &[f64], c: &[Point], w: &[f64], u: f64) -> Point {
     while k + 1 < n && u >= t[k + 1] {
         k += 1;
     }
-    let mut d: Vec<(f64, f64, f64)> = (0..=p).map(|j| {
-        let i = j + k - p;
-        (c[i].x * w[i], c[i].y * w[i], w[i])
-    }).collect();
+    let mut d: Vec<(f64, f64, f64)> = (0..=p)
+        .map(|j| {
+            let i = j + k - p;
+            (c[i].x * w[i], c[i].y * w[i], w[i])
+        })
+        .collect();
     for r in 1..=p {
         for j in (r..=p).rev() {
             let i = j + k - p;
             let den = t[i + p + 1 - r] - t[i];
-            let a = if den.abs() < 1e-300 { 0.0 } else { (u - t[i]) / den };
+            let a = if den.abs() < 1e-300 {
+                0.0
+            } else {
+                (u - t[i]) / den
+            };
             d[j] = (
                 (1.0 - a) * d[j - 1].0 + a * d[j].0,
                 (1.0 - a) * d[j - 1].1 + a * d[j].1,
@@ -232,7 +277,11 @@ mod tests {
 
     #[test]
     fn reverse_moves_bulges() {
-        let p: Piece = vec![(Point::new(0.0, 0.0), 0.5), (Point::new(1.0, 0.0), 0.0), (Point::new(1.0, 1.0), 0.0)];
+        let p: Piece = vec![
+            (Point::new(0.0, 0.0), 0.5),
+            (Point::new(1.0, 0.0), 0.0),
+            (Point::new(1.0, 1.0), 0.0),
+        ];
         let r = reverse(&p);
         assert_eq!(r[0].0, Point::new(1.0, 1.0));
         assert!(r[0].1.abs() < 1e-12 && (r[1].1 + 0.5).abs() < 1e-12 && r[2].1.abs() < 1e-12);
@@ -243,7 +292,11 @@ mod tests {
     #[test]
     fn quadratic_bezier_as_bspline() {
         // Clamped quadratic with 3 control points is a Bézier: mid point at (1, 1).
-        let c = [Point::new(0.0, 0.0), Point::new(1.0, 2.0), Point::new(2.0, 0.0)];
+        let c = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 2.0),
+            Point::new(2.0, 0.0),
+        ];
         let t = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
         let m = de_boor(2, &t, &c, &[1.0; 3], 0.5);
         assert!(m.distance(Point::new(1.0, 1.0)) < 1e-12);

@@ -62,10 +62,15 @@ pub fn parse(text: &str, origin: &str) -> Result<Loops, InputError> {
         None | Some("mm") => 1.0,
         Some("in") => 25.4,
         Some(u) => {
-            return Err(InputError::new("units", u).at(origin).expected("\"mm\" or \"in\""));
+            return Err(InputError::new("units", u)
+                .at(origin)
+                .expected("\"mm\" or \"in\""));
         }
     };
-    let outer = Outline::new(&vertices(&doc.outline, scale, &format!("{origin}, outline"))?, &format!("{origin}, outline"))?;
+    let outer = Outline::new(
+        &vertices(&doc.outline, scale, &format!("{origin}, outline"))?,
+        &format!("{origin}, outline"),
+    )?;
     let mut islands = Vec::new();
     for (k, isl) in doc.islands.iter().enumerate() {
         let o = format!("{origin}, island {k}");
@@ -76,9 +81,16 @@ pub fn parse(text: &str, origin: &str) -> Result<Loops, InputError> {
 
 /// Normalises windings and checks that every island lies strictly inside the outer outline
 /// without touching it or another island.
-pub fn check_islands(outer: Outline, islands: Vec<Outline>, origin: &str) -> Result<Loops, InputError> {
+pub fn check_islands(
+    outer: Outline,
+    islands: Vec<Outline>,
+    origin: &str,
+) -> Result<Loops, InputError> {
     let outer = outer.with_winding(Winding::CounterClockwise);
-    let islands: Vec<Outline> = islands.into_iter().map(|i| i.with_winding(Winding::Clockwise)).collect();
+    let islands: Vec<Outline> = islands
+        .into_iter()
+        .map(|i| i.with_winding(Winding::Clockwise))
+        .collect();
     for (k, isl) in islands.iter().enumerate() {
         let first = isl.vertices().next().map_or(Point::ORIGIN, |v| v.0);
         let at = format!("{origin}, island {k} near ({:.3}, {:.3})", first.x, first.y);
@@ -92,7 +104,9 @@ pub fn check_islands(outer: Outline, islands: Vec<Outline>, origin: &str) -> Res
                 .expected("islands that do not touch or cross the outer outline"));
         }
         if !outer.contains(first) {
-            return Err(InputError::new("island", k).at(at).expected("islands inside the outer outline"));
+            return Err(InputError::new("island", k)
+                .at(at)
+                .expected("islands inside the outer outline"));
         }
         for (j, other) in islands.iter().enumerate().take(k) {
             let hits = other.polyline().find_intersects(isl.polyline());
@@ -149,6 +163,11 @@ mod tests {
         let e = parse(bad, "b.json").unwrap_err().to_string();
         assert!(e.contains("vertex 1"), "{e}");
         let bow = r#"{"outline": [[0,0],[10,10],[10,0],[0,10]]}"#;
-        assert!(parse(bow, "bow.json").unwrap_err().to_string().contains("self-intersecting"));
+        assert!(
+            parse(bow, "bow.json")
+                .unwrap_err()
+                .to_string()
+                .contains("self-intersecting")
+        );
     }
 }

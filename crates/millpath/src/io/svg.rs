@@ -22,15 +22,19 @@ pub fn parse(text: &str, origin: &str, tolerance: f64) -> Result<Loops, InputErr
     for (n, tag) in tags(text).enumerate() {
         let at = format!("{origin}, element {n} <{}>", tag.0);
         if attr(tag.1, "transform").is_some() {
-            return Err(InputError::new("SVG transform", attr(tag.1, "transform").unwrap_or_default())
-                .at(at)
-                .expected("outlines without transforms (apply them in the drawing program)"));
+            return Err(InputError::new(
+                "SVG transform",
+                attr(tag.1, "transform").unwrap_or_default(),
+            )
+            .at(at)
+            .expected("outlines without transforms (apply them in the drawing program)"));
         }
         match tag.0 {
             "path" => {
                 let Some(d) = attr(tag.1, "d") else { continue };
                 for (k, v) in path_loops(&d, tolerance, &at)?.into_iter().enumerate() {
-                    let flipped: Vec<(Point, f64)> = v.iter().map(|(p, b)| (Point::new(p.x, -p.y), -b)).collect();
+                    let flipped: Vec<(Point, f64)> =
+                        v.iter().map(|(p, b)| (Point::new(p.x, -p.y), -b)).collect();
                     loops.push(Outline::new(&flipped, &format!("{at}, subpath {k}"))?);
                 }
             }
@@ -38,11 +42,22 @@ pub fn parse(text: &str, origin: &str, tolerance: f64) -> Result<Loops, InputErr
                 let num = |name: &str| -> Result<f64, InputError> {
                     attr(tag.1, name)
                         .and_then(|v| v.trim().trim_end_matches("px").parse::<f64>().ok())
-                        .ok_or_else(|| InputError::new(format!("circle {name}"), "missing").at(at.clone()).expected("a number"))
+                        .ok_or_else(|| {
+                            InputError::new(format!("circle {name}"), "missing")
+                                .at(at.clone())
+                                .expected("a number")
+                        })
                 };
-                let (cx, cy, r) = (num("cx").unwrap_or(0.0), num("cy").unwrap_or(0.0), num("r")?);
+                let (cx, cy, r) = (
+                    num("cx").unwrap_or(0.0),
+                    num("cy").unwrap_or(0.0),
+                    num("r")?,
+                );
                 loops.push(Outline::new(
-                    &[(Point::new(cx - r, -cy), 1.0), (Point::new(cx + r, -cy), 1.0)],
+                    &[
+                        (Point::new(cx - r, -cy), 1.0),
+                        (Point::new(cx + r, -cy), 1.0),
+                    ],
                     &at,
                 )?);
             }
@@ -93,10 +108,16 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
     let mut pos = Point::ORIGIN;
     let mut start = Point::ORIGIN;
     let mut last_ctrl: Option<Point> = None;
-    let bad = |e: String| InputError::new("SVG path data", e).at(at.to_owned()).expected("valid SVG path data");
+    let bad = |e: String| {
+        InputError::new("SVG path data", e)
+            .at(at.to_owned())
+            .expected("valid SVG path data")
+    };
     let close = |cur: &mut Piece, out: &mut Vec<Piece>| {
         if cur.len() > 1 {
-            if let (Some(f), Some(l)) = (cur.first(), cur.last()) && f.0.distance(l.0) < 1e-9 {
+            if let (Some(f), Some(l)) = (cur.first(), cur.last())
+                && f.0.distance(l.0) < 1e-9
+            {
                 cur.pop();
             }
             out.push(std::mem::take(cur));
@@ -113,14 +134,23 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
     };
     for seg in PathParser::from(d) {
         let seg = seg.map_err(|e| bad(e.to_string()))?;
-        let rel = |abs: bool, x: f64, y: f64| if abs { Point::new(x, y) } else { Point::new(pos.x + x, pos.y + y) };
+        let rel = |abs: bool, x: f64, y: f64| {
+            if abs {
+                Point::new(x, y)
+            } else {
+                Point::new(pos.x + x, pos.y + y)
+            }
+        };
         let mut ctrl_next = None;
         match seg {
             PathSegment::MoveTo { abs, x, y } => {
                 if cur.len() > 1 {
-                    return Err(InputError::new("outline", format!("open subpath ending at ({:.4}, {:.4})", pos.x, -pos.y))
-                        .at(at.to_owned())
-                        .expected("closed subpaths (end with Z)"));
+                    return Err(InputError::new(
+                        "outline",
+                        format!("open subpath ending at ({:.4}, {:.4})", pos.x, -pos.y),
+                    )
+                    .at(at.to_owned())
+                    .expected("closed subpaths (end with Z)"));
                 }
                 pos = rel(abs, x, y);
                 start = pos;
@@ -131,14 +161,30 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 cur.push((pos, 0.0));
             }
             PathSegment::HorizontalLineTo { abs, x } => {
-                pos = if abs { Point::new(x, pos.y) } else { Point::new(pos.x + x, pos.y) };
+                pos = if abs {
+                    Point::new(x, pos.y)
+                } else {
+                    Point::new(pos.x + x, pos.y)
+                };
                 cur.push((pos, 0.0));
             }
             PathSegment::VerticalLineTo { abs, y } => {
-                pos = if abs { Point::new(pos.x, y) } else { Point::new(pos.x, pos.y + y) };
+                pos = if abs {
+                    Point::new(pos.x, y)
+                } else {
+                    Point::new(pos.x, pos.y + y)
+                };
                 cur.push((pos, 0.0));
             }
-            PathSegment::CurveTo { abs, x1, y1, x2, y2, x, y } => {
+            PathSegment::CurveTo {
+                abs,
+                x1,
+                y1,
+                x2,
+                y2,
+                x,
+                y,
+            } => {
                 let (c1, c2, e) = (rel(abs, x1, y1), rel(abs, x2, y2), rel(abs, x, y));
                 let mut p = BezPath::new();
                 p.move_to((pos.x, pos.y));
@@ -148,7 +194,8 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 ctrl_next = Some(c2);
             }
             PathSegment::SmoothCurveTo { abs, x2, y2, x, y } => {
-                let c1 = last_ctrl.map_or(pos, |c| Point::new(2.0 * pos.x - c.x, 2.0 * pos.y - c.y));
+                let c1 =
+                    last_ctrl.map_or(pos, |c| Point::new(2.0 * pos.x - c.x, 2.0 * pos.y - c.y));
                 let (c2, e) = (rel(abs, x2, y2), rel(abs, x, y));
                 let mut p = BezPath::new();
                 p.move_to((pos.x, pos.y));
@@ -176,7 +223,16 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 pos = e;
                 ctrl_next = Some(c);
             }
-            PathSegment::EllipticalArc { abs, rx, ry, x_axis_rotation, large_arc, sweep, x, y } => {
+            PathSegment::EllipticalArc {
+                abs,
+                rx,
+                ry,
+                x_axis_rotation,
+                large_arc,
+                sweep,
+                x,
+                y,
+            } => {
                 let e = rel(abs, x, y);
                 let (rx, ry) = (rx.abs(), ry.abs());
                 let chord = pos.distance(e);
@@ -186,7 +242,11 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 } else if (rx - ry).abs() <= 1e-9 * rx.max(ry) {
                     let r = rx.max(0.5 * chord);
                     let small = 2.0 * (chord / (2.0 * r)).clamp(-1.0, 1.0).asin();
-                    let theta = if large_arc { std::f64::consts::TAU - small } else { small };
+                    let theta = if large_arc {
+                        std::f64::consts::TAU - small
+                    } else {
+                        small
+                    };
                     let bulge = (theta / 4.0).tan() * if sweep { 1.0 } else { -1.0 };
                     if let Some(last) = cur.last_mut() {
                         last.1 = bulge;
@@ -223,11 +283,17 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
         last_ctrl = ctrl_next;
     }
     if cur.len() > 1 {
-        let closed = cur.first().zip(cur.last()).is_some_and(|(f, l)| f.0.distance(l.0) < 1e-9);
+        let closed = cur
+            .first()
+            .zip(cur.last())
+            .is_some_and(|(f, l)| f.0.distance(l.0) < 1e-9);
         if !closed {
-            return Err(InputError::new("outline", format!("open subpath ending at ({:.4}, {:.4})", pos.x, -pos.y))
-                .at(at.to_owned())
-                .expected("closed subpaths (end with Z)"));
+            return Err(InputError::new(
+                "outline",
+                format!("open subpath ending at ({:.4}, {:.4})", pos.x, -pos.y),
+            )
+            .at(at.to_owned())
+            .expected("closed subpaths (end with Z)"));
         }
         close(&mut cur, &mut out);
     }
@@ -244,7 +310,11 @@ mod tests {
                      <circle cx="4" cy="5" r="1"/></svg>"#;
         let l = parse(svg, "t.svg", 0.001).unwrap();
         let area = 100.0 + std::f64::consts::PI * 12.5;
-        assert!((l.outer.signed_area() - area).abs() < 1e-9, "{}", l.outer.signed_area());
+        assert!(
+            (l.outer.signed_area() - area).abs() < 1e-9,
+            "{}",
+            l.outer.signed_area()
+        );
         assert_eq!(l.islands.len(), 1);
     }
 

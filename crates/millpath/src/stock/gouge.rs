@@ -51,11 +51,19 @@ pub fn min_clearance(tp: &Toolpath, spec: StockSpec<'_>) -> Clearance {
         }
         let len = m.length_from(from).max(0.0);
         let pos = |t: f64| -> Point3 {
-            let f = if len > 0.0 { (t / len).clamp(0.0, 1.0) } else { 1.0 };
+            let f = if len > 0.0 {
+                (t / len).clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
             match (m.kind, m.sweep_from(from)) {
                 (MoveKind::Arc { center, .. }, Some((r, sweep))) => {
                     let a = (from.y - center.y).atan2(from.x - center.x) + sweep * f;
-                    Point3::new(center.x + r * a.cos(), center.y + r * a.sin(), from.z + (m.to.z - from.z) * f)
+                    Point3::new(
+                        center.x + r * a.cos(),
+                        center.y + r * a.sin(),
+                        from.z + (m.to.z - from.z) * f,
+                    )
                 }
                 _ => from.lerp(m.to, f),
             }

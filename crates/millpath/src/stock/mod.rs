@@ -85,7 +85,10 @@ impl Verification {
             out.push(format!("uncut material: {:.3} mm²", self.uncut_area_mm2));
         }
         if self.rapids_through_material > 0 {
-            out.push(format!("{} rapid moves through material", self.rapids_through_material));
+            out.push(format!(
+                "{} rapid moves through material",
+                self.rapids_through_material
+            ));
         }
         if self.plunges > 0 {
             out.push(format!("{} plunges into material", self.plunges));
@@ -96,7 +99,12 @@ impl Verification {
 
 /// Runs the simulation and the gouge check; `nominal_deg` is the engagement the stepover
 /// implies.
-pub fn verify(tp: &Toolpath, spec: StockSpec<'_>, nominal_deg: f64, sim: &SimOptions) -> Verification {
+pub fn verify(
+    tp: &Toolpath,
+    spec: StockSpec<'_>,
+    nominal_deg: f64,
+    sim: &SimOptions,
+) -> Verification {
     let s = simulate(tp, spec, nominal_deg, sim);
     combine(tp, spec, &s)
 }
@@ -116,4 +124,40 @@ pub fn combine(tp: &Toolpath, spec: StockSpec<'_>, s: &Simulation) -> Verificati
         share_above_nominal: s.share_above_nominal,
         cell_mm: s.cell_mm,
     }
+}
+
+/// Rebuilds the levels of a toolpath read back from G-code: the moves between two retracts
+/// to or above the stock top (`z ≥ 0`) form a chunk whose depth is the lowest z of its level
+/// feed moves (start and end at the same z below 0); consecutive chunks at the same depth are
+/// one level. Chunks that cut nothing below the top are left out.
+pub fn infer_levels(tp: &mut Toolpath) {
+    use crate::toolpath::{Level, LevelKind};
+    let mut levels: Vec<Level> = Vec::new();
+    let mut chunk_start = 0;
+    let mut depth: Option<f64> = None;
+    let flush = |start: usize, end: usize, depth: Option<f64>, levels: &mut Vec<Level>| {
+        let Some(z) = depth else { return };
+        match levels.last_mut() {
+            Some(l) if (l.z - z).abs() < 1e-9 && l.end == start => l.end = end,
+            _ => levels.push(Level {
+                z,
+                kind: LevelKind::Roughing,
+                start,
+                end,
+            }),
+        }
+    };
+    let mut from = tp.start;
+    for (k, m) in tp.moves.iter().enumerate() {
+        if m.is_feed() && (m.to.z - from.z).abs() < 1e-9 && m.to.z < 0.0 {
+            depth = Some(depth.map_or(m.to.z, |d: f64| d.min(m.to.z)));
+        }
+        if matches!(m.kind, crate::toolpath::MoveKind::Rapid) && m.to.z >= 0.0 && from.z < 0.0 {
+            flush(chunk_start, k + 1, depth.take(), &mut levels);
+            chunk_start = k + 1;
+        }
+        from = m.to;
+    }
+    flush(chunk_start, tp.moves.len(), depth, &mut levels);
+    tp.levels = levels;
 }

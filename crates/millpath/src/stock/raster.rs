@@ -68,7 +68,9 @@ impl Raster {
             }
             xs.sort_by(f64::total_cmp);
             for pair in xs.chunks_exact(2) {
-                let i0 = ((pair[0] - self.origin.x) / self.cell - 0.5).ceil().max(0.0) as usize;
+                let i0 = ((pair[0] - self.origin.x) / self.cell - 0.5)
+                    .ceil()
+                    .max(0.0) as usize;
                 let i1 = ((pair[1] - self.origin.x) / self.cell - 0.5).floor();
                 if i1 < 0.0 {
                     continue;
@@ -116,9 +118,15 @@ impl Raster {
 
     /// Rows and column ranges of the cells whose centres lie within `r` of `c`.
     fn disc_spans(&self, c: Point, r: f64) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
-        let j0 = ((c.y - r - self.origin.y) / self.cell - 0.5).ceil().max(0.0) as usize;
+        let j0 = ((c.y - r - self.origin.y) / self.cell - 0.5)
+            .ceil()
+            .max(0.0) as usize;
         let j1 = ((c.y + r - self.origin.y) / self.cell - 0.5).floor();
-        let j1 = if j1 < 0.0 { None } else { Some((j1 as usize).min(self.ny - 1)) };
+        let j1 = if j1 < 0.0 {
+            None
+        } else {
+            Some((j1 as usize).min(self.ny - 1))
+        };
         let rows = match j1 {
             Some(j1) if j0 <= j1 => j0..j1 + 1,
             _ => 0..0,
@@ -130,7 +138,9 @@ impl Raster {
                 return None;
             }
             let w = w2.sqrt();
-            let i0 = ((c.x - w - self.origin.x) / self.cell - 0.5).ceil().max(0.0) as usize;
+            let i0 = ((c.x - w - self.origin.x) / self.cell - 0.5)
+                .ceil()
+                .max(0.0) as usize;
             let i1 = ((c.x + w - self.origin.x) / self.cell - 0.5).floor();
             if i1 < 0.0 {
                 return None;
@@ -224,7 +234,10 @@ mod tests {
         let area = r.count() as f64 * 0.05 * 0.05;
         assert!((area - std::f64::consts::PI * 100.0).abs() < 0.5, "{area}");
         let removed = r.clear_disc(Point::ORIGIN, 5.0) as f64 * 0.0025;
-        assert!((removed - std::f64::consts::PI * 25.0).abs() < 0.2, "{removed}");
+        assert!(
+            (removed - std::f64::consts::PI * 25.0).abs() < 0.2,
+            "{removed}"
+        );
         assert_eq!(r.count_disc(Point::ORIGIN, 4.9), 0);
         assert!(r.count_disc(Point::new(7.0, 0.0), 1.0) > 0);
     }

@@ -88,12 +88,19 @@ fn samples(from: Point3, m: &Move, step: f64) -> Vec<Point3> {
                 })
                 .collect()
         }
-        _ => (1..=n).map(|k| from.lerp(m.to, k as f64 / n as f64)).collect(),
+        _ => (1..=n)
+            .map(|k| from.lerp(m.to, k as f64 / n as f64))
+            .collect(),
     }
 }
 
 /// Sweeps the tool through each slab; `nominal_deg` is the engagement the stepover implies.
-pub fn simulate(tp: &Toolpath, spec: StockSpec<'_>, nominal_deg: f64, opts: &SimOptions) -> Simulation {
+pub fn simulate(
+    tp: &Toolpath,
+    spec: StockSpec<'_>,
+    nominal_deg: f64,
+    opts: &SimOptions,
+) -> Simulation {
     let r = tp.tool.radius();
     let bounds = spec
         .islands
@@ -136,7 +143,9 @@ pub fn simulate(tp: &Toolpath, spec: StockSpec<'_>, nominal_deg: f64, opts: &Sim
         from = m.to;
         let Some(li) = level_of_move[k] else { continue };
         let z = tp.levels[li].z;
-        let need_new = slab.as_ref().is_none_or(|(_, bottom, _)| (bottom - z).abs() > 1e-9);
+        let need_new = slab
+            .as_ref()
+            .is_none_or(|(_, bottom, _)| (bottom - z).abs() > 1e-9);
         if need_new {
             if let Some((_, _, ras)) = slab.take() {
                 uncut_cells += count_uncut(&ras, &reach, r, cell);
@@ -149,7 +158,9 @@ pub fn simulate(tp: &Toolpath, spec: StockSpec<'_>, nominal_deg: f64, opts: &Sim
             slab = Some((top, z, fresh()));
             window.clear();
         }
-        let Some((top, _, ras)) = slab.as_mut() else { continue };
+        let Some((top, _, ras)) = slab.as_mut() else {
+            continue;
+        };
         let top = *top;
         match m.kind {
             MoveKind::Dwell { .. } => {}
@@ -242,7 +253,12 @@ fn reach_region(spec: StockSpec<'_>, r: f64) -> (Vec<Polyline<f64>>, Vec<Polylin
 }
 
 /// Material cells within `r − 2c` of the reachable region: material the tool could have cut.
-fn count_uncut(ras: &Raster, reach: &(Vec<Polyline<f64>>, Vec<Polyline<f64>>), r: f64, c: f64) -> usize {
+fn count_uncut(
+    ras: &Raster,
+    reach: &(Vec<Polyline<f64>>, Vec<Polyline<f64>>),
+    r: f64,
+    c: f64,
+) -> usize {
     let (outers, islands) = reach;
     let limit = r - 2.0 * c;
     ras.material_cells()
@@ -252,7 +268,8 @@ fn count_uncut(ras: &Raster, reach: &(Vec<Polyline<f64>>, Vec<Polyline<f64>>), r
                 && islands.iter().all(|i| i.winding_number(v) == 0);
             inside
                 || outers.iter().chain(islands.iter()).any(|l| {
-                    l.closest_point(v, 1e-12).is_some_and(|cp| cp.distance <= limit)
+                    l.closest_point(v, 1e-12)
+                        .is_some_and(|cp| cp.distance <= limit)
                 })
         })
         .count()

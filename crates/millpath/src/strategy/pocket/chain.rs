@@ -77,7 +77,11 @@ impl Seg {
     /// The point at arc length `t` from the start.
     pub fn point_at(&self, t: f64) -> Point {
         let len = self.length();
-        let f = if len > 0.0 { (t / len).clamp(0.0, 1.0) } else { 0.0 };
+        let f = if len > 0.0 {
+            (t / len).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         match self.arc {
             None => self.a.lerp(self.b, f),
             Some(arc) => {
@@ -93,7 +97,9 @@ impl Seg {
         match self.arc {
             None => (self.b - self.a).normalize().unwrap_or(Vec2::new(0.0, 0.0)),
             Some(arc) => {
-                let r = (self.point_at(t) - arc.center).normalize().unwrap_or(Vec2::new(1.0, 0.0));
+                let r = (self.point_at(t) - arc.center)
+                    .normalize()
+                    .unwrap_or(Vec2::new(1.0, 0.0));
                 if arc.ccw { r.perp() } else { -r.perp() }
             }
         }
@@ -107,7 +113,11 @@ impl Seg {
             a: self.a,
             b,
             arc: self.arc.map(|arc| Arc {
-                sweep: if len > 0.0 { arc.sweep * (t / len).clamp(0.0, 1.0) } else { 0.0 },
+                sweep: if len > 0.0 {
+                    arc.sweep * (t / len).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                },
                 ..arc
             }),
         }

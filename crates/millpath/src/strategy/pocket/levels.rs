@@ -154,7 +154,12 @@ fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64
                     opts.plunge_feed,
                 ));
             }
-            tp.push(Move::arc_xy(Point3::from_xy(approach, z), c(z), ccw, opts.feed));
+            tp.push(Move::arc_xy(
+                Point3::from_xy(approach, z),
+                c(z),
+                ccw,
+                opts.feed,
+            ));
             tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
         }
         CutEntry::Direct { from } => {

@@ -63,7 +63,12 @@ pub fn plan_level(
 }
 
 /// The toolpath without feed modulation or verification.
-pub fn toolpath(kind: StrategyKind, shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Toolpath> {
+pub fn toolpath(
+    kind: StrategyKind,
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<Toolpath> {
     opts.validate(tool)?;
     let rough = plan_level(kind, shape, tool, opts)?;
     let finish = if opts.finish {
@@ -110,7 +115,11 @@ pub fn generate(
 
 /// The finishing pass: each boundary loop at `r` (no stock), entered from the roughing's last
 /// loop.
-fn finishing_plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<levels::LevelPlan> {
+fn finishing_plan(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<levels::LevelPlan> {
     let region = shape.offset(tool.radius());
     let rough = shape.offset(tool.radius() + opts.wall_stock.max(0.0));
     let mut cuts = Vec::new();
@@ -124,9 +133,7 @@ fn finishing_plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Res
         let start = crate::geom::Point::new(first.x, first.y);
         let from = rough
             .loops()
-            .filter_map(|l| {
-                l.closest_point(shape::v2(start), 1e-12)
-            })
+            .filter_map(|l| l.closest_point(shape::v2(start), 1e-12))
             .min_by(|a, b| a.distance.total_cmp(&b.distance))
             .map_or(start, |c| shape::pt(c.seg_point));
         cuts.push(levels::Cut {
@@ -136,6 +143,9 @@ fn finishing_plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Res
     }
     Ok(levels::LevelPlan { cuts })
 }
+
+/// What [`cycle_time`] computes, for reports.
+pub const CYCLE_TIME_MODEL: &str = "programmed feed (placeholder until the planner lands)";
 
 /// Cycle time of a toolpath, s. Placeholder until the motion planner lands: the time at the
 /// programmed feeds with rapids at 25 m/min. Switching to the planner is this one function.

@@ -28,7 +28,11 @@ use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 const MAX_LOOPS: usize = 100_000;
 
 /// The offset strategy's plan for one level.
-pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<LevelPlan, InputError> {
+pub fn plan(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<LevelPlan, InputError> {
     let r = tool.radius();
     let s = opts.stepover_mm(tool);
     let d0 = r + opts.wall_stock;
@@ -72,7 +76,8 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
             });
             if linkable {
                 if let Some(last) = cuts.last_mut() {
-                    last.path.push(super::chain::Seg::line(here.unwrap_or(first.a), first.a));
+                    last.path
+                        .push(super::chain::Seg::line(here.unwrap_or(first.a), first.a));
                     last.path.extend(path.iter().copied());
                 }
                 here = path.last().map(|s| s.b);
@@ -105,7 +110,9 @@ impl IntoPoint for cavalier_contours::core::math::Vector2<f64> {
 fn nearest_loop(loops: &[&Polyline<f64>], p: Point) -> usize {
     let mut best = (0, f64::INFINITY);
     for (i, l) in loops.iter().enumerate() {
-        let d = l.closest_point(v2(p), 1e-12).map_or(f64::INFINITY, |c| c.distance);
+        let d = l
+            .closest_point(v2(p), 1e-12)
+            .map_or(f64::INFINITY, |c| c.distance);
         if d < best.1 {
             best = (i, d);
         }
@@ -131,9 +138,10 @@ pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
         // Entirely outside (both ends on loops, the middle outside the region)? A link
         // running along a loop (overlapping it) is inside.
         let m = a.midpoint(b);
-        let on_loop = region
-            .loops()
-            .any(|l| l.closest_point(v2(m), 1e-12).is_some_and(|c| c.distance < 1e-7));
+        let on_loop = region.loops().any(|l| {
+            l.closest_point(v2(m), 1e-12)
+                .is_some_and(|c| c.distance < 1e-7)
+        });
         let inside = region.outers.iter().any(|o| o.winding_number(v2(m)) != 0)
             && region.islands.iter().all(|i| i.winding_number(v2(m)) == 0);
         !inside && !on_loop
@@ -146,7 +154,11 @@ fn entry_for(lp: &Polyline<f64>, innermost: bool, opts: &PocketOptions) -> CutEn
     if let (true, Entry::Helix { radius, .. }) = (innermost, opts.entry)
         && lp.area().abs() > 0.0
     {
-        let outer = if lp.area() > 0.0 { lp.clone() } else { reversed(lp) };
+        let outer = if lp.area() > 0.0 {
+            lp.clone()
+        } else {
+            reversed(lp)
+        };
         let (c, room) = inscribed_centre(&outer, &[], 24);
         if room >= radius {
             return CutEntry::Helix { center: c, radius };

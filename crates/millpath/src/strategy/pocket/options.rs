@@ -25,7 +25,10 @@ impl Stepover {
                 .expected("a fraction of the tool diameter such as 0.4, or a distance such as 5mm")
         };
         if let Some(mm) = t.strip_suffix("mm") {
-            mm.trim().parse::<f64>().map(Stepover::Distance).map_err(|_| bad())
+            mm.trim()
+                .parse::<f64>()
+                .map(Stepover::Distance)
+                .map_err(|_| bad())
         } else {
             t.parse::<f64>().map(Stepover::Fraction).map_err(|_| bad())
         }
@@ -184,7 +187,13 @@ impl PocketOptions {
             "--stepover",
             "a stepover > 0 and at most one tool diameter",
         )?;
-        check("depth", self.depth, self.depth > 0.0, "--depth", "a depth > 0 mm")?;
+        check(
+            "depth",
+            self.depth,
+            self.depth > 0.0,
+            "--depth",
+            "a depth > 0 mm",
+        )?;
         check(
             "step-down",
             self.step_down,

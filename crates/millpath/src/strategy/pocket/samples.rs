@@ -75,9 +75,18 @@ pub fn aerospace_pocket() -> PocketShape {
 /// Several pockets of a structural part (after the paper's Figure 17), each simply connected.
 pub fn structural_part() -> Vec<(String, PocketShape)> {
     let mut out = vec![
-        ("bay-1 rectangle 120x80".to_owned(), PocketShape::simple(rounded_rectangle(0.0, 0.0, 120.0, 80.0, 8.0))),
-        ("bay-2 square 80x80".to_owned(), PocketShape::simple(rounded_rectangle(130.0, 0.0, 80.0, 80.0, 8.0))),
-        ("bay-3 slot 150x40".to_owned(), PocketShape::simple(rounded_rectangle(0.0, 90.0, 150.0, 40.0, 6.0))),
+        (
+            "bay-1 rectangle 120x80".to_owned(),
+            PocketShape::simple(rounded_rectangle(0.0, 0.0, 120.0, 80.0, 8.0)),
+        ),
+        (
+            "bay-2 square 80x80".to_owned(),
+            PocketShape::simple(rounded_rectangle(130.0, 0.0, 80.0, 80.0, 8.0)),
+        ),
+        (
+            "bay-3 slot 150x40".to_owned(),
+            PocketShape::simple(rounded_rectangle(0.0, 90.0, 150.0, 40.0, 6.0)),
+        ),
     ];
     let trapezoid = [
         Point::new(160.0, 90.0),

@@ -136,10 +136,13 @@ pub fn loops_touch(a: &Polyline<f64>, b: &Polyline<f64>) -> bool {
     {
         return true;
     }
-    a.iter_vertexes()
-        .any(|v| b.closest_point(v.pos(), 1e-12).is_some_and(|c| c.distance <= TOUCH_EPS))
-        || b.iter_vertexes()
-            .any(|v| a.closest_point(v.pos(), 1e-12).is_some_and(|c| c.distance <= TOUCH_EPS))
+    a.iter_vertexes().any(|v| {
+        b.closest_point(v.pos(), 1e-12)
+            .is_some_and(|c| c.distance <= TOUCH_EPS)
+    }) || b.iter_vertexes().any(|v| {
+        a.closest_point(v.pos(), 1e-12)
+            .is_some_and(|c| c.distance <= TOUCH_EPS)
+    })
 }
 
 /// A point as a cavalier vector.
@@ -190,11 +193,18 @@ pub fn reversed(pl: &Polyline<f64>) -> Polyline<f64> {
 /// A point of largest distance to the region's loops among a grid of about `n × n` points
 /// inside `outer` and outside `islands`, and that distance: an approximation of the centre of
 /// the largest inscribed circle, good to the grid spacing.
-pub fn inscribed_centre(outer: &Polyline<f64>, islands: &[Polyline<f64>], n: usize) -> (Point, f64) {
+pub fn inscribed_centre(
+    outer: &Polyline<f64>,
+    islands: &[Polyline<f64>],
+    n: usize,
+) -> (Point, f64) {
     let Some(e) = outer.extents() else {
         return (Point::ORIGIN, 0.0);
     };
-    let mut best = (Point::new(0.5 * (e.min_x + e.max_x), 0.5 * (e.min_y + e.max_y)), 0.0);
+    let mut best = (
+        Point::new(0.5 * (e.min_x + e.max_x), 0.5 * (e.min_y + e.max_y)),
+        0.0,
+    );
     let n = n.max(2);
     let dist = |p: Point| {
         islands
@@ -205,7 +215,10 @@ pub fn inscribed_centre(outer: &Polyline<f64>, islands: &[Polyline<f64>], n: usi
     let inside = |p: Point| {
         outer.winding_number(v2(p)) != 0 && islands.iter().all(|i| i.winding_number(v2(p)) == 0)
     };
-    let mut step = ((e.max_x - e.min_x) / n as f64, (e.max_y - e.min_y) / n as f64);
+    let mut step = (
+        (e.max_x - e.min_x) / n as f64,
+        (e.max_y - e.min_y) / n as f64,
+    );
     for i in 0..=n {
         for j in 0..=n {
             let p = Point::new(e.min_x + step.0 * i as f64, e.min_y + step.1 * j as f64);

@@ -27,7 +27,11 @@ use cavalier_contours::polyline::Polyline;
 use std::f64::consts::TAU;
 
 /// The zigzag strategy's plan for one level.
-pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<LevelPlan, InputError> {
+pub fn plan(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<LevelPlan, InputError> {
     let s = opts.stepover_mm(tool);
     let d0 = tool.radius() + opts.wall_stock;
     let region = shape.offset(d0);
@@ -59,9 +63,18 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
     let mut ys = Vec::with_capacity(n + 1);
     for j in 0..=n {
         let y = nudge(&local, (y0 + h * j as f64).clamp(y0 + 2e-7, y1 - 2e-7));
-        let mut xs: Vec<f64> = local.iter().flatten().flat_map(|sg| crossings(sg, y)).collect();
+        let mut xs: Vec<f64> = local
+            .iter()
+            .flatten()
+            .flat_map(|sg| crossings(sg, y))
+            .collect();
         xs.sort_by(f64::total_cmp);
-        rows.push(xs.chunks_exact(2).map(|c| (c[0], c[1])).filter(|c| c.1 - c.0 > 1e-9).collect());
+        rows.push(
+            xs.chunks_exact(2)
+                .map(|c| (c[0], c[1]))
+                .filter(|c| c.1 - c.0 > 1e-9)
+                .collect(),
+        );
         ys.push(y);
     }
     // Greedy chaining.
@@ -69,7 +82,9 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
     let mut cuts: Vec<Cut> = Vec::new();
     let mut forward = opts.direction == Direction::Climb;
     loop {
-        let Some((mut j, mut i)) = first_unused(&used) else { break };
+        let Some((mut j, mut i)) = first_unused(&used) else {
+            break;
+        };
         let mut path: Vec<Seg> = Vec::new();
         let mut here: Option<Point> = None;
         loop {
@@ -122,7 +137,10 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
             .iter()
             .enumerate()
             .map(|(i, l)| (i, here.map_or(0.0, |p| super::shape::loop_distance(l, p))))
-            .fold((0, f64::INFINITY), |acc, x| if x.1 < acc.1 { x } else { acc });
+            .fold(
+                (0, f64::INFINITY),
+                |acc, x| if x.1 < acc.1 { x } else { acc },
+            );
         let lp = loops.swap_remove(pick);
         let lp = if ccw { lp.clone() } else { reversed(lp) };
         let lp = match here {

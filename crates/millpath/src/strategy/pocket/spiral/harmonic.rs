@@ -52,7 +52,9 @@ impl Harmonic {
     /// radius `r0`, on a grid of spacing `h`.
     pub fn solve(b: &Polyline<f64>, c: Point, r0: f64, h: f64) -> Self {
         let e = b.extents();
-        let (x0, y0, x1, y1) = e.map_or((0.0, 0.0, 1.0, 1.0), |e| (e.min_x, e.min_y, e.max_x, e.max_y));
+        let (x0, y0, x1, y1) = e.map_or((0.0, 0.0, 1.0, 1.0), |e| {
+            (e.min_x, e.min_y, e.max_x, e.max_y)
+        });
         let origin = Point::new(x0 - 2.0 * h, y0 - 2.0 * h);
         let nx = ((x1 - x0) / h).ceil() as usize + 5;
         let ny = ((y1 - y0) / h).ceil() as usize + 5;
@@ -132,7 +134,12 @@ impl Harmonic {
     pub fn value(&self, p: Point) -> f64 {
         let (i, j, tx, ty) = self.locate(p);
         let k = j * self.nx + i;
-        let (a, b, c, d) = (self.u[k], self.u[k + 1], self.u[k + self.nx], self.u[k + self.nx + 1]);
+        let (a, b, c, d) = (
+            self.u[k],
+            self.u[k + 1],
+            self.u[k + self.nx],
+            self.u[k + self.nx + 1],
+        );
         (a * (1.0 - tx) + b * tx) * (1.0 - ty) + (c * (1.0 - tx) + d * tx) * ty
     }
 

@@ -39,7 +39,9 @@ use super::chain::{Seg, segs_from_points, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
 use super::offset::too_large;
 use super::options::{Direction, Entry, PocketOptions};
-use super::shape::{PocketShape, closed_chain, inscribed_centre, loop_distance, restart_near, reversed, v2};
+use super::shape::{
+    PocketShape, closed_chain, inscribed_centre, loop_distance, restart_near, reversed, v2,
+};
 use crate::error::InputError;
 use crate::geom::{Point, Vec2};
 use crate::toolpath::Tool;
@@ -66,7 +68,11 @@ pub struct SpiralStats {
 }
 
 /// The spiral strategy's plan for one level.
-pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<LevelPlan, InputError> {
+pub fn plan(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<LevelPlan, InputError> {
     plan_with_stats(shape, tool, opts).map(|(p, _)| p)
 }
 
@@ -85,15 +91,18 @@ pub fn plan_with_stats(
     let sp = 0.95 * s;
     let d0 = tool.radius() + opts.wall_stock;
     let region = shape.offset(d0);
-    let b = match region.outers.as_slice() {
-        [] => return Err(too_large(tool)),
-        [one] => one.clone(),
-        _ => {
-            return Err(InputError::new("boundary offset loops", region.outers.len())
-                .at("--strategy spiral")
-                .expected("a pocket whose tool-centre region is one piece (use --strategy offset)"))
-        }
-    };
+    let b =
+        match region.outers.as_slice() {
+            [] => return Err(too_large(tool)),
+            [one] => one.clone(),
+            _ => return Err(
+                InputError::new("boundary offset loops", region.outers.len())
+                    .at("--strategy spiral")
+                    .expected(
+                        "a pocket whose tool-centre region is one piece (use --strategy offset)",
+                    ),
+            ),
+        };
     let b_eps = match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
         [one] => one.clone(),
         _ => b.clone(),
@@ -153,8 +162,14 @@ pub fn plan_with_stats(
     for _ in 0..MAX_LAPS {
         let fr = fractions(&lap);
         let lap_poly = closed_pline(&lap);
-        let haus_b = b_samples.iter().map(|&q| loop_distance(&lap_poly, q)).fold(0.0, f64::max);
-        let haus_l = lap.iter().map(|&p| loop_distance(&b, p)).fold(0.0, f64::max);
+        let haus_b = b_samples
+            .iter()
+            .map(|&q| loop_distance(&lap_poly, q))
+            .fold(0.0, f64::max);
+        let haus_l = lap
+            .iter()
+            .map(|&p| loop_distance(&b, p))
+            .fold(0.0, f64::max);
         if haus_b <= sp && haus_l <= sp {
             // The last lap: onto B_ε at equal arc-length fractions.
             let fine = resample(&lap, ds_last);
@@ -234,7 +249,9 @@ fn clamp_inside(inner: Option<&Polyline<f64>>, q: Point) -> Point {
 /// Grid spacing of the harmonic solve: about 160 cells across, at most a third of the
 /// stepover, and no more than ~60 000 nodes.
 fn grid_spacing(b: &Polyline<f64>, s: f64) -> f64 {
-    let e = b.extents().map_or((1.0, 1.0), |e| (e.max_x - e.min_x, e.max_y - e.min_y));
+    let e = b
+        .extents()
+        .map_or((1.0, 1.0), |e| (e.max_x - e.min_x, e.max_y - e.min_y));
     let h = (e.0.max(e.1) / 160.0).min(s / 3.0);
     h.max((e.0 * e.1 / 60_000.0).sqrt()).max(1e-3)
 }
@@ -249,7 +266,11 @@ fn fractions(pts: &[Point]) -> Vec<f64> {
         }
         out.push(acc);
     }
-    let total = acc + pts.last().zip(pts.first()).map_or(0.0, |(a, b)| a.distance(*b));
+    let total = acc
+        + pts
+            .last()
+            .zip(pts.first())
+            .map_or(0.0, |(a, b)| a.distance(*b));
     out.iter().map(|a| a / total.max(1e-12)).collect()
 }
 
@@ -267,12 +288,18 @@ fn resample(pts: &[Point], ds: f64) -> Vec<Point> {
     let mut seg_start = 0.0;
     for k in 0..n {
         let target = step * k as f64;
-        while seg + 1 < closed.len() - 1 && seg_start + closed[seg].distance(closed[seg + 1]) < target {
+        while seg + 1 < closed.len() - 1
+            && seg_start + closed[seg].distance(closed[seg + 1]) < target
+        {
             seg_start += closed[seg].distance(closed[seg + 1]);
             seg += 1;
         }
         let l = closed[seg].distance(closed[seg + 1]);
-        let f = if l > 0.0 { ((target - seg_start) / l).clamp(0.0, 1.0) } else { 0.0 };
+        let f = if l > 0.0 {
+            ((target - seg_start) / l).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         out.push(closed[seg].lerp(closed[seg + 1], f));
     }
     out
