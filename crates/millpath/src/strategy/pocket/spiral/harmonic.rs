@@ -21,7 +21,7 @@
 //! set but `B` itself). The system is solved by red-black successive over-relaxation with
 //! `ω = 2 / (1 + sin(πh/L))` (`L` the larger extent), the optimal factor for the model
 //! problem, from an initial guess that already interpolates the distances
-//! (`u₀ = d_c / (d_c + d_B)`), until no node changes by more than 1e-7.
+//! (`u₀ = d_c / (d_c + d_B)`), until no node changes by more than 1e-9.
 //!
 //! [`Harmonic::value`] interpolates `u` bilinearly; [`Harmonic::gradient`] interpolates the
 //! nodal central differences bilinearly, which makes it continuous, so streamlines traced with
@@ -43,7 +43,7 @@ pub struct Harmonic {
 }
 
 /// SOR stops when no node changes by more than this.
-const SOR_TOL: f64 = 1e-7;
+const SOR_TOL: f64 = 1e-9;
 /// And after this many sweeps at most.
 const SOR_MAX_SWEEPS: usize = 20_000;
 
@@ -51,6 +51,12 @@ impl Harmonic {
     /// Solves the problem for boundary `b` (counter-clockwise) and the circle about `c` of
     /// radius `r0`, on a grid of spacing `h`.
     pub fn solve(b: &Polyline<f64>, c: Point, r0: f64, h: f64) -> Self {
+        Self::solve_with(b, |p| p.distance(c) - r0, h)
+    }
+
+    /// Solves with the inner boundary given by its signed distance `inner` (negative or zero
+    /// inside, where u = 0): a circle, or a loop the morph has reached and restarts from.
+    pub fn solve_with(b: &Polyline<f64>, inner: impl Fn(Point) -> f64, h: f64) -> Self {
         let e = b.extents();
         let (x0, y0, x1, y1) = e.map_or((0.0, 0.0, 1.0, 1.0), |e| {
             (e.min_x, e.min_y, e.max_x, e.max_y)
@@ -66,7 +72,7 @@ impl Harmonic {
             for i in 0..nx {
                 let p = Point::new(origin.x + h * i as f64, origin.y + h * j as f64);
                 let k = j * nx + i;
-                let dc = p.distance(c) - r0;
+                let dc = inner(p);
                 if dc <= 0.0 {
                     u[k] = 0.0;
                 } else if b.winding_number(v2(p)) != 0 {
@@ -99,6 +105,96 @@ impl Harmonic {
                 break;
             }
         }
+        Self::finish(origin, h, nx, ny, u)
+    }
+
+    /// The distance-field interpolation `u = g / (g + d_B)`: `g` the geodesic distance from
+    /// the circle inside `B` (Dijkstra on the grid's 8-neighbour graph, which overestimates
+    /// Euclidean lengths by at most `1/cos(22.5°) − 1 ≈ 8%`), `d_B` the exact distance to `B`.
+    /// Its level sets also run from the circle (u = 0) to `B` (u = 1) in any simply connected
+    /// pocket, without the exponential flattening of the harmonic function in long arms, but
+    /// they have kinks across the medial axis of `B`; it is the fallback.
+    pub fn distance_blend(b: &Polyline<f64>, c: Point, r0: f64, h: f64) -> Self {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        let (origin, nx, ny) = Self::grid(b, h);
+        let n = nx * ny;
+        let mut inside = vec![false; n];
+        let mut g = vec![f64::INFINITY; n];
+        let mut heap = BinaryHeap::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                let p = Point::new(origin.x + h * i as f64, origin.y + h * j as f64);
+                let k = j * nx + i;
+                inside[k] = b.winding_number(v2(p)) != 0;
+                let dc = p.distance(c) - r0;
+                if inside[k] && dc <= h {
+                    g[k] = dc.max(0.0);
+                    heap.push(Reverse((OrdF64(g[k]), k)));
+                }
+            }
+        }
+        while let Some(Reverse((OrdF64(d), k))) = heap.pop() {
+            if d > g[k] {
+                continue;
+            }
+            let (i, j) = ((k % nx) as isize, (k / nx) as isize);
+            for (di, dj, w) in [
+                (1, 0, 1.0),
+                (-1, 0, 1.0),
+                (0, 1, 1.0),
+                (0, -1, 1.0),
+                (1, 1, std::f64::consts::SQRT_2),
+                (1, -1, std::f64::consts::SQRT_2),
+                (-1, 1, std::f64::consts::SQRT_2),
+                (-1, -1, std::f64::consts::SQRT_2),
+            ] {
+                let (ii, jj) = (i + di, j + dj);
+                if ii < 0 || jj < 0 || ii >= nx as isize || jj >= ny as isize {
+                    continue;
+                }
+                let kk = jj as usize * nx + ii as usize;
+                if !inside[kk] {
+                    continue;
+                }
+                let nd = d + w * h;
+                if nd < g[kk] {
+                    g[kk] = nd;
+                    heap.push(Reverse((OrdF64(nd), kk)));
+                }
+            }
+        }
+        let mut u = vec![1.0; n];
+        for j in 0..ny {
+            for i in 0..nx {
+                let k = j * nx + i;
+                let p = Point::new(origin.x + h * i as f64, origin.y + h * j as f64);
+                if p.distance(c) <= r0 {
+                    u[k] = 0.0;
+                } else if inside[k] && g[k].is_finite() {
+                    let db = b.closest_point(v2(p), 1e-12).map_or(1.0, |r| r.distance);
+                    u[k] = g[k] / (g[k] + db).max(1e-12);
+                }
+            }
+        }
+        Self::finish(origin, h, nx, ny, u)
+    }
+
+    /// Grid origin and size covering `b` with two spare nodes on every side.
+    fn grid(b: &Polyline<f64>, h: f64) -> (Point, usize, usize) {
+        let e = b.extents();
+        let (x0, y0, x1, y1) = e.map_or((0.0, 0.0, 1.0, 1.0), |e| {
+            (e.min_x, e.min_y, e.max_x, e.max_y)
+        });
+        let origin = Point::new(x0 - 2.0 * h, y0 - 2.0 * h);
+        let nx = ((x1 - x0) / h).ceil() as usize + 5;
+        let ny = ((y1 - y0) / h).ceil() as usize + 5;
+        (origin, nx, ny)
+    }
+
+    /// Nodal gradients by central differences.
+    fn finish(origin: Point, h: f64, nx: usize, ny: usize, u: Vec<f64>) -> Self {
+        let n = nx * ny;
         let mut grad = vec![Vec2::new(0.0, 0.0); n];
         for j in 0..ny {
             for i in 0..nx {
@@ -178,6 +274,24 @@ impl Harmonic {
             len += step;
         }
         (q, len)
+    }
+}
+
+/// A total order on f64 for the Dijkstra heap (distances are finite and non-negative).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct OrdF64(f64);
+
+impl Eq for OrdF64 {}
+
+impl PartialOrd for OrdF64 {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for OrdF64 {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
     }
 }
 

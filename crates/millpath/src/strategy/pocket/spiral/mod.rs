@@ -51,6 +51,8 @@ use std::f64::consts::TAU;
 
 /// Inward margin of the spiral's last loop, mm (see the module docs).
 pub const LAST_LOOP_MARGIN: f64 = 0.005;
+/// Most restarts of the harmonic field from an intermediate lap.
+const MAX_RESTARTS: usize = 20;
 /// Most laps the morph may take.
 const MAX_LAPS: usize = 400;
 
@@ -65,6 +67,8 @@ pub struct SpiralStats {
     pub max_loop_distance: f64,
     /// Radius of the central spiral, mm.
     pub r0: f64,
+    /// The harmonic morph stalled and the distance-field morph was used.
+    pub distance_field: bool,
 }
 
 /// The spiral strategy's plan for one level.
@@ -144,48 +148,52 @@ pub fn plan_with_stats(
     }
     // L_0: the circle of radius r0, from angle 0.
     let n0 = ((TAU * r0 / ds).ceil() as usize).max(16);
-    let mut lap: Vec<Point> = (0..n0)
+    let lap0: Vec<Point> = (0..n0)
         .map(|i| c + Vec2::from_angle(sign * TAU * i as f64 / n0 as f64) * r0)
         .collect();
-    let hm = Harmonic::solve(&b, c, r0, grid_spacing(&b, s));
-    // Intermediate laps stay at least `margin` inside B: next to B the discrete level sets
-    // are only good to the grid spacing, and may even cross it.
-    let margin = 2.0 * hm.spacing();
-    let b_inner = match b.parallel_offset(margin).as_slice() {
-        [one] => Some(one.clone()),
-        _ => None,
+    let h = grid_spacing(&b, s);
+    let ctx = Morph {
+        b: &b,
+        b_dir: if ccw { b_eps.clone() } else { reversed(&b_eps) },
+        b_samples: sample_loop(&b, ds),
+        sp,
+        ds,
+        ds_last,
     };
-    let b_dir = if ccw { b_eps.clone() } else { reversed(&b_eps) };
-    let b_samples = sample_loop(&b, ds);
-    let mut t = 0.0;
-    let mut dt: f64 = 0.25;
-    for _ in 0..MAX_LAPS {
-        let fr = fractions(&lap);
-        let lap_poly = closed_pline(&lap);
-        let haus_b = b_samples
-            .iter()
-            .map(|&q| loop_distance(&lap_poly, q))
-            .fold(0.0, f64::max);
-        let haus_l = lap
-            .iter()
-            .map(|&p| loop_distance(&b, p))
-            .fold(0.0, f64::max);
-        if haus_b <= sp && haus_l <= sp {
-            // The last lap: onto B_ε at equal arc-length fractions.
-            let fine = resample(&lap, ds_last);
-            let fr = fractions(&fine);
-            let start = restart_near(&b_dir, fine[0]);
-            let blen = start.path_length();
-            for (p, f) in fine.iter().zip(&fr) {
-                let q = point_at_length(&start, f * blen);
-                pts.push(*p + (q - *p) * *f);
+    // The harmonic morph first; where it stalls (long arms, where u − 1 decays like
+    // exp(−πx/w) and the level sets cannot reach the end within f64 and grid accuracy), the
+    // distance-field morph of [`Harmonic::distance_blend`].
+    for attempt in 0..2 {
+        let make = |lap: &[Point], restart: bool| -> Harmonic {
+            if !restart {
+                if attempt == 0 {
+                    Harmonic::solve(&b, c, r0, h)
+                } else {
+                    Harmonic::distance_blend(&b, c, r0, h)
+                }
+            } else {
+                let inner = closed_pline(lap);
+                Harmonic::solve_with(
+                    &b,
+                    |p| {
+                        let d = loop_distance(&inner, p);
+                        if inner.winding_number(v2(p)) != 0 {
+                            -d
+                        } else {
+                            d
+                        }
+                    },
+                    h,
+                )
             }
-            let close = start.at(0).pos();
-            pts.push(Point::new(close.x, close.y));
-            stats.morph_laps += 1;
-            stats.max_loop_distance = stats.max_loop_distance.max(haus_b.max(haus_l));
+        };
+        if let Some(m) = ctx.run(&make, lap0.clone()) {
+            stats.morph_laps = m.laps;
+            stats.max_loop_distance = m.max_distance;
+            stats.distance_field = attempt == 1;
+            pts.extend(m.points);
             let mut path = segs_from_points(&pts);
-            path.extend(segs_from_vertices(&closed_chain(&start)));
+            path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {
                     entry: CutEntry::Helix {
@@ -197,42 +205,163 @@ pub fn plan_with_stats(
             };
             return Ok((plan, stats));
         }
-        // An intermediate lap: grow Δt until the longest streamline reaches s'.
-        let mut step = dt.min(1.0 - t);
-        let mut images;
-        let mut longest;
-        let mut tries = 0;
-        loop {
-            let target = (t + step).min(1.0 - 1e-6);
-            let traced: Vec<(Point, f64)> = lap
-                .iter()
-                .map(|&p| {
-                    let (q, _) = hm.trace(p, target);
-                    let q = clamp_inside(b_inner.as_ref(), q);
-                    (q, q.distance(p))
-                })
-                .collect();
-            longest = traced.iter().map(|x| x.1).fold(0.0, f64::max);
-            images = traced;
-            tries += 1;
-            if longest <= sp || tries > 12 {
-                break;
-            }
-            step *= 0.97 * sp / longest.max(1e-9);
-        }
-        stats.max_loop_distance = stats.max_loop_distance.max(longest);
-        for ((p, f), (q, _)) in lap.iter().zip(&fr).zip(&images) {
-            pts.push(*p + (*q - *p) * *f);
-        }
-        t = (t + step).min(1.0 - 1e-6);
-        dt = step * (0.99 * sp / longest.max(1e-9)).min(2.0);
-        let next: Vec<Point> = images.into_iter().map(|x| x.0).collect();
-        lap = resample(&next, ds);
-        stats.morph_laps += 1;
     }
     Err(InputError::new("pocket shape", "spiral did not converge")
         .at("--strategy spiral")
         .expected("a pocket the spiral can morph into within 400 laps (use --strategy offset)"))
+}
+
+/// The fixed data of the morph.
+struct Morph<'a> {
+    b: &'a Polyline<f64>,
+    b_dir: Polyline<f64>,
+    b_samples: Vec<Point>,
+    sp: f64,
+    ds: f64,
+    ds_last: f64,
+}
+
+/// A finished morph.
+struct MorphResult {
+    points: Vec<Point>,
+    last_loop: Polyline<f64>,
+    laps: usize,
+    max_distance: f64,
+}
+
+impl Morph<'_> {
+    /// Runs the laps from `lap` (on u = 0) to the boundary; `None` when the field stalls.
+    fn run(
+        &self,
+        make: &dyn Fn(&[Point], bool) -> Harmonic,
+        mut lap: Vec<Point>,
+    ) -> Option<MorphResult> {
+        let mut field = make(&lap, false);
+        let mut restarts = 0;
+        let (b, sp, ds) = (self.b, self.sp, self.ds);
+        // Intermediate laps stay at least `margin` inside B: next to B the discrete level sets
+        // are only good to the grid spacing, and may even cross it.
+        let margin = 2.0 * field.spacing();
+        let b_inner = match b.parallel_offset(margin).as_slice() {
+            [one] => Some(one.clone()),
+            _ => None,
+        };
+        let mut pts = Vec::new();
+        let mut t = 0.0;
+        let mut dt: f64 = 0.25;
+        let mut max_distance: f64 = 0.0;
+        let mut history: Vec<f64> = Vec::new();
+        for laps in 0..MAX_LAPS {
+            let fr = fractions(&lap);
+            let lap_poly = closed_pline(&lap);
+            let haus_b = self
+                .b_samples
+                .iter()
+                .map(|&q| loop_distance(&lap_poly, q))
+                .fold(0.0, f64::max);
+            let haus_l = lap.iter().map(|&p| loop_distance(b, p)).fold(0.0, f64::max);
+            if haus_b <= sp && haus_l <= sp {
+                // The last lap: onto B_ε at equal arc-length fractions.
+                let fine = resample(&lap, self.ds_last);
+                let fr = fractions(&fine);
+                let start = restart_near(&self.b_dir, fine[0]);
+                let blen = start.path_length();
+                let along = LoopWalker::new(&start);
+                for (p, f) in fine.iter().zip(&fr) {
+                    let q = along.at(f * blen);
+                    pts.push(*p + (q - *p) * *f);
+                }
+                let close = start.at(0).pos();
+                pts.push(Point::new(close.x, close.y));
+                return Some(MorphResult {
+                    points: pts,
+                    last_loop: start,
+                    laps: laps + 1,
+                    max_distance: max_distance.max(haus_b.max(haus_l)),
+                });
+            }
+            // Near u = 1 the level sets are within rounding of each other (the arms of long
+            // pockets, where u − 1 decays like exp(−πx/w)): restart the morph with the lap
+            // reached as the new inner boundary, a fresh, well-conditioned field.
+            if t >= 1.0 - 1e-6 && restarts < MAX_RESTARTS {
+                field = make(&lap, true);
+                restarts += 1;
+                t = 0.0;
+                dt = 0.25;
+            }
+            // Stalled: no progress towards B over the last six laps.
+            history.push(haus_b);
+            if t >= 1.0 - 2e-11
+                || (history.len() > 6 && history[history.len() - 7] - haus_b < 0.2 * sp)
+            {
+                return None;
+            }
+            // An intermediate lap: grow Δt until the longest streamline reaches s'.
+            let mut step = dt.min(1.0 - t);
+            let mut images: Vec<(Point, f64)>;
+            let mut longest;
+            let mut tries = 0;
+            loop {
+                let target = (t + step).min(1.0 - 1e-11);
+                images = lap
+                    .iter()
+                    .map(|&p| {
+                        let q = clamp_inside(b_inner.as_ref(), field.trace(p, target).0);
+                        (q, q.distance(p))
+                    })
+                    .collect();
+                longest = images.iter().map(|x| x.1).fold(0.0, f64::max);
+                tries += 1;
+                if longest <= sp || tries > 30 {
+                    break;
+                }
+                step *= 0.97 * sp / longest.max(1e-9);
+            }
+            if longest > sp {
+                return None;
+            }
+            max_distance = max_distance.max(longest);
+            for ((p, f), (q, _)) in lap.iter().zip(&fr).zip(&images) {
+                pts.push(*p + (*q - *p) * *f);
+            }
+            t = (t + step).min(1.0 - 1e-11);
+            dt = step * (0.99 * sp / longest.max(1e-9)).min(2.0);
+            let next: Vec<Point> = images.into_iter().map(|x| x.0).collect();
+            lap = resample(&next, ds);
+        }
+        None
+    }
+}
+
+/// Arc-length lookups along a closed loop.
+struct LoopWalker {
+    segs: Vec<Seg>,
+    cum: Vec<f64>,
+}
+
+impl LoopWalker {
+    fn new(pl: &Polyline<f64>) -> Self {
+        let segs = segs_from_vertices(&closed_chain(pl));
+        let mut acc = 0.0;
+        let cum = segs
+            .iter()
+            .map(|s| {
+                let a = acc;
+                acc += s.length();
+                a
+            })
+            .collect();
+        LoopWalker { segs, cum }
+    }
+
+    /// The point at arc length `t` from the start.
+    fn at(&self, t: f64) -> Point {
+        let i = self.cum.partition_point(|&c| c <= t).saturating_sub(1);
+        match self.segs.get(i) {
+            Some(s) => s.point_at(t - self.cum[i]),
+            None => Point::ORIGIN,
+        }
+    }
 }
 
 /// `q` if it lies inside `inner`, else its closest point on `inner`.
@@ -324,18 +453,4 @@ fn sample_loop(pl: &Polyline<f64>, ds: f64) -> Vec<Point> {
         }
     }
     out
-}
-
-/// The point at arc length `t` along a closed loop from its start.
-fn point_at_length(pl: &Polyline<f64>, t: f64) -> Point {
-    let segs: Vec<Seg> = segs_from_vertices(&closed_chain(pl));
-    let mut left = t;
-    for sg in &segs {
-        let l = sg.length();
-        if left <= l {
-            return sg.point_at(left);
-        }
-        left -= l;
-    }
-    segs.last().map_or(Point::ORIGIN, |sg| sg.b)
 }
