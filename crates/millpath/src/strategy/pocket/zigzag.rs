@@ -57,7 +57,8 @@ pub fn plan(
             y1 = y1.max(p.y);
         }
     }
-    let n = ((y1 - y0) / s).ceil().max(1.0) as usize;
+    // The 1e-9 keeps an exact multiple (a 40 mm span at 4 mm) from gaining a row by rounding.
+    let n = ((y1 - y0) / s - 1e-9).ceil().max(1.0) as usize;
     let h = (y1 - y0) / n as f64;
     let mut rows: Vec<Vec<(f64, f64)>> = Vec::with_capacity(n + 1);
     let mut ys = Vec::with_capacity(n + 1);

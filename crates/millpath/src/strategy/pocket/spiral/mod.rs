@@ -81,7 +81,132 @@ pub fn plan(
 }
 
 /// The plan and what was measured on the way.
+///
+/// The harmonic grid is axis-aligned, so the result would depend on how the pocket is turned.
+/// To make it a property of the pocket alone, the planning happens in the pocket's own frame:
+/// its principal axes (from the second moments of its boundary, sampled by arc length; for an
+/// isotropic shape such as a square, the direction of its longest straight edge), and in that
+/// frame turned by 45°; the shorter of the two spirals is kept and turned back.
 pub fn plan_with_stats(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<(LevelPlan, SpiralStats), InputError> {
+    let theta = principal_angle(&shape.outer);
+    let mut best: Option<(LevelPlan, SpiralStats, f64)> = None;
+    let mut last_err = None;
+    for extra in [0.0, std::f64::consts::FRAC_PI_4] {
+        let a = theta + extra;
+        let turned = turn_shape(shape, -a)?;
+        match plan_in_frame(&turned, tool, opts) {
+            Ok((plan, stats)) => {
+                let plan = turn_plan(&plan, a);
+                let len: f64 = plan
+                    .cuts
+                    .iter()
+                    .map(|c| super::chain::path_length(&c.path))
+                    .sum();
+                if best.as_ref().is_none_or(|b| len < b.2 - 1e-9) {
+                    best = Some((plan, stats, len));
+                }
+            }
+            Err(e) => last_err = Some(e),
+        }
+    }
+    match (best, last_err) {
+        (Some((plan, stats, _)), _) => Ok((plan, stats)),
+        (None, Some(e)) => Err(e),
+        (None, None) => Err(InputError::new("pocket shape", "no spiral").at("--strategy spiral")),
+    }
+}
+
+/// The principal-axis angle of an outline (see [`plan_with_stats`]).
+fn principal_angle(o: &crate::geom::Outline) -> f64 {
+    let segs = segs_from_vertices(&closed_chain(o.polyline()));
+    let total: f64 = segs.iter().map(Seg::length).sum();
+    let n = 512;
+    let mut pts = Vec::with_capacity(n);
+    let (mut acc, mut i) = (0.0, 0);
+    for k in 0..n {
+        let t = total * k as f64 / n as f64;
+        while i + 1 < segs.len() && acc + segs[i].length() < t {
+            acc += segs[i].length();
+            i += 1;
+        }
+        if let Some(sg) = segs.get(i) {
+            pts.push(sg.point_at(t - acc));
+        }
+    }
+    let m = pts.len().max(1) as f64;
+    let (cx, cy) = pts
+        .iter()
+        .fold((0.0, 0.0), |a, p| (a.0 + p.x / m, a.1 + p.y / m));
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for p in &pts {
+        let (dx, dy) = (p.x - cx, p.y - cy);
+        sxx += dx * dx;
+        syy += dy * dy;
+        sxy += dx * dy;
+    }
+    if (sxx - syy).abs() + 2.0 * sxy.abs() > 1e-3 * (sxx + syy) {
+        0.5 * (2.0 * sxy).atan2(sxx - syy)
+    } else {
+        segs.iter()
+            .filter(|sg| sg.arc.is_none())
+            .max_by(|a, b| a.length().total_cmp(&b.length()))
+            .map_or(0.0, |sg| (sg.b - sg.a).angle())
+    }
+}
+
+/// The shape turned by `a` about the origin.
+fn turn_shape(shape: &PocketShape, a: f64) -> Result<PocketShape, InputError> {
+    let v: Vec<(Point, f64)> = shape
+        .outer
+        .vertices()
+        .map(|(p, b)| (p.rotate_about(Point::ORIGIN, a), b))
+        .collect();
+    Ok(PocketShape::simple(crate::geom::Outline::new(
+        &v,
+        "turned pocket",
+    )?))
+}
+
+/// The plan turned by `a` about the origin.
+fn turn_plan(plan: &LevelPlan, a: f64) -> LevelPlan {
+    let o = Point::ORIGIN;
+    let turn = |p: Point| p.rotate_about(o, a);
+    LevelPlan {
+        cuts: plan
+            .cuts
+            .iter()
+            .map(|c| Cut {
+                entry: match c.entry {
+                    CutEntry::Helix { center, radius } => CutEntry::Helix {
+                        center: turn(center),
+                        radius,
+                    },
+                    CutEntry::Direct { from } => CutEntry::Direct { from: turn(from) },
+                    CutEntry::Ramp => CutEntry::Ramp,
+                },
+                path: c
+                    .path
+                    .iter()
+                    .map(|sg| Seg {
+                        a: turn(sg.a),
+                        b: turn(sg.b),
+                        arc: sg.arc.map(|arc| super::chain::Arc {
+                            center: turn(arc.center),
+                            ..arc
+                        }),
+                    })
+                    .collect(),
+            })
+            .collect(),
+    }
+}
+
+/// The spiral planned in the shape's own coordinates.
+fn plan_in_frame(
     shape: &PocketShape,
     tool: &Tool,
     opts: &PocketOptions,
