@@ -45,13 +45,15 @@ fn chained_dxf_lines_close() {
 }
 
 fn dxf_lines(lines: &[(f64, f64, f64, f64)]) -> Vec<u8> {
-    let mut d = dxf::Drawing::new();
+    let mut d = ::dxf::Drawing::new();
     for &(x1, y1, x2, y2) in lines {
-        let l =
-            dxf::entities::Line::new(dxf::Point::new(x1, y1, 0.0), dxf::Point::new(x2, y2, 0.0));
-        d.add_entity(dxf::entities::Entity::new(dxf::entities::EntityType::Line(
-            l,
-        )));
+        let l = ::dxf::entities::Line::new(
+            ::dxf::Point::new(x1, y1, 0.0),
+            ::dxf::Point::new(x2, y2, 0.0),
+        );
+        d.add_entity(::dxf::entities::Entity::new(
+            ::dxf::entities::EntityType::Line(l),
+        ));
     }
     let mut buf = Vec::new();
     d.save(&mut buf).unwrap();

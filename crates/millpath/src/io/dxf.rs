@@ -124,10 +124,7 @@ pub fn parse(bytes: &[u8], origin: &str, opts: &DxfOptions) -> Result<Loops, Inp
 fn chain(mut open: Vec<Piece>, tol: f64, origin: &str) -> Result<Vec<Piece>, InputError> {
     let mut loops = Vec::new();
     while let Some(mut cur) = open.pop() {
-        loop {
-            let (Some(&(start, _)), Some(&(end, _))) = (cur.first(), cur.last()) else {
-                break;
-            };
+        while let (Some(&(start, _)), Some(&(end, _))) = (cur.first(), cur.last()) {
             if cur.len() > 2 && start.distance(end) <= tol {
                 cur.pop();
                 loops.push(cur);

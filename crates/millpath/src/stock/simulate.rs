@@ -132,8 +132,12 @@ pub fn simulate(
     let mut slab: Option<(f64, f64, Raster)> = None; // (top, bottom, raster)
     let mut level_of_move = vec![None; tp.moves.len()];
     for (li, lv) in tp.levels.iter().enumerate() {
-        for k in lv.start..lv.end.min(tp.moves.len()) {
-            level_of_move[k] = Some(li);
+        for slot in level_of_move
+            .iter_mut()
+            .take(lv.end.min(tp.moves.len()))
+            .skip(lv.start)
+        {
+            *slot = Some(li);
         }
     }
     let mut window: VecDeque<(u64, f64)> = VecDeque::new();

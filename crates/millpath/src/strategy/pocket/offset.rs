@@ -83,7 +83,7 @@ pub fn plan(
                 here = path.last().map(|s| s.b);
             } else {
                 let innermost = k + 1 == levels.len();
-                let entry = entry_for(&lp, innermost, opts);
+                let entry = entry_for(&lp, innermost, opts, r);
                 let path = match entry {
                     CutEntry::Helix { center, radius } => segs_from_vertices(&closed_chain(
                         &restart_near(&lp, center + crate::geom::Vec2::new(radius, 0.0)),
@@ -150,7 +150,7 @@ pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
 
 /// A helix at the loop's inscribed centre when it is an innermost loop with room for it, a
 /// ramp along the loop otherwise.
-fn entry_for(lp: &Polyline<f64>, innermost: bool, opts: &PocketOptions) -> CutEntry {
+fn entry_for(lp: &Polyline<f64>, innermost: bool, opts: &PocketOptions, r: f64) -> CutEntry {
     if let (true, Entry::Helix { radius, .. }) = (innermost, opts.entry)
         && lp.area().abs() > 0.0
     {
@@ -160,6 +160,8 @@ fn entry_for(lp: &Polyline<f64>, innermost: bool, opts: &PocketOptions) -> CutEn
             reversed(lp)
         };
         let (c, room) = inscribed_centre(&outer, &[], 24);
+        // A helix wider than the tool would leave a pillar at its centre.
+        let radius = radius.min(0.9 * r);
         if room >= radius {
             return CutEntry::Helix { center: c, radius };
         }

@@ -82,10 +82,7 @@ pub fn plan(
     let mut used: Vec<Vec<bool>> = rows.iter().map(|r| vec![false; r.len()]).collect();
     let mut cuts: Vec<Cut> = Vec::new();
     let mut forward = opts.direction == Direction::Climb;
-    loop {
-        let Some((mut j, mut i)) = first_unused(&used) else {
-            break;
-        };
+    while let Some((mut j, mut i)) = first_unused(&used) {
         let mut path: Vec<Seg> = Vec::new();
         let mut here: Option<Point> = None;
         loop {

@@ -241,7 +241,8 @@ fn plan_in_frame(
         Entry::Helix { radius, .. } => radius,
         Entry::Ramp { .. } => 0.25 * tool.radius(),
     };
-    let rho_h = helix.min(0.45 * rho_b);
+    // A helix wider than the tool would leave a pillar at its centre.
+    let rho_h = helix.min(0.9 * tool.radius()).min(0.45 * rho_b);
     if rho_h < 1e-3 {
         return Err(too_large(tool));
     }
