@@ -2,7 +2,9 @@
 
 mod gcode_common;
 
-use gcode_common::{corner_read_back, expand_turns, move_difference, varied_toolpath};
+use gcode_common::{
+    corner_read_back, expand_turns, move_difference, varied_toolpath, with_start_rapid,
+};
 use millpath::gcode::{Dialect, ReaderOptions, Units, WriterOptions, read_str, write_to_string};
 use millpath::toolpath::{Corner, MoveKind, Toolpath};
 
@@ -29,6 +31,7 @@ fn round_trip(
     let (read, warnings) =
         read_str(&text, ropts).unwrap_or_else(|e| panic!("{d} {units}: {e}\n{text}"));
     assert!(warnings.is_empty(), "{warnings:?}");
+    let tp = &with_start_rapid(tp);
     let expected = if matches!(d, Dialect::Fanuc | Dialect::Grbl) {
         expand_turns(tp)
     } else {
@@ -107,6 +110,28 @@ fn default_decimals_round_trip_within_the_rounding_bound() {
                 },
                 &text,
             );
+        }
+    }
+}
+
+mod random {
+    use super::*;
+    use gcode_common::{build_random, random_step};
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 48, rng_seed: proptest::test_runner::RngSeed::Fixed(7), ..ProptestConfig::default() })]
+
+        #[test]
+        fn random_toolpaths_round_trip_in_every_dialect(steps in proptest::collection::vec(random_step(), 1..16)) {
+            let tp = build_random(&steps);
+            for d in Dialect::ALL {
+                for units in [Units::Mm, Units::Inch] {
+                    let dec = if units == Units::Inch { 11 } else { 10 };
+                    let (expected, read, text) = round_trip(&tp, d, units, Some(dec));
+                    assert_same(&expected, &read, d, |_| 1e-9, &text);
+                }
+            }
         }
     }
 }

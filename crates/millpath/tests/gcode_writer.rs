@@ -159,3 +159,115 @@ fn a_failing_output_is_an_error_not_a_panic() {
             .unwrap_err();
     assert!(e.to_string().contains("disk full"), "{e}");
 }
+
+#[test]
+fn arcs_too_small_for_the_decimals_become_lines_and_still_read_back() {
+    use millpath::gcode::{ReaderOptions, read_str};
+    let start = Point3::new(5.0, 0.0, 0.0);
+    let mut tp = Toolpath::new(Tool::default(), start);
+    // Radius below LinuxCNC's zero-radius limit.
+    tp.push(Move::arc_xy(
+        Point3::new(5.0, 0.0008, 0.0),
+        Point3::new(5.0, 0.0004, 0.0),
+        true,
+        5.0,
+    ));
+    // A 0.0001 rad sweep of radius 1 whose end rounds onto its start at 3 decimals: as an
+    // arc it would read back as a full circle.
+    let (a, c) = (0.0001f64, Point3::new(4.0, 0.0008, 0.0));
+    tp.push(Move::arc_xy(
+        Point3::new(4.0 + a.cos(), 0.0008 + a.sin(), 0.0),
+        c,
+        true,
+        5.0,
+    ));
+    let (text, s) = write_to_string(&tp, &WriterOptions::default()).unwrap();
+    assert_eq!(s.arcs_as_lines, 2, "{text}");
+    let ropts = ReaderOptions {
+        start,
+        ..ReaderOptions::default()
+    };
+    let (read, _) = read_str(&text, ropts).unwrap();
+    let len: f64 = read.segments().map(|(f, m)| m.length_from(f)).sum();
+    assert!(len < 0.01, "no full circle sneaked in: {len} mm\n{text}");
+}
+
+#[test]
+fn near_full_circles_stay_near_full_after_rounding() {
+    use millpath::gcode::{ReaderOptions, read_str};
+    // Sweeps a hair short of a full turn, both directions, at many start angles: whatever
+    // the rounding does to the end, the program read back still goes (almost) all the way round.
+    for k in 0..40 {
+        for ccw in [true, false] {
+            let a0 = f64::from(k) * 0.157;
+            let r = 10.0;
+            let start = Point3::new(r * a0.cos(), r * a0.sin(), 0.0);
+            let short = 3e-5;
+            let a1 = if ccw { a0 - short } else { a0 + short };
+            let end = Point3::new(r * a1.cos(), r * a1.sin(), 0.0);
+            let mut tp = Toolpath::new(Tool::default(), start);
+            tp.push(Move::arc_xy(end, Point3::ORIGIN, ccw, 5.0));
+            let want = tp.cut_length();
+            let (text, _) = write_to_string(&tp, &WriterOptions::default()).unwrap();
+            let ropts = ReaderOptions {
+                start,
+                ..ReaderOptions::default()
+            };
+            let (read, _) = read_str(&text, ropts).unwrap();
+            let got = read.cut_length();
+            assert!(
+                (got - want).abs() < 0.01,
+                "k {k} ccw {ccw}: {got} vs {want}\n{text}"
+            );
+        }
+    }
+}
+
+#[test]
+fn absurd_coordinates_are_refused() {
+    let mut tp = varied_toolpath();
+    tp.moves[3].to.x = 1e300;
+    let e = write_to_string(&tp, &WriterOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("move 3"), "{e}");
+}
+
+#[test]
+fn with_tolerance_raises_the_decimals_only_when_needed() {
+    use millpath::gcode::{required_decimals, rounding_error_mm};
+    let o = WriterOptions::default().with_tolerance(0.1);
+    assert_eq!(
+        o.effective_decimals(),
+        3,
+        "the default already holds 0.1 mm"
+    );
+    for tol in [1e-2, 1e-3, 1e-4, 4e-5] {
+        for units in [Units::Mm, Units::Inch] {
+            let o = WriterOptions {
+                units,
+                ..WriterOptions::default()
+            }
+            .with_tolerance(tol);
+            let d = o.effective_decimals();
+            assert!(d >= required_decimals(tol, units));
+            assert!(
+                rounding_error_mm(d, units) <= 0.1 * tol,
+                "{tol} {units}: {d}"
+            );
+        }
+    }
+}
+
+#[test]
+fn comments_off_means_no_comments_in_any_dialect() {
+    for d in Dialect::ALL {
+        let o = WriterOptions {
+            comments: false,
+            ..opts(d)
+        };
+        let (t, _) = write_to_string(&varied_toolpath(), &o).unwrap();
+        let code = t.replace("CYCLE832(", "");
+        assert!(!code.contains('(') && !code.contains(';'), "{d}:\n{t}");
+    }
+}

@@ -1,15 +1,377 @@
 //! `millpath contour`: the free-form contour pipeline.
+//!
+//! points (CSV/JSON) → closed curve → exact cutter offset → fewest segments within the
+//! tolerance → layers → G-code (any dialect) and a JSON report.
 
+use millpath::curve::{self, CurveKind};
+use millpath::gcode::{self, Dialect, Units, WriterOptions};
+use millpath::strategy::contour::{self, ContourOptions, Side};
+use millpath::{Error, InputError, Tool};
 use std::path::PathBuf;
+
+/// Curve through the points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CurveArg {
+    /// Cubic through each group of 4 points at u = 0, 1/3, 2/3, 1, C1 blends between groups.
+    FourPoint,
+    /// Closed centripetal Catmull-Rom curve through all points (C1).
+    CatmullRom,
+    /// Closed periodic cubic spline through all points (C2).
+    Spline,
+}
+
+/// Side of the outline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SideArg {
+    /// Inside (a cavity).
+    Inside,
+    /// Outside (a boss).
+    Outside,
+    /// Tool centre on the outline.
+    On,
+}
 
 /// Arguments of `millpath contour`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Examples:\n  \
+    millpath contour points.csv --tool-diameter 10 --tolerance 0.01 --side inside --depth 20 \\\n    \
+    --step-down 2.5 --finish-allowance 0.2 -o cavity.ngc --report cavity.json\n  \
+    millpath contour --sample -o die.ngc --report die.json     # the paper's die cavity\n\n\
+POINTS: CSV `x,y` per line (mm); a blank line or a third `group` column separates the 4-point\n\
+groups; or JSON {\"groups\": [[[x,y],...],...]} or {\"points\": [[x,y],...]}.\n\
+Tolerance budget: chord deviation + G-code rounding <= --tolerance; the path stays on the free\n\
+side of the nominal offset (never gouges). Decimals are raised as needed.\n\
+Exit codes: 0 ok, 1 internal error, 2 bad input (no output file is written).")]
 pub struct Args {
-    /// Points file (CSV `x,y` or JSON).
-    pub points: PathBuf,
+    /// Points file (CSV or JSON). Omit with --sample.
+    pub points: Option<PathBuf>,
+    /// Use the paper's die cavity (400 x 450 x 50 mm block, 10 mm end mill, 8 layers of
+    /// 2.5 mm, T = 0.00004 mm) instead of a points file; other flags given explicitly override it.
+    #[arg(long)]
+    pub sample: bool,
+    /// Tool diameter in mm.
+    #[arg(long)]
+    pub tool_diameter: Option<f64>,
+    /// Path tolerance in mm (chord deviation + output rounding).
+    #[arg(long)]
+    pub tolerance: Option<f64>,
+    /// Side of the outline the tool runs on.
+    #[arg(long, value_enum, default_value = "inside")]
+    pub side: SideArg,
+    /// Depth below the top in mm.
+    #[arg(long)]
+    pub depth: Option<f64>,
+    /// Step-down per roughing layer in mm.
+    #[arg(long)]
+    pub step_down: Option<f64>,
+    /// Radial stock left by roughing, in mm.
+    #[arg(long, default_value_t = 0.2)]
+    pub finish_allowance: f64,
+    /// Curve through the points.
+    #[arg(long, value_enum, default_value = "four-point")]
+    pub curve: CurveArg,
+    /// Emit biarcs (G2/G3) instead of lines.
+    #[arg(long)]
+    pub arcs: bool,
+    /// G-code dialect: linuxcnc, fanuc, sinumerik, grbl.
+    #[arg(long, default_value = "linuxcnc")]
+    pub dialect: Dialect,
+    /// Program units: mm or in.
+    #[arg(long, default_value = "mm")]
+    pub units: Units,
+    /// Decimals of coordinates (default: enough for the tolerance, at least the dialect's).
+    #[arg(long)]
+    pub decimals: Option<u32>,
+    /// Cutting feed in mm/min.
+    #[arg(long, default_value_t = 1000.0)]
+    pub feed: f64,
+    /// Plunge feed in mm/min.
+    #[arg(long, default_value_t = 300.0)]
+    pub plunge_feed: f64,
+    /// Spindle speed in rev/min.
+    #[arg(long, default_value_t = 10000.0)]
+    pub spindle: f64,
+    /// Safe height above the top for rapids, mm.
+    #[arg(long, default_value_t = 10.0)]
+    pub safe_height: f64,
+    /// Clearance height above the top where feeding down starts, mm.
+    #[arg(long, default_value_t = 2.0)]
+    pub clearance_height: f64,
+    /// Lead-in/lead-out arc radius, mm (0: none).
+    #[arg(long, default_value_t = 2.0)]
+    pub lead_radius: f64,
+    /// Write N line numbers.
+    #[arg(long)]
+    pub line_numbers: bool,
+    /// Output G-code file.
+    #[arg(short = 'o', long)]
+    pub output: Option<PathBuf>,
+    /// Output JSON report.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+}
+
+fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> Error {
+    InputError::new(what, v).at(flag).expected(expected).into()
 }
 
 /// Runs the contour pipeline.
-pub fn run(_args: &Args) -> Result<(), millpath::Error> {
-    Err(millpath::Error::internal("contour: not implemented yet"))
+pub fn run(args: &Args) -> Result<(), Error> {
+    let (curve, mut opt, name) = match (&args.points, args.sample) {
+        (Some(path), false) => {
+            let name = path.display().to_string();
+            let text = super::read_text(path)?;
+            let mut groups = millpath::io::points::parse(&text, &name)?;
+            let kind = match args.curve {
+                CurveArg::FourPoint => CurveKind::FourPoint,
+                CurveArg::CatmullRom => CurveKind::CatmullRom,
+                CurveArg::Spline => CurveKind::Spline,
+            };
+            if kind == CurveKind::FourPoint {
+                groups = millpath::io::points::regroup_for_four_point(groups);
+            }
+            (
+                curve::build(&groups, kind, &name)?,
+                ContourOptions::default(),
+                name,
+            )
+        }
+        (None, true) => {
+            let (c, o) = contour::sample()?;
+            (c, o, "paper sample".to_owned())
+        }
+        (Some(_), true) => {
+            return Err(input(
+                "POINTS",
+                "given with --sample",
+                "command line",
+                "either a points file or --sample",
+            ));
+        }
+        (None, false) => {
+            return Err(input(
+                "POINTS",
+                "missing",
+                "command line",
+                "a points file (CSV or JSON) or --sample",
+            ));
+        }
+    };
+    if let Some(d) = args.tool_diameter {
+        if !(d.is_finite() && d > 0.0) {
+            return Err(input(
+                "tool diameter",
+                d,
+                "--tool-diameter",
+                "a finite number > 0 mm",
+            ));
+        }
+        opt.tool = Tool {
+            diameter: d,
+            flute_length: opt.tool.flute_length.max(3.0 * d),
+            ..opt.tool
+        };
+    }
+    if let Some(t) = args.tolerance {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(input(
+                "tolerance",
+                t,
+                "--tolerance",
+                "a finite number > 0 mm",
+            ));
+        }
+        opt.tolerance = t;
+    }
+    if let Some(d) = args.depth {
+        opt.depth = d;
+    }
+    if let Some(s) = args.step_down {
+        opt.step_down = s;
+    }
+    opt.side = match args.side {
+        SideArg::Inside => Side::Inside,
+        SideArg::Outside => Side::Outside,
+        SideArg::On => Side::On,
+    };
+    opt.finish_allowance = args.finish_allowance;
+    opt.arcs = args.arcs;
+    for (what, v, flag) in [
+        ("feed", args.feed, "--feed"),
+        ("plunge feed", args.plunge_feed, "--plunge-feed"),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(input(what, v, flag, "a finite number > 0 mm/min"));
+        }
+    }
+    opt.feed = args.feed / 60.0;
+    opt.plunge_feed = args.plunge_feed / 60.0;
+    opt.safe_height = args.safe_height;
+    opt.clearance_height = args.clearance_height;
+    opt.lead_radius = args.lead_radius;
+    // Tolerance budget: rounding of the written coordinates + chord deviation <= T.
+    let decimals = match args.decimals {
+        Some(d) => {
+            let rho = gcode::rounding_error_mm(d, args.units);
+            if opt.tolerance <= 2.0 * rho {
+                return Err(input(
+                    "decimals",
+                    d,
+                    "--decimals",
+                    &format!(
+                        "enough decimals to hold --tolerance {} mm: {d} decimals round by up to {rho:.3e} mm; use at least {}",
+                        opt.tolerance,
+                        gcode::required_decimals(opt.tolerance, args.units)
+                    ),
+                ));
+            }
+            d
+        }
+        None => gcode::required_decimals(opt.tolerance, args.units)
+            .max(args.dialect.default_decimals(args.units)),
+    };
+    opt.rounding = gcode::rounding_error_mm(decimals, args.units);
+    if opt.tolerance <= 2.0 * opt.rounding {
+        return Err(input(
+            "tolerance",
+            opt.tolerance,
+            "--tolerance",
+            &format!(
+                "a tolerance the G-code can hold: even {decimals} decimals round by {:.3e} mm",
+                opt.rounding
+            ),
+        ));
+    }
+    let result = contour::contour(&curve, &opt)?;
+    let wopt = WriterOptions {
+        dialect: args.dialect,
+        units: args.units,
+        decimals: Some(decimals),
+        line_numbers: args.line_numbers,
+        spindle_rpm: args.spindle,
+        path_tolerance: Some(opt.tolerance),
+        program_name: Some(format!("millpath contour {name}")),
+        header_notes: vec![format!(
+            "tolerance {} mm = chord {:.3e} + rounding {:.3e}; {} segments per pass",
+            opt.tolerance,
+            opt.chord_tolerance(1.0),
+            opt.rounding,
+            result.report.segments
+        )],
+        ..WriterOptions::default()
+    };
+    let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)?;
+    let mut report = result.report.clone();
+    report.blocks = summary.blocks;
+    report.lines = summary.lines;
+    report.decimals = summary.decimals;
+    let json = serde_json::to_string_pretty(&report)
+        .map_err(|e| Error::internal(format!("report: {e}")))?;
+    if let Some(out) = &args.output {
+        millpath::io::write_atomic_with(out, |w| {
+            w.write_all(text.as_bytes())
+                .map_err(|e| Error::internal(format!("writing {}: {e}", out.display())))
+        })?;
+    }
+    if let Some(rp) = &args.report {
+        millpath::io::write_atomic(rp, json.as_bytes())?;
+    }
+    for w in &result.warnings {
+        super::eprint(&format!("warning: {w}"));
+    }
+    super::print(&format!(
+        "contour: {} segments per pass (outline alone: {}, kurbo {}, asymptotic {:.1}), max deviation {:.3e} mm <= {} mm, {} layers, {} blocks, {} lines, {:.1} s at programmed feed",
+        report.segments,
+        report.curve.segments,
+        report.curve.kurbo_segments,
+        report.curve.asymptotic_segments,
+        report.max_deviation_mm,
+        opt.tolerance,
+        report.layers.len(),
+        report.blocks,
+        report.lines,
+        report.time_at_programmed_feed_s
+    ));
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Debug, Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    fn run_with(
+        dir: &std::path::Path,
+        csv: &str,
+        extra: &[&str],
+    ) -> (Result<(), Error>, bool, bool) {
+        let pts = dir.join("pts.csv");
+        std::fs::write(&pts, csv).unwrap();
+        let (out, rep) = (dir.join("out.ngc"), dir.join("out.json"));
+        let mut argv = vec!["contour".to_owned(), pts.display().to_string()];
+        argv.extend(extra.iter().map(|s| (*s).to_owned()));
+        argv.extend([
+            "-o".into(),
+            out.display().to_string(),
+            "--report".into(),
+            rep.display().to_string(),
+        ]);
+        let cli = Cli::try_parse_from(argv).unwrap();
+        let r = run(&cli.args);
+        (r, out.exists(), rep.exists())
+    }
+
+    const PAPER: &str = "x,y,group\n60,345,1\n100,325,1\n140,295,1\n180,245,1\n340,205,2\n260,385,2\n140,375,2\n60,345,2\n";
+
+    #[test]
+    fn bad_input_exits_2_and_writes_nothing() {
+        let cases: [(&str, &[&str], &str); 6] = [
+            ("1,2\n3,4\n5,7\n", &[], "at least 4"),
+            ("1,2\n3,nan\n5,6\n7,1\n", &[], "pts.csv:2"),
+            (
+                "0,0\n10,0\n10,0\n10,10\n0,10\n",
+                &["--curve", "spline"],
+                "pts.csv:3",
+            ),
+            (PAPER, &["--tolerance", "0"], "tolerance"),
+            (PAPER, &["--tool-diameter", "400"], "tool diameter"),
+            (
+                PAPER,
+                &["--tolerance", "0.0001", "--decimals", "3"],
+                "decimals",
+            ),
+        ];
+        for (csv, extra, needle) in cases {
+            let dir = tempfile::tempdir().unwrap();
+            let (r, o, j) = run_with(dir.path(), csv, extra);
+            let e = r.unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{e}");
+            assert!(e.to_string().contains(needle), "{needle}: {e}");
+            assert!(!o && !j, "{needle}: output written");
+        }
+    }
+
+    #[test]
+    fn writes_gcode_that_reads_back_and_a_report() {
+        let dir = tempfile::tempdir().unwrap();
+        let (r, o, j) = run_with(dir.path(), PAPER, &["--tolerance", "0.01", "--arcs"]);
+        r.unwrap();
+        assert!(o && j);
+        let rep: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.json")).unwrap())
+                .unwrap();
+        for k in ["segments", "max_deviation_mm", "layers", "blocks"] {
+            assert!(rep.get(k).is_some(), "{k}");
+        }
+        assert!(rep["max_deviation_mm"].as_f64().unwrap() <= 0.01);
+        let text = std::fs::read_to_string(dir.path().join("out.ngc")).unwrap();
+        let (tp, _) = gcode::read_str(&text, gcode::ReaderOptions::default()).unwrap();
+        assert_eq!(tp.moves.len(), rep["blocks"].as_u64().unwrap() as usize);
+    }
 }

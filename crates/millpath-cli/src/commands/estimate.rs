@@ -1,10 +1,251 @@
-//! `millpath estimate`.
+//! `millpath estimate`: the cycle time of a G-code program on a machine.
+
+use super::print;
+use millpath::gcode::{Reader, ReaderOptions};
+use millpath::machine::Machine;
+use millpath::motion::table2;
+use millpath::motion::verify::{VerifyOptions, verify_plan};
+use millpath::motion::{PlanOptions, plan_moves};
+use millpath::{Error, InputError, Point3};
+use std::cell::Cell;
+use std::io::{BufReader, IsTerminal, Read};
+use std::path::PathBuf;
+use std::rc::Rc;
+
+/// Counts the bytes read, for the progress bar.
+struct Counting<R> {
+    inner: R,
+    count: Rc<Cell<u64>>,
+}
+
+impl<R: Read> Read for Counting<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.count.set(self.count.get() + n as u64);
+        Ok(n)
+    }
+}
+
+/// Files larger than this get a progress bar on a terminal.
+const PROGRESS_BYTES: u64 = 4 << 20;
 
 /// Arguments of `millpath estimate`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// The G-code program.
+    #[arg(required_unless_present = "table2")]
+    pub file: Option<PathBuf>,
+    /// A preset name (see `millpath machines`) or a TOML machine profile.
+    #[arg(long, default_value = "hsm")]
+    pub machine: String,
+    /// Print a JSON object on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Include per-block times and peak feeds in the JSON output.
+    #[arg(long)]
+    pub blocks: bool,
+    /// Write the sampled trajectory to this file (.csv or .json).
+    #[arg(long)]
+    pub samples: Option<PathBuf>,
+    /// Sampling rate in Hz for --samples and the verifier (at least 1000).
+    #[arg(long, default_value_t = 1000.0)]
+    pub rate: f64,
+    /// Skip the limit verifier (faster on huge programs; `violations` is then null).
+    #[arg(long)]
+    pub no_verify: bool,
+    /// Skip unsupported G-code words with a warning instead of refusing them.
+    #[arg(long)]
+    pub lenient: bool,
+    /// Print the adaptive-spiral paper's Table 2 (square vs circle) against this machine.
+    #[arg(long)]
+    pub table2: bool,
+}
+
+/// Loads a machine: a preset name, or a path to a TOML profile.
+pub fn load_machine(spec: &str) -> Result<Machine, Error> {
+    if spec.ends_with(".toml") || std::path::Path::new(spec).exists() {
+        let text = super::read_text(std::path::Path::new(spec))?;
+        Ok(Machine::from_toml_str(&text, spec)?)
+    } else {
+        Ok(Machine::preset(spec).map_err(|e| e.at("--machine"))?)
+    }
+}
 
 /// Runs the command.
-pub fn run(_args: &Args) -> Result<(), millpath::Error> {
-    Err(millpath::Error::internal("estimate: not implemented yet"))
+pub fn run(args: &Args) -> Result<(), Error> {
+    let machine = load_machine(&args.machine)?;
+    if args.table2 {
+        let rows = table2::compare(&machine)?;
+        if args.json {
+            print(
+                &serde_json::to_string_pretty(&rows).map_err(|e| Error::internal(e.to_string()))?,
+            );
+        } else {
+            print(&table2::format_table(&rows));
+        }
+        return Ok(());
+    }
+    if !(args.rate.is_finite() && args.rate >= 1000.0) {
+        return Err(InputError::new("rate", args.rate)
+            .at("--rate")
+            .expected("a sampling rate of at least 1000 Hz")
+            .into());
+    }
+    let Some(path) = &args.file else {
+        return Err(InputError::new("FILE", "missing")
+            .expected("a G-code file")
+            .into());
+    };
+    let file = std::fs::File::open(path).map_err(|e| {
+        Error::Input(
+            InputError::new("input file", path.display())
+                .expected(format!("a readable G-code file ({e})")),
+        )
+    })?;
+    let opts = ReaderOptions {
+        lenient: args.lenient,
+        origin: path.display().to_string(),
+        ..ReaderOptions::default()
+    };
+    let start = opts.start;
+    let size = file.metadata().map_or(0, |m| m.len());
+    let count = Rc::new(Cell::new(0));
+    let bar = (size > PROGRESS_BYTES && std::io::stderr().is_terminal()).then(|| {
+        let b = indicatif::ProgressBar::new(size);
+        b.set_message("reading and planning");
+        b
+    });
+    let counting = Counting {
+        inner: file,
+        count: Rc::clone(&count),
+    };
+    let mut reader = Reader::new(BufReader::new(counting), opts);
+    let mut n_read: u64 = 0;
+    let keep = !args.no_verify || args.samples.is_some();
+    let mut moves: Vec<(Point3, millpath::Move)> = Vec::new();
+    let mut from = start;
+    let stream = std::iter::from_fn(|| {
+        let item = reader.next()?;
+        n_read += 1;
+        if let Some(b) = &bar
+            && n_read % 65_536 == 0
+        {
+            b.set_position(count.get());
+        }
+        Some(item.map(|rm| {
+            let f = from;
+            from = rm.mv.to;
+            if keep {
+                moves.push((f, rm.mv));
+            }
+            (f, rm.mv)
+        }))
+    });
+    let plan = plan_moves(
+        stream,
+        &machine,
+        &PlanOptions {
+            keep_geometry: keep,
+            ..PlanOptions::default()
+        },
+    )?;
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    let violations = if args.no_verify {
+        None
+    } else {
+        let rep = verify_plan(
+            &plan,
+            &moves,
+            &machine,
+            &VerifyOptions {
+                rate: args.rate,
+                ..VerifyOptions::default()
+            },
+        )?;
+        Some(rep.violations)
+    };
+    if let Some(out) = &args.samples {
+        write_samples(&plan, out, args.rate)?;
+    }
+    let naive: f64 = plan
+        .blocks
+        .iter()
+        .filter(|b| b.programmed_feed > 0.0)
+        .map(|b| b.length / b.programmed_feed)
+        .sum();
+    if args.json {
+        let mut obj = serde_json::json!({
+            "cycle_time_s": plan.total_time(),
+            "blocks": plan.blocks.len(),
+            "spans": plan.spans.len(),
+            "violations": violations,
+            "machine": machine.name,
+            "time_at_programmed_feed_s": naive,
+        });
+        if args.blocks {
+            let per: Vec<_> = plan
+                .blocks
+                .iter()
+                .map(|b| serde_json::json!({"start_s": b.start_time, "time_s": b.time, "peak_feed_mm_s": b.peak_feed, "length_mm": b.length}))
+                .collect();
+            obj["per_block"] = serde_json::Value::Array(per);
+        }
+        print(&obj.to_string());
+    } else {
+        print(&format!(
+            "cycle time {:.3} s on {} ({} blocks; {:.3} s at programmed feeds); limit violations: {}",
+            plan.total_time(),
+            machine.name,
+            plan.blocks.len(),
+            naive,
+            violations.map_or("not checked".into(), |v| v.to_string())
+        ));
+    }
+    Ok(())
+}
+
+fn write_samples(
+    plan: &millpath::motion::Plan,
+    out: &std::path::Path,
+    rate: f64,
+) -> Result<(), Error> {
+    let samples = plan.sample(1.0 / rate)?;
+    let json = out.extension().is_some_and(|e| e == "json");
+    let mut text = String::new();
+    if json {
+        let rows: Vec<_> = samples
+            .iter()
+            .map(|s| {
+                serde_json::json!({"t": s.t, "block": s.block, "pos": s.position.to_array(), "feed": s.feed,
+                    "vel": s.vel, "acc": s.acc, "jerk": s.jerk})
+            })
+            .collect();
+        text = serde_json::Value::Array(rows).to_string();
+    } else {
+        text.push_str("t,block,x,y,z,feed,vx,vy,vz,ax,ay,az,jx,jy,jz\n");
+        for s in &samples {
+            let p = s.position;
+            text.push_str(&format!(
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+                s.t,
+                s.block,
+                p.x,
+                p.y,
+                p.z,
+                s.feed,
+                s.vel[0],
+                s.vel[1],
+                s.vel[2],
+                s.acc[0],
+                s.acc[1],
+                s.acc[2],
+                s.jerk[0],
+                s.jerk[1],
+                s.jerk[2]
+            ));
+        }
+    }
+    millpath::io::write_atomic(out, text.as_bytes())
 }

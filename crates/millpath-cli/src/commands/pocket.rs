@@ -178,12 +178,7 @@ impl CommonArgs {
             modulate_feed: !self.no_feed_modulation,
         };
         opts.validate(&tool)?;
-        if self.machine != "hsm" {
-            return Err(InputError::new("machine", &self.machine)
-                .at("--machine")
-                .expected("hsm")
-                .into());
-        }
+        millpath::machine::Machine::preset(&self.machine).map_err(|e| e.at("--machine"))?;
         if !(self.cell.is_finite() && self.cell > 0.0) {
             return Err(InputError::new("cell", self.cell)
                 .at("--cell")
@@ -282,10 +277,11 @@ pub struct Report {
 }
 
 /// Builds the report of a generated pocket.
-pub fn report(kind: StrategyKind, r: &PocketResult) -> Result<Report, Error> {
+pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Report, Error> {
+    let m = millpath::machine::Machine::preset(machine).map_err(|e| e.at("--machine"))?;
     Ok(Report {
         strategy: kind.name().to_owned(),
-        cycle_time_s: pocket::cycle_time(&r.toolpath)?,
+        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)?,
         cycle_time_model: pocket::CYCLE_TIME_MODEL.to_owned(),
         path_length_mm: r.toolpath.cut_length(),
         rapid_length_mm: r.toolpath.rapid_length(),
@@ -309,7 +305,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let loops = load_outline(&args.outline)?;
     let shape = PocketShape::new(loops.outer, loops.islands, &args.outline)?;
     let r = pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?;
-    let rep = report(kind, &r)?;
+    let rep = report(kind, &r, &args.common.machine)?;
     if let Some(out) = &args.output {
         let wopts = WriterOptions {
             program_name: Some(format!("millpath pocket {}", kind.name())),

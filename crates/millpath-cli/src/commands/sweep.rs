@@ -55,9 +55,10 @@ pub fn run(args: &Args) -> Result<(), Error> {
         header.push_str(&format!(" | {f:>6}"));
     }
     super::print(&header);
+    let machine = millpath::machine::Machine::preset(&args.common.machine)?;
     let time = |kind: StrategyKind, opts: &PocketOptions| -> Result<f64, Error> {
         let tp = pocket::toolpath(kind, &shape, &tool, opts)?;
-        pocket::cycle_time(&tp)
+        pocket::cycle_time_on(&tp, &machine)
     };
     let mut zig = Vec::new();
     let mut line = "zigzag".to_owned();

@@ -3,11 +3,13 @@
 //! What each dialect gets (and why) is tabled in the [module docs](super).
 
 use crate::error::InputError;
+use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 
-/// A G-code dialect.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+/// A G-code dialect (serialised as its [`Dialect::name`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Dialect {
     /// LinuxCNC (RS274/NGC): the reference dialect, checked with its own interpreter `rs274`.
     #[default]
@@ -48,6 +50,16 @@ impl Dialect {
         }
     }
 
+    /// The usual file extension of a program (without the dot): `ngc` (LinuxCNC), `nc`
+    /// (Fanuc, Grbl), `mpf` (Sinumerik main program).
+    pub fn file_extension(self) -> &'static str {
+        match self {
+            Dialect::LinuxCnc => "ngc",
+            Dialect::Fanuc | Dialect::Grbl => "nc",
+            Dialect::Sinumerik => "mpf",
+        }
+    }
+
     /// Whether comments use `;` to the end of the line (otherwise `( )`).
     pub fn semicolon_comments(self) -> bool {
         matches!(self, Dialect::Sinumerik | Dialect::Grbl)
@@ -79,13 +91,15 @@ impl FromStr for Dialect {
     }
 }
 
-/// Program units: G21 (mm) or G20 (inch).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+/// Program units: G21 (mm) or G20 (inch); serialised as `"mm"` / `"in"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, Serialize, Deserialize)]
 pub enum Units {
     /// G21: millimetres, feeds in mm/min.
     #[default]
+    #[serde(rename = "mm")]
     Mm,
     /// G20: inches, feeds in in/min.
+    #[serde(rename = "in", alias = "inch")]
     Inch,
 }
 
@@ -121,7 +135,8 @@ impl FromStr for Units {
 }
 
 /// Coolant: M9 (off), M8 (flood), M7 (mist).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Coolant {
     /// M9.
     #[default]
@@ -142,6 +157,11 @@ mod tests {
             assert_eq!(d.to_string().parse::<Dialect>(), Ok(d));
         }
         assert_eq!("FANUC".parse::<Dialect>(), Ok(Dialect::Fanuc));
+        for d in Dialect::ALL {
+            let json = serde_json::to_string(&d).unwrap();
+            assert_eq!(json, format!("\"{}\"", d.name()));
+        }
+        assert_eq!(serde_json::to_string(&Units::Inch).unwrap(), "\"in\"");
         let e = "haas".parse::<Dialect>().unwrap_err().to_string();
         assert!(e.contains("haas") && e.contains("linuxcnc"), "{e}");
     }

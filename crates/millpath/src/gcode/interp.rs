@@ -2,9 +2,10 @@
 //! from block to block.
 //!
 //! # Modal rules
-//! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"):
-//! feed mode (G93/G94) → F → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell (G4) → plane
-//! (G17–G19) → units (G20/G21) → cutter compensation off (G40) → tool length (G43/G49) →
+//! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"),
+//! except that units (G20/G21) apply before F so that `G20 F10` means 10 in/min:
+//! units (G20/G21) → feed mode (G93/G94) → F → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell
+//! (G4) → plane (G17–G19) → cutter compensation off (G40) → tool length (G43/G49) →
 //! work offset (G54–G59) → path mode (G61, G61.1, G64; G60/G642/CYCLE832 on Sinumerik) →
 //! distance mode (G90/G91) → arc-centre mode (G90.1/G91.1) → G53 → motion (G0–G3, G80) →
 //! program end (M2/M30; the reader stops there). A block may therefore yield a dwell and a
@@ -30,7 +31,8 @@
 //!   (Sinumerik; F in a G4 block is no feed).
 //! * Arcs: `I J K` centre offsets, incremental (G91.1, default) or absolute (G90.1), or `R`
 //!   (negative for more than half a turn); a full circle is end = start with offsets; `P n`
-//!   (LinuxCNC) or `TURN=n−1` (Sinumerik) adds turns; an axis move along the plane's normal
+//!   (LinuxCNC: n turns in all) or `TURN=n` (Sinumerik: n extra full turns) makes a
+//!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
 //!   G40, G49, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
@@ -127,6 +129,8 @@ pub(crate) struct State {
     spindle_set: f64,
     pending_tool: u32,
     pub(crate) ended: bool,
+    /// Warnings of the last block (lenient mode), for the reader to collect.
+    pub(crate) notes: Vec<String>,
 }
 
 /// One block's words, gathered before execution.
@@ -172,6 +176,10 @@ impl BlockError {
     }
 }
 
+/// Largest magnitude of a word's number: a kilometre in µm, far beyond any machine, and small
+/// enough that squares of it (arc geometry) stay finite.
+pub const MAX_WORD_VALUE: f64 = 1e9;
+
 const LETTERS_OK: &[u8] = b"DFHIJKNOPQRSTXYZ";
 
 fn letter_index(l: u8) -> usize {
@@ -204,7 +212,11 @@ impl Block {
         mut warn: impl FnMut(BlockError),
         lenient: bool,
     ) -> Result<(), BlockError> {
-        *self = Block::default();
+        self.g.clear();
+        self.m.clear();
+        self.words = [None; 26];
+        self.turn = None;
+        self.cycle832 = None;
         for t in tokens {
             let r = self.gather_one(t, line, dialect);
             match r {
@@ -224,6 +236,13 @@ impl Block {
                 end,
             } => {
                 let text = line.get(*start..*end).unwrap_or("?").trim();
+                if value.abs() > MAX_WORD_VALUE {
+                    return Err(BlockError::new(
+                        "G-code number",
+                        text,
+                        format!("a magnitude of at most {MAX_WORD_VALUE:e}"),
+                    ));
+                }
                 match letter {
                     b'G' => {
                         let code = (value * 10.0).round();
@@ -348,6 +367,7 @@ impl State {
             spindle_set: 0.0,
             pending_tool: 0,
             ended: false,
+            notes: Vec::new(),
         }
     }
 
@@ -385,6 +405,15 @@ impl State {
         {
             self.modal.feed_mode = mode;
             self.feed = None;
+        }
+        // Units first, so that `G20 F10` in one block is 10 in/min (an F read earlier keeps its
+        // physical value: it is stored in mm/s).
+        for &(g, _) in &b.g {
+            match g {
+                200 | 700 | 7000 => self.modal.units = Units::Inch,
+                210 | 710 | 7100 => self.modal.units = Units::Mm,
+                _ => {}
+            }
         }
         let f_is_dwell = dwell && dialect == Dialect::Sinumerik;
         let mut block_f = None;

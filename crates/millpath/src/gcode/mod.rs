@@ -5,6 +5,26 @@
 //! Toolpath ──write_program──▶ text ──Reader (lexer → interp → arc)──▶ ReadMove { Move, line, modal }
 //! ```
 //!
+//! # Use
+//! ```
+//! use millpath::gcode::{Dialect, ReaderOptions, Reader, WriterOptions, write_to_string};
+//! use millpath::{Move, Point3, Tool, Toolpath};
+//! let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 5.0));
+//! tp.push(Move::rapid(Point3::new(10.0, 0.0, 5.0)));
+//! tp.push(Move::line(Point3::new(10.0, 0.0, -1.0), 5.0));
+//! tp.push(Move::arc_xy(Point3::new(10.0, 0.0, -1.0), Point3::new(0.0, 0.0, -1.0), true, 20.0));
+//! let opts = WriterOptions { dialect: Dialect::Fanuc, ..WriterOptions::default() };
+//! let (text, summary) = write_to_string(&tp, &opts).unwrap();
+//! assert_eq!(summary.blocks, 3);
+//! let ropts = ReaderOptions { dialect: Dialect::Fanuc, start: tp.start, ..ReaderOptions::default() };
+//! let read: Vec<_> = Reader::new(text.as_bytes(), ropts).collect::<Result<_, _>>().unwrap();
+//! assert_eq!(read.len(), 3);
+//! assert!(read[2].mv.to.distance(tp.moves[2].to) < 1e-12);
+//! ```
+//! [`write_program`] streams to any `io::Write`; [`Reader`] is an iterator over any
+//! `BufRead` yielding [`ReadMove`] (the move in mm and mm/s, its line, the [`Modal`] state);
+//! [`read_toolpath`]/[`read_str`] collect a whole program for small inputs.
+//!
 //! Inside everything is mm, mm/s, s and rad. Inches and per-minute feeds exist only in the
 //! text: with G20 the writer divides coordinates by 25.4 and writes F in in/min; the reader
 //! multiplies back. A program's rounding error is the only difference between a toolpath and
@@ -31,7 +51,8 @@
 //! reads back as: LinuxCNC keeps all four exactly (`G64 P`tol reads as `Blend(tol)`, so a
 //! `Machine` move written under a header `G64 P` reads back as the blend it means); Fanuc
 //! reads `G61` as exact stop and `G64` as machine; Sinumerik `G60` exact stop, `G64` exact
-//! path, `CYCLE832(t,..)` blend, `G642` machine; Grbl always machine.
+//! path, `CYCLE832(t,..)` blend, `G642` machine; Grbl programs carry no corner mode (the
+//! writer writes none), so they read back as machine.
 //!
 //! Sources for the dwell words: LinuxCNC's G-code reference (`G4 P` seconds); Siemens'
 //! ISO-dialect manual (840D, `G04 X_` seconds with decimal point, `P_` in ms without) and
@@ -39,9 +60,16 @@
 //! in a separate block"); Grbl 1.1 `G4 P` seconds.
 //!
 //! # Numbers and the tolerance budget
-//! See [`format`]: trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
+//! See [`format`](mod@format): trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
 //! a point rounds by at most `√2·½·10^(−d)` in XY, and [`required_decimals`] keeps that within
 //! 10 % of a tolerance so that chordal deviation plus rounding stays within it.
+//!
+//! # Limits
+//! Numbers in a program are limited to ±1e9 (program units) and must be plain decimals (no
+//! exponent, no parameters or expressions); lines to 64 KiB. The reader's position is the
+//! machine position: work offsets and tool length offsets are zero unless given in
+//! [`ReaderOptions::work_offsets`]. Rotary axes (A/B/C), cutter compensation (G41/G42),
+//! canned cycles, subprograms and parameters are refused (or skipped when lenient).
 //!
 //! # The reader's modal rules
 //! See [`interp`]: the state machine follows RS274/NGC's order of execution within a block,
@@ -54,6 +82,7 @@
 
 pub mod arc;
 mod dialect;
+pub mod five_axis;
 pub mod format;
 pub mod interp;
 mod lexer;

@@ -37,6 +37,7 @@ pub struct Reader<R> {
     block: Block,
     pending: Vec<ReadMove>,
     line_no: usize,
+    bytes_read: u64,
     done: bool,
     warnings: Vec<Warning>,
     warning_count: usize,
@@ -55,6 +56,7 @@ impl<R: BufRead> Reader<R> {
             block: Block::default(),
             pending: Vec::with_capacity(2),
             line_no: 0,
+            bytes_read: 0,
             done: false,
             warnings: Vec::new(),
             warning_count: 0,
@@ -74,6 +76,11 @@ impl<R: BufRead> Reader<R> {
     /// Lines read so far.
     pub fn lines_read(&self) -> usize {
         self.line_no
+    }
+
+    /// Bytes read so far (for a progress bar over a file of known size).
+    pub fn bytes_read(&self) -> u64 {
+        self.bytes_read
     }
 
     /// Whether the program ended with M2/M30.
@@ -121,6 +128,7 @@ impl<R: BufRead> Reader<R> {
             return Ok(false);
         }
         self.line_no += 1;
+        self.bytes_read += n as u64;
         if n as u64 > MAX_LINE_BYTES && self.bytes.last() != Some(&b'\n') {
             return Err(InputError::new(
                 "G-code line",
@@ -172,8 +180,9 @@ impl<R: BufRead> Reader<R> {
                 |e| skipped.push(format!("skipped {} ({})", e.value, e.expected)),
                 self.opts.lenient,
             );
-            let origin = self.origin();
-            gathered.map_err(|e| e.into_input(origin.clone()))?;
+            if let Err(e) = gathered {
+                return Err(e.into_input(self.origin()).into());
+            }
             for s in skipped {
                 self.warn(s);
             }
@@ -184,8 +193,11 @@ impl<R: BufRead> Reader<R> {
                 Err(e) if e.unsupported && self.opts.lenient => {
                     self.warn(format!("skipped {} ({})", e.value, e.expected));
                 }
-                Err(e) => return Err(e.into_input(origin).into()),
+                Err(e) => return Err(e.into_input(self.origin()).into()),
                 Ok(()) => {}
+            }
+            for note in std::mem::take(&mut self.state.notes) {
+                self.warn(note);
             }
         }
         Ok(())

@@ -6,13 +6,12 @@
 //! start the reader will see, so the centre a reader reconstructs differs from the true one by
 //! the rounding of `I`/`J`/`K` alone.
 
-use super::arc;
 use super::dialect::{Coolant, Dialect, Units};
 use super::format::{MAX_DECIMALS, push_number};
 use crate::error::{Error, InputError};
 use crate::geom::Point3;
 use crate::toolpath::{Corner, Move, MoveKind, Plane, Toolpath};
-use std::f64::consts::{PI, TAU};
+
 use std::io::{BufWriter, Write};
 
 /// Largest `N` number written; numbering wraps around after it (LinuxCNC refuses N > 99999,
@@ -92,6 +91,16 @@ impl WriterOptions {
             .unwrap_or_else(|| self.dialect.default_decimals(self.units))
     }
 
+    /// These options with enough decimals for a path tolerance of `tolerance_mm`: the larger
+    /// of the current decimals and [`super::required_decimals`] (rounding within 10 % of the
+    /// tolerance, see [`super::format`]).
+    #[must_use]
+    pub fn with_tolerance(mut self, tolerance_mm: f64) -> Self {
+        let need = super::required_decimals(tolerance_mm, self.units);
+        self.decimals = Some(self.effective_decimals().max(need));
+        self
+    }
+
     fn validate(&self) -> Result<(), InputError> {
         if !(54..=59).contains(&self.work_offset) {
             return Err(InputError::new("work offset", self.work_offset)
@@ -133,6 +142,9 @@ pub struct WriteSummary {
     pub arcs_as_lines: usize,
     /// Multi-turn arcs split into single turns (dialects without a turn count).
     pub split_turns: usize,
+    /// A rapid to the toolpath's start was written before the first motion, an arc (whose
+    /// centre offsets need a known start).
+    pub start_rapid: bool,
 }
 
 /// Writes `tp` as a G-code program to `out`, streaming (nothing but one line is buffered
@@ -161,11 +173,14 @@ pub fn write_program(
 
 fn check_move(i: usize, m: &Move, from: Point3) -> Result<(), InputError> {
     let at = || format!("move {i}");
-    if !m.to.is_finite() {
+    let in_range = |p: Point3| {
+        p.is_finite() && p.x.abs().max(p.y.abs()).max(p.z.abs()) <= super::interp::MAX_WORD_VALUE
+    };
+    if !in_range(m.to) {
         return Err(
             InputError::new("move end point", format_args!("{:?}", m.to))
                 .at(at())
-                .expected("finite coordinates"),
+                .expected("finite coordinates within ±1e9 mm"),
         );
     }
     if !from.is_finite() {
@@ -182,7 +197,7 @@ fn check_move(i: usize, m: &Move, from: Point3) -> Result<(), InputError> {
                     .expected("a finite feed > 0 mm/s on a feed move"));
             }
             if let MoveKind::Arc { center, .. } = m.kind
-                && !center.is_finite()
+                && !in_range(center)
             {
                 return Err(InputError::new("arc centre", format_args!("{center:?}"))
                     .at(at())
@@ -230,6 +245,7 @@ struct Emitter<'a> {
     corner: Corner,
     corner_text: String,
     feed: String,
+    scratch: String,
     /// Emitted (rounded) position in program units; `None` until first written.
     pos: [Option<f64>; 3],
     first_motion: bool,
@@ -256,6 +272,7 @@ impl<'a> Emitter<'a> {
             corner: Corner::Machine,
             corner_text: String::new(),
             feed: String::new(),
+            scratch: String::with_capacity(32),
             pos: [None; 3],
             first_motion: true,
             tool: 0,
@@ -519,14 +536,18 @@ impl<'a> Emitter<'a> {
     /// value in program units.
     fn axis(&mut self, axis: usize, mm: f64, force: bool) -> f64 {
         let v = mm / self.unit;
-        let rounded = round(v, self.decimals);
+        // Format once; the reader's value is the parse of exactly this text.
+        self.scratch.clear();
+        push_number(&mut self.scratch, v, self.decimals, self.keep_point);
+        let rounded: f64 = self.scratch.parse().unwrap_or(v);
         let known = self.pos.get(axis).copied().flatten();
         if force || known.is_none_or(|k| k.to_bits() != rounded.to_bits()) {
-            self.word(
-                ["X", "Y", "Z"].get(axis).copied().unwrap_or("X"),
-                v,
-                self.decimals,
-            );
+            if !self.line.is_empty() {
+                self.line.push(' ');
+            }
+            self.line
+                .push_str(["X", "Y", "Z"].get(axis).copied().unwrap_or("X"));
+            self.line.push_str(&self.scratch);
         }
         if let Some(p) = self.pos.get_mut(axis) {
             *p = Some(rounded);
@@ -536,10 +557,15 @@ impl<'a> Emitter<'a> {
 
     fn feed_word(&mut self, feed_mm_s: f64) {
         let f = feed_mm_s * 60.0 / self.unit;
-        let text = num(f, self.decimals, self.keep_point);
-        if text != self.feed {
-            self.raw(&format!("F{text}"));
-            self.feed = text;
+        self.scratch.clear();
+        push_number(&mut self.scratch, f, self.decimals, self.keep_point);
+        if self.scratch != self.feed {
+            if !self.line.is_empty() {
+                self.line.push(' ');
+            }
+            self.line.push('F');
+            self.line.push_str(&self.scratch);
+            std::mem::swap(&mut self.feed, &mut self.scratch);
         }
     }
 
@@ -612,158 +638,7 @@ impl<'a> Emitter<'a> {
     }
 }
 
-/// Axis indices `(u, v, normal)` of a plane (0 = X).
-fn plane_axes(plane: Plane) -> (usize, usize, usize) {
-    match plane {
-        Plane::Xy => (0, 1, 2),
-        Plane::Zx => (2, 0, 1),
-        Plane::Yz => (1, 2, 0),
-    }
-}
-
-fn get(a: &[f64; 3], k: usize) -> f64 {
-    a.get(k).copied().unwrap_or(0.0)
-}
-
-impl Emitter<'_> {
-    fn arc(&mut self, i: usize, m: &Move, from: Point3) -> Result<(), Error> {
-        let MoveKind::Arc {
-            center,
-            plane,
-            ccw,
-            turns,
-        } = m.kind
-        else {
-            return Ok(());
-        };
-        let (r_mm, sweep) = m.sweep_from(from).unwrap_or((0.0, 0.0));
-        let (ua, va, na) = plane_axes(plane);
-        let s = self.emitted(from);
-        let to = [m.to.x / self.unit, m.to.y / self.unit, m.to.z / self.unit];
-        let e = to.map(|v| round(v, self.decimals));
-        let c = [
-            center.x / self.unit,
-            center.y / self.unit,
-            center.z / self.unit,
-        ];
-        let off = (
-            round(get(&c, ua) - get(&s, ua), self.decimals),
-            round(get(&c, va) - get(&s, va), self.decimals),
-        );
-        let (su, sv) = (get(&s, ua), get(&s, va));
-        let cr = (su + off.0, sv + off.1);
-        let (eu, ev) = (get(&e, ua), get(&e, va));
-        let r1 = (su - cr.0).hypot(sv - cr.1) * self.unit;
-        let r2 = (eu - cr.0).hypot(ev - cr.1) * self.unit;
-        let single = sweep.abs() - TAU * f64::from(turns);
-        let read_sweep = arc::unsigned_sweep((su, sv), (eu, ev), cr, ccw);
-        if r_mm < MIN_ARC_RADIUS_MM || (single < PI && read_sweep - single > PI) {
-            // Too small to survive rounding: the chord is within the arc's sagitta.
-            self.summary.arcs_as_lines += 1;
-            return self.linear(Motion::G1, m, m.feed);
-        }
-        if let Err(problem) = arc::check_radii(r1, r2, self.opts.units) {
-            return Err(InputError::new("arc", problem)
-                .at(format!("move {i}"))
-                .expected(format!(
-                    "an arc that survives rounding to {} decimals: raise the decimals",
-                    self.decimals
-                ))
-                .into());
-        }
-        let axial_mm = get(&[m.to.x, m.to.y, m.to.z], na) - get(&[from.x, from.y, from.z], na);
-        let near_full_flipped = single > PI && single - read_sweep > PI;
-        let native_turns = matches!(self.dialect(), Dialect::LinuxCnc | Dialect::Sinumerik);
-        let split = if native_turns { 0 } else { turns };
-        if split > 0 {
-            self.summary.split_turns += 1;
-        }
-        // Full turns first (dialects without a turn count), then the last (partial) turn.
-        let total = sweep.abs();
-        let start_normal = get(&[from.x, from.y, from.z], na);
-        for k in 1..=split {
-            let normal_mm = start_normal + axial_mm * (TAU * f64::from(k)) / total;
-            let normal = round(normal_mm / self.unit, self.decimals);
-            self.arc_block(plane, ccw, (su, sv), normal, off, 0, m.feed)?;
-        }
-        let turn_word = if native_turns { turns } else { 0 };
-        if near_full_flipped {
-            // Rounding moved the end past the start: a full circle, then the last step.
-            self.summary.arcs_as_lines += 1;
-            self.arc_block(plane, ccw, (su, sv), get(&e, na), off, turn_word, m.feed)?;
-            return self.linear(Motion::G1, m, m.feed);
-        }
-        self.arc_block(plane, ccw, (eu, ev), get(&e, na), off, turn_word, m.feed)
-    }
-
-    /// One G2/G3 block ending at in-plane `(eu, ev)` and `normal` (program units, rounded),
-    /// with centre offsets `off` from the current emitted position.
-    #[allow(clippy::too_many_arguments)]
-    fn arc_block(
-        &mut self,
-        plane: Plane,
-        ccw: bool,
-        end: (f64, f64),
-        normal: f64,
-        off: (f64, f64),
-        turns: u32,
-        feed: f64,
-    ) -> Result<(), Error> {
-        let (ua, va, na) = plane_axes(plane);
-        self.begin();
-        if plane != self.plane {
-            self.raw(match plane {
-                Plane::Xy => "G17",
-                Plane::Zx => "G18",
-                Plane::Yz => "G19",
-            });
-            self.plane = plane;
-            self.motion = None;
-        }
-        self.motion_word(if ccw { Motion::G3 } else { Motion::G2 });
-        self.first_motion_words(self.tool_number());
-        let mut ends = [0.0; 3];
-        if let Some(x) = ends.get_mut(ua) {
-            *x = end.0;
-        }
-        if let Some(x) = ends.get_mut(va) {
-            *x = end.1;
-        }
-        if let Some(x) = ends.get_mut(na) {
-            *x = normal;
-        }
-        for k in 0..3 {
-            let force = k != na || self.pos.get(k).copied().flatten().is_none();
-            self.axis(k, get(&ends, k) * self.unit, force);
-        }
-        let mut offs = [None; 3];
-        if let Some(x) = offs.get_mut(ua) {
-            *x = Some(off.0);
-        }
-        if let Some(x) = offs.get_mut(va) {
-            *x = Some(off.1);
-        }
-        for (k, o) in offs.iter().enumerate() {
-            if let Some(o) = o {
-                self.word(
-                    ["I", "J", "K"].get(k).copied().unwrap_or("I"),
-                    *o,
-                    self.decimals,
-                );
-            }
-        }
-        if turns > 0 {
-            match self.dialect() {
-                Dialect::LinuxCnc => self.raw(&format!("P{}", turns + 1)),
-                Dialect::Sinumerik => self.raw(&format!("TURN={turns}")),
-                Dialect::Fanuc | Dialect::Grbl => {}
-            }
-        }
-        self.feed_word(feed);
-        self.summary.blocks += 1;
-        self.end()
-    }
-}
+mod arcs;
 
 /// `v` rounded to `decimals` as a reader of the printed value gets it.
 fn round(v: f64, decimals: u32) -> f64 {

@@ -1,6 +1,7 @@
 //! Importers (point lists, DXF, SVG) and atomic file output.
 
 mod atomic;
+pub mod points;
 
 pub use atomic::{write_atomic, write_atomic_with};
 pub mod dxf;

@@ -3,6 +3,8 @@
 
 use millpath::geom::Point3;
 use millpath::toolpath::{Corner, Move, MoveKind, Plane, Tool, Toolpath};
+use proptest::prelude::*;
+use std::f64::consts::PI;
 
 /// A varied toolpath: rapids, lines, arcs both ways in several quadrants, full circles,
 /// helices (one with extra turns), arcs in G18/G19, dwells and corner modes.
@@ -168,4 +170,95 @@ pub fn move_difference(a: &Move, b: &Move) -> f64 {
         }
         _ => f64::INFINITY,
     }
+}
+
+/// `tp` as the writer writes it when its first motion is an arc: a rapid to the start first.
+pub fn with_start_rapid(tp: &Toolpath) -> Toolpath {
+    let first_motion = tp
+        .moves
+        .iter()
+        .find(|m| !matches!(m.kind, MoveKind::Dwell { .. }));
+    let mut out = tp.clone();
+    if let Some(Move {
+        kind: MoveKind::Arc { .. },
+        ..
+    }) = first_motion
+    {
+        let at = tp
+            .moves
+            .iter()
+            .position(|m| !matches!(m.kind, MoveKind::Dwell { .. }))
+            .unwrap_or(0);
+        out.moves.insert(at, Move::rapid(tp.start));
+    }
+    out
+}
+
+/// One random step: kind, four numbers in [-1, 1], a direction and a plane.
+pub type Step = (u8, f64, f64, f64, f64, bool, u8);
+
+pub fn random_step() -> impl Strategy<Value = Step> {
+    (
+        0u8..5,
+        -1.0..1.0f64,
+        -1.0..1.0f64,
+        -1.0..1.0f64,
+        -1.0..1.0f64,
+        any::<bool>(),
+        0u8..3,
+    )
+}
+
+/// Builds a toolpath of rapids, lines, arcs and helices in all planes (sweeps 0.05..6.15
+/// rad), full circles with 0..2 extra turns, and dwells.
+pub fn build_random(steps: &[Step]) -> Toolpath {
+    let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 20.0));
+    let mut p = tp.start;
+    for &(kind, a, b, c, d, ccw, pl) in steps {
+        let plane = [Plane::Xy, Plane::Zx, Plane::Yz][usize::from(pl)];
+        let m = match kind {
+            0 => Move::rapid(Point3::new(a * 500.0, b * 500.0, c * 100.0)),
+            1 => Move::line(
+                Point3::new(a * 500.0, b * 500.0, c * 100.0),
+                d.abs() * 100.0 + 0.1,
+            ),
+            2 | 3 => {
+                let r = 0.5 + a.abs() * 200.0;
+                let t0 = b * PI;
+                let (pu, pv, pw) = plane.split(p - Point3::ORIGIN);
+                let (cu, cv) = (pu - r * t0.cos(), pv - r * t0.sin());
+                let (to, turns) = if kind == 2 {
+                    let sweep = 0.05 + c.abs() * 6.1;
+                    let t1 = if ccw { t0 + sweep } else { t0 - sweep };
+                    (
+                        Point3::ORIGIN
+                            + plane.join(cu + r * t1.cos(), cv + r * t1.sin(), pw + d * 10.0),
+                        0,
+                    )
+                } else {
+                    (
+                        Point3::ORIGIN + plane.join(pu, pv, pw + d * 5.0),
+                        (c.abs() * 2.99) as u32,
+                    )
+                };
+                let center = Point3::ORIGIN + plane.join(cu, cv, pw);
+                Move {
+                    kind: MoveKind::Arc {
+                        center,
+                        plane,
+                        ccw,
+                        turns,
+                    },
+                    to,
+                    feed: d.abs() * 50.0 + 0.5,
+                    corner: Corner::Machine,
+                    tag: None,
+                }
+            }
+            _ => Move::dwell(p, a.abs() * 5.0),
+        };
+        p = m.to;
+        tp.push(m);
+    }
+    tp
 }

@@ -44,18 +44,27 @@ impl State {
         let arc_words = ijk.iter().any(Option::is_some) || r.is_some();
         let p = if is_arc { b.take(b'P') } else { None };
         let turn = b.turn.take();
-        if let Some((l, v)) = b.leftover() {
-            return Err(BlockError {
-                unsupported: true,
-                ..BlockError::new(
-                    "G-code word",
-                    format!("{}{v}", char::from(l)),
-                    "a word this block uses (this one has no effect here)",
-                )
-            });
+        while let Some((l, v)) = b.leftover() {
+            let word = format!("{}{v}", char::from(l));
+            let expected = "a word this block uses (this one has no effect here)";
+            if !opts.lenient {
+                return Err(BlockError {
+                    unsupported: true,
+                    ..BlockError::new("G-code word", word, expected)
+                });
+            }
+            self.notes.push(format!("skipped {word} ({expected})"));
+            b.take(l);
         }
         let moves = has_axes || (is_arc && code.is_some() && arc_words);
         if !moves {
+            if arc_words && is_arc {
+                return Err(BlockError::new(
+                    "G-code word",
+                    if r.is_some() { "R" } else { "I/J/K" },
+                    "arc words with axis words, or with G2/G3 in the block for a full circle",
+                ));
+            }
             if arc_words && !is_arc {
                 return Err(BlockError::new(
                     "G-code word",
@@ -122,6 +131,17 @@ impl State {
         };
         if mv.is_feed() {
             mv.feed = self.feed_for(&mv, block_f)?;
+        }
+        let centre_ok = match mv.kind {
+            MoveKind::Arc { center, .. } => center.is_finite(),
+            _ => true,
+        };
+        if !(to.is_finite() && centre_ok && mv.feed.is_finite()) {
+            return Err(BlockError::new(
+                "G-code block",
+                "coordinates or feed out of range",
+                "finite positions, centres and feeds",
+            ));
         }
         self.pos = to;
         out.push(ReadMove {

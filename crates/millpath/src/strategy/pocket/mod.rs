@@ -145,10 +145,14 @@ fn finishing_plan(
 }
 
 /// What [`cycle_time`] computes, for reports.
-pub const CYCLE_TIME_MODEL: &str = "programmed feed (placeholder until the planner lands)";
+pub const CYCLE_TIME_MODEL: &str = "jerk-limited look-ahead planner (motion::plan_toolpath)";
 
-/// Cycle time of a toolpath, s. Placeholder until the motion planner lands: the time at the
-/// programmed feeds with rapids at 25 m/min. Switching to the planner is this one function.
+/// Cycle time of a toolpath on `machine`, s: the motion planner's total time.
+pub fn cycle_time_on(tp: &Toolpath, machine: &crate::machine::Machine) -> Result<f64> {
+    Ok(crate::motion::plan_toolpath(tp, machine)?.total_time())
+}
+
+/// Cycle time of a toolpath on the `hsm` preset, s.
 pub fn cycle_time(tp: &Toolpath) -> Result<f64> {
-    Ok(tp.time_at_programmed_feed(25_000.0 / 60.0))
+    cycle_time_on(tp, &crate::machine::Machine::preset("hsm")?)
 }

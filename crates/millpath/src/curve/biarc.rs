@@ -1,0 +1,289 @@
+//! Biarcs within a tolerance, for G2/G3 output (`--arcs`).
+//!
+//! # Biarc (derived)
+//! Between `P0` with unit tangent `t0` and `P1` with unit tangent `t1`, a biarc is two
+//! tangent-continuous circular arcs meeting at a joint `J`. With the equal-distance choice
+//! (the two tangent-line lengths from `P0` and to `P1` equal to `δ`), the tangent lines meet
+//! the joint's tangent at `P0 + δt0` and `P1 − δt1`, which are `2δ` apart:
+//! `|v − δ(t0 + t1)|² = 4δ²` with `v = P1 − P0`. Expanding with `|t0 + t1|² = 2 + 2t0·t1`:
+//! `a·δ² + 2b·δ − c = 0` with `a = 2(1 − t0·t1)`, `b = v·(t0 + t1)`, `c = v·v`, so
+//! `δ = (−b + √(b² + ac))/a` (the positive root; `δ = c/(2b)` when `a = 0`), and
+//! `J = (P0 + δt0 + P1 − δt1)/2`. The circle through `P0` tangent to `t0` and through `J`
+//! has signed radius `ρ = |w|²/(2·cross(t0, w))`, `w = J − P0` (from `|w − ρn|² = ρ²` with
+//! `n = perp(t0)`), centre `P0 + ρ·perp(t0)`, counter-clockwise when `ρ > 0`; the second arc
+//! likewise from `P1` and `t1`.
+//!
+//! # Tolerance
+//! A biarc is accepted when the curve between its ends, sampled at 64 parameters, is within
+//! `tol` of it and its own points (16 per arc) are within `tol` of the sampled curve's
+//! polyline. The ends are pushed as far as feasible (doubling then bisection to 1e-6 in the
+//! parameter), as for lines. The tests verify the result with 1000 samples per arc.
+
+use super::PlanarCurve;
+use crate::geom::{Point, Vec2};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// A circular arc (or a line when `center` is `None`) from `start` to `end`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ArcSeg {
+    /// Start point.
+    pub start: Point,
+    /// End point.
+    pub end: Point,
+    /// Centre (`None`: a straight line).
+    pub center: Option<Point>,
+    /// Counter-clockwise.
+    pub ccw: bool,
+    /// Global curve parameter at the end.
+    pub s_end: f64,
+}
+
+impl ArcSeg {
+    /// Signed sweep (positive counter-clockwise); 0 for a line.
+    pub fn sweep(&self) -> f64 {
+        let Some(c) = self.center else { return 0.0 };
+        let (a0, a1) = ((self.start - c).angle(), (self.end - c).angle());
+        if self.ccw {
+            (a1 - a0).rem_euclid(TAU)
+        } else {
+            -(a0 - a1).rem_euclid(TAU)
+        }
+    }
+
+    /// The point at fraction `f ∈ [0, 1]` of the arc.
+    pub fn at(&self, f: f64) -> Point {
+        match self.center {
+            None => self.start.lerp(self.end, f),
+            Some(c) => c + (self.start - c).rotate(self.sweep() * f),
+        }
+    }
+
+    /// Distance from `p` to the arc.
+    pub fn distance(&self, p: Point) -> f64 {
+        let Some(c) = self.center else {
+            return super::flatten::dist_to_segment(p, self.start, self.end);
+        };
+        let r = (self.start - c).length();
+        let sw = self.sweep();
+        let a0 = (self.start - c).angle();
+        let th = (p - c).angle();
+        let delta = if sw >= 0.0 {
+            (th - a0).rem_euclid(TAU)
+        } else {
+            (a0 - th).rem_euclid(TAU)
+        };
+        if delta <= sw.abs() {
+            ((p - c).length() - r).abs()
+        } else {
+            p.distance(self.start).min(p.distance(self.end))
+        }
+    }
+
+    /// Length in mm.
+    pub fn length(&self) -> f64 {
+        match self.center {
+            None => self.start.distance(self.end),
+            Some(c) => (self.start - c).length() * self.sweep().abs(),
+        }
+    }
+}
+
+fn one_arc(p: Point, t: Vec2, j: Point, from_start: bool, s_end: f64) -> Option<ArcSeg> {
+    let w = j - p;
+    let k = t.cross(w);
+    let (start, end) = if from_start { (p, j) } else { (j, p) };
+    if k.abs() <= 1e-12 * w.length_squared().max(1e-300) {
+        return Some(ArcSeg {
+            start,
+            end,
+            center: None,
+            ccw: true,
+            s_end,
+        });
+    }
+    let rho = w.length_squared() / (2.0 * k);
+    let c = p + t.perp() * rho;
+    let a = ArcSeg {
+        start,
+        end,
+        center: Some(c),
+        ccw: rho > 0.0,
+        s_end,
+    };
+    (a.sweep().abs() < std::f64::consts::PI && rho.abs() < 1e7).then_some(a)
+}
+
+/// The equal-distance biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`), or
+/// `None` when it degenerates (parallel tangents perpendicular to the chord, or an arc
+/// sweeping half a turn or more).
+pub fn biarc(p0: Point, t0: Vec2, p1: Point, t1: Vec2, s0: f64, s1: f64) -> Option<[ArcSeg; 2]> {
+    let v = p1 - p0;
+    let sum = t0 + t1;
+    let a = 2.0 * (1.0 - t0.dot(t1));
+    let b = v.dot(sum);
+    let c = v.dot(v);
+    let d = if a.abs() < 1e-12 {
+        if b.abs() < 1e-300 {
+            return None;
+        }
+        c / (2.0 * b)
+    } else {
+        (-b + (b * b + a * c).max(0.0).sqrt()) / a
+    };
+    if !(d.is_finite() && d > 0.0) {
+        return None;
+    }
+    let j = ((p0 + t0 * d).to_vec2() + (p1 - t1 * d).to_vec2()).to_point();
+    let j = Point::new(j.x * 0.5, j.y * 0.5);
+    let sm = 0.5 * (s0 + s1);
+    Some([
+        one_arc(p0, t0, j, true, sm)?,
+        one_arc(p1, t1, j, false, s1)?,
+    ])
+}
+
+struct Sampler<'a, C: PlanarCurve + ?Sized> {
+    c: &'a C,
+    hi: f64,
+    n: usize,
+}
+
+impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
+    fn loc(&self, s: f64) -> (usize, f64) {
+        let mut k = s.floor();
+        if s >= self.hi && self.hi.fract() == 0.0 {
+            k = self.hi - 1.0;
+        }
+        (
+            (k.rem_euclid(self.n as f64) as usize).min(self.n - 1),
+            (s - k).clamp(0.0, 1.0),
+        )
+    }
+    fn pt(&self, s: f64) -> Point {
+        let (i, u) = self.loc(s);
+        self.c.point_at(i, u)
+    }
+    fn tan(&self, s: f64) -> Vec2 {
+        let (i, u) = self.loc(s);
+        self.c.tangent_at(i, u)
+    }
+    fn fit(&self, s0: f64, s1: f64) -> Option<[ArcSeg; 2]> {
+        biarc(self.pt(s0), self.tan(s0), self.pt(s1), self.tan(s1), s0, s1)
+    }
+    fn dev(&self, s0: f64, s1: f64) -> f64 {
+        let Some(arcs) = self.fit(s0, s1) else {
+            return f64::INFINITY;
+        };
+        let m = 64;
+        let pts: Vec<Point> = (0..=m)
+            .map(|j| self.pt(s0 + (s1 - s0) * f64::from(j) / f64::from(m)))
+            .collect();
+        let dist = |p: Point| arcs[0].distance(p).min(arcs[1].distance(p));
+        let mut worst = 0.0_f64;
+        let mut at = 0;
+        for (j, p) in pts.iter().enumerate() {
+            let d = dist(*p);
+            if d > worst {
+                worst = d;
+                at = j;
+            }
+        }
+        // Refine the largest sample by golden-section search on its two neighbouring
+        // intervals: the distance is smooth there, and the samples alone can miss its peak.
+        let step = (s1 - s0) / f64::from(m);
+        let centre = s0 + step * at as f64;
+        let (mut a, mut b) = ((centre - step).max(s0), (centre + step).min(s1));
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..40 {
+            let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+            if dist(self.pt(x1)) > dist(self.pt(x2)) {
+                b = x2;
+            } else {
+                a = x1;
+            }
+        }
+        worst = worst.max(dist(self.pt(0.5 * (a + b))));
+        for a in &arcs {
+            for j in 1..16 {
+                let q = a.at(f64::from(j) / 16.0);
+                let d = pts
+                    .windows(2)
+                    .map(|w| super::flatten::dist_to_segment(q, w[0], w[1]))
+                    .fold(f64::INFINITY, f64::min);
+                worst = worst.max(d);
+            }
+        }
+        worst
+    }
+}
+
+/// Fits biarcs within `tol` to the smooth stretch `[s0, s1]` (unwrapped global parameters,
+/// no corner strictly inside) of `c`.
+pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<ArcSeg> {
+    let sm = Sampler {
+        c,
+        hi: s1,
+        n: c.piece_count(),
+    };
+    let mut out = Vec::new();
+    // Sampling-based: aim 1 % below tol for what the samples may still miss.
+    let tol = tol * 0.99;
+    let mut s = s0;
+    let mut h = (s1 - s0).min(0.05);
+    let eps = 1e-7;
+    while s < s1 - 1e-12 {
+        let ok = |t: f64| sm.dev(s, t) <= tol;
+        let mut lo;
+        let mut up;
+        let first = (s + h).min(s1);
+        if ok(first) {
+            lo = first;
+            up = s1;
+            while lo < s1 {
+                let t = (s + 2.0 * (lo - s)).min(s1);
+                if ok(t) {
+                    lo = t;
+                } else {
+                    up = t;
+                    break;
+                }
+            }
+        } else {
+            up = first;
+            lo = s;
+            let mut t = first;
+            while t - s > eps {
+                t = s + 0.5 * (t - s);
+                if ok(t) {
+                    lo = t;
+                    break;
+                }
+                up = t;
+            }
+            if lo <= s {
+                // Cannot fit even a tiny biarc: fall back to a chord.
+                let t = (s + eps).min(s1);
+                out.push(ArcSeg {
+                    start: sm.pt(s),
+                    end: sm.pt(t),
+                    center: None,
+                    ccw: true,
+                    s_end: t,
+                });
+                s = t;
+                continue;
+            }
+        }
+        while lo < s1 && up - lo > eps * (up - s).max(1e-3) {
+            let m = 0.5 * (lo + up);
+            if ok(m) { lo = m } else { up = m }
+        }
+        if let Some(a) = sm.fit(s, lo) {
+            out.extend(a);
+        }
+        h = lo - s;
+        s = lo;
+    }
+    out
+}

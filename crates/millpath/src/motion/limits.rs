@@ -1,0 +1,201 @@
+//! Path limits of a block (axis limits projected onto the path) and junction speed caps.
+//!
+//! # Lines
+//! On a line with unit direction `u`, axis `i` sees `v·u_i`, `a·u_i`, `j·u_i`, so the path
+//! limits are exactly `V = min_i vmax_i/|u_i|`, `A = min_i amax_i/|u_i|`,
+//! `J = min_i jmax_i/|u_i|` (axes with `u_i = 0` impose nothing), and `V` is further bounded
+//! by the programmed feed and the machine's maximum feed (rapids: by the rapid velocity per
+//! axis, projected the same way).
+//!
+//! # Arcs and helices
+//! On a helix of radius `r` and pitch `2πc` (curvature `κ = r/(r² + c²)`, torsion
+//! `τ = c/(r² + c²)`), with path speed `v`, tangential acceleration `a_t` and jerk `j_t`, the
+//! Frenet frame gives
+//! `acc = a_t·T + κv²·N` and `jerk = (j_t − κ²v³)·T + 3κ·v·a_t·N + κτv³·B`.
+//! Each axis component is at most the vector's norm, so it suffices that
+//! * `|a_t| + κv² ≤ A_ax`, with `A_ax` the smallest acceleration limit of the axes the block
+//!   moves. Following the Siemens 840D's `CURV_EFFECT_ON_PATH_ACCEL` (MD20602), a share
+//!   `η_a` of `A_ax` is given to the centripetal part, `κV² ≤ η_a·A_ax`, the rest to the
+//!   tangential acceleration: `A = (1 − η_a)·A_ax`.
+//! * `|j_t| + κ√(κ² + τ²)·v³ + 3κ·v·|a_t| ≤ J_ax`: a share `η_j` of `J_ax` bounds the
+//!   curvature terms at the block's top speed, `κ√(κ²+τ²)·V³ + 3κ·A·V ≤ η_j·J_ax` (a
+//!   depressed cubic in `V` with one positive root, solved in the sinh form), and the
+//!   tangential jerk gets `J = (1 − η_j)·J_ax`. On a circle at constant speed this is the
+//!   familiar `v³/r² ≤ η_j·J`.
+//! * the axis velocities: `V ≤ min_i vmax_i/m_i` with `m_i` the largest tangent component
+//!   of axis `i` over the block.
+//!
+//! # Junctions
+//! Between two blocks with unit tangents `t1` (end of the first) and `t2` (start of the
+//! next), deflection `θ = acos(t1·t2)`:
+//! * **tangent** (`|t2 − t1| ≤ 1e-9`): no direction cap. The curvature may still jump
+//!   (line → arc, arc → arc of another radius): the acceleration then steps by
+//!   `v²·Δ(κN)`. A real controller spreads that step over its interpolation cycle `T_ipo`
+//!   (the 840D bounds it by `PATH_TRANS_JERK_LIM`, MD32432), so we require the mean jerk over
+//!   one cycle to stay within each axis's jerk: `v²·|Δ(κN)_i| ≤ jmax_i·T_ipo`. With infinite
+//!   jerk there is no such cap.
+//! * **exact stop** (`Corner::ExactStop`, or a path tolerance of 0): the junction speed is 0.
+//! * **exact path** (`Corner::ExactPath`, G61): the direction changes within one
+//!   interpolation cycle, each axis's velocity stepping by `v·|t2_i − t1_i|`; the mean
+//!   acceleration over the cycle must stay within `amax_i` and the step of acceleration
+//!   within `jmax_i·T_ipo`: `v·|Δt_i| ≤ min(amax_i·T_ipo, jmax_i·T_ipo²)`.
+//! * **blend** within a tolerance `ε` (the machine's path tolerance, or `Corner::Blend`): the
+//!   corner is rounded by the largest circular arc tangent to both blocks whose distance from
+//!   the corner is at most `ε`. The arc's centre lies on the bisector at `R/cos(θ/2)` from the
+//!   corner, so its deviation is `R·(1/cos(θ/2) − 1) ≤ ε`, i.e.
+//!   `R = ε·cos(θ/2)/(1 − cos(θ/2))`; its tangent points lie `R·tan(θ/2)` from the corner,
+//!   which must fit in half of each block, `R ≤ min(L1, L2)/(2·tan(θ/2))`. The blend is
+//!   taken at `v_c = min(√(A_ax·R), ∛(J_ax·R²))` (centripetal acceleration and its jerk on
+//!   the arc). The planner keeps the programmed sharp path for the timing (the blend is
+//!   shorter, so the time is slightly conservative) and does not model the curvature step at
+//!   the blend's ends (controllers blend with curvature-continuous polynomials, G642).
+
+use super::path::Geom;
+use super::profile::Limits1;
+use crate::machine::Machine;
+use crate::toolpath::{Corner, Move, MoveKind};
+
+/// The path limits of a block of geometry `g` for move `m`.
+pub fn block_limits(g: &Geom, m: &Move, machine: &Machine) -> Limits1 {
+    let prog = match m.kind {
+        MoveKind::Rapid => f64::INFINITY,
+        _ => m.feed.min(machine.max_feed),
+    };
+    let dir = g.max_direction();
+    let mut v = prog;
+    let (mut a_ax, mut j_ax, mut a_line, mut j_line) =
+        (f64::INFINITY, f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    for (i, &d) in dir.iter().enumerate() {
+        if d <= 1e-15 {
+            continue;
+        }
+        let ax = machine.axes[i];
+        v = v.min(ax.max_velocity / d);
+        if matches!(m.kind, MoveKind::Rapid) {
+            v = v.min(machine.rapid[i] / d);
+        }
+        a_line = a_line.min(ax.max_acceleration / d);
+        j_line = j_line.min(ax.max_jerk / d);
+        a_ax = a_ax.min(ax.max_acceleration);
+        j_ax = j_ax.min(ax.max_jerk);
+    }
+    match *g {
+        Geom::Line { .. } => Limits1 {
+            v,
+            a: a_line,
+            j: j_line,
+        },
+        Geom::Helix { .. } => {
+            let (k, tau) = g.curvature_torsion();
+            let (ea, ej) = (machine.curvature_accel_share, machine.curvature_jerk_share);
+            let a = (1.0 - ea) * a_ax;
+            v = v.min((ea * a_ax / k).sqrt());
+            let j = if j_ax.is_finite() {
+                // κ·n·V³ + 3κ·A·V = η_j·J with n = √(κ²+τ²):  V³ + p·V − q = 0.
+                let n = k.hypot(tau);
+                let p = 3.0 * a / n;
+                let q = ej * j_ax / (k * n);
+                let arg = 1.5 * q / p * (3.0 / p).sqrt();
+                let vj = if arg > 1e100 {
+                    q.cbrt()
+                } else {
+                    2.0 * (p / 3.0).sqrt() * (arg.asinh() / 3.0).sinh()
+                };
+                v = v.min(vj * (1.0 - 1e-12));
+                (1.0 - ej) * j_ax
+            } else {
+                f64::INFINITY
+            };
+            Limits1 { v, a, j }
+        }
+    }
+}
+
+/// How a junction is treated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum JunctionMode {
+    /// Stop.
+    Stop,
+    /// Exact path with a velocity step within one interpolation cycle.
+    ExactPath,
+    /// Blend within this tolerance (mm).
+    Blend(f64),
+}
+
+/// The junction mode the corner setting of the first block asks for.
+pub fn junction_mode(corner: Corner, machine: &Machine) -> JunctionMode {
+    let blend = |t: f64| {
+        if t > 0.0 {
+            JunctionMode::Blend(t)
+        } else {
+            JunctionMode::Stop
+        }
+    };
+    match corner {
+        Corner::Machine => blend(machine.path_tolerance),
+        Corner::ExactStop => JunctionMode::Stop,
+        Corner::ExactPath => JunctionMode::ExactPath,
+        Corner::Blend(t) => blend(t),
+    }
+}
+
+/// The speed cap at the junction from `g1` (whose corner mode is `mode`) into `g2`.
+pub fn junction_cap(g1: &Geom, g2: &Geom, mode: JunctionMode, machine: &Machine) -> f64 {
+    let t1 = g1.end_tangent();
+    let t2 = g2.start_tangent();
+    let du = t2 - t1;
+    let mut cap = f64::INFINITY;
+    let tipo = machine.ipo_cycle;
+    if du.length() > 1e-9 {
+        match mode {
+            JunctionMode::Stop => return 0.0,
+            JunctionMode::ExactPath => {
+                for (i, d) in du.to_array().iter().enumerate() {
+                    let ax = machine.axes[i];
+                    let step = (ax.max_acceleration * tipo).min(ax.max_jerk * tipo * tipo);
+                    if d.abs() > 1e-15 {
+                        cap = cap.min(step / d.abs());
+                    }
+                }
+                return cap;
+            }
+            JunctionMode::Blend(tol) => {
+                let c = t1.dot(t2).clamp(-1.0, 1.0);
+                let half = 0.5 * c.acos();
+                let (sh, ch) = half.sin_cos();
+                if 1.0 - ch <= 0.0 || ch <= 1e-12 {
+                    return 0.0;
+                }
+                let r_tol = tol * ch / (1.0 - ch);
+                let r_fit = 0.5 * g1.length().min(g2.length()) * ch / sh;
+                let r = r_tol.min(r_fit);
+                let a = machine
+                    .axes
+                    .iter()
+                    .map(|x| x.max_acceleration)
+                    .fold(f64::INFINITY, f64::min);
+                let j = machine
+                    .axes
+                    .iter()
+                    .map(|x| x.max_jerk)
+                    .fold(f64::INFINITY, f64::min);
+                cap = (a * r).sqrt();
+                if j.is_finite() {
+                    cap = cap.min((j * r * r).cbrt());
+                }
+                return cap;
+            }
+        }
+    }
+    // Tangent: the curvature step.
+    let (_, k1) = g1.curvature_ends();
+    let (k2, _) = g2.curvature_ends();
+    let dk = k2 - k1;
+    for (i, d) in dk.to_array().iter().enumerate() {
+        let jm = machine.axes[i].max_jerk;
+        if d.abs() > 1e-12 && jm.is_finite() {
+            cap = cap.min((jm * tipo / d.abs()).sqrt());
+        }
+    }
+    cap
+}

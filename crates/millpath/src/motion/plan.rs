@@ -1,0 +1,338 @@
+//! The look-ahead planner: blocks → spans → knot speeds → S-curve profiles → a timed plan.
+//!
+//! # Spans and knots
+//! Consecutive blocks whose junction does not bind (the junction cap is at least both blocks'
+//! speed caps) and whose speed caps are equal form one **span**: the S-curve runs through
+//! their junctions without constraint. The span's path acceleration and jerk limits are the
+//! smallest of its blocks' (conservative where the direction changes within the span; blocks
+//! whose limits differ by more than a factor 2 are separated by a knot instead). A
+//! **knot** separates spans; its speed cap is the junction cap (and both spans' caps); the
+//! program's start and end, dwells and exact stops are knots at speed 0.
+//!
+//! # Look-ahead
+//! The profiles have zero acceleration at knots, so a span of length `L` can take the
+//! velocity from `v` to at most `reach(v, L)`, the inverse of the S-curve distance
+//! ([`super::profile::reachable_velocity`], closed form). A backward pass
+//! `v_k ← min(v_k, reach(v_{k+1}, L_k))` and a forward pass
+//! `v_{k+1} ← min(v_{k+1}, reach(v_k, L_k))` over the whole program make every span
+//! feasible; each span then gets the time-optimal profile between its knot speeds
+//! ([`super::profile::SpanProfile`]), which is checked against its limits before it is
+//! accepted.
+//!
+//! # What this is and is not optimal for
+//! Given the knots, every span is exactly time-optimal. Forcing zero acceleration at a knot
+//! is what a time-optimal profile does where the speed touches a cap (at a velocity minimum or
+//! plateau); it is conservative where a knot's speed is not reached, e.g. a short span that
+//! accelerates through a junction into a span with a higher cap. Memory is a few words per
+//! block and per span; time is linear in the number of blocks.
+
+use super::limits::{block_limits, junction_cap, junction_mode};
+use super::path::Geom;
+use super::profile::{Limits1, SpanProfile, reachable_velocity};
+use crate::error::Error;
+use crate::geom::Point3;
+use crate::machine::Machine;
+use crate::toolpath::{Move, MoveKind, Toolpath};
+
+/// Options of [`plan_moves`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanOptions {
+    /// Keep each block's geometry in the plan (needed by [`Plan::sample`]; costs ~100 bytes per
+    /// block).
+    pub keep_geometry: bool,
+    /// Check every span profile against its limits before accepting it.
+    pub check_profiles: bool,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        PlanOptions {
+            keep_geometry: true,
+            check_profiles: true,
+        }
+    }
+}
+
+/// One planned block (one move of the input).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BlockPlan {
+    /// The kind of move.
+    pub kind: MoveKind,
+    /// Path length in mm.
+    pub length: f64,
+    /// Time at the start of the block in s.
+    pub start_time: f64,
+    /// Duration in s.
+    pub time: f64,
+    /// Highest path speed reached in the block, mm/s.
+    pub peak_feed: f64,
+    /// Programmed feed in mm/s (0 for rapids and dwells).
+    pub programmed_feed: f64,
+    /// The span the block belongs to.
+    pub span: u32,
+    /// Distance from the start of the span to the start of the block.
+    pub span_offset: f64,
+}
+
+/// One span: blocks sharing one S-curve profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Span {
+    /// First block.
+    pub first: usize,
+    /// One past the last block.
+    pub end: usize,
+    /// Time at the start of the span.
+    pub start_time: f64,
+    /// Length in mm.
+    pub length: f64,
+    /// Knot speed at the start.
+    pub v0: f64,
+    /// Knot speed at the end.
+    pub v1: f64,
+    /// Path limits of the span.
+    pub limits: Limits1,
+    /// Dwell time (a dwell span has no length).
+    pub dwell: f64,
+}
+
+impl Span {
+    /// The span's profile (recomputed: plans store only the knot speeds).
+    pub fn profile(&self) -> Result<SpanProfile, Error> {
+        SpanProfile::new(self.v0, self.v1, self.length, self.limits)
+    }
+}
+
+/// A timed plan of a program.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// Name of the machine it was planned for.
+    pub machine: String,
+    /// The blocks, one per input move.
+    pub blocks: Vec<BlockPlan>,
+    /// The spans.
+    pub spans: Vec<Span>,
+    /// Geometry of each block (if kept), `None` for dwells and zero-length moves.
+    pub geometry: Vec<Option<Geom>>,
+    /// Start and end point of each block (if geometry is kept).
+    pub ends: Vec<(Point3, Point3)>,
+    /// Total time in s.
+    pub total_time: f64,
+}
+
+impl Plan {
+    /// The cycle time in s.
+    pub fn total_time(&self) -> f64 {
+        self.total_time
+    }
+}
+
+struct Builder {
+    spans: Vec<Span>,
+    knots: Vec<f64>,
+    last: Option<(Geom, Move, Limits1)>,
+}
+
+impl Builder {
+    fn open(&mut self, first: usize, knot: f64, lim: Limits1) {
+        self.knots.push(knot);
+        self.spans.push(Span {
+            first,
+            end: first,
+            start_time: 0.0,
+            length: 0.0,
+            v0: 0.0,
+            v1: 0.0,
+            limits: lim,
+            dwell: 0.0,
+        });
+    }
+}
+
+/// Plans a toolpath with the default options.
+pub fn plan_toolpath(tp: &Toolpath, machine: &Machine) -> Result<Plan, Error> {
+    plan_toolpath_opt(tp, machine, &PlanOptions::default())
+}
+
+/// Plans a toolpath.
+pub fn plan_toolpath_opt(
+    tp: &Toolpath,
+    machine: &Machine,
+    opts: &PlanOptions,
+) -> Result<Plan, Error> {
+    plan_moves(tp.segments().map(|(f, m)| Ok((f, *m))), machine, opts)
+}
+
+/// Plans any stream of `(from, move)` pairs (a G-code reader's output, for instance); the
+/// first error of the stream is returned as is.
+pub fn plan_moves<I>(moves: I, machine: &Machine, opts: &PlanOptions) -> Result<Plan, Error>
+where
+    I: IntoIterator<Item = Result<(Point3, Move), Error>>,
+{
+    machine.validate(&machine.name)?;
+    let mut blocks = Vec::new();
+    let mut geometry = Vec::new();
+    let mut ends = Vec::new();
+    let mut b = Builder {
+        spans: Vec::new(),
+        knots: Vec::new(),
+        last: None,
+    };
+    let zero = Limits1 {
+        v: 0.0,
+        a: 1.0,
+        j: 1.0,
+    };
+    for item in moves {
+        let (from, m) = item?;
+        let i = blocks.len();
+        let g = Geom::of(from, &m);
+        let length = g.as_ref().map_or(0.0, Geom::length);
+        if m.is_feed() && !(m.feed.is_finite() && m.feed > 0.0) && length > 0.0 {
+            return Err(crate::InputError::new("feed", m.feed)
+                .at(format!("move {}", i + 1))
+                .expected("a finite feed > 0 mm/s on a feed move")
+                .into());
+        }
+        let mut span_offset = 0.0;
+        match (&g, m.kind) {
+            (_, MoveKind::Dwell { seconds }) => {
+                if !(seconds.is_finite() && seconds >= 0.0) {
+                    return Err(crate::InputError::new("dwell", seconds)
+                        .at(format!("move {}", i + 1))
+                        .expected("a finite number of seconds >= 0")
+                        .into());
+                }
+                b.open(i, 0.0, zero);
+                if let Some(s) = b.spans.last_mut() {
+                    s.dwell = seconds;
+                }
+                b.last = None;
+            }
+            (Some(g), _) => {
+                let lim = block_limits(g, &m, machine);
+                if !(lim.v > 0.0 && lim.a > 0.0 && lim.j > 0.0) {
+                    return Err(Error::internal(format!("block {i}: limits {lim:?}")));
+                }
+                let join = match &b.last {
+                    Some((pg, pm, pl)) => {
+                        let cap = junction_cap(pg, g, junction_mode(pm.corner, machine), machine);
+                        let vmin = pl.v.min(lim.v);
+                        let same = (pl.v - lim.v).abs() <= 1e-12 * lim.v;
+                        // Blocks with very different path acceleration or jerk limits (a line
+                        // into an arc) get a knot (a = 0) rather than sharing the smaller
+                        // limit over a whole span.
+                        let near = |x: f64, y: f64| x <= 2.0 * y && y <= 2.0 * x;
+                        let alike = near(pl.a, lim.a)
+                            && ((pl.j.is_infinite() && lim.j.is_infinite()) || near(pl.j, lim.j));
+                        if same && alike && cap >= vmin {
+                            None
+                        } else {
+                            Some(cap.min(vmin))
+                        }
+                    }
+                    None => Some(0.0),
+                };
+                match join {
+                    Some(knot) => b.open(i, knot, lim),
+                    None => {
+                        if let Some(s) = b.spans.last_mut() {
+                            s.limits.a = s.limits.a.min(lim.a);
+                            s.limits.j = s.limits.j.min(lim.j);
+                        }
+                    }
+                }
+                if let Some(s) = b.spans.last_mut() {
+                    span_offset = s.length;
+                    s.length += length;
+                }
+                b.last = Some((*g, m, lim));
+            }
+            (None, _) => {
+                if let Some(s) = b.spans.last() {
+                    span_offset = s.length;
+                }
+            }
+        }
+        if let Some(s) = b.spans.last_mut() {
+            s.end = i + 1;
+        }
+        blocks.push(BlockPlan {
+            kind: m.kind,
+            length,
+            start_time: 0.0,
+            time: 0.0,
+            peak_feed: 0.0,
+            programmed_feed: if m.is_feed() { m.feed } else { 0.0 },
+            span: u32::try_from(b.spans.len().saturating_sub(1)).unwrap_or(u32::MAX),
+            span_offset,
+        });
+        if opts.keep_geometry {
+            geometry.push(g);
+            ends.push((from, m.to));
+        }
+    }
+    b.knots.push(0.0);
+    let Builder {
+        mut spans,
+        mut knots,
+        ..
+    } = b;
+    // Dwell spans pin their knots to 0.
+    for (k, s) in spans.iter().enumerate() {
+        if s.length <= 0.0 {
+            knots[k] = 0.0;
+            knots[k + 1] = 0.0;
+        }
+    }
+    // Look-ahead: backward then forward.
+    for k in (0..spans.len()).rev() {
+        let s = &spans[k];
+        let r = reachable_velocity(knots[k + 1], s.length, s.limits.a, s.limits.j);
+        knots[k] = knots[k].min(r).min(s.limits.v);
+    }
+    for k in 0..spans.len() {
+        let s = &spans[k];
+        let r = reachable_velocity(knots[k], s.length, s.limits.a, s.limits.j);
+        knots[k + 1] = knots[k + 1].min(r).min(s.limits.v);
+    }
+    let mut t = 0.0;
+    for (k, s) in spans.iter_mut().enumerate() {
+        s.v0 = knots[k];
+        s.v1 = knots[k + 1];
+        s.start_time = t;
+        if s.length <= 0.0 {
+            if let Some(bp) = blocks.get_mut(s.first) {
+                bp.start_time = t;
+                bp.time = s.dwell;
+            }
+            t += s.dwell;
+            continue;
+        }
+        let p = SpanProfile::new(s.v0, s.v1, s.length, s.limits)?;
+        if opts.check_profiles {
+            p.check(s.limits)?;
+        }
+        let mut tb = 0.0;
+        for bp in blocks.get_mut(s.first..s.end).unwrap_or_default() {
+            let te = if bp.span_offset + bp.length >= s.length {
+                p.duration
+            } else {
+                p.time_at(bp.span_offset + bp.length)
+            };
+            bp.start_time = t + tb;
+            bp.time = (te - tb).max(0.0);
+            let tpk = p.t_peak.clamp(tb, te);
+            bp.peak_feed = if bp.length > 0.0 { p.state(tpk).v } else { 0.0 };
+            tb = te;
+        }
+        t += p.duration;
+    }
+    Ok(Plan {
+        machine: machine.name.clone(),
+        blocks,
+        spans,
+        geometry,
+        ends,
+        total_time: t,
+    })
+}

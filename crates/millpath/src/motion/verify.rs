@@ -1,0 +1,377 @@
+//! An independent verifier of plans: samples a plan in time and checks the machine's limits.
+//!
+//! It shares no code with the planner beyond the moves' own geometry
+//! ([`Move::sweep_from`], [`Move::length_from`]): from the plan it takes only the path state
+//! at each sample (block, distance into the block, ṡ, s̈, s⃛) and the block start times; it
+//! evaluates the geometry and its arc-length derivatives itself and checks, at `rate` Hz
+//! (≥ 1 kHz) and at every junction:
+//! * per-axis velocity, acceleration and jerk ≤ the axis limits (relative 1e-6);
+//! * path speed ≤ the programmed feed and the machine's maximum feed (rapids: the per-axis
+//!   rapid velocity);
+//! * that the path state integrates consistently between samples (`Δs` against the
+//!   trapezoid of `ṡ` with the `s̈` end correction, exact for piecewise-cubic `s(t)`), and that
+//!   the plan reaches the end of every block;
+//! * at each junction with speed `v > 0`: a non-tangent junction is allowed only in blend
+//!   mode, where the tightest circular blend the axes allow at that speed
+//!   (`R = max(v²/A, √(v³/J))`) must stay within the path tolerance
+//!   (`R·(1/cos(θ/2) − 1) ≤ tol`) and fit in the blocks, or in exact-path mode
+//!   (`v·|Δt_i| ≤ min(A_i·T_ipo, J_i·T_ipo²)`); at tangent junctions the acceleration step
+//!   `v²·|Δ(κN)_i|` must stay within `J_i·T_ipo`.
+
+use super::plan::Plan;
+use crate::error::Error;
+use crate::geom::{Point3, Vec3};
+use crate::machine::Machine;
+use crate::toolpath::{Corner, Move, MoveKind};
+
+/// Options of [`verify_plan`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VerifyOptions {
+    /// Sampling rate in Hz (at least 1000).
+    pub rate: f64,
+    /// Relative tolerance on every limit.
+    pub rel_tol: f64,
+}
+
+impl Default for VerifyOptions {
+    fn default() -> Self {
+        VerifyOptions {
+            rate: 1000.0,
+            rel_tol: 1e-6,
+        }
+    }
+}
+
+/// What was violated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ViolationKind {
+    /// Axis velocity.
+    Velocity,
+    /// Axis acceleration.
+    Acceleration,
+    /// Axis jerk.
+    Jerk,
+    /// Programmed or maximum feed.
+    Feed,
+    /// Path tolerance or corner rule at a junction.
+    Corner,
+    /// The path state does not integrate, or a block is not completed.
+    Consistency,
+}
+
+/// One violation.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Violation {
+    /// What.
+    pub kind: ViolationKind,
+    /// Block index.
+    pub block: usize,
+    /// Time in s.
+    pub t: f64,
+    /// Value found.
+    pub value: f64,
+    /// Limit.
+    pub limit: f64,
+}
+
+/// The verifier's findings.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
+pub struct VerifyReport {
+    /// Number of time samples checked.
+    pub samples: usize,
+    /// Number of junctions checked.
+    pub junctions: usize,
+    /// Total number of violations.
+    pub violations: usize,
+    /// The first violations (at most 20).
+    pub first: Vec<Violation>,
+    /// Largest ratio value/limit seen per kind (velocity, acceleration, jerk, feed).
+    pub worst_ratio: [f64; 4],
+}
+
+impl VerifyReport {
+    fn add(&mut self, v: Violation) {
+        self.violations += 1;
+        if self.first.len() < 20 {
+            self.first.push(v);
+        }
+    }
+}
+
+/// The verifier's own view of a move: position and arc-length derivatives.
+struct Shape {
+    from: Point3,
+    m: Move,
+    len: f64,
+}
+
+impl Shape {
+    fn eval(&self, s: f64) -> [Vec3; 4] {
+        let m = &self.m;
+        match (m.kind, m.sweep_from(self.from)) {
+            (MoveKind::Arc { center, plane, .. }, Some((r0, sweep))) if self.len > 0.0 => {
+                let u = (s / self.len).clamp(0.0, 1.0);
+                let (fu, fv, fw) = plane.split(self.from - Point3::ORIGIN);
+                let (cu, cv, _) = plane.split(center - Point3::ORIGIN);
+                let (tu, tv, tw) = plane.split(m.to - Point3::ORIGIN);
+                let r1 = (tu - cu).hypot(tv - cv);
+                let a0 = (fv - cv).atan2(fu - cu);
+                let r = r0 + (r1 - r0) * u;
+                let a = a0 + sweep * u;
+                let w = sweep / self.len;
+                let h = (tw - fw) / self.len;
+                let (c, sn) = (a.cos(), a.sin());
+                [
+                    plane.join(cu + r * c, cv + r * sn, fw + (tw - fw) * u),
+                    plane.join(-r * w * sn, r * w * c, h),
+                    plane.join(-r * w * w * c, -r * w * w * sn, 0.0),
+                    plane.join(r * w * w * w * sn, -r * w * w * w * c, 0.0),
+                ]
+            }
+            _ => {
+                let d = m.to - self.from;
+                let dir = if self.len > 0.0 {
+                    d / self.len
+                } else {
+                    Vec3::ZERO
+                };
+                let p = self.from + dir * s.clamp(0.0, self.len);
+                [p - Point3::ORIGIN, dir, Vec3::ZERO, Vec3::ZERO]
+            }
+        }
+    }
+}
+
+/// Verifies `plan`, made from `moves` (the `(from, move)` pairs it was planned from) for
+/// `machine`.
+pub fn verify_plan(
+    plan: &Plan,
+    moves: &[(Point3, Move)],
+    machine: &Machine,
+    opts: &VerifyOptions,
+) -> Result<VerifyReport, Error> {
+    if opts.rate.is_nan() || opts.rate < 1000.0 {
+        return Err(crate::InputError::new("verifier rate", opts.rate)
+            .expected("at least 1000 Hz")
+            .into());
+    }
+    if moves.len() != plan.blocks.len() {
+        return Err(Error::internal("verifier: moves and plan differ in length"));
+    }
+    let shapes: Vec<Shape> = moves
+        .iter()
+        .map(|(f, m)| Shape {
+            from: *f,
+            m: *m,
+            len: m.length_from(*f),
+        })
+        .collect();
+    let tol = opts.rel_tol;
+    let mut rep = VerifyReport::default();
+    let dt = 1.0 / opts.rate;
+    let jmax_any = machine.axes.iter().map(|a| a.max_jerk).fold(0.0, f64::max);
+    let amax_any = machine
+        .axes
+        .iter()
+        .map(|a| a.max_acceleration)
+        .fold(0.0, f64::max);
+    let mut prev: Option<(f64, usize, f64, f64, f64)> = None;
+    let mut last_sample = None;
+    plan.for_each_sample(dt, |smp| {
+        rep.samples += 1;
+        last_sample = Some(smp);
+        let Some(sh) = shapes.get(smp.block) else {
+            return Err(Error::internal("verifier: sample outside the program"));
+        };
+        let st = smp.path;
+        let [_, d1, d2, d3] = sh.eval(smp.s);
+        let v = d1 * st.v;
+        let a = d2 * (st.v * st.v) + d1 * st.a;
+        let j = d3 * st.v.powi(3) + d2 * (3.0 * st.v * st.a) + d1 * st.j;
+        let rapid = matches!(sh.m.kind, MoveKind::Rapid);
+        for i in 0..3 {
+            let ax = machine.axes[i];
+            let vlim = if rapid {
+                ax.max_velocity.min(machine.rapid[i])
+            } else {
+                ax.max_velocity
+            };
+            let checks = [
+                (ViolationKind::Velocity, v.to_array()[i].abs(), vlim, 0),
+                (
+                    ViolationKind::Acceleration,
+                    a.to_array()[i].abs(),
+                    ax.max_acceleration,
+                    1,
+                ),
+                (ViolationKind::Jerk, j.to_array()[i].abs(), ax.max_jerk, 2),
+            ];
+            for (kind, val, lim, w) in checks {
+                if lim.is_finite() {
+                    rep.worst_ratio[w] = rep.worst_ratio[w].max(val / lim);
+                    if val > lim * (1.0 + tol) + 1e-9 {
+                        rep.add(Violation {
+                            kind,
+                            block: smp.block,
+                            t: smp.t,
+                            value: val,
+                            limit: lim,
+                        });
+                    }
+                }
+            }
+        }
+        if sh.m.is_feed() {
+            let flim = sh.m.feed.min(machine.max_feed);
+            rep.worst_ratio[3] = rep.worst_ratio[3].max(st.v / flim);
+            if st.v > flim * (1.0 + tol) + 1e-9 {
+                rep.add(Violation {
+                    kind: ViolationKind::Feed,
+                    block: smp.block,
+                    t: smp.t,
+                    value: st.v,
+                    limit: flim,
+                });
+            }
+        }
+        // Integration consistency of the path state within a span.
+        if let Some((t0, b0, s0, v0, a0)) = prev {
+            let span_same =
+                plan.blocks.get(b0).map(|b| b.span) == plan.blocks.get(smp.block).map(|b| b.span);
+            let h = smp.t - t0;
+            if span_same && h > 0.0 {
+                let ds = st.s - s0;
+                let pred = 0.5 * h * (v0 + st.v) + h * h * (a0 - st.a) / 12.0;
+                // Exact for a cubic; a jerk jump inside the interval adds O(Δj·h³).
+                let slack = if jmax_any.is_finite() {
+                    4.0 * jmax_any * h.powi(3)
+                } else {
+                    amax_any * h * h
+                };
+                if (ds - pred).abs() > slack + 1e-9 * (1.0 + st.s.abs()) {
+                    rep.add(Violation {
+                        kind: ViolationKind::Consistency,
+                        block: smp.block,
+                        t: smp.t,
+                        value: ds,
+                        limit: pred,
+                    });
+                }
+            }
+        }
+        prev = Some((smp.t, smp.block, st.s, st.v, st.a));
+        Ok(())
+    })?;
+    // Every block completed, and the junctions.
+    if let (Some(last), Some(sh)) = (last_sample, shapes.last()) {
+        let end = sh.eval(sh.len)[0];
+        let got = last.position - Point3::ORIGIN;
+        if (end - got).length() > 1e-6 {
+            rep.add(Violation {
+                kind: ViolationKind::Consistency,
+                block: last.block,
+                t: last.t,
+                value: (end - got).length(),
+                limit: 1e-6,
+            });
+        }
+    }
+    let mut last_motion: Option<usize> = None;
+    for (i, sh) in shapes.iter().enumerate() {
+        if sh.len <= 1e-12 || matches!(sh.m.kind, MoveKind::Dwell { .. }) {
+            if matches!(sh.m.kind, MoveKind::Dwell { .. }) {
+                last_motion = None;
+            }
+            continue;
+        }
+        if let Some(p) = last_motion
+            && let (Some(prev_sh), Some(b)) = (shapes.get(p), plan.blocks.get(i))
+        {
+            rep.junctions += 1;
+            let v = plan.state_at(b.start_time)?.path.v;
+            check_junction(prev_sh, sh, v, b.start_time, i, machine, tol, &mut rep);
+        }
+        last_motion = Some(i);
+    }
+    Ok(rep)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn check_junction(
+    a: &Shape,
+    b: &Shape,
+    v: f64,
+    t: f64,
+    block: usize,
+    machine: &Machine,
+    tol: f64,
+    rep: &mut VerifyReport,
+) {
+    if v <= 1e-9 {
+        return;
+    }
+    let ea = a.eval(a.len);
+    let eb = b.eval(0.0);
+    let t1 = ea[1] / ea[1].length().max(1e-300);
+    let t2 = eb[1] / eb[1].length().max(1e-300);
+    let du = t2 - t1;
+    let tipo = machine.ipo_cycle;
+    let mut bad = |value: f64, limit: f64| {
+        if value > limit * (1.0 + tol) + 1e-12 {
+            rep.add(Violation {
+                kind: ViolationKind::Corner,
+                block,
+                t,
+                value,
+                limit,
+            });
+        }
+    };
+    if du.length() <= 1e-9 {
+        let dk = eb[2] - ea[2];
+        for (i, d) in dk.to_array().iter().enumerate() {
+            let jm = machine.axes[i].max_jerk;
+            if jm.is_finite() {
+                bad(v * v * d.abs(), jm * tipo);
+            }
+        }
+        return;
+    }
+    let tolerance = match a.m.corner {
+        Corner::Machine => machine.path_tolerance,
+        Corner::Blend(x) => x,
+        Corner::ExactStop => 0.0,
+        Corner::ExactPath => {
+            for (i, d) in du.to_array().iter().enumerate() {
+                let ax = machine.axes[i];
+                bad(
+                    v * d.abs(),
+                    (ax.max_acceleration * tipo).min(ax.max_jerk * tipo * tipo),
+                );
+            }
+            return;
+        }
+    };
+    if tolerance <= 0.0 {
+        bad(v, 0.0);
+        return;
+    }
+    let amin = machine
+        .axes
+        .iter()
+        .map(|x| x.max_acceleration)
+        .fold(f64::INFINITY, f64::min);
+    let jmin = machine
+        .axes
+        .iter()
+        .map(|x| x.max_jerk)
+        .fold(f64::INFINITY, f64::min);
+    let mut r = v * v / amin;
+    if jmin.is_finite() {
+        r = r.max((v * v * v / jmin).sqrt());
+    }
+    let half = 0.5 * t1.dot(t2).clamp(-1.0, 1.0).acos();
+    bad(r * (1.0 / half.cos() - 1.0), tolerance);
+    bad(r * half.tan(), 0.5 * a.len.min(b.len));
+}

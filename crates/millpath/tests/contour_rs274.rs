@@ -1,0 +1,63 @@
+//! The contour pipeline's LinuxCNC output passes LinuxCNC's own interpreter `rs274`
+//! (Debian package linuxcnc-uspace; `.ci/run` installs it), for lines and biarcs, inside
+//! and outside, at the decimals the tolerance budget asks for.
+
+use millpath::curve;
+use millpath::gcode::{self, Units, WriterOptions};
+use millpath::strategy::contour::{self, ContourOptions, Side};
+use std::io::Write;
+use std::process::Command;
+
+fn rs274(text: &str) -> Result<(), String> {
+    let mut file = tempfile::Builder::new().suffix(".ngc").tempfile().unwrap();
+    file.write_all(text.as_bytes()).unwrap();
+    file.flush().unwrap();
+    let out = Command::new("rs274")
+        .arg("-g")
+        .arg(file.path())
+        .output()
+        .unwrap_or_else(|e| {
+            panic!("cannot run `rs274` ({e}): install the Debian package linuxcnc-uspace (CI does)")
+        });
+    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+    let messages: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.trim() != "executing" && !l.trim().is_empty())
+        .collect();
+    if out.status.success() && messages.is_empty() {
+        Ok(())
+    } else {
+        Err(messages.join("\n"))
+    }
+}
+
+#[test]
+fn contour_programs_pass_rs274() {
+    // The checker itself must be able to fail.
+    assert!(rs274("G21 G90\nG1 X10 F100\nQ5\nM2\n").is_err());
+    let c = curve::paper_outline().unwrap();
+    for (side, arcs) in [
+        (Side::Inside, false),
+        (Side::Inside, true),
+        (Side::Outside, true),
+    ] {
+        let tol = 1e-3;
+        let decimals = gcode::required_decimals(tol, Units::Mm);
+        let o = ContourOptions {
+            tolerance: tol,
+            rounding: gcode::rounding_error_mm(decimals, Units::Mm),
+            side,
+            arcs,
+            ..ContourOptions::default()
+        };
+        let r = contour::contour(&c, &o).unwrap();
+        let w = WriterOptions {
+            decimals: Some(decimals),
+            path_tolerance: Some(tol),
+            ..WriterOptions::default()
+        };
+        let (text, summary) = gcode::write_to_string(&r.toolpath, &w).unwrap();
+        assert_eq!(summary.arcs_as_lines, 0, "{side:?} arcs {arcs}");
+        rs274(&text).unwrap_or_else(|e| panic!("{side:?} arcs {arcs}: {e}"));
+    }
+}
