@@ -27,7 +27,23 @@
 //!    cut once, with exact arcs. The 5 µm is extra wall stock, far below any roughing
 //!    tolerance; `--finish` cuts the exact wall.
 //!
-//! **Limits.** Interior loops are level sets of a harmonic function, smooth (real-analytic)
+//! 7. **Restarts and fallback.** In the arms of long pockets `1 − u` decays like
+//!    `exp(−πx/w)`, so the level sets crowd within rounding of 1 before they reach the ends;
+//!    when `t` passes `1 − 10⁻⁶` the field is solved again with the lap reached as its inner
+//!    boundary (a fresh, well-conditioned problem on what is left). Should the laps still
+//!    stall, the distance-field interpolation `g/(g + d_B)` of [`Harmonic::distance_blend`]
+//!    is tried; then the pocket is refused with a message that suggests `offset`.
+//! 8. **Frame.** The grid is axis-aligned; to make the spiral a property of the pocket and not
+//!    of how it is turned, it is planned in the pocket's principal frame and in that frame
+//!    turned by 45°, and the shorter result is kept (see [`plan_with_stats`]).
+//!
+//! **Limits.** The number of laps is bounded below by the Hausdorff distance between the
+//! central circle and `B` divided by the stepover (the corners of a 3:2 rectangle are about
+//! 60 mm from a 22 mm circle: at least 12 laps), while the short sides need only 4: a morph
+//! from a circle lays its laps about twice as densely as contour-parallel offsets on elongated
+//! pockets. On the built-in 150 × 100 mm pocket the spiral's path is 5.1 m per level against
+//! 2.8 m for `offset` and 3.4 m for `zigzag`; its smoothness (higher mean speed on the `hsm`
+//! preset) does not make up for that, see the crate's benchmark notes. Interior loops are level sets of a harmonic function, smooth (real-analytic)
 //! in the exact problem; on the grid they are smooth to about `h²`. Their curvature is not
 //! bounded by `--min-radius` by construction: near a sharp convex corner of `B` the level sets
 //! tighten. The last loop is `B` itself, with its corners, so that no material is left beyond
