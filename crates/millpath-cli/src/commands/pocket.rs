@@ -1,10 +1,342 @@
-//! `millpath pocket`.
+//! `millpath pocket`: 2.5D pocket roughing with zigzag, contour-offset or the adaptive spiral.
+
+use millpath::gcode::{WriterOptions, write_program};
+use millpath::io::outline_json::Loops;
+use millpath::stock::SimOptions;
+use millpath::strategy::pocket::{
+    self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind,
+    samples,
+};
+use millpath::toolpath::Tool;
+use millpath::{Error, InputError};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+#[command(
+    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4"
+)]
+pub struct Args {
+    /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`.
+    pub outline: String,
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// G-code output (LinuxCNC dialect, mm).
+    #[arg(short = 'o', long)]
+    pub output: Option<PathBuf>,
+    /// JSON report output.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+}
+
+/// Options shared by `pocket` and `sweep`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct CommonArgs {
+    /// Strategy: spiral, offset or zigzag.
+    #[arg(long, default_value = "spiral")]
+    pub strategy: String,
+    /// Tool diameter, mm.
+    #[arg(long, default_value_t = 12.7)]
+    pub tool_diameter: f64,
+    /// Stepover: a fraction of the diameter (0.4) or a distance (5mm).
+    #[arg(long, default_value = "0.4")]
+    pub stepover: String,
+    /// Pocket depth, mm.
+    #[arg(long, default_value_t = 25.0)]
+    pub depth: f64,
+    /// Step-down per level, mm.
+    #[arg(long, default_value_t = 6.35)]
+    pub step_down: f64,
+    /// Wall stock, mm.
+    #[arg(long, default_value_t = 0.0)]
+    pub wall_stock: f64,
+    /// Floor stock, mm.
+    #[arg(long, default_value_t = 0.0)]
+    pub floor_stock: f64,
+    /// Conventional milling instead of climb.
+    #[arg(long)]
+    pub conventional: bool,
+    /// Entry: helix or ramp.
+    #[arg(long, default_value = "helix")]
+    pub entry: String,
+    /// Helix radius, mm.
+    #[arg(long, default_value_t = 2.5)]
+    pub helix_radius: f64,
+    /// Ramp angle, degrees.
+    #[arg(long, default_value_t = 3.0)]
+    pub ramp_angle: f64,
+    /// Safe height above the level's top, mm.
+    #[arg(long, default_value_t = 1.0)]
+    pub safe_height: f64,
+    /// Clearance height above the stock, mm.
+    #[arg(long, default_value_t = 5.0)]
+    pub clearance_height: f64,
+    /// Feed: mm/min (`1500`) or in/min (`600ipm`).
+    #[arg(long, default_value = "600ipm")]
+    pub feed: String,
+    /// Fraction of the feed at full slotting.
+    #[arg(long, default_value_t = 0.75)]
+    pub slowdown: f64,
+    /// Zigzag angle, degrees.
+    #[arg(long, default_value_t = 0.0)]
+    pub angle: f64,
+    /// Spiral transition ratio C in [0, 1].
+    #[arg(long, default_value_t = 0.5)]
+    pub transition: f64,
+    /// Smallest curvature radius wanted on the spiral's interior loops, mm.
+    #[arg(long, default_value_t = 1.0)]
+    pub min_radius: f64,
+    /// Finishing pass along the walls.
+    #[arg(long)]
+    pub finish: bool,
+    /// Keep the programmed feed (no engagement-based modulation).
+    #[arg(long)]
+    pub no_feed_modulation: bool,
+    /// Machine for the cycle time.
+    #[arg(long, default_value = "hsm")]
+    pub machine: String,
+    /// Raster cell of the stock simulation, mm.
+    #[arg(long, default_value_t = 0.05)]
+    pub cell: f64,
+}
+
+/// Parses a feed: `600ipm` / `600in/min` in inches per minute, else mm/min; returns mm/s.
+pub fn parse_feed(text: &str) -> Result<f64, InputError> {
+    let t = text.trim();
+    let (num, scale) = if let Some(n) = t.strip_suffix("ipm").or_else(|| t.strip_suffix("in/min")) {
+        (n, 25.4 / 60.0)
+    } else if let Some(n) = t.strip_suffix("mm/min") {
+        (n, 1.0 / 60.0)
+    } else {
+        (t, 1.0 / 60.0)
+    };
+    num.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .map(|v| v * scale)
+        .ok_or_else(|| {
+            InputError::new("feed", text)
+                .at("--feed")
+                .expected("a feed > 0 in mm/min (1500) or in/min (600ipm)")
+        })
+}
+
+/// The strategy named on the command line.
+pub fn parse_strategy(s: &str) -> Result<StrategyKind, InputError> {
+    match s {
+        "spiral" => Ok(StrategyKind::Spiral),
+        "offset" => Ok(StrategyKind::Offset),
+        "zigzag" => Ok(StrategyKind::Zigzag),
+        _ => Err(InputError::new("strategy", s)
+            .at("--strategy")
+            .expected("spiral, offset or zigzag")),
+    }
+}
+
+impl CommonArgs {
+    /// The tool and the pocketing options.
+    pub fn options(&self) -> Result<(Tool, PocketOptions), Error> {
+        let tool = Tool::flat(self.tool_diameter).map_err(|e| e.at("--tool-diameter"))?;
+        let ramp = self.ramp_angle.to_radians();
+        let entry = match self.entry.as_str() {
+            "helix" => Entry::Helix {
+                radius: self.helix_radius,
+                ramp_angle: ramp,
+            },
+            "ramp" => Entry::Ramp { ramp_angle: ramp },
+            e => {
+                return Err(InputError::new("entry", e)
+                    .at("--entry")
+                    .expected("helix or ramp")
+                    .into());
+            }
+        };
+        let feed = parse_feed(&self.feed)?;
+        let opts = PocketOptions {
+            stepover: Stepover::parse(&self.stepover)?,
+            depth: self.depth,
+            step_down: self.step_down,
+            wall_stock: self.wall_stock,
+            floor_stock: self.floor_stock,
+            direction: if self.conventional {
+                Direction::Conventional
+            } else {
+                Direction::Climb
+            },
+            entry,
+            safe_height: self.safe_height,
+            clearance_height: self.clearance_height,
+            feed,
+            plunge_feed: feed / 3.0,
+            slowdown: self.slowdown,
+            zigzag_angle: self.angle.to_radians(),
+            transition: self.transition,
+            min_radius: self.min_radius,
+            finish: self.finish,
+            modulate_feed: !self.no_feed_modulation,
+        };
+        opts.validate(&tool)?;
+        millpath::machine::Machine::preset(&self.machine).map_err(|e| e.at("--machine"))?;
+        if !(self.cell.is_finite() && self.cell > 0.0) {
+            return Err(InputError::new("cell", self.cell)
+                .at("--cell")
+                .expected("a cell > 0 mm")
+                .into());
+        }
+        Ok((tool, opts))
+    }
+
+    /// Simulation options.
+    pub fn sim(&self) -> SimOptions {
+        SimOptions {
+            cell: self.cell,
+            step: (2.0 * self.cell).max(0.1),
+            ..SimOptions::default()
+        }
+    }
+}
+
+/// Reads an outline file (by extension) or a built-in sample.
+pub fn load_outline(name: &str) -> Result<Loops, Error> {
+    if name == "sample:aerospace" {
+        let s = samples::aerospace_pocket();
+        return Ok(Loops {
+            outer: s.outer,
+            islands: s.islands,
+        });
+    }
+    let path = Path::new(name);
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("json") => Ok(millpath::io::outline_json::parse(
+            &super::read_text(path)?,
+            name,
+        )?),
+        Some("svg") => Ok(millpath::io::svg::parse(
+            &super::read_text(path)?,
+            name,
+            0.001,
+        )?),
+        Some("dxf") => {
+            let bytes = std::fs::read(path).map_err(|e| {
+                Error::Input(
+                    InputError::new("input file", name)
+                        .expected(format!("a readable DXF file ({e})")),
+                )
+            })?;
+            Ok(millpath::io::dxf::parse(
+                &bytes,
+                name,
+                &millpath::io::dxf::DxfOptions::default(),
+            )?)
+        }
+        _ => Err(InputError::new("outline file", name)
+            .expected("a .json, .dxf or .svg file, or sample:aerospace")
+            .into()),
+    }
+}
+
+/// The report written by `--report`.
+#[derive(Debug, Serialize)]
+pub struct Report {
+    /// Strategy name.
+    pub strategy: String,
+    /// Cycle time, s.
+    pub cycle_time_s: f64,
+    /// How the cycle time was computed.
+    pub cycle_time_model: String,
+    /// Cutting path length, mm.
+    pub path_length_mm: f64,
+    /// Rapid length, mm.
+    pub rapid_length_mm: f64,
+    /// Largest engagement, degrees.
+    pub max_engagement_deg: f64,
+    /// Mean engagement, degrees.
+    pub mean_engagement_deg: f64,
+    /// Nominal engagement, degrees.
+    pub nominal_engagement_deg: f64,
+    /// Share of the cutting length above the nominal engagement.
+    pub share_above_nominal: f64,
+    /// The stepover asked for, mm.
+    pub stepover_mm: f64,
+    /// Largest radial depth of cut measured (slotting included), mm.
+    pub max_stepover_mm: f64,
+    /// Levels.
+    pub levels: usize,
+    /// Moves.
+    pub moves: usize,
+    /// The verifier's findings.
+    pub verification: millpath::stock::Verification,
+    /// Problems found (empty when the path passes).
+    pub problems: Vec<String>,
+}
+
+/// Builds the report of a generated pocket.
+pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Report, Error> {
+    let m = millpath::machine::Machine::preset(machine).map_err(|e| e.at("--machine"))?;
+    Ok(Report {
+        strategy: kind.name().to_owned(),
+        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)?,
+        cycle_time_model: pocket::CYCLE_TIME_MODEL.to_owned(),
+        path_length_mm: r.toolpath.cut_length(),
+        rapid_length_mm: r.toolpath.rapid_length(),
+        max_engagement_deg: r.verification.max_engagement_deg,
+        mean_engagement_deg: r.verification.mean_engagement_deg,
+        nominal_engagement_deg: r.nominal_engagement_deg,
+        share_above_nominal: r.verification.share_above_nominal,
+        stepover_mm: r.stepover_mm,
+        max_stepover_mm: r.verification.max_radial_depth_mm,
+        levels: r.toolpath.levels.len(),
+        moves: r.toolpath.moves.len(),
+        verification: r.verification.clone(),
+        problems: r.verification.problems(),
+    })
+}
 
 /// Runs the command.
-pub fn run(_args: &Args) -> Result<(), millpath::Error> {
-    Err(millpath::Error::internal("pocket: not implemented yet"))
+pub fn run(args: &Args) -> Result<(), Error> {
+    let kind = parse_strategy(&args.common.strategy)?;
+    let (tool, opts) = args.common.options()?;
+    let loops = load_outline(&args.outline)?;
+    let shape = PocketShape::new(loops.outer, loops.islands, &args.outline)?;
+    let r = pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?;
+    let rep = report(kind, &r, &args.common.machine)?;
+    if let Some(out) = &args.output {
+        let wopts = WriterOptions {
+            program_name: Some(format!("millpath pocket {}", kind.name())),
+            ..WriterOptions::default()
+        };
+        let mut buf = Vec::new();
+        write_program(&r.toolpath, &wopts, &mut buf)?;
+        millpath::io::write_atomic(out, &buf)?;
+    }
+    if let Some(path) = &args.report {
+        let text = serde_json::to_string_pretty(&rep)
+            .map_err(|e| Error::internal(format!("report serialisation: {e}")))?;
+        millpath::io::write_atomic(path, text.as_bytes())?;
+    }
+    super::print(&format!(
+        "{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
+         {:.1}% above nominal, min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm²",
+        kind.name(),
+        rep.cycle_time_s,
+        rep.cycle_time_model,
+        rep.path_length_mm,
+        rep.max_engagement_deg,
+        rep.mean_engagement_deg,
+        rep.nominal_engagement_deg,
+        100.0 * rep.share_above_nominal,
+        rep.verification.min_clearance_mm,
+        rep.verification.required_clearance_mm,
+        rep.verification.uncut_area_mm2,
+    ));
+    for p in &rep.problems {
+        super::eprint(&format!("verification: {p}"));
+    }
+    Ok(())
 }

@@ -4,3 +4,6 @@ mod atomic;
 pub mod points;
 
 pub use atomic::{write_atomic, write_atomic_with};
+pub mod dxf;
+pub mod outline_json;
+pub mod svg;

@@ -1,0 +1,27 @@
+//! Criterion benchmarks: planning one level of the built-in aerospace pocket (150 × 100 mm,
+//! 12.7 mm tool, 40% stepover) with each strategy.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use millpath::strategy::pocket::{PocketOptions, StrategyKind, plan_level, samples};
+use millpath::toolpath::Tool;
+use std::hint::black_box;
+
+fn plan(c: &mut Criterion) {
+    let shape = samples::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap_or_default();
+    let opts = PocketOptions::default();
+    let mut g = c.benchmark_group("pocket level, aerospace 150x100");
+    for kind in [
+        StrategyKind::Spiral,
+        StrategyKind::Offset,
+        StrategyKind::Zigzag,
+    ] {
+        g.bench_function(kind.name(), |b| {
+            b.iter(|| plan_level(kind, black_box(&shape), &tool, &opts));
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, plan);
+criterion_main!(benches);

@@ -1,0 +1,173 @@
+//! Pocket outlines as JSON, and the loop classification every importer shares.
+//!
+//! Schema (lengths in mm unless `"units": "in"`; a vertex is `[x, y]` or `[x, y, bulge]`, the
+//! bulge being `tan(θ/4)` of the arc of sweep θ that leaves the vertex, positive
+//! counter-clockwise):
+//!
+//! ```json
+//! { "units": "mm",
+//!   "outline": [[0, 0], [100, 0, 0.4142], [110, 10], [110, 60], [0, 60]],
+//!   "islands": [ [[40, 20], [60, 20], [60, 40], [40, 40]] ] }
+//! ```
+//!
+//! The outline must be closed implicitly (the last vertex joins the first; a repeated first
+//! vertex at the end is dropped). Windings are normalised: outer counter-clockwise, islands
+//! clockwise.
+
+use crate::error::InputError;
+use crate::geom::{Outline, Point, Winding};
+use cavalier_contours::polyline::PlineSource;
+use serde::Deserialize;
+
+/// An outer outline and its islands, windings normalised.
+#[derive(Debug, Clone)]
+pub struct Loops {
+    /// The outer outline, counter-clockwise.
+    pub outer: Outline,
+    /// Islands, clockwise.
+    pub islands: Vec<Outline>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Doc {
+    #[serde(default)]
+    units: Option<String>,
+    outline: Vec<Vec<f64>>,
+    #[serde(default)]
+    islands: Vec<Vec<Vec<f64>>>,
+}
+
+fn vertices(raw: &[Vec<f64>], scale: f64, origin: &str) -> Result<Vec<(Point, f64)>, InputError> {
+    raw.iter()
+        .enumerate()
+        .map(|(i, v)| match v.as_slice() {
+            [x, y] => Ok((Point::new(x * scale, y * scale), 0.0)),
+            [x, y, b] => Ok((Point::new(x * scale, y * scale), *b)),
+            _ => Err(InputError::new("vertex", format!("{v:?}"))
+                .at(format!("{origin}, vertex {i}"))
+                .expected("[x, y] or [x, y, bulge]")),
+        })
+        .collect()
+}
+
+/// Parses the JSON schema above; `origin` names the file.
+pub fn parse(text: &str, origin: &str) -> Result<Loops, InputError> {
+    let doc: Doc = serde_json::from_str(text).map_err(|e| {
+        InputError::new("outline JSON", e.to_string())
+            .at(origin)
+            .expected(r#"{"outline": [[x, y(, bulge)], ...], "islands": [[...], ...]}"#)
+    })?;
+    let scale = match doc.units.as_deref() {
+        None | Some("mm") => 1.0,
+        Some("in") => 25.4,
+        Some(u) => {
+            return Err(InputError::new("units", u)
+                .at(origin)
+                .expected("\"mm\" or \"in\""));
+        }
+    };
+    let outer = Outline::new(
+        &vertices(&doc.outline, scale, &format!("{origin}, outline"))?,
+        &format!("{origin}, outline"),
+    )?;
+    let mut islands = Vec::new();
+    for (k, isl) in doc.islands.iter().enumerate() {
+        let o = format!("{origin}, island {k}");
+        islands.push(Outline::new(&vertices(isl, scale, &o)?, &o)?);
+    }
+    check_islands(outer, islands, origin)
+}
+
+/// Normalises windings and checks that every island lies strictly inside the outer outline
+/// without touching it or another island.
+pub fn check_islands(
+    outer: Outline,
+    islands: Vec<Outline>,
+    origin: &str,
+) -> Result<Loops, InputError> {
+    let outer = outer.with_winding(Winding::CounterClockwise);
+    let islands: Vec<Outline> = islands
+        .into_iter()
+        .map(|i| i.with_winding(Winding::Clockwise))
+        .collect();
+    for (k, isl) in islands.iter().enumerate() {
+        let first = isl.vertices().next().map_or(Point::ORIGIN, |v| v.0);
+        let at = format!("{origin}, island {k} near ({:.3}, {:.3})", first.x, first.y);
+        let touches = {
+            let hits = outer.polyline().find_intersects(isl.polyline());
+            !hits.basic_intersects.is_empty() || !hits.overlapping_intersects.is_empty()
+        } || isl.vertices().any(|(p, _)| outer.distance_to(p) <= 1e-6);
+        if touches {
+            return Err(InputError::new("island", k)
+                .at(at)
+                .expected("islands that do not touch or cross the outer outline"));
+        }
+        if !outer.contains(first) {
+            return Err(InputError::new("island", k)
+                .at(at)
+                .expected("islands inside the outer outline"));
+        }
+        for (j, other) in islands.iter().enumerate().take(k) {
+            let hits = other.polyline().find_intersects(isl.polyline());
+            let q = other.vertices().next().map_or(Point::ORIGIN, |v| v.0);
+            if !hits.basic_intersects.is_empty()
+                || !hits.overlapping_intersects.is_empty()
+                || other.contains(first)
+                || isl.contains(q)
+            {
+                return Err(InputError::new("island", k)
+                    .at(format!("{origin}, islands {j} and {k}"))
+                    .expected("islands apart from each other"));
+            }
+        }
+    }
+    Ok(Loops { outer, islands })
+}
+
+/// From a set of closed loops: the one of largest area is the outline, the others islands.
+pub fn classify(mut loops: Vec<Outline>, origin: &str) -> Result<Loops, InputError> {
+    if loops.is_empty() {
+        return Err(InputError::new("closed outlines", 0)
+            .at(origin)
+            .expected("at least one closed outline"));
+    }
+    loops.sort_by(|a, b| b.signed_area().abs().total_cmp(&a.signed_area().abs()));
+    let outer = loops.remove(0);
+    check_islands(outer, loops, origin)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_outline_with_bulges_and_islands() {
+        let text = r#"{"outline": [[0,0],[10,0],[10,10],[0,10]],
+                       "islands": [[[4,4],[4,6],[6,6],[6,4]]]}"#;
+        let l = parse(text, "t.json").unwrap();
+        assert_eq!(l.outer.winding(), Winding::CounterClockwise);
+        assert_eq!(l.islands[0].winding(), Winding::Clockwise);
+        let circle = r#"{"outline": [[-5,0,1],[5,0,1]]}"#;
+        let c = parse(circle, "c.json").unwrap();
+        assert!((c.outer.signed_area() - std::f64::consts::PI * 25.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn rejects_touching_islands_and_bad_vertices() {
+        let touching = r#"{"outline": [[0,0],[10,0],[10,10],[0,10]],
+                           "islands": [[[0,4],[4,4],[4,6],[0,6]]]}"#;
+        let e = parse(touching, "t.json").unwrap_err().to_string();
+        assert!(e.contains("island 0"), "{e}");
+        let bad = r#"{"outline": [[0,0],[10],[10,10]]}"#;
+        let e = parse(bad, "b.json").unwrap_err().to_string();
+        assert!(e.contains("vertex 1"), "{e}");
+        let bow = r#"{"outline": [[0,0],[10,10],[10,0],[0,10]]}"#;
+        assert!(
+            parse(bow, "bow.json")
+                .unwrap_err()
+                .to_string()
+                .contains("self-intersecting")
+        );
+    }
+}

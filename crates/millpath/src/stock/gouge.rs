@@ -1,0 +1,110 @@
+//! Exact clearance between the tool centre's path and the walls.
+//!
+//! For every move that reaches below the stock top (`z < 0`), the distance from the tool
+//! centre's XY path to the outline and the islands is minimised: `f(t) = dist(P(t), walls)`
+//! along the move's arc length `t` is 1-Lipschitz, so sampling it every `h` mm bounds the true
+//! minimum from below by `min − h/2`; every sample within `h/2` of the running minimum is then
+//! refined by golden-section search on `[t − h, t + h]` to 1e-10 mm (distances to the walls
+//! are exact: cavalier_contours' closest point on lines and arcs). The check is against the
+//! geometry, not the raster.
+
+use super::StockSpec;
+use crate::geom::{Point, Point3};
+use crate::toolpath::{MoveKind, Toolpath};
+use cavalier_contours::core::math::Vector2;
+use cavalier_contours::polyline::PlineSource;
+
+/// The smallest clearance and where it happens.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clearance {
+    /// Smallest distance from the tool centre to a wall, mm (infinite if nothing cut).
+    pub distance: f64,
+    /// Where (tool centre).
+    pub at: Point3,
+    /// Index of the move.
+    pub move_index: usize,
+}
+
+/// Sample spacing before refinement, mm.
+const SAMPLE: f64 = 0.25;
+
+/// The smallest distance between the tool centre (below `z = 0`) and the walls.
+pub fn min_clearance(tp: &Toolpath, spec: StockSpec<'_>) -> Clearance {
+    let dist = |p: Point| {
+        std::iter::once(spec.outer)
+            .chain(spec.islands.iter())
+            .map(|o| {
+                o.polyline()
+                    .closest_point(Vector2::new(p.x, p.y), 1e-12)
+                    .map_or(f64::INFINITY, |c| c.distance)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut best = Clearance {
+        distance: f64::INFINITY,
+        at: tp.start,
+        move_index: 0,
+    };
+    for (k, (from, m)) in tp.segments().enumerate() {
+        if matches!(m.kind, MoveKind::Dwell { .. }) || from.z.min(m.to.z) >= 0.0 {
+            continue;
+        }
+        let len = m.length_from(from).max(0.0);
+        let pos = |t: f64| -> Point3 {
+            let f = if len > 0.0 {
+                (t / len).clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
+            match (m.kind, m.sweep_from(from)) {
+                (MoveKind::Arc { center, .. }, Some((r, sweep))) => {
+                    let a = (from.y - center.y).atan2(from.x - center.x) + sweep * f;
+                    Point3::new(
+                        center.x + r * a.cos(),
+                        center.y + r * a.sin(),
+                        from.z + (m.to.z - from.z) * f,
+                    )
+                }
+                _ => from.lerp(m.to, f),
+            }
+        };
+        let n = ((len / SAMPLE).ceil() as usize).max(1);
+        let h = len / n as f64;
+        let vals: Vec<f64> = (0..=n).map(|i| dist(pos(h * i as f64).xy())).collect();
+        let floor = vals.iter().copied().fold(f64::INFINITY, f64::min);
+        if floor - 0.5 * h > best.distance {
+            continue;
+        }
+        for (i, &v) in vals.iter().enumerate() {
+            if v - 0.5 * h > best.distance.min(floor + 0.5 * h) {
+                continue;
+            }
+            let (mut a, mut b) = ((h * i as f64 - h).max(0.0), (h * i as f64 + h).min(len));
+            let g = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..80 {
+                if b - a < 1e-10 {
+                    break;
+                }
+                let c = b - g * (b - a);
+                let d = a + g * (b - a);
+                if dist(pos(c).xy()) < dist(pos(d).xy()) {
+                    b = d;
+                } else {
+                    a = c;
+                }
+            }
+            for t in [a, 0.5 * (a + b), h * i as f64] {
+                let p = pos(t);
+                let dd = dist(p.xy());
+                if dd < best.distance {
+                    best = Clearance {
+                        distance: dd,
+                        at: p,
+                        move_index: k,
+                    };
+                }
+            }
+        }
+    }
+    best
+}

@@ -1,0 +1,244 @@
+//! A bitset raster of the material in one slab.
+//!
+//! Cell `(i, j)` covers `[x₀ + i·c, x₀ + (i+1)·c) × [y₀ + j·c, y₀ + (j+1)·c)` and stands for
+//! its centre: it holds material when its centre is inside the pocket (even-odd rule over the
+//! outline and the islands) and has not been within the tool radius of a tool position. Rows
+//! are runs of 64-bit words, so clearing the tool disc costs one masked word operation per
+//! 64 cells of each row it spans, and the number of cells it removed is a popcount.
+
+use crate::geom::{Aabb, Point};
+use cavalier_contours::polyline::{PlineSource, Polyline, seg_arc_radius_and_center};
+use std::f64::consts::TAU;
+
+/// Material cells of one slab.
+#[derive(Debug, Clone)]
+pub struct Raster {
+    origin: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    words: usize,
+    bits: Vec<u64>,
+}
+
+impl Raster {
+    /// An empty raster covering `bounds` with square cells of side `cell` mm.
+    pub fn new(bounds: Aabb, cell: f64) -> Self {
+        let nx = ((bounds.width() / cell).ceil() as usize).max(1) + 2;
+        let ny = ((bounds.height() / cell).ceil() as usize).max(1) + 2;
+        let words = nx.div_ceil(64);
+        Raster {
+            origin: Point::new(bounds.min.x - cell, bounds.min.y - cell),
+            cell,
+            nx,
+            ny,
+            words,
+            bits: vec![0; words * ny],
+        }
+    }
+
+    /// Cell side in mm.
+    pub fn cell(&self) -> f64 {
+        self.cell
+    }
+
+    /// Centre of cell `(i, j)`.
+    pub fn centre(&self, i: usize, j: usize) -> Point {
+        Point::new(
+            self.origin.x + (i as f64 + 0.5) * self.cell,
+            self.origin.y + (j as f64 + 0.5) * self.cell,
+        )
+    }
+
+    /// Sets every cell whose centre is inside an odd number of `loops`.
+    pub fn fill(&mut self, loops: &[&Polyline<f64>]) {
+        for j in 0..self.ny {
+            let y = self.centre(0, j).y;
+            let mut xs: Vec<f64> = Vec::new();
+            for pl in loops {
+                for (v1, v2) in pl.iter_segments() {
+                    if v1.bulge_is_zero() {
+                        if (v1.y <= y && y < v2.y) || (v2.y <= y && y < v1.y) {
+                            xs.push(v1.x + (y - v1.y) / (v2.y - v1.y) * (v2.x - v1.x));
+                        }
+                    } else {
+                        arc_crossings(v1, v2, y, &mut xs);
+                    }
+                }
+            }
+            xs.sort_by(f64::total_cmp);
+            for pair in xs.chunks_exact(2) {
+                let i0 = ((pair[0] - self.origin.x) / self.cell - 0.5)
+                    .ceil()
+                    .max(0.0) as usize;
+                let i1 = ((pair[1] - self.origin.x) / self.cell - 0.5).floor();
+                if i1 < 0.0 {
+                    continue;
+                }
+                self.set_span(j, i0, (i1 as usize).min(self.nx - 1), true);
+            }
+        }
+    }
+
+    fn set_span(&mut self, j: usize, i0: usize, i1: usize, on: bool) -> u32 {
+        if i0 > i1 {
+            return 0;
+        }
+        let row = j * self.words;
+        let mut count = 0;
+        for w in i0 / 64..=i1 / 64 {
+            let lo = if w == i0 / 64 { i0 % 64 } else { 0 };
+            let hi = if w == i1 / 64 { i1 % 64 } else { 63 };
+            let mask = (u64::MAX >> (63 - hi)) & (u64::MAX << lo);
+            let word = &mut self.bits[row + w];
+            count += (*word & mask).count_ones();
+            if on {
+                *word |= mask;
+            } else {
+                *word &= !mask;
+            }
+        }
+        count
+    }
+
+    fn span_count(&self, j: usize, i0: usize, i1: usize) -> u32 {
+        if i0 > i1 {
+            return 0;
+        }
+        let row = j * self.words;
+        let mut count = 0;
+        for w in i0 / 64..=i1 / 64 {
+            let lo = if w == i0 / 64 { i0 % 64 } else { 0 };
+            let hi = if w == i1 / 64 { i1 % 64 } else { 63 };
+            let mask = (u64::MAX >> (63 - hi)) & (u64::MAX << lo);
+            count += (self.bits[row + w] & mask).count_ones();
+        }
+        count
+    }
+
+    /// Rows and column ranges of the cells whose centres lie within `r` of `c`.
+    fn disc_spans(&self, c: Point, r: f64) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+        let j0 = ((c.y - r - self.origin.y) / self.cell - 0.5)
+            .ceil()
+            .max(0.0) as usize;
+        let j1 = ((c.y + r - self.origin.y) / self.cell - 0.5).floor();
+        let j1 = if j1 < 0.0 {
+            None
+        } else {
+            Some((j1 as usize).min(self.ny - 1))
+        };
+        let rows = match j1 {
+            Some(j1) if j0 <= j1 => j0..j1 + 1,
+            _ => 0..0,
+        };
+        rows.filter_map(move |j| {
+            let dy = self.centre(0, j).y - c.y;
+            let w2 = r * r - dy * dy;
+            if w2 < 0.0 {
+                return None;
+            }
+            let w = w2.sqrt();
+            let i0 = ((c.x - w - self.origin.x) / self.cell - 0.5)
+                .ceil()
+                .max(0.0) as usize;
+            let i1 = ((c.x + w - self.origin.x) / self.cell - 0.5).floor();
+            if i1 < 0.0 {
+                return None;
+            }
+            Some((j, i0, (i1 as usize).min(self.nx - 1)))
+        })
+    }
+
+    /// Clears the disc of radius `r` about `c`; returns how many material cells it removed.
+    pub fn clear_disc(&mut self, c: Point, r: f64) -> u64 {
+        let spans: Vec<(usize, usize, usize)> = self.disc_spans(c, r).collect();
+        spans
+            .into_iter()
+            .map(|(j, i0, i1)| u64::from(self.set_span(j, i0, i1, false)))
+            .sum()
+    }
+
+    /// How many material cells lie within `r` of `c`.
+    pub fn count_disc(&self, c: Point, r: f64) -> u64 {
+        self.disc_spans(c, r)
+            .map(|(j, i0, i1)| u64::from(self.span_count(j, i0, i1)))
+            .sum()
+    }
+
+    /// Material cells left.
+    pub fn count(&self) -> u64 {
+        self.bits.iter().map(|w| u64::from(w.count_ones())).sum()
+    }
+
+    /// Centres of the material cells left.
+    pub fn material_cells(&self) -> impl Iterator<Item = Point> + '_ {
+        (0..self.ny).flat_map(move |j| {
+            (0..self.words).flat_map(move |w| {
+                let mut word = self.bits[j * self.words + w];
+                std::iter::from_fn(move || {
+                    if word == 0 {
+                        return None;
+                    }
+                    let b = word.trailing_zeros() as usize;
+                    word &= word - 1;
+                    Some(self.centre(w * 64 + b, j))
+                })
+            })
+        })
+    }
+}
+
+/// Crossings of the horizontal line at `y` with the arc `v1 → v2`, half-open at the end.
+fn arc_crossings(
+    v1: cavalier_contours::polyline::PlineVertex<f64>,
+    v2: cavalier_contours::polyline::PlineVertex<f64>,
+    y: f64,
+    xs: &mut Vec<f64>,
+) {
+    let (radius, centre) = seg_arc_radius_and_center(v1, v2);
+    let dy = y - centre.y;
+    let q = radius * radius - dy * dy;
+    if q <= 0.0 {
+        return;
+    }
+    let sweep = 4.0 * v1.bulge.atan();
+    let a0 = (v1.y - centre.y).atan2(v1.x - centre.x);
+    let dx = q.sqrt();
+    for x in [centre.x - dx, centre.x + dx] {
+        let a = dy.atan2(x - centre.x);
+        let rel = if sweep > 0.0 { a - a0 } else { a0 - a };
+        let rel = rel.rem_euclid(TAU);
+        // Half-open: include the start, exclude the end.
+        if rel < sweep.abs() - 1e-12 {
+            xs.push(x);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cavalier_contours::polyline::PlineSourceMut;
+
+    #[test]
+    fn circle_fill_area_and_disc_clearing() {
+        let mut pl = Polyline::new_closed();
+        pl.add(-10.0, 0.0, 1.0);
+        pl.add(10.0, 0.0, 1.0);
+        let bounds = Aabb {
+            min: Point::new(-10.0, -10.0),
+            max: Point::new(10.0, 10.0),
+        };
+        let mut r = Raster::new(bounds, 0.05);
+        r.fill(&[&pl]);
+        let area = r.count() as f64 * 0.05 * 0.05;
+        assert!((area - std::f64::consts::PI * 100.0).abs() < 0.5, "{area}");
+        let removed = r.clear_disc(Point::ORIGIN, 5.0) as f64 * 0.0025;
+        assert!(
+            (removed - std::f64::consts::PI * 25.0).abs() < 0.2,
+            "{removed}"
+        );
+        assert_eq!(r.count_disc(Point::ORIGIN, 4.9), 0);
+        assert!(r.count_disc(Point::new(7.0, 0.0), 1.0) > 0);
+    }
+}

@@ -1,0 +1,280 @@
+//! Sweeping the tool through the stock, slab by slab (see the module docs of [`super`]).
+
+use super::StockSpec;
+use super::raster::Raster;
+use crate::geom::Point3;
+use crate::toolpath::{Move, MoveKind, Toolpath};
+use cavalier_contours::polyline::{PlineSource, Polyline};
+use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
+use std::collections::VecDeque;
+
+/// Simulation resolution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimOptions {
+    /// Raster cell side, mm (enlarged if the raster would exceed `max_cells`).
+    pub cell: f64,
+    /// Spacing of the tool positions along a move, mm.
+    pub step: f64,
+    /// Travel over which the radial depth of cut is averaged, mm.
+    pub window: f64,
+    /// Most cells in one raster.
+    pub max_cells: usize,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        SimOptions {
+            cell: 0.05,
+            step: 0.1,
+            window: 0.5,
+            max_cells: 40_000_000,
+        }
+    }
+}
+
+/// Engagement measured along one move.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MoveEngagement {
+    /// Largest radial depth of cut along the move, mm.
+    pub max_radial_depth: f64,
+    /// Largest engagement angle along the move, rad.
+    pub max_angle: f64,
+}
+
+/// What the simulation found.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Simulation {
+    /// Per move (same indices as the toolpath's moves): engagement, `None` when it cut nothing.
+    pub per_move: Vec<Option<MoveEngagement>>,
+    /// Largest engagement, degrees.
+    pub max_engagement_deg: f64,
+    /// Mean engagement over the cutting samples, degrees.
+    pub mean_engagement_deg: f64,
+    /// Largest radial depth of cut, mm.
+    pub max_radial_depth_mm: f64,
+    /// Share of the cutting length above `nominal + 2°`.
+    pub share_above_nominal: f64,
+    /// Uncut area the tool could have reached, mm².
+    pub uncut_area_mm2: f64,
+    /// Rapids through material.
+    pub rapids_through_material: usize,
+    /// Steep feed moves into material.
+    pub plunges: usize,
+    /// The raster cell used, mm.
+    pub cell_mm: f64,
+}
+
+/// Engagement angle (rad) of a one-sided cut of radial depth `ae` with a tool of radius `r`.
+pub fn engagement_angle(ae: f64, r: f64) -> f64 {
+    (1.0 - (ae / r).clamp(0.0, 2.0)).acos()
+}
+
+/// Positions along a move from `from`, at most `step` apart (the end included, not the start).
+fn samples(from: Point3, m: &Move, step: f64) -> Vec<Point3> {
+    let len = m.length_from(from);
+    let n = ((len / step).ceil() as usize).clamp(1, 10_000_000);
+    match (m.kind, m.sweep_from(from)) {
+        (MoveKind::Arc { center, .. }, Some((r, sweep))) => {
+            let a0 = (from.y - center.y).atan2(from.x - center.x);
+            (1..=n)
+                .map(|k| {
+                    let f = k as f64 / n as f64;
+                    let a = a0 + sweep * f;
+                    Point3::new(
+                        center.x + r * a.cos(),
+                        center.y + r * a.sin(),
+                        from.z + (m.to.z - from.z) * f,
+                    )
+                })
+                .collect()
+        }
+        _ => (1..=n)
+            .map(|k| from.lerp(m.to, k as f64 / n as f64))
+            .collect(),
+    }
+}
+
+/// Sweeps the tool through each slab; `nominal_deg` is the engagement the stepover implies.
+pub fn simulate(
+    tp: &Toolpath,
+    spec: StockSpec<'_>,
+    nominal_deg: f64,
+    opts: &SimOptions,
+) -> Simulation {
+    let r = tp.tool.radius();
+    let bounds = spec
+        .islands
+        .iter()
+        .fold(spec.outer.bounds(), |b, i| b.union(i.bounds()));
+    let area = bounds.width() * bounds.height();
+    let cell = opts.cell.max((area / opts.max_cells as f64).sqrt());
+    let loops: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
+        .chain(spec.islands.iter().map(|i| i.polyline()))
+        .collect();
+    let reach = reach_region(spec, r);
+    let fresh = || {
+        let mut ras = Raster::new(bounds, cell);
+        ras.fill(&loops);
+        ras
+    };
+    let mut out = Simulation {
+        per_move: vec![None; tp.moves.len()],
+        cell_mm: cell,
+        ..Simulation::default()
+    };
+    let cell_area = cell * cell;
+    let window_n = ((opts.window / opts.step).ceil() as usize).max(1);
+    let (mut sum_angle, mut cut_len, mut above_len) = (0.0, 0.0, 0.0);
+    let nominal = nominal_deg.to_radians() + 2f64.to_radians();
+    let mut uncut_cells = 0usize;
+
+    // Slab per distinct level depth, in order; the slab top is the previous depth.
+    let mut slab: Option<(f64, f64, Raster)> = None; // (top, bottom, raster)
+    let mut level_of_move = vec![None; tp.moves.len()];
+    for (li, lv) in tp.levels.iter().enumerate() {
+        for slot in level_of_move
+            .iter_mut()
+            .take(lv.end.min(tp.moves.len()))
+            .skip(lv.start)
+        {
+            *slot = Some(li);
+        }
+    }
+    let mut window: VecDeque<(u64, f64)> = VecDeque::new();
+    let mut from = tp.start;
+    for (k, m) in tp.moves.iter().enumerate() {
+        let start = from;
+        from = m.to;
+        let Some(li) = level_of_move[k] else { continue };
+        let z = tp.levels[li].z;
+        let need_new = slab
+            .as_ref()
+            .is_none_or(|(_, bottom, _)| (bottom - z).abs() > 1e-9);
+        if need_new {
+            if let Some((_, _, ras)) = slab.take() {
+                uncut_cells += count_uncut(&ras, &reach, r, cell);
+            }
+            let top = tp.levels[..li]
+                .iter()
+                .rev()
+                .find(|l| (l.z - z).abs() > 1e-9)
+                .map_or(0.0, |l| l.z);
+            slab = Some((top, z, fresh()));
+            window.clear();
+        }
+        let Some((top, _, ras)) = slab.as_mut() else {
+            continue;
+        };
+        let top = *top;
+        match m.kind {
+            MoveKind::Dwell { .. } => {}
+            MoveKind::Rapid => {
+                window.clear();
+                if start.z.min(m.to.z) < top - 1e-9 {
+                    let hit = samples(start, m, opts.step)
+                        .iter()
+                        .any(|p| p.z < top - 1e-9 && ras.count_disc(p.xy(), r) > 0);
+                    if hit {
+                        out.rapids_through_material += 1;
+                    }
+                }
+            }
+            MoveKind::Line | MoveKind::Arc { .. } => {
+                let dz = start.z - m.to.z;
+                let xy = (m.length_from(start).powi(2) - dz * dz).max(0.0).sqrt();
+                if m.to.z < start.z && m.to.z < top - 1e-9 && (start.z - m.to.z) > xy {
+                    // Steeper than 45°: a plunge if it lands in material.
+                    if ras.count_disc(m.to.xy(), r) > 0 {
+                        out.plunges += 1;
+                    }
+                }
+                let mut eng: Option<MoveEngagement> = None;
+                let mut prev = start;
+                for p in samples(start, m, opts.step) {
+                    let ds = prev.distance(p);
+                    prev = p;
+                    if p.z >= top - 1e-9 {
+                        continue;
+                    }
+                    let removed = ras.clear_disc(p.xy(), r);
+                    window.push_back((removed, ds));
+                    if window.len() > window_n {
+                        window.pop_front();
+                    }
+                    let (cells, travel) = window
+                        .iter()
+                        .fold((0u64, 0.0), |acc, w| (acc.0 + w.0, acc.1 + w.1));
+                    let ae = if travel > 1e-12 {
+                        (cells as f64 * cell_area / travel).min(2.0 * r)
+                    } else if cells > 0 {
+                        2.0 * r
+                    } else {
+                        0.0
+                    };
+                    if removed == 0 && ae <= 0.0 {
+                        continue;
+                    }
+                    let phi = engagement_angle(ae, r);
+                    sum_angle += phi * ds;
+                    cut_len += ds;
+                    if phi > nominal {
+                        above_len += ds;
+                    }
+                    let e = eng.get_or_insert_with(MoveEngagement::default);
+                    e.max_radial_depth = e.max_radial_depth.max(ae);
+                    e.max_angle = e.max_angle.max(phi);
+                    out.max_radial_depth_mm = out.max_radial_depth_mm.max(ae);
+                    out.max_engagement_deg = out.max_engagement_deg.max(phi.to_degrees());
+                }
+                out.per_move[k] = eng;
+            }
+        }
+    }
+    if let Some((_, _, ras)) = slab.take() {
+        uncut_cells += count_uncut(&ras, &reach, r, cell);
+    }
+    out.uncut_area_mm2 = uncut_cells as f64 * cell_area;
+    if cut_len > 0.0 {
+        out.mean_engagement_deg = (sum_angle / cut_len).to_degrees();
+        out.share_above_nominal = above_len / cut_len;
+    }
+    out
+}
+
+/// The loops bounding where the tool centre may go: outline offset inward and islands
+/// outward by `r + stock`.
+fn reach_region(spec: StockSpec<'_>, r: f64) -> (Vec<Polyline<f64>>, Vec<Polyline<f64>>) {
+    let d = r + spec.wall_stock;
+    let shape = Shape::from_plines(
+        std::iter::once(spec.outer.polyline().clone())
+            .chain(spec.islands.iter().map(|i| i.polyline().clone())),
+    );
+    let off = shape.parallel_offset(d, &ShapeOffsetOptions::default());
+    (
+        off.ccw_plines.into_iter().map(|p| p.polyline).collect(),
+        off.cw_plines.into_iter().map(|p| p.polyline).collect(),
+    )
+}
+
+/// Material cells within `r − 2c` of the reachable region: material the tool could have cut.
+fn count_uncut(
+    ras: &Raster,
+    reach: &(Vec<Polyline<f64>>, Vec<Polyline<f64>>),
+    r: f64,
+    c: f64,
+) -> usize {
+    let (outers, islands) = reach;
+    let limit = r - 2.0 * c;
+    ras.material_cells()
+        .filter(|&p| {
+            let v = cavalier_contours::core::math::Vector2::new(p.x, p.y);
+            let inside = outers.iter().any(|o| o.winding_number(v) != 0)
+                && islands.iter().all(|i| i.winding_number(v) == 0);
+            inside
+                || outers.iter().chain(islands.iter()).any(|l| {
+                    l.closest_point(v, 1e-12)
+                        .is_some_and(|cp| cp.distance <= limit)
+                })
+        })
+        .count()
+}

@@ -1,0 +1,200 @@
+//! Planar paths of lines and exact arcs, as the strategies produce them.
+//!
+//! A [`Seg`] is a line or a circular arc between two points; an arc keeps its centre, radius,
+//! direction and unsigned sweep so that sub-arcs (for ramps) stay exact. A bulge `b` between
+//! `a` and `b` (cavalier_contours' convention) gives the sweep `θ = 4·atan(b)`; with the chord
+//! `c = |b − a|`, the radius is `R = c / (2·sin(θ/2))` and the centre lies on the chord's
+//! perpendicular bisector at signed distance `R·cos(θ/2)` towards the side the arc turns to.
+
+use crate::geom::{Point, Vec2};
+
+/// A line or an arc.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Seg {
+    /// Start point.
+    pub a: Point,
+    /// End point.
+    pub b: Point,
+    /// For an arc: its geometry.
+    pub arc: Option<Arc>,
+}
+
+/// The circle part of an arc segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arc {
+    /// Centre.
+    pub center: Point,
+    /// Radius in mm.
+    pub radius: f64,
+    /// Counter-clockwise.
+    pub ccw: bool,
+    /// Unsigned sweep in rad, in (0, 2π].
+    pub sweep: f64,
+}
+
+/// Bulges below this magnitude are straight lines (sagitta below 1e-12 of the chord).
+const BULGE_EPS: f64 = 1e-12;
+
+impl Seg {
+    /// A straight segment.
+    pub fn line(a: Point, b: Point) -> Self {
+        Seg { a, b, arc: None }
+    }
+
+    /// The segment from `a` to `b` with bulge `bulge`.
+    pub fn from_bulge(a: Point, b: Point, bulge: f64) -> Self {
+        let chord = b - a;
+        let c = chord.length();
+        if bulge.abs() < BULGE_EPS || c <= 0.0 {
+            return Seg::line(a, b);
+        }
+        let theta = 4.0 * bulge.atan();
+        let half = 0.5 * theta.abs();
+        let radius = c / (2.0 * half.sin());
+        let n = chord.perp() / c; // left normal
+        let sign = if theta > 0.0 { 1.0 } else { -1.0 };
+        let center = a.midpoint(b) + n * (sign * radius * half.cos());
+        Seg {
+            a,
+            b,
+            arc: Some(Arc {
+                center,
+                radius,
+                ccw: theta > 0.0,
+                sweep: theta.abs(),
+            }),
+        }
+    }
+
+    /// Length in mm.
+    pub fn length(&self) -> f64 {
+        match self.arc {
+            None => self.a.distance(self.b),
+            Some(arc) => arc.radius * arc.sweep,
+        }
+    }
+
+    /// The point at arc length `t` from the start.
+    pub fn point_at(&self, t: f64) -> Point {
+        let len = self.length();
+        let f = if len > 0.0 {
+            (t / len).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        match self.arc {
+            None => self.a.lerp(self.b, f),
+            Some(arc) => {
+                let a0 = (self.a - arc.center).angle();
+                let s = if arc.ccw { 1.0 } else { -1.0 };
+                arc.center + Vec2::from_angle(a0 + s * arc.sweep * f) * arc.radius
+            }
+        }
+    }
+
+    /// Unit tangent at arc length `t` (zero for a degenerate segment).
+    pub fn tangent_at(&self, t: f64) -> Vec2 {
+        match self.arc {
+            None => (self.b - self.a).normalize().unwrap_or(Vec2::new(0.0, 0.0)),
+            Some(arc) => {
+                let r = (self.point_at(t) - arc.center)
+                    .normalize()
+                    .unwrap_or(Vec2::new(1.0, 0.0));
+                if arc.ccw { r.perp() } else { -r.perp() }
+            }
+        }
+    }
+
+    /// The first `t` mm of the segment.
+    pub fn head(&self, t: f64) -> Seg {
+        let b = self.point_at(t);
+        let len = self.length();
+        Seg {
+            a: self.a,
+            b,
+            arc: self.arc.map(|arc| Arc {
+                sweep: if len > 0.0 {
+                    arc.sweep * (t / len).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                },
+                ..arc
+            }),
+        }
+    }
+
+    /// The same segment run backwards.
+    pub fn reversed(&self) -> Seg {
+        Seg {
+            a: self.b,
+            b: self.a,
+            arc: self.arc.map(|arc| Arc {
+                ccw: !arc.ccw,
+                ..arc
+            }),
+        }
+    }
+}
+
+/// Segments of an open chain of `(point, bulge)` vertices (the last bulge is unused).
+pub fn segs_from_vertices(v: &[(Point, f64)]) -> Vec<Seg> {
+    v.windows(2)
+        .filter(|w| w[0].0.distance(w[1].0) > 1e-12)
+        .map(|w| Seg::from_bulge(w[0].0, w[1].0, w[0].1))
+        .collect()
+}
+
+/// Straight segments through `points`, skipping repeated points.
+pub fn segs_from_points(points: &[Point]) -> Vec<Seg> {
+    points
+        .windows(2)
+        .filter(|w| w[0].distance(w[1]) > 1e-12)
+        .map(|w| Seg::line(w[0], w[1]))
+        .collect()
+}
+
+/// Total length of a path in mm.
+pub fn path_length(path: &[Seg]) -> f64 {
+    path.iter().map(Seg::length).sum()
+}
+
+/// The first `len` mm of `path` (all of it if shorter).
+pub fn path_head(path: &[Seg], len: f64) -> Vec<Seg> {
+    let mut out = Vec::new();
+    let mut left = len;
+    for s in path {
+        if left <= 1e-12 {
+            break;
+        }
+        let l = s.length();
+        if l <= left {
+            out.push(*s);
+            left -= l;
+        } else {
+            out.push(s.head(left));
+            break;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn bulge_one_is_a_half_circle() {
+        let s = Seg::from_bulge(Point::new(-5.0, 0.0), Point::new(5.0, 0.0), 1.0);
+        let arc = s.arc.unwrap();
+        assert!(arc.center.distance(Point::ORIGIN) < 1e-12);
+        assert!((arc.radius - 5.0).abs() < 1e-12 && arc.ccw);
+        assert!((s.length() - 5.0 * PI).abs() < 1e-9);
+        // Counter-clockwise from (-5, 0) passes through (0, -5).
+        assert!(s.point_at(s.length() * 0.5).distance(Point::new(0.0, -5.0)) < 1e-9);
+        let h = s.head(s.length() * 0.5);
+        assert!((h.length() - 2.5 * PI).abs() < 1e-9);
+        let r = s.reversed();
+        assert!(r.point_at(r.length() * 0.5).distance(Point::new(0.0, -5.0)) < 1e-9);
+    }
+}

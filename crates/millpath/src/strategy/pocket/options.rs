@@ -1,0 +1,320 @@
+//! Pocketing options, with defaults and validation.
+//!
+//! Every length is in millimetres, feeds in mm/s, angles in radians. [`PocketOptions::validate`]
+//! checks every field against the tool and names the offending value.
+
+use crate::error::InputError;
+use crate::toolpath::Tool;
+
+/// The radial depth of cut between neighbouring passes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stepover {
+    /// A fraction of the tool diameter, in (0, 1].
+    Fraction(f64),
+    /// A distance in mm, in (0, diameter].
+    Distance(f64),
+}
+
+impl Stepover {
+    /// Parses `0.4` (fraction of the diameter) or `5mm` (a distance).
+    pub fn parse(text: &str) -> Result<Self, InputError> {
+        let t = text.trim();
+        let bad = || {
+            InputError::new("stepover", text)
+                .at("--stepover")
+                .expected("a fraction of the tool diameter such as 0.4, or a distance such as 5mm")
+        };
+        if let Some(mm) = t.strip_suffix("mm") {
+            mm.trim()
+                .parse::<f64>()
+                .map(Stepover::Distance)
+                .map_err(|_| bad())
+        } else {
+            t.parse::<f64>().map(Stepover::Fraction).map_err(|_| bad())
+        }
+    }
+
+    /// The stepover in mm for a tool of `diameter` mm.
+    pub fn distance(self, diameter: f64) -> f64 {
+        match self {
+            Stepover::Fraction(f) => f * diameter,
+            Stepover::Distance(d) => d,
+        }
+    }
+}
+
+/// Which way the tool runs relative to the material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Direction {
+    /// Climb milling (material on the right of travel with a clockwise spindle): pockets
+    /// cleared from the inside out run counter-clockwise.
+    #[default]
+    Climb,
+    /// Conventional milling: the mirror image, clockwise.
+    Conventional,
+}
+
+/// How the tool goes down into the material at the start of a region.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Entry {
+    /// A helix of `radius` mm descending at `ramp_angle` rad (falls back to a ramp along the
+    /// first loop where the helix does not fit).
+    Helix {
+        /// Helix radius in mm (tool centre).
+        radius: f64,
+        /// Descent angle in rad.
+        ramp_angle: f64,
+    },
+    /// A ramp along the first loop of the region, descending at `ramp_angle` rad.
+    Ramp {
+        /// Descent angle in rad.
+        ramp_angle: f64,
+    },
+}
+
+/// The three pocketing strategies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StrategyKind {
+    /// Parallel passes at an angle, with a boundary clean-up pass.
+    Zigzag,
+    /// Contour-parallel offsets from the inside out.
+    Offset,
+    /// The adaptive spiral: a central spiral morphing into the boundary offset.
+    Spiral,
+}
+
+impl StrategyKind {
+    /// Lower-case name, as on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            StrategyKind::Zigzag => "zigzag",
+            StrategyKind::Offset => "offset",
+            StrategyKind::Spiral => "spiral",
+        }
+    }
+}
+
+/// Everything a pocketing strategy needs besides the outline and the tool.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PocketOptions {
+    /// Maximum radial depth of cut.
+    pub stepover: Stepover,
+    /// Total pocket depth in mm (positive; the top of the stock is z = 0).
+    pub depth: f64,
+    /// Maximum depth of one level in mm.
+    pub step_down: f64,
+    /// Material left on the walls, mm.
+    pub wall_stock: f64,
+    /// Material left on the floor, mm.
+    pub floor_stock: f64,
+    /// Climb or conventional.
+    pub direction: Direction,
+    /// Helix or ramp entry.
+    pub entry: Entry,
+    /// Height above the top of the stock (or the level above) where feeding down starts, mm.
+    pub safe_height: f64,
+    /// Height above the top of the stock for rapid traverses, mm.
+    pub clearance_height: f64,
+    /// Cutting feed in mm/s.
+    pub feed: f64,
+    /// Feed for helical and ramp entries, mm/s.
+    pub plunge_feed: f64,
+    /// Fraction of the feed at full slotting (180° engagement); see [`super::feed`].
+    pub slowdown: f64,
+    /// Zigzag pass angle in rad from the x axis.
+    pub zigzag_angle: f64,
+    /// Spiral transition ratio C in [0, 1]: the central circular spiral reaches C times the
+    /// inscribed radius of the boundary offset.
+    pub transition: f64,
+    /// Smallest radius of curvature wanted on the spiral's interior loops, mm.
+    pub min_radius: f64,
+    /// A finishing pass along the walls at the last level (no wall stock).
+    pub finish: bool,
+    /// Modulate the feed with the engagement measured by the stock simulation.
+    pub modulate_feed: bool,
+}
+
+impl Default for PocketOptions {
+    fn default() -> Self {
+        PocketOptions {
+            stepover: Stepover::Fraction(0.4),
+            depth: 10.0,
+            step_down: 5.0,
+            wall_stock: 0.0,
+            floor_stock: 0.0,
+            direction: Direction::Climb,
+            entry: Entry::Helix {
+                radius: 2.5,
+                ramp_angle: 3f64.to_radians(),
+            },
+            safe_height: 1.0,
+            clearance_height: 5.0,
+            feed: 600.0 * 25.4 / 60.0,
+            plunge_feed: 200.0 * 25.4 / 60.0,
+            slowdown: 0.75,
+            zigzag_angle: 0.0,
+            transition: 0.5,
+            min_radius: 1.0,
+            finish: false,
+            modulate_feed: true,
+        }
+    }
+}
+
+fn check(what: &str, v: f64, ok: bool, flag: &str, expected: &str) -> Result<(), InputError> {
+    if v.is_finite() && ok {
+        Ok(())
+    } else {
+        Err(InputError::new(what, v).at(flag).expected(expected))
+    }
+}
+
+impl PocketOptions {
+    /// The stepover in mm for `tool`.
+    pub fn stepover_mm(&self, tool: &Tool) -> f64 {
+        self.stepover.distance(tool.diameter)
+    }
+
+    /// Checks every option against `tool`.
+    pub fn validate(&self, tool: &Tool) -> Result<(), InputError> {
+        tool.validate("--tool-diameter")?;
+        let d = tool.diameter;
+        let s = self.stepover_mm(tool);
+        check(
+            "stepover",
+            s,
+            s > 0.0 && s <= d * (1.0 + 1e-12),
+            "--stepover",
+            "a stepover > 0 and at most one tool diameter",
+        )?;
+        check(
+            "depth",
+            self.depth,
+            self.depth > 0.0,
+            "--depth",
+            "a depth > 0 mm",
+        )?;
+        check(
+            "step-down",
+            self.step_down,
+            self.step_down > 0.0 && self.step_down <= tool.flute_length,
+            "--step-down",
+            "a step-down > 0 mm and at most the flute length",
+        )?;
+        check(
+            "wall stock",
+            self.wall_stock,
+            self.wall_stock >= 0.0,
+            "--wall-stock",
+            "a stock >= 0 mm",
+        )?;
+        check(
+            "floor stock",
+            self.floor_stock,
+            self.floor_stock >= 0.0 && self.floor_stock < self.depth,
+            "--floor-stock",
+            "a stock >= 0 mm and below the depth",
+        )?;
+        check(
+            "safe height",
+            self.safe_height,
+            self.safe_height > 0.0,
+            "--safe-height",
+            "a height > 0 mm",
+        )?;
+        check(
+            "clearance height",
+            self.clearance_height,
+            self.clearance_height >= self.safe_height,
+            "--clearance-height",
+            "a height at least the safe height",
+        )?;
+        check("feed", self.feed, self.feed > 0.0, "--feed", "a feed > 0")?;
+        check(
+            "plunge feed",
+            self.plunge_feed,
+            self.plunge_feed > 0.0,
+            "--plunge-feed",
+            "a feed > 0",
+        )?;
+        check(
+            "slowdown",
+            self.slowdown,
+            self.slowdown > 0.0 && self.slowdown <= 1.0,
+            "--slowdown",
+            "a fraction in (0, 1]",
+        )?;
+        check(
+            "zigzag angle",
+            self.zigzag_angle,
+            true,
+            "--angle",
+            "a finite angle",
+        )?;
+        check(
+            "transition",
+            self.transition,
+            (0.0..=1.0).contains(&self.transition),
+            "--transition",
+            "a ratio in [0, 1]",
+        )?;
+        check(
+            "min radius",
+            self.min_radius,
+            self.min_radius >= 0.0,
+            "--min-radius",
+            "a radius >= 0 mm",
+        )?;
+        match self.entry {
+            Entry::Helix { radius, ramp_angle } => {
+                check(
+                    "helix radius",
+                    radius,
+                    radius > 0.0,
+                    "--helix-radius",
+                    "a radius > 0 mm",
+                )?;
+                check_ramp(ramp_angle)?;
+            }
+            Entry::Ramp { ramp_angle } => check_ramp(ramp_angle)?,
+        }
+        Ok(())
+    }
+}
+
+fn check_ramp(a: f64) -> Result<(), InputError> {
+    check(
+        "ramp angle",
+        a.to_degrees(),
+        a > 0.0 && a <= 45f64.to_radians(),
+        "--ramp-angle",
+        "an angle in (0, 45] degrees",
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stepover_parses_fraction_and_distance() {
+        assert_eq!(Stepover::parse("0.4").unwrap(), Stepover::Fraction(0.4));
+        assert_eq!(Stepover::parse("5mm").unwrap(), Stepover::Distance(5.0));
+        assert!(Stepover::parse("abc").is_err());
+        assert!((Stepover::Fraction(0.4).distance(10.0) - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn validation_rejects_bad_stepovers() {
+        let tool = Tool::flat(10.0).unwrap();
+        for s in [0.0, -0.1, 1.5, f64::NAN] {
+            let o = PocketOptions {
+                stepover: Stepover::Fraction(s),
+                ..PocketOptions::default()
+            };
+            let e = o.validate(&tool).unwrap_err();
+            assert!(e.to_string().contains("stepover"), "{e}");
+        }
+        assert!(PocketOptions::default().validate(&tool).is_ok());
+    }
+}

@@ -1,0 +1,248 @@
+//! The pocket region: an outer outline and islands, and its offsets in tool-centre space.
+//!
+//! The tool centre must stay at least `r + wall stock` from the outline and the islands, so
+//! every strategy works inside the *boundary offset*: the outer loop offset inward by
+//! `d = r + stock` and the islands outward by the same `d` (cavalier_contours' shape offset,
+//! exact arcs). Its loops are where the last pass runs.
+
+use crate::error::InputError;
+use crate::geom::{Outline, Point, Winding};
+use cavalier_contours::core::math::Vector2;
+use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline};
+use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
+
+/// A pocket: an outer outline (counter-clockwise) and islands (clockwise) strictly inside it.
+#[derive(Debug, Clone)]
+pub struct PocketShape {
+    /// The outer outline, counter-clockwise.
+    pub outer: Outline,
+    /// Islands, clockwise, strictly inside the outer outline and apart from each other.
+    pub islands: Vec<Outline>,
+}
+
+/// Two loops closer than this (mm) count as touching.
+pub const TOUCH_EPS: f64 = 1e-6;
+
+impl PocketShape {
+    /// A pocket from an outer outline and islands, in any winding; `origin` names the source.
+    /// Islands must lie strictly inside the outer outline and must not touch it or each other.
+    pub fn new(outer: Outline, islands: Vec<Outline>, origin: &str) -> Result<Self, InputError> {
+        let outer = outer.with_winding(Winding::CounterClockwise);
+        let islands: Vec<Outline> = islands
+            .into_iter()
+            .map(|i| i.with_winding(Winding::Clockwise))
+            .collect();
+        for (k, isl) in islands.iter().enumerate() {
+            let (p, _) = isl.vertices().next().unwrap_or((Point::ORIGIN, 0.0));
+            if !outer.contains(p) {
+                return Err(InputError::new("island", k)
+                    .at(format!("{origin}, island {k} at ({:.3}, {:.3})", p.x, p.y))
+                    .expected("islands inside the outer outline"));
+            }
+            if loops_touch(outer.polyline(), isl.polyline()) {
+                return Err(InputError::new("island", k)
+                    .at(format!("{origin}, island {k} at ({:.3}, {:.3})", p.x, p.y))
+                    .expected("islands that do not touch or cross the outer outline"));
+            }
+            for (j, other) in islands.iter().enumerate().take(k) {
+                let (q, _) = other.vertices().next().unwrap_or((Point::ORIGIN, 0.0));
+                if loops_touch(other.polyline(), isl.polyline())
+                    || isl.contains(q)
+                    || other.contains(p)
+                {
+                    return Err(InputError::new("island", k)
+                        .at(format!("{origin}, islands {j} and {k}"))
+                        .expected("islands apart from each other"));
+                }
+            }
+        }
+        Ok(PocketShape { outer, islands })
+    }
+
+    /// A pocket without islands.
+    pub fn simple(outer: Outline) -> Self {
+        PocketShape {
+            outer: outer.with_winding(Winding::CounterClockwise),
+            islands: Vec::new(),
+        }
+    }
+
+    /// All loops: the outer first, then the islands.
+    pub fn loops(&self) -> impl Iterator<Item = &Outline> {
+        std::iter::once(&self.outer).chain(self.islands.iter())
+    }
+
+    /// True when `p` is in the material region (inside the outer, outside every island).
+    pub fn contains(&self, p: Point) -> bool {
+        self.outer.contains(p) && self.islands.iter().all(|i| !i.contains(p))
+    }
+
+    /// Distance from `p` to the nearest loop.
+    pub fn distance_to(&self, p: Point) -> f64 {
+        self.loops()
+            .map(|o| o.distance_to(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The region where the tool centre may go at offset `d` (> 0): counter-clockwise outer
+    /// loops and clockwise island loops, possibly several regions.
+    pub fn offset(&self, d: f64) -> OffsetRegion {
+        if self.islands.is_empty() {
+            let outers = self
+                .outer
+                .offset(d)
+                .into_iter()
+                .filter(|p| p.vertex_count() > 1 && p.area() > 0.0)
+                .collect();
+            return OffsetRegion {
+                outers,
+                islands: Vec::new(),
+            };
+        }
+        let shape = Shape::from_plines(self.loops().map(|o| o.polyline().clone()));
+        let off = shape.parallel_offset(d, &ShapeOffsetOptions::default());
+        OffsetRegion {
+            outers: off.ccw_plines.into_iter().map(|p| p.polyline).collect(),
+            islands: off.cw_plines.into_iter().map(|p| p.polyline).collect(),
+        }
+    }
+}
+
+/// The loops of an offset region.
+#[derive(Debug, Clone, Default)]
+pub struct OffsetRegion {
+    /// Counter-clockwise outer loops.
+    pub outers: Vec<Polyline<f64>>,
+    /// Clockwise island loops.
+    pub islands: Vec<Polyline<f64>>,
+}
+
+impl OffsetRegion {
+    /// True when nothing is left.
+    pub fn is_empty(&self) -> bool {
+        self.outers.is_empty()
+    }
+
+    /// Every loop.
+    pub fn loops(&self) -> impl Iterator<Item = &Polyline<f64>> {
+        self.outers.iter().chain(self.islands.iter())
+    }
+}
+
+/// True when two closed loops intersect or come within [`TOUCH_EPS`].
+pub fn loops_touch(a: &Polyline<f64>, b: &Polyline<f64>) -> bool {
+    if !a.find_intersects(b).basic_intersects.is_empty()
+        || !a.find_intersects(b).overlapping_intersects.is_empty()
+    {
+        return true;
+    }
+    a.iter_vertexes().any(|v| {
+        b.closest_point(v.pos(), 1e-12)
+            .is_some_and(|c| c.distance <= TOUCH_EPS)
+    }) || b.iter_vertexes().any(|v| {
+        a.closest_point(v.pos(), 1e-12)
+            .is_some_and(|c| c.distance <= TOUCH_EPS)
+    })
+}
+
+/// A point as a cavalier vector.
+pub fn v2(p: Point) -> Vector2<f64> {
+    Vector2::new(p.x, p.y)
+}
+
+/// A cavalier vector as a point.
+pub fn pt(v: Vector2<f64>) -> Point {
+    Point::new(v.x, v.y)
+}
+
+/// Distance from `p` to the loop `pl`.
+pub fn loop_distance(pl: &Polyline<f64>, p: Point) -> f64 {
+    pl.closest_point(v2(p), 1e-12)
+        .map_or(f64::INFINITY, |c| c.distance)
+}
+
+/// The closed loop `pl` restarted at its point nearest to `p` (split there if needed).
+pub fn restart_near(pl: &Polyline<f64>, p: Point) -> Polyline<f64> {
+    match pl.closest_point(v2(p), 1e-12) {
+        Some(c) => pl
+            .rotate_start(c.seg_start_index, c.seg_point, 1e-9)
+            .unwrap_or_else(|| pl.clone()),
+        None => pl.clone(),
+    }
+}
+
+/// The vertices of a closed loop as an open chain that returns to its start.
+pub fn closed_chain(pl: &Polyline<f64>) -> Vec<(Point, f64)> {
+    let mut v: Vec<(Point, f64)> = pl
+        .iter_vertexes()
+        .map(|v: PlineVertex<f64>| (Point::new(v.x, v.y), v.bulge))
+        .collect();
+    if let Some(&(p0, _)) = v.first() {
+        v.push((p0, 0.0));
+    }
+    v
+}
+
+/// The loop reversed (same geometry, the other direction).
+pub fn reversed(pl: &Polyline<f64>) -> Polyline<f64> {
+    let mut r = pl.clone();
+    r.invert_direction_mut();
+    r
+}
+
+/// A point of largest distance to the region's loops among a grid of about `n × n` points
+/// inside `outer` and outside `islands`, and that distance: an approximation of the centre of
+/// the largest inscribed circle, good to the grid spacing.
+pub fn inscribed_centre(
+    outer: &Polyline<f64>,
+    islands: &[Polyline<f64>],
+    n: usize,
+) -> (Point, f64) {
+    let Some(e) = outer.extents() else {
+        return (Point::ORIGIN, 0.0);
+    };
+    let mut best = (
+        Point::new(0.5 * (e.min_x + e.max_x), 0.5 * (e.min_y + e.max_y)),
+        0.0,
+    );
+    let n = n.max(2);
+    let dist = |p: Point| {
+        islands
+            .iter()
+            .map(|i| loop_distance(i, p))
+            .fold(loop_distance(outer, p), f64::min)
+    };
+    let inside = |p: Point| {
+        outer.winding_number(v2(p)) != 0 && islands.iter().all(|i| i.winding_number(v2(p)) == 0)
+    };
+    let mut step = (
+        (e.max_x - e.min_x) / n as f64,
+        (e.max_y - e.min_y) / n as f64,
+    );
+    for i in 0..=n {
+        for j in 0..=n {
+            let p = Point::new(e.min_x + step.0 * i as f64, e.min_y + step.1 * j as f64);
+            if inside(p) {
+                let d = dist(p);
+                if d > best.1 {
+                    best = (p, d);
+                }
+            }
+        }
+    }
+    // Refine by pattern search around the best grid point.
+    for _ in 0..30 {
+        step = (step.0 * 0.5, step.1 * 0.5);
+        let c = best.0;
+        for (dx, dy) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+            let p = Point::new(c.x + dx * step.0, c.y + dy * step.1);
+            if inside(p) {
+                let d = dist(p);
+                if d > best.1 {
+                    best = (p, d);
+                }
+            }
+        }
+    }
+    best
+}

@@ -1,0 +1,253 @@
+//! Zigzag: parallel passes at an angle, clipped to the boundary offset, then a clean-up pass
+//! along the boundary offset (the paper's "conventional" path).
+//!
+//! In a frame rotated by −angle the passes are horizontal lines `y_j = y_min + j·h`,
+//! `h = (y_max − y_min)/n ≤ s` with `n = ⌈(y_max − y_min)/s⌉`, so neighbouring passes are at
+//! most one stepover apart. Each line is clipped to the region (even-odd rule on the crossings
+//! with the loops, arcs solved exactly: `x = c_x ± √(R² − (y − c_y)²)`, kept when the angle
+//! lies within the arc's sweep). Rows whose height falls within 1e-7 mm of a vertex or an arc
+//! extreme are nudged by 2e-7 mm, so every crossing is transversal.
+//!
+//! Intervals are chained greedily: from the end of the current interval, the nearest
+//! unvisited interval on a neighbouring row whose end can be reached by a straight link
+//! that stays inside the region; when there is none a new cut starts with a ramp along its
+//! first pass (the first pass of a zigzag runs along the boundary, where a helix has no room).
+//! After the passes, the boundary offset loops are cut once: the last pass ends on a loop,
+//! which is restarted there and appended without a retract.
+
+use super::chain::{Seg, segs_from_vertices};
+use super::levels::{Cut, CutEntry, LevelPlan};
+use super::offset::{crosses, too_large};
+use super::options::{Direction, PocketOptions};
+use super::shape::{PocketShape, closed_chain, restart_near, reversed};
+use crate::error::InputError;
+use crate::geom::{Point, Vec2};
+use crate::toolpath::Tool;
+use cavalier_contours::polyline::Polyline;
+use std::f64::consts::TAU;
+
+/// The zigzag strategy's plan for one level.
+pub fn plan(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<LevelPlan, InputError> {
+    let s = opts.stepover_mm(tool);
+    let d0 = tool.radius() + opts.wall_stock;
+    let region = shape.offset(d0);
+    if region.is_empty() {
+        return Err(too_large(tool));
+    }
+    let rot = Vec2::from_angle(-opts.zigzag_angle);
+    let back = Vec2::from_angle(opts.zigzag_angle);
+    let to_world = |p: Point| rotate(p, back);
+    let local: Vec<Vec<Seg>> = region
+        .loops()
+        .map(|l| {
+            segs_from_vertices(&closed_chain(l))
+                .into_iter()
+                .map(|sg| rotate_seg(&sg, rot))
+                .collect()
+        })
+        .collect();
+    let (mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for sg in local.iter().flatten() {
+        for p in extremes(sg) {
+            y0 = y0.min(p.y);
+            y1 = y1.max(p.y);
+        }
+    }
+    // The 1e-9 keeps an exact multiple (a 40 mm span at 4 mm) from gaining a row by rounding.
+    let n = ((y1 - y0) / s - 1e-9).ceil().max(1.0) as usize;
+    let h = (y1 - y0) / n as f64;
+    let mut rows: Vec<Vec<(f64, f64)>> = Vec::with_capacity(n + 1);
+    let mut ys = Vec::with_capacity(n + 1);
+    for j in 0..=n {
+        let y = nudge(&local, (y0 + h * j as f64).clamp(y0 + 2e-7, y1 - 2e-7));
+        let mut xs: Vec<f64> = local
+            .iter()
+            .flatten()
+            .flat_map(|sg| crossings(sg, y))
+            .collect();
+        xs.sort_by(f64::total_cmp);
+        rows.push(
+            xs.chunks_exact(2)
+                .map(|c| (c[0], c[1]))
+                .filter(|c| c.1 - c.0 > 1e-9)
+                .collect(),
+        );
+        ys.push(y);
+    }
+    // Greedy chaining.
+    let mut used: Vec<Vec<bool>> = rows.iter().map(|r| vec![false; r.len()]).collect();
+    let mut cuts: Vec<Cut> = Vec::new();
+    let mut forward = opts.direction == Direction::Climb;
+    while let Some((mut j, mut i)) = first_unused(&used) {
+        let mut path: Vec<Seg> = Vec::new();
+        let mut here: Option<Point> = None;
+        loop {
+            let (a, b) = rows[j][i];
+            let (xa, xb) = if forward { (a, b) } else { (b, a) };
+            let pa = to_world(Point::new(xa, ys[j]));
+            let pb = to_world(Point::new(xb, ys[j]));
+            if let Some(hh) = here {
+                path.push(Seg::line(hh, pa));
+            }
+            path.push(Seg::line(pa, pb));
+            used[j][i] = true;
+            here = Some(pb);
+            forward = !forward;
+            // Next: an unused interval on row j ± 1 reachable from pb.
+            let mut next: Option<(usize, usize, f64)> = None;
+            for jj in [j + 1, j.wrapping_sub(1)] {
+                let Some(row) = rows.get(jj) else { continue };
+                for (ii, &(a, b)) in row.iter().enumerate() {
+                    if used[jj][ii] {
+                        continue;
+                    }
+                    let x = if forward { a } else { b };
+                    let q = to_world(Point::new(x, ys[jj]));
+                    let d = q.distance(pb);
+                    if d <= 3.0 * s && !crosses(&region, pb, q) && next.is_none_or(|n| d < n.2) {
+                        next = Some((jj, ii, d));
+                    }
+                }
+            }
+            match next {
+                Some((jj, ii, _)) => {
+                    j = jj;
+                    i = ii;
+                }
+                None => break,
+            }
+        }
+        cuts.push(Cut {
+            entry: CutEntry::Ramp,
+            path,
+        });
+    }
+    // Clean-up along the boundary offset.
+    let ccw = opts.direction == Direction::Climb;
+    let mut loops: Vec<&Polyline<f64>> = region.loops().collect();
+    while !loops.is_empty() {
+        let here = cuts.last().and_then(|c| c.path.last()).map(|sg| sg.b);
+        let (pick, dist) = loops
+            .iter()
+            .enumerate()
+            .map(|(i, l)| (i, here.map_or(0.0, |p| super::shape::loop_distance(l, p))))
+            .fold(
+                (0, f64::INFINITY),
+                |acc, x| if x.1 < acc.1 { x } else { acc },
+            );
+        let lp = loops.swap_remove(pick);
+        let lp = if ccw { lp.clone() } else { reversed(lp) };
+        let lp = match here {
+            Some(p) => restart_near(&lp, p),
+            None => lp,
+        };
+        let path = segs_from_vertices(&closed_chain(&lp));
+        match (cuts.last_mut(), here) {
+            (Some(last), Some(p)) if dist <= 1e-6 => {
+                if let Some(f) = path.first() {
+                    if p.distance(f.a) > 1e-12 {
+                        last.path.push(Seg::line(p, f.a));
+                    }
+                }
+                last.path.extend(path);
+            }
+            _ => cuts.push(Cut {
+                entry: CutEntry::Ramp,
+                path,
+            }),
+        }
+    }
+    Ok(LevelPlan { cuts })
+}
+
+fn first_unused(used: &[Vec<bool>]) -> Option<(usize, usize)> {
+    used.iter()
+        .enumerate()
+        .find_map(|(j, r)| r.iter().position(|u| !u).map(|i| (j, i)))
+}
+
+fn rotate(p: Point, by: Vec2) -> Point {
+    Point::new(by.x * p.x - by.y * p.y, by.y * p.x + by.x * p.y)
+}
+
+fn rotate_seg(sg: &Seg, by: Vec2) -> Seg {
+    Seg {
+        a: rotate(sg.a, by),
+        b: rotate(sg.b, by),
+        arc: sg.arc.map(|arc| super::chain::Arc {
+            center: rotate(arc.center, by),
+            ..arc
+        }),
+    }
+}
+
+/// The end points and, for arcs, the top and bottom of the circle when on the arc.
+fn extremes(sg: &Seg) -> Vec<Point> {
+    let mut v = vec![sg.a, sg.b];
+    if let Some(arc) = sg.arc {
+        for dir in [Vec2::new(0.0, 1.0), Vec2::new(0.0, -1.0)] {
+            if on_arc(sg, dir.angle()) {
+                v.push(arc.center + dir * arc.radius);
+            }
+        }
+    }
+    v
+}
+
+/// True when the angle `t` (about the arc's centre) lies within the arc's sweep.
+fn on_arc(sg: &Seg, t: f64) -> bool {
+    let Some(arc) = sg.arc else { return false };
+    let a0 = (sg.a - arc.center).angle();
+    let rel = if arc.ccw { t - a0 } else { a0 - t };
+    rel.rem_euclid(TAU) <= arc.sweep
+}
+
+/// Moves `y` off vertices and arc extremes so that every crossing is transversal.
+fn nudge(loops: &[Vec<Seg>], mut y: f64) -> f64 {
+    for _ in 0..8 {
+        let close = loops
+            .iter()
+            .flatten()
+            .flat_map(extremes)
+            .any(|p| (p.y - y).abs() < 1e-7);
+        if !close {
+            break;
+        }
+        y += 2e-7;
+    }
+    y
+}
+
+/// x of the crossings of the horizontal line at `y` with `sg`, half-open at the end point.
+fn crossings(sg: &Seg, y: f64) -> Vec<f64> {
+    match sg.arc {
+        None => {
+            let (a, b) = (sg.a, sg.b);
+            if (a.y <= y && y < b.y) || (b.y <= y && y < a.y) {
+                let t = (y - a.y) / (b.y - a.y);
+                vec![a.x + t * (b.x - a.x)]
+            } else {
+                Vec::new()
+            }
+        }
+        Some(arc) => {
+            let dy = y - arc.center.y;
+            let q = arc.radius * arc.radius - dy * dy;
+            if q <= 0.0 {
+                return Vec::new();
+            }
+            let dx = q.sqrt();
+            [arc.center.x - dx, arc.center.x + dx]
+                .into_iter()
+                .filter(|&x| {
+                    let p = Point::new(x, y);
+                    p.distance(sg.b) > 1e-12 && on_arc(sg, (p - arc.center).angle())
+                })
+                .collect()
+        }
+    }
+}

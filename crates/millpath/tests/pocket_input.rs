@@ -1,0 +1,122 @@
+//! Bad input gets a clear input error, never a panic or an internal error.
+
+use millpath::Error;
+use millpath::io::{dxf, outline_json, svg};
+use millpath::stock::SimOptions;
+use millpath::strategy::pocket::{
+    self, PocketOptions, PocketShape, Stepover, StrategyKind, samples,
+};
+use millpath::toolpath::Tool;
+
+fn input_error<T: std::fmt::Debug>(r: Result<T, Error>) -> String {
+    match r {
+        Err(Error::Input(e)) => e.to_string(),
+        other => panic!("expected an input error, got {other:?}"),
+    }
+}
+
+#[test]
+fn open_outlines_are_refused() {
+    let e = svg::parse(r#"<path d="M 0 0 L 10 0 L 10 10"/>"#, "open.svg", 0.01).unwrap_err();
+    assert!(e.to_string().contains("open"), "{e}");
+    let e = dxf::parse(
+        &dxf_lines(&[(0.0, 0.0, 10.0, 0.0), (10.0, 0.0, 10.0, 10.0)]),
+        "open.dxf",
+        &Default::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("open at"), "{e}");
+}
+
+#[test]
+fn chained_dxf_lines_close() {
+    let l = dxf::parse(
+        &dxf_lines(&[
+            (0.0, 0.0, 10.0, 0.0),
+            (10.0, 10.0, 10.0, 0.0),
+            (10.0, 10.0, 0.0, 10.0),
+            (0.0, 10.0, 0.0, 0.0),
+        ]),
+        "square.dxf",
+        &Default::default(),
+    )
+    .unwrap();
+    assert!((l.outer.signed_area() - 100.0).abs() < 1e-9);
+}
+
+fn dxf_lines(lines: &[(f64, f64, f64, f64)]) -> Vec<u8> {
+    let mut d = ::dxf::Drawing::new();
+    for &(x1, y1, x2, y2) in lines {
+        let l = ::dxf::entities::Line::new(
+            ::dxf::Point::new(x1, y1, 0.0),
+            ::dxf::Point::new(x2, y2, 0.0),
+        );
+        d.add_entity(::dxf::entities::Entity::new(
+            ::dxf::entities::EntityType::Line(l),
+        ));
+    }
+    let mut buf = Vec::new();
+    d.save(&mut buf).unwrap();
+    buf
+}
+
+#[test]
+fn self_intersecting_and_touching_islands_are_refused() {
+    let bow = r#"{"outline": [[0,0],[10,10],[10,0],[0,10]]}"#;
+    let e = outline_json::parse(bow, "bow.json")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("self-intersecting") && e.contains("bow.json"),
+        "{e}"
+    );
+    let touching =
+        r#"{"outline": [[0,0],[20,0],[20,20],[0,20]], "islands": [[[0,5],[5,5],[5,10],[0,10]]]}"#;
+    let e = outline_json::parse(touching, "t.json")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("island 0"), "{e}");
+    let outer = samples::rounded_rectangle(0.0, 0.0, 20.0, 20.0, 2.0);
+    let isl = samples::rounded_rectangle(0.0, 5.0, 5.0, 5.0, 1.0);
+    assert!(PocketShape::new(outer, vec![isl], "t").is_err());
+}
+
+#[test]
+fn tool_too_large_and_bad_stepovers_are_refused() {
+    let shape = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 20.0, 20.0, 2.0));
+    let sim = SimOptions::default();
+    for kind in [
+        StrategyKind::Zigzag,
+        StrategyKind::Offset,
+        StrategyKind::Spiral,
+    ] {
+        let big = Tool::flat(25.0).unwrap();
+        let e = input_error(pocket::generate(
+            kind,
+            &shape,
+            &big,
+            &PocketOptions::default(),
+            &sim,
+        ));
+        assert!(e.contains("tool diameter"), "{kind:?}: {e}");
+        let tool = Tool::flat(6.0).unwrap();
+        for s in [
+            Stepover::Fraction(0.0),
+            Stepover::Fraction(-0.2),
+            Stepover::Fraction(1.2),
+            Stepover::Distance(7.0),
+        ] {
+            let o = PocketOptions {
+                stepover: s,
+                ..PocketOptions::default()
+            };
+            let e = input_error(pocket::generate(kind, &shape, &tool, &o, &sim));
+            assert!(e.contains("stepover"), "{kind:?} {s:?}: {e}");
+        }
+        let o = PocketOptions {
+            depth: f64::NAN,
+            ..PocketOptions::default()
+        };
+        assert!(input_error(pocket::generate(kind, &shape, &tool, &o, &sim)).contains("depth"));
+    }
+}
