@@ -133,5 +133,5 @@ fn table_and_synthetic_plots_render() {
         "chordal_deviation",
         &dir,
     );
-    assert!(svg.contains("tolerance 5.0 µm"));
+    assert!(svg.contains("tolerance 5 µm"));
 }

@@ -20,7 +20,7 @@ use millpath::motion::{plan_toolpath, table2};
 use millpath::report::html::HtmlReport;
 use millpath::report::{PreviewOptions, plots, series, toolpath_svg};
 use millpath::strategy::contour;
-use millpath::{Error, InputError, Toolpath};
+use millpath::{Error, InputError, Tool, Toolpath};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -414,7 +414,126 @@ fn outline_for_viewer(curve: &millpath::curve::CompositeCurve) -> Result<Outline
     Ok(Outline::from_points(&flat.points, "die cavity curve")?)
 }
 
-/// The sample part's pockets in all three strategies.
-fn pockets(_out: &Path, _machine: &Machine, _html: &mut HtmlReport) -> Result<Vec<Row>, Error> {
-    Ok(Vec::new())
+/// The sample part's pockets (after the adaptive-spiral paper's Figure 17) in all three
+/// strategies: one program per strategy, each pocket verified by the stock simulation.
+fn pockets(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Vec<Row>, Error> {
+    use millpath::stock::SimOptions;
+    use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
+    let part = samples::structural_part();
+    let tool = Tool::flat(12.7)?;
+    // 12.7 mm end mill, 40 % stepover, 600 in/min, two levels of 6.35 mm.
+    let opts = PocketOptions {
+        depth: 12.7,
+        step_down: 6.35,
+        ..PocketOptions::default()
+    };
+    let sim = SimOptions {
+        cell: 0.1,
+        step: 0.2,
+        ..SimOptions::default()
+    };
+    let outlines: Vec<Outline> = part.iter().map(|(_, s)| s.outer.clone()).collect();
+    let mut rows = Vec::new();
+    for (kind, name) in [
+        (StrategyKind::Zigzag, "zigzag"),
+        (StrategyKind::Offset, "offset"),
+        (StrategyKind::Spiral, "spiral"),
+    ] {
+        let pb = spinner(&format!(
+            "pockets: {name} on {} pockets, stock simulation",
+            part.len()
+        ));
+        let mut program: Option<Toolpath> = None;
+        let mut problems = Vec::new();
+        let mut max_eng = 0.0_f64;
+        for (pname, shape) in &part {
+            let r = pocket::generate(kind, shape, &tool, &opts, &sim)?;
+            for p in r.verification.problems() {
+                problems.push(format!("{pname}: {p}"));
+            }
+            max_eng = max_eng.max(r.verification.max_engagement_deg);
+            program = Some(match program {
+                None => r.toolpath,
+                Some(acc) => append(acc, &r.toolpath),
+            });
+        }
+        let Some(tp) = program else { continue };
+        let wopt = WriterOptions {
+            program_name: Some(format!("sample part, {name} roughing")),
+            ..WriterOptions::default()
+        }
+        .with_tolerance(machine.path_tolerance);
+        let blocks = write_gcode(&out.join(format!("part_{name}.ngc")), &tp, &wopt)?;
+        pb.set_message(format!("pockets: {name}: cycle time and limit check"));
+        let (cycle, check) = time_and_verify(&tp, machine)?;
+        let plan = plan_toolpath(&tp, machine)?;
+        let preview = toolpath_svg(
+            &tp,
+            &outlines,
+            &PreviewOptions {
+                title: Some(format!(
+                    "sample part, {name}: {cycle:.1} s on {}",
+                    machine.name
+                )),
+                achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
+                ..PreviewOptions::default()
+            },
+        );
+        millpath::io::write_atomic(&out.join(format!("part_{name}.svg")), preview.as_bytes())?;
+        if kind == StrategyKind::Spiral {
+            html.toolpath_viewer(
+                "sample part, adaptive spiral (colour: achieved feed)",
+                &tp,
+                &outlines,
+                &plan,
+            )?;
+            let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
+            add_plot(
+                out,
+                html,
+                "part_spiral_feed",
+                "Sample part, spiral: planned feed along the path (cf. the adaptive-spiral paper's Figure 15)",
+                &plots::feed_along_path(&series::feed_along_path(&samples), None),
+            )?;
+        }
+        pb.finish_and_clear();
+        let verdict = if problems.is_empty() {
+            format!("{check}; no gouge, no uncut, max engagement {max_eng:.0}°")
+        } else {
+            format!("{check}; {}", problems.join("; "))
+        };
+        print(&format!(
+            "sample part, {name}: {} pockets, {cycle:.1} s planned, {blocks} blocks",
+            part.len()
+        ));
+        rows.push(Row {
+            what: format!("sample part, {} pockets, {name}", part.len()),
+            cycle_s: cycle,
+            blocks,
+            check: verdict,
+        });
+    }
+    Ok(rows)
+}
+
+/// `b` appended to `a`: a rapid to `b`'s start, then `b`'s moves and levels.
+fn append(mut a: Toolpath, b: &Toolpath) -> Toolpath {
+    let safe = a.end().z.max(b.start.z);
+    let end = a.end();
+    a.push(millpath::Move::rapid(millpath::Point3::new(
+        end.x, end.y, safe,
+    )));
+    a.push(millpath::Move::rapid(millpath::Point3::new(
+        b.start.x, b.start.y, safe,
+    )));
+    a.push(millpath::Move::rapid(b.start));
+    let offset = a.moves.len();
+    a.moves.extend_from_slice(&b.moves);
+    a.levels
+        .extend(b.levels.iter().map(|l| millpath::toolpath::Level {
+            start: l.start + offset,
+            end: l.end + offset,
+            ..l.clone()
+        }));
+    a
 }
