@@ -321,6 +321,33 @@ fn five_axis(out: &Path, html: &mut HtmlReport) -> Result<Row, Error> {
     })?;
     let names = millpath::machine::kinematics::Kinematics::axis_names(&kin);
     let limits = Limits::paper();
+    let feed_chart = plots::Chart {
+        title: "Feed rate of the tool tip".to_owned(),
+        x_label: "time (s)".to_owned(),
+        y_label: "feed (mm/s)".to_owned(),
+        series: vec![plots::Series {
+            label: "feed".to_owned(),
+            points: samples
+                .t
+                .iter()
+                .copied()
+                .zip(samples.feed.iter().copied())
+                .collect(),
+            style: plots::SeriesStyle::Line,
+            colour: 0,
+        }],
+        hlines: vec![plots::HLine {
+            label: format!("feed limit {} mm/s", limits.feed),
+            y: limits.feed,
+        }],
+    };
+    add_plot(
+        out,
+        html,
+        "five_axis_feed",
+        "Five-axis quarter circle: feed rate of the tool tip against time with its limit (cf. the five-axis paper's Figure 6)",
+        &feed_chart,
+    )?;
     for (quantity, values, lim, file, fig) in [
         (
             plots::Quantity::Velocity,
