@@ -31,6 +31,9 @@ const PROGRESS_BYTES: u64 = 4 << 20;
 
 /// Arguments of `millpath estimate`.
 #[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Examples:\n  millpath estimate part.ngc --machine hsm\n  millpath estimate part.ngc --machine my_mill.toml --json --samples traj.csv --rate 2000\n  millpath estimate --table2"
+)]
 pub struct Args {
     /// The G-code program.
     #[arg(required_unless_present = "table2")]

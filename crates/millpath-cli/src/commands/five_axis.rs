@@ -11,6 +11,9 @@ use std::path::PathBuf;
 
 /// Arguments of `millpath five-axis`.
 #[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Examples:\n  millpath five-axis --case paper --json\n  millpath five-axis --case paper --machine ac-trt --csv traj.csv --gcode traj.ngc\n  millpath five-axis path.csv --no-baseline"
+)]
 pub struct Args {
     /// Built-in case: `paper` (the paper's quarter circle and deflection).
     #[arg(long, conflicts_with = "path")]

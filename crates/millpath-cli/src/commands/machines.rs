@@ -5,6 +5,7 @@ use millpath::machine::Machine;
 
 /// Arguments of `millpath machines`.
 #[derive(Debug, clap::Args)]
+#[command(after_help = "Example:\n  millpath machines --json")]
 pub struct Args {
     /// Print the presets as JSON.
     #[arg(long)]

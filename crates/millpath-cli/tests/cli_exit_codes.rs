@@ -1,0 +1,114 @@
+//! The binary's contract: exit 0 on success, 2 on bad input with a message naming the value
+//! and where it came from, and no output file after an error.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn millpath(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the millpath binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn machines_json_lists_the_presets() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = millpath(&["machines", "--json"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON on stdout");
+    let text = v.to_string();
+    for name in ["hsm", "linuxcnc-sim", "router"] {
+        assert!(text.contains(name), "preset {name} missing: {text}");
+    }
+}
+
+#[test]
+fn unknown_gcode_word_is_bad_input_with_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("bad.ngc"),
+        "G21 G90\nG1 X1 F600\nG1 X2 Q7\nM2\n",
+    )
+    .unwrap();
+    let o = millpath(&["estimate", "bad.ngc", "--json"], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains('Q') && e.contains(":3"),
+        "message names the word and line 3: {e}"
+    );
+    assert!(!e.contains("panicked"), "{e}");
+}
+
+#[test]
+fn bad_tolerance_leaves_no_output_and_keeps_an_existing_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("old.ngc"), "keep me").unwrap();
+    let o = millpath(
+        &[
+            "contour",
+            "--sample",
+            "--tolerance=-1",
+            "-o",
+            "old.ngc",
+            "--report",
+            "r.json",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("tolerance"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("old.ngc")).unwrap(),
+        "keep me"
+    );
+    assert!(!dir.path().join("r.json").exists());
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(leftovers.len(), 1, "temporary files left: {leftovers:?}");
+}
+
+#[test]
+fn pocket_stepover_zero_is_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = millpath(
+        &[
+            "pocket",
+            "sample:aerospace",
+            "--strategy",
+            "offset",
+            "--tool-diameter",
+            "12.7",
+            "--stepover",
+            "0",
+            "-o",
+            "p.ngc",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("stepover"), "{}", stderr(&o));
+    assert!(!dir.path().join("p.ngc").exists());
+}
+
+#[test]
+fn unreadable_input_file_is_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    for args in [
+        &["estimate", "missing.ngc"][..],
+        &["contour", "missing.csv", "-o", "x.ngc"][..],
+        &["five-axis", "missing.csv"][..],
+    ] {
+        let o = millpath(args, dir.path());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("missing."), "{args:?}: {}", stderr(&o));
+    }
+}
