@@ -112,3 +112,25 @@ fn unreadable_input_file_is_bad_input() {
         assert!(stderr(&o).contains("missing."), "{args:?}: {}", stderr(&o));
     }
 }
+
+#[test]
+fn estimate_writes_a_self_contained_html_report() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("sq.ngc"),
+        "G21 G90 G17\nG0 X0 Y0 Z1\nG1 Z0 F1000\nG1 X20\nG1 Y20\nG2 X0 Y20 I-10 J0\nG1 Y0\nM2\n",
+    )
+    .unwrap();
+    let o = millpath(&["estimate", "sq.ngc", "--html", "r.html"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let html = std::fs::read_to_string(dir.path().join("r.html")).expect("report written");
+    assert!(
+        html.contains("<svg") && html.contains("cycle time"),
+        "viewer and summary"
+    );
+    let external = html
+        .match_indices("http")
+        .filter(|(i, _)| !html[*i..].starts_with("http://www.w3.org/"))
+        .count();
+    assert_eq!(external, 0, "the report must not reference the network");
+}

@@ -109,6 +109,10 @@ pub struct Args {
     /// Output JSON report.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Write a self-contained HTML report (summary, viewer with playback on the `hsm`
+    /// machine, chordal deviation per segment, feed plot).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
 }
 
 fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> Error {
@@ -275,6 +279,72 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(rp) = &args.report {
         millpath::io::write_atomic(rp, json.as_bytes())?;
+    }
+    if let Some(path) = &args.html {
+        let m = millpath::machine::Machine::preset("hsm")?;
+        let plan = millpath::motion::plan_toolpath(&result.toolpath, &m)?;
+        let mut summary = vec![
+            super::html::machine_row(&m),
+            ("input".to_owned(), name.clone()),
+            (
+                "segments per pass".to_owned(),
+                format!(
+                    "{} (outline alone {}, kurbo {}, asymptotic {:.1})",
+                    report.segments,
+                    report.curve.segments,
+                    report.curve.kurbo_segments,
+                    report.curve.asymptotic_segments
+                ),
+            ),
+            (
+                "max chordal deviation".to_owned(),
+                format!(
+                    "{:.3e} mm (tolerance {} mm)",
+                    report.max_deviation_mm, opt.tolerance
+                ),
+            ),
+            (
+                "levels, blocks".to_owned(),
+                format!("{}, {}", report.layers.len(), report.blocks),
+            ),
+            (
+                "cycle time".to_owned(),
+                format!(
+                    "{:.2} s planned on hsm, {:.2} s at programmed feed",
+                    plan.total_time(),
+                    report.time_at_programmed_feed_s
+                ),
+            ),
+        ];
+        summary.extend(
+            result
+                .warnings
+                .iter()
+                .map(|w| ("warning".to_owned(), w.clone())),
+        );
+        let flat = curve::flatten::flatten_curve(&curve, opt.tolerance.max(1e-3))?;
+        let outline = millpath::geom::Outline::from_points(&flat.points, &name)?;
+        let mut html = super::html::toolpath_report(
+            &format!("millpath contour {name}"),
+            summary,
+            &result.toolpath,
+            &[outline],
+            &plan,
+        )?;
+        let per_segment: Vec<f64> = flat
+            .params
+            .windows(2)
+            .zip(flat.points.windows(2))
+            .map(|(p, q)| curve::verify::chordal_deviation(&curve, p, q, 200))
+            .collect();
+        html.plot(
+            "Chordal deviation of each segment of the curve flattened at the tolerance (dense sampling, 200 points per segment)",
+            &millpath::report::plots::render_svg(
+                &millpath::report::plots::chordal_deviation(&per_segment, opt.tolerance.max(1e-3)),
+                &millpath::report::plots::PlotOptions::default(),
+            )?,
+        )?;
+        super::html::write(path, &html)?;
     }
     for w in &result.warnings {
         super::eprint(&format!("warning: {w}"));

@@ -75,7 +75,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     rows.extend(pockets(&args.out, &machine, &mut html)?);
     table_two(&args.out, &mut html)?;
     rows.push(five_axis(&args.out, &mut html)?);
-    let mut summary = vec![("machine".to_owned(), describe_machine(&machine))];
+    let mut summary = vec![super::html::machine_row(&machine)];
     summary.extend(rows.iter().map(|r| {
         (
             r.what.clone(),
@@ -102,22 +102,6 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     print(&format!("report: {}", html_path.display()));
     Ok(())
-}
-
-fn describe_machine(m: &Machine) -> String {
-    let a = &m.axes[0];
-    format!(
-        "{}: X v {:.0} mm/s, a {:.0} mm/s², j {} mm/s³, path tolerance {} mm",
-        m.name,
-        a.max_velocity,
-        a.max_acceleration,
-        if a.max_jerk.is_finite() {
-            format!("{:.0}", a.max_jerk)
-        } else {
-            "unlimited".to_owned()
-        },
-        m.path_tolerance
-    )
 }
 
 /// Renders `chart` to `plots/NAME.svg` and `.png` and adds it to the report.
@@ -320,77 +304,8 @@ fn five_axis(out: &Path, html: &mut HtmlReport) -> Result<Row, Error> {
         .map_err(|e| Error::internal(format!("CSV: {e}")))
     })?;
     let names = millpath::machine::kinematics::Kinematics::axis_names(&kin);
-    let limits = Limits::paper();
-    let feed_chart = plots::Chart {
-        title: "Feed rate of the tool tip".to_owned(),
-        x_label: "time (s)".to_owned(),
-        y_label: "feed (mm/s)".to_owned(),
-        series: vec![plots::Series {
-            label: "feed".to_owned(),
-            points: samples
-                .t
-                .iter()
-                .copied()
-                .zip(samples.feed.iter().copied())
-                .collect(),
-            style: plots::SeriesStyle::Line,
-            colour: 0,
-        }],
-        hlines: vec![plots::HLine {
-            label: format!("feed limit {} mm/s", limits.feed),
-            y: limits.feed,
-        }],
-    };
-    add_plot(
-        out,
-        html,
-        "five_axis_feed",
-        "Five-axis quarter circle: feed rate of the tool tip against time with its limit (cf. the five-axis paper's Figure 6)",
-        &feed_chart,
-    )?;
-    for (quantity, values, lim, file, fig) in [
-        (
-            plots::Quantity::Velocity,
-            &samples.v,
-            limits.vel,
-            "five_axis_velocity",
-            "6",
-        ),
-        (
-            plots::Quantity::Acceleration,
-            &samples.a,
-            limits.acc,
-            "five_axis_acceleration",
-            "7",
-        ),
-        (
-            plots::Quantity::Jerk,
-            &samples.j,
-            limits.jerk,
-            "five_axis_jerk",
-            "7",
-        ),
-    ] {
-        // Linear axes (mm) and rotary axes (rad) differ by three orders of magnitude: each axis
-        // is drawn as a share of its own limit, so the limit line is ±1 for all five.
-        let axes: Vec<plots::AxisSeries> = (0..5)
-            .map(|k| plots::AxisSeries {
-                name: format!("{} / {}", names[k], lim[k]),
-                unit: "limit".to_owned(),
-                values: values.iter().map(|q| q[k] / lim[k]).collect(),
-                limit: Some(1.0),
-            })
-            .collect();
-        add_plot(
-            out,
-            html,
-            file,
-            &format!(
-                "Five-axis quarter circle: per-axis {} against time, as a share of each axis's limit (linear axes in mm, rotary in rad; cf. the five-axis paper's Figure {fig})",
-                quantity.name()
-            ),
-            &plots::axis_kinematics(quantity, &samples.t, &axes),
-        )?;
+    for (file, caption, chart) in super::html::five_axis_charts(&samples, names, &Limits::paper()) {
+        add_plot(out, html, file, &caption, &chart)?;
     }
     pb.finish_and_clear();
     let baseline = r.baseline_time_s.map_or_else(

@@ -59,6 +59,9 @@ pub struct Args {
     /// Skip unsupported G-code words with a warning instead of refusing them.
     #[arg(long)]
     pub lenient: bool,
+    /// Write a self-contained HTML report (summary, viewer with playback, feed plot).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
     /// Print the adaptive-spiral paper's Table 2 (square vs circle) against this machine.
     #[arg(long)]
     pub table2: bool,
@@ -124,7 +127,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     };
     let mut reader = Reader::new(BufReader::new(counting), opts);
     let mut n_read: u64 = 0;
-    let keep = !args.no_verify || args.samples.is_some();
+    let keep = !args.no_verify || args.samples.is_some() || args.html.is_some();
     let mut moves: Vec<(Point3, millpath::Move)> = Vec::new();
     let mut from = start;
     let stream = std::iter::from_fn(|| {
@@ -171,6 +174,31 @@ pub fn run(args: &Args) -> Result<(), Error> {
     };
     if let Some(out) = &args.samples {
         write_samples(&plan, out, args.rate)?;
+    }
+    if let Some(out) = &args.html {
+        let mut tp = millpath::Toolpath::new(millpath::Tool::default(), start);
+        tp.moves = moves.iter().map(|(_, m)| *m).collect();
+        let summary = vec![
+            super::html::machine_row(&machine),
+            ("program".to_owned(), path.display().to_string()),
+            (
+                "cycle time".to_owned(),
+                format!("{:.3} s", plan.total_time()),
+            ),
+            ("blocks".to_owned(), plan.blocks.len().to_string()),
+            (
+                "limit violations (1 kHz verifier)".to_owned(),
+                violations.map_or("not checked".into(), |v| v.to_string()),
+            ),
+        ];
+        let html = super::html::toolpath_report(
+            &format!("millpath estimate {}", path.display()),
+            summary,
+            &tp,
+            &[],
+            &plan,
+        )?;
+        super::html::write(out, &html)?;
     }
     let naive: f64 = plan
         .blocks

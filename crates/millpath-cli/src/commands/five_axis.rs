@@ -48,6 +48,10 @@ pub struct Args {
     /// Use G94 units-per-minute feeds instead of G93 inverse time.
     #[arg(long)]
     pub no_inverse_time: bool,
+    /// Write a self-contained HTML report (summary and the feed, velocity, acceleration and
+    /// jerk plots).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
 }
 
 fn machine(name: &str) -> Result<Box<dyn Kinematics>, Error> {
@@ -130,6 +134,39 @@ pub fn run(args: &Args) -> Result<(), Error> {
         millpath::io::write_atomic_with(path, |w| write_five_axis(w, &segs, kin.as_ref(), &go))?;
     }
     let r = &out.result;
+    if let Some(path) = &args.html {
+        let s = five_axis::sample(&out.segments, kin.as_ref(), 1e-3);
+        let mut html = millpath::report::html::HtmlReport::new("millpath five-axis");
+        html.section(
+            "summary",
+            vec![
+                ("machine".to_owned(), r.machine.clone()),
+                ("intervals".to_owned(), r.intervals.to_string()),
+                ("total time".to_owned(), format!("{:.6} s", r.total_time_s)),
+                (
+                    "the paper's method (baseline)".to_owned(),
+                    r.baseline_time_s
+                        .map_or("not run".to_owned(), |b| format!("{b:.6} s")),
+                ),
+                (
+                    "limit violations".to_owned(),
+                    r.violations.len().to_string(),
+                ),
+            ],
+        );
+        for (_, caption, chart) in
+            super::html::five_axis_charts(&s, kin.axis_names(), &Limits::paper())
+        {
+            html.plot(
+                caption,
+                &millpath::report::plots::render_svg(
+                    &chart,
+                    &millpath::report::plots::PlotOptions::default(),
+                )?,
+            )?;
+        }
+        super::html::write(path, &html)?;
+    }
     if args.json {
         print(&serde_json::to_string_pretty(r).map_err(|e| Error::internal(e.to_string()))?);
     } else {

@@ -4,6 +4,7 @@ pub mod contour;
 pub mod demo;
 pub mod estimate;
 pub mod five_axis;
+pub mod html;
 pub mod machines;
 pub mod pocket;
 pub mod sweep;

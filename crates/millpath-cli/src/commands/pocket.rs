@@ -28,6 +28,9 @@ pub struct Args {
     /// JSON report output.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Write a self-contained HTML report (summary, viewer with playback, feed plot).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
 }
 
 /// Options shared by `pocket` and `sweep`.
@@ -319,6 +322,62 @@ pub fn run(args: &Args) -> Result<(), Error> {
         let text = serde_json::to_string_pretty(&rep)
             .map_err(|e| Error::internal(format!("report serialisation: {e}")))?;
         millpath::io::write_atomic(path, text.as_bytes())?;
+    }
+    if let Some(path) = &args.html {
+        let m = millpath::machine::Machine::preset(&args.common.machine)
+            .map_err(|e| e.at("--machine"))?;
+        let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)?;
+        let mut summary = vec![
+            super::html::machine_row(&m),
+            ("strategy".to_owned(), kind.name().to_owned()),
+            (
+                "cycle time".to_owned(),
+                format!("{:.2} s", rep.cycle_time_s),
+            ),
+            (
+                "path length".to_owned(),
+                format!("{:.1} mm", rep.path_length_mm),
+            ),
+            (
+                "levels, moves".to_owned(),
+                format!("{}, {}", rep.levels, rep.moves),
+            ),
+            (
+                "engagement".to_owned(),
+                format!(
+                    "max {:.1}°, mean {:.1}°, nominal {:.1}°, {:.1}% of the path above nominal",
+                    rep.max_engagement_deg,
+                    rep.mean_engagement_deg,
+                    rep.nominal_engagement_deg,
+                    100.0 * rep.share_above_nominal
+                ),
+            ),
+            (
+                "verifier".to_owned(),
+                format!(
+                    "min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm², rapids through material {}",
+                    rep.verification.min_clearance_mm,
+                    rep.verification.required_clearance_mm,
+                    rep.verification.uncut_area_mm2,
+                    rep.verification.rapids_through_material
+                ),
+            ),
+        ];
+        summary.extend(
+            rep.problems
+                .iter()
+                .map(|p| ("problem".to_owned(), p.clone())),
+        );
+        let mut outlines = vec![shape.outer.clone()];
+        outlines.extend(shape.islands.iter().cloned());
+        let html = super::html::toolpath_report(
+            &format!("millpath pocket {} {}", args.outline, kind.name()),
+            summary,
+            &r.toolpath,
+            &outlines,
+            &plan,
+        )?;
+        super::html::write(path, &html)?;
     }
     super::print(&format!(
         "{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \

@@ -1,0 +1,124 @@
+//! `--html OUT.html` for the commands: one self-contained report per run, built from the
+//! engine's report pieces (`millpath::report`).
+
+use millpath::geom::Outline;
+use millpath::machine::Machine;
+use millpath::motion::Plan;
+use millpath::report::html::HtmlReport;
+use millpath::report::{plots, series};
+use millpath::{Error, Toolpath};
+use std::path::Path;
+
+/// A report with a summary table, the toolpath viewer (preview coloured by achieved feed,
+/// playback along `plan`) and the feed-along-path plot.
+pub fn toolpath_report(
+    title: &str,
+    summary: Vec<(String, String)>,
+    tp: &Toolpath,
+    outlines: &[Outline],
+    plan: &Plan,
+) -> Result<HtmlReport, Error> {
+    let mut html = HtmlReport::new(title);
+    html.section("summary", summary);
+    html.toolpath_viewer(title, tp, outlines, plan)?;
+    let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
+    html.plot(
+        "Planned feed along the path",
+        &plots::render_svg(
+            &plots::feed_along_path(&series::feed_along_path(&samples), None),
+            &plots::PlotOptions::default(),
+        )?,
+    )?;
+    Ok(html)
+}
+
+/// The machine's limits as one summary row.
+pub fn machine_row(m: &Machine) -> (String, String) {
+    let a = &m.axes[0];
+    let jerk = if a.max_jerk.is_finite() {
+        format!("{:.0}", a.max_jerk)
+    } else {
+        "unlimited".to_owned()
+    };
+    (
+        "machine".to_owned(),
+        format!(
+            "{}: X v {:.0} mm/s, a {:.0} mm/s², j {jerk} mm/s³, path tolerance {} mm",
+            m.name, a.max_velocity, a.max_acceleration, m.path_tolerance
+        ),
+    )
+}
+
+/// Writes `html` to `path` atomically.
+pub fn write(path: &Path, html: &HtmlReport) -> Result<(), Error> {
+    millpath::io::write_atomic(path, html.to_html().as_bytes())
+}
+
+/// The five-axis plots (the paper's Figures 6-7 style): the tool tip's feed against its limit,
+/// then each motor's velocity, acceleration and jerk as a share of its own limit (linear axes
+/// in mm and rotary axes in rad differ by three orders of magnitude). Returns
+/// `(file stem, caption, chart)`.
+pub fn five_axis_charts(
+    samples: &millpath::motion::five_axis::Samples,
+    names: [&str; 5],
+    limits: &millpath::motion::five_axis::Limits,
+) -> Vec<(&'static str, String, plots::Chart)> {
+    let mut out = vec![(
+        "five_axis_feed",
+        "Five-axis: feed rate of the tool tip against time with its limit (cf. the five-axis paper's Figure 6)"
+            .to_owned(),
+        plots::Chart {
+            title: "Feed rate of the tool tip".to_owned(),
+            x_label: "time (s)".to_owned(),
+            y_label: "feed (mm/s)".to_owned(),
+            series: vec![plots::Series {
+                label: "feed".to_owned(),
+                points: samples.t.iter().copied().zip(samples.feed.iter().copied()).collect(),
+                style: plots::SeriesStyle::Line,
+                colour: 0,
+            }],
+            hlines: vec![plots::HLine {
+                label: format!("feed limit {} mm/s", limits.feed),
+                y: limits.feed,
+            }],
+        },
+    )];
+    for (quantity, values, lim, file) in [
+        (
+            plots::Quantity::Velocity,
+            &samples.v,
+            limits.vel,
+            "five_axis_velocity",
+        ),
+        (
+            plots::Quantity::Acceleration,
+            &samples.a,
+            limits.acc,
+            "five_axis_acceleration",
+        ),
+        (
+            plots::Quantity::Jerk,
+            &samples.j,
+            limits.jerk,
+            "five_axis_jerk",
+        ),
+    ] {
+        let axes: Vec<plots::AxisSeries> = (0..5)
+            .map(|k| plots::AxisSeries {
+                name: format!("{} / {}", names[k], lim[k]),
+                unit: "limit".to_owned(),
+                values: values.iter().map(|q| q[k] / lim[k]).collect(),
+                limit: Some(1.0),
+            })
+            .collect();
+        out.push((
+            file,
+            format!(
+                "Five-axis: per-axis {} against time, as a share of each axis's limit (linear axes in mm, rotary in rad; cf. the five-axis paper's Figure 7)",
+                quantity.name()
+            ),
+            plots::axis_kinematics(quantity, &samples.t, &axes),
+        ));
+    }
+    out
+}
