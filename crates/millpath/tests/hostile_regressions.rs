@@ -65,3 +65,57 @@ fn outline_bounds_are_input_errors() {
     let bulgy = [(Point::new(0.0, 0.0), 1e300), (Point::new(10.0, 0.0), 1.0)];
     assert!(Outline::new(&bulgy, "code").is_err());
 }
+
+/// A plausible zigzag pocket with a ramp entry that the hostile pass found exhausting memory
+/// (7 GB): one of its cuts is a sliver so short that the ramp's back-and-forth pass count
+/// `need / head_len` was unbounded. Fixed in `pocket::levels::emit_cut`: beyond 1000 passes the
+/// cut is entered by a straight plunge.
+#[test]
+fn pocket_ramp_on_a_sliver_cut_is_bounded() {
+    use millpath::Point;
+    use millpath::geom::Outline;
+    use millpath::strategy::pocket::{self, Direction, Entry, PocketOptions, PocketShape};
+    use millpath::strategy::pocket::{Stepover, StrategyKind};
+    let pts = [
+        (0.5067506716790149, 33.923399300629576),
+        (-15.495039039066494, 83.90680780322668),
+        (-28.44732723208258, 57.46344395193826),
+        (-20.500436449782423, 85.80478063380576),
+        (-39.66484633370397, 51.29906856939858),
+        (-83.74719229597198, -4.105740147203079),
+        (-46.45767021370686, -0.10159339765712261),
+        (-24.659186956136672, 12.064754661027553),
+    ]
+    .map(|(x, y)| Point::new(x, y));
+    let shape = PocketShape::simple(Outline::from_points(&pts, "sliver").unwrap());
+    let tool = millpath::Tool {
+        diameter: 14.165822809604304,
+        flutes: 1,
+        flute_length: 39.9137923757302,
+        number: 49,
+    };
+    let opts = PocketOptions {
+        stepover: Stepover::Fraction(0.7923288621551071),
+        depth: 7.152658507092601,
+        step_down: 3.859490583661331,
+        wall_stock: 0.27679943486176584,
+        floor_stock: 0.06921936228126015,
+        direction: Direction::Climb,
+        entry: Entry::Ramp {
+            ramp_angle: 0.08997854129228909,
+        },
+        safe_height: 0.7406850003585472,
+        clearance_height: 8.285104908990768,
+        feed: 22.84844133869721,
+        plunge_feed: 11.53364949088229,
+        slowdown: 0.3309526681507178,
+        zigzag_angle: -2.7371216566852055,
+        transition: 0.7358653342432562,
+        min_radius: 0.8251498205924716,
+        finish: false,
+        modulate_feed: false,
+    };
+    let tp = pocket::toolpath(StrategyKind::Zigzag, &shape, &tool, &opts).unwrap();
+    assert!(tp.moves.len() < 100_000, "{} moves", tp.moves.len());
+    assert!(tp.moves.iter().all(|m| m.to.is_finite()));
+}

@@ -33,25 +33,35 @@ impl Harness {
         }
     }
 
-    /// Runs `f`; a panic is recorded with `input` (its `Debug` form, cut to 2000 characters).
-    pub fn run<T>(&mut self, input: &dyn Debug, f: impl FnOnce() -> T) {
+    /// Runs `f` and returns its value; a panic is recorded (and `None` returned) with `input` (its `Debug` form, cut to 2000 characters).
+    /// With `HOSTILE_TRACE` set, each input is printed before its call (to find an input that
+    /// hangs or exhausts memory rather than panicking).
+    #[allow(clippy::print_stderr)]
+    pub fn run<T>(&mut self, input: &dyn Debug, f: impl FnOnce() -> T) -> Option<T> {
         self.cases += 1;
-        if let Err(e) = catch_unwind(AssertUnwindSafe(f)) {
-            let msg = e
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| e.downcast_ref::<&str>().map(|s| (*s).to_string()))
-                .unwrap_or_default();
-            let mut shown = format!("{input:?}");
-            if shown.len() > 2000 {
-                let mut cut = 2000;
-                while !shown.is_char_boundary(cut) {
-                    cut -= 1;
+        if std::env::var_os("HOSTILE_TRACE").is_some() {
+            eprintln!("{} case {}: {input:?}", self.name, self.cases);
+        }
+        match catch_unwind(AssertUnwindSafe(f)) {
+            Ok(v) => Some(v),
+            Err(e) => {
+                let msg = e
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| e.downcast_ref::<&str>().map(|s| (*s).to_string()))
+                    .unwrap_or_default();
+                let mut shown = format!("{input:?}");
+                if shown.len() > 2000 {
+                    let mut cut = 2000;
+                    while !shown.is_char_boundary(cut) {
+                        cut -= 1;
+                    }
+                    shown.truncate(cut);
+                    shown.push_str("...");
                 }
-                shown.truncate(cut);
-                shown.push_str("...");
+                self.panics.push(format!("panic `{msg}` on input {shown}"));
+                None
             }
-            self.panics.push(format!("panic `{msg}` on input {shown}"));
         }
     }
 
