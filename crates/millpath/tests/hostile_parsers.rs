@@ -40,7 +40,7 @@ fn gcode_line(rng: &mut ChaCha8Rng) -> String {
                 ],
             )),
             1 => line.push_str("(comment"),
-            2 => line.push_str(";"),
+            2 => line.push(';'),
             3 => line.push_str(&format!("P{}", rng.random_range(-3..1_000_000_000i64))),
             _ => {
                 let l = pick(

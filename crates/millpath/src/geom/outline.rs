@@ -78,7 +78,8 @@ impl Outline {
         let n = pline.vertex_count();
         for (i, v) in pline.iter_vertexes().enumerate() {
             let ok_xy = v.x.abs() <= MAX_COORDINATE_MM && v.y.abs() <= MAX_COORDINATE_MM;
-            if !ok_xy || !(v.bulge.abs() <= MAX_BULGE) {
+            let ok_bulge = v.bulge.abs() <= MAX_BULGE; // false for NaN
+            if !ok_xy || !ok_bulge {
                 return Err(InputError::new(
                     "outline vertex",
                     format!("({}, {}, bulge {})", v.x, v.y, v.bulge),

@@ -324,6 +324,16 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
     Ok(out)
 }
 
+/// The points of a path element.
+fn el_points(el: &PathEl) -> Vec<kurbo::Point> {
+    match *el {
+        PathEl::MoveTo(p) | PathEl::LineTo(p) => vec![p],
+        PathEl::QuadTo(a, b) => vec![a, b],
+        PathEl::CurveTo(a, b, c) => vec![a, b, c],
+        PathEl::ClosePath => Vec::new(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -346,15 +356,5 @@ mod tests {
     fn open_path_is_an_error() {
         let e = parse(r#"<path d="M 0 0 L 10 0 L 10 10"/>"#, "o.svg", 0.01).unwrap_err();
         assert!(e.to_string().contains("open"), "{e}");
-    }
-}
-
-/// The points of a path element.
-fn el_points(el: &PathEl) -> Vec<kurbo::Point> {
-    match *el {
-        PathEl::MoveTo(p) | PathEl::LineTo(p) => vec![p],
-        PathEl::QuadTo(a, b) => vec![a, b],
-        PathEl::CurveTo(a, b, c) => vec![a, b, c],
-        PathEl::ClosePath => Vec::new(),
     }
 }

@@ -175,7 +175,8 @@ fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64
             let head = path_head(&cut.path, len);
             let head_len = path_length(&head);
             let passes = (need / head_len).ceil().max(1.0);
-            if !(passes <= MAX_RAMP_PASSES) {
+            let fits = passes <= MAX_RAMP_PASSES; // false for NaN
+            if !fits {
                 // A degenerate cut (a path shorter than need / MAX_RAMP_PASSES, e.g. a sliver
                 // region a few µm long) has no room to ramp along: without this cap the pass
                 // count grew without bound and the toolpath exhausted memory. Plunge straight
