@@ -9,7 +9,7 @@ mod point;
 mod vec3;
 
 pub use aabb::Aabb;
-pub use outline::{Outline, Winding};
+pub use outline::{MAX_BULGE, MAX_COORDINATE_MM, Outline, Winding};
 pub use point::{Point, Vec2};
 pub use vec3::{Point3, Vec3};
 

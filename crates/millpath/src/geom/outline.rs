@@ -25,6 +25,16 @@ pub struct Outline {
     pline: Polyline<f64>,
 }
 
+/// The largest coordinate magnitude an outline accepts, mm (1 km). Far beyond any machine
+/// table, and small enough that lengths, areas and offsets computed from the vertices stay
+/// finite and accurate in f64 (`cavalier_contours` asserts on results that overflow).
+pub const MAX_COORDINATE_MM: f64 = 1e6;
+
+/// The largest bulge magnitude an outline accepts: `tan(θ/4) = 1000` is an arc of sweep
+/// θ ≈ 359.77°; larger bulges give arcs whose radius `chord·(b + 1/b)/4` overflows long
+/// before it means anything.
+pub const MAX_BULGE: f64 = 1e3;
+
 impl Outline {
     /// Builds an outline from `(point, bulge)` vertices, checking that it is a valid closed
     /// loop: at least two vertices (three if all are straight), finite coordinates and bulges,
@@ -66,6 +76,20 @@ impl Outline {
     pub fn from_polyline(mut pline: Polyline<f64>, origin: &str) -> Result<Self, InputError> {
         pline.set_is_closed(true);
         let n = pline.vertex_count();
+        for (i, v) in pline.iter_vertexes().enumerate() {
+            let ok_xy = v.x.abs() <= MAX_COORDINATE_MM && v.y.abs() <= MAX_COORDINATE_MM;
+            let ok_bulge = v.bulge.abs() <= MAX_BULGE; // false for NaN
+            if !ok_xy || !ok_bulge {
+                return Err(InputError::new(
+                    "outline vertex",
+                    format!("({}, {}, bulge {})", v.x, v.y, v.bulge),
+                )
+                .at(format!("{origin}, vertex {i}"))
+                .expected(format!(
+                    "finite coordinates within ±{MAX_COORDINATE_MM} mm and |bulge| ≤ {MAX_BULGE}"
+                )));
+            }
+        }
         let all_straight = pline.iter_vertexes().all(|v| v.bulge.abs() < 1e-12);
         if n < 2 || (all_straight && n < 3) {
             return Err(InputError::new("outline vertex count", n)

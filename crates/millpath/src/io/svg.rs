@@ -12,12 +12,17 @@
 
 use super::outline_json::{Loops, classify};
 use crate::error::InputError;
-use crate::geom::{Outline, Point};
+use crate::geom::{MAX_COORDINATE_MM, Outline, Point};
 use kurbo::{BezPath, PathEl, Shape as _};
 use svgtypes::{PathParser, PathSegment};
 
 /// Reads the loops of an SVG document; `tolerance` bounds the flattening of curves, mm.
 pub fn parse(text: &str, origin: &str, tolerance: f64) -> Result<Loops, InputError> {
+    if !(tolerance.is_finite() && tolerance >= MIN_TOLERANCE_MM) {
+        return Err(InputError::new("SVG flattening tolerance", tolerance)
+            .at(origin)
+            .expected(format!("a finite number ≥ {MIN_TOLERANCE_MM} mm")));
+    }
     let mut loops: Vec<Outline> = Vec::new();
     for (n, tag) in tags(text).enumerate() {
         let at = format!("{origin}, element {n} <{}>", tag.0);
@@ -101,6 +106,11 @@ fn attr(attrs: &str, name: &str) -> Option<String> {
 
 type Piece = Vec<(Point, f64)>;
 
+/// The smallest flattening tolerance, mm: with coordinates within
+/// [`MAX_COORDINATE_MM`] it bounds the points a curve flattens to
+/// (kurbo's subdivision count grows like `sqrt(size / tolerance)`) to about a million.
+pub const MIN_TOLERANCE_MM: f64 = 1e-6;
+
 /// The closed subpaths of path data `d`, in SVG coordinates.
 fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
     let mut out = Vec::new();
@@ -125,12 +135,26 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
             cur.clear();
         }
     };
-    let flatten_into = |cur: &mut Piece, path: &BezPath| {
+    // Curves are checked before flattening: kurbo's subdivision count overflows (a panic in
+    // `Vec::with_capacity`) on control points at 1e308 or beyond.
+    let flatten_into = |cur: &mut Piece, path: &BezPath| -> Result<(), InputError> {
+        for el in path.iter() {
+            for p in el_points(&el) {
+                if !(p.x.abs() <= MAX_COORDINATE_MM && p.y.abs() <= MAX_COORDINATE_MM) {
+                    return Err(
+                        InputError::new("SVG curve point", format!("({}, {})", p.x, p.y))
+                            .at(at.to_owned())
+                            .expected(format!("finite coordinates within ±{MAX_COORDINATE_MM} mm")),
+                    );
+                }
+            }
+        }
         kurbo::flatten(path.iter(), tol, |el| {
             if let PathEl::LineTo(p) = el {
                 cur.push((Point::new(p.x, p.y), 0.0));
             }
         });
+        Ok(())
     };
     for seg in PathParser::from(d) {
         let seg = seg.map_err(|e| bad(e.to_string()))?;
@@ -189,7 +213,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 let mut p = BezPath::new();
                 p.move_to((pos.x, pos.y));
                 p.curve_to((c1.x, c1.y), (c2.x, c2.y), (e.x, e.y));
-                flatten_into(&mut cur, &p);
+                flatten_into(&mut cur, &p)?;
                 pos = e;
                 ctrl_next = Some(c2);
             }
@@ -200,7 +224,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 let mut p = BezPath::new();
                 p.move_to((pos.x, pos.y));
                 p.curve_to((c1.x, c1.y), (c2.x, c2.y), (e.x, e.y));
-                flatten_into(&mut cur, &p);
+                flatten_into(&mut cur, &p)?;
                 pos = e;
                 ctrl_next = Some(c2);
             }
@@ -209,7 +233,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 let mut p = BezPath::new();
                 p.move_to((pos.x, pos.y));
                 p.quad_to((c.x, c.y), (e.x, e.y));
-                flatten_into(&mut cur, &p);
+                flatten_into(&mut cur, &p)?;
                 pos = e;
                 ctrl_next = Some(c);
             }
@@ -219,7 +243,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 let mut p = BezPath::new();
                 p.move_to((pos.x, pos.y));
                 p.quad_to((c.x, c.y), (e.x, e.y));
-                flatten_into(&mut cur, &p);
+                flatten_into(&mut cur, &p)?;
                 pos = e;
                 ctrl_next = Some(c);
             }
@@ -264,7 +288,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                     match kurbo::Arc::from_svg_arc(&arc) {
                         Some(a) => {
                             let p = a.to_path(0.1 * tol);
-                            flatten_into(&mut cur, &p);
+                            flatten_into(&mut cur, &p)?;
                         }
                         None => cur.push((e, 0.0)),
                     }
@@ -298,6 +322,16 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
         close(&mut cur, &mut out);
     }
     Ok(out)
+}
+
+/// The points of a path element.
+fn el_points(el: &PathEl) -> Vec<kurbo::Point> {
+    match *el {
+        PathEl::MoveTo(p) | PathEl::LineTo(p) => vec![p],
+        PathEl::QuadTo(a, b) => vec![a, b],
+        PathEl::CurveTo(a, b, c) => vec![a, b, c],
+        PathEl::ClosePath => Vec::new(),
+    }
 }
 
 #[cfg(test)]

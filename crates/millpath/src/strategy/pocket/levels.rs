@@ -174,7 +174,20 @@ fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64
             let len = need.min(total).max(1e-6);
             let head = path_head(&cut.path, len);
             let head_len = path_length(&head);
-            let passes = (need / head_len).ceil().max(1.0) as usize;
+            let passes = (need / head_len).ceil().max(1.0);
+            let fits = passes <= MAX_RAMP_PASSES; // false for NaN
+            if !fits {
+                // A degenerate cut (a path shorter than need / MAX_RAMP_PASSES, e.g. a sliver
+                // region a few µm long) has no room to ramp along: without this cap the pass
+                // count grew without bound and the toolpath exhausted memory. Plunge straight
+                // down instead, as a direct entry does.
+                tp.push(Move::line(Point3::from_xy(first.a, z), opts.plunge_feed));
+                for s in &cut.path {
+                    tp.push(seg_move(s, z, opts.feed));
+                }
+                return;
+            }
+            let passes = passes as usize;
             let passes = passes + passes % 2; // end back at the start
             let slope = drop / (head_len * passes as f64);
             let mut h = safe;
@@ -198,6 +211,10 @@ fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64
         tp.push(seg_move(s, z, opts.feed));
     }
 }
+
+/// The most back-and-forth passes a ramp entry makes; a cut too short for this many passes to
+/// reach the depth at the ramp angle is entered by a straight plunge.
+const MAX_RAMP_PASSES: f64 = 1000.0;
 
 #[cfg(test)]
 mod tests {

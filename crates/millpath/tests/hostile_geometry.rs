@@ -1,0 +1,204 @@
+//! "No panic on any input" for the geometry pipelines: the contour strategy from arbitrary
+//! points (curve construction + offsetting + toolpath) and pocket toolpaths from arbitrary
+//! polygons and parameters (no stock simulation, to stay fast).
+//!
+//! Inputs are mostly plausible (star-shaped polygons of random size, sane options) so the
+//! calls get deep into the algorithms, with a hostile value (NaN, ±∞, 1e300, 0, negative,
+//! tiny) substituted now and then. Seeded and bounded; a panic fails with the input.
+
+mod hostile_common;
+
+use hostile_common::{Harness, hostile_f64, mostly_sane, rng};
+use millpath::curve::{self, CurveKind, LabeledPoint};
+use millpath::geom::Outline;
+use millpath::strategy::contour::{self, ContourOptions, Side};
+use millpath::strategy::pocket::{
+    self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind,
+};
+use millpath::{Point, Tool};
+use rand::RngExt;
+use rand_chacha::ChaCha8Rng;
+
+/// A star-shaped polygon around `(cx, cy)` (angles sorted, radii random), or with probability
+/// `p_chaos` points in random order (self-intersecting, repeated, collinear...).
+fn polygon(r: &mut ChaCha8Rng, n: usize, size: f64, p_chaos: f64) -> Vec<Point> {
+    let (cx, cy) = (r.random_range(-50.0..50.0), r.random_range(-50.0..50.0));
+    if r.random_bool(p_chaos) {
+        // A hostile `size` keeps its effect on the star branch; here it must give a range.
+        let size = if size.is_finite() && size > 1e-9 {
+            size.min(1e6)
+        } else {
+            1.0
+        };
+        return (0..n)
+            .map(|_| {
+                if r.random_bool(0.1) {
+                    Point::new(hostile_f64(r), hostile_f64(r))
+                } else if r.random_bool(0.1) {
+                    Point::new(cx, cy)
+                } else {
+                    Point::new(
+                        cx + r.random_range(-size..size),
+                        cy + r.random_range(-size..size),
+                    )
+                }
+            })
+            .collect();
+    }
+    let mut angles: Vec<f64> = (0..n)
+        .map(|_| r.random_range(0.0..std::f64::consts::TAU))
+        .collect();
+    angles.sort_by(f64::total_cmp);
+    angles
+        .into_iter()
+        .map(|a| {
+            let rad = size * r.random_range(0.3..1.0);
+            Point::new(cx + rad * a.cos(), cy + rad * a.sin())
+        })
+        .collect()
+}
+
+fn tool(r: &mut ChaCha8Rng) -> Tool {
+    Tool {
+        diameter: mostly_sane(r, 0.5, 20.0, 0.1),
+        flutes: r.random_range(0..5),
+        flute_length: mostly_sane(r, 5.0, 50.0, 0.05),
+        number: r.random_range(0..100),
+    }
+}
+
+#[test]
+fn contour_pipeline_survives_arbitrary_points() {
+    let mut h = Harness::new("contour pipeline");
+    let mut r = rng(0xc047);
+    let mut ok = 0;
+    for _ in 0..100 {
+        let n = 4 * r.random_range(1..4);
+        let size = mostly_sane(&mut r, 5.0, 80.0, 0.05);
+        let pts = polygon(&mut r, n, size, 0.25);
+        let groups: Vec<Vec<LabeledPoint>> = pts
+            .chunks(4)
+            .map(|c| {
+                c.iter()
+                    .enumerate()
+                    .map(|(i, p)| LabeledPoint {
+                        p: *p,
+                        origin: format!("point {i}"),
+                    })
+                    .collect()
+            })
+            .collect();
+        let kind = match r.random_range(0..3) {
+            0 => CurveKind::FourPoint,
+            1 => CurveKind::CatmullRom,
+            _ => CurveKind::Spline,
+        };
+        let opt = ContourOptions {
+            tool: tool(&mut r),
+            tolerance: mostly_sane(&mut r, 0.01, 0.2, 0.05),
+            side: match r.random_range(0..3) {
+                0 => Side::Inside,
+                1 => Side::Outside,
+                _ => Side::On,
+            },
+            top_z: mostly_sane(&mut r, -5.0, 5.0, 0.05),
+            depth: mostly_sane(&mut r, 0.5, 6.0, 0.05),
+            step_down: mostly_sane(&mut r, 1.0, 4.0, 0.05),
+            finish_allowance: mostly_sane(&mut r, 0.0, 1.0, 0.05),
+            safe_height: mostly_sane(&mut r, 1.0, 10.0, 0.03),
+            clearance_height: mostly_sane(&mut r, 0.5, 2.0, 0.03),
+            feed: mostly_sane(&mut r, 1.0, 50.0, 0.03),
+            plunge_feed: mostly_sane(&mut r, 1.0, 20.0, 0.03),
+            lead_radius: mostly_sane(&mut r, 0.0, 5.0, 0.05),
+            rapid_speed: mostly_sane(&mut r, 50.0, 200.0, 0.03),
+            arcs: r.random_bool(0.5),
+            ..ContourOptions::default()
+        };
+        let done = h.run(&(&pts, kind, &opt), || {
+            curve::build(&groups, kind, "fuzz")
+                .ok()
+                .is_some_and(|c| contour::contour(&c, &opt).is_ok())
+        });
+        ok += usize::from(done == Some(true));
+    }
+    // The pass must reach the offsetting and toolpath code, not only the input checks.
+    assert!(ok >= 15, "only {ok} contours generated");
+    h.finish(100);
+}
+
+#[test]
+fn pocket_toolpaths_survive_arbitrary_polygons_and_options() {
+    let mut h = Harness::new("pocket toolpath");
+    let mut r = rng(0x90c4e7);
+    let mut ok = 0;
+    for _ in 0..120 {
+        let n = r.random_range(3..12);
+        let size = mostly_sane(&mut r, 8.0, 60.0, 0.05);
+        let pts = polygon(&mut r, n, size, 0.2);
+        let island = if r.random_bool(0.3) {
+            let k = r.random_range(3..6);
+            Some(polygon(&mut r, k, size * 0.2, 0.1))
+        } else {
+            None
+        };
+        let t = tool(&mut r);
+        let kind = match r.random_range(0..3) {
+            0 => StrategyKind::Zigzag,
+            1 => StrategyKind::Offset,
+            _ => StrategyKind::Spiral,
+        };
+        let opts = PocketOptions {
+            stepover: if r.random_bool(0.5) {
+                Stepover::Fraction(mostly_sane(&mut r, 0.1, 1.0, 0.05))
+            } else {
+                Stepover::Distance(mostly_sane(&mut r, 0.5, 5.0, 0.05))
+            },
+            depth: mostly_sane(&mut r, 0.5, 8.0, 0.05),
+            step_down: mostly_sane(&mut r, 2.0, 5.0, 0.05),
+            wall_stock: mostly_sane(&mut r, 0.0, 0.5, 0.05),
+            floor_stock: mostly_sane(&mut r, 0.0, 0.3, 0.05),
+            direction: if r.random_bool(0.5) {
+                Direction::Climb
+            } else {
+                Direction::Conventional
+            },
+            entry: if r.random_bool(0.5) {
+                Entry::Helix {
+                    radius: mostly_sane(&mut r, 0.5, 5.0, 0.05),
+                    ramp_angle: mostly_sane(&mut r, 0.02, 0.2, 0.05),
+                }
+            } else {
+                Entry::Ramp {
+                    ramp_angle: mostly_sane(&mut r, 0.02, 0.2, 0.05),
+                }
+            },
+            safe_height: mostly_sane(&mut r, 0.5, 2.0, 0.03),
+            clearance_height: mostly_sane(&mut r, 2.0, 10.0, 0.03),
+            feed: mostly_sane(&mut r, 1.0, 50.0, 0.03),
+            plunge_feed: mostly_sane(&mut r, 1.0, 20.0, 0.03),
+            slowdown: mostly_sane(&mut r, 0.2, 1.0, 0.03),
+            zigzag_angle: mostly_sane(&mut r, -3.0, 3.0, 0.05),
+            transition: mostly_sane(&mut r, 0.0, 1.0, 0.05),
+            min_radius: mostly_sane(&mut r, 0.1, 2.0, 0.05),
+            finish: r.random_bool(0.3),
+            modulate_feed: false,
+        };
+        let done = h.run(&(&pts, &island, &t, kind, &opts), || {
+            let Ok(outer) = Outline::from_points(&pts, "fuzz outer") else {
+                return false;
+            };
+            let islands: Vec<Outline> = island
+                .iter()
+                .filter_map(|p| Outline::from_points(p, "fuzz island").ok())
+                .collect();
+            let Ok(shape) = PocketShape::new(outer, islands, "fuzz") else {
+                return false;
+            };
+            pocket::toolpath(kind, &shape, &t, &opts).is_ok()
+        });
+        ok += usize::from(done == Some(true));
+    }
+    // The pass must reach the strategies, not only the input checks.
+    assert!(ok >= 20, "only {ok} pockets generated");
+    h.finish(120);
+}

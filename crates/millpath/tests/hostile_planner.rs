@@ -1,0 +1,123 @@
+//! "No panic on any input" for the motion planner: arbitrary programs (lines, rapids, arcs
+//! with extra turns, dwells, hostile feeds and coordinates, every corner mode) on presets and
+//! on machines with arbitrary limits. Seeded and bounded; a panic fails with the input.
+
+mod hostile_common;
+
+use hostile_common::{Harness, hostile_f64, mostly_sane, rng};
+use millpath::machine::{AxisLimits, Machine};
+use millpath::motion::{PlanOptions, plan_moves, plan_toolpath};
+use millpath::toolpath::{Corner, MoveKind, Plane};
+use millpath::{Move, Point3, Tool, Toolpath};
+use rand::RngExt;
+use rand_chacha::ChaCha8Rng;
+
+fn point(r: &mut ChaCha8Rng, near: Point3) -> Point3 {
+    if r.random_bool(0.02) {
+        return Point3::new(hostile_f64(r), hostile_f64(r), hostile_f64(r));
+    }
+    let step = if r.random_bool(0.1) { 1e-7 } else { 20.0 };
+    Point3::new(
+        near.x + r.random_range(-step..step),
+        near.y + r.random_range(-step..step),
+        near.z + r.random_range(-step..step) * 0.2,
+    )
+}
+
+fn program(r: &mut ChaCha8Rng) -> Toolpath {
+    let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
+    let mut at = Point3::ORIGIN;
+    for _ in 0..r.random_range(0..25) {
+        let to = point(r, at);
+        let feed = mostly_sane(r, 1.0, 200.0, 0.03);
+        let mut m = match r.random_range(0..10) {
+            0 => Move::rapid(to),
+            1 => Move::dwell(at, mostly_sane(r, 0.0, 2.0, 0.1)),
+            2..=4 => {
+                let c = point(r, at);
+                let mut m = Move::arc_xy(to, Point3::new(c.x, c.y, at.z), r.random_bool(0.5), feed);
+                if let MoveKind::Arc { plane, turns, .. } = &mut m.kind {
+                    *plane = match r.random_range(0..3) {
+                        0 => Plane::Xy,
+                        1 => Plane::Zx,
+                        _ => Plane::Yz,
+                    };
+                    *turns = if r.random_bool(0.1) {
+                        r.random_range(0..5)
+                    } else {
+                        0
+                    };
+                }
+                m
+            }
+            _ => Move::line(to, feed),
+        };
+        m = m.with_corner(match r.random_range(0..5) {
+            0 => Corner::ExactStop,
+            1 => Corner::ExactPath,
+            2 => Corner::Blend(mostly_sane(r, 0.001, 1.0, 0.1)),
+            _ => Corner::Machine,
+        });
+        if !matches!(m.kind, MoveKind::Dwell { .. }) {
+            at = m.to;
+        }
+        tp.push(m);
+    }
+    tp
+}
+
+fn machine(r: &mut ChaCha8Rng) -> Machine {
+    let base = Machine::preset(Machine::PRESET_NAMES[r.random_range(0..3)]).unwrap();
+    if r.random_bool(0.4) {
+        return base;
+    }
+    let axis = |r: &mut ChaCha8Rng| AxisLimits {
+        max_velocity: mostly_sane(r, 10.0, 1000.0, 0.05),
+        max_acceleration: mostly_sane(r, 100.0, 20000.0, 0.05),
+        max_jerk: if r.random_bool(0.2) {
+            f64::INFINITY
+        } else {
+            mostly_sane(r, 1000.0, 1e6, 0.05)
+        },
+    };
+    Machine {
+        axes: [axis(r), axis(r), axis(r)],
+        max_feed: mostly_sane(r, 10.0, 500.0, 0.05),
+        rapid: [
+            mostly_sane(r, 100.0, 1000.0, 0.03),
+            mostly_sane(r, 100.0, 1000.0, 0.03),
+            mostly_sane(r, 100.0, 1000.0, 0.03),
+        ],
+        path_tolerance: mostly_sane(r, 0.0, 0.1, 0.05),
+        ipo_cycle: mostly_sane(r, 0.0005, 0.01, 0.05),
+        curvature_accel_share: mostly_sane(r, 0.1, 0.9, 0.05),
+        curvature_jerk_share: mostly_sane(r, 0.1, 0.9, 0.05),
+        ..base
+    }
+}
+
+#[test]
+fn planner_survives_arbitrary_programs_and_machines() {
+    let mut h = Harness::new("planner");
+    let mut r = rng(0x91a2);
+    let mut ok = 0;
+    for case in 0..2000 {
+        let tp = program(&mut r);
+        let m = machine(&mut r);
+        let opts = PlanOptions {
+            keep_geometry: r.random_bool(0.5),
+            check_profiles: r.random_bool(0.7),
+        };
+        let planned = h.run(&(&tp, &m, &opts), || {
+            if case % 2 == 0 {
+                plan_toolpath(&tp, &m).is_ok()
+            } else {
+                plan_moves(tp.segments().map(|(f, mv)| Ok((f, *mv))), &m, &opts).is_ok()
+            }
+        });
+        ok += usize::from(planned == Some(true));
+    }
+    // The pass must reach the planner proper, not only its input checks.
+    assert!(ok >= 200, "only {ok} of 2000 programs planned");
+    h.finish(2000);
+}

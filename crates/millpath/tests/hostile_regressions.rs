@@ -1,0 +1,121 @@
+//! Inputs the hostile passes (`hostile_*.rs`) found panicking, kept as regression tests: each
+//! must now be refused with an input error that names the offending value.
+
+use millpath::Error;
+use millpath::io::{dxf, svg};
+
+/// A DXF polyline with a vertex at -1e308 and a bulge of -1e308: `cavalier_contours` asserted
+/// ("point does not lie on the line defined by p0 to p1") while scanning for self-intersections.
+/// Fixed in `Outline::from_polyline`: coordinates beyond ±1e6 mm and bulges beyond 1000 are
+/// refused.
+#[test]
+fn dxf_vertex_at_1e308_is_refused() {
+    let text = "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n90\n4\n70\n1\n10\n-68.02\n20\n-53.09\n\
+                10\n-1e308\n20\n-1e308\n42\n-1e308\n10\n87.14\n20\n45.12\n0\nENDSEC\n0\nEOF\n";
+    let e = dxf::parse(text.as_bytes(), "r.dxf", &dxf::DxfOptions::default()).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains("1e308") || msg.contains("100000000"), "{msg}");
+    assert!(msg.contains("vertex 1"), "{msg}");
+}
+
+/// A polyline whose coordinates are ordinary but one vertex is 1e29 mm away.
+#[test]
+fn dxf_huge_coordinate_is_refused() {
+    let text = "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n90\n4\n70\n1\n\
+                10\n99999999999999999999999999999\n20\n82.31\n10\n-97.62\n20\n-37.12\n\
+                10\n98.28\n20\n0\n42\n-72.21\n0\nENDSEC\n0\nEOF\n";
+    let e = dxf::parse(text.as_bytes(), "r.dxf", &dxf::DxfOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("within ±1000000 mm"), "{e}");
+}
+
+/// An SVG cubic with a control point at -1e308: kurbo's flattening computed an infinite
+/// subdivision count and `Vec::with_capacity` panicked with "capacity overflow". Fixed in
+/// `svg::path_loops`: curve points are checked before flattening.
+#[test]
+fn svg_curve_at_1e308_is_refused() {
+    let doc = r#"<svg><path d="M -29.08 -10 L -17.13 -69.92 S 0 -20.54 13.56 -1e308 Z"/></svg>"#;
+    let e = svg::parse(doc, "r.svg", 0.01).unwrap_err();
+    assert!(e.to_string().contains("SVG curve point"), "{e}");
+}
+
+/// A flattening tolerance that is not a positive number ≥ 1e-6 mm is refused up front (a zero
+/// or tiny tolerance would flatten a curve into an unbounded number of points).
+#[test]
+fn svg_bad_tolerance_is_refused() {
+    let doc = r#"<svg><circle cx="0" cy="0" r="5"/></svg>"#;
+    for tol in [f64::NAN, 0.0, -1.0, 1e-12, f64::INFINITY] {
+        let e = svg::parse(doc, "r.svg", tol).unwrap_err();
+        assert!(e.to_string().contains("tolerance"), "{tol}: {e}");
+    }
+    assert!(svg::parse(doc, "r.svg", 0.01).is_ok());
+}
+
+/// The outline bounds also hold for outlines built in code.
+#[test]
+fn outline_bounds_are_input_errors() {
+    use millpath::Point;
+    use millpath::geom::Outline;
+    let far = [
+        Point::new(0.0, 0.0),
+        Point::new(2e6, 0.0),
+        Point::new(0.0, 10.0),
+    ];
+    let e: Error = Outline::from_points(&far, "code").unwrap_err().into();
+    assert_eq!(e.exit_code(), 2);
+    let bulgy = [(Point::new(0.0, 0.0), 1e300), (Point::new(10.0, 0.0), 1.0)];
+    assert!(Outline::new(&bulgy, "code").is_err());
+}
+
+/// A plausible zigzag pocket with a ramp entry that the hostile pass found exhausting memory
+/// (7 GB): one of its cuts is a sliver so short that the ramp's back-and-forth pass count
+/// `need / head_len` was unbounded. Fixed in `pocket::levels::emit_cut`: beyond 1000 passes the
+/// cut is entered by a straight plunge.
+#[test]
+fn pocket_ramp_on_a_sliver_cut_is_bounded() {
+    use millpath::Point;
+    use millpath::geom::Outline;
+    use millpath::strategy::pocket::{self, Direction, Entry, PocketOptions, PocketShape};
+    use millpath::strategy::pocket::{Stepover, StrategyKind};
+    let pts = [
+        (0.5067506716790149, 33.923399300629576),
+        (-15.495039039066494, 83.90680780322668),
+        (-28.44732723208258, 57.46344395193826),
+        (-20.500436449782423, 85.80478063380576),
+        (-39.66484633370397, 51.29906856939858),
+        (-83.74719229597198, -4.105740147203079),
+        (-46.45767021370686, -0.10159339765712261),
+        (-24.659186956136672, 12.064754661027553),
+    ]
+    .map(|(x, y)| Point::new(x, y));
+    let shape = PocketShape::simple(Outline::from_points(&pts, "sliver").unwrap());
+    let tool = millpath::Tool {
+        diameter: 14.165822809604304,
+        flutes: 1,
+        flute_length: 39.9137923757302,
+        number: 49,
+    };
+    let opts = PocketOptions {
+        stepover: Stepover::Fraction(0.7923288621551071),
+        depth: 7.152658507092601,
+        step_down: 3.859490583661331,
+        wall_stock: 0.27679943486176584,
+        floor_stock: 0.06921936228126015,
+        direction: Direction::Climb,
+        entry: Entry::Ramp {
+            ramp_angle: 0.08997854129228909,
+        },
+        safe_height: 0.7406850003585472,
+        clearance_height: 8.285104908990768,
+        feed: 22.84844133869721,
+        plunge_feed: 11.53364949088229,
+        slowdown: 0.3309526681507178,
+        zigzag_angle: -2.7371216566852055,
+        transition: 0.7358653342432562,
+        min_radius: 0.8251498205924716,
+        finish: false,
+        modulate_feed: false,
+    };
+    let tp = pocket::toolpath(StrategyKind::Zigzag, &shape, &tool, &opts).unwrap();
+    assert!(tp.moves.len() < 100_000, "{} moves", tp.moves.len());
+    assert!(tp.moves.iter().all(|m| m.to.is_finite()));
+}
