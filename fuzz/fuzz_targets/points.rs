@@ -11,7 +11,11 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     if let Ok(groups) = points::parse(text, "fuzz.csv") {
-        for kind in [CurveKind::FourPoint, CurveKind::CatmullRom, CurveKind::Spline] {
+        for kind in [
+            CurveKind::FourPoint,
+            CurveKind::CatmullRom,
+            CurveKind::Spline,
+        ] {
             let _ = curve::build(&groups, kind, "fuzz");
         }
     }
