@@ -2,34 +2,12 @@
 //! (Debian package linuxcnc-uspace; `.ci/run` installs it), for lines and biarcs, inside
 //! and outside, at the decimals the tolerance budget asks for.
 
+mod rs274_common;
+
 use millpath::curve;
 use millpath::gcode::{self, Units, WriterOptions};
 use millpath::strategy::contour::{self, ContourOptions, Side};
-use std::io::Write;
-use std::process::Command;
-
-fn rs274(text: &str) -> Result<(), String> {
-    let mut file = tempfile::Builder::new().suffix(".ngc").tempfile().unwrap();
-    file.write_all(text.as_bytes()).unwrap();
-    file.flush().unwrap();
-    let out = Command::new("rs274")
-        .arg("-g")
-        .arg(file.path())
-        .output()
-        .unwrap_or_else(|e| {
-            panic!("cannot run `rs274` ({e}): install the Debian package linuxcnc-uspace (CI does)")
-        });
-    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-    let messages: Vec<&str> = stderr
-        .lines()
-        .filter(|l| l.trim() != "executing" && !l.trim().is_empty())
-        .collect();
-    if out.status.success() && messages.is_empty() {
-        Ok(())
-    } else {
-        Err(messages.join("\n"))
-    }
-}
+use rs274_common::rs274;
 
 #[test]
 fn contour_programs_pass_rs274() {
