@@ -241,4 +241,4 @@ fn arbitrary_rotation_keeps_the_path_and_bounds_the_time_change() {
 }
 
 /// The largest relative change of the `hsm` cycle time under an arbitrary rotation.
-const MAX_ROTATION_TIME_CHANGE: f64 = 0.2;
+const MAX_ROTATION_TIME_CHANGE: f64 = 0.06;

@@ -26,7 +26,12 @@
 //! point of the quadratic form along the direction `θ`). An isotropic boundary (a square, a
 //! circle: `|S_xx − S_yy| + 2|S_xy|` below 1e-3 of the trace) has no principal axis; there the
 //! direction of its longest straight edge is used (and 0 for a boundary of arcs only). The
-//! angle is defined modulo π; it is folded into `(−π/2, π/2]`.
+//! axis is then oriented: of `u` and `−u`, the one along which the third moment
+//! `Σ((p_i − m)·u)³` is positive (the side the boundary's mass leans to), or, for a shape
+//! symmetric along `u`, the one that makes the third moment along the normal `u⊥` positive.
+//! So a half turn of the pocket turns the frame with it, and passes laid in that frame start
+//! from the same end of the pocket. (A shape symmetric both ways keeps `θ` in `(−π/2, π/2]`;
+//! it looks the same either way round.)
 
 use super::{Outline, Point, Winding};
 use crate::error::InputError;
@@ -152,7 +157,7 @@ fn point_on_bulge_seg(a: Point, b: Point, bulge: f64, f: f64) -> Point {
     center + super::Vec2::from_angle(a0 + theta * f) * radius
 }
 
-/// The outline's principal-axis direction in `(−π/2, π/2]` (see the module docs).
+/// The outline's principal-axis direction in `(−π, π]` (see the module docs).
 pub fn principal_angle(o: &Outline) -> f64 {
     let pts = sample_loop(o.polyline(), 720);
     let m = pts.len().max(1) as f64;
@@ -189,7 +194,35 @@ pub fn principal_angle(o: &Outline) -> f64 {
         }
         best.map_or(0.0, |b| b.1)
     };
-    fold(raw)
+    let theta = fold(raw);
+    // Orient the axis: the sign that makes the third moment along it positive (then along
+    // its normal), so that a half turn of the pocket turns the frame with it.
+    let u = super::Vec2::from_angle(theta);
+    let third = |dir: super::Vec2| {
+        pts.iter()
+            .map(|p| {
+                let t = (p.x - cx) * dir.x + (p.y - cy) * dir.y;
+                t * t * t
+            })
+            .sum::<f64>()
+    };
+    let scale = (sxx + syy).max(1e-300).powf(1.5) / m.sqrt();
+    let s1 = third(u);
+    let s2 = third(u.perp());
+    let flip = if s1.abs() > 1e-6 * scale {
+        s1 < 0.0
+    } else {
+        s2.abs() > 1e-6 * scale && s2 < 0.0
+    };
+    if flip {
+        if theta > 0.0 {
+            theta - std::f64::consts::PI
+        } else {
+            theta + std::f64::consts::PI
+        }
+    } else {
+        theta
+    }
 }
 
 /// An angle modulo π, in `(−π/2, π/2]`.

@@ -192,7 +192,7 @@ fn emit_cut(
     };
     let here = tp.end();
     let approach = match cut.entry {
-        CutEntry::Helix { center, radius } => center + Vec2::new(radius, 0.0),
+        CutEntry::Helix { center, radius } => helix_approach(center, radius, first.a),
         CutEntry::Ramp => first.a,
         CutEntry::Direct { from } => from,
     };
@@ -272,6 +272,16 @@ fn emit_cut(
         tp.push(seg_move(s, z, opts.feed));
     }
     Ok(())
+}
+
+/// Where a helix about `center` of `radius` starts and ends: on the ray from the centre to the
+/// cut's start `to` (so the lead-in is radial and as short as it can be, and turns with the
+/// pocket), or at `+x` when the cut starts at the centre.
+pub fn helix_approach(center: Point, radius: f64, to: Point) -> Point {
+    center
+        + (to - center)
+            .normalize()
+            .map_or(Vec2::new(radius, 0.0), |u| u * radius)
 }
 
 /// The shortest path a ramp entry can use at any level of `opts`: the drop (safe height plus

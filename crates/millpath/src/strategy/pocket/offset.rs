@@ -197,14 +197,23 @@ struct Emitter<'a> {
 }
 
 impl Emitter<'_> {
+    /// The node of `of` nearest to the tool; before the first cut, the one of largest area
+    /// (a choice that does not depend on how the pocket is turned or which way its outline
+    /// runs, unlike the order of the offset's loops).
     fn nearest_node(&self, levels: &[OffsetRegion], nodes: &[Node], of: &[usize]) -> usize {
-        let Some(p) = self.here else { return 0 };
         let loops: Vec<&Polyline<f64>> = of
             .iter()
             .filter_map(|&i| nodes.get(i))
             .map(|n| &levels[n.level].outers[n.outer])
             .collect();
-        nearest_loop(&loops, p)
+        match self.here {
+            Some(p) => nearest_loop(&loops, p),
+            None => loops
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.area().abs().total_cmp(&b.1.area().abs()))
+                .map_or(0, |(i, _)| i),
+        }
     }
 
     /// Appends loop `lp` (an island loop when `island`; `innermost` when nothing is nested
@@ -244,10 +253,9 @@ impl Emitter<'_> {
             )
         };
         let path = match entry {
-            CutEntry::Helix { center, radius } => segs_from_vertices(&closed_chain(&restart_near(
-                &lp,
-                center + crate::geom::Vec2::new(radius, 0.0),
-            ))),
+            CutEntry::Helix { center, .. } => {
+                segs_from_vertices(&closed_chain(&restart_near(&lp, helix_exit(&lp, center))))
+            }
             _ => path,
         };
         self.here = path.last().map(|s| s.b);
@@ -333,21 +341,28 @@ fn entry_for(
     if !innermost || outer.area() <= 0.0 {
         return CutEntry::Ramp;
     }
-    let (c, _) = inscribed_centre(&outer, level_islands, 24);
-    let room = boundary
-        .loops()
-        .map(|l| super::shape::loop_distance(l, c))
-        .fold(f64::INFINITY, f64::min);
-    let rho = radius.min(0.9 * r).min(0.99 * room);
+    let room_at = |c: Point| {
+        boundary
+            .loops()
+            .map(|l| super::shape::loop_distance(l, c))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let want = radius.min(0.9 * r);
+    // The loop's centroid when it has the room (a property of the loop alone, so the entry
+    // turns with the pocket; the grid search below depends on the axes where the inscribed
+    // circle is not unique, e.g. along a slot), else the inscribed centre.
+    let centroid = loop_centroid(&outer).filter(|&c| {
+        outer.winding_number(v2(c)) != 0
+            && level_islands.iter().all(|i| i.winding_number(v2(c)) == 0)
+            && room_at(c) >= want / 0.99
+    });
+    let c = centroid.unwrap_or_else(|| inscribed_centre(&outer, level_islands, 24).0);
+    let rho = want.min(0.99 * room_at(c));
     if rho < MIN_HELIX_RADIUS {
         return CutEntry::Ramp;
     }
-    let approach = c + crate::geom::Vec2::new(rho, 0.0);
-    let start = super::shape::pt(
-        outer
-            .closest_point(v2(approach), 1e-12)
-            .map_or(v2(approach), |cp| cp.seg_point),
-    );
+    let start = helix_exit(&outer, c);
+    let approach = super::levels::helix_approach(c, rho, start);
     if crosses(boundary, approach, start) {
         return CutEntry::Ramp;
     }
@@ -355,6 +370,31 @@ fn entry_for(
         center: c,
         radius: rho,
     }
+}
+
+/// Where a loop entered by a helix about `c` starts: its point nearest to `c` (a property of
+/// the loop and the centre, so the path turns with the pocket; the helix ends on the ray from
+/// `c` to it, [`super::levels::helix_approach`]).
+fn helix_exit(lp: &Polyline<f64>, c: Point) -> Point {
+    lp.closest_point(v2(c), 1e-12)
+        .map_or(c, |cp| super::shape::pt(cp.seg_point))
+}
+
+/// The area centroid of a closed loop, from 1024 points equally spaced in arc length (the
+/// shoelace centroid of that polygon, within about `(L/1024)²` of the exact one).
+fn loop_centroid(pl: &Polyline<f64>) -> Option<Point> {
+    let pts = crate::geom::region::sample_loop(pl, 1024);
+    let n = pts.len();
+    let (mut a2, mut cx, mut cy) = (0.0, 0.0, 0.0);
+    for i in 0..n {
+        let p = pts[i];
+        let q = pts[(i + 1) % n];
+        let w = p.x * q.y - q.x * p.y;
+        a2 += w;
+        cx += (p.x + q.x) * w;
+        cy += (p.y + q.y) * w;
+    }
+    (a2.abs() > 1e-12).then(|| Point::new(cx / (3.0 * a2), cy / (3.0 * a2)))
 }
 
 /// The smallest helix radius worth a helix, mm (below, the ramp along the loop is used).

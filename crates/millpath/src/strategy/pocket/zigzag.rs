@@ -103,20 +103,26 @@ pub fn plan(
     while let Some((mut j, mut i)) = first_unused(&used) {
         let mut path: Vec<Seg> = Vec::new();
         let mut here: Option<Point> = None;
+        let mut link: Option<Vec<Seg>> = None;
         loop {
             let (a, b) = rows[j][i];
             let (xa, xb) = if forward { (a, b) } else { (b, a) };
             let pa = to_world(Point::new(xa, ys[j]));
             let pb = to_world(Point::new(xb, ys[j]));
             if let Some(hh) = here {
-                path.push(Seg::line(hh, pa));
+                match link.take() {
+                    Some(segs) => path.extend(segs),
+                    None => path.push(Seg::line(hh, pa)),
+                }
             }
             path.push(Seg::line(pa, pb));
             used[j][i] = true;
             here = Some(pb);
             forward = !forward;
             // Next: an unused interval on row j ± 1 reachable from pb.
-            let mut next: Option<(usize, usize, f64)> = None;
+            // A straight link that crosses no loop, or else a link along the loop both ends
+            // lie on (round an island, or along a concave wall), at most 3s long.
+            let mut next: Option<(usize, usize, f64, Option<Vec<Seg>>)> = None;
             for jj in [j + 1, j.wrapping_sub(1)] {
                 let Some(row) = rows.get(jj) else { continue };
                 for (ii, &(a, b)) in row.iter().enumerate() {
@@ -126,15 +132,24 @@ pub fn plan(
                     let x = if forward { a } else { b };
                     let q = to_world(Point::new(x, ys[jj]));
                     let d = q.distance(pb);
-                    if d <= 3.0 * s && !crosses(&region, pb, q) && next.is_none_or(|n| d < n.2) {
-                        next = Some((jj, ii, d));
+                    if d > 3.0 * s || next.as_ref().is_some_and(|n| d >= n.2) {
+                        continue;
+                    }
+                    if !crosses(&region, pb, q) {
+                        next = Some((jj, ii, d, None));
+                    } else if let Some(segs) = boundary_link(&region, pb, q, 3.0 * s) {
+                        let len = super::chain::path_length(&segs);
+                        if next.as_ref().is_none_or(|n| len < n.2) {
+                            next = Some((jj, ii, len, Some(segs)));
+                        }
                     }
                 }
             }
             match next {
-                Some((jj, ii, _)) => {
+                Some((jj, ii, _, segs)) => {
                     j = jj;
                     i = ii;
+                    link = segs;
                 }
                 None => break,
             }
@@ -180,6 +195,75 @@ pub fn plan(
         }
     }
     Ok(LevelPlan { cuts })
+}
+
+/// The shorter way from `p` to `q` along the loop of `region` both lie on (within 1e-6 mm),
+/// if it is at most `max_len` long: a link that cannot gouge (it runs on the boundary offset)
+/// and cuts only the cusps the passes left against that loop.
+fn boundary_link(
+    region: &super::shape::OffsetRegion,
+    p: Point,
+    q: Point,
+    max_len: f64,
+) -> Option<Vec<Seg>> {
+    let lp = region.loops().find(|l| {
+        super::shape::loop_distance(l, p) < 1e-6 && super::shape::loop_distance(l, q) < 1e-6
+    })?;
+    let mut best: Option<Vec<Seg>> = None;
+    for dir in [lp.clone(), reversed(lp)] {
+        let path = segs_from_vertices(&closed_chain(&restart_near(&dir, p)));
+        let mut out = Vec::new();
+        let mut total = 0.0;
+        for sg in &path {
+            if let Some(t) = position_on(sg, q) {
+                if t > 1e-9 {
+                    out.push(sg.head(t));
+                }
+                total += t;
+                if total <= max_len
+                    && best
+                        .as_ref()
+                        .is_none_or(|b| total < super::chain::path_length(b))
+                {
+                    best = Some(out);
+                }
+                break;
+            }
+            total += sg.length();
+            if total > max_len {
+                break;
+            }
+            out.push(*sg);
+        }
+    }
+    best
+}
+
+/// Arc length from the start of `sg` to `q`, when `q` lies on it (within 1e-6 mm).
+fn position_on(sg: &Seg, q: Point) -> Option<f64> {
+    match sg.arc {
+        None => {
+            let d = sg.b - sg.a;
+            let len = d.length();
+            if len <= 0.0 {
+                return None;
+            }
+            let t = (q - sg.a).dot(d) / len;
+            let off = (q - sg.a).cross(d).abs() / len;
+            (off < 1e-6 && t >= -1e-9 && t <= len + 1e-9).then_some(t.clamp(0.0, len))
+        }
+        Some(arc) => {
+            if (q.distance(arc.center) - arc.radius).abs() > 1e-6 {
+                return None;
+            }
+            let a0 = (sg.a - arc.center).angle();
+            let aq = (q - arc.center).angle();
+            let rel = if arc.ccw { aq - a0 } else { a0 - aq };
+            let rel = rel.rem_euclid(TAU);
+            let rel = if rel > TAU - 1e-9 { 0.0 } else { rel };
+            (rel <= arc.sweep + 1e-9).then_some(rel.min(arc.sweep) * arc.radius)
+        }
+    }
 }
 
 fn first_unused(used: &[Vec<bool>]) -> Option<(usize, usize)> {
