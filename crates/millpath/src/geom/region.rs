@@ -115,7 +115,7 @@ pub fn sample_loop(pl: &Polyline<f64>, n: usize) -> Vec<Point> {
         })
         .collect();
     let total: f64 = segs.iter().map(|s| s.3).sum();
-    if !(total > 0.0) || n == 0 {
+    if total.is_nan() || total <= 0.0 || n == 0 {
         return Vec::new();
     }
     let mut out = Vec::with_capacity(n);

@@ -293,7 +293,7 @@ pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
     let eq = |x: &crate::geom::Outline, y: &crate::geom::Outline| {
         std::ptr::eq(x, y) || (x.len() == y.len() && x.vertices().eq(y.vertices()))
     };
-    a.wall_stock == b.wall_stock
+    (a.wall_stock - b.wall_stock).abs() <= 1e-12
         && eq(a.outer, b.outer)
         && a.islands.len() == b.islands.len()
         && a.islands.iter().zip(b.islands).all(|(x, y)| eq(x, y))

@@ -7,6 +7,16 @@
 //! engagement of every move and [`feed`] slows the feed where it exceeds the nominal one;
 //! the same simulation and the exact gouge check give the [`Verification`].
 //!
+//! **Levels and sections.** [`plan_levels`] asks [`walls::level_shapes`] for the section of
+//! the pocket at every level (the top outline for vertical walls; the outline shrunk by the
+//! draft, or interpolated towards a bottom outline, for inclined ones) and plans each level
+//! in its own section with [`plan_level`]; a pocket with vertical walls is planned once.
+//! Every strategy's `plan(&PocketShape, &Tool, &PocketOptions)` therefore receives a planar
+//! pocket (outline and islands of one level) and need not know about walls. After planning,
+//! [`levels::direct_entries`] enters every later cut of a level over material an earlier cut
+//! of that level has cleared, where one is near (no ramp, no plunge); [`generate`] verifies
+//! each level against its own section ([`crate::stock::verify_levels`]).
+//!
 //! * [`zigzag`]: parallel passes at an angle plus a boundary clean-up pass;
 //! * [`offset`]: contour-parallel offsets from the inside out;
 //! * [`spiral`]: the adaptive spiral, a central spiral morphing harmonically into the

@@ -8,7 +8,13 @@
 //! passes across its long direction, a different path of a different length.) The cycle time
 //! is not exactly rotation-invariant even so: the machine's limits are per axis, so a pass
 //! along x and the same pass at 45° accelerate differently; the pocket tests measure by how
-//! much. With the default angle 0 the passes run along the long direction, the usual choice
+//! much: on the L-shaped pocket of `tests/pocket_props.rs` (50 × 40 mm, one island, 6 mm
+//! tool) turning the pocket by 45° makes the `hsm` cycle time 2.0% shorter for zigzag and
+//! 4.0% for offset (a diagonal move may use √2 times the axis acceleration along the path),
+//! while reversing, translating and quarter turns change it by less than 0.5%. We keep the
+//! planner's per-axis time (it is the truth for such a machine) and make the path, not the
+//! time, rotation-invariant; the tests bound the time change under arbitrary rotation at 6%.
+//! With the default angle 0 the passes run along the long direction, the usual choice
 //! (fewer turnarounds).
 //!
 //! **Islands.** The islands' offset loops are among the loops the rows are clipped by (the
@@ -24,9 +30,15 @@
 //! extreme are nudged by 2e-7 mm, so every crossing is transversal.
 //!
 //! Intervals are chained greedily: from the end of the current interval, the nearest
-//! unvisited interval on a neighbouring row whose end can be reached by a straight link
-//! that stays inside the region; when there is none a new cut starts with a ramp along its
-//! first pass (the first pass of a zigzag runs along the boundary, where a helix has no room).
+//! unvisited interval on a neighbouring row whose end can be reached by a link of at most
+//! `3s`: a straight one that stays inside the region, or else one along the loop both ends
+//! lie on (every interval ends on a loop of the boundary offset): round an island, the link
+//! follows the island's offset instead of breaking the chain. (Without it, every row beside
+//! an island was a cut of its own: on the L pocket of the property tests, 41 rapids and
+//! 14.8 s; with it, 14 rapids and 11.4 s.) When there is none a new cut starts: with a ramp
+//! along its first pass for the first cut of a level (the first pass runs along the
+//! boundary, where a helix has no room), over cleared material for the later ones
+//! ([`super::levels::direct_entries`]).
 //! After the passes, the boundary offset loops are cut once: the last pass ends on a loop,
 //! which is restarted there and appended without a retract.
 
