@@ -310,6 +310,64 @@ const MAX_RAMP_PASSES: f64 = 1000.0;
 mod tests {
     use super::*;
 
+    fn square_region() -> OffsetRegion {
+        let mut pl = cavalier_contours::polyline::Polyline::new_closed();
+        use cavalier_contours::polyline::PlineSourceMut;
+        for (x, y) in [(0.0, 0.0), (20.0, 0.0), (20.0, 20.0), (0.0, 20.0)] {
+            pl.add(x, y, 0.0);
+        }
+        OffsetRegion {
+            outers: vec![pl],
+            islands: Vec::new(),
+        }
+    }
+
+    /// A sliver cut is entered over cleared material, never plunged; alone on its level it
+    /// is refused.
+    #[test]
+    fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
+        use super::super::chain::segs_from_points;
+        let p = Point::new;
+        let big = Cut {
+            entry: CutEntry::Ramp,
+            path: segs_from_points(&[p(2.0, 2.0), p(18.0, 2.0), p(18.0, 18.0), p(2.0, 2.0)]),
+        };
+        let sliver = Cut {
+            entry: CutEntry::Ramp,
+            path: segs_from_points(&[p(12.0, 12.5), p(12.001, 12.5)]),
+        };
+        let opts = PocketOptions {
+            depth: 4.0,
+            step_down: 4.0,
+            ..PocketOptions::default()
+        };
+        let tool = Tool::flat(4.0).unwrap();
+        // The sliver first: it is moved after the big cut and entered from its nearest point.
+        let mut plan = LevelPlan {
+            cuts: vec![sliver.clone(), big],
+        };
+        direct_entries(&mut plan, &square_region(), 12.0, min_ramp_path(&opts));
+        assert_eq!(plan.cuts[0].entry, CutEntry::Ramp);
+        assert_eq!(
+            plan.cuts[1].entry,
+            CutEntry::Direct {
+                from: p(18.0, 18.0)
+            }
+        );
+        let tp = assemble(tool, &opts, &[plan], None).unwrap();
+        // No move steeper than 45° ends below the top except the feed down at (18, 18).
+        for (from, m) in tp.segments() {
+            let dz = from.z - m.to.z;
+            if m.is_feed() && m.to.z < 0.0 && dz > from.xy().distance(m.to.xy()) {
+                assert!(m.to.xy().distance(p(18.0, 18.0)) < 1e-12, "{m:?}");
+            }
+        }
+        // Alone, the sliver cannot be entered.
+        let alone = LevelPlan { cuts: vec![sliver] };
+        let e = assemble(tool, &opts, &[alone], None).unwrap_err();
+        assert!(e.to_string().contains("entry"), "{e}");
+    }
+
     #[test]
     fn levels_are_equal_and_reach_the_floor() {
         let o = PocketOptions {
