@@ -31,7 +31,9 @@
 //! symmetric along `u`, the one that makes the third moment along the normal `u⊥` positive.
 //! So a half turn of the pocket turns the frame with it, and passes laid in that frame start
 //! from the same end of the pocket. (A shape symmetric both ways keeps `θ` in `(−π/2, π/2]`;
-//! it looks the same either way round.)
+//! it looks the same either way round.) Moments from samples are exact to about 1e-6 rad, so
+//! an axis within [`SNAP_RAD`] of a straight edge is snapped onto that edge: passes parallel
+//! to an edge, not a micro-radian off it (which would cut a sliver along the edge).
 
 use super::{Outline, Point, Winding};
 use crate::error::InputError;
@@ -157,6 +159,9 @@ fn point_on_bulge_seg(a: Point, b: Point, bulge: f64, f: f64) -> Point {
     center + super::Vec2::from_angle(a0 + theta * f) * radius
 }
 
+/// How close (rad) the moments' axis must come to a straight edge to be snapped onto it.
+pub const SNAP_RAD: f64 = 1e-3;
+
 /// The outline's principal-axis direction in `(−π, π]` (see the module docs).
 pub fn principal_angle(o: &Outline) -> f64 {
     let pts = sample_loop(o.polyline(), 720);
@@ -194,7 +199,16 @@ pub fn principal_angle(o: &Outline) -> f64 {
         }
         best.map_or(0.0, |b| b.1)
     };
-    let theta = fold(raw);
+    // Snap to a straight edge within SNAP_RAD: the sampled moments are exact only to about
+    // 1e-6 rad, and passes a micro-radian off an edge cut slivers along it.
+    let snap = o
+        .polyline()
+        .iter_segments()
+        .filter(|(v1, v2)| v1.bulge_is_zero() && (v2.x - v1.x).hypot(v2.y - v1.y) > 0.0)
+        .map(|(v1, v2)| fold((v2.y - v1.y).atan2(v2.x - v1.x) - raw))
+        .filter(|d| d.abs() <= SNAP_RAD)
+        .min_by(|a, b| a.abs().total_cmp(&b.abs()));
+    let theta = fold(raw + snap.unwrap_or(0.0));
     // Orient the axis: the sign that makes the third moment along it positive (then along
     // its normal), so that a half turn of the pocket turns the frame with it.
     let u = super::Vec2::from_angle(theta);
@@ -285,6 +299,14 @@ mod tests {
             .collect();
         let turned = Outline::new(&v, "turned").unwrap();
         assert!((principal_angle(&turned) - a).abs() < 1e-9);
+        // A rounded rectangle: exactly along its edges (a micro-radian off would cut slivers).
+        let rr =
+            crate::strategy::pocket::samples::rounded_rectangle(-75.0, -50.0, 150.0, 100.0, 6.0);
+        let a = principal_angle(&rr);
+        assert!(
+            a.abs() < 1e-12 || (a - std::f64::consts::PI).abs() < 1e-12,
+            "{a}"
+        );
         // A square: its edge direction.
         let sq = rect(0.0, 0.0, 10.0, 10.0);
         assert!(principal_angle(&sq).abs() < 1e-9);
