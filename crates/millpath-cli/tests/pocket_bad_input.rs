@@ -127,3 +127,33 @@ fn undercut_draft_is_refused() {
         "draft",
     );
 }
+
+#[test]
+fn bottom_outline_with_another_topology_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("bottom.json"),
+        r#"{"outline": [[5,5],[35,5],[20,35]]}"#,
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("square.json"), SQUARE).unwrap();
+    let o = millpath(
+        &[
+            "pocket",
+            "square.json",
+            "--strategy",
+            "offset",
+            "--tool-diameter",
+            "6",
+            "--bottom-outline",
+            "bottom.json",
+            "-o",
+            "out.ngc",
+        ],
+        dir.path(),
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("vertex count"), "{err}");
+    assert!(!dir.path().join("out.ngc").exists());
+}
