@@ -20,7 +20,8 @@ use cavalier_contours::polyline::{PlineSource, Polyline};
 use std::f64::consts::TAU;
 
 /// Everything the front spiral needs, in mm.
-pub(super) struct FrontSpiral<'a> {
+#[derive(Debug)]
+pub struct FrontSpiral<'a> {
     /// The boundary offset, counter-clockwise.
     pub b: &'a Polyline<f64>,
     /// `B` moved inward by [`super::LAST_LOOP_MARGIN`] (the last loop), counter-clockwise.
@@ -145,7 +146,7 @@ impl FrontSpiral<'_> {
 /// `dρ/dθ = a(ρ)/(2π)`. The angle this takes from `ρ_h` to `R₀` is rounded up to whole turns
 /// (so the spiral ends where the circle `L_0` starts) by scaling the pitch down uniformly; the
 /// radius is then tabulated by a midpoint integration and interpolated.
-pub(super) fn central_spiral(rho_h: f64, r0: f64, r: f64, sp: f64) -> (usize, impl Fn(f64) -> f64) {
+pub fn central_spiral(rho_h: f64, r0: f64, r: f64, sp: f64) -> (usize, impl Fn(f64) -> f64) {
     let pitch = |rho: f64| {
         let q = rho + r;
         (q - (q * q - 2.0 * sp * rho).max(0.0).sqrt()).clamp(0.05 * sp, sp)
@@ -177,4 +178,39 @@ pub(super) fn central_spiral(rho_h: f64, r0: f64, r: f64, sp: f64) -> (usize, im
         rho_h + h * ((i - 1) as f64 + f.clamp(0.0, 1.0))
     };
     (turns, radius_at)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The central spiral runs from the helix to R₀ in whole turns, outward, and its pitch
+    /// keeps the removal-rate-equivalent radial depth at or below s' on every turn.
+    #[test]
+    fn central_spiral_pitch_keeps_the_equivalent_depth() {
+        let (rho_h, r0, r, sp) = (2.5, 21.8, 6.35, 4.9);
+        let (turns, at) = central_spiral(rho_h, r0, r, sp);
+        assert!(turns >= 4, "{turns}");
+        assert!((at(0.0) - rho_h).abs() < 1e-9);
+        assert!(
+            (at(TAU * turns as f64) - r0).abs() < 1e-6,
+            "{}",
+            at(TAU * turns as f64)
+        );
+        let mut worst: f64 = 0.0;
+        for k in 0..(turns * 64) {
+            let th = TAU * k as f64 / 64.0;
+            let (inner, outer) = (at(th), at(th + TAU).min(r0));
+            assert!(outer >= inner - 1e-12);
+            let a = outer - inner;
+            // a_e = (2a(ρ+r) − a²)/(2ρ) at the outer pass.
+            let ae = (2.0 * a * (outer + r) - a * a) / (2.0 * outer);
+            worst = worst.max(ae);
+        }
+        assert!(worst <= sp * 1.01, "{worst}");
+        // A constant pitch would exceed it on the first turns.
+        let a = (r0 - rho_h) / turns as f64;
+        let ae_const = (2.0 * a * (rho_h + a + r) - a * a) / (2.0 * (rho_h + a));
+        assert!(ae_const > sp, "{ae_const}");
+    }
 }

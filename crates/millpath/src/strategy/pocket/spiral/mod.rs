@@ -1,5 +1,28 @@
 //! The adaptive spiral (the paper's method, made valid for any simply connected pocket).
 //!
+//! Two morphs from the central circle into the boundary offset are implemented
+//! ([`SpiralMorph`]):
+//!
+//! * **Fronts** (default, [`fronts`] and [`laps`]): the central disc united with the boundary
+//!   offset's exact inward offsets, smoothed; ⌈ρ_B/s'⌉ laps, like contour-parallel offsets.
+//!   The central spiral's pitch keeps the removal-rate-equivalent radial depth at the stepover
+//!   ([`laps::central_spiral`]). Where the fronts do not reach the boundary with measured steps
+//!   (the ridge of a long pocket far outside the circle, a front that splits), the harmonic
+//!   morph is used.
+//! * **Harmonic** (`--morph harmonic`, described below): the stepover holds everywhere,
+//!   corners included, but the lap count is set by the point of `B` farthest from the circle.
+//!
+//! Measured on the built-in 150 × 100 mm pocket (12.7 mm tool, 40%, 600 in/min, 4 levels of
+//! 6.25 mm, `hsm`): fronts 84.0 s, 15.1 m, 16.4% of the path above the nominal engagement;
+//! harmonic 103.7 s, 20.6 m, 5.1%; `offset` 77.3 s, 11.1 m, 17.5%; `zigzag` 88.0 s, 13.7 m,
+//! 10.8%. The spiral is the faster of the two morphs and beats zigzag, but not yet offset:
+//! a continuous spiral traces one loop more than the offsets (its last lap runs onto `B`,
+//! which must then be cut once more), the central circle's turns are extra on an elongated
+//! pocket, and every rounded corner (needed for speed) cuts above the nominal engagement
+//! (the material wraps round the tool), which bounds how large the corner radii may be.
+//!
+//! # The harmonic morph
+//!
 //! 1. **Boundary offset** `B`: the outline offset inward by `r + stock` (exact arcs). It must be
 //!    one loop; pockets with islands, or whose offset splits, are refused with a message that
 //!    suggests `offset`.
@@ -51,7 +74,7 @@
 
 pub mod fronts;
 pub mod harmonic;
-mod laps;
+pub mod laps;
 
 use super::chain::{Seg, segs_from_points, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
