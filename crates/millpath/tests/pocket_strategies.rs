@@ -190,3 +190,59 @@ fn structural_part_all_strategies() {
         }
     }
 }
+
+/// The fronts spiral is a property of the pocket: reversed, rotated (by 90° and by an
+/// arbitrary angle) and translated, the path length is the same and the cycle time on `hsm`
+/// within 0.5% (per-axis limits make arbitrary rotations change the true time slightly).
+#[test]
+fn spiral_invariance_under_reversal_rotation_translation() {
+    use millpath::geom::{Outline, Point};
+    let tool = Tool::flat(12.7).unwrap();
+    let opts = PocketOptions {
+        depth: 6.0,
+        step_down: 6.0,
+        modulate_feed: false,
+        ..PocketOptions::default()
+    };
+    let base = samples::aerospace_pocket();
+    let verts: Vec<(Point, f64)> = base.outer.vertices().collect();
+    let run = |v: &[(Point, f64)]| {
+        let shape = pocket::PocketShape::simple(Outline::new(v, "moved").unwrap());
+        let tp = pocket::toolpath(StrategyKind::Spiral, &shape, &tool, &opts).unwrap();
+        (tp.cut_length(), pocket::cycle_time(&tp).unwrap())
+    };
+    let (l0, t0) = run(&verts);
+    let turned = |a: f64, d: (f64, f64)| -> Vec<(Point, f64)> {
+        verts
+            .iter()
+            .map(|&(p, b)| {
+                let q = p.rotate_about(Point::ORIGIN, a);
+                (Point::new(q.x + d.0, q.y + d.1), b)
+            })
+            .collect()
+    };
+    let mut reversed: Vec<(Point, f64)> = Vec::new();
+    // Reversal: the same loop walked the other way (bulges move to the other end, negated).
+    let n = verts.len();
+    for i in 0..n {
+        let (p, _) = verts[(n - i) % n];
+        let (_, b) = verts[(2 * n - i - 1) % n];
+        reversed.push((p, -b));
+    }
+    for (name, v) in [
+        ("reversed", reversed),
+        (
+            "rotated 90°",
+            turned(std::f64::consts::FRAC_PI_2, (0.0, 0.0)),
+        ),
+        (
+            "rotated 30° and moved",
+            turned(30f64.to_radians(), (250.0, -40.0)),
+        ),
+        ("moved", turned(0.0, (-1234.5, 987.0))),
+    ] {
+        let (l, t) = run(&v);
+        assert!((l - l0).abs() <= 1e-3 * l0, "{name}: length {l} vs {l0}");
+        assert!((t - t0).abs() <= 5e-3 * t0, "{name}: time {t} vs {t0}");
+    }
+}

@@ -88,16 +88,27 @@ impl FrontSpiral<'_> {
         let mut last_loop = None;
         for (k, next) in f.loops.iter().enumerate().skip(1) {
             let start = lap.first().copied()?;
+            // Where the next front starts: its point nearest to a point a little ahead of the
+            // lap's start along the travel. Nearest to the start itself is ambiguous where the
+            // fronts are symmetric about it (the ridge's ends), and a tie broken by the loops'
+            // vertex order would make the path depend on where the outline's loop starts.
+            let ahead = lap
+                .get(1)
+                .and_then(|p1| (*p1 - start).normalize())
+                .map_or(start, |t| start + t * (0.25 * self.sp));
             if k + 1 < count {
                 // A morph lap: from L_{k-1} to L_k over one revolution.
-                let target = restart_near(&orient(next), start);
+                let target = restart_near(&orient(next), ahead);
                 let len = target.path_length();
                 let along = LoopWalker::new(&target);
                 for (p, fr) in lap.iter().zip(fractions(&lap)) {
                     let q = along.at(fr * len);
                     pts.push(*p + (q - *p) * fr);
                 }
-                lap = sample_loop(&target, ds);
+                // Equal spacing along the whole loop (not per segment of the front, whose
+                // vertices depend on the offsets' internals): no short chords for the
+                // look-ahead to stumble on, and the same samples however the pocket is turned.
+                lap = super::resample(&sample_loop(&target, 0.25 * ds), ds);
                 stats.morph_laps += 1;
                 continue;
             }
@@ -105,7 +116,7 @@ impl FrontSpiral<'_> {
             // inside B at concave arcs), then B_ε once round with exact arcs: B's neighbour
             // is then the last lap, at most one step away everywhere.
             let fine = super::resample(&lap, self.ds_last);
-            let target = restart_near(&orient(self.b_eps), start);
+            let target = restart_near(&orient(self.b_eps), ahead);
             let len = target.path_length();
             let along = LoopWalker::new(&target);
             for (p, fr) in fine.iter().zip(fractions(&fine)) {
