@@ -33,7 +33,7 @@
 //! Any extra candidate knot states (the baseline's fixed states) are evaluated too, so the
 //! result is never slower than the exact minimum for those states.
 
-use super::min_time::{Check, KnotState, Limits, MinTimeOptions, min_time};
+use super::min_time::{Check, FeedCheck, KnotState, Limits, MinTimeOptions, min_time};
 use crate::error::Error;
 use crate::machine::kinematics::{Joints, Kinematics};
 use serde::{Deserialize, Serialize};
@@ -188,8 +188,13 @@ pub fn optimize(
             "five-axis optimiser needs at least two knots",
         ));
     }
+    // While iterating: sampled feed, no proof (a lower bound of the maximum feed, so the
+    // iterates can only be optimistic); the chosen states are re-solved with the full options
+    // at the end.
     let coarse = MinTimeOptions {
         rel_tol: opts.iteration_rel_tol.max(opts.min_time.rel_tol),
+        feed: FeedCheck::Sampled,
+        prove_rel: 0.0,
         ..opts.min_time
     };
     let rest = geo.states(&[], &[]);
@@ -279,14 +284,14 @@ pub fn optimize(
             }
         }
     }
-    // Final exact pass: every interval of the chosen states to the full tolerance (each time
-    // can only shrink: the coarse time is feasible and above the exact boundary).
-    if let Some(exact) = solve_fixed(&best.states, kin, lim, &opts.min_time)
-        && exact.total() <= best.total()
-    {
-        best = exact;
-    }
-    history.push(best.total());
-    best.history = history;
-    Ok(best)
+    // Final pass: every interval of the chosen states with the full options (certified feed,
+    // full tolerance, proof of minimality). The iterates used the sampled feed, a lower bound
+    // of the maximum, so a time may grow here by the certification tolerance. Should the
+    // chosen states fail, rest at every knot is always feasible.
+    let mut exact = solve_fixed(&best.states, kin, lim, &opts.min_time)
+        .or_else(|| solve_fixed(&rest, kin, lim, &opts.min_time))
+        .ok_or_else(|| Error::internal("no certified schedule for the chosen knot states"))?;
+    history.push(exact.total());
+    exact.history = history;
+    Ok(exact)
 }

@@ -27,6 +27,7 @@
 
 pub mod baseline_ga;
 pub mod case;
+pub mod certify;
 pub mod deflection;
 pub mod knots;
 pub mod min_time;
@@ -98,8 +99,13 @@ pub struct FiveAxisResult {
     pub violations: Vec<Violation>,
     /// Verifier: limits the baseline exceeds.
     pub baseline_violations: Vec<Violation>,
-    /// Largest feed, mm/s.
+    /// Largest feed, mm/s (verifier, dense sampling).
     pub max_feed_mm_s: f64,
+    /// Rigorous upper bound of the feed over our plan, mm/s ([`certify::feed_bound`]).
+    pub feed_upper_bound_mm_s: f64,
+    /// Largest relative gap `1 − proven_below / T` over our intervals: no interval can be
+    /// shortened by more than this fraction (each shorter duration is proven infeasible).
+    pub max_minimality_gap: f64,
     /// Largest distance between the planned tip path and the reference curve, mm.
     pub max_path_deviation_mm: f64,
     /// Total time after each iteration of our optimiser, s.
@@ -229,6 +235,16 @@ pub fn plan(
         violations: rep.violations.clone(),
         baseline_violations: brep.map(|r| r.violations).unwrap_or_default(),
         max_feed_mm_s: rep.max_feed,
+        feed_upper_bound_mm_s: segments
+            .iter()
+            .map(|s| certify::feed_bound(s, kin, lim.feed, &mt.certify, false).upper)
+            .fold(0.0, f64::max),
+        max_minimality_gap: schedule
+            .checks
+            .iter()
+            .zip(&schedule.times)
+            .map(|(c, t)| 1.0 - c.proven_below / t)
+            .fold(0.0, f64::max),
         max_path_deviation_mm: deviation,
         optimizer_history_s: schedule.history.clone(),
         compute_time_s: compute,
