@@ -11,7 +11,7 @@
 //!   is below the limit (**certified**), a sample exceeds the limit (**violated**), or the two
 //!   bounds are within [`CertifyOptions::feed_rel_eps`] of the limit (**undecided**, counted as
 //!   infeasible). So a feasible verdict is a proof, and an infeasible one is wrong by at most a
-//!   relative `feed_rel_eps` (1e-6 by default: 30 nm/s at 30 mm/s).
+//!   relative `feed_rel_eps` (1e-9 by default: 30 pm/s at 30 mm/s).
 //!
 //! # The feed upper bound
 //! Let `g = |tip'|²`, smooth. On a piece `[t0, t1]` of width `w`, `e = g − (linear interpolant of
@@ -69,7 +69,7 @@ pub struct CertifyOptions {
     /// Initial feed samples per interval. Default 48.
     pub feed_samples: usize,
     /// Relative width (of the feed limit) below which an upper bound above the limit and a
-    /// sample below it are left undecided. Default 1e-6.
+    /// sample below it are left undecided. Default 1e-9.
     pub feed_rel_eps: f64,
     /// Largest bisection depth of a feed piece. Default 40.
     pub max_depth: usize,
@@ -81,7 +81,7 @@ impl Default for CertifyOptions {
     fn default() -> Self {
         CertifyOptions {
             feed_samples: 48,
-            feed_rel_eps: 1e-6,
+            feed_rel_eps: 1e-9,
             max_depth: 40,
             max_steps: 400,
         }
@@ -370,12 +370,48 @@ fn witnesses(
             }
         }
     }
-    let fb = feed_bound(&seg, kin, lim.feed, opts, true);
+    // A finer tolerance than the feasibility check's: within `feed_rel_eps` of the limit the
+    // check is undecided, and a witness is wanted there too.
+    let fine = CertifyOptions {
+        feed_rel_eps: opts.feed_rel_eps * 1e-3,
+        ..*opts
+    };
+    let fb = feed_bound(&seg, kin, lim.feed, &fine, true);
     if fb.lower > lim.feed {
+        // The sample that exceeds the limit, moved to the local maximum of the feed (golden
+        // section on the neighbouring samples' bracket): the larger the excess, the wider the
+        // range of durations the witness excludes.
+        let h = t / opts.feed_samples.max(2) as f64;
+        let (mut a, mut b) = ((fb.t_lower - h).max(0.0), (fb.t_lower + h).min(t));
+        let f = |x: f64| seg.feed(kin, x);
+        const R: f64 = 0.618_033_988_749_894_9;
+        let (mut x1, mut x2) = (b - R * (b - a), a + R * (b - a));
+        let (mut f1, mut f2) = (f(x1), f(x2));
+        for _ in 0..60 {
+            if f1 < f2 {
+                a = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = a + R * (b - a);
+                f2 = f(x2);
+            } else {
+                b = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = b - R * (b - a);
+                f1 = f(x1);
+            }
+        }
+        let best = [(fb.lower, fb.t_lower), (f1, x1), (f2, x2)]
+            .into_iter()
+            .fold(
+                (f64::NEG_INFINITY, 0.0),
+                |m, p| if p.0 > m.0 { p } else { m },
+            );
         out.push(Witness {
             joint: None,
             order: 1,
-            u: fb.t_lower / t,
+            u: best.1 / t,
         });
     }
     out
@@ -383,7 +419,14 @@ fn witnesses(
 
 /// Whether `w` proves every `T ∈ [ta, tb]` infeasible (`tk ∈ [ta, tb]` the reference of a
 /// feed witness).
-fn excludes(w: &Witness, tp: &[TPoly; 5], kin: &dyn Kinematics, lim: &Limits, ta: f64, tb: f64) -> bool {
+fn excludes(
+    w: &Witness,
+    tp: &[TPoly; 5],
+    kin: &dyn Kinematics,
+    lim: &Limits,
+    ta: f64,
+    tb: f64,
+) -> bool {
     match w.joint {
         Some(i) => {
             let l = match w.order {
@@ -421,7 +464,9 @@ fn excludes(w: &Witness, tp: &[TPoly; 5], kin: &dyn Kinematics, lim: &Limits, ta
                 g += d * d;
             }
             let r = kin.lever_bound(&lo, &hi);
-            let sum = |x: &[f64; 5], from: usize, to: usize| x[from..to].iter().map(|v| v.abs()).sum::<f64>();
+            let sum = |x: &[f64; 5], from: usize, to: usize| {
+                x[from..to].iter().map(|v| v.abs()).sum::<f64>()
+            };
             let (dvl, dvr) = (sum(&dv, 0, 3), sum(&dv, 3, 5));
             let (dql, dqr) = (sum(&dq, 0, 3), sum(&dq, 3, 5));
             let (vkl, vkr) = (sum(&vk, 0, 3), sum(&vk, 3, 5));
@@ -489,8 +534,16 @@ mod tests {
 
     #[test]
     fn t_decomposition_matches_the_quintic() {
-        let s0 = state([1.0, 2.0, 3.0, 0.1, 0.2], [5.0, -3.0, 1.0, 0.1, -0.2], [50.0, 0.0, -20.0, 1.0, 2.0]);
-        let s1 = state([4.0, 0.0, 3.5, 0.2, 0.1], [2.0, 1.0, 0.0, 0.0, 0.3], [-10.0, 5.0, 0.0, 0.5, -1.0]);
+        let s0 = state(
+            [1.0, 2.0, 3.0, 0.1, 0.2],
+            [5.0, -3.0, 1.0, 0.1, -0.2],
+            [50.0, 0.0, -20.0, 1.0, 2.0],
+        );
+        let s1 = state(
+            [4.0, 0.0, 3.5, 0.2, 0.1],
+            [2.0, 1.0, 0.0, 0.0, 0.3],
+            [-10.0, 5.0, 0.0, 0.5, -1.0],
+        );
         for t in [0.05, 0.3, 1.7] {
             let seg = Segment::new(&s0, &s1, t);
             for i in 0..5 {
@@ -500,7 +553,10 @@ mod tests {
                     for k in 0..4 {
                         let want = e[k];
                         let got = val(tp.coeffs(k, u), k, t);
-                        assert!((got - want).abs() <= 1e-9 * (1.0 + want.abs()), "{i} {k} {u} {got} {want}");
+                        assert!(
+                            (got - want).abs() <= 1e-9 * (1.0 + want.abs()),
+                            "{i} {k} {u} {got} {want}"
+                        );
                     }
                 }
             }
@@ -520,7 +576,10 @@ mod tests {
                 shi = shi.max(v);
             }
             assert!(lo <= slo + 1e-12 && hi >= shi - 1e-12, "{k}");
-            assert!(slo - lo < 1e-6 && hi - shi < 1e-6, "{k}: {lo} {slo} {hi} {shi}");
+            assert!(
+                slo - lo < 1e-6 && hi - shi < 1e-6,
+                "{k}: {lo} {slo} {hi} {shi}"
+            );
         }
     }
 
@@ -529,8 +588,16 @@ mod tests {
     #[test]
     fn feed_bound_brackets_the_dense_maximum() {
         let kin = PaperAb::paper();
-        let s0 = state([0.0, 0.0, 0.0, 0.1, 0.2], [10.0, 5.0, -3.0, 0.1, -0.05], [0.0; 5]);
-        let s1 = state([5.0, 2.0, -1.0, 0.2, 0.15], [5.0, 0.0, 1.0, 0.0, 0.05], [10.0, 0.0, 0.0, 0.1, 0.0]);
+        let s0 = state(
+            [0.0, 0.0, 0.0, 0.1, 0.2],
+            [10.0, 5.0, -3.0, 0.1, -0.05],
+            [0.0; 5],
+        );
+        let s1 = state(
+            [5.0, 2.0, -1.0, 0.2, 0.15],
+            [5.0, 0.0, 1.0, 0.0, 0.05],
+            [10.0, 0.0, 0.0, 0.1, 0.0],
+        );
         let seg = Segment::new(&s0, &s1, 0.4);
         let mut dense = 0.0f64;
         for i in 0..=50_000 {
@@ -539,7 +606,10 @@ mod tests {
         let o = CertifyOptions::default();
         let b = feed_bound(&seg, &kin, dense * 1.001, &o, false);
         assert_eq!(b.verdict, FeedVerdict::Certified);
-        assert!(b.upper >= dense && b.upper <= dense * 1.001, "{b:?} {dense}");
+        assert!(
+            b.upper >= dense && b.upper <= dense * 1.001,
+            "{b:?} {dense}"
+        );
         let b = feed_bound(&seg, &kin, dense * 0.999, &o, false);
         assert_eq!(b.verdict, FeedVerdict::Violated);
         let b = feed_bound(&seg, &kin, dense, &o, false);
@@ -556,10 +626,29 @@ mod tests {
         s1.q[0] = 10.0;
         let lim = Limits::paper();
         let want = 15.0 * 10.0 / (8.0 * 30.0);
-        let (reach, steps) = certify_infeasible(&s0, &s1, &kin, &lim, 0.01, want * (1.0 - 1e-6), &CertifyOptions::default());
-        assert!(reach >= want * (1.0 - 1e-6), "{reach} vs {want}, {steps} steps");
+        let (reach, steps) = certify_infeasible(
+            &s0,
+            &s1,
+            &kin,
+            &lim,
+            0.01,
+            want * (1.0 - 1e-6),
+            &CertifyOptions::default(),
+        );
+        assert!(
+            reach >= want * (1.0 - 1e-6),
+            "{reach} vs {want}, {steps} steps"
+        );
         // It must not certify beyond the true minimum.
-        let (reach, _) = certify_infeasible(&s0, &s1, &kin, &lim, 0.01, want * 1.01, &CertifyOptions::default());
+        let (reach, _) = certify_infeasible(
+            &s0,
+            &s1,
+            &kin,
+            &lim,
+            0.01,
+            want * 1.01,
+            &CertifyOptions::default(),
+        );
         assert!(reach <= want, "{reach} > {want}");
     }
 }
