@@ -19,9 +19,10 @@
 //!   `Δt` on any control (relative error ≤ 5e-10) and the program's time is the plan's.
 //! * units per minute (`G94`): RS274NGC (and LinuxCNC) apply `F` to the XYZ chord of a block
 //!   that moves a linear axis, and to the chord of the rotary words, in degrees, of a block that
-//!   moves only rotary axes. `F = chord / Δt` under that rule gives every block its planned
-//!   `Δt` too — exact on such controls, but only there (a control with tool-centre-point
-//!   control applies `F` to the tip's path instead). Earlier versions took the largest rotary
+//!   moves only rotary axes. `F = chord / Δt` under that rule, with the chord of the words as
+//!   printed (rounded to 4 decimals), gives every block its planned `Δt` too — exact on such
+//!   controls, but only there (a control with tool-centre-point control applies `F` to the
+//!   tip's path instead). Earlier versions took the largest rotary
 //!   step instead of the rotary chord for rotary-only blocks, which made those blocks faster
 //!   than planned by up to √2. A block moving no axis is a `G4` dwell of `Δt`.
 
@@ -116,16 +117,17 @@ pub fn write_five_axis(
         crate::error::require_positive(name, v, "five-axis G-code options")?;
     }
     let names = kin.axis_names();
+    // `q` as printed: mm and degrees, rounded to the four decimals written.
+    let printed = |q: &[f64; 5]| -> [f64; 5] {
+        std::array::from_fn(|i| {
+            let v = if i < 3 { q[i] } else { q[i].to_degrees() };
+            (v * 1e4).round() / 1e4
+        })
+    };
     let fmt = |q: &[f64; 5]| {
         format!(
             "X{:.4} Y{:.4} Z{:.4} {}{:.4} {}{:.4}",
-            q[0],
-            q[1],
-            q[2],
-            names[3],
-            q[3].to_degrees(),
-            names[4],
-            q[4].to_degrees()
+            q[0], q[1], q[2], names[3], q[3], names[4], q[4]
         )
     };
     let total: f64 = segments.iter().map(|s| s.duration).sum();
@@ -146,7 +148,7 @@ pub fn write_five_axis(
             .expected("at least one interval")
             .into());
     };
-    let start = first.eval(0.0)[0];
+    let start = printed(&first.eval(0.0)[0]);
     out.push_str(&format!("G0 {}\n", fmt(&start)));
     out.push_str(match opts.feed_mode {
         FeedMode::InverseTime => "G93\n",
@@ -158,13 +160,12 @@ pub fn write_five_axis(
         let dt = seg.duration / n as f64;
         let minutes = dt / 60.0;
         for k in 1..=n {
-            let q = seg.eval(dt * k as f64)[0];
+            let q = printed(&seg.eval(dt * k as f64)[0]);
+            // The chords of the *printed* words: what the control will interpolate.
             let lin =
                 ((q[0] - prev[0]).powi(2) + (q[1] - prev[1]).powi(2) + (q[2] - prev[2]).powi(2))
                     .sqrt();
-            let rot = ((q[3] - prev[3]).to_degrees().powi(2)
-                + (q[4] - prev[4]).to_degrees().powi(2))
-            .sqrt();
+            let rot = ((q[3] - prev[3]).powi(2) + (q[4] - prev[4]).powi(2)).sqrt();
             match opts.feed_mode {
                 FeedMode::InverseTime => {
                     out.push_str(&format!("G1 {} F{}\n", fmt(&q), sig9(1.0 / minutes)));

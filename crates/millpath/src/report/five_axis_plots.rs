@@ -14,7 +14,7 @@
 //! The builders take the library's plain results and return [`Chart`]s; render them with
 //! [`super::plots::render_svg`].
 
-use super::plots::{AxisSeries, Chart, HLine, Quantity, Series, SeriesStyle, axis_kinematics};
+use super::plots::{AxisSeries, Chart, Quantity, Series, SeriesStyle, axis_kinematics};
 use crate::geom::{Point3, Vec3};
 use crate::machine::kinematics::Kinematics;
 use crate::motion::five_axis::{Limits, RefCurve, Replan, Segment, sample};
@@ -133,31 +133,39 @@ pub fn deflection_profiles(
     let s = sample(&segs, kin, (total / 400.0).max(1e-6));
     let names = kin.axis_names();
     let q0 = s.q.first().copied().unwrap_or([0.0; 5]);
+    let scale = |k: usize| if k < 3 { 1.0 } else { 1000.0 };
+    let mut series: Vec<Series> = (0..5)
+        .map(|k| Series {
+            label: if k < 3 {
+                format!("{} (mm)", names[k])
+            } else {
+                format!("{} (mrad)", names[k])
+            },
+            points: s
+                .t
+                .iter()
+                .zip(&s.q)
+                .map(|(&t, q)| (t, (q[k] - q0[k]) * scale(k)))
+                .collect(),
+            style: SeriesStyle::Line,
+            colour: k,
+        })
+        .collect();
+    // Every axis at the projection (the end of the first new interval).
+    let tp = r.times_s[0];
+    let qp = segs[0].eval(tp)[0];
+    series.push(Series {
+        label: format!("at the projection, t = {tp:.4} s"),
+        points: (0..5).map(|k| (tp, (qp[k] - q0[k]) * scale(k))).collect(),
+        style: SeriesStyle::Points,
+        colour: 6,
+    });
     let positions = Chart {
         title: "Axis positions through the two new intervals".into(),
         x_label: "time since the deflection (s)".into(),
         y_label: "change of position (mm; mrad for rotary axes)".into(),
-        series: (0..5)
-            .map(|k| Series {
-                label: if k < 3 {
-                    format!("{} (mm)", names[k])
-                } else {
-                    format!("{} (mrad)", names[k])
-                },
-                points: s
-                    .t
-                    .iter()
-                    .zip(&s.q)
-                    .map(|(&t, q)| (t, (q[k] - q0[k]) * if k < 3 { 1.0 } else { 1000.0 }))
-                    .collect(),
-                style: SeriesStyle::Line,
-                colour: k,
-            })
-            .collect(),
-        hlines: vec![HLine {
-            label: format!("projection reached at {:.4} s", r.times_s[0]),
-            y: 0.0,
-        }],
+        series,
+        hlines: vec![],
     };
     let mut out = vec![(
         "five_axis_deflection_positions",
