@@ -314,8 +314,9 @@ mod tests {
     fn limits_file_overrides_and_rejects() {
         let f = LimitsFile::parse("feed = 20\nrotary_jerk = 100\nz1 = 250", "l.toml").unwrap();
         let l = f.apply(&Limits::paper());
-        assert_eq!(l.feed, 20.0);
-        assert_eq!(l.jerk, [200_000.0, 200_000.0, 200_000.0, 100.0, 100.0]);
+        assert!((l.feed - 20.0).abs() < 1e-12);
+        let want = [200_000.0, 200_000.0, 200_000.0, 100.0, 100.0];
+        assert!(l.jerk.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-9));
         let e = LimitsFile::parse("linear_jerk = -3", "l.toml")
             .unwrap_err()
             .to_string();

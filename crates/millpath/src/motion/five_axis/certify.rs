@@ -550,8 +550,7 @@ mod tests {
                 let tp = TPoly::new(&s0, &s1, i);
                 for u in [0.0, 0.3, 0.77, 1.0] {
                     let e = seg.axes[i].eval(u * t);
-                    for k in 0..4 {
-                        let want = e[k];
+                    for (k, &want) in e.iter().enumerate() {
                         let got = val(tp.coeffs(k, u), k, t);
                         assert!(
                             (got - want).abs() <= 1e-9 * (1.0 + want.abs()),

@@ -32,6 +32,20 @@
 //!
 //! Any extra candidate knot states (the baseline's fixed states) are evaluated too, so the
 //! result is never slower than the exact minimum for those states.
+//!
+//! The iterations use the fast sampled feed check; the chosen states are then re-solved with
+//! the certified check and the proof of minimality ([`super::certify`]). The sampled check is
+//! a lower bound of the true maximum feed, so that re-solve can lengthen an interval (where a
+//! feed peak fell between samples) or shorten it (the final bisection is finer); the last
+//! entry of [`Schedule::history`] is the certified total.
+//!
+//! # What remains between this and the length/feed bound
+//! The paper's case takes 5.426 s against `length / feed = 157.08 / 30 = 5.236 s`. The
+//! interior intervals are within 0.03 % of their bound `chord / F`; the gap is the first and
+//! last two intervals, where a single quintic per interval must take the tool from rest to
+//! the feed: its speed profile is a fixed-shape quartic whose mean is well below its peak.
+//! Closing it needs more knots near the ends (a different path discretisation), not better
+//! knot states.
 
 use super::min_time::{Check, FeedCheck, KnotState, Limits, MinTimeOptions, min_time};
 use crate::error::Error;
