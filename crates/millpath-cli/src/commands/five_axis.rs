@@ -352,3 +352,112 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    /// Runs the command; returns the exit code and the message of the error.
+    fn run_with(argv: &[&str]) -> (i32, String) {
+        let mut full = vec!["five-axis"];
+        full.extend_from_slice(argv);
+        let cli = Cli::try_parse_from(full).expect("arguments parse");
+        match run(&cli.args) {
+            Ok(()) => (0, String::new()),
+            Err(e) => (e.exit_code(), e.to_string()),
+        }
+    }
+
+    fn file(dir: &tempfile::TempDir, name: &str, text: &str) -> String {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).expect("write test file");
+        p.display().to_string()
+    }
+
+    /// Bad input in a path file, a limits file or a flag: exit code 2, naming the value and
+    /// where it came from (file and line for path files).
+    #[test]
+    fn bad_input_is_exit_code_2_naming_value_and_line() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let head = "# unit: mm\nx,y,z,i,j,k\n0,0,10,0,0,1\n";
+        let cases: Vec<(Vec<String>, Vec<&str>)> = vec![
+            (
+                vec![file(&dir, "zero.csv", &format!("{head}10,0,10,0,0,0\n"))],
+                vec!["zero.csv:4", "tool axis"],
+            ),
+            (
+                vec![file(&dir, "nan.csv", &format!("{head}10,0,NaN,0,0,1\n"))],
+                vec!["nan.csv:4", "NaN"],
+            ),
+            (
+                vec![file(&dir, "range.csv", &format!("{head}10,0,10,0,1,0\n"))],
+                vec!["range.csv:4", "reachable"],
+            ),
+            (
+                vec!["--case".into(), "paper".into(), "--feed".into(), "0".into()],
+                vec!["feed = 0"],
+            ),
+            (
+                vec![
+                    "--case".into(),
+                    "paper".into(),
+                    "--limits".into(),
+                    file(&dir, "l.toml", "rotary_jerk = -5\n"),
+                ],
+                vec!["rotary_jerk = -5", "l.toml"],
+            ),
+            (
+                vec![
+                    "--case".into(),
+                    "paper".into(),
+                    "--machine".into(),
+                    "xyz".into(),
+                ],
+                vec!["machine = xyz"],
+            ),
+        ];
+        for (argv, needles) in cases {
+            let argv: Vec<&str> = argv.iter().map(String::as_str).collect();
+            let (code, msg) = run_with(&argv);
+            assert_eq!(code, 2, "{argv:?}: {msg}");
+            for n in needles {
+                assert!(msg.contains(n), "{argv:?}: {msg} lacks {n}");
+            }
+        }
+    }
+
+    /// Every machine name (and the G94 G-code of the table-table ones) runs with a custom feed
+    /// limit on a path file.
+    #[test]
+    fn custom_limits_and_machine_aliases_are_used() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = file(
+            &dir,
+            "p.csv",
+            "# unit: mm\nx,y,z,i,j,k\n0,0,10,0,0,1\n5,0,10,0.05,0,1\n10,1,10,0.1,0,1\n",
+        );
+        let json = dir.path().join("out.ngc").display().to_string();
+        for machine in ["paper", "xyzac-trt", "xyzbc-trt", "head-head"] {
+            let mut argv = vec![
+                path.as_str(),
+                "--machine",
+                machine,
+                "--no-baseline",
+                "--feed",
+                "10",
+            ];
+            if machine.contains("trt") {
+                argv.extend(["--gcode", json.as_str(), "--g94"]);
+            }
+            let (code, msg) = run_with(&argv);
+            assert_eq!(code, 0, "{machine}: {msg}");
+        }
+    }
+}

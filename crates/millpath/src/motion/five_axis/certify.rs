@@ -435,6 +435,8 @@ fn excludes(
                 _ => lim.jerk[i],
             };
             let (lo, hi) = range_in_t(tp[i].coeffs(w.order, w.u), w.order, ta, tb);
+            // A relative 1e-12 for the rounding of the evaluation.
+            let l = l * (1.0 + 1e-12);
             lo > l || hi < -l
         }
         None => {
