@@ -311,8 +311,8 @@ fn range_in_t(c: [f64; 3], k: usize, ta: f64, tb: f64) -> (f64, f64) {
     (lo, hi)
 }
 
-/// A point where a limit is exceeded: joint (or `None` for the feed), derivative order
-/// (1 velocity, 2 acceleration, 3 jerk), normalised time `u`, and `T` where it was found.
+/// A point where a limit is exceeded at the duration where it was found: joint (or `None`
+/// for the feed), derivative order (1 velocity, 2 acceleration, 3 jerk), normalised time `u`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Witness {
     joint: Option<usize>,
@@ -417,8 +417,8 @@ fn witnesses(
     out
 }
 
-/// Whether `w` proves every `T ∈ [ta, tb]` infeasible (`tk ∈ [ta, tb]` the reference of a
-/// feed witness).
+/// Whether `w` proves every `T ∈ [ta, tb]` infeasible (a feed witness is expanded about
+/// `ta`, where it was found).
 fn excludes(
     w: &Witness,
     tp: &[TPoly; 5],
