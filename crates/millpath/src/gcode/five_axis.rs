@@ -121,7 +121,8 @@ pub fn write_five_axis(
     let printed = |q: &[f64; 5]| -> [f64; 5] {
         std::array::from_fn(|i| {
             let v = if i < 3 { q[i] } else { q[i].to_degrees() };
-            (v * 1e4).round() / 1e4
+            // `+ 0.0` turns a rounded −0 into 0 (no `Y-0.0000` words).
+            (v * 1e4).round() / 1e4 + 0.0
         })
     };
     let fmt = |q: &[f64; 5]| {
