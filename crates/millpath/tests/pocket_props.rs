@@ -25,6 +25,12 @@ fn coarse() -> SimOptions {
 
 /// The strategies of this crate's owner under test; the spiral joins by adding it.
 const OFFSET_ZIGZAG: [StrategyKind; 2] = [StrategyKind::Offset, StrategyKind::Zigzag];
+/// All three strategies (pockets without islands).
+const ALL: [StrategyKind; 3] = [
+    StrategyKind::Offset,
+    StrategyKind::Zigzag,
+    StrategyKind::Spiral,
+];
 
 /// A star-shaped polygon: radii at equally spaced angles (convex when all radii are equal
 /// enough, non-convex otherwise), corners rounded.
@@ -93,14 +99,14 @@ proptest! {
     fn convex_pockets_verify(r in 10.0f64..16.0, n in 5usize..8, d in 3.0f64..7.0, so in 0.2f64..1.0) {
         let Some(o) = star(&vec![r; n], 2.0) else { return Ok(()) };
         let tool = Tool::flat(d).unwrap();
-        check(&OFFSET_ZIGZAG, &PocketShape::simple(o), &tool, &one_level(so))?;
+        check(&ALL, &PocketShape::simple(o), &tool, &one_level(so))?;
     }
 
     #[test]
     fn non_convex_pockets_verify(radii in prop::collection::vec(9.0f64..17.0, 6..9), d in 2.5f64..5.0, so in 0.2f64..1.0) {
         let Some(o) = star(&radii, 1.5) else { return Ok(()) };
         let tool = Tool::flat(d).unwrap();
-        check(&OFFSET_ZIGZAG, &PocketShape::simple(o), &tool, &one_level(so))?;
+        check(&ALL, &PocketShape::simple(o), &tool, &one_level(so))?;
     }
 
     #[test]
