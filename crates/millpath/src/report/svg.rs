@@ -11,6 +11,14 @@
 //! (XY arcs that change Z) get a magenta ring at their start and plunges (Z-only feed moves) a
 //! magenta cross.
 //!
+//! With [`PreviewOptions::side_view`] a side view (X horizontal at the plan's scale, Z up)
+//! is drawn in a strip under the plan: it shows the levels, the entries going down and the
+//! retracts. Its Z scale is the plan's, stretched when the depth range would be under 60 px
+//! (the strip says by how much); helices are drawn as their true projection (sampled at 16
+//! points per turn and more for large radii), not as chords.
+//!
+//! [`level_previews`] draws one picture per level (the CLI writes them as `NAME.level1.svg`, ...).
+//!
 //! Structure for the HTML viewer: each level is a `<g class="mp-level" data-level="i">`
 //! (moves outside every level are in `data-level="-1"`), and the Y-flipped drawing group holds
 //! a hidden `<circle class="mp-tool">` whose `cx`/`cy` are workpiece millimetres, so a script
@@ -34,6 +42,8 @@ pub struct PreviewOptions {
     /// Achieved peak feed of each move in mm/s (index = move index), from the planner; moves
     /// without an entry (or a non-finite one) fall back to their programmed feed.
     pub achieved_feed: Option<Vec<f64>>,
+    /// Draw the side view (X–Z) strip under the plan.
+    pub side_view: bool,
 }
 
 impl Default for PreviewOptions {
@@ -44,6 +54,7 @@ impl Default for PreviewOptions {
             title: None,
             level: None,
             achieved_feed: None,
+            side_view: false,
         }
     }
 }
@@ -66,6 +77,7 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             .filter(|f| f.is_finite() && *f >= 0.0)
             .unwrap_or(m.feed)
     };
+    let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut bounds = outlines
         .iter()
         .map(Outline::bounds)
@@ -74,6 +86,12 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     for (i, (from, m)) in toolpath.segments().enumerate() {
         if range.contains(&i) {
             bounds = bounds.with_point(from.xy()).with_point(m.to.xy());
+            for z in [from.z, m.to.z] {
+                if z.is_finite() {
+                    zmin = zmin.min(z);
+                    zmax = zmax.max(z);
+                }
+            }
             if let MoveKind::Arc { center, .. } = m.kind {
                 let r = from.xy().distance(center.xy());
                 if r.is_finite() {
@@ -101,7 +119,20 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     let scale = width_px / b.width().max(1e-9);
     let legend_px = 40.0;
     let title_px = if opts.title.is_some() { 24.0 } else { 0.0 };
-    let height_px = b.height() * scale + legend_px + title_px;
+    let plan_px = b.height() * scale;
+    // Side strip: label row, drawing, gap. Z at the plan's scale unless that is under 60 px.
+    let side = (opts.side_view && zmin.is_finite() && zmax.is_finite()).then(|| {
+        let depth = (zmax - zmin).max(1e-3);
+        let draw_px = (depth * scale).clamp(60.0, 240.0);
+        SideStrip {
+            top: title_px + plan_px + 26.0,
+            height: draw_px,
+            zmax,
+            zscale: draw_px / depth,
+        }
+    });
+    let side_px = side.as_ref().map_or(0.0, |st| st.height + 36.0);
+    let height_px = plan_px + side_px + legend_px + title_px;
     let stroke = 1.2 / scale;
     let mut s = String::new();
     let _ = write!(
@@ -218,6 +249,11 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
         stroke
     );
     s.push_str("</g>");
+    if let Some(st) = &side {
+        side_view(&mut s, toolpath, &range, st, b.min.x, scale, &|i, m| {
+            feed_colour(feed_of(i, m), fmin, fmax)
+        });
+    }
     // Legend.
     let y = height_px - 15.0;
     let mut x = 10.0;
@@ -266,6 +302,145 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// Where the side view goes and its Z scale (pixels per mm).
+struct SideStrip {
+    top: f64,
+    height: f64,
+    zmax: f64,
+    zscale: f64,
+}
+
+/// Draws the side view (X right, Z up) of the moves in `range` into `s`, in pixel coordinates
+/// (no transform, so dashes and strokes keep their pixel size).
+fn side_view(
+    s: &mut String,
+    tp: &Toolpath,
+    range: &std::ops::Range<usize>,
+    st: &SideStrip,
+    x0: f64,
+    scale: f64,
+    colour_of: &dyn Fn(usize, &Move) -> &'static str,
+) {
+    let px = |x: f64| (x - x0) * scale;
+    let py = |z: f64| st.top + (st.zmax - z) * st.zscale;
+    let stretch = st.zscale / scale;
+    let label = if stretch > 1.05 {
+        format!("side view (X–Z), Z stretched ×{}", short_ratio(stretch))
+    } else {
+        "side view (X–Z)".to_owned()
+    };
+    let _ = write!(
+        s,
+        r##"<text x="10" y="{:.1}" fill="#444444">{label}</text><g class="mp-side" fill="none" stroke-linecap="round" stroke-linejoin="round">"##,
+        st.top - 8.0
+    );
+    for (i, (from, m)) in tp.segments().enumerate() {
+        if !range.contains(&i) || matches!(m.kind, MoveKind::Dwell { .. }) {
+            continue;
+        }
+        let pts: Vec<(f64, f64)> = match (m.kind, m.sweep_from(from)) {
+            (
+                MoveKind::Arc {
+                    center,
+                    plane: Plane::Xy,
+                    ccw,
+                    ..
+                },
+                Some((r, sweep)),
+            ) if r.is_finite() && sweep.is_finite() => {
+                // Sample the helix: x = cx + r cos(a0 ± θ), z linear in θ.
+                let a0 = (from.xy() - center.xy()).angle();
+                let n = ((sweep.abs() / std::f64::consts::TAU * 16.0).ceil() as usize)
+                    .max((sweep.abs() * r * scale / 4.0).ceil() as usize)
+                    .clamp(2, 2048);
+                let dir = if ccw { 1.0 } else { -1.0 };
+                (0..=n)
+                    .map(|k| {
+                        let u = k as f64 / n as f64;
+                        let a = a0 + dir * sweep.abs() * u;
+                        (center.x + r * a.cos(), from.z + (m.to.z - from.z) * u)
+                    })
+                    .collect()
+            }
+            _ => vec![(from.x, from.z), (m.to.x, m.to.z)],
+        };
+        if pts.iter().any(|(x, z)| !(x.is_finite() && z.is_finite())) {
+            continue;
+        }
+        let mut d = String::new();
+        for (k, (x, z)) in pts.iter().enumerate() {
+            let _ = write!(
+                d,
+                "{}{:.2} {:.2}",
+                if k == 0 { 'M' } else { 'L' },
+                px(*x),
+                py(*z)
+            );
+        }
+        let (colour, dash) = match m.kind {
+            MoveKind::Rapid => ("#999999", r#" stroke-dasharray="4 3""#),
+            _ => (colour_of(i, m), ""),
+        };
+        let _ = write!(
+            s,
+            r#"<path d="{d}" stroke="{colour}" stroke-width="1"{dash}/>"#
+        );
+    }
+    s.push_str("</g>");
+}
+
+/// A stretch factor for the label: whole numbers above 10, one decimal below.
+fn short_ratio(r: f64) -> String {
+    if r >= 10.0 {
+        format!("{r:.0}")
+    } else {
+        format!("{r:.1}")
+    }
+}
+
+/// One preview per level of `toolpath` (all of them when it has none), each titled with the
+/// level's number, kind and depth after `opts.title`; `opts.level` is ignored.
+pub fn level_previews(
+    toolpath: &Toolpath,
+    outlines: &[Outline],
+    opts: &PreviewOptions,
+) -> Vec<String> {
+    let n = toolpath.levels.len();
+    if n == 0 {
+        return vec![toolpath_svg(toolpath, outlines, opts)];
+    }
+    toolpath
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let what = format!(
+                "level {} of {n}: {} at z = {:.3} mm",
+                i + 1,
+                match l.kind {
+                    crate::toolpath::LevelKind::Roughing => "roughing",
+                    crate::toolpath::LevelKind::Finishing => "finishing",
+                    crate::toolpath::LevelKind::Other => "other",
+                },
+                l.z
+            );
+            let title = match &opts.title {
+                Some(t) => format!("{t} — {what}"),
+                None => what,
+            };
+            toolpath_svg(
+                toolpath,
+                outlines,
+                &PreviewOptions {
+                    title: Some(title),
+                    level: Some(i),
+                    ..opts.clone()
+                },
+            )
+        })
+        .collect()
 }
 
 fn is_arc(m: &Move) -> bool {
@@ -424,6 +599,56 @@ mod tests {
     }
 
     #[test]
+    fn side_view_and_level_pictures() {
+        use crate::toolpath::{Level, LevelKind};
+        let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 5.0));
+        tp.push(Move::rapid(Point3::new(10.0, 0.0, 1.0)));
+        tp.push(Move::arc_xy(
+            Point3::new(10.0, 0.0, -2.0),
+            Point3::new(0.0, 0.0, 0.0),
+            true,
+            10.0,
+        ));
+        tp.push(Move::line(Point3::new(30.0, 0.0, -2.0), 10.0));
+        tp.push(Move::rapid(Point3::new(30.0, 0.0, 5.0)));
+        tp.push(Move::line(Point3::new(30.0, 0.0, -4.0), 10.0));
+        tp.push(Move::line(Point3::new(0.0, 0.0, -4.0), 10.0));
+        tp.levels.push(Level {
+            z: -2.0,
+            kind: LevelKind::Roughing,
+            start: 1,
+            end: 3,
+        });
+        tp.levels.push(Level {
+            z: -4.0,
+            kind: LevelKind::Finishing,
+            start: 4,
+            end: 6,
+        });
+        let opts = PreviewOptions {
+            side_view: true,
+            title: Some("t".into()),
+            ..PreviewOptions::default()
+        };
+        let svg = toolpath_svg(&tp, &[], &opts);
+        let side = &svg[svg.find(r#"class="mp-side""#).expect("side view drawn")..];
+        // One path per drawn move (the 5 moves with XZ extent plus the helix).
+        assert_eq!(side.matches("<path").count(), 6, "{side}");
+        // The helix is sampled (a full turn: at least 16 points), not drawn as a chord.
+        let helix = side.split("<path").nth(2).unwrap();
+        assert!(helix.matches('L').count() >= 16, "{helix}");
+        // z spans 9 mm: at 900 px over 50 mm that is 162 px, no stretch needed.
+        assert!(svg.contains("side view (X–Z)<"), "{svg}");
+        let pics = level_previews(&tp, &[], &opts);
+        assert_eq!(pics.len(), 2);
+        assert!(pics[0].contains("t — level 1 of 2: roughing at z = -2.000 mm"));
+        assert!(pics[1].contains("level 2 of 2: finishing at z = -4.000 mm"));
+        // The second picture holds only the second level's moves.
+        assert!(!pics[1].contains(r#"data-level="0""#));
+        assert!(pics[1].contains(r#"data-level="1""#));
+    }
+
+    #[test]
     fn bad_numbers_do_not_panic() {
         let mut tp = Toolpath::new(Tool::default(), Point3::new(f64::NAN, 0.0, 0.0));
         tp.push(Move::line(Point3::new(f64::INFINITY, 1.0, 0.0), f64::NAN));
@@ -433,6 +658,7 @@ mod tests {
             margin_mm: f64::NAN,
             level: Some(99),
             achieved_feed: Some(vec![f64::NAN]),
+            side_view: true,
             ..PreviewOptions::default()
         };
         let svg = toolpath_svg(&tp, &[], &opts);
