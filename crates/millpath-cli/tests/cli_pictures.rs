@@ -71,6 +71,7 @@ fn estimate_draws_any_program_per_level_with_json() {
 fn machine_accepts_a_toml_profile_everywhere_and_rejects_unknown_names() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("two.ngc"), TWO_LEVELS).unwrap();
+    std::fs::write(dir.path().join("pts.csv"), "0,0\n10,0\n10,10\n0,10\n").unwrap();
     // The `hsm` preset written out as a TOML profile.
     let mut toml = String::from(
         "name = \"my-hsm\"\nunits = \"mm\"\nmax_feed = 500.0\npath_tolerance = 0.01\nipo_cycle = 0.002\n",

@@ -135,6 +135,7 @@ fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> E
 
 /// Runs the contour pipeline.
 pub fn run(args: &Args) -> Result<(), Error> {
+    let machine = super::load_machine(&args.machine)?;
     let (curve, mut opt, name) = match (&args.points, args.sample) {
         (Some(path), false) => {
             let name = path.display().to_string();
@@ -260,7 +261,6 @@ pub fn run(args: &Args) -> Result<(), Error> {
             ),
         ));
     }
-    let machine = super::load_machine(&args.machine)?;
     let result = contour::contour(&curve, &opt)?;
     let wopt = WriterOptions {
         dialect: args.dialect,

@@ -196,7 +196,7 @@ fn die_cavity(
     out: &Path,
     machine: &Machine,
     html: &mut HtmlReport,
-    print: Say,
+    print: Say<'_>,
 ) -> Result<Row, Error> {
     let pb = spinner("die cavity: curve, exact offset, flattening at 0.00004 mm");
     let (curve, opt) = contour::sample()?;
@@ -307,7 +307,7 @@ fn transition_sweep(
     out: &Path,
     machine: &Machine,
     html: &mut HtmlReport,
-    print: Say,
+    print: Say<'_>,
 ) -> Result<(), Error> {
     use millpath::strategy::pocket::{PocketOptions, samples};
     let ratios = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7];
@@ -370,7 +370,7 @@ fn transition_sweep(
     Ok(())
 }
 
-fn table_two(out: &Path, html: &mut HtmlReport, print: Say) -> Result<(), Error> {
+fn table_two(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<(), Error> {
     let hsm = Machine::preset("hsm")?;
     let rows = table2::compare(&hsm)?;
     let text = table2::format_table(&rows);
@@ -393,7 +393,7 @@ fn table_two(out: &Path, html: &mut HtmlReport, print: Say) -> Result<(), Error>
     Ok(())
 }
 
-fn five_axis(out: &Path, html: &mut HtmlReport, print: Say) -> Result<Row, Error> {
+fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, Error> {
     use millpath::machine::kinematics::PaperAb;
     use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, case};
     let pb = spinner("five-axis: minimum-time plan and the paper's GA baseline");
@@ -478,7 +478,7 @@ fn pockets(
     out: &Path,
     machine: &Machine,
     html: &mut HtmlReport,
-    print: Say,
+    print: Say<'_>,
 ) -> Result<Vec<Row>, Error> {
     use millpath::stock::SimOptions;
     use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};

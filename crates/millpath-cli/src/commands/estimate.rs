@@ -2,7 +2,6 @@
 
 use super::print;
 use millpath::gcode::{Reader, ReaderOptions};
-use millpath::machine::Machine;
 use millpath::motion::table2;
 use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves};
