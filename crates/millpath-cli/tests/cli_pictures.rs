@@ -202,7 +202,7 @@ fn sweep_json_and_plot() {
     assert_eq!(v["spiral_s"].as_array().unwrap().len(), 2);
     assert!(v["zigzag_s"][0].as_f64().unwrap() > 0.0);
     let svg = std::fs::read_to_string(dir.path().join("fig10.svg")).unwrap();
-    assert!(svg.contains("spiral 300 in/min") && svg.contains("zigzag 300 in/min"));
+    assert!(svg.contains("300 in/min") && svg.contains("zigzag dashed"));
     let o = millpath(
         &[
             "sweep",

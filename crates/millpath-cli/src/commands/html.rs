@@ -128,8 +128,18 @@ pub fn five_axis_charts(
             .filter(|v| v.is_finite())
             .fold(0.0_f64, |m, v| m.max(v.abs()));
         let mut chart = plots::axis_kinematics(quantity, &samples.t, &axes);
-        chart.y_label = format!("{} / axis limit", quantity.title());
+        // The title names the quantity; a rotated label starting with "J" loses its top in
+        // plotters' bitmap text.
+        chart.y_label = "share of the axis limit".to_owned();
         if peak < 0.5 {
+            // Head room above the curves for the legend (five rows, the upper third).
+            let (lo, hi) = axes
+                .iter()
+                .flat_map(|a| a.values.iter().copied())
+                .filter(|v| v.is_finite())
+                .fold((0.0_f64, 0.0_f64), |(l, h), v| (l.min(v), h.max(v)));
+            let span = (hi - lo).max(1e-9);
+            chart.y_range = Some((lo - 0.05 * span, hi + 0.6 * span));
             // Far from every limit: the ±1 lines would flatten the curves to nothing.
             chart.hlines.clear();
             chart.title = format!(

@@ -77,7 +77,7 @@ impl Sweep {
             .enumerate()
             .map(|(f, feed)| {
                 (
-                    format!("spiral {feed:.0} in/min"),
+                    format!("{feed:.0} in/min"),
                     self.ratios
                         .iter()
                         .enumerate()
@@ -90,10 +90,13 @@ impl Sweep {
             .feeds_ipm
             .iter()
             .zip(&self.zigzag_s)
-            .map(|(feed, t)| (format!("zigzag {feed:.0} in/min"), *t))
+            .map(|(_, t)| (String::new(), *t))
             .collect();
         let mut chart = plots::cycle_time_vs_transition_with(&curves, &refs);
-        chart.title = format!("Cycle time against the transition C ({})", self.machine);
+        chart.title = format!(
+            "Cycle time against C on {}: spiral solid, zigzag dashed",
+            self.machine
+        );
         chart
     }
 }

@@ -230,9 +230,12 @@ where
             SeriesStyle::Dashed => cc
                 .draw_series(DashedLineSeries::new(pts, 6, 4, c.stroke_width(2)))
                 .map_err(plot_err)?,
-            SeriesStyle::Points => cc
-                .draw_series(pts.into_iter().map(|p| Circle::new(p, 4, c.filled())))
-                .map_err(plot_err)?,
+            SeriesStyle::Points => {
+                // Thousands of markers of radius 4 merge into a band: smaller when many.
+                let r = if pts.len() > 300 { 2 } else { 4 };
+                cc.draw_series(pts.into_iter().map(|p| Circle::new(p, r, c.filled())))
+                    .map_err(plot_err)?
+            }
         };
         if !s.label.is_empty() {
             let points = s.style == SeriesStyle::Points;
@@ -305,12 +308,8 @@ pub fn render_files(chart: &Chart, opts: &PlotOptions, stem: &Path) -> Result<St
 /// programmed feed (drawn dashed). Feeds are shown in mm/min.
 pub fn feed_along_path(achieved: &[(f64, f64)], programmed: Option<&[(f64, f64)]>) -> Chart {
     let to_min = |p: &[(f64, f64)]| p.iter().map(|&(s, f)| (s, f * 60.0)).collect();
-    let mut series = vec![Series {
-        label: "achieved feed".into(),
-        points: to_min(achieved),
-        style: SeriesStyle::Line,
-        colour: 0,
-    }];
+    // The programmed feed first, so the achieved feed is drawn over it where they agree.
+    let mut series = Vec::new();
     if let Some(p) = programmed {
         series.push(Series {
             label: "programmed feed".into(),
@@ -319,6 +318,12 @@ pub fn feed_along_path(achieved: &[(f64, f64)], programmed: Option<&[(f64, f64)]
             colour: 5,
         });
     }
+    series.push(Series {
+        label: "achieved feed".into(),
+        points: to_min(achieved),
+        style: SeriesStyle::Line,
+        colour: 0,
+    });
     // From zero feed to a fifth above the fastest, so the legend sits above the curves.
     let top = series
         .iter()
@@ -343,7 +348,8 @@ pub fn cycle_time_vs_transition(curves: &[(String, Vec<(f64, f64)>)]) -> Chart {
 
 /// [`cycle_time_vs_transition`] with a reference time per curve (e.g. zigzag at the same feed),
 /// drawn dashed in the curve's colour over the C range: `references[i]` belongs to
-/// `curves[i]`.
+/// `curves[i]`. A reference with an empty label gets no legend entry of its own (the colour
+/// already names the feed; say "dashed: ..." in the title).
 pub fn cycle_time_vs_transition_with(
     curves: &[(String, Vec<(f64, f64)>)],
     references: &[(String, f64)],
@@ -388,7 +394,7 @@ pub fn cycle_time_vs_transition_with(
         hlines: Vec::new(),
         // From zero: the paper's Figure 10 reads the feed effect and the C effect together.
         // The legend needs room above the slowest curve.
-        y_range: (top > 0.0).then_some((0.0, 1.45 * top)),
+        y_range: (top > 0.0).then_some((0.0, 1.5 * top)),
     }
 }
 
@@ -459,6 +465,16 @@ impl Quantity {
             Quantity::Velocity => "Velocity",
             Quantity::Acceleration => "Acceleration",
             Quantity::Jerk => "Jerk",
+        }
+    }
+
+    /// The quantity for a (rotated) y-axis label. Plotters' bitmap text also clips a capital J
+    /// when rotated, so jerk is labelled as what it is, the rate of change of acceleration.
+    pub fn axis_label(self) -> &'static str {
+        match self {
+            Quantity::Velocity => "Velocity",
+            Quantity::Acceleration => "Acceleration",
+            Quantity::Jerk => "Acceleration rate",
         }
     }
 
@@ -534,7 +550,7 @@ pub fn axis_kinematics(quantity: Quantity, t: &[f64], axes: &[AxisSeries]) -> Ch
         x_label: "time (s)".into(),
         y_label: format!(
             "{} ({}/{})",
-            quantity.title(),
+            quantity.axis_label(),
             units.join(", "),
             quantity.power()
         ),

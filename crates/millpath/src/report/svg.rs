@@ -7,9 +7,10 @@
 //! Cutting moves are coloured by feed in five equal bins between the slowest and the fastest
 //! feed of the picture. The feed is the **achieved** peak feed of each move when the planner's
 //! per-move peaks are given ([`PreviewOptions::achieved_feed`], e.g. `Plan::blocks[i].peak_feed`),
-//! the programmed feed otherwise; the legend says which. Rapids are dashed grey; helical entries
-//! (XY arcs that change Z) get a magenta ring at their start and plunges (Z-only feed moves) a
-//! magenta cross.
+//! the programmed feed otherwise; the legend says which. Rapids are dashed grey; entries (a run
+//! of consecutive descending feed moves with XY motion: a helix of one or many arcs, a ramp)
+//! get one magenta ring at their start and plunges (Z-only descending feed moves) a magenta
+//! cross; the legend counts both.
 //!
 //! With [`PreviewOptions::side_view`] a side view (X horizontal at the plan's scale, Z up)
 //! is drawn in a strip under the plan: it shows the levels, the entries going down and the
@@ -168,7 +169,12 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     };
     let mut open_level: Option<i64> = None;
     let mut entries = String::new();
+    // Entries: a run of consecutive descending feed moves with XY motion (a helix of several
+    // turns, a ramp of several lines) is one entry, ringed at its start; a Z-only descending
+    // feed move is a plunge, crossed.
     let mut n_entries = 0usize;
+    let mut n_plunges = 0usize;
+    let mut in_entry = false;
     for (i, (from, m)) in toolpath.segments().enumerate() {
         if !range.contains(&i) || matches!(m.kind, MoveKind::Dwell { .. }) {
             continue;
@@ -181,33 +187,33 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             let _ = write!(s, r#"<g class="mp-level" data-level="{lv}">"#);
             open_level = Some(lv);
         }
-        let dz = (m.to.z - from.z).abs();
+        let descends = m.to.z < from.z - 1e-9;
         let xy_len = from.xy().distance(m.to.xy());
-        if m.is_feed() && dz > 1e-9 {
-            if is_arc(m) {
-                n_entries += 1;
-                let _ = write!(
-                    entries,
-                    r##"<circle cx="{:.4}" cy="{:.4}" r="{:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
-                    from.x,
-                    from.y,
-                    5.0 * stroke,
-                    1.5 * stroke
-                );
-            } else if xy_len < 1e-9 {
-                n_entries += 1;
-                let k = 4.0 * stroke;
-                let _ = write!(
-                    entries,
-                    r##"<path d="M{:.4} {:.4}l{k:.5} {k:.5}m0 {:.5}l{:.5} {k:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
-                    from.x - k / 2.0,
-                    from.y - k / 2.0,
-                    -k,
-                    -k,
-                    1.5 * stroke
-                );
-            }
+        let entering = m.is_feed() && descends && (is_arc(m) || xy_len >= 1e-9);
+        if entering && !in_entry {
+            n_entries += 1;
+            let _ = write!(
+                entries,
+                r##"<circle cx="{:.4}" cy="{:.4}" r="{:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
+                from.x,
+                from.y,
+                5.0 * stroke,
+                1.5 * stroke
+            );
+        } else if m.is_feed() && descends && !entering {
+            n_plunges += 1;
+            let k = 4.0 * stroke;
+            let _ = write!(
+                entries,
+                r##"<path d="M{:.4} {:.4}l{k:.5} {k:.5}m0 {:.5}l{:.5} {k:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
+                from.x - k / 2.0,
+                from.y - k / 2.0,
+                -k,
+                -k,
+                1.5 * stroke
+            );
         }
+        in_entry = entering;
         if xy_len < 1e-12 && !is_arc(m) {
             continue;
         }
@@ -267,36 +273,46 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             "programmed feed (mm/min):"
         };
         let _ = write!(s, r#"<text x="{x}" y="{y}">{what}</text>"#);
-        x += 160.0;
+        x += text_px(what) + 10.0;
         for (k, c) in FEED_COLOURS.iter().enumerate() {
             let n = FEED_COLOURS.len() as f64;
             let lo = fmin + (fmax - fmin) * k as f64 / n;
             let hi = fmin + (fmax - fmin) * (k as f64 + 1.0) / n;
+            let label = format!("{:.0}–{:.0}", lo * 60.0, hi * 60.0);
             let _ = write!(
                 s,
-                r#"<rect x="{x}" y="{ry}" width="14" height="10" fill="{c}"/><text x="{tx}" y="{y}">{lo:.0}–{hi:.0}</text>"#,
+                r#"<rect x="{x:.1}" y="{ry}" width="14" height="10" fill="{c}"/><text x="{tx:.1}" y="{y}">{label}</text>"#,
                 ry = y - 10.0,
                 tx = x + 18.0,
-                lo = lo * 60.0,
-                hi = hi * 60.0,
             );
-            x += 100.0;
+            x += 18.0 + text_px(&label) + 14.0;
         }
     }
     let _ = write!(
         s,
-        r##"<line x1="{x}" y1="{ly}" x2="{x2}" y2="{ly}" stroke="#999999" stroke-dasharray="4 3"/><text x="{tx}" y="{y}">rapid</text>"##,
+        r##"<line x1="{x:.1}" y1="{ly}" x2="{x2:.1}" y2="{ly}" stroke="#999999" stroke-dasharray="4 3"/><text x="{tx:.1}" y="{y}">rapid</text>"##,
         ly = y - 5.0,
         x2 = x + 25.0,
         tx = x + 30.0
     );
+    x += 30.0 + text_px("rapid") + 14.0;
     if n_entries > 0 {
-        x += 75.0;
+        let label = format!("entry ({n_entries})");
         let _ = write!(
             s,
-            r##"<circle cx="{cx}" cy="{cy}" r="5" fill="none" stroke="#c000c0" stroke-width="1.5"/><text x="{tx}" y="{y}">entry ({n_entries})</text>"##,
+            r##"<circle cx="{cx:.1}" cy="{cy}" r="5" fill="none" stroke="#c000c0" stroke-width="1.5"/><text x="{tx:.1}" y="{y}">{label}</text>"##,
             cx = x + 6.0,
             cy = y - 5.0,
+            tx = x + 16.0
+        );
+        x += 16.0 + text_px(&label) + 14.0;
+    }
+    if n_plunges > 0 {
+        let _ = write!(
+            s,
+            r##"<path d="M{:.1} {:.1}l8 8m0 -8l-8 8" stroke="#c000c0" stroke-width="1.5"/><text x="{tx:.1}" y="{y}">plunge ({n_plunges})</text>"##,
+            x + 2.0,
+            y - 9.0,
             tx = x + 16.0
         );
     }
@@ -443,6 +459,12 @@ pub fn level_previews(
         .collect()
 }
 
+/// Width of `text` at the legend's 12 px sans-serif, a little generous (DejaVu Sans digits
+/// are 0.64 em, the widest letters 0.8 em), so labels never run into each other.
+fn text_px(text: &str) -> f64 {
+    7.4 * text.chars().count() as f64
+}
+
 fn is_arc(m: &Move) -> bool {
     matches!(m.kind, MoveKind::Arc { .. })
 }
@@ -554,7 +576,7 @@ mod tests {
             1 + 3 + 1,
             "outline + rapid + line + arc + plunge cross"
         );
-        assert!(svg.contains("entry (1)"));
+        assert!(svg.contains("plunge (1)") && !svg.contains("entry ("));
         assert!(svg.contains("programmed feed"));
     }
 
@@ -639,6 +661,22 @@ mod tests {
         assert!(helix.matches('L').count() >= 16, "{helix}");
         // z spans 9 mm: at 900 px over 50 mm that is 162 px, no stretch needed.
         assert!(svg.contains("side view (X–Z)<"), "{svg}");
+        assert!(
+            svg.contains("entry (1)") && svg.contains("plunge (1)"),
+            "{svg}"
+        );
+        // A helix of two arcs is one entry.
+        let mut two = Toolpath::new(Tool::default(), Point3::new(10.0, 0.0, 0.0));
+        for z in [-1.0, -2.0] {
+            two.push(Move::arc_xy(
+                Point3::new(10.0, 0.0, z),
+                Point3::new(0.0, 0.0, 0.0),
+                true,
+                10.0,
+            ));
+        }
+        two.push(Move::line(Point3::new(20.0, 0.0, -2.0), 10.0));
+        assert!(toolpath_svg(&two, &[], &PreviewOptions::default()).contains("entry (1)"));
         let pics = level_previews(&tp, &[], &opts);
         assert_eq!(pics.len(), 2);
         assert!(pics[0].contains("t — level 1 of 2: roughing at z = -2.000 mm"));
