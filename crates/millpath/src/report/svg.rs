@@ -352,6 +352,8 @@ fn side_view(
         r##"<text x="10" y="{:.1}" fill="#444444">{label}</text><g class="mp-side" fill="none" stroke-linecap="round" stroke-linejoin="round">"##,
         st.top - 8.0
     );
+    // The path being built: colour, dash, path data, its last point (mm).
+    let mut open: Option<(&'static str, &'static str, String, (f64, f64))> = None;
     for (i, (from, m)) in tp.segments().enumerate() {
         if !range.contains(&i) || matches!(m.kind, MoveKind::Dwell { .. }) {
             continue;
@@ -385,24 +387,33 @@ fn side_view(
         if pts.iter().any(|(x, z)| !(x.is_finite() && z.is_finite())) {
             continue;
         }
-        let mut d = String::new();
-        for (k, (x, z)) in pts.iter().enumerate() {
-            let _ = write!(
-                d,
-                "{}{:.2} {:.2}",
-                if k == 0 { 'M' } else { 'L' },
-                px(*x),
-                py(*z)
-            );
-        }
         let (colour, dash) = match m.kind {
             MoveKind::Rapid => ("#999999", r#" stroke-dasharray="4 3""#),
             _ => (colour_of(i, m), ""),
         };
-        let _ = write!(
-            s,
-            r#"<path d="{d}" stroke="{colour}" stroke-width="1"{dash}/>"#
-        );
+        // Consecutive moves of one style that join are one path (a pass of thousands of
+        // segments at one feed is one element, not thousands).
+        let joins = open.as_ref().is_some_and(|(c, da, _, end)| {
+            *c == colour
+                && *da == dash
+                && pts
+                    .first()
+                    .is_some_and(|p| (p.0 - end.0).abs() < 1e-6 && (p.1 - end.1).abs() < 1e-6)
+        });
+        if !joins && let Some((c, da, d, _)) = open.take() {
+            let _ = write!(s, r#"<path d="{d}" stroke="{c}" stroke-width="1"{da}/>"#);
+        }
+        let (_, _, d, end) = open.get_or_insert_with(|| {
+            let (x, z) = pts.first().copied().unwrap_or_default();
+            (colour, dash, format!("M{:.2} {:.2}", px(x), py(z)), (x, z))
+        });
+        for (x, z) in pts.iter().skip(1) {
+            let _ = write!(d, "L{:.2} {:.2}", px(*x), py(*z));
+            *end = (*x, *z);
+        }
+    }
+    if let Some((c, da, d, _)) = open.take() {
+        let _ = write!(s, r#"<path d="{d}" stroke="{c}" stroke-width="1"{da}/>"#);
     }
     s.push_str("</g>");
 }
@@ -573,8 +584,8 @@ mod tests {
         );
         assert_eq!(
             svg.matches("<path").count(),
-            1 + 3 + 1,
-            "outline + rapid + line + arc + plunge cross"
+            1 + 3 + 1 + 1,
+            "outline + rapid + line + arc + plunge cross + the legend's cross"
         );
         assert!(svg.contains("plunge (1)") && !svg.contains("entry ("));
         assert!(svg.contains("programmed feed"));
@@ -654,11 +665,13 @@ mod tests {
         };
         let svg = toolpath_svg(&tp, &[], &opts);
         let side = &svg[svg.find(r#"class="mp-side""#).expect("side view drawn")..];
-        // One path per drawn move (the 5 moves with XZ extent plus the helix).
-        assert_eq!(side.matches("<path").count(), 6, "{side}");
+        let side = &side[..side.find("</g>").expect("side group closed")];
+        // Paths of one style that join are merged: rapid | helix + line (one feed) | rapid |
+        // plunge + line.
+        assert_eq!(side.matches("<path").count(), 4, "{side}");
         // The helix is sampled (a full turn: at least 16 points), not drawn as a chord.
         let helix = side.split("<path").nth(2).unwrap();
-        assert!(helix.matches('L').count() >= 16, "{helix}");
+        assert!(helix.matches('L').count() >= 16 + 1, "{helix}");
         // z spans 9 mm: at 900 px over 50 mm that is 162 px, no stretch needed.
         assert!(svg.contains("side view (X–Z)<"), "{svg}");
         assert!(
