@@ -216,14 +216,14 @@ fn die_cavity(
         .map_err(|e| Error::internal(format!("report JSON: {e}")))?;
     millpath::io::write_atomic(&out.join("die_cavity.json"), report.as_bytes())?;
     let outline = outline_for_viewer(&curve)?;
-    // die_cavity.svg: the finishing pass; die_cavity.levelK.svg: every level.
+    // die_cavity.svg: the finishing pass (the last level); die_cavity.levelK.svg: every level.
     super::write_previews(
         &out.join("die_cavity.svg"),
         &result.toolpath,
         &[outline],
         &PreviewOptions {
             title: Some(format!(
-                "die cavity: finishing pass, {} segments per pass within {} mm",
+                "die cavity: {} segments per pass within {} mm",
                 result.report.segments, opt.tolerance
             )),
             level: result.toolpath.levels.len().checked_sub(1),

@@ -36,7 +36,8 @@ pub struct PreviewOptions {
     pub width_px: f64,
     /// Margin around the drawing, in mm.
     pub margin_mm: f64,
-    /// Title drawn at the top.
+    /// Title drawn at the top; with [`Self::level`] the level's number, kind and depth are
+    /// appended.
     pub title: Option<String>,
     /// Only the moves of this level (index into `Toolpath::levels`); all levels when `None`.
     pub level: Option<usize>,
@@ -119,7 +120,14 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     };
     let scale = width_px / b.width().max(1e-9);
     let legend_px = 40.0;
-    let title_px = if opts.title.is_some() { 24.0 } else { 0.0 };
+    let title = match (
+        &opts.title,
+        opts.level.and_then(|i| level_label(toolpath, i)),
+    ) {
+        (Some(t), Some(l)) => Some(format!("{t} — {l}")),
+        (t, l) => t.clone().or(l),
+    };
+    let title_px = if title.is_some() { 24.0 } else { 0.0 };
     let plan_px = b.height() * scale;
     // Side strip: label row, drawing, gap. Z at the plan's scale unless that is under 60 px.
     let side = (opts.side_view && zmin.is_finite() && zmax.is_finite()).then(|| {
@@ -263,7 +271,7 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     // Legend.
     let y = height_px - 15.0;
     let mut x = 10.0;
-    if let Some(t) = &opts.title {
+    if let Some(t) = &title {
         let _ = write!(s, r#"<text x="10" y="16">{}</text>"#, xml_escape(t));
     }
     if fmax.is_finite() {
@@ -428,7 +436,8 @@ fn short_ratio(r: f64) -> String {
 }
 
 /// One preview per level of `toolpath` (all of them when it has none), each titled with the
-/// level's number, kind and depth after `opts.title`; `opts.level` is ignored.
+/// level's number, kind and depth after `opts.title` (as [`toolpath_svg`] does for any
+/// `opts.level`); `opts.level` is ignored.
 pub fn level_previews(
     toolpath: &Toolpath,
     outlines: &[Outline],
@@ -442,32 +451,33 @@ pub fn level_previews(
         .levels
         .iter()
         .enumerate()
-        .map(|(i, l)| {
-            let what = format!(
-                "level {} of {n}: {} at z = {:.3} mm",
-                i + 1,
-                match l.kind {
-                    crate::toolpath::LevelKind::Roughing => "roughing",
-                    crate::toolpath::LevelKind::Finishing => "finishing",
-                    crate::toolpath::LevelKind::Other => "other",
-                },
-                l.z
-            );
-            let title = match &opts.title {
-                Some(t) => format!("{t} — {what}"),
-                None => what,
-            };
+        .map(|(i, _)| {
             toolpath_svg(
                 toolpath,
                 outlines,
                 &PreviewOptions {
-                    title: Some(title),
                     level: Some(i),
                     ..opts.clone()
                 },
             )
         })
         .collect()
+}
+
+/// "level 2 of 9: roughing at z = -5.000 mm" for level `i` of `tp`, if it exists.
+fn level_label(tp: &Toolpath, i: usize) -> Option<String> {
+    let l = tp.levels.get(i)?;
+    Some(format!(
+        "level {} of {}: {} at z = {:.3} mm",
+        i + 1,
+        tp.levels.len(),
+        match l.kind {
+            crate::toolpath::LevelKind::Roughing => "roughing",
+            crate::toolpath::LevelKind::Finishing => "finishing",
+            crate::toolpath::LevelKind::Other => "other",
+        },
+        l.z
+    ))
 }
 
 /// Width of `text` at the legend's 12 px sans-serif, a little generous (DejaVu Sans digits
