@@ -149,7 +149,7 @@ mod tests {
         let Command::Pocket(a) = cli.command else {
             panic!("not pocket")
         };
-        assert_eq!(a.common.angle, -30.0);
+        assert!((a.common.angle + 30.0).abs() < 1e-12, "{}", a.common.angle);
     }
 
     #[test]

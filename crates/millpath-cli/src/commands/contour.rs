@@ -320,7 +320,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(path) = &args.html {
         let mut summary = vec![
-            super::html::machine_row(&m),
+            super::html::machine_row(m),
             ("input".to_owned(), name.clone()),
             (
                 "segments per pass".to_owned(),

@@ -638,7 +638,7 @@ mod tests {
         assert!(svg.contains("Chordal deviation per segment"));
         assert!(svg.contains("tolerance 5 µm"));
         let (_, _, y0, y1) = c.ranges();
-        assert!(y0 == 0.0 && (y1 - 7.0).abs() < 1e-9, "{y0} {y1}");
+        assert!(y0.abs() < 1e-12 && (y1 - 7.0).abs() < 1e-9, "{y0} {y1}");
         let nm = chordal_deviation(&[3.9e-5], 4e-5);
         assert_eq!(nm.hlines[0].label, "tolerance 40 nm");
         // Three finite markers plus the legend marker.

@@ -28,13 +28,16 @@ pub fn feed_along_path(samples: &[Sample]) -> Vec<(f64, f64)> {
     out
 }
 
+/// `(distance in mm, feed in mm/s)` points of a feed plot.
+pub type FeedPoints = Vec<(f64, f64)>;
+
 /// The feed along the **cutting** path, for the adaptive-spiral paper's Figure 15: returns
 /// `(achieved, programmed)`, both as `(cutting distance in mm, feed in mm/s)`. Samples in
 /// rapids and dwells are left out and the distance is integrated (as in [`feed_along_path`])
 /// over cutting samples only, so rapids neither stretch the x axis nor spike the feed. Where
 /// two consecutive samples are separated by a rapid, the trapezoid between them is skipped.
 /// `programmed` is the feed the block asked for (after the strategy's feed modulation).
-pub fn feed_along_cut(plan: &Plan, samples: &[Sample]) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+pub fn feed_along_cut(plan: &Plan, samples: &[Sample]) -> (FeedPoints, FeedPoints) {
     let mut achieved = Vec::with_capacity(samples.len());
     let mut programmed = Vec::with_capacity(samples.len());
     let mut s = 0.0;
