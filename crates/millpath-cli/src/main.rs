@@ -1,10 +1,14 @@
 //! `millpath`: the command-line tool over the millpath engine.
 //!
 //! Exit codes: 0 success, 1 internal error (a bug: please report it), 2 bad input.
+//!
+//! Every subcommand accepts negative numbers as flag values (`--angle -30`, not only
+//! `--angle=-30`): [`command`] sets clap's `allow_negative_numbers` on each of them. No flag
+//! is a dash followed by a digit, so nothing becomes ambiguous.
 
 mod commands;
 
-use clap::{CommandFactory, Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// millpath: CAM toolpaths that cut faster, with a cycle time you can trust.
@@ -39,6 +43,9 @@ enum Command {
 }
 
 #[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Examples:\n  millpath completions bash > ~/.local/share/bash-completion/completions/millpath\n  millpath completions zsh > ~/.zfunc/_millpath"
+)]
 struct CompletionsArgs {
     /// The shell.
     shell: clap_complete::Shell,
@@ -61,7 +68,15 @@ fn main() -> ExitCode {
             "internal error (a bug in millpath, please report it): {msg}{loc}"
         ));
     }));
-    let cli = Cli::parse();
+    let cli = match command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m))
+    {
+        Ok(cli) => cli,
+        // Usage errors are bad input (exit 2, clap's own convention too); --help and
+        // --version print and exit 0.
+        Err(e) => e.exit(),
+    };
     let result = std::panic::catch_unwind(|| run(cli));
     match result {
         Ok(Ok(())) => ExitCode::SUCCESS,
@@ -71,6 +86,19 @@ fn main() -> ExitCode {
         }
         Err(_) => ExitCode::from(1),
     }
+}
+
+/// The clap command with `allow_negative_numbers` on every subcommand.
+fn command() -> clap::Command {
+    let mut cmd = Cli::command();
+    let names: Vec<String> = cmd
+        .get_subcommands()
+        .map(|c| c.get_name().to_owned())
+        .collect();
+    for name in names {
+        cmd = cmd.mut_subcommand(name, |c| c.allow_negative_numbers(true));
+    }
+    cmd
 }
 
 fn run(cli: Cli) -> Result<(), millpath::Error> {
@@ -84,9 +112,72 @@ fn run(cli: Cli) -> Result<(), millpath::Error> {
         Command::Sweep(a) => commands::sweep::run(&a),
         Command::FiveAxis(a) => commands::five_axis::run(&a),
         Command::Completions(a) => {
-            let mut cmd = Cli::command();
+            let mut cmd = command();
             clap_complete::generate(a.shell, &mut cmd, "millpath", &mut std::io::stdout());
             Ok(())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_command_has_an_example_and_the_cli_is_consistent() {
+        let cmd = command();
+        cmd.clone().debug_assert();
+        for sub in cmd.get_subcommands() {
+            let help = sub
+                .get_after_help()
+                .map(ToString::to_string)
+                .unwrap_or_default();
+            assert!(
+                help.contains("Example") && help.contains(&format!("millpath {}", sub.get_name())),
+                "`millpath {} --help` has no example: {help:?}",
+                sub.get_name()
+            );
+        }
+    }
+
+    #[test]
+    fn negative_numbers_parse_as_values() {
+        let m = command()
+            .try_get_matches_from(["millpath", "pocket", "sample:aerospace", "--angle", "-30"])
+            .unwrap();
+        let cli = Cli::from_arg_matches(&m).unwrap();
+        let Command::Pocket(a) = cli.command else {
+            panic!("not pocket")
+        };
+        assert!((a.common.angle + 30.0).abs() < 1e-12, "{}", a.common.angle);
+    }
+
+    #[test]
+    fn machine_flag_on_every_command_with_a_cycle_time() {
+        // One shared flag name and meaning: a preset or a TOML profile (five-axis takes a
+        // kinematic chain and is documented apart).
+        let cmd = command();
+        for name in ["demo", "contour", "estimate", "pocket", "sweep"] {
+            let sub = cmd.find_subcommand(name).unwrap();
+            assert!(
+                sub.get_arguments().any(|a| a.get_long() == Some("machine")),
+                "{name} lacks --machine"
+            );
+        }
+        for name in [
+            "demo",
+            "contour",
+            "estimate",
+            "machines",
+            "verify",
+            "sweep",
+            "five-axis",
+        ] {
+            let sub = cmd.find_subcommand(name).unwrap();
+            assert!(
+                sub.get_arguments().any(|a| a.get_long() == Some("json")),
+                "{name} lacks --json"
+            );
         }
     }
 }

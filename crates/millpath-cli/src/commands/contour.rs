@@ -36,7 +36,8 @@ pub enum SideArg {
 #[command(after_help = "Examples:\n  \
     millpath contour points.csv --tool-diameter 10 --tolerance 0.01 --side inside --depth 20 \\\n    \
     --step-down 2.5 --finish-allowance 0.2 -o cavity.ngc --report cavity.json\n  \
-    millpath contour --sample -o die.ngc --report die.json     # the paper's die cavity\n\n\
+    millpath contour --sample -o die.ngc --report die.json     # the paper's die cavity\n  \
+    millpath contour --sample --machine my_mill.toml --json --svg die.svg --per-level\n\n\
 POINTS: CSV `x,y` per line (mm); a blank line or a third `group` column separates the 4-point\n\
 groups; or JSON {\"groups\": [[[x,y],...],...]} or {\"points\": [[x,y],...]}.\n\
 Tolerance budget: chord deviation + G-code rounding <= --tolerance; the path stays on the free\n\
@@ -109,10 +110,23 @@ pub struct Args {
     /// Output JSON report.
     #[arg(long)]
     pub report: Option<PathBuf>,
-    /// Write a self-contained HTML report (summary, viewer with playback on the `hsm`
-    /// machine, chordal deviation per segment, feed plot).
+    /// Write a self-contained HTML report (summary, viewer with playback on the machine,
+    /// chordal deviation per segment, feed plot).
     #[arg(long)]
     pub html: Option<PathBuf>,
+    /// Machine whose limits give the planned cycle time: a preset name (see `millpath
+    /// machines`) or a TOML machine profile.
+    #[arg(long, default_value = "hsm")]
+    pub machine: String,
+    /// Print the report (with the planned cycle time) as one JSON object on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Write an SVG preview (plan and side view, coloured by achieved feed on the machine).
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// With --svg: also one picture per level, `NAME.level1.svg`, ...
+    #[arg(long, requires = "svg")]
+    pub per_level: bool,
 }
 
 fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> Error {
@@ -121,6 +135,7 @@ fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> E
 
 /// Runs the contour pipeline.
 pub fn run(args: &Args) -> Result<(), Error> {
+    let machine = super::load_machine(&args.machine)?;
     let (curve, mut opt, name) = match (&args.points, args.sample) {
         (Some(path), false) => {
             let name = path.display().to_string();
@@ -280,11 +295,32 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if let Some(rp) = &args.report {
         millpath::io::write_atomic(rp, json.as_bytes())?;
     }
+    let m = &machine;
+    let plan = millpath::motion::plan_toolpath(&result.toolpath, m)?;
+    let flat = curve::flatten::flatten_curve(&curve, opt.tolerance.max(1e-3))?;
+    let outline = millpath::geom::Outline::from_points(&flat.points, &name)?;
+    let mut pictures = Vec::new();
+    if let Some(path) = &args.svg {
+        pictures = super::write_previews(
+            path,
+            &result.toolpath,
+            std::slice::from_ref(&outline),
+            &millpath::report::PreviewOptions {
+                title: Some(format!(
+                    "contour {name}: {} segments per pass, {:.1} s on {}",
+                    report.segments,
+                    plan.total_time(),
+                    m.name
+                )),
+                achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
+                ..millpath::report::PreviewOptions::default()
+            },
+            args.per_level,
+        )?;
+    }
     if let Some(path) = &args.html {
-        let m = millpath::machine::Machine::preset("hsm")?;
-        let plan = millpath::motion::plan_toolpath(&result.toolpath, &m)?;
         let mut summary = vec![
-            super::html::machine_row(&m),
+            super::html::machine_row(m),
             ("input".to_owned(), name.clone()),
             (
                 "segments per pass".to_owned(),
@@ -310,8 +346,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
             (
                 "cycle time".to_owned(),
                 format!(
-                    "{:.2} s planned on hsm, {:.2} s at programmed feed",
+                    "{:.2} s planned on {}, {:.2} s at programmed feed",
                     plan.total_time(),
+                    m.name,
                     report.time_at_programmed_feed_s
                 ),
             ),
@@ -322,13 +359,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .iter()
                 .map(|w| ("warning".to_owned(), w.clone())),
         );
-        let flat = curve::flatten::flatten_curve(&curve, opt.tolerance.max(1e-3))?;
-        let outline = millpath::geom::Outline::from_points(&flat.points, &name)?;
         let mut html = super::html::toolpath_report(
             &format!("millpath contour {name}"),
             summary,
             &result.toolpath,
-            &[outline],
+            std::slice::from_ref(&outline),
             &plan,
         )?;
         let per_segment: Vec<f64> = flat
@@ -349,8 +384,16 @@ pub fn run(args: &Args) -> Result<(), Error> {
     for w in &result.warnings {
         super::eprint(&format!("warning: {w}"));
     }
+    if args.json {
+        let mut v =
+            serde_json::to_value(&report).map_err(|e| Error::internal(format!("report: {e}")))?;
+        v["cycle_time_s"] = serde_json::json!(plan.total_time());
+        v["machine"] = serde_json::json!(m.name);
+        v["pictures"] = serde_json::json!(pictures);
+        return super::print_json(&v);
+    }
     super::print(&format!(
-        "contour: {} segments per pass (outline alone: {}, kurbo {}, asymptotic {:.1}), max deviation {:.3e} mm <= {} mm, {} layers, {} blocks, {} lines, {:.1} s at programmed feed",
+        "contour: {} segments per pass (outline alone: {}, kurbo {}, asymptotic {:.1}), max deviation {:.3e} mm <= {} mm, {} layers, {} blocks, {} lines, {:.1} s at programmed feed, {:.1} s planned on {}",
         report.segments,
         report.curve.segments,
         report.curve.kurbo_segments,
@@ -360,7 +403,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
         report.layers.len(),
         report.blocks,
         report.lines,
-        report.time_at_programmed_feed_s
+        report.time_at_programmed_feed_s,
+        plan.total_time(),
+        m.name
     ));
     Ok(())
 }

@@ -4,13 +4,19 @@
 //! 1. the die cavity of the free-form paper: four-point curve, exact offset, fewest segments
 //!    within 0.00004 mm, 8 roughing layers and a finishing pass → G-code, report, SVG preview;
 //! 2. the sample part's pockets in all three strategies (zigzag, offset, spiral);
-//! 3. the adaptive-spiral paper's Table 2 (square against circle) with the `hsm` preset;
-//! 4. the five-axis paper's quarter circle: our minimum-time plan against the paper's method.
+//! 3. the adaptive-spiral paper's Figure 10: cycle time of the spiral against the transition C
+//!    on its aerospace pocket, one level, 6 values of C × 4 feeds, zigzag as reference
+//!    (28 toolpaths, about a second);
+//! 4. the adaptive-spiral paper's Table 2 (square against circle) with the `hsm` preset;
+//! 5. the five-axis paper's quarter circle: our minimum-time plan against the paper's method.
 //!
-//! Every program it writes gets the planner's cycle time on the `hsm` machine, and the motion
-//! plan is checked by the independent limit verifier.
+//! Every program it writes gets the planner's cycle time on the `--machine` (default `hsm`),
+//! and the motion plan is checked by the independent limit verifier.
+//!
+//! Pictures: `NAME.svg` previews (plan and side view, coloured by the achieved feed) and, for
+//! the die cavity and the spiral, one picture per level (`NAME.level1.svg`, ...); the plots in
+//! `plots/` as SVG and PNG; all of them in `report.html`.
 
-use super::print;
 use indicatif::{ProgressBar, ProgressStyle};
 use millpath::gcode::{Dialect, WriterOptions, write_program};
 use millpath::geom::Outline;
@@ -18,7 +24,7 @@ use millpath::machine::Machine;
 use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{plan_toolpath, table2};
 use millpath::report::html::HtmlReport;
-use millpath::report::{PreviewOptions, plots, series, toolpath_svg};
+use millpath::report::{PreviewOptions, plots, series};
 use millpath::strategy::contour;
 use millpath::{Error, InputError, Tool, Toolpath};
 use std::path::{Path, PathBuf};
@@ -27,18 +33,23 @@ use std::time::Duration;
 /// Arguments of `millpath demo`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Example:\n  millpath demo            # writes out/*.ngc, *.json, *.svg\n  millpath demo --out /tmp/mp --machine router"
+    after_help = "Examples:\n  millpath demo            # writes out/*.ngc, *.json, *.svg, out/plots/*, out/report.html\n  millpath demo --out /tmp/mp --machine router --json"
 )]
 pub struct Args {
     /// Folder for the outputs (created if missing).
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// Machine preset whose limits time every program.
+    /// Machine whose limits time every program: a preset name (see `millpath machines`) or
+    /// a TOML machine profile. (Table 2 and the five-axis case keep their papers' machines.)
     #[arg(long, default_value = "hsm")]
     pub machine: String,
+    /// Print the summary table as one JSON object on stdout (progress lines are left out).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// One line of the demo's summary table.
+#[derive(Debug, serde::Serialize)]
 struct Row {
     what: String,
     cycle_s: f64,
@@ -55,7 +66,13 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .expected(format!("a folder that can be created ({e})")),
         )
     })?;
-    let machine = Machine::preset(&args.machine)?;
+    let machine = super::load_machine(&args.machine)?;
+    let json = args.json;
+    let print = |line: &str| {
+        if !json {
+            super::print(line);
+        }
+    };
     print(&format!(
         "millpath demo: writing into {}/ (cycle times on the `{}` machine)",
         args.out.display(),
@@ -71,10 +88,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
     })?;
     let mut html = HtmlReport::new("millpath demo");
     let mut rows = Vec::new();
-    rows.push(die_cavity(&args.out, &machine, &mut html)?);
-    rows.extend(pockets(&args.out, &machine, &mut html)?);
-    table_two(&args.out, &mut html)?;
-    rows.push(five_axis(&args.out, &mut html)?);
+    rows.push(die_cavity(&args.out, &machine, &mut html, &print)?);
+    rows.extend(pockets(&args.out, &machine, &mut html, &print)?);
+    transition_sweep(&args.out, &machine, &mut html, &print)?;
+    table_two(&args.out, &mut html, &print)?;
+    rows.push(five_axis(&args.out, &mut html, &print)?);
     let mut summary = vec![super::html::machine_row(&machine)];
     summary.extend(rows.iter().map(|r| {
         (
@@ -101,8 +119,19 @@ pub fn run(args: &Args) -> Result<(), Error> {
         ));
     }
     print(&format!("report: {}", html_path.display()));
+    if json {
+        super::print_json(&serde_json::json!({
+            "machine": machine.name,
+            "out": args.out,
+            "report": html_path,
+            "programs": rows,
+        }))?;
+    }
     Ok(())
 }
+
+/// Prints a progress line (nothing under `--json`).
+type Say<'a> = &'a dyn Fn(&str);
 
 /// Renders `chart` to `plots/NAME.svg` and `.png` and adds it to the report.
 fn add_plot(
@@ -147,8 +176,11 @@ pub(crate) fn write_gcode(
 }
 
 /// Plans `tp` on `machine` and checks the plan with the independent 1 kHz verifier.
-/// Returns (cycle time, verifier summary).
-pub(crate) fn time_and_verify(tp: &Toolpath, machine: &Machine) -> Result<(f64, String), Error> {
+/// Returns (plan, verifier summary).
+pub(crate) fn time_and_verify(
+    tp: &Toolpath,
+    machine: &Machine,
+) -> Result<(millpath::motion::Plan, String), Error> {
     let plan = plan_toolpath(tp, machine)?;
     let moves: Vec<_> = tp.segments().map(|(from, m)| (from, *m)).collect();
     let v = verify_plan(&plan, &moves, machine, &VerifyOptions::default())?;
@@ -157,10 +189,15 @@ pub(crate) fn time_and_verify(tp: &Toolpath, machine: &Machine) -> Result<(f64, 
     } else {
         format!("{} LIMIT VIOLATIONS", v.violations)
     };
-    Ok((plan.total_time(), check))
+    Ok((plan, check))
 }
 
-fn die_cavity(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Row, Error> {
+fn die_cavity(
+    out: &Path,
+    machine: &Machine,
+    html: &mut HtmlReport,
+    print: Say<'_>,
+) -> Result<Row, Error> {
     let pb = spinner("die cavity: curve, exact offset, flattening at 0.00004 mm");
     let (curve, opt) = contour::sample()?;
     let result = contour::contour(&curve, &opt)?;
@@ -173,24 +210,28 @@ fn die_cavity(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Ro
     .with_tolerance(machine.path_tolerance.max(1e-3));
     let blocks = write_gcode(&out.join("die_cavity.ngc"), &result.toolpath, &wopt)?;
     pb.set_message("die cavity: cycle time and limit check");
-    let (cycle, check) = time_and_verify(&result.toolpath, machine)?;
+    let (full_plan, check) = time_and_verify(&result.toolpath, machine)?;
+    let cycle = full_plan.total_time();
     let report = serde_json::to_string_pretty(&result.report)
         .map_err(|e| Error::internal(format!("report JSON: {e}")))?;
     millpath::io::write_atomic(&out.join("die_cavity.json"), report.as_bytes())?;
     let outline = outline_for_viewer(&curve)?;
-    let svg = toolpath_svg(
+    // die_cavity.svg: the finishing pass (the last level); die_cavity.levelK.svg: every level.
+    super::write_previews(
+        &out.join("die_cavity.svg"),
         &result.toolpath,
         &[outline],
         &PreviewOptions {
             title: Some(format!(
-                "die cavity: finishing pass, {} segments per pass within {} mm",
+                "die cavity: {} segments per pass within {} mm",
                 result.report.segments, opt.tolerance
             )),
             level: result.toolpath.levels.len().checked_sub(1),
+            achieved_feed: Some(full_plan.blocks.iter().map(|b| b.peak_feed).collect()),
             ..PreviewOptions::default()
         },
-    );
-    millpath::io::write_atomic(&out.join("die_cavity.svg"), svg.as_bytes())?;
+        true,
+    )?;
     pb.set_message("die cavity: plots and viewer");
     // Chordal deviation of every segment of one pass at the sample's tolerance (the paper's
     // Figure 10), measured by dense sampling (200 points per segment), not by the flattener.
@@ -215,12 +256,18 @@ fn die_cavity(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Ro
     );
     let plan = plan_toolpath(&finishing, machine)?;
     let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
+    let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
+    let mut chart = plots::feed_along_path(&achieved, Some(&programmed));
+    chart.title = format!(
+        "Die cavity, finishing pass: feed along the path ({})",
+        machine.name
+    );
     add_plot(
         out,
         html,
         "die_cavity_feed",
-        "Die cavity, finishing pass: planned feed along the path",
-        &plots::feed_along_path(&series::feed_along_path(&samples), None),
+        "Die cavity, finishing pass: feed along the cutting path (rapids left out), achieved by the planner against programmed",
+        &chart,
     )?;
     html.toolpath_viewer(
         "die cavity: finishing pass (colour: achieved feed)",
@@ -254,7 +301,76 @@ fn die_cavity(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Ro
     })
 }
 
-fn table_two(out: &Path, html: &mut HtmlReport) -> Result<(), Error> {
+/// The adaptive-spiral paper's Figure 10: the spiral's cycle time against C for four feeds on
+/// its aerospace pocket (one level of 6.35 mm), zigzag at each feed as the dashed reference.
+fn transition_sweep(
+    out: &Path,
+    machine: &Machine,
+    html: &mut HtmlReport,
+    print: Say<'_>,
+) -> Result<(), Error> {
+    use millpath::strategy::pocket::{PocketOptions, samples};
+    let ratios = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7];
+    let feeds = [200.0, 300.0, 400.0, 600.0];
+    let shape = samples::aerospace_pocket();
+    let tool = Tool::flat(12.7)?;
+    let base = PocketOptions {
+        depth: 6.35,
+        step_down: 6.35,
+        ..PocketOptions::default()
+    };
+    let total = (feeds.len() * (1 + ratios.len())) as u64;
+    let pb = ProgressBar::new(total);
+    pb.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    pb.set_message("transition sweep: spiral and zigzag toolpaths, planned");
+    let table = super::sweep::sweep(
+        &shape,
+        &tool,
+        &base,
+        machine,
+        &ratios,
+        &feeds,
+        &mut |done, _| pb.set_position(done as u64),
+    )?;
+    pb.finish_and_clear();
+    let json =
+        serde_json::to_string_pretty(&table).map_err(|e| Error::internal(format!("JSON: {e}")))?;
+    millpath::io::write_atomic(&out.join("sweep.json"), json.as_bytes())?;
+    add_plot(
+        out,
+        html,
+        "cycle_time_vs_transition",
+        "Aerospace pocket, one level of 6.35 mm, 12.7 mm tool, 40 % stepover: cycle time of the spiral against the transition C, one curve per feed, zigzag at the same feed dashed (cf. the adaptive-spiral paper's Figure 10)",
+        &table.chart(),
+    )?;
+    let best = |f: usize| {
+        ratios
+            .iter()
+            .enumerate()
+            .filter_map(|(c, r)| Some((*r, *table.spiral_s.get(c)?.get(f)?)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    };
+    let mut parts = Vec::new();
+    for (f, feed) in feeds.iter().enumerate() {
+        if let (Some((c, t)), Some(z)) = (best(f), table.zigzag_s.get(f)) {
+            parts.push(format!(
+                "{feed:.0} in/min: best C = {c} at {t:.1} s (zigzag {z:.1} s)"
+            ));
+        }
+    }
+    print(&format!(
+        "transition sweep (adaptive-spiral paper, Figure 10): aerospace pocket, one level, C = 0.2..0.7 × {} feeds, {total} toolpaths planned on `{}`; {}; table in sweep.json",
+        feeds.len(),
+        machine.name,
+        parts.join("; ")
+    ));
+    Ok(())
+}
+
+fn table_two(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<(), Error> {
     let hsm = Machine::preset("hsm")?;
     let rows = table2::compare(&hsm)?;
     let text = table2::format_table(&rows);
@@ -277,7 +393,7 @@ fn table_two(out: &Path, html: &mut HtmlReport) -> Result<(), Error> {
     Ok(())
 }
 
-fn five_axis(out: &Path, html: &mut HtmlReport) -> Result<Row, Error> {
+fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, Error> {
     use millpath::machine::kinematics::PaperAb;
     use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, case};
     let pb = spinner("five-axis: minimum-time plan and the paper's GA baseline");
@@ -358,7 +474,12 @@ fn outline_for_viewer(curve: &millpath::curve::CompositeCurve) -> Result<Outline
 
 /// The sample part's pockets (after the adaptive-spiral paper's Figure 17) in all three
 /// strategies: one program per strategy, each pocket verified by the stock simulation.
-fn pockets(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Vec<Row>, Error> {
+fn pockets(
+    out: &Path,
+    machine: &Machine,
+    html: &mut HtmlReport,
+    print: Say<'_>,
+) -> Result<Vec<Row>, Error> {
     use millpath::stock::SimOptions;
     use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
     let part = samples::structural_part();
@@ -407,9 +528,11 @@ fn pockets(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Vec<R
         .with_tolerance(machine.path_tolerance);
         let blocks = write_gcode(&out.join(format!("part_{name}.ngc")), &tp, &wopt)?;
         pb.set_message(format!("pockets: {name}: cycle time and limit check"));
-        let (cycle, check) = time_and_verify(&tp, machine)?;
-        let plan = plan_toolpath(&tp, machine)?;
-        let preview = toolpath_svg(
+        let (plan, check) = time_and_verify(&tp, machine)?;
+        let cycle = plan.total_time();
+        // part_NAME.svg; for the spiral also one picture per level.
+        super::write_previews(
+            &out.join(format!("part_{name}.svg")),
             &tp,
             &outlines,
             &PreviewOptions {
@@ -420,8 +543,8 @@ fn pockets(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Vec<R
                 achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
                 ..PreviewOptions::default()
             },
-        );
-        millpath::io::write_atomic(&out.join(format!("part_{name}.svg")), preview.as_bytes())?;
+            kind == StrategyKind::Spiral,
+        )?;
         if kind == StrategyKind::Spiral {
             html.toolpath_viewer(
                 "sample part, adaptive spiral (colour: achieved feed)",
@@ -429,14 +552,29 @@ fn pockets(out: &Path, machine: &Machine, html: &mut HtmlReport) -> Result<Vec<R
                 &outlines,
                 &plan,
             )?;
-            let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
-            add_plot(
-                out,
-                html,
-                "part_spiral_feed",
-                "Sample part, spiral: planned feed along the path (cf. the adaptive-spiral paper's Figure 15)",
-                &plots::feed_along_path(&series::feed_along_path(&samples), None),
-            )?;
+            // The paper's Figure 15: a rectangular pocket at 600 in/min with 75 % slowdown;
+            // here bay 1 (120 × 80 mm), its first level.
+            if let Some((bay, shape)) = part.first() {
+                let bay_tp = pocket::toolpath(kind, shape, &tool, &opts)?;
+                let first = level_toolpath(&bay_tp, 0);
+                let plan = plan_toolpath(&first, machine)?;
+                let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
+                let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
+                let mut chart = plots::feed_along_path(&achieved, Some(&programmed));
+                chart.title = format!(
+                    "Spiral, {bay}, first level: feed along the path ({})",
+                    machine.name
+                );
+                add_plot(
+                    out,
+                    html,
+                    "part_spiral_feed",
+                    &format!(
+                        "Spiral on {bay}, first level: feed along the cutting path (rapids left out); programmed = 600 in/min lowered by the engagement-based modulation (75 % slowdown), achieved = the planner's (cf. the adaptive-spiral paper's Figure 15)"
+                    ),
+                    &chart,
+                )?;
+            }
         }
         pb.finish_and_clear();
         let verdict = if problems.is_empty() {

@@ -2,7 +2,6 @@
 
 use super::print;
 use millpath::gcode::{Reader, ReaderOptions};
-use millpath::machine::Machine;
 use millpath::motion::table2;
 use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves};
@@ -32,7 +31,7 @@ const PROGRESS_BYTES: u64 = 4 << 20;
 /// Arguments of `millpath estimate`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath estimate part.ngc --machine hsm\n  millpath estimate part.ngc --machine my_mill.toml --json --samples traj.csv --rate 2000\n  millpath estimate --table2"
+    after_help = "Examples:\n  millpath estimate part.ngc --machine hsm\n  millpath estimate part.ngc --svg part.svg --per-level   # part.svg, part.level1.svg, ...\n  millpath estimate part.ngc --machine my_mill.toml --json --samples traj.csv --rate 2000\n  millpath estimate --table2"
 )]
 pub struct Args {
     /// The G-code program.
@@ -62,24 +61,21 @@ pub struct Args {
     /// Write a self-contained HTML report (summary, viewer with playback, feed plot).
     #[arg(long)]
     pub html: Option<PathBuf>,
+    /// Write an SVG preview: plan view and side view, moves coloured by the achieved feed
+    /// (from the planner), rapids dashed, entries marked; levels found from the retracts.
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// With --svg: also one picture per level, `NAME.level1.svg`, `NAME.level2.svg`, ...
+    #[arg(long, requires = "svg")]
+    pub per_level: bool,
     /// Print the adaptive-spiral paper's Table 2 (square vs circle) against this machine.
     #[arg(long)]
     pub table2: bool,
 }
 
-/// Loads a machine: a preset name, or a path to a TOML profile.
-pub fn load_machine(spec: &str) -> Result<Machine, Error> {
-    if spec.ends_with(".toml") || std::path::Path::new(spec).exists() {
-        let text = super::read_text(std::path::Path::new(spec))?;
-        Ok(Machine::from_toml_str(&text, spec)?)
-    } else {
-        Ok(Machine::preset(spec).map_err(|e| e.at("--machine"))?)
-    }
-}
-
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let machine = load_machine(&args.machine)?;
+    let machine = super::load_machine(&args.machine)?;
     if args.table2 {
         let rows = table2::compare(&machine)?;
         if args.json {
@@ -127,7 +123,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
     };
     let mut reader = Reader::new(BufReader::new(counting), opts);
     let mut n_read: u64 = 0;
-    let keep = !args.no_verify || args.samples.is_some() || args.html.is_some();
+    let keep =
+        !args.no_verify || args.samples.is_some() || args.html.is_some() || args.svg.is_some();
     let mut moves: Vec<(Point3, millpath::Move)> = Vec::new();
     let mut from = start;
     let stream = std::iter::from_fn(|| {
@@ -175,9 +172,31 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if let Some(out) = &args.samples {
         write_samples(&plan, out, args.rate)?;
     }
-    if let Some(out) = &args.html {
-        let mut tp = millpath::Toolpath::new(millpath::Tool::default(), start);
+    let mut tp = millpath::Toolpath::new(millpath::Tool::default(), start);
+    if args.html.is_some() || args.svg.is_some() {
         tp.moves = moves.iter().map(|(_, m)| *m).collect();
+        millpath::stock::infer_levels(&mut tp);
+    }
+    let mut pictures = Vec::new();
+    if let Some(out) = &args.svg {
+        pictures = super::write_previews(
+            out,
+            &tp,
+            &[],
+            &millpath::report::PreviewOptions {
+                title: Some(format!(
+                    "{}: {:.2} s on {}",
+                    path.display(),
+                    plan.total_time(),
+                    machine.name
+                )),
+                achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
+                ..millpath::report::PreviewOptions::default()
+            },
+            args.per_level,
+        )?;
+    }
+    if let Some(out) = &args.html {
         let summary = vec![
             super::html::machine_row(&machine),
             ("program".to_owned(), path.display().to_string()),
@@ -214,6 +233,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
             "violations": violations,
             "machine": machine.name,
             "time_at_programmed_feed_s": naive,
+            "pictures": pictures,
         });
         if args.blocks {
             let per: Vec<_> = plan
@@ -233,6 +253,16 @@ pub fn run(args: &Args) -> Result<(), Error> {
             naive,
             violations.map_or("not checked".into(), |v| v.to_string())
         ));
+        if !pictures.is_empty() {
+            print(&format!(
+                "preview: {}",
+                pictures
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
     }
     Ok(())
 }

@@ -10,9 +10,10 @@ pub mod pocket;
 pub mod sweep;
 pub mod verify;
 
+use millpath::machine::Machine;
 use millpath::{Error, InputError};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Prints a line on stdout (the engine never prints; the CLI does, here).
 pub fn print(line: &str) {
@@ -33,4 +34,92 @@ pub fn read_text(path: &Path) -> Result<String, Error> {
                 .expected(format!("a readable text file ({e})")),
         )
     })
+}
+
+/// The machine named by `--machine`: a preset name (see `millpath machines`) or the path of a
+/// TOML machine profile (anything ending in `.toml`, or an existing file). Every command that
+/// gives a cycle time takes its machine through this one function.
+pub fn load_machine(spec: &str) -> Result<Machine, Error> {
+    if spec.ends_with(".toml") || Path::new(spec).is_file() {
+        let text = read_text(Path::new(spec))?;
+        Ok(Machine::from_toml_str(&text, spec)?)
+    } else {
+        Ok(Machine::preset(spec).map_err(|e| e.at("--machine"))?)
+    }
+}
+
+/// Prints `value` as one line of JSON on stdout (the `--json` output of every command).
+pub fn print_json(value: &impl serde::Serialize) -> Result<(), Error> {
+    let text = serde_json::to_string(value).map_err(|e| Error::internal(format!("JSON: {e}")))?;
+    print(&text);
+    Ok(())
+}
+
+/// `OUT.svg` → `OUT.levelK.svg` (the per-level picture K, counted from 1).
+pub fn level_path(path: &Path, level: usize) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or_else(|| "preview".into(), |s| s.to_string_lossy().into_owned());
+    let ext = path
+        .extension()
+        .map_or_else(|| "svg".into(), |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}.level{}.{ext}", level + 1))
+}
+
+/// Writes the SVG preview of `tp` (all levels, with the side view) to `path` and, when
+/// `per_level`, one picture per level beside it (`NAME.level1.svg`, ...). Returns the paths
+/// written.
+pub fn write_previews(
+    path: &Path,
+    tp: &millpath::Toolpath,
+    outlines: &[millpath::geom::Outline],
+    opts: &millpath::report::PreviewOptions,
+    per_level: bool,
+) -> Result<Vec<PathBuf>, Error> {
+    let opts = millpath::report::PreviewOptions {
+        side_view: true,
+        ..opts.clone()
+    };
+    let mut written = vec![path.to_path_buf()];
+    millpath::io::write_atomic(
+        path,
+        millpath::report::toolpath_svg(tp, outlines, &opts).as_bytes(),
+    )?;
+    if per_level && tp.levels.len() > 1 {
+        for (i, svg) in millpath::report::level_previews(tp, outlines, &opts)
+            .iter()
+            .enumerate()
+        {
+            let p = level_path(path, i);
+            millpath::io::write_atomic(&p, svg.as_bytes())?;
+            written.push(p);
+        }
+    }
+    Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn level_paths_and_machines() {
+        assert_eq!(
+            level_path(Path::new("out/part.svg"), 0),
+            PathBuf::from("out/part.level1.svg")
+        );
+        assert!(load_machine("hsm").is_ok());
+        let e = load_machine("no-such-machine").unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().contains("--machine"), "{e}");
+        let e = load_machine("/nonexistent/mill.toml").unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        let dir = tempfile::tempdir().unwrap();
+        let bad = dir.path().join("m.toml");
+        std::fs::write(&bad, "name = 3").unwrap();
+        assert_eq!(
+            load_machine(bad.to_str().unwrap()).unwrap_err().exit_code(),
+            2
+        );
+    }
 }

@@ -100,7 +100,7 @@ pub struct CommonArgs {
     /// Keep the programmed feed (no engagement-based modulation).
     #[arg(long)]
     pub no_feed_modulation: bool,
-    /// Machine for the cycle time.
+    /// Machine for the cycle time: a preset name or a TOML machine profile.
     #[arg(long, default_value = "hsm")]
     pub machine: String,
     /// Raster cell of the stock simulation, mm.
@@ -203,7 +203,7 @@ impl CommonArgs {
             modulate_feed: !self.no_feed_modulation,
         };
         opts.validate(&tool)?;
-        millpath::machine::Machine::preset(&self.machine).map_err(|e| e.at("--machine"))?;
+        super::load_machine(&self.machine)?;
         if !(self.cell.is_finite() && self.cell > 0.0) {
             return Err(InputError::new("cell", self.cell)
                 .at("--cell")
@@ -321,7 +321,7 @@ pub struct Report {
 
 /// Builds the report of a generated pocket.
 pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Report, Error> {
-    let m = millpath::machine::Machine::preset(machine).map_err(|e| e.at("--machine"))?;
+    let m = super::load_machine(machine)?;
     Ok(Report {
         strategy: kind.name().to_owned(),
         cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)?,
@@ -366,8 +366,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         millpath::io::write_atomic(path, text.as_bytes())?;
     }
     if let Some(path) = &args.html {
-        let m = millpath::machine::Machine::preset(&args.common.machine)
-            .map_err(|e| e.at("--machine"))?;
+        let m = super::load_machine(&args.common.machine)?;
         let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)?;
         let mut summary = vec![
             super::html::machine_row(&m),

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// Arguments of `millpath verify`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Example:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7"
+    after_help = "Examples:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7\n  millpath verify pocket.ngc --outline part.dxf --tool-diameter 10 --json --svg pocket.svg --per-level\n\nExit code 2 when the program fails verification (the findings are printed first)."
 )]
 pub struct Args {
     /// The G-code program (LinuxCNC dialect).
@@ -33,6 +33,16 @@ pub struct Args {
     /// Write the findings as JSON.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Print the findings as one JSON object on stdout instead of the text line.
+    #[arg(long)]
+    pub json: bool,
+    /// Write an SVG preview of the program over the outline and islands (plan and side view,
+    /// coloured by programmed feed, rapids dashed, entries marked).
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// With --svg: also one picture per level, `NAME.level1.svg`, ...
+    #[arg(long, requires = "svg")]
+    pub per_level: bool,
 }
 
 /// Runs the command.
@@ -81,6 +91,49 @@ pub fn run(args: &Args) -> Result<(), Error> {
             .map_err(|e| Error::internal(format!("report: {e}")))?;
         millpath::io::write_atomic(path, text.as_bytes())?;
     }
+    let mut pictures = Vec::new();
+    if let Some(out) = &args.svg {
+        let mut outlines = vec![loops.outer.clone()];
+        outlines.extend(loops.islands.iter().cloned());
+        pictures = super::write_previews(
+            out,
+            &tp,
+            &outlines,
+            &millpath::report::PreviewOptions {
+                title: Some(format!("{} over {}", args.program.display(), args.outline)),
+                ..millpath::report::PreviewOptions::default()
+            },
+            args.per_level,
+        )?;
+    }
+    let problems = v.problems();
+    if args.json {
+        super::print_json(&serde_json::json!({
+            "passed": problems.is_empty(),
+            "problems": problems,
+            "levels": tp.levels.len(),
+            "verification": v,
+            "pictures": pictures,
+        }))?;
+    } else {
+        print_text(&tp, &v);
+    }
+    if problems.is_empty() {
+        if !args.json {
+            super::print("verification passed");
+        }
+        Ok(())
+    } else {
+        Err(InputError::new("program", args.program.display())
+            .expected(format!(
+                "a program that passes verification: {}",
+                problems.join("; ")
+            ))
+            .into())
+    }
+}
+
+fn print_text(tp: &millpath::Toolpath, v: &stock::Verification) {
     super::print(&format!(
         "levels {}, min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm², rapids through material {}, \
          plunges {}, engagement max {:.1}° mean {:.1}°",
@@ -93,16 +146,4 @@ pub fn run(args: &Args) -> Result<(), Error> {
         v.max_engagement_deg,
         v.mean_engagement_deg
     ));
-    let problems = v.problems();
-    if problems.is_empty() {
-        super::print("verification passed");
-        Ok(())
-    } else {
-        Err(InputError::new("program", args.program.display())
-            .expected(format!(
-                "a program that passes verification: {}",
-                problems.join("; ")
-            ))
-            .into())
-    }
 }

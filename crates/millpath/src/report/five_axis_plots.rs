@@ -117,6 +117,7 @@ pub fn deflection_path(
         y_label: "towards the deflection (mm)".into(),
         series,
         hlines: vec![],
+        y_range: None,
     }
 }
 
@@ -166,6 +167,7 @@ pub fn deflection_profiles(
         y_label: "change of position (mm; mrad for rotary axes)".into(),
         series,
         hlines: vec![],
+        y_range: None,
     };
     let mut out = vec![(
         "five_axis_deflection_positions",

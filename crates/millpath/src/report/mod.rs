@@ -7,4 +7,4 @@ pub mod plots;
 pub mod series;
 mod svg;
 
-pub use svg::{PreviewOptions, toolpath_svg};
+pub use svg::{PreviewOptions, level_previews, toolpath_svg};

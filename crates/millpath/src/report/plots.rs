@@ -77,6 +77,10 @@ pub struct Chart {
     pub series: Vec<Series>,
     /// Horizontal reference lines, drawn red dashed.
     pub hlines: Vec<HLine>,
+    /// A fixed y range `(bottom, top)` instead of the data's (e.g. from 0 to above a
+    /// tolerance, so that the reader sees how much of it is used); ignored unless finite
+    /// with `bottom < top`.
+    pub y_range: Option<(f64, f64)>,
 }
 
 /// Size of a rendered chart.
@@ -141,9 +145,38 @@ impl Chart {
             }
         };
         let x = fix(x);
+        if let Some((lo, hi)) = self.y_range
+            && lo.is_finite()
+            && hi.is_finite()
+            && lo < hi
+        {
+            return (x.0, x.1, lo, hi);
+        }
         let y = fix(y);
         let pad = 0.05 * (y.1 - y.0);
         (x.0, x.1, y.0 - pad, y.1 + pad)
+    }
+}
+
+/// Tick label of `v` on an axis spanning `span`: as many decimals as the tick spacing
+/// (about a tenth of the span) needs, so 0, 5000, 10000 rather than 0.0, 5000.0, 10000.0, and
+/// 0.02, 0.04 rather than 0.020000000000000004.
+fn tick_label(v: f64, span: f64) -> String {
+    let step = span.abs() / 10.0;
+    let decimals = if step.is_finite() && step > 0.0 {
+        (-step.log10().floor()).clamp(0.0, 9.0) as usize
+    } else {
+        1
+    };
+    let s = format!("{v:.decimals$}");
+    // No "-0".
+    if s.trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        s.trim_start_matches('-').to_owned()
+    } else {
+        s
     }
 }
 
@@ -170,9 +203,14 @@ where
         .y_label_area_size(64)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(plot_err)?;
+    let (xs, ys) = (x1 - x0, y1 - y0);
+    let xf = move |v: &f64| tick_label(*v, xs);
+    let yf = move |v: &f64| tick_label(*v, ys);
     cc.configure_mesh()
         .x_desc(&chart.x_label)
         .y_desc(&chart.y_label)
+        .x_label_formatter(&xf)
+        .y_label_formatter(&yf)
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(plot_err)?;
@@ -192,9 +230,12 @@ where
             SeriesStyle::Dashed => cc
                 .draw_series(DashedLineSeries::new(pts, 6, 4, c.stroke_width(2)))
                 .map_err(plot_err)?,
-            SeriesStyle::Points => cc
-                .draw_series(pts.into_iter().map(|p| Circle::new(p, 4, c.filled())))
-                .map_err(plot_err)?,
+            SeriesStyle::Points => {
+                // Thousands of markers of radius 4 merge into a band: smaller when many.
+                let r = if pts.len() > 300 { 2 } else { 4 };
+                cc.draw_series(pts.into_iter().map(|p| Circle::new(p, r, c.filled())))
+                    .map_err(plot_err)?
+            }
         };
         if !s.label.is_empty() {
             let points = s.style == SeriesStyle::Points;
@@ -267,47 +308,93 @@ pub fn render_files(chart: &Chart, opts: &PlotOptions, stem: &Path) -> Result<St
 /// programmed feed (drawn dashed). Feeds are shown in mm/min.
 pub fn feed_along_path(achieved: &[(f64, f64)], programmed: Option<&[(f64, f64)]>) -> Chart {
     let to_min = |p: &[(f64, f64)]| p.iter().map(|&(s, f)| (s, f * 60.0)).collect();
-    let mut series = vec![Series {
-        label: "achieved feed".into(),
-        points: to_min(achieved),
-        style: SeriesStyle::Line,
-        colour: 0,
-    }];
+    // The programmed feed first, so the achieved feed is drawn over it where they agree.
+    let mut series = Vec::new();
     if let Some(p) = programmed {
         series.push(Series {
             label: "programmed feed".into(),
             points: to_min(p),
             style: SeriesStyle::Dashed,
-            colour: 1,
+            colour: 5,
         });
     }
+    series.push(Series {
+        label: "achieved feed".into(),
+        points: to_min(achieved),
+        style: SeriesStyle::Line,
+        colour: 0,
+    });
+    // From zero feed to a fifth above the fastest, so the legend sits above the curves.
+    let top = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .filter(|f| f.is_finite())
+        .fold(0.0_f64, f64::max);
     Chart {
         title: "Feed along the path".into(),
         x_label: "path position (mm)".into(),
         y_label: "feed (mm/min)".into(),
         series,
         hlines: Vec::new(),
+        y_range: (top > 0.0).then_some((0.0, 1.25 * top)),
     }
 }
 
 /// Cycle time against the transition parameter C (adaptive-spiral paper, Figure 10): one curve
 /// per `(feed label, [(C, cycle time in s)])`.
 pub fn cycle_time_vs_transition(curves: &[(String, Vec<(f64, f64)>)]) -> Chart {
+    cycle_time_vs_transition_with(curves, &[])
+}
+
+/// [`cycle_time_vs_transition`] with a reference time per curve (e.g. zigzag at the same feed),
+/// drawn dashed in the curve's colour over the C range: `references[i]` belongs to
+/// `curves[i]`. A reference with an empty label gets no legend entry of its own (the colour
+/// already names the feed; say "dashed: ..." in the title).
+pub fn cycle_time_vs_transition_with(
+    curves: &[(String, Vec<(f64, f64)>)],
+    references: &[(String, f64)],
+) -> Chart {
+    let (c0, c1) = curves
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|q| q.0))
+        .filter(|c| c.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
+            (a.min(c), b.max(c))
+        });
+    let mut series: Vec<Series> = curves
+        .iter()
+        .enumerate()
+        .map(|(i, (label, pts))| Series {
+            label: label.clone(),
+            points: pts.clone(),
+            style: SeriesStyle::Line,
+            colour: i,
+        })
+        .collect();
+    if c0 < c1 {
+        for (i, (label, t)) in references.iter().enumerate().take(curves.len()) {
+            series.push(Series {
+                label: label.clone(),
+                points: vec![(c0, *t), (c1, *t)],
+                style: SeriesStyle::Dashed,
+                colour: i,
+            });
+        }
+    }
+    let top = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .filter(|f| f.is_finite())
+        .fold(0.0_f64, f64::max);
     Chart {
         title: "Cycle time against the transition C".into(),
-        x_label: "transition C".into(),
+        x_label: "transition C (share of the pocket)".into(),
         y_label: "cycle time (s)".into(),
-        series: curves
-            .iter()
-            .enumerate()
-            .map(|(i, (label, pts))| Series {
-                label: label.clone(),
-                points: pts.clone(),
-                style: SeriesStyle::Line,
-                colour: i,
-            })
-            .collect(),
+        series,
         hlines: Vec::new(),
+        // From zero: the paper's Figure 10 reads the feed effect and the C effect together.
+        // The legend needs room above the slowest curve.
+        y_range: (top > 0.0).then_some((0.0, 1.5 * top)),
     }
 }
 
@@ -347,6 +434,7 @@ pub fn square_circle_gain(rows: &[Row]) -> Chart {
         y_label: "gain (%)".into(),
         series,
         hlines: Vec::new(),
+        y_range: None,
     }
 }
 
@@ -369,6 +457,27 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// The quantity's name capitalised ("Velocity", ...). Titles and axis labels use this
+    /// form: plotters' bitmap text drops the dot of a leading lower-case `j` (its glyph
+    /// reaches left of its box), which turned "jerk" into "ȷerk" in the PNGs.
+    pub fn title(self) -> &'static str {
+        match self {
+            Quantity::Velocity => "Velocity",
+            Quantity::Acceleration => "Acceleration",
+            Quantity::Jerk => "Jerk",
+        }
+    }
+
+    /// The quantity for a (rotated) y-axis label. Plotters' bitmap text also clips a capital J
+    /// when rotated, so jerk is labelled as what it is, the rate of change of acceleration.
+    pub fn axis_label(self) -> &'static str {
+        match self {
+            Quantity::Velocity => "Velocity",
+            Quantity::Acceleration => "Acceleration",
+            Quantity::Jerk => "Acceleration rate",
+        }
+    }
+
     /// The quantity's name in lower case ("velocity", ...).
     pub fn name(self) -> &'static str {
         match self {
@@ -437,41 +546,51 @@ pub fn axis_kinematics(quantity: Quantity, t: &[f64], axes: &[AxisSeries]) -> Ch
         u
     };
     Chart {
-        title: format!("Per-axis {}", quantity.name()),
+        title: format!("{} per axis", quantity.title()),
         x_label: "time (s)".into(),
         y_label: format!(
             "{} ({}/{})",
-            quantity.name(),
+            quantity.axis_label(),
             units.join(", "),
             quantity.power()
         ),
         series,
         hlines,
+        y_range: None,
     }
 }
 
 /// Chordal deviation per segment against the tolerance (die-cavity paper, Figure 10):
 /// `deviation[i]` is the largest distance (mm) between segment `i` and the curve it
-/// approximates; shown in µm as markers, the tolerance as a limit line.
+/// approximates; shown as markers, the tolerance as a limit line. The unit follows the
+/// tolerance (µm, or nm below 1 µm: the paper's 0.00004 mm is 40 nm) and the y axis runs from
+/// 0 to 1.4 × the tolerance, so the picture shows how much of the tolerance each segment uses.
 pub fn chordal_deviation(deviation: &[f64], tolerance: f64) -> Chart {
+    let (unit, scale) = if tolerance.is_finite() && tolerance > 0.0 && tolerance < 1e-3 {
+        ("nm", 1e6)
+    } else {
+        ("µm", 1e3)
+    };
+    let tol = tolerance * scale;
     Chart {
         title: "Chordal deviation per segment".into(),
         x_label: "segment".into(),
-        y_label: "deviation (µm)".into(),
+        y_label: format!("deviation ({unit})"),
         series: vec![Series {
             label: "deviation".into(),
             points: deviation
                 .iter()
                 .enumerate()
-                .map(|(i, d)| (i as f64, d * 1000.0))
+                .map(|(i, d)| (i as f64, d * scale))
                 .collect(),
             style: SeriesStyle::Points,
             colour: 0,
         }],
         hlines: vec![HLine {
-            label: format!("tolerance {} µm", significant(tolerance * 1000.0, 3)),
-            y: tolerance * 1000.0,
+            label: format!("tolerance {} {unit}", significant(tol, 3)),
+            y: tol,
         }],
+        y_range: (tol.is_finite() && tol > 0.0).then_some((0.0, 1.4 * tol)),
     }
 }
 
@@ -494,6 +613,17 @@ mod tests {
     use super::*;
 
     #[test]
+    fn tick_labels_have_the_decimals_the_spacing_needs() {
+        assert_eq!(tick_label(5000.0, 40_000.0), "5000");
+        assert_eq!(tick_label(0.02, 0.1), "0.02");
+        assert_eq!(tick_label(0.020000000000000004, 0.1), "0.02");
+        assert_eq!(tick_label(-0.0, 2.0), "0.0");
+        assert_eq!(tick_label(-1e-17, 2.0), "0.0");
+        assert_eq!(tick_label(-0.4, 2.0), "-0.4");
+        assert_eq!(tick_label(3.0, f64::NAN), "3.0");
+    }
+
+    #[test]
     fn significant_digits() {
         assert_eq!(significant(0.04, 3), "0.04");
         assert_eq!(significant(5.0, 3), "5");
@@ -507,6 +637,10 @@ mod tests {
         assert!(svg.starts_with("<svg") && svg.contains("</svg>"));
         assert!(svg.contains("Chordal deviation per segment"));
         assert!(svg.contains("tolerance 5 µm"));
+        let (_, _, y0, y1) = c.ranges();
+        assert!(y0.abs() < 1e-12 && (y1 - 7.0).abs() < 1e-9, "{y0} {y1}");
+        let nm = chordal_deviation(&[3.9e-5], 4e-5);
+        assert_eq!(nm.hlines[0].label, "tolerance 40 nm");
         // Three finite markers plus the legend marker.
         assert_eq!(svg.matches("<circle").count(), 3 + 1, "{svg}");
     }

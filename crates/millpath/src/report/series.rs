@@ -10,7 +10,8 @@
 
 use super::plots::{AxisSeries, Quantity};
 use crate::machine::Machine;
-use crate::motion::Sample;
+use crate::motion::{Plan, Sample};
+use crate::toolpath::MoveKind;
 
 /// `(distance travelled in mm, path speed in mm/s)` along the samples.
 pub fn feed_along_path(samples: &[Sample]) -> Vec<(f64, f64)> {
@@ -25,6 +26,38 @@ pub fn feed_along_path(samples: &[Sample]) -> Vec<(f64, f64)> {
         prev = Some(x);
     }
     out
+}
+
+/// `(distance in mm, feed in mm/s)` points of a feed plot.
+pub type FeedPoints = Vec<(f64, f64)>;
+
+/// The feed along the **cutting** path, for the adaptive-spiral paper's Figure 15: returns
+/// `(achieved, programmed)`, both as `(cutting distance in mm, feed in mm/s)`. Samples in
+/// rapids and dwells are left out and the distance is integrated (as in [`feed_along_path`])
+/// over cutting samples only, so rapids neither stretch the x axis nor spike the feed. Where
+/// two consecutive samples are separated by a rapid, the trapezoid between them is skipped.
+/// `programmed` is the feed the block asked for (after the strategy's feed modulation).
+pub fn feed_along_cut(plan: &Plan, samples: &[Sample]) -> (FeedPoints, FeedPoints) {
+    let mut achieved = Vec::with_capacity(samples.len());
+    let mut programmed = Vec::with_capacity(samples.len());
+    let mut s = 0.0;
+    let mut prev: Option<&Sample> = None;
+    for x in samples {
+        let Some(b) = plan.blocks.get(x.block) else {
+            continue;
+        };
+        if !matches!(b.kind, MoveKind::Line | MoveKind::Arc { .. }) {
+            prev = None;
+            continue;
+        }
+        if let Some(p) = prev {
+            s += 0.5 * (p.feed + x.feed) * (x.t - p.t);
+        }
+        achieved.push((s, x.feed));
+        programmed.push((s, b.programmed_feed));
+        prev = Some(x);
+    }
+    (achieved, programmed)
 }
 
 /// Time stamps and the X, Y, Z series of `quantity`, with the machine's axis limits.
@@ -83,6 +116,22 @@ mod tests {
         assert!(
             (s_end - 50.0).abs() < 0.01,
             "integrated {s_end} mm, path 50 mm"
+        );
+        // Cutting only: a rapid approach adds nothing to the cutting distance.
+        let mut tp2 = Toolpath::new(Tool::default(), Point3::ORIGIN);
+        tp2.push(Move::rapid(Point3::new(0.0, 0.0, 10.0)));
+        tp2.push(Move::line(Point3::new(40.0, 0.0, 10.0), 40.0));
+        let plan2 = plan_toolpath(&tp2, &m).unwrap();
+        let (ach, prog) = feed_along_cut(&plan2, &plan2.sample(0.002).unwrap());
+        let cut = ach.last().unwrap().0;
+        assert!(
+            (cut - 40.0).abs() < 0.05,
+            "cutting distance {cut} mm, line 40 mm"
+        );
+        assert!(prog.iter().all(|p| (p.1 - 40.0).abs() < 1e-12));
+        assert!(
+            ach.iter().all(|p| p.1 <= 40.0 + 1e-6),
+            "a rapid sample leaked in"
         );
         let (t, axes) = axis_series(&plan.sample(0.01).unwrap(), Quantity::Jerk, &m);
         assert_eq!(axes.len(), 3);

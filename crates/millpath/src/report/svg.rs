@@ -7,9 +7,18 @@
 //! Cutting moves are coloured by feed in five equal bins between the slowest and the fastest
 //! feed of the picture. The feed is the **achieved** peak feed of each move when the planner's
 //! per-move peaks are given ([`PreviewOptions::achieved_feed`], e.g. `Plan::blocks[i].peak_feed`),
-//! the programmed feed otherwise; the legend says which. Rapids are dashed grey; helical entries
-//! (XY arcs that change Z) get a magenta ring at their start and plunges (Z-only feed moves) a
-//! magenta cross.
+//! the programmed feed otherwise; the legend says which. Rapids are dashed grey; entries (a run
+//! of consecutive descending feed moves with XY motion: a helix of one or many arcs, a ramp)
+//! get one magenta ring at their start and plunges (Z-only descending feed moves) a magenta
+//! cross; the legend counts both.
+//!
+//! With [`PreviewOptions::side_view`] a side view (X horizontal at the plan's scale, Z up)
+//! is drawn in a strip under the plan: it shows the levels, the entries going down and the
+//! retracts. Its Z scale is the plan's, stretched when the depth range would be under 60 px
+//! (the strip says by how much); helices are drawn as their true projection (sampled at 16
+//! points per turn and more for large radii), not as chords.
+//!
+//! [`level_previews`] draws one picture per level (the CLI writes them as `NAME.level1.svg`, ...).
 //!
 //! Structure for the HTML viewer: each level is a `<g class="mp-level" data-level="i">`
 //! (moves outside every level are in `data-level="-1"`), and the Y-flipped drawing group holds
@@ -27,13 +36,16 @@ pub struct PreviewOptions {
     pub width_px: f64,
     /// Margin around the drawing, in mm.
     pub margin_mm: f64,
-    /// Title drawn at the top.
+    /// Title drawn at the top; with [`Self::level`] the level's number, kind and depth are
+    /// appended.
     pub title: Option<String>,
     /// Only the moves of this level (index into `Toolpath::levels`); all levels when `None`.
     pub level: Option<usize>,
     /// Achieved peak feed of each move in mm/s (index = move index), from the planner; moves
     /// without an entry (or a non-finite one) fall back to their programmed feed.
     pub achieved_feed: Option<Vec<f64>>,
+    /// Draw the side view (X–Z) strip under the plan.
+    pub side_view: bool,
 }
 
 impl Default for PreviewOptions {
@@ -44,6 +56,7 @@ impl Default for PreviewOptions {
             title: None,
             level: None,
             achieved_feed: None,
+            side_view: false,
         }
     }
 }
@@ -66,6 +79,7 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             .filter(|f| f.is_finite() && *f >= 0.0)
             .unwrap_or(m.feed)
     };
+    let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut bounds = outlines
         .iter()
         .map(Outline::bounds)
@@ -74,6 +88,12 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     for (i, (from, m)) in toolpath.segments().enumerate() {
         if range.contains(&i) {
             bounds = bounds.with_point(from.xy()).with_point(m.to.xy());
+            for z in [from.z, m.to.z] {
+                if z.is_finite() {
+                    zmin = zmin.min(z);
+                    zmax = zmax.max(z);
+                }
+            }
             if let MoveKind::Arc { center, .. } = m.kind {
                 let r = from.xy().distance(center.xy());
                 if r.is_finite() {
@@ -100,8 +120,28 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     };
     let scale = width_px / b.width().max(1e-9);
     let legend_px = 40.0;
-    let title_px = if opts.title.is_some() { 24.0 } else { 0.0 };
-    let height_px = b.height() * scale + legend_px + title_px;
+    let title = match (
+        &opts.title,
+        opts.level.and_then(|i| level_label(toolpath, i)),
+    ) {
+        (Some(t), Some(l)) => Some(format!("{t} — {l}")),
+        (t, l) => t.clone().or(l),
+    };
+    let title_px = if title.is_some() { 24.0 } else { 0.0 };
+    let plan_px = b.height() * scale;
+    // Side strip: label row, drawing, gap. Z at the plan's scale unless that is under 60 px.
+    let side = (opts.side_view && zmin.is_finite() && zmax.is_finite()).then(|| {
+        let depth = (zmax - zmin).max(1e-3);
+        let draw_px = (depth * scale).clamp(60.0, 240.0);
+        SideStrip {
+            top: title_px + plan_px + 26.0,
+            height: draw_px,
+            zmax,
+            zscale: draw_px / depth,
+        }
+    });
+    let side_px = side.as_ref().map_or(0.0, |st| st.height + 36.0);
+    let height_px = plan_px + side_px + legend_px + title_px;
     let stroke = 1.2 / scale;
     let mut s = String::new();
     let _ = write!(
@@ -137,7 +177,12 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
     };
     let mut open_level: Option<i64> = None;
     let mut entries = String::new();
+    // Entries: a run of consecutive descending feed moves with XY motion (a helix of several
+    // turns, a ramp of several lines) is one entry, ringed at its start; a Z-only descending
+    // feed move is a plunge, crossed.
     let mut n_entries = 0usize;
+    let mut n_plunges = 0usize;
+    let mut in_entry = false;
     for (i, (from, m)) in toolpath.segments().enumerate() {
         if !range.contains(&i) || matches!(m.kind, MoveKind::Dwell { .. }) {
             continue;
@@ -150,33 +195,33 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             let _ = write!(s, r#"<g class="mp-level" data-level="{lv}">"#);
             open_level = Some(lv);
         }
-        let dz = (m.to.z - from.z).abs();
+        let descends = m.to.z < from.z - 1e-9;
         let xy_len = from.xy().distance(m.to.xy());
-        if m.is_feed() && dz > 1e-9 {
-            if is_arc(m) {
-                n_entries += 1;
-                let _ = write!(
-                    entries,
-                    r##"<circle cx="{:.4}" cy="{:.4}" r="{:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
-                    from.x,
-                    from.y,
-                    5.0 * stroke,
-                    1.5 * stroke
-                );
-            } else if xy_len < 1e-9 {
-                n_entries += 1;
-                let k = 4.0 * stroke;
-                let _ = write!(
-                    entries,
-                    r##"<path d="M{:.4} {:.4}l{k:.5} {k:.5}m0 {:.5}l{:.5} {k:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
-                    from.x - k / 2.0,
-                    from.y - k / 2.0,
-                    -k,
-                    -k,
-                    1.5 * stroke
-                );
-            }
+        let entering = m.is_feed() && descends && (is_arc(m) || xy_len >= 1e-9);
+        if entering && !in_entry {
+            n_entries += 1;
+            let _ = write!(
+                entries,
+                r##"<circle cx="{:.4}" cy="{:.4}" r="{:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
+                from.x,
+                from.y,
+                5.0 * stroke,
+                1.5 * stroke
+            );
+        } else if m.is_feed() && descends && !entering {
+            n_plunges += 1;
+            let k = 4.0 * stroke;
+            let _ = write!(
+                entries,
+                r##"<path d="M{:.4} {:.4}l{k:.5} {k:.5}m0 {:.5}l{:.5} {k:.5}" stroke="#c000c0" stroke-width="{:.5}"/>"##,
+                from.x - k / 2.0,
+                from.y - k / 2.0,
+                -k,
+                -k,
+                1.5 * stroke
+            );
         }
+        in_entry = entering;
         if xy_len < 1e-12 && !is_arc(m) {
             continue;
         }
@@ -218,10 +263,15 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
         stroke
     );
     s.push_str("</g>");
+    if let Some(st) = &side {
+        side_view(&mut s, toolpath, &range, st, b.min.x, scale, &|i, m| {
+            feed_colour(feed_of(i, m), fmin, fmax)
+        });
+    }
     // Legend.
     let y = height_px - 15.0;
     let mut x = 10.0;
-    if let Some(t) = &opts.title {
+    if let Some(t) = &title {
         let _ = write!(s, r#"<text x="10" y="16">{}</text>"#, xml_escape(t));
     }
     if fmax.is_finite() {
@@ -231,41 +281,209 @@ pub fn toolpath_svg(toolpath: &Toolpath, outlines: &[Outline], opts: &PreviewOpt
             "programmed feed (mm/min):"
         };
         let _ = write!(s, r#"<text x="{x}" y="{y}">{what}</text>"#);
-        x += 160.0;
+        x += text_px(what) + 10.0;
         for (k, c) in FEED_COLOURS.iter().enumerate() {
             let n = FEED_COLOURS.len() as f64;
             let lo = fmin + (fmax - fmin) * k as f64 / n;
             let hi = fmin + (fmax - fmin) * (k as f64 + 1.0) / n;
+            let label = format!("{:.0}–{:.0}", lo * 60.0, hi * 60.0);
             let _ = write!(
                 s,
-                r#"<rect x="{x}" y="{ry}" width="14" height="10" fill="{c}"/><text x="{tx}" y="{y}">{lo:.0}–{hi:.0}</text>"#,
+                r#"<rect x="{x:.1}" y="{ry}" width="14" height="10" fill="{c}"/><text x="{tx:.1}" y="{y}">{label}</text>"#,
                 ry = y - 10.0,
                 tx = x + 18.0,
-                lo = lo * 60.0,
-                hi = hi * 60.0,
             );
-            x += 100.0;
+            x += 18.0 + text_px(&label) + 14.0;
         }
     }
     let _ = write!(
         s,
-        r##"<line x1="{x}" y1="{ly}" x2="{x2}" y2="{ly}" stroke="#999999" stroke-dasharray="4 3"/><text x="{tx}" y="{y}">rapid</text>"##,
+        r##"<line x1="{x:.1}" y1="{ly}" x2="{x2:.1}" y2="{ly}" stroke="#999999" stroke-dasharray="4 3"/><text x="{tx:.1}" y="{y}">rapid</text>"##,
         ly = y - 5.0,
         x2 = x + 25.0,
         tx = x + 30.0
     );
+    x += 30.0 + text_px("rapid") + 14.0;
     if n_entries > 0 {
-        x += 75.0;
+        let label = format!("entry ({n_entries})");
         let _ = write!(
             s,
-            r##"<circle cx="{cx}" cy="{cy}" r="5" fill="none" stroke="#c000c0" stroke-width="1.5"/><text x="{tx}" y="{y}">entry ({n_entries})</text>"##,
+            r##"<circle cx="{cx:.1}" cy="{cy}" r="5" fill="none" stroke="#c000c0" stroke-width="1.5"/><text x="{tx:.1}" y="{y}">{label}</text>"##,
             cx = x + 6.0,
             cy = y - 5.0,
+            tx = x + 16.0
+        );
+        x += 16.0 + text_px(&label) + 14.0;
+    }
+    if n_plunges > 0 {
+        let _ = write!(
+            s,
+            r##"<path d="M{:.1} {:.1}l8 8m0 -8l-8 8" stroke="#c000c0" stroke-width="1.5"/><text x="{tx:.1}" y="{y}">plunge ({n_plunges})</text>"##,
+            x + 2.0,
+            y - 9.0,
             tx = x + 16.0
         );
     }
     s.push_str("</svg>\n");
     s
+}
+
+/// Where the side view goes and its Z scale (pixels per mm).
+struct SideStrip {
+    top: f64,
+    height: f64,
+    zmax: f64,
+    zscale: f64,
+}
+
+/// Draws the side view (X right, Z up) of the moves in `range` into `s`, in pixel coordinates
+/// (no transform, so dashes and strokes keep their pixel size).
+fn side_view(
+    s: &mut String,
+    tp: &Toolpath,
+    range: &std::ops::Range<usize>,
+    st: &SideStrip,
+    x0: f64,
+    scale: f64,
+    colour_of: &dyn Fn(usize, &Move) -> &'static str,
+) {
+    let px = |x: f64| (x - x0) * scale;
+    let py = |z: f64| st.top + (st.zmax - z) * st.zscale;
+    let stretch = st.zscale / scale;
+    let label = if stretch > 1.05 {
+        format!("side view (X–Z), Z stretched ×{}", short_ratio(stretch))
+    } else {
+        "side view (X–Z)".to_owned()
+    };
+    let _ = write!(
+        s,
+        r##"<text x="10" y="{:.1}" fill="#444444">{label}</text><g class="mp-side" fill="none" stroke-linecap="round" stroke-linejoin="round">"##,
+        st.top - 8.0
+    );
+    // The path being built: colour, dash, path data, its last point (mm).
+    let mut open: Option<(&'static str, &'static str, String, (f64, f64))> = None;
+    for (i, (from, m)) in tp.segments().enumerate() {
+        if !range.contains(&i) || matches!(m.kind, MoveKind::Dwell { .. }) {
+            continue;
+        }
+        let pts: Vec<(f64, f64)> = match (m.kind, m.sweep_from(from)) {
+            (
+                MoveKind::Arc {
+                    center,
+                    plane: Plane::Xy,
+                    ccw,
+                    ..
+                },
+                Some((r, sweep)),
+            ) if r.is_finite() && sweep.is_finite() => {
+                // Sample the helix: x = cx + r cos(a0 ± θ), z linear in θ.
+                let a0 = (from.xy() - center.xy()).angle();
+                let n = ((sweep.abs() / std::f64::consts::TAU * 16.0).ceil() as usize)
+                    .max((sweep.abs() * r * scale / 4.0).ceil() as usize)
+                    .clamp(2, 2048);
+                let dir = if ccw { 1.0 } else { -1.0 };
+                (0..=n)
+                    .map(|k| {
+                        let u = k as f64 / n as f64;
+                        let a = a0 + dir * sweep.abs() * u;
+                        (center.x + r * a.cos(), from.z + (m.to.z - from.z) * u)
+                    })
+                    .collect()
+            }
+            _ => vec![(from.x, from.z), (m.to.x, m.to.z)],
+        };
+        if pts.iter().any(|(x, z)| !(x.is_finite() && z.is_finite())) {
+            continue;
+        }
+        let (colour, dash) = match m.kind {
+            MoveKind::Rapid => ("#999999", r#" stroke-dasharray="4 3""#),
+            _ => (colour_of(i, m), ""),
+        };
+        // Consecutive moves of one style that join are one path (a pass of thousands of
+        // segments at one feed is one element, not thousands).
+        let joins = open.as_ref().is_some_and(|(c, da, _, end)| {
+            *c == colour
+                && *da == dash
+                && pts
+                    .first()
+                    .is_some_and(|p| (p.0 - end.0).abs() < 1e-6 && (p.1 - end.1).abs() < 1e-6)
+        });
+        if !joins && let Some((c, da, d, _)) = open.take() {
+            let _ = write!(s, r#"<path d="{d}" stroke="{c}" stroke-width="1"{da}/>"#);
+        }
+        let (_, _, d, end) = open.get_or_insert_with(|| {
+            let (x, z) = pts.first().copied().unwrap_or_default();
+            (colour, dash, format!("M{:.2} {:.2}", px(x), py(z)), (x, z))
+        });
+        for (x, z) in pts.iter().skip(1) {
+            let _ = write!(d, "L{:.2} {:.2}", px(*x), py(*z));
+            *end = (*x, *z);
+        }
+    }
+    if let Some((c, da, d, _)) = open.take() {
+        let _ = write!(s, r#"<path d="{d}" stroke="{c}" stroke-width="1"{da}/>"#);
+    }
+    s.push_str("</g>");
+}
+
+/// A stretch factor for the label: whole numbers above 10, one decimal below.
+fn short_ratio(r: f64) -> String {
+    if r >= 10.0 {
+        format!("{r:.0}")
+    } else {
+        format!("{r:.1}")
+    }
+}
+
+/// One preview per level of `toolpath` (all of them when it has none), each titled with the
+/// level's number, kind and depth after `opts.title` (as [`toolpath_svg`] does for any
+/// `opts.level`); `opts.level` is ignored.
+pub fn level_previews(
+    toolpath: &Toolpath,
+    outlines: &[Outline],
+    opts: &PreviewOptions,
+) -> Vec<String> {
+    let n = toolpath.levels.len();
+    if n == 0 {
+        return vec![toolpath_svg(toolpath, outlines, opts)];
+    }
+    toolpath
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(i, _)| {
+            toolpath_svg(
+                toolpath,
+                outlines,
+                &PreviewOptions {
+                    level: Some(i),
+                    ..opts.clone()
+                },
+            )
+        })
+        .collect()
+}
+
+/// "level 2 of 9: roughing at z = -5.000 mm" for level `i` of `tp`, if it exists.
+fn level_label(tp: &Toolpath, i: usize) -> Option<String> {
+    let l = tp.levels.get(i)?;
+    Some(format!(
+        "level {} of {}: {} at z = {:.3} mm",
+        i + 1,
+        tp.levels.len(),
+        match l.kind {
+            crate::toolpath::LevelKind::Roughing => "roughing",
+            crate::toolpath::LevelKind::Finishing => "finishing",
+            crate::toolpath::LevelKind::Other => "other",
+        },
+        l.z
+    ))
+}
+
+/// Width of `text` at the legend's 12 px sans-serif, a little generous (DejaVu Sans digits
+/// are 0.64 em, the widest letters 0.8 em), so labels never run into each other.
+fn text_px(text: &str) -> f64 {
+    7.4 * text.chars().count() as f64
 }
 
 fn is_arc(m: &Move) -> bool {
@@ -376,10 +594,10 @@ mod tests {
         );
         assert_eq!(
             svg.matches("<path").count(),
-            1 + 3 + 1,
-            "outline + rapid + line + arc + plunge cross"
+            1 + 3 + 1 + 1,
+            "outline + rapid + line + arc + plunge cross + the legend's cross"
         );
-        assert!(svg.contains("entry (1)"));
+        assert!(svg.contains("plunge (1)") && !svg.contains("entry ("));
         assert!(svg.contains("programmed feed"));
     }
 
@@ -424,6 +642,74 @@ mod tests {
     }
 
     #[test]
+    fn side_view_and_level_pictures() {
+        use crate::toolpath::{Level, LevelKind};
+        let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 5.0));
+        tp.push(Move::rapid(Point3::new(10.0, 0.0, 1.0)));
+        tp.push(Move::arc_xy(
+            Point3::new(10.0, 0.0, -2.0),
+            Point3::new(0.0, 0.0, 0.0),
+            true,
+            10.0,
+        ));
+        tp.push(Move::line(Point3::new(30.0, 0.0, -2.0), 10.0));
+        tp.push(Move::rapid(Point3::new(30.0, 0.0, 5.0)));
+        tp.push(Move::line(Point3::new(30.0, 0.0, -4.0), 10.0));
+        tp.push(Move::line(Point3::new(0.0, 0.0, -4.0), 10.0));
+        tp.levels.push(Level {
+            z: -2.0,
+            kind: LevelKind::Roughing,
+            start: 1,
+            end: 3,
+        });
+        tp.levels.push(Level {
+            z: -4.0,
+            kind: LevelKind::Finishing,
+            start: 4,
+            end: 6,
+        });
+        let opts = PreviewOptions {
+            side_view: true,
+            title: Some("t".into()),
+            ..PreviewOptions::default()
+        };
+        let svg = toolpath_svg(&tp, &[], &opts);
+        let side = &svg[svg.find(r#"class="mp-side""#).expect("side view drawn")..];
+        let side = &side[..side.find("</g>").expect("side group closed")];
+        // Paths of one style that join are merged: rapid | helix + line (one feed) | rapid |
+        // plunge + line.
+        assert_eq!(side.matches("<path").count(), 4, "{side}");
+        // The helix is sampled (a full turn: at least 16 points), not drawn as a chord.
+        let helix = side.split("<path").nth(2).unwrap();
+        assert!(helix.matches('L').count() > 16, "{helix}");
+        // z spans 9 mm: at 900 px over 50 mm that is 162 px, no stretch needed.
+        assert!(svg.contains("side view (X–Z)<"), "{svg}");
+        assert!(
+            svg.contains("entry (1)") && svg.contains("plunge (1)"),
+            "{svg}"
+        );
+        // A helix of two arcs is one entry.
+        let mut two = Toolpath::new(Tool::default(), Point3::new(10.0, 0.0, 0.0));
+        for z in [-1.0, -2.0] {
+            two.push(Move::arc_xy(
+                Point3::new(10.0, 0.0, z),
+                Point3::new(0.0, 0.0, 0.0),
+                true,
+                10.0,
+            ));
+        }
+        two.push(Move::line(Point3::new(20.0, 0.0, -2.0), 10.0));
+        assert!(toolpath_svg(&two, &[], &PreviewOptions::default()).contains("entry (1)"));
+        let pics = level_previews(&tp, &[], &opts);
+        assert_eq!(pics.len(), 2);
+        assert!(pics[0].contains("t — level 1 of 2: roughing at z = -2.000 mm"));
+        assert!(pics[1].contains("level 2 of 2: finishing at z = -4.000 mm"));
+        // The second picture holds only the second level's moves.
+        assert!(!pics[1].contains(r#"data-level="0""#));
+        assert!(pics[1].contains(r#"data-level="1""#));
+    }
+
+    #[test]
     fn bad_numbers_do_not_panic() {
         let mut tp = Toolpath::new(Tool::default(), Point3::new(f64::NAN, 0.0, 0.0));
         tp.push(Move::line(Point3::new(f64::INFINITY, 1.0, 0.0), f64::NAN));
@@ -433,6 +719,7 @@ mod tests {
             margin_mm: f64::NAN,
             level: Some(99),
             achieved_feed: Some(vec![f64::NAN]),
+            side_view: true,
             ..PreviewOptions::default()
         };
         let svg = toolpath_svg(&tp, &[], &opts);
