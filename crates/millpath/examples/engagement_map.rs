@@ -17,7 +17,14 @@ fn main() {
         _ => StrategyKind::Spiral,
     };
     let out = args.get(2).cloned().unwrap_or_else(|| "eng.svg".into());
-    let shape = samples::aerospace_pocket();
+    let shape = match args.get(3) {
+        Some(name) => samples::structural_part()
+            .into_iter()
+            .find(|(n, _)| n.starts_with(name.as_str()))
+            .map(|(_, s)| s)
+            .expect("pocket name"),
+        None => samples::aerospace_pocket(),
+    };
     let tool = Tool::flat(12.7).expect("tool");
     let opts = PocketOptions::default();
     let tp = toolpath(kind, &shape, &tool, &opts).expect("toolpath");
@@ -31,7 +38,7 @@ fn main() {
     let sim = simulate(&tp, spec, nominal.to_degrees(), &SimOptions::default());
     let z0 = tp.levels.first().map_or(0.0, |l| l.z);
     let mut svg = String::from(
-        "<svg xmlns='http://www.w3.org/2000/svg' width='1600' height='1100' viewBox='-85 -60 170 120'><g transform='scale(1,-1)'>",
+        "<svg xmlns='http://www.w3.org/2000/svg' width='1600' height='1100' viewBox='{vb}'><g transform='scale(1,-1)'>",
     );
     let mut prev = tp.start;
     let (mut above, mut total) = (0.0, 0.0);

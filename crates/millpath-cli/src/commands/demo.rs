@@ -423,6 +423,21 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
     for (file, caption, chart) in super::html::five_axis_charts(&samples, names, &Limits::paper()) {
         add_plot(out, html, file, &caption, &chart)?;
     }
+    if let Some(d) = &r.deflection {
+        // The paper's Figures 9-10: the replanned path round the deflected point and the axis
+        // profiles through the two new intervals.
+        let tips: Vec<_> = poses.iter().map(|p| p.tip).collect();
+        let curve = five_axis::RefCurve::through(&tips);
+        for (file, caption, chart) in millpath::report::five_axis_plots::deflection_charts(
+            &kin,
+            &curve,
+            &outcome.segments,
+            d,
+            &Limits::paper(),
+        ) {
+            add_plot(out, html, file, &caption, &chart)?;
+        }
+    }
     pb.finish_and_clear();
     let baseline = r.baseline_time_s.map_or_else(
         || "no baseline".to_owned(),

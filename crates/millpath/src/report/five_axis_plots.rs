@@ -198,7 +198,10 @@ pub fn deflection_profiles(
             })
             .collect();
         let mut chart = axis_kinematics(quantity, &s.t, &axes);
-        chart.title = format!("Per-axis {} through the two new intervals", quantity.name());
+        chart.title = format!(
+            "{} per axis through the two new intervals",
+            quantity.title()
+        );
         chart.x_label = "time since the deflection (s)".into();
         out.push((
             stem,

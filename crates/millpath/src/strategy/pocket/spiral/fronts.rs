@@ -72,8 +72,12 @@ pub struct FrontOptions {
 pub struct Fronts {
     /// Counter-clockwise loops; `loops[0]` is the circle, the last is `B`.
     pub loops: Vec<Polyline<f64>>,
-    /// Largest measured distance from a loop to the one before it, mm.
+    /// Largest measured distance from a loop to the one before it, mm (the first front's
+    /// ridge slot apart).
     pub max_distance: f64,
+    /// How far the first front reaches beyond the circle along the ridge when that is more
+    /// than a step (cut as a slot by the first lap), mm; 0 otherwise.
+    pub ridge_slot: f64,
 }
 
 /// A counter-clockwise circle.
@@ -242,6 +246,7 @@ pub fn fronts(
     let limit = std::f64::consts::SQRT_2 * o.step;
     let mut loops = vec![disc.clone()];
     let mut max_distance: f64 = 0.0;
+    let mut ridge: f64 = 0.0;
     let mut tau = 0.0;
     let mut step = delta;
     while tau < rho_b {
@@ -249,7 +254,9 @@ pub fn fronts(
             return None;
         }
         let prev = loops.last()?;
+        let first = loops.len() == 1;
         let mut h = step;
+        let mut full_step = None;
         let (next, dist, t_next) = loop {
             let t = (tau + h).min(rho_b);
             let last = t >= rho_b - 1e-9 * rho_b;
@@ -264,12 +271,28 @@ pub fn fronts(
             if dist <= limit {
                 break (cand, dist, t);
             }
+            if first && full_step.is_none() {
+                full_step = Some((cand, dist, t));
+            }
             if h < o.step / 64.0 {
-                return None;
+                // The first front may reach beyond the circle along the ridge (a pocket longer
+                // than the circle): its new part is then the ridge's thin neighbourhood, half
+                // as wide as a step, which the first lap cuts as a slot (the engagement stays
+                // within the slotting bound, as zigzag's first pass). Anything else that will
+                // not come within the bound is left to the harmonic morph.
+                match full_step.take() {
+                    Some(f) if first => {
+                        ridge = f.1;
+                        break f;
+                    }
+                    _ => return None,
+                }
             }
             h *= 0.5;
         };
-        max_distance = max_distance.max(dist);
+        if !(first && ridge > 0.0) {
+            max_distance = max_distance.max(dist);
+        }
         loops.push(next);
         tau = if t_next >= rho_b - 1e-9 * rho_b {
             rho_b
@@ -282,6 +305,7 @@ pub fn fronts(
     Some(Fronts {
         loops,
         max_distance,
+        ridge_slot: ridge,
     })
 }
 

@@ -62,6 +62,7 @@ impl FrontSpiral<'_> {
             r0: self.r0,
             max_loop_distance: f.max_distance,
             fronts: true,
+            ridge_slot: f.ridge_slot,
             ..SpiralStats::default()
         };
         let (c, r0, rho_h, ds) = (self.c, self.r0, self.rho_h, self.ds);
@@ -101,6 +102,36 @@ impl FrontSpiral<'_> {
                 let target = restart_near(&orient(next), ahead);
                 let len = target.path_length();
                 let along = LoopWalker::new(&target);
+                if k == 1 && f.ridge_slot > 0.0 {
+                    // The first front reaches far beyond the circle along the ridge: a blend
+                    // would cut across the ridge's ends, so the lap joins the front over a
+                    // short smoothstep transition and then traces it all the way round.
+                    let window = (2.0 * self.sp).min(0.25 * len);
+                    let mut acc = 0.0;
+                    let mut prev = start;
+                    let mut joined = 0.0;
+                    for p in &lap {
+                        acc += prev.distance(*p);
+                        prev = *p;
+                        if acc > window {
+                            break;
+                        }
+                        let w = smoothstep(acc / window);
+                        pts.push(*p + (along.at(acc) - *p) * w);
+                        joined = acc;
+                    }
+                    let fine = super::resample(&sample_loop(&target, 0.25 * ds), ds);
+                    let fr = fractions(&fine);
+                    for (q, x) in fine.iter().zip(&fr) {
+                        if x * len > joined {
+                            pts.push(*q);
+                        }
+                    }
+                    pts.push(along.at(0.0));
+                    lap = fine;
+                    stats.morph_laps += 1;
+                    continue;
+                }
                 for (p, fr) in lap.iter().zip(fractions(&lap)) {
                     let q = along.at(fr * len);
                     pts.push(*p + (q - *p) * fr);
@@ -143,6 +174,13 @@ impl FrontSpiral<'_> {
         };
         Some((plan, stats))
     }
+}
+
+/// `3x² − 2x³` on [0, 1]: zero slope at both ends, so a transition leaves one curve and joins
+/// the other tangentially.
+fn smoothstep(x: f64) -> f64 {
+    let x = x.clamp(0.0, 1.0);
+    x * x * (3.0 - 2.0 * x)
 }
 
 /// The central spiral's turns and its radius as a function of the angle turned.

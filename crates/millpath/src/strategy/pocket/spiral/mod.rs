@@ -126,6 +126,8 @@ pub struct SpiralStats {
     pub distance_field: bool,
     /// The fronts morph was used (else the harmonic one).
     pub fronts: bool,
+    /// Length of the ridge cut as a slot by the fronts' first lap, mm (0: none).
+    pub ridge_slot: f64,
 }
 
 /// The spiral strategy's plan for one level.
