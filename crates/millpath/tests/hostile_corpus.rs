@@ -1,0 +1,70 @@
+//! The bounded fuzz pass of CI: replays the committed, minimised fuzz corpus
+//! (`fuzz/corpus-min/TARGET/*`) through the fuzz targets' own bodies (`fuzz/harness/mod.rs`,
+//! included here), on stable Rust and without libFuzzer. Every file that ever made a target
+//! crash is kept in the corpus, so a regression fails `cargo test`.
+//!
+//! The corpora were produced by coverage-guided runs (`cargo fuzz run -O TARGET`, see
+//! `fuzz/README.md`) and reduced with `cargo fuzz cmin`; each holds a few hundred small files
+//! that together reach the coverage the long runs reached.
+
+#[path = "../../../fuzz/harness/mod.rs"]
+mod harness;
+mod hostile_common;
+
+use hostile_common::Harness;
+use std::path::PathBuf;
+
+fn corpus(target: &str) -> Vec<(String, Vec<u8>)> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz/corpus-min")
+        .join(target);
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("corpus {} missing: {e}", dir.display()))
+        .map(|e| {
+            let e = e.expect("corpus entry");
+            let name = e.file_name().to_string_lossy().into_owned();
+            (name, std::fs::read(e.path()).expect("corpus file"))
+        })
+        .collect();
+    files.sort();
+    files
+}
+
+fn replay(target: &'static str, min_files: usize, f: fn(&[u8])) {
+    let files = corpus(target);
+    let mut h = Harness::new(target);
+    for (name, data) in &files {
+        h.run(&(name, String::from_utf8_lossy(data)), || f(data));
+    }
+    h.finish(min_files);
+}
+
+#[test]
+fn corpus_gcode_reader() {
+    replay("gcode_reader", 100, harness::gcode_reader);
+}
+
+#[test]
+fn corpus_outline_importers() {
+    replay("outline_importers", 100, harness::outline_importers);
+}
+
+#[test]
+fn corpus_points() {
+    replay("points", 100, harness::points);
+}
+
+#[test]
+fn corpus_pocket() {
+    replay("pocket", 50, harness::pocket);
+}
+
+#[test]
+fn corpus_contour() {
+    replay("contour", 50, harness::contour);
+}
+
+#[test]
+fn corpus_planner() {
+    replay("planner", 50, harness::planner);
+}
