@@ -10,7 +10,7 @@
 //!
 //! Structured inputs are decoded by [`Bytes`]: each number is two bytes mapped into a sane
 //! range, or (when a selector byte says so) a hostile value (NaN, ±∞, 0, negative, 1e300,
-//! 1e-300). Ranges are chosen so that the work per input stays bounded (at most ~100 passes
+//! 1e-300). Ranges are chosen so that the work per input stays bounded (at most ~20 passes
 //! per pocket level, a few levels, short programs).
 
 #![allow(dead_code)]
@@ -100,7 +100,7 @@ pub fn hostile(i: u8) -> f64 {
 
 /// A polygon of 3..=14 vertices within `size` of `(cx, cy)`: a star (sorted angles) or, when
 /// `chaos`, points in byte order (self-intersecting, repeated, collinear...).
-pub fn polygon(b: &mut Bytes, size: f64) -> Vec<Point> {
+pub fn polygon(b: &mut Bytes<'_>, size: f64) -> Vec<Point> {
     let n = 3 + b.pick(12);
     let chaos = b.byte() < 64;
     let (cx, cy) = (b.unit(-50.0, 50.0), b.unit(-50.0, 50.0));
@@ -138,6 +138,14 @@ pub fn assert_finite(tp: &Toolpath, what: &str) {
             "{what}: move {i} has a non-finite feed {}",
             m.feed
         );
+    }
+}
+
+/// With `FUZZ_TRACE` set, prints the decoded input (to reproduce a slow or failing input).
+#[allow(clippy::print_stderr)]
+pub fn trace(input: &dyn std::fmt::Debug) {
+    if std::env::var_os("FUZZ_TRACE").is_some() {
+        eprintln!("{input:#?}");
     }
 }
 
@@ -209,7 +217,9 @@ pub fn pocket(data: &[u8]) {
     let size = b.unit(4.0, 60.0);
     let outer = polygon(&mut b, size);
     let island = b.flag().then(|| polygon(&mut b, size * 0.25));
-    // Tool and stepover bounded below relative to the polygon: at most ~100 passes a level.
+    // Tool and stepover bounded below relative to the polygon (at most ~20 passes a level,
+    // at most ~4 levels): the adaptive spiral takes seconds on a 60 mm triangle at a 0.6 mm
+    // stepover, too slow for fuzzing.
     let d = b.num(size * 0.05, size * 0.6);
     let tool = Tool {
         diameter: d,
@@ -220,9 +230,9 @@ pub fn pocket(data: &[u8]) {
     let depth = b.num(0.5, 8.0);
     let opts = PocketOptions {
         stepover: if b.flag() {
-            Stepover::Fraction(b.num(0.2, 1.0))
+            Stepover::Fraction(b.num(0.3, 1.0))
         } else {
-            Stepover::Distance(b.num(size * 0.01, size * 0.2))
+            Stepover::Distance(b.num(size * 0.05, size * 0.3))
         },
         depth,
         step_down: b.num(depth.abs().min(1e3) / 3.0 + 0.1, 10.0),
@@ -254,6 +264,7 @@ pub fn pocket(data: &[u8]) {
         finish: b.flag(),
         modulate_feed: false,
     };
+    trace(&(&kind, &outer, &island, &tool, &opts));
     let Ok(outer) = Outline::from_points(&outer, "fuzz outer") else {
         return;
     };
@@ -318,6 +329,7 @@ pub fn contour(data: &[u8]) {
         arcs: b.flag(),
         ..ContourOptions::default()
     };
+    trace(&(&kind, &pts, &opt));
     let Ok(c) = curve::build(&groups, kind, "fuzz") else {
         return;
     };
@@ -327,12 +339,12 @@ pub fn contour(data: &[u8]) {
 }
 
 /// A machine: a preset, or a preset with limits from the bytes.
-pub fn machine(b: &mut Bytes) -> Option<Machine> {
+pub fn machine(b: &mut Bytes<'_>) -> Option<Machine> {
     let base = Machine::preset(Machine::PRESET_NAMES[b.pick(3)]).ok()?;
     if b.flag() {
         return Some(base);
     }
-    let axis = |b: &mut Bytes| AxisLimits {
+    let axis = |b: &mut Bytes<'_>| AxisLimits {
         max_velocity: b.num(5.0, 1000.0),
         max_acceleration: b.num(50.0, 20000.0),
         max_jerk: if b.byte() < 40 {
@@ -359,7 +371,7 @@ pub fn machine(b: &mut Bytes) -> Option<Machine> {
 
 /// A program of up to 48 moves from the bytes (lines, rapids, arcs in any plane with extra
 /// turns, dwells, every corner mode), starting at the origin.
-pub fn program(b: &mut Bytes) -> Toolpath {
+pub fn program(b: &mut Bytes<'_>) -> Toolpath {
     let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
     let mut at = Point3::ORIGIN;
     let n = b.pick(49);
@@ -437,6 +449,7 @@ pub fn planner(data: &[u8]) {
     } else {
         program(&mut b)
     };
+    trace(&(&m, &tp, check));
     let moves: Vec<(Point3, Move)> = tp.segments().map(|(f, mv)| (f, *mv)).collect();
     let opts = PlanOptions {
         keep_geometry: true,

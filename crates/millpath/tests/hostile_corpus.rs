@@ -68,3 +68,23 @@ fn corpus_contour() {
 fn corpus_planner() {
     replay("planner", 50, harness::planner);
 }
+
+/// Replays one file: `FUZZ_TARGET=pocket FUZZ_FILE=path FUZZ_TRACE=1 cargo test -p millpath
+/// --test hostile_corpus -- --ignored replay_one --nocapture` (prints the decoded input).
+#[test]
+#[ignore = "tool: replays FUZZ_FILE through FUZZ_TARGET"]
+fn replay_one() {
+    let target = std::env::var("FUZZ_TARGET").expect("FUZZ_TARGET");
+    let data = std::fs::read(std::env::var("FUZZ_FILE").expect("FUZZ_FILE")).expect("file");
+    let f: fn(&[u8]) = match target.as_str() {
+        "gcode_reader" => harness::gcode_reader,
+        "outline_importers" => harness::outline_importers,
+        "points" => harness::points,
+        "pocket" => harness::pocket,
+        "contour" => harness::contour,
+        _ => harness::planner,
+    };
+    let t = std::time::Instant::now();
+    f(&data);
+    let _ = t.elapsed();
+}

@@ -30,9 +30,16 @@ use super::limits::{block_limits, junction_cap, junction_mode};
 use super::path::Geom;
 use super::profile::{Limits1, SpanProfile, reachable_velocity};
 use crate::error::Error;
-use crate::geom::Point3;
+use crate::geom::{MAX_COORDINATE_MM, Point3};
 use crate::machine::Machine;
 use crate::toolpath::{Move, MoveKind, Toolpath};
+
+/// The slowest feed a feed move may have, mm/s (0.00006 mm/min): below it the time of a
+/// block overflows long before it means anything.
+pub const MIN_FEED: f64 = 1e-6;
+
+/// The longest dwell, s (11.6 days): keeps the total time of any program finite.
+pub const MAX_DWELL: f64 = 1e6;
 
 /// Options of [`plan_moves`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -176,21 +183,48 @@ impl Builder {
             a: 1.0,
             j: 1.0,
         };
+        // Coordinates beyond ±1e6 mm overflow lengths and times (a target at 1e300 gave an
+        // infinite cycle time; found by the `planner` fuzzer).
+        let far = |p: Point3| {
+            !(p.x.abs() <= MAX_COORDINATE_MM
+                && p.y.abs() <= MAX_COORDINATE_MM
+                && p.z.abs() <= MAX_COORDINATE_MM)
+        };
+        let centre = match m.kind {
+            MoveKind::Arc { center, .. } => Some(center),
+            _ => None,
+        };
+        for (what, p) in [
+            ("start point", Some(from)),
+            ("end point", Some(m.to)),
+            ("arc centre", centre),
+        ] {
+            if let Some(p) = p
+                && far(p)
+            {
+                return Err(
+                    crate::InputError::new(what, format!("({}, {}, {})", p.x, p.y, p.z))
+                        .at(format!("move {}", i + 1))
+                        .expected(format!("finite coordinates within ±{MAX_COORDINATE_MM} mm"))
+                        .into(),
+                );
+            }
+        }
         let g = Geom::of(from, m);
         let length = g.as_ref().map_or(0.0, Geom::length);
-        if m.is_feed() && !(m.feed.is_finite() && m.feed > 0.0) && length > 0.0 {
+        if m.is_feed() && !(m.feed.is_finite() && m.feed >= MIN_FEED) && length > 0.0 {
             return Err(crate::InputError::new("feed", m.feed)
                 .at(format!("move {}", i + 1))
-                .expected("a finite feed > 0 mm/s on a feed move")
+                .expected(format!("a finite feed >= {MIN_FEED} mm/s on a feed move"))
                 .into());
         }
         let mut span_offset = 0.0;
         match (&g, m.kind) {
             (_, MoveKind::Dwell { seconds }) => {
-                if !(seconds.is_finite() && seconds >= 0.0) {
+                if !(seconds.is_finite() && (0.0..=MAX_DWELL).contains(&seconds)) {
                     return Err(crate::InputError::new("dwell", seconds)
                         .at(format!("move {}", i + 1))
-                        .expected("a finite number of seconds >= 0")
+                        .expected(format!("a number of seconds in [0, {MAX_DWELL}]"))
                         .into());
                 }
                 self.open(i, 0.0, zero);

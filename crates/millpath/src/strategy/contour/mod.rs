@@ -112,6 +112,9 @@ impl Default for ContourOptions {
     }
 }
 
+/// The most Z layers a contour may have (`depth / step-down`).
+pub const MAX_LAYERS: f64 = 10_000.0;
+
 impl ContourOptions {
     /// Checks every value; errors name the option.
     pub fn validate(&self) -> Result<(), InputError> {
@@ -119,6 +122,16 @@ impl ContourOptions {
         require_positive("tolerance", self.tolerance, "contour options")?;
         require_positive("depth", self.depth, "contour options")?;
         require_positive("step-down", self.step_down, "contour options")?;
+        // The layer count `depth / step-down` is allocated: bounded (a depth of 1e300 asked
+        // for a capacity overflow in `layer_depths`; found by the `contour` fuzzer).
+        if self.depth / self.step_down > MAX_LAYERS {
+            return Err(InputError::new("step-down", self.step_down)
+                .at("contour options")
+                .expected(format!(
+                    "at most {MAX_LAYERS} layers: a step-down >= depth / {MAX_LAYERS} = {} mm",
+                    self.depth / MAX_LAYERS
+                )));
+        }
         require_positive("feed", self.feed, "contour options")?;
         require_positive("plunge feed", self.plunge_feed, "contour options")?;
         require_positive("rapid speed", self.rapid_speed, "contour options")?;
