@@ -144,7 +144,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 (f, rm.mv)
             }))
         });
-        let streamed = run_streaming(stream, &machine, args)?;
+        let streamed = run_streaming(stream, &machine, args);
         if let Some(b) = &bar {
             b.finish_and_clear();
         }
