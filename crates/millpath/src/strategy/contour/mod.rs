@@ -148,6 +148,24 @@ impl ContourOptions {
             }
         }
         crate::error::require_finite("top Z", self.top_z, "contour options")?;
+        // Lengths beyond ±1e6 mm (1 km) mean nothing on a machine and make the work explode
+        // (a lead radius of 1e300 took seconds; found by the `contour` fuzzer).
+        let max = crate::geom::MAX_COORDINATE_MM;
+        for (what, v) in [
+            ("top Z", self.top_z),
+            ("depth", self.depth),
+            ("finish allowance", self.finish_allowance),
+            ("lead radius", self.lead_radius),
+            ("safe height", self.safe_height),
+            ("clearance height", self.clearance_height),
+            ("tolerance", self.tolerance),
+        ] {
+            if v.abs() > max {
+                return Err(InputError::new(what, v)
+                    .at("contour options")
+                    .expected(format!("a length within ±{max} mm")));
+            }
+        }
         if !(self.safe_height.is_finite() && self.safe_height >= self.clearance_height) {
             return Err(InputError::new("safe height", self.safe_height)
                 .at("contour options")
