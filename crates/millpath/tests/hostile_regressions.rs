@@ -200,8 +200,9 @@ fn planner_refuses_moves_whose_time_overflows() {
 }
 
 /// The `contour` fuzzer (timeout, 22 s under ASan; 8.7 s in release): a contour with a lead
-/// radius, safe and clearance heights of 1e300 mm. Fixed in `ContourOptions::validate`:
-/// lengths beyond ±1e6 mm are refused.
+/// radius, safe and clearance heights of 1e300 mm; and (out of memory, 2 GB) a tool of
+/// 1e300 mm, whose corner joins `contour::pass::join_corner` sampled with 3e9 points. Fixed in
+/// `ContourOptions::validate`: lengths beyond ±1e6 mm are refused.
 #[test]
 fn contour_lengths_of_1e300_are_refused() {
     use millpath::strategy::contour::{self, ContourOptions};
@@ -219,6 +220,16 @@ fn contour_lengths_of_1e300_are_refused() {
             ContourOptions {
                 safe_height: 1e300,
                 clearance_height: 1.0,
+                ..base.clone()
+            },
+        ),
+        (
+            "tool diameter",
+            ContourOptions {
+                tool: millpath::Tool {
+                    diameter: 1e300,
+                    ..base.tool
+                },
                 ..base.clone()
             },
         ),

@@ -149,9 +149,11 @@ impl ContourOptions {
         }
         crate::error::require_finite("top Z", self.top_z, "contour options")?;
         // Lengths beyond ±1e6 mm (1 km) mean nothing on a machine and make the work explode
-        // (a lead radius of 1e300 took seconds; found by the `contour` fuzzer).
+        // (a lead radius of 1e300 took seconds; a tool of 1e300 mm asked the corner join for
+        // 3e9 points; found by the `contour` fuzzer).
         let max = crate::geom::MAX_COORDINATE_MM;
         for (what, v) in [
+            ("tool diameter", self.tool.diameter),
             ("top Z", self.top_z),
             ("depth", self.depth),
             ("finish allowance", self.finish_allowance),
