@@ -69,6 +69,28 @@ fn corpus_planner() {
     replay("planner", 50, harness::planner);
 }
 
+/// Plans the `planner` fuzzer found violating their machine's limits (velocity, acceleration
+/// and jerk over the limit, position inconsistency, corner deviation), replayed with the
+/// verifier check on (`FUZZ_STRICT_VERIFY`). See fuzz/README.md, "Findings".
+#[test]
+#[ignore = "bug: the planner violates machine limits on these fuzzer inputs (fuzz/regressions/planner-limits)"]
+fn planner_limit_violations_found_by_the_fuzzer() {
+    harness::STRICT_VERIFY.store(true, std::sync::atomic::Ordering::Relaxed);
+    let dir =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/planner-limits");
+    let mut h = Harness::new("planner limits");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("regressions dir")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    files.sort();
+    for f in &files {
+        let data = std::fs::read(f).expect("file");
+        h.run(&f.display(), || harness::planner(&data));
+    }
+    h.finish(1);
+}
+
 /// Replays one file: `FUZZ_TARGET=pocket FUZZ_FILE=path FUZZ_TRACE=1 cargo test -p millpath
 /// --test hostile_corpus -- --ignored replay_one --nocapture` (prints the decoded input).
 #[test]
