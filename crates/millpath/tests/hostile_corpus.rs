@@ -51,7 +51,7 @@ fn corpus_outline_importers() {
 
 #[test]
 fn corpus_points() {
-    replay("points", 100, harness::points);
+    replay("points", 50, harness::points);
 }
 
 #[test]
