@@ -44,6 +44,18 @@ fn paper_case_meets_every_limit_and_beats_the_baseline() {
     );
     // The feed binds: the plan runs at the feed limit (within the verifier's tolerance).
     assert!((r.max_feed_mm_s - 30.0).abs() < 1e-4, "{}", r.max_feed_mm_s);
+    // Certified: the rigorous feed bound holds over the whole plan, and no interval can be
+    // shortened by more than 1e-8 of its time (every shorter duration is proven infeasible).
+    assert!(
+        r.feed_upper_bound_mm_s <= 30.0,
+        "{}",
+        r.feed_upper_bound_mm_s
+    );
+    assert!(
+        r.max_minimality_gap <= 1.0001e-8,
+        "{}",
+        r.max_minimality_gap
+    );
     // Lower bound: path length / feed (the arc is 157.08 mm).
     assert!(r.total_time_s > 157.0 / 30.0);
     assert!(

@@ -49,6 +49,10 @@ proptest! {
         let res = &out.result;
         prop_assert!(res.violations.is_empty(), "{}: {:?}", kin.name(), res.violations);
         prop_assert!(res.tightest_margin > -1e-7);
+        // Certified: the rigorous feed bound holds, and every interval is proven minimal to
+        // within 1e-8 of its time, or the proof says how far it reached.
+        prop_assert!(res.feed_upper_bound_mm_s <= 30.0, "{}", res.feed_upper_bound_mm_s);
+        prop_assert!((0.0..1.0).contains(&res.max_minimality_gap));
         if let Some(b) = res.baseline_time_s {
             prop_assert!(res.total_time_s <= b + 1e-12);
         }

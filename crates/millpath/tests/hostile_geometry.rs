@@ -180,6 +180,7 @@ fn pocket_toolpaths_survive_arbitrary_polygons_and_options() {
             zigzag_angle: mostly_sane(&mut r, -3.0, 3.0, 0.05),
             transition: mostly_sane(&mut r, 0.0, 1.0, 0.05),
             min_radius: mostly_sane(&mut r, 0.1, 2.0, 0.05),
+            morph: Default::default(),
             finish: r.random_bool(0.3),
             modulate_feed: false,
         };

@@ -112,6 +112,7 @@ fn pocket_ramp_on_a_sliver_cut_is_bounded() {
         zigzag_angle: -2.7371216566852055,
         transition: 0.7358653342432562,
         min_radius: 0.8251498205924716,
+        morph: Default::default(),
         finish: false,
         modulate_feed: false,
     };

@@ -44,27 +44,57 @@ fn aerospace_pocket_all_strategies_verify() {
     }
 }
 
-/// The spiral's loops never exceed the stepover (measured by the planner) and its share of
-/// path above the nominal engagement is no larger than offset's.
+/// The spiral's loops: with the harmonic morph the distance between consecutive loops never
+/// exceeds the stepover; with the fronts morph it never exceeds it along the sides and is at
+/// most √2 times it at the boundary's right-angle corners (as for contour-parallel offsets).
+/// Either way the share of path above the nominal engagement is no larger than offset's, and
+/// the fronts spiral is shorter and faster than the harmonic one.
 #[test]
 fn spiral_spacing_and_engagement_share() {
+    use millpath::strategy::pocket::spiral::SpiralMorph as Morph;
     let shape = samples::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
-    let opts = PocketOptions {
+    let base = PocketOptions {
         depth: 6.0,
         step_down: 6.0,
         ..PocketOptions::default()
     };
-    let (_, stats) = pocket::spiral::plan_with_stats(&shape, &tool, &opts).unwrap();
-    assert!(stats.max_loop_distance <= 0.4 * 12.7 + 1e-9, "{stats:?}");
-    let sp = pocket::generate(StrategyKind::Spiral, &shape, &tool, &opts, &coarse()).unwrap();
-    let off = pocket::generate(StrategyKind::Offset, &shape, &tool, &opts, &coarse()).unwrap();
-    assert!(
-        sp.verification.share_above_nominal <= off.verification.share_above_nominal,
-        "spiral {} offset {}",
-        sp.verification.share_above_nominal,
-        off.verification.share_above_nominal
-    );
+    let s = 0.4 * 12.7;
+    let off = pocket::generate(StrategyKind::Offset, &shape, &tool, &base, &coarse()).unwrap();
+    let mut times = Vec::new();
+    for (morph, bound) in [
+        (Morph::Harmonic, s),
+        (Morph::Fronts, std::f64::consts::SQRT_2 * s),
+    ] {
+        let opts = PocketOptions {
+            morph,
+            ..base.clone()
+        };
+        let (_, stats) = pocket::spiral::plan_with_stats(&shape, &tool, &opts).unwrap();
+        assert_eq!(stats.fronts, morph == Morph::Fronts, "{stats:?}");
+        assert!(
+            stats.max_loop_distance <= bound + 1e-9,
+            "{morph:?}: {stats:?}"
+        );
+        let sp = pocket::generate(StrategyKind::Spiral, &shape, &tool, &opts, &coarse()).unwrap();
+        assert!(
+            sp.verification.problems().is_empty(),
+            "{morph:?}: {:?}",
+            sp.verification.problems()
+        );
+        assert!(
+            sp.verification.share_above_nominal <= off.verification.share_above_nominal,
+            "{morph:?}: spiral {} offset {}",
+            sp.verification.share_above_nominal,
+            off.verification.share_above_nominal
+        );
+        times.push((
+            sp.toolpath.cut_length(),
+            pocket::cycle_time(&sp.toolpath).unwrap(),
+        ));
+    }
+    assert!(times[1].0 < 0.85 * times[0].0, "{times:?}");
+    assert!(times[1].1 < times[0].1, "{times:?}");
 }
 
 /// Non-convex, non-star-shaped pockets: the spiral still verifies.
@@ -158,5 +188,61 @@ fn structural_part_all_strategies() {
                 r.verification.problems()
             );
         }
+    }
+}
+
+/// The fronts spiral is a property of the pocket: reversed, rotated (by 90° and by an
+/// arbitrary angle) and translated, the path length is the same and the cycle time on `hsm`
+/// within 0.5% (per-axis limits make arbitrary rotations change the true time slightly).
+#[test]
+fn spiral_invariance_under_reversal_rotation_translation() {
+    use millpath::geom::{Outline, Point};
+    let tool = Tool::flat(12.7).unwrap();
+    let opts = PocketOptions {
+        depth: 6.0,
+        step_down: 6.0,
+        modulate_feed: false,
+        ..PocketOptions::default()
+    };
+    let base = samples::aerospace_pocket();
+    let verts: Vec<(Point, f64)> = base.outer.vertices().collect();
+    let run = |v: &[(Point, f64)]| {
+        let shape = pocket::PocketShape::simple(Outline::new(v, "moved").unwrap());
+        let tp = pocket::toolpath(StrategyKind::Spiral, &shape, &tool, &opts).unwrap();
+        (tp.cut_length(), pocket::cycle_time(&tp).unwrap())
+    };
+    let (l0, t0) = run(&verts);
+    let turned = |a: f64, d: (f64, f64)| -> Vec<(Point, f64)> {
+        verts
+            .iter()
+            .map(|&(p, b)| {
+                let q = p.rotate_about(Point::ORIGIN, a);
+                (Point::new(q.x + d.0, q.y + d.1), b)
+            })
+            .collect()
+    };
+    let mut reversed: Vec<(Point, f64)> = Vec::new();
+    // Reversal: the same loop walked the other way (bulges move to the other end, negated).
+    let n = verts.len();
+    for i in 0..n {
+        let (p, _) = verts[(n - i) % n];
+        let (_, b) = verts[(2 * n - i - 1) % n];
+        reversed.push((p, -b));
+    }
+    for (name, v) in [
+        ("reversed", reversed),
+        (
+            "rotated 90°",
+            turned(std::f64::consts::FRAC_PI_2, (0.0, 0.0)),
+        ),
+        (
+            "rotated 30° and moved",
+            turned(30f64.to_radians(), (250.0, -40.0)),
+        ),
+        ("moved", turned(0.0, (-1234.5, 987.0))),
+    ] {
+        let (l, t) = run(&v);
+        assert!((l - l0).abs() <= 1e-3 * l0, "{name}: length {l} vs {l0}");
+        assert!((t - t0).abs() <= 5e-3 * t0, "{name}: time {t} vs {t0}");
     }
 }

@@ -2,17 +2,19 @@
 //! compared with the paper's GA baseline, optionally replanned around a deflection.
 
 use super::{print, read_text};
-use millpath::gcode::five_axis::{FiveAxisGcodeOptions, write_five_axis};
+use millpath::gcode::five_axis::{FeedMode, FiveAxisGcodeOptions, write_five_axis};
 use millpath::geom::Point3;
 use millpath::machine::kinematics::{HeadHead, Kinematics, PaperAb, TableTable, TrtKind};
-use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, case};
+use millpath::motion::five_axis::case::LimitsFile;
+use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, RefCurve, case};
+use millpath::report::five_axis_plots::deflection_charts;
 use millpath::{Error, InputError};
 use std::path::PathBuf;
 
 /// Arguments of `millpath five-axis`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath five-axis --case paper --json\n  millpath five-axis --case paper --machine ac-trt --csv traj.csv --gcode traj.ngc\n  millpath five-axis path.csv --no-baseline"
+    after_help = "Examples:\n  millpath five-axis --case paper --json\n  millpath five-axis --case paper --machine xyzac-trt --csv traj.csv --gcode traj.ngc --g93\n  millpath five-axis path.csv --limits limits.toml --feed 25 --no-baseline\n\nPath file: a line `# unit: mm` (or `m`), the header `x,y,z,i,j,k`, then one pose per line\n(tool tip, tool axis from the tip towards the spindle, any non-zero length).\nLimits file (TOML, mm, s, rad; every key optional): feed, linear_velocity,\nlinear_acceleration, linear_jerk, rotary_velocity, rotary_acceleration, rotary_jerk,\ntool_length, z1, z2. Flags override the file; the file overrides the paper's limits."
 )]
 pub struct Args {
     /// Built-in case: `paper` (the paper's quarter circle and deflection).
@@ -20,12 +22,51 @@ pub struct Args {
     pub case: Option<String>,
     /// Path file: `# unit: mm|m`, header `x,y,z,i,j,k`, one pose per line.
     pub path: Option<PathBuf>,
-    /// Machine kinematics: paper-ab, ac-trt, bc-trt, head-head (default: paper-ab).
-    #[arg(long, default_value = "paper-ab")]
+    /// Machine kinematics: paper (A head, B table; alias paper-ab), xyzac-trt (alias ac-trt),
+    /// xyzbc-trt (alias bc-trt), head-head.
+    #[arg(long, default_value = "paper")]
     pub machine: String,
+    /// Limits file (TOML; see below).
+    #[arg(long)]
+    pub limits: Option<PathBuf>,
+    /// Tool-tip feed limit, mm/s.
+    #[arg(long, allow_negative_numbers = true)]
+    pub feed: Option<f64>,
+    /// Velocity limit of X, Y, Z, mm/s.
+    #[arg(long, allow_negative_numbers = true)]
+    pub linear_velocity: Option<f64>,
+    /// Acceleration limit of X, Y, Z, mm/s².
+    #[arg(long, allow_negative_numbers = true)]
+    pub linear_acceleration: Option<f64>,
+    /// Jerk limit of X, Y, Z, mm/s³.
+    #[arg(long, allow_negative_numbers = true)]
+    pub linear_jerk: Option<f64>,
+    /// Velocity limit of the rotary axes, rad/s.
+    #[arg(long, allow_negative_numbers = true)]
+    pub rotary_velocity: Option<f64>,
+    /// Acceleration limit of the rotary axes, rad/s².
+    #[arg(long, allow_negative_numbers = true)]
+    pub rotary_acceleration: Option<f64>,
+    /// Jerk limit of the rotary axes, rad/s³.
+    #[arg(long, allow_negative_numbers = true)]
+    pub rotary_jerk: Option<f64>,
+    /// Tool length, mm (paper: l_t; table-table: the tool offset; head-head: pivot to tip).
+    #[arg(long, allow_negative_numbers = true)]
+    pub tool_length: Option<f64>,
+    /// The paper machine's z1 (lower-ground origin to the tool's initial point), mm.
+    #[arg(long, allow_negative_numbers = true)]
+    pub z1: Option<f64>,
+    /// The paper machine's z2 (table pivot to the workpiece origin), mm.
+    #[arg(long, allow_negative_numbers = true)]
+    pub z2: Option<f64>,
     /// Deflected tool position `x,y,z` in mm (the paper case uses its own example unless
     /// `--no-deflection`).
-    #[arg(long, value_delimiter = ',', num_args = 3)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        num_args = 3,
+        allow_negative_numbers = true
+    )]
     pub deflection: Option<Vec<f64>>,
     /// Skip the deflection replanning of the paper case.
     #[arg(long)]
@@ -45,37 +86,101 @@ pub struct Args {
     /// Write 5-axis G-code (table-table machines only) to this file.
     #[arg(long)]
     pub gcode: Option<PathBuf>,
-    /// Use G94 units-per-minute feeds instead of G93 inverse time.
-    #[arg(long)]
-    pub no_inverse_time: bool,
-    /// Write a self-contained HTML report (summary and the feed, velocity, acceleration and
-    /// jerk plots).
+    /// G-code feeds in inverse time (G93, the default): every block takes its planned time on
+    /// any control.
+    #[arg(long, conflicts_with = "g94")]
+    pub g93: bool,
+    /// G-code feeds in mm/min (G94) on the XYZ chord of each block (deg/min for rotary-only
+    /// blocks), exact on RS274NGC/LinuxCNC-style controls without tool-centre-point control.
+    #[arg(long, alias = "no-inverse-time")]
+    pub g94: bool,
+    /// Write a self-contained HTML report (summary, the feed, velocity, acceleration and jerk
+    /// plots, and the deflection plots).
     #[arg(long)]
     pub html: Option<PathBuf>,
 }
 
-fn machine(name: &str) -> Result<Box<dyn Kinematics>, Error> {
+/// The machine named `name` with the given structural overrides.
+fn machine(name: &str, over: &LimitsFile) -> Result<Box<dyn Kinematics>, Error> {
+    let only_paper = |key: &str, v: Option<f64>| -> Result<(), Error> {
+        match v {
+            Some(v) => Err(InputError::new(key, v)
+                .at(format!("--machine {name}"))
+                .expected(format!("{key} only with --machine paper"))
+                .into()),
+            None => Ok(()),
+        }
+    };
     Ok(match name {
-        "paper-ab" => Box::new(PaperAb::paper()),
-        "ac-trt" => Box::new(TableTable::typical(TrtKind::Ac)),
-        "bc-trt" => Box::new(TableTable::typical(TrtKind::Bc)),
-        "head-head" => Box::new(HeadHead::typical()),
+        "paper" | "paper-ab" => {
+            let mut m = PaperAb::paper();
+            m.tool_length = over.tool_length.unwrap_or(m.tool_length);
+            m.z1 = over.z1.unwrap_or(m.z1);
+            m.z2 = over.z2.unwrap_or(m.z2);
+            Box::new(m)
+        }
+        "xyzac-trt" | "ac-trt" | "xyzbc-trt" | "bc-trt" => {
+            only_paper("z1", over.z1)?;
+            only_paper("z2", over.z2)?;
+            let kind = if name.contains("ac") {
+                TrtKind::Ac
+            } else {
+                TrtKind::Bc
+            };
+            let mut m = TableTable::typical(kind);
+            m.tool_offset = over.tool_length.unwrap_or(m.tool_offset);
+            Box::new(m)
+        }
+        "head-head" => {
+            only_paper("z1", over.z1)?;
+            only_paper("z2", over.z2)?;
+            let mut m = HeadHead::typical();
+            m.length = over.tool_length.unwrap_or(m.length);
+            Box::new(m)
+        }
         other => {
             return Err(InputError::new("machine", other)
                 .at("--machine")
-                .expected("paper-ab, ac-trt, bc-trt or head-head")
+                .expected("paper, xyzac-trt, xyzbc-trt or head-head")
                 .into());
         }
     })
 }
 
+/// The limits and structural overrides: the paper's limits, then the file, then the flags.
+fn overrides(args: &Args) -> Result<LimitsFile, Error> {
+    let file = match &args.limits {
+        Some(p) => LimitsFile::parse(&read_text(p)?, &p.display().to_string())?,
+        None => LimitsFile::default(),
+    };
+    let flags = LimitsFile {
+        feed: args.feed,
+        linear_velocity: args.linear_velocity,
+        linear_acceleration: args.linear_acceleration,
+        linear_jerk: args.linear_jerk,
+        rotary_velocity: args.rotary_velocity,
+        rotary_acceleration: args.rotary_acceleration,
+        rotary_jerk: args.rotary_jerk,
+        tool_length: args.tool_length,
+        z1: args.z1,
+        z2: args.z2,
+    };
+    flags.validate("command-line flags")?;
+    Ok(file.overridden_by(&flags))
+}
+
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let kin = machine(&args.machine)?;
+    let over = overrides(args)?;
+    let limits = over.apply(&Limits::paper());
+    limits.validate("limits")?;
+    let kin = machine(&args.machine, &over)?;
     if args.gcode.is_some() && !matches!(kin.name(), "ac-trt" | "bc-trt") {
         return Err(InputError::new("--machine", kin.name())
             .at("--gcode")
-            .expected("ac-trt or bc-trt: five-axis G-code is written for table-table machines")
+            .expected(
+                "xyzac-trt or xyzbc-trt: five-axis G-code is written for table-table machines",
+            )
             .into());
     }
     let (poses, default_deflection) = match (&args.case, &args.path) {
@@ -86,10 +191,16 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .expected("paper")
                 .into());
         }
-        (None, Some(p)) => (
-            case::parse_path_csv(&read_text(p)?, &p.display().to_string())?,
-            None,
-        ),
+        (None, Some(p)) => {
+            let name = p.display().to_string();
+            let lines = case::parse_path_csv_lines(&read_text(p)?, &name)?;
+            // Every pose must be reachable: name its line.
+            for (line, pose) in &lines {
+                kin.inverse(pose)
+                    .map_err(|e| e.at(format!("{name}:{line}")))?;
+            }
+            (lines.into_iter().map(|(_, p)| p).collect(), None)
+        }
         (None, None) => {
             return Err(InputError::new("input", "none")
                 .expected("--case paper or a path file")
@@ -117,7 +228,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if args.no_baseline {
         opts.baseline = None;
     }
-    let out = five_axis::plan(kin.as_ref(), &poses, &Limits::paper(), &opts, deflection)?;
+    let out = five_axis::plan(kin.as_ref(), &poses, &limits, &opts, deflection)?;
     if let Some(path) = &args.csv {
         let s = five_axis::sample(&out.segments, kin.as_ref(), args.dt);
         millpath::io::write_atomic_with(path, |w| {
@@ -127,7 +238,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(path) = &args.gcode {
         let go = FiveAxisGcodeOptions {
-            inverse_time: !args.no_inverse_time,
+            feed_mode: if args.g94 {
+                FeedMode::UnitsPerMinute
+            } else {
+                FeedMode::InverseTime
+            },
             ..FiveAxisGcodeOptions::default()
         };
         let segs = out.segments.clone();
@@ -154,9 +269,18 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 ),
             ],
         );
-        for (_, caption, chart) in
-            super::html::five_axis_charts(&s, kin.axis_names(), &Limits::paper())
-        {
+        let mut charts = super::html::five_axis_charts(&s, kin.axis_names(), &limits);
+        if let Some(d) = &r.deflection {
+            let curve = RefCurve::through(&out.poses.iter().map(|p| p.tip).collect::<Vec<_>>());
+            charts.extend(deflection_charts(
+                kin.as_ref(),
+                &curve,
+                &out.segments,
+                d,
+                &limits,
+            ));
+        }
+        for (_, caption, chart) in charts {
             html.plot(
                 caption,
                 &millpath::report::plots::render_svg(
@@ -179,6 +303,10 @@ pub fn run(args: &Args) -> Result<(), Error> {
             r.tightest_constraint,
             r.max_feed_mm_s,
             r.max_path_deviation_mm
+        ));
+        print(&format!(
+            "certified: feed <= {:.6} mm/s over the whole plan (rigorous bound); no interval can be shortened by more than {:.1e} (relative)",
+            r.feed_upper_bound_mm_s, r.max_minimality_gap
         ));
         if let (Some(b), Some(m), Some(ct)) = (
             r.baseline_time_s,
@@ -223,4 +351,113 @@ pub fn run(args: &Args) -> Result<(), Error> {
         )));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: Args,
+    }
+
+    /// Runs the command; returns the exit code and the message of the error.
+    fn run_with(argv: &[&str]) -> (i32, String) {
+        let mut full = vec!["five-axis"];
+        full.extend_from_slice(argv);
+        let cli = Cli::try_parse_from(full).expect("arguments parse");
+        match run(&cli.args) {
+            Ok(()) => (0, String::new()),
+            Err(e) => (e.exit_code(), e.to_string()),
+        }
+    }
+
+    fn file(dir: &tempfile::TempDir, name: &str, text: &str) -> String {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).expect("write test file");
+        p.display().to_string()
+    }
+
+    /// Bad input in a path file, a limits file or a flag: exit code 2, naming the value and
+    /// where it came from (file and line for path files).
+    #[test]
+    fn bad_input_is_exit_code_2_naming_value_and_line() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let head = "# unit: mm\nx,y,z,i,j,k\n0,0,10,0,0,1\n";
+        let cases: Vec<(Vec<String>, Vec<&str>)> = vec![
+            (
+                vec![file(&dir, "zero.csv", &format!("{head}10,0,10,0,0,0\n"))],
+                vec!["zero.csv:4", "tool axis"],
+            ),
+            (
+                vec![file(&dir, "nan.csv", &format!("{head}10,0,NaN,0,0,1\n"))],
+                vec!["nan.csv:4", "NaN"],
+            ),
+            (
+                vec![file(&dir, "range.csv", &format!("{head}10,0,10,0,1,0\n"))],
+                vec!["range.csv:4", "reachable"],
+            ),
+            (
+                vec!["--case".into(), "paper".into(), "--feed".into(), "0".into()],
+                vec!["feed = 0"],
+            ),
+            (
+                vec![
+                    "--case".into(),
+                    "paper".into(),
+                    "--limits".into(),
+                    file(&dir, "l.toml", "rotary_jerk = -5\n"),
+                ],
+                vec!["rotary_jerk = -5", "l.toml"],
+            ),
+            (
+                vec![
+                    "--case".into(),
+                    "paper".into(),
+                    "--machine".into(),
+                    "xyz".into(),
+                ],
+                vec!["machine = xyz"],
+            ),
+        ];
+        for (argv, needles) in cases {
+            let argv: Vec<&str> = argv.iter().map(String::as_str).collect();
+            let (code, msg) = run_with(&argv);
+            assert_eq!(code, 2, "{argv:?}: {msg}");
+            for n in needles {
+                assert!(msg.contains(n), "{argv:?}: {msg} lacks {n}");
+            }
+        }
+    }
+
+    /// Every machine name (and the G94 G-code of the table-table ones) runs with a custom feed
+    /// limit on a path file.
+    #[test]
+    fn custom_limits_and_machine_aliases_are_used() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = file(
+            &dir,
+            "p.csv",
+            "# unit: mm\nx,y,z,i,j,k\n0,0,10,0,0,1\n5,0,10,0.05,0,1\n10,1,10,0.1,0,1\n",
+        );
+        let json = dir.path().join("out.ngc").display().to_string();
+        for machine in ["paper", "xyzac-trt", "xyzbc-trt", "head-head"] {
+            let mut argv = vec![
+                path.as_str(),
+                "--machine",
+                machine,
+                "--no-baseline",
+                "--feed",
+                "10",
+            ];
+            if machine.contains("trt") {
+                argv.extend(["--gcode", json.as_str(), "--g94"]);
+            }
+            let (code, msg) = run_with(&argv);
+            assert_eq!(code, 0, "{machine}: {msg}");
+        }
+    }
 }

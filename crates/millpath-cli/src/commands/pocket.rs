@@ -90,6 +90,10 @@ pub struct CommonArgs {
     /// Smallest curvature radius wanted on the spiral's interior loops, mm.
     #[arg(long, default_value_t = 1.0)]
     pub min_radius: f64,
+    /// Spiral morph: `fronts` (offset fronts, fewest laps) or `harmonic` (stepover held at
+    /// corners too, more laps)
+    #[arg(long, default_value = "fronts")]
+    pub morph: String,
     /// Finishing pass along the walls.
     #[arg(long)]
     pub finish: bool,
@@ -177,6 +181,16 @@ impl CommonArgs {
             zigzag_angle: self.angle.to_radians(),
             transition: self.transition,
             min_radius: self.min_radius,
+            morph: match self.morph.as_str() {
+                "fronts" => pocket::spiral::SpiralMorph::Fronts,
+                "harmonic" => pocket::spiral::SpiralMorph::Harmonic,
+                other => {
+                    return Err(InputError::new("morph", other)
+                        .at("--morph")
+                        .expected("fronts or harmonic")
+                        .into());
+                }
+            },
             finish: self.finish,
             modulate_feed: !self.no_feed_modulation,
         };

@@ -87,6 +87,10 @@ impl Kinematics for HeadHead {
             pole_distance,
         }
     }
+    fn lever_bound(&self, _lo: &Joints, _hi: &Joints) -> f64 {
+        // tip = P − L k(b, c): every rotary derivative of the unit vector k has norm ≤ 1.
+        self.length.abs()
+    }
     fn linear(&self, tip: Point3, b: f64, c: f64) -> Option<[f64; 3]> {
         let k = mv(&mm(&rot_z(c), &rot_y(b)), &[0.0, 0.0, 1.0]);
         let t = arr_p(tip);

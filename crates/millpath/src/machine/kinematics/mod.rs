@@ -27,6 +27,20 @@
 //! more than [`IkOptions::flip_threshold`] from the previous pose (the classic 180° flip when a
 //! path crosses the pole), [`IkWarning::Flip`] says so. The library never prints: warnings are
 //! part of the [`IkOutcome`].
+//!
+//! # Derivative bounds (used to certify the feed limit)
+//! On every machine here the tip is affine in the linear joints with coefficients that are
+//! products of rotation matrices, and each rotary joint enters through one rotation about a
+//! fixed axis (`dR/dθ = G R` with `|G| = 1` as an operator). Hence, anywhere in a joint box:
+//! * a partial derivative of the tip of any order with **two or more linear** indices is 0;
+//! * one with **exactly one linear** index has norm ≤ 1 (a unit column rotated, each rotary
+//!   derivative multiplying by a generator of norm 1);
+//! * one with **only rotary** indices (order 1 to 3) has norm ≤ `R`, the largest lever arm
+//!   over the box: [`Kinematics::lever_bound`] (each machine derives its `R` in its docs).
+//!
+//! These three facts bound the tip's second and third time derivatives along any joint
+//! trajectory by the joints' velocity, acceleration and jerk bounds (see
+//! `motion::five_axis::certify`).
 
 mod head_head;
 mod paper_ab;
@@ -141,6 +155,10 @@ pub trait Kinematics: std::fmt::Debug + Send + Sync {
     /// Linear joints placing the tip at `tip` for rotary angles `(r1, r2)`; `None` where the
     /// machine cannot reach the point with these angles.
     fn linear(&self, tip: Point3, r1: f64, r2: f64) -> Option<[f64; 3]>;
+    /// The structural constant `R` of the derivative bounds over the joint box `[lo, hi]`
+    /// (see "Derivative bounds" in the module docs): every partial derivative of the tip of
+    /// order 1 to 3 taken in the rotary joints only has norm ≤ `R` anywhere in the box.
+    fn lever_bound(&self, lo: &Joints, hi: &Joints) -> f64;
 
     /// All joint solutions of `pose` inside the rotary ranges (free angle 0 at a pole).
     /// No solution is an [`InputError`] naming the pose.

@@ -137,6 +137,14 @@ impl Kinematics for PaperAb {
             pole_distance,
         }
     }
+    fn lever_bound(&self, lo: &Joints, hi: &Joints) -> f64 {
+        // Rotary-only derivatives of the tip: ∂/∂A and its A/B derivatives have norm l_t
+        // (or l_t|sA|, l_t|cA|), ∂/∂B and ∂³/∂B³ norm |h| with h = z1 + z − l_t cA, so
+        // R = max(l_t, sup|h|) and sup|h| ≤ max(|z1 + z_lo|, |z1 + z_hi|) + l_t.
+        let lt = self.tool_length.abs();
+        let h = (self.z1 + lo[2]).abs().max((self.z1 + hi[2]).abs()) + lt;
+        lt.max(h)
+    }
     fn linear(&self, tip: Point3, a: f64, b: f64) -> Option<[f64; 3]> {
         let cb = b.cos();
         if cb.abs() < 1e-9 {

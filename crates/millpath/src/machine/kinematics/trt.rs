@@ -165,6 +165,19 @@ impl Kinematics for TableTable {
             pole_distance,
         }
     }
+    fn lever_bound(&self, lo: &Joints, hi: &Joints) -> f64 {
+        // With w = p_m − r: rotary derivatives of Rz(−c)(R1(−a) w − d) multiply by generators
+        // of norm 1, so every one has norm ≤ |w| + |d|; |w| is bounded over the box per
+        // component.
+        let sup = |i: usize, shift: f64| (lo[i] - shift).abs().max((hi[i] - shift).abs());
+        let w = [
+            sup(0, self.pivot[0]),
+            sup(1, self.pivot[1]),
+            sup(2, self.pivot[2] + self.tool_offset),
+        ];
+        let n = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        n(w) + n(self.offset)
+    }
     fn linear(&self, tip: Point3, t: f64, c: f64) -> Option<[f64; 3]> {
         let rd = add(self.pivot, self.offset);
         let inner = add(mv(&rot_z(c), &sub(arr_p(tip), rd)), self.offset);

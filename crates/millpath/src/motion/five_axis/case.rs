@@ -22,9 +22,11 @@
 //! potential-field answer (58, 58, 57.1) mm is 1.55 mm from it and 0.06 mm off the circle:
 //! on the curve, but not the closest point).
 
-use crate::error::InputError;
+use super::min_time::Limits;
+use crate::error::{InputError, require_positive};
 use crate::geom::{Point3, Vec3};
 use crate::machine::kinematics::Pose;
+use serde::Deserialize;
 use std::f64::consts::FRAC_PI_2;
 
 /// Number of intervals in the paper's case.
@@ -70,6 +72,15 @@ pub enum LengthUnit {
 /// one pose per line (tip in the stated unit, tool axis any non-zero length). Returns poses in
 /// mm. `origin` names the file in errors.
 pub fn parse_path_csv(text: &str, origin: &str) -> Result<Vec<Pose>, InputError> {
+    Ok(parse_path_csv_lines(text, origin)?
+        .into_iter()
+        .map(|(_, p)| p)
+        .collect())
+}
+
+/// As [`parse_path_csv`], each pose with its 1-based line number (to name the line in later
+/// errors, e.g. a pose the machine cannot reach).
+pub fn parse_path_csv_lines(text: &str, origin: &str) -> Result<Vec<(usize, Pose)>, InputError> {
     let mut unit = None;
     let mut header = false;
     let mut poses = Vec::new();
@@ -139,7 +150,7 @@ pub fn parse_path_csv(text: &str, origin: &str) -> Result<Vec<Pose>, InputError>
             Vec3::new(v[3], v[4], v[5]),
         )
         .map_err(|e| e.at(at))?;
-        poses.push(pose);
+        poses.push((n + 1, pose));
     }
     if poses.len() < 2 {
         return Err(InputError::new("path", format!("{} poses", poses.len()))
@@ -147,4 +158,193 @@ pub fn parse_path_csv(text: &str, origin: &str) -> Result<Vec<Pose>, InputError>
             .expected("at least two poses"));
     }
     Ok(poses)
+}
+
+/// A limits file (TOML, mm, s, rad; every key optional, missing keys keep the defaults):
+///
+/// ```toml
+/// feed = 30.0                   # tool-tip speed, mm/s
+/// linear_velocity = 500.0       # mm/s      (X, Y, Z)
+/// linear_acceleration = 20000.0 # mm/s²
+/// linear_jerk = 200000.0        # mm/s³
+/// rotary_velocity = 0.5         # rad/s     (both rotary axes)
+/// rotary_acceleration = 20.0    # rad/s²
+/// rotary_jerk = 200.0           # rad/s³
+/// tool_length = 50.0            # mm
+/// z1 = 300.0                    # mm, the paper's machine only
+/// z2 = 30.0                     # mm, the paper's machine only
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsFile {
+    /// Feed, mm/s.
+    pub feed: Option<f64>,
+    /// Linear velocity, mm/s.
+    pub linear_velocity: Option<f64>,
+    /// Linear acceleration, mm/s².
+    pub linear_acceleration: Option<f64>,
+    /// Linear jerk, mm/s³.
+    pub linear_jerk: Option<f64>,
+    /// Rotary velocity, rad/s.
+    pub rotary_velocity: Option<f64>,
+    /// Rotary acceleration, rad/s².
+    pub rotary_acceleration: Option<f64>,
+    /// Rotary jerk, rad/s³.
+    pub rotary_jerk: Option<f64>,
+    /// Tool length, mm.
+    pub tool_length: Option<f64>,
+    /// The paper machine's z1, mm.
+    pub z1: Option<f64>,
+    /// The paper machine's z2, mm.
+    pub z2: Option<f64>,
+}
+
+impl LimitsFile {
+    /// Parses a limits file; `origin` names it in errors. Every given value must be finite
+    /// and > 0 (`z2` may be any finite number).
+    pub fn parse(text: &str, origin: &str) -> Result<LimitsFile, InputError> {
+        let f: LimitsFile = toml::from_str(text).map_err(|e| {
+            InputError::new("limits file", origin).expected(format!(
+                "TOML with the keys feed, linear_velocity, linear_acceleration, linear_jerk, \
+                 rotary_velocity, rotary_acceleration, rotary_jerk, tool_length, z1, z2 ({})",
+                e.message()
+            ))
+        })?;
+        f.validate(origin)?;
+        Ok(f)
+    }
+
+    /// Every given value finite and > 0 (z2 finite), or an error naming the key.
+    pub fn validate(&self, origin: &str) -> Result<(), InputError> {
+        for (k, v) in [
+            ("feed", self.feed),
+            ("linear_velocity", self.linear_velocity),
+            ("linear_acceleration", self.linear_acceleration),
+            ("linear_jerk", self.linear_jerk),
+            ("rotary_velocity", self.rotary_velocity),
+            ("rotary_acceleration", self.rotary_acceleration),
+            ("rotary_jerk", self.rotary_jerk),
+            ("tool_length", self.tool_length),
+            ("z1", self.z1),
+        ] {
+            if let Some(v) = v {
+                require_positive(k, v, origin)?;
+            }
+        }
+        if let Some(z2) = self.z2.filter(|z| !z.is_finite()) {
+            return Err(InputError::new("z2", z2)
+                .at(origin)
+                .expected("a finite length in mm"));
+        }
+        Ok(())
+    }
+
+    /// Values of `other` where given, else ours.
+    #[must_use]
+    pub fn overridden_by(self, other: &LimitsFile) -> LimitsFile {
+        LimitsFile {
+            feed: other.feed.or(self.feed),
+            linear_velocity: other.linear_velocity.or(self.linear_velocity),
+            linear_acceleration: other.linear_acceleration.or(self.linear_acceleration),
+            linear_jerk: other.linear_jerk.or(self.linear_jerk),
+            rotary_velocity: other.rotary_velocity.or(self.rotary_velocity),
+            rotary_acceleration: other.rotary_acceleration.or(self.rotary_acceleration),
+            rotary_jerk: other.rotary_jerk.or(self.rotary_jerk),
+            tool_length: other.tool_length.or(self.tool_length),
+            z1: other.z1.or(self.z1),
+            z2: other.z2.or(self.z2),
+        }
+    }
+
+    /// `base` with the given limits applied.
+    pub fn apply(&self, base: &Limits) -> Limits {
+        let mut l = *base;
+        if let Some(f) = self.feed {
+            l.feed = f;
+        }
+        for (i, (v, a, j)) in [
+            (
+                self.linear_velocity,
+                self.linear_acceleration,
+                self.linear_jerk,
+            ),
+            (
+                self.linear_velocity,
+                self.linear_acceleration,
+                self.linear_jerk,
+            ),
+            (
+                self.linear_velocity,
+                self.linear_acceleration,
+                self.linear_jerk,
+            ),
+            (
+                self.rotary_velocity,
+                self.rotary_acceleration,
+                self.rotary_jerk,
+            ),
+            (
+                self.rotary_velocity,
+                self.rotary_acceleration,
+                self.rotary_jerk,
+            ),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            if let Some(v) = v {
+                l.vel[i] = v;
+            }
+            if let Some(a) = a {
+                l.acc[i] = a;
+            }
+            if let Some(j) = j {
+                l.jerk[i] = j;
+            }
+        }
+        l
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn limits_file_overrides_and_rejects() {
+        let f = LimitsFile::parse("feed = 20\nrotary_jerk = 100\nz1 = 250", "l.toml").unwrap();
+        let l = f.apply(&Limits::paper());
+        assert!((l.feed - 20.0).abs() < 1e-12);
+        let want = [200_000.0, 200_000.0, 200_000.0, 100.0, 100.0];
+        assert!(l.jerk.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-9));
+        let e = LimitsFile::parse("linear_jerk = -3", "l.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("linear_jerk") && e.contains("-3") && e.contains("l.toml"),
+            "{e}"
+        );
+        let e = LimitsFile::parse("speed = 3", "l.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("speed") && e.contains("l.toml"), "{e}");
+        let e = LimitsFile::parse("feed = nan", "l.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("feed"), "{e}");
+    }
+
+    #[test]
+    fn path_lines_are_numbered() {
+        let p = parse_path_csv_lines(
+            "# unit: mm\nx,y,z,i,j,k\n\n1,2,3,0,0,1\n4,5,6,0,0,2\n",
+            "p.csv",
+        )
+        .unwrap();
+        assert_eq!(p.iter().map(|x| x.0).collect::<Vec<_>>(), [4, 5]);
+        let e = parse_path_csv("# unit: mm\nx,y,z,i,j,k\n1,2,3,0,0,0\n", "p.csv")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("p.csv:3"), "{e}");
+    }
 }

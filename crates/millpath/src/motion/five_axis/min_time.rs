@@ -4,31 +4,38 @@
 //! An interval is five quintics, one per joint (linear axes in mm, rotary in rad), all of
 //! duration `T`. The motor limits are checked **exactly** with the quintics' analytic extrema
 //! ([`super::quintic`]). The feed is the tool-tip speed in the workpiece frame,
-//! `f(t) = |J_tip(q(t)) q̇(t)|`, which goes through the kinematics and is no polynomial. It is
-//! bounded by sampling `f` at [`MinTimeOptions::feed_samples`] points, then refining every
-//! sampled local maximum (the ends included) that could hold the true maximum — within
-//! `max |Δ²f| / 2` (four times the second-difference estimate of the between-sample rise
-//! `h²|f''|/8`) of the best sample — by golden-section search on the bracket formed by its
-//! neighbours, to 1e-10 of the interval. For a feed that is unimodal between two samples
-//! this is the exact maximum to rounding; the samples are 1/`feed_samples` of an interval apart
-//! (0.2 mm of a 10 mm interval at 48 samples), far closer than the feed's wiggles.
+//! `f(t) = |J_tip(q(t)) q̇(t)|`, which goes through the kinematics and is no polynomial. Two
+//! checks ([`FeedCheck`]):
+//! * [`FeedCheck::Certified`] (default): the rigorous upper bound of
+//!   [`super::certify::feed_bound`] — a feasible verdict is a proof; an upper bound above the
+//!   limit with every sample below it, within a relative `certify.feed_rel_eps` (1e-9), counts
+//!   as infeasible;
+//! * [`FeedCheck::Sampled`]: [`MinTimeOptions::feed_samples`] samples, then golden-section
+//!   refinement of every sampled local maximum that could hold the true maximum. A lower bound
+//!   of the maximum; the knot optimiser iterates with it (fast) and re-solves its final states
+//!   certified.
 //!
 //! The *margin* of a check is `min over constraints (1 − value / limit)`: ≥ 0 means feasible.
 //!
 //! # Search
 //! With the end states fixed, feasibility is monotone in `T` when both ends are at rest (all
 //! derivatives scale as `T⁻ⁿ`) but not in general: high end velocities make a long interval
-//! overshoot. So the search is:
+//! overshoot (`v = α'/T + β' + γ'T` at a fixed `u`, see [`super::certify`]). So the search
+//! brackets and bisects the true predicate, then proves what it found:
 //! 1. a proven lower bound `T_lb = max(|Δq_i| / v_max,i, |Δtip| / F)` (the mean velocity over
 //!    the interval is at most the peak, and the chord is at most the arc); between rest states
 //!    also the bang-bang times `2√(|Δq_i|/A_i)` and `(32|Δq_i|/J_i)^⅓`;
 //! 2. an upward scan `T_lb·ρᵏ` (ρ = [`MinTimeOptions::scan_ratio`]) to the first feasible
 //!    `T`;
 //! 3. bisection between the last infeasible and the first feasible scan point to a relative
-//!    width of [`MinTimeOptions::rel_tol`] (1e-13). The result is feasible by the exact check;
-//!    `T·(1 − 1e-13)` is not (unless a feasible island narrower than one scan step hides below,
-//!    which the scan ratio bounds).
+//!    width of [`MinTimeOptions::rel_tol`] (1e-13). The result is feasible (exact motors,
+//!    certified feed);
+//! 4. the proof ([`super::certify::certify_infeasible`]): witnesses whose values are explicit
+//!    in `T` exclude every duration in `[T_lb, T·(1 − prove_rel)]`, so a feasible island below
+//!    the scan cannot have been missed. [`Check::proven_below`] records how far the proof
+//!    reached (on the paper's case, every interval to `1 − 1e-8` of its time).
 
+use super::certify::{CertifyOptions, FeedVerdict, certify_infeasible, feed_bound};
 use super::quintic::{End, Quintic};
 use crate::error::{InputError, require_positive};
 use crate::machine::kinematics::{Joints, Kinematics};
@@ -141,6 +148,17 @@ impl Segment {
     }
 }
 
+/// How [`check`] decides the feed limit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FeedCheck {
+    /// Samples plus golden-section refinement of the local maxima: fast, a lower bound of the
+    /// true maximum (used while the knot optimiser iterates).
+    Sampled,
+    /// The rigorous upper bound of [`super::certify::feed_bound`]: a feasible verdict is a
+    /// proof.
+    Certified,
+}
+
 /// Options of the per-interval search.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MinTimeOptions {
@@ -152,6 +170,13 @@ pub struct MinTimeOptions {
     pub scan_span: f64,
     /// Relative bisection width. Default 1e-13.
     pub rel_tol: f64,
+    /// How the feed limit is decided. Default [`FeedCheck::Certified`].
+    pub feed: FeedCheck,
+    /// Options of the feed bound and of the proof of minimality.
+    pub certify: CertifyOptions,
+    /// Prove that no shorter duration is feasible ([`super::certify::certify_infeasible`]) up
+    /// to a relative `prove_rel` below the result; 0 skips the proof. Default 1e-8.
+    pub prove_rel: f64,
 }
 
 impl Default for MinTimeOptions {
@@ -161,6 +186,9 @@ impl Default for MinTimeOptions {
             scan_ratio: 1.01,
             scan_span: 1e3,
             rel_tol: 1e-13,
+            feed: FeedCheck::Certified,
+            certify: CertifyOptions::default(),
+            prove_rel: 1e-8,
         }
     }
 }
@@ -181,10 +209,14 @@ pub enum Binding {
 /// Result of a constraint check.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Check {
-    /// `min (1 − value/limit)`; ≥ 0 is feasible.
+    /// `min (1 − value/limit)`; ≥ 0 is feasible. With [`FeedCheck::Certified`] the feed's
+    /// value is its rigorous upper bound when feasible.
     pub margin: f64,
     /// The tightest constraint.
     pub binding: Binding,
+    /// Every duration in `[0, proven_below)` is proven infeasible (0 when not proven); see
+    /// [`min_time`].
+    pub proven_below: f64,
 }
 
 /// Exact check of the motor limits, then the feed (skipped when `early_exit` and a motor limit
@@ -199,6 +231,7 @@ pub fn check(
     let mut best = Check {
         margin: f64::INFINITY,
         binding: Binding::Feed,
+        proven_below: 0.0,
     };
     for (i, ax) in seg.axes.iter().enumerate() {
         let [v, a, j] = ax.max_abs_derivs();
@@ -211,6 +244,7 @@ pub fn check(
                 best = Check {
                     margin: m,
                     binding: b,
+                    proven_below: 0.0,
                 };
             }
         }
@@ -218,11 +252,24 @@ pub fn check(
     if early_exit && (best.margin < 0.0 || best.margin.is_nan()) {
         return best;
     }
-    let fm = 1.0 - max_feed(seg, kin, opts.feed_samples, early_exit.then_some(lim.feed)) / lim.feed;
+    let feed = match opts.feed {
+        FeedCheck::Sampled => max_feed(seg, kin, opts.feed_samples, early_exit.then_some(lim.feed)),
+        FeedCheck::Certified => {
+            let b = feed_bound(seg, kin, lim.feed, &opts.certify, early_exit);
+            match b.verdict {
+                FeedVerdict::Certified => b.upper,
+                FeedVerdict::Violated => b.lower,
+                // Undecided counts as infeasible, by the smallest amount the bound allows.
+                FeedVerdict::Undecided => b.upper.max(lim.feed * (1.0 + f64::EPSILON)),
+            }
+        }
+    };
+    let fm = 1.0 - feed / lim.feed;
     if fm < best.margin || fm.is_nan() {
         best = Check {
             margin: fm,
             binding: Binding::Feed,
+            proven_below: 0.0,
         };
     }
     best
@@ -322,8 +369,10 @@ pub fn min_time(
         (c.margin >= 0.0, c)
     };
     let t_lb = lower_bound(s0, s1, kin, lim);
-    let (ok, c0) = feasible(t_lb);
+    let (ok, mut c0) = feasible(t_lb);
     if ok {
+        // T_lb is a proven lower bound: nothing shorter is feasible.
+        c0.proven_below = t_lb;
         return Some((t_lb, c0));
     }
     let mut lo = t_lb;
@@ -354,6 +403,11 @@ pub fn min_time(
             lo = mid;
         }
     }
+    if opts.prove_rel > 0.0 {
+        let to = hi * (1.0 - opts.prove_rel);
+        let (reach, _) = certify_infeasible(s0, s1, kin, lim, t_lb, to, &opts.certify);
+        hi_check.proven_below = if reach >= to { to } else { reach };
+    }
     Some((hi, hi_check))
 }
 
@@ -375,8 +429,21 @@ mod tests {
         let lim = Limits::paper();
         let (t, c) = min_time(&s0, &s1, &kin, &lim, &MinTimeOptions::default()).unwrap();
         let want = 15.0 * 10.0 / (8.0 * 30.0);
-        assert!((t - want).abs() < 1e-12 * want, "{t} vs {want}");
+        // The feed is certified within a relative `feed_rel_eps` (1e-6): never below the true
+        // minimum, at most that much above it, and everything below is proven infeasible.
+        let eps = MinTimeOptions::default().certify.feed_rel_eps;
+        assert!(
+            t >= want && t <= want * (1.0 + 1e-7),
+            "{t} vs {want} (eps {eps})"
+        );
         assert_eq!(c.binding, Binding::Feed);
+        assert!(c.proven_below >= want * (1.0 - 1e-7), "{c:?}");
+        let sampled = MinTimeOptions {
+            feed: FeedCheck::Sampled,
+            ..MinTimeOptions::default()
+        };
+        let (t, _) = min_time(&s0, &s1, &kin, &lim, &sampled).unwrap();
+        assert!((t - want).abs() < 1e-12 * want, "{t} vs {want}");
         let mut lim = Limits::paper();
         lim.feed = 1e6;
         lim.vel[0] = 1e6;

@@ -128,6 +128,8 @@ pub struct PocketOptions {
     pub transition: f64,
     /// Smallest radius of curvature wanted on the spiral's interior loops, mm.
     pub min_radius: f64,
+    /// How the spiral morphs from its central circle into the boundary offset.
+    pub morph: super::spiral::SpiralMorph,
     /// A finishing pass along the walls at the last level (no wall stock).
     pub finish: bool,
     /// Modulate the feed with the engagement measured by the stock simulation.
@@ -155,6 +157,7 @@ impl Default for PocketOptions {
             zigzag_angle: 0.0,
             transition: 0.5,
             min_radius: 1.0,
+            morph: super::spiral::SpiralMorph::default(),
             finish: false,
             modulate_feed: true,
         }

@@ -1,5 +1,28 @@
 //! The adaptive spiral (the paper's method, made valid for any simply connected pocket).
 //!
+//! Two morphs from the central circle into the boundary offset are implemented
+//! ([`SpiralMorph`]):
+//!
+//! * **Fronts** (default, [`fronts`] and [`laps`]): the central disc united with the boundary
+//!   offset's exact inward offsets, smoothed; ⌈ρ_B/s'⌉ laps, like contour-parallel offsets.
+//!   The central spiral's pitch keeps the removal-rate-equivalent radial depth at the stepover
+//!   ([`laps::central_spiral`]). Where the fronts do not reach the boundary with measured steps
+//!   (the ridge of a long pocket far outside the circle, a front that splits), the harmonic
+//!   morph is used.
+//! * **Harmonic** (`--morph harmonic`, described below): the stepover holds everywhere,
+//!   corners included, but the lap count is set by the point of `B` farthest from the circle.
+//!
+//! Measured on the built-in 150 × 100 mm pocket (12.7 mm tool, 40%, 600 in/min, 4 levels of
+//! 6.25 mm, `hsm`): fronts 84.0 s, 15.1 m, 16.4% of the path above the nominal engagement;
+//! harmonic 103.7 s, 20.6 m, 5.1%; `offset` 77.3 s, 11.1 m, 17.5%; `zigzag` 88.0 s, 13.7 m,
+//! 10.8%. The spiral is the faster of the two morphs and beats zigzag, but not yet offset:
+//! a continuous spiral traces one loop more than the offsets (its last lap runs onto `B`,
+//! which must then be cut once more), the central circle's turns are extra on an elongated
+//! pocket, and every rounded corner (needed for speed) cuts above the nominal engagement
+//! (the material wraps round the tool), which bounds how large the corner radii may be.
+//!
+//! # The harmonic morph
+//!
 //! 1. **Boundary offset** `B`: the outline offset inward by `r + stock` (exact arcs). It must be
 //!    one loop; pockets with islands, or whose offset splits, are refused with a message that
 //!    suggests `offset`.
@@ -49,7 +72,9 @@
 //! tighten. The last loop is `B` itself, with its corners, so that no material is left beyond
 //! the tool's own cusp. Islands are not handled.
 
+pub mod fronts;
 pub mod harmonic;
+pub mod laps;
 
 use super::chain::{Seg, segs_from_points, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
@@ -72,6 +97,20 @@ const MAX_RESTARTS: usize = 20;
 /// Most laps the morph may take.
 const MAX_LAPS: usize = 400;
 
+/// How the spiral morphs from its central circle into the boundary offset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpiralMorph {
+    /// The central disc united with the boundary offset's inward offsets ([`fronts`]): as
+    /// many laps as contour-parallel offsets, smoothed corners; at convex corners of the
+    /// boundary the loops are up to `s/sin(α/2)` apart along the bisector, as offsets are.
+    /// Falls back to [`SpiralMorph::Harmonic`] where the fronts do not reach the boundary.
+    #[default]
+    Fronts,
+    /// Level sets of a harmonic function ([`harmonic`]): the stepover holds everywhere,
+    /// corners included, at the price of laps crowding where the pocket is narrow.
+    Harmonic,
+}
+
 /// What the spiral planner measured.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SpiralStats {
@@ -85,6 +124,8 @@ pub struct SpiralStats {
     pub r0: f64,
     /// The harmonic morph stalled and the distance-field morph was used.
     pub distance_field: bool,
+    /// The fronts morph was used (else the harmonic one).
+    pub fronts: bool,
 }
 
 /// The spiral strategy's plan for one level.
@@ -109,6 +150,11 @@ pub fn plan_with_stats(
     opts: &PocketOptions,
 ) -> Result<(LevelPlan, SpiralStats), InputError> {
     let theta = principal_angle(&shape.outer);
+    if opts.morph == SpiralMorph::Fronts {
+        if let Some(found) = plan_fronts(shape, tool, opts, theta)? {
+            return Ok(found);
+        }
+    }
     let mut best: Option<(LevelPlan, SpiralStats, f64)> = None;
     let mut last_err = None;
     for extra in [0.0, std::f64::consts::FRAC_PI_4] {
@@ -135,6 +181,75 @@ pub fn plan_with_stats(
         (None, None) => Err(InputError::new("pocket shape", "no spiral").at("--strategy spiral")),
     }
 }
+
+/// The spiral on offset fronts ([`fronts`], [`laps`]); `None` when the fronts do not reach
+/// the boundary and the harmonic morph must be used.
+fn plan_fronts(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+    start_angle: f64,
+) -> Result<Option<(LevelPlan, SpiralStats)>, InputError> {
+    if !shape.islands.is_empty() {
+        return Ok(None);
+    }
+    let s = opts.stepover_mm(tool);
+    let sp = FRONT_STEP * s;
+    let d0 = tool.radius() + opts.wall_stock;
+    let region = shape.offset(d0);
+    let b = match region.outers.as_slice() {
+        [one] => one.clone(),
+        _ => return Ok(None),
+    };
+    let b_eps = match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
+        [one] => one.clone(),
+        _ => b.clone(),
+    };
+    let Some((c, rho_b)) = fronts::ridge_centre(&b) else {
+        return Ok(None);
+    };
+    let helix = match opts.entry {
+        Entry::Helix { radius, .. } => radius,
+        Entry::Ramp { .. } => 0.25 * tool.radius(),
+    };
+    let rho_h = helix.min(0.9 * tool.radius()).min(0.45 * rho_b);
+    if rho_h < 1e-3 {
+        return Err(too_large(tool));
+    }
+    let r0 = (opts.transition * rho_b).max(rho_h).min(0.9 * rho_b);
+    let ds = (s / 3.0).clamp(0.05, FRONT_SAMPLE);
+    let spiral = laps::FrontSpiral {
+        b: &b,
+        b_eps: &b_eps,
+        c,
+        rho_b,
+        r0,
+        rho_h,
+        sp,
+        ds,
+        ds_last: ds.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
+        tool_radius: tool.radius(),
+        smooth: opts.min_radius.max(SMOOTH_FRACTION * s),
+        ccw: opts.direction == Direction::Climb,
+        start_angle,
+    };
+    Ok(spiral.plan())
+}
+
+/// The fronts' smoothing radius as a fraction of the stepover (at least `--min-radius`).
+/// Larger radii run faster on the `hsm` preset (1.2·s: −2% cycle time on the aerospace
+/// pocket) but raise the share of the path above the nominal engagement (the corners' arcs
+/// are longer); 1.0 keeps that share below the `offset` strategy's.
+const SMOOTH_FRACTION: f64 = 1.0;
+/// Largest step between fronts as a fraction of the stepover: the straight parts of the laps
+/// then sit just below the nominal engagement (at exactly `s` the raster's noise puts half of
+/// them above it).
+const FRONT_STEP: f64 = 0.98;
+/// Largest sample spacing along the fronts' laps, mm. The laps are output as G1 polylines; a
+/// controller's look-ahead sees their curvature only through the vertices, and at 0.01 mm
+/// path tolerance the corner blend at a vertex is as wide as the curve itself only when
+/// `h² ≤ 8·ε·R` (chord `h`, radius `R`): 0.5 mm keeps that for `R ≥ 3 mm`.
+const FRONT_SAMPLE: f64 = 0.5;
 
 /// The principal-axis angle of an outline (see [`plan_with_stats`]).
 fn principal_angle(o: &crate::geom::Outline) -> f64 {

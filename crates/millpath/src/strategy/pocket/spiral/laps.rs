@@ -1,0 +1,227 @@
+//! The spiral on offset fronts: central Archimedean spiral, then one lap from each front to
+//! the next, then the boundary offset once with exact arcs.
+//!
+//! Lap `k` runs from front `L_k` to front `L_{k+1}`: its point at arc-length fraction `f` of
+//! `L_k` is `p + f·(q − p)`, `q` the point of `L_{k+1}` at the same arc-length fraction, the
+//! fractions of `L_{k+1}` counted from its point nearest to the lap's start. At `f = 0` the lap
+//! is on `L_k`, at `f = 1` on `L_{k+1}`, where the next lap starts: the laps join without a
+//! corner or a retract, and, both fronts being smooth and parametrized by arc length, the lap is
+//! smooth. The planning happens in the pocket's own coordinates (exact offsets do not depend on
+//! a grid); only the start direction of the central spiral is taken from the pocket's principal
+//! axis, so that turning the pocket turns the path.
+
+use super::super::chain::{segs_from_points, segs_from_vertices};
+use super::super::levels::{Cut, CutEntry, LevelPlan};
+use super::super::shape::{closed_chain, restart_near, reversed};
+use super::fronts::{FrontOptions, fronts};
+use super::{LoopWalker, SpiralStats, fractions, sample_loop};
+use crate::geom::{Point, Vec2};
+use cavalier_contours::polyline::{PlineSource, Polyline};
+use std::f64::consts::TAU;
+
+/// Everything the front spiral needs, in mm.
+#[derive(Debug)]
+pub struct FrontSpiral<'a> {
+    /// The boundary offset, counter-clockwise.
+    pub b: &'a Polyline<f64>,
+    /// `B` moved inward by [`super::LAST_LOOP_MARGIN`] (the last loop), counter-clockwise.
+    pub b_eps: &'a Polyline<f64>,
+    /// Centre and inscribed radius.
+    pub c: Point,
+    pub rho_b: f64,
+    /// Radius of the central spiral's last loop and of the entry helix.
+    pub r0: f64,
+    pub rho_h: f64,
+    /// Largest stepover `s'` and sample spacings.
+    pub sp: f64,
+    pub ds: f64,
+    pub ds_last: f64,
+    /// Tool radius (the central spiral's pitch depends on it).
+    pub tool_radius: f64,
+    /// Smoothing radius of the interior fronts.
+    pub smooth: f64,
+    /// Counter-clockwise (climb) or clockwise.
+    pub ccw: bool,
+    /// Start direction of the central spiral, rad.
+    pub start_angle: f64,
+}
+
+impl FrontSpiral<'_> {
+    /// The level plan, or `None` when the fronts do not reach `B` (see [`super::fronts`]).
+    pub fn plan(&self) -> Option<(LevelPlan, SpiralStats)> {
+        let opts = FrontOptions {
+            step: self.sp,
+            open_radius: self.smooth,
+            close_radius: self.smooth,
+            sample: self.ds,
+        };
+        let f = fronts(self.b, self.c, self.rho_b, self.r0, &opts)?;
+        let sign = if self.ccw { 1.0 } else { -1.0 };
+        let orient = |pl: &Polyline<f64>| if self.ccw { pl.clone() } else { reversed(pl) };
+        let mut stats = SpiralStats {
+            r0: self.r0,
+            max_loop_distance: f.max_distance,
+            fronts: true,
+            ..SpiralStats::default()
+        };
+        let (c, r0, rho_h, ds) = (self.c, self.r0, self.rho_h, self.ds);
+        // Central spiral from the helix out to R₀, its pitch set by the engagement (below).
+        let mut pts: Vec<Point> = Vec::new();
+        let a0 = self.start_angle;
+        let (turns, radius_at) = central_spiral(rho_h, r0, self.tool_radius, self.sp);
+        stats.central_turns = turns;
+        if turns > 0 {
+            let total = TAU * turns as f64;
+            let mut th = 0.0;
+            while th < total {
+                let rho = radius_at(th);
+                pts.push(c + Vec2::from_angle(a0 + sign * th) * rho);
+                th += (ds / rho.max(1e-3)).min(0.2);
+            }
+        }
+        // L_0: the circle of radius R₀ from the start direction.
+        let n0 = ((TAU * r0 / ds).ceil() as usize).max(16);
+        let mut lap: Vec<Point> = (0..n0)
+            .map(|i| c + Vec2::from_angle(a0 + sign * TAU * i as f64 / n0 as f64) * r0)
+            .collect();
+        let count = f.loops.len();
+        let mut last_loop = None;
+        for (k, next) in f.loops.iter().enumerate().skip(1) {
+            let start = lap.first().copied()?;
+            // Where the next front starts: its point nearest to a point a little ahead of the
+            // lap's start along the travel. Nearest to the start itself is ambiguous where the
+            // fronts are symmetric about it (the ridge's ends), and a tie broken by the loops'
+            // vertex order would make the path depend on where the outline's loop starts.
+            let ahead = lap
+                .get(1)
+                .and_then(|p1| (*p1 - start).normalize())
+                .map_or(start, |t| start + t * (0.25 * self.sp));
+            if k + 1 < count {
+                // A morph lap: from L_{k-1} to L_k over one revolution.
+                let target = restart_near(&orient(next), ahead);
+                let len = target.path_length();
+                let along = LoopWalker::new(&target);
+                for (p, fr) in lap.iter().zip(fractions(&lap)) {
+                    let q = along.at(fr * len);
+                    pts.push(*p + (q - *p) * fr);
+                }
+                // Equal spacing along the whole loop (not per segment of the front, whose
+                // vertices depend on the offsets' internals): no short chords for the
+                // look-ahead to stumble on, and the same samples however the pocket is turned.
+                lap = super::resample(&sample_loop(&target, 0.25 * ds), ds);
+                stats.morph_laps += 1;
+                continue;
+            }
+            // The last lap: from L_{n-1} onto B_ε (sampled finely enough that its chords stay
+            // inside B at concave arcs), then B_ε once round with exact arcs: B's neighbour
+            // is then the last lap, at most one step away everywhere.
+            let fine = super::resample(&lap, self.ds_last);
+            let target = restart_near(&orient(self.b_eps), ahead);
+            let len = target.path_length();
+            let along = LoopWalker::new(&target);
+            for (p, fr) in fine.iter().zip(fractions(&fine)) {
+                let q = along.at(fr * len);
+                pts.push(*p + (q - *p) * fr);
+            }
+            let close = target.at(0).pos();
+            pts.push(Point::new(close.x, close.y));
+            stats.morph_laps += 1;
+            let mut path = segs_from_points(&pts);
+            path.extend(segs_from_vertices(&closed_chain(&target)));
+            last_loop = Some(path);
+            break;
+        }
+        let path = last_loop?;
+        let plan = LevelPlan {
+            cuts: vec![Cut {
+                entry: CutEntry::Helix {
+                    center: c,
+                    radius: rho_h,
+                },
+                path,
+            }],
+        };
+        Some((plan, stats))
+    }
+}
+
+/// The central spiral's turns and its radius as a function of the angle turned.
+///
+/// On an outward circular pass of radius `ρ` whose previous pass lies `a` further in, a tool
+/// of radius `r` removes `((ρ+r)² − (ρ+r−a)²)/2` mm² per radian while its centre travels
+/// `ρ`: the radial depth of cut of a straight pass with the same removal rate is
+/// `a_e = (2a(ρ+r) − a²)/(2ρ)`, larger than `a` (the material wraps around the tool). A
+/// constant pitch (the paper's Archimedean spiral) therefore cuts above the nominal
+/// engagement on every turn. Here the pitch is the `a` that gives `a_e = s'`:
+/// `a(ρ) = (ρ + r) − √((ρ + r)² − 2s'ρ)` (→ `s'` for large `ρ`), i.e.
+/// `dρ/dθ = a(ρ)/(2π)`. The angle this takes from `ρ_h` to `R₀` is rounded up to whole turns
+/// (so the spiral ends where the circle `L_0` starts) by scaling the pitch down uniformly; the
+/// radius is then tabulated by a midpoint integration and interpolated.
+pub fn central_spiral(rho_h: f64, r0: f64, r: f64, sp: f64) -> (usize, impl Fn(f64) -> f64) {
+    let pitch = |rho: f64| {
+        let q = rho + r;
+        (q - (q * q - 2.0 * sp * rho).max(0.0).sqrt()).clamp(0.05 * sp, sp)
+    };
+    let n = 256usize;
+    let h = (r0 - rho_h).max(0.0) / n as f64;
+    // θ(ρ) = ∫ 2π/a(ρ) dρ by the midpoint rule.
+    let mut theta = vec![0.0; n + 1];
+    for i in 0..n {
+        let mid = rho_h + (i as f64 + 0.5) * h;
+        theta[i + 1] = theta[i] + TAU * h / pitch(mid);
+    }
+    let total = theta[n];
+    let turns = if h > 0.0 {
+        (total / TAU - 1e-9).ceil().max(1.0) as usize
+    } else {
+        0
+    };
+    let scale = if total > 0.0 {
+        turns as f64 * TAU / total
+    } else {
+        1.0
+    };
+    let radius_at = move |th: f64| {
+        let t = th / scale;
+        let i = theta.partition_point(|&x| x <= t).clamp(1, n);
+        let (t0, t1) = (theta[i - 1], theta[i]);
+        let f = if t1 > t0 { (t - t0) / (t1 - t0) } else { 0.0 };
+        rho_h + h * ((i - 1) as f64 + f.clamp(0.0, 1.0))
+    };
+    (turns, radius_at)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The central spiral runs from the helix to R₀ in whole turns, outward, and its pitch
+    /// keeps the removal-rate-equivalent radial depth at or below s' on every turn.
+    #[test]
+    fn central_spiral_pitch_keeps_the_equivalent_depth() {
+        let (rho_h, r0, r, sp) = (2.5, 21.8, 6.35, 4.9);
+        let (turns, at) = central_spiral(rho_h, r0, r, sp);
+        assert!(turns >= 4, "{turns}");
+        assert!((at(0.0) - rho_h).abs() < 1e-9);
+        assert!(
+            (at(TAU * turns as f64) - r0).abs() < 1e-6,
+            "{}",
+            at(TAU * turns as f64)
+        );
+        let mut worst: f64 = 0.0;
+        for k in 0..(turns * 64) {
+            let th = TAU * k as f64 / 64.0;
+            let (inner, outer) = (at(th), at(th + TAU).min(r0));
+            assert!(outer >= inner - 1e-12);
+            let a = outer - inner;
+            // a_e = (2a(ρ+r) − a²)/(2ρ) at the outer pass.
+            let ae = (2.0 * a * (outer + r) - a * a) / (2.0 * outer);
+            worst = worst.max(ae);
+        }
+        assert!(worst <= sp * 1.01, "{worst}");
+        // A constant pitch would exceed it on the first turns.
+        let a = (r0 - rho_h) / turns as f64;
+        let ae_const = (2.0 * a * (rho_h + a + r) - a * a) / (2.0 * (rho_h + a));
+        assert!(ae_const > sp, "{ae_const}");
+    }
+}
