@@ -259,6 +259,11 @@ pub fn pocket(data: &[u8]) {
         zigzag_angle: b.num(-3.2, 3.2),
         transition: b.num(0.0, 1.0),
         min_radius: b.num(0.1, 2.0),
+        morph: if b.flag() {
+            pocket::spiral::SpiralMorph::Fronts
+        } else {
+            pocket::spiral::SpiralMorph::Harmonic
+        },
         finish: b.flag(),
         modulate_feed: false,
     };
