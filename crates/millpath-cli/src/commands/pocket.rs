@@ -5,7 +5,7 @@ use millpath::io::outline_json::Loops;
 use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{
     self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind,
-    samples,
+    Walls, samples,
 };
 use millpath::toolpath::Tool;
 use millpath::{Error, InputError};
@@ -81,7 +81,7 @@ pub struct CommonArgs {
     /// Fraction of the feed at full slotting.
     #[arg(long, default_value_t = 0.75)]
     pub slowdown: f64,
-    /// Zigzag angle, degrees.
+    /// Zigzag angle, degrees, from the pocket's principal axis (its long direction).
     #[arg(long, default_value_t = 0.0)]
     pub angle: f64,
     /// Spiral transition ratio C in [0, 1].
@@ -106,6 +106,14 @@ pub struct CommonArgs {
     /// Raster cell of the stock simulation, mm.
     #[arg(long, default_value_t = 0.05)]
     pub cell: f64,
+    /// Draft angle of the walls, degrees (the walls lean into the pocket going down; each
+    /// level is cut in its own section).
+    #[arg(long, conflicts_with = "bottom_outline")]
+    pub draft: Option<f64>,
+    /// Outline of the pocket's bottom (same vertex count and islands as the top): each level
+    /// is cut in the section interpolated at its depth.
+    #[arg(long)]
+    pub bottom_outline: Option<String>,
 }
 
 /// Parses a feed: `600ipm` / `600in/min` in inches per minute, else mm/min; returns mm/s.
@@ -203,6 +211,24 @@ impl CommonArgs {
                 .into());
         }
         Ok((tool, opts))
+    }
+
+    /// The pocket with the walls asked for (`--draft`, `--bottom-outline`).
+    pub fn with_walls(&self, shape: PocketShape) -> Result<PocketShape, Error> {
+        if let Some(deg) = self.draft {
+            return Ok(shape.with_walls(Walls::Draft(deg.to_radians()), "--draft")?);
+        }
+        if let Some(path) = &self.bottom_outline {
+            let b = load_outline(path)?;
+            return Ok(shape.with_walls(
+                Walls::Bottom {
+                    outer: b.outer,
+                    islands: b.islands,
+                },
+                &format!("--bottom-outline {path}"),
+            )?);
+        }
+        Ok(shape)
     }
 
     /// Simulation options.
@@ -320,7 +346,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let kind = parse_strategy(&args.common.strategy)?;
     let (tool, opts) = args.common.options()?;
     let loops = load_outline(&args.outline)?;
-    let shape = PocketShape::new(loops.outer, loops.islands, &args.outline)?;
+    let shape =
+        args.common
+            .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;
     let r = pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?;
     let rep = report(kind, &r, &args.common.machine)?;
     if let Some(out) = &args.output {

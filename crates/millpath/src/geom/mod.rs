@@ -6,6 +6,7 @@
 mod aabb;
 mod outline;
 mod point;
+pub mod region;
 mod vec3;
 
 pub use aabb::Aabb;

@@ -15,8 +15,7 @@
 //! clockwise.
 
 use crate::error::InputError;
-use crate::geom::{Outline, Point, Winding};
-use cavalier_contours::polyline::PlineSource;
+use crate::geom::{Outline, Point};
 use serde::Deserialize;
 
 /// An outer outline and its islands, windings normalised.
@@ -80,48 +79,13 @@ pub fn parse(text: &str, origin: &str) -> Result<Loops, InputError> {
 }
 
 /// Normalises windings and checks that every island lies strictly inside the outer outline
-/// without touching it or another island.
+/// without touching it or another island ([`crate::geom::region::validate_islands`]).
 pub fn check_islands(
     outer: Outline,
     islands: Vec<Outline>,
     origin: &str,
 ) -> Result<Loops, InputError> {
-    let outer = outer.with_winding(Winding::CounterClockwise);
-    let islands: Vec<Outline> = islands
-        .into_iter()
-        .map(|i| i.with_winding(Winding::Clockwise))
-        .collect();
-    for (k, isl) in islands.iter().enumerate() {
-        let first = isl.vertices().next().map_or(Point::ORIGIN, |v| v.0);
-        let at = format!("{origin}, island {k} near ({:.3}, {:.3})", first.x, first.y);
-        let touches = {
-            let hits = outer.polyline().find_intersects(isl.polyline());
-            !hits.basic_intersects.is_empty() || !hits.overlapping_intersects.is_empty()
-        } || isl.vertices().any(|(p, _)| outer.distance_to(p) <= 1e-6);
-        if touches {
-            return Err(InputError::new("island", k)
-                .at(at)
-                .expected("islands that do not touch or cross the outer outline"));
-        }
-        if !outer.contains(first) {
-            return Err(InputError::new("island", k)
-                .at(at)
-                .expected("islands inside the outer outline"));
-        }
-        for (j, other) in islands.iter().enumerate().take(k) {
-            let hits = other.polyline().find_intersects(isl.polyline());
-            let q = other.vertices().next().map_or(Point::ORIGIN, |v| v.0);
-            if !hits.basic_intersects.is_empty()
-                || !hits.overlapping_intersects.is_empty()
-                || other.contains(first)
-                || isl.contains(q)
-            {
-                return Err(InputError::new("island", k)
-                    .at(format!("{origin}, islands {j} and {k}"))
-                    .expected("islands apart from each other"));
-            }
-        }
-    }
+    let (outer, islands) = crate::geom::region::validate_islands(outer, islands, origin)?;
     Ok(Loops { outer, islands })
 }
 
@@ -140,6 +104,7 @@ pub fn classify(mut loops: Vec<Outline>, origin: &str) -> Result<Loops, InputErr
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::Winding;
 
     #[test]
     fn parses_outline_with_bulges_and_islands() {

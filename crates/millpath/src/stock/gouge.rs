@@ -30,13 +30,54 @@ const SAMPLE: f64 = 0.25;
 
 /// The smallest distance between the tool centre (below `z = 0`) and the walls.
 pub fn min_clearance(tp: &Toolpath, spec: StockSpec<'_>) -> Clearance {
-    let dist = |p: Point| {
-        std::iter::once(spec.outer)
-            .chain(spec.islands.iter())
-            .map(|o| {
-                o.polyline()
-                    .closest_point(Vector2::new(p.x, p.y), 1e-12)
-                    .map_or(f64::INFINITY, |c| c.distance)
+    min_clearance_levels(tp, &[spec])
+}
+
+/// [`min_clearance`] with a pocket per level (`specs[i]` for `tp.levels[i]`, the last one
+/// standing for levels beyond the list). A move of level `i` is measured against the walls of
+/// its own section and of the section of the level above (the slab's top: the tool is a
+/// cylinder reaching up through the slab), less the difference between its level's wall
+/// stock and the last level's, so that one threshold, `r + last stock`, holds for all. A move
+/// below `z = 0` outside every level is measured against every section.
+pub fn min_clearance_levels(tp: &Toolpath, specs: &[StockSpec<'_>]) -> Clearance {
+    let final_stock = specs.last().map_or(0.0, |s| s.wall_stock);
+    let mut level_of_move = vec![None; tp.moves.len()];
+    for (li, lv) in tp.levels.iter().enumerate() {
+        for slot in level_of_move
+            .iter_mut()
+            .take(lv.end.min(tp.moves.len()))
+            .skip(lv.start)
+        {
+            *slot = Some(li);
+        }
+    }
+    let walls_of = |k: usize| -> Vec<StockSpec<'_>> {
+        let mut v: Vec<StockSpec<'_>> = match level_of_move.get(k).copied().flatten() {
+            Some(li) => {
+                let own = specs.get(li).or(specs.last()).copied();
+                let above = li
+                    .checked_sub(1)
+                    .and_then(|a| specs.get(a).or(specs.last()).copied());
+                own.into_iter().chain(above).collect()
+            }
+            None => specs.to_vec(),
+        };
+        v.dedup_by(|a, b| super::simulate::same_spec(*a, *b));
+        v
+    };
+    let dist_to = |walls: &[StockSpec<'_>], p: Point| {
+        walls
+            .iter()
+            .map(|spec| {
+                std::iter::once(spec.outer)
+                    .chain(spec.islands.iter())
+                    .map(|o| {
+                        o.polyline()
+                            .closest_point(Vector2::new(p.x, p.y), 1e-12)
+                            .map_or(f64::INFINITY, |c| c.distance)
+                    })
+                    .fold(f64::INFINITY, f64::min)
+                    - (spec.wall_stock - final_stock)
             })
             .fold(f64::INFINITY, f64::min)
     };
@@ -49,6 +90,8 @@ pub fn min_clearance(tp: &Toolpath, spec: StockSpec<'_>) -> Clearance {
         if matches!(m.kind, MoveKind::Dwell { .. }) || from.z.min(m.to.z) >= 0.0 {
             continue;
         }
+        let walls = walls_of(k);
+        let dist = |p: Point| dist_to(&walls, p);
         let len = m.length_from(from).max(0.0);
         let pos = |t: f64| -> Point3 {
             let f = if len > 0.0 {

@@ -19,13 +19,16 @@
 //!   stock the tool radius implies.
 //! * [`gouge`]: the exact clearance between every move below the stock top and the outline
 //!   and islands, against `r + stock − 1e-6 mm`.
+//! * Inclined walls ([`verify_levels`]): each level has its own section of the pocket; a
+//!   slab's material is its level's section, and a level's moves are checked against its
+//!   section and the section of the slab's top (the tool is a cylinder through the slab).
 
 pub mod gouge;
 pub mod raster;
 pub mod simulate;
 
-pub use gouge::{Clearance, min_clearance};
-pub use simulate::{MoveEngagement, SimOptions, Simulation, simulate};
+pub use gouge::{Clearance, min_clearance, min_clearance_levels};
+pub use simulate::{MoveEngagement, SimOptions, Simulation, simulate, simulate_levels};
 
 use crate::geom::Outline;
 use crate::toolpath::Toolpath;
@@ -111,10 +114,29 @@ pub fn verify(
 
 /// The verification from a simulation already run (and a fresh gouge check).
 pub fn combine(tp: &Toolpath, spec: StockSpec<'_>, s: &Simulation) -> Verification {
-    let c = min_clearance(tp, spec);
+    combine_levels(tp, &[spec], s)
+}
+
+/// [`verify`] with a pocket per level (inclined walls): `specs[i]` is the section of
+/// `tp.levels[i]`; see [`simulate_levels`] and [`min_clearance_levels`].
+pub fn verify_levels(
+    tp: &Toolpath,
+    specs: &[StockSpec<'_>],
+    nominal_deg: f64,
+    sim: &SimOptions,
+) -> Verification {
+    let s = simulate_levels(tp, specs, nominal_deg, sim);
+    combine_levels(tp, specs, &s)
+}
+
+/// [`combine`] with a pocket per level. The clearance is reported against the last level's
+/// stock (levels with more wall stock are measured less their extra stock).
+pub fn combine_levels(tp: &Toolpath, specs: &[StockSpec<'_>], s: &Simulation) -> Verification {
+    let c = min_clearance_levels(tp, specs);
+    let stock = specs.last().map_or(0.0, |sp| sp.wall_stock);
     Verification {
         min_clearance_mm: c.distance,
-        required_clearance_mm: tp.tool.radius() + spec.wall_stock,
+        required_clearance_mm: tp.tool.radius() + stock,
         uncut_area_mm2: s.uncut_area_mm2,
         rapids_through_material: s.rapids_through_material,
         plunges: s.plunges,

@@ -95,27 +95,67 @@ fn samples(from: Point3, m: &Move, step: f64) -> Vec<Point3> {
 }
 
 /// Sweeps the tool through each slab; `nominal_deg` is the engagement the stepover implies.
+/// Every level has the same pocket, `spec`.
 pub fn simulate(
     tp: &Toolpath,
     spec: StockSpec<'_>,
     nominal_deg: f64,
     opts: &SimOptions,
 ) -> Simulation {
+    simulate_levels(tp, &vec![spec; tp.levels.len().max(1)], nominal_deg, opts)
+}
+
+/// [`simulate`] with a pocket per level: `specs[i]` is the section of `tp.levels[i]` (the last
+/// one stands for levels beyond the list). A slab's material is its level's section; the
+/// uncut material of a slab is measured against the section of its last level (the
+/// finishing level, where there is one).
+pub fn simulate_levels(
+    tp: &Toolpath,
+    specs: &[StockSpec<'_>],
+    nominal_deg: f64,
+    opts: &SimOptions,
+) -> Simulation {
+    let Some(&first_spec) = specs.first() else {
+        return Simulation {
+            per_move: vec![None; tp.moves.len()],
+            ..Simulation::default()
+        };
+    };
+    let spec_of = |li: usize| {
+        specs
+            .get(li)
+            .or(specs.last())
+            .copied()
+            .unwrap_or(first_spec)
+    };
     let r = tp.tool.radius();
-    let bounds = spec
-        .islands
+    let bounds = specs
         .iter()
-        .fold(spec.outer.bounds(), |b, i| b.union(i.bounds()));
+        .flat_map(|sp| std::iter::once(sp.outer).chain(sp.islands.iter()))
+        .fold(first_spec.outer.bounds(), |b, o| b.union(o.bounds()));
     let area = bounds.width() * bounds.height();
     let cell = opts.cell.max((area / opts.max_cells as f64).sqrt());
-    let loops: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
-        .chain(spec.islands.iter().map(|i| i.polyline()))
-        .collect();
-    let reach = reach_region(spec, r);
-    let fresh = || {
+    let fresh = |spec: StockSpec<'_>| {
+        let loops: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
+            .chain(spec.islands.iter().map(|i| i.polyline()))
+            .collect();
         let mut ras = Raster::new(bounds, cell);
         ras.fill(&loops);
         ras
+    };
+    // The reach region of each distinct spec (consecutive levels usually share one).
+    let mut reach_cache: Vec<(usize, Reach)> = Vec::new();
+    let mut reach_of = |li: usize| -> Reach {
+        let spec = spec_of(li);
+        if let Some((_, rr)) = reach_cache
+            .iter()
+            .find(|(j, _)| same_spec(spec_of(*j), spec))
+        {
+            return rr.clone();
+        }
+        let rr = reach_region(spec, r);
+        reach_cache.push((li, rr.clone()));
+        rr
     };
     let mut out = Simulation {
         per_move: vec![None; tp.moves.len()],
@@ -130,6 +170,7 @@ pub fn simulate(
 
     // Slab per distinct level depth, in order; the slab top is the previous depth.
     let mut slab: Option<(f64, f64, Raster)> = None; // (top, bottom, raster)
+    let mut slab_level = 0usize; // the last level seen in the current slab
     let mut level_of_move = vec![None; tp.moves.len()];
     for (li, lv) in tp.levels.iter().enumerate() {
         for slot in level_of_move
@@ -152,6 +193,7 @@ pub fn simulate(
             .is_none_or(|(_, bottom, _)| (bottom - z).abs() > 1e-9);
         if need_new {
             if let Some((_, _, ras)) = slab.take() {
+                let reach = reach_of(slab_level);
                 uncut_cells += count_uncut(&ras, &reach, r, cell);
             }
             let top = tp.levels[..li]
@@ -159,9 +201,10 @@ pub fn simulate(
                 .rev()
                 .find(|l| (l.z - z).abs() > 1e-9)
                 .map_or(0.0, |l| l.z);
-            slab = Some((top, z, fresh()));
+            slab = Some((top, z, fresh(spec_of(li))));
             window.clear();
         }
+        slab_level = li;
         let Some((top, _, ras)) = slab.as_mut() else {
             continue;
         };
@@ -231,6 +274,7 @@ pub fn simulate(
         }
     }
     if let Some((_, _, ras)) = slab.take() {
+        let reach = reach_of(slab_level);
         uncut_cells += count_uncut(&ras, &reach, r, cell);
     }
     out.uncut_area_mm2 = uncut_cells as f64 * cell_area;
@@ -241,9 +285,23 @@ pub fn simulate(
     out
 }
 
+/// Outer and island loops of a reach region.
+type Reach = (Vec<Polyline<f64>>, Vec<Polyline<f64>>);
+
+/// True when two specs describe the same pocket (the same outlines, by address or by value).
+pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
+    let eq = |x: &crate::geom::Outline, y: &crate::geom::Outline| {
+        std::ptr::eq(x, y) || (x.len() == y.len() && x.vertices().eq(y.vertices()))
+    };
+    (a.wall_stock - b.wall_stock).abs() <= 1e-12
+        && eq(a.outer, b.outer)
+        && a.islands.len() == b.islands.len()
+        && a.islands.iter().zip(b.islands).all(|(x, y)| eq(x, y))
+}
+
 /// The loops bounding where the tool centre may go: outline offset inward and islands
 /// outward by `r + stock`.
-fn reach_region(spec: StockSpec<'_>, r: f64) -> (Vec<Polyline<f64>>, Vec<Polyline<f64>>) {
+fn reach_region(spec: StockSpec<'_>, r: f64) -> Reach {
     let d = r + spec.wall_stock;
     let shape = Shape::from_plines(
         std::iter::once(spec.outer.polyline().clone())
@@ -257,12 +315,7 @@ fn reach_region(spec: StockSpec<'_>, r: f64) -> (Vec<Polyline<f64>>, Vec<Polylin
 }
 
 /// Material cells within `r − 2c` of the reachable region: material the tool could have cut.
-fn count_uncut(
-    ras: &Raster,
-    reach: &(Vec<Polyline<f64>>, Vec<Polyline<f64>>),
-    r: f64,
-    c: f64,
-) -> usize {
+fn count_uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> usize {
     let (outers, islands) = reach;
     let limit = r - 2.0 * c;
     ras.material_cells()

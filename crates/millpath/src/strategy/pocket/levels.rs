@@ -10,14 +10,24 @@
 //!   The disc of radius `ρ + r` about `c` is then clear, and the cut's path starts on it;
 //! * **ramp**: the tool descends along the first `L` mm of the cut's own path, `L·tan α` per
 //!   pass, back and forth until it reaches `z_i`, and is back at the path's start;
-//! * **direct**: used by the finishing pass, which starts over material already cleared at
-//!   that level: the tool feeds down in the air above `from` and leads in.
+//! * **direct**: the tool feeds down in the air above `from`, a point already cleared at this
+//!   depth by an earlier cut of the same level (the finishing pass; any later cut of a level
+//!   that has a cleared point nearby, see [`direct_entries`]), and leads in.
+//!
+//! A ramp needs `L ≥ Δz / (passes · tan α)` of path; a cut shorter than
+//! `Δz / (MAX_RAMP_PASSES · tan α)` (a sliver loop a few µm long) with no cleared point at
+//! hand gets an input error rather than a plunge: the previous fallback, a straight plunge,
+//! broke "never a plunge into material". In practice every cut after the first of a level
+//! has a cleared point and is entered directly, so the error only meets a pocket whose whole
+//! level is a sliver (a tool that barely fits).
 //!
 //! Between cuts of a level and between levels the tool retracts to the clearance height and
 //! moves in rapid; rapids go down only to `z_{i−1} + safe`, above material.
 
 use super::chain::{Seg, path_head, path_length};
 use super::options::{Direction, Entry, PocketOptions};
+use super::shape::OffsetRegion;
+use crate::error::InputError;
 use crate::geom::{Point, Point3, Vec2};
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
 
@@ -72,38 +82,41 @@ fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
     }
 }
 
-/// Builds the toolpath: `roughing` is cut at every level, `finishing` (if any) once at the
-/// last level.
+/// Builds the toolpath: `roughing[i]` is cut at level `i` (the last plan is repeated if
+/// there are fewer plans than levels), `finishing` (if any) once at the last level.
+///
+/// Fails when a cut can be entered neither by its helix or ramp nor over cleared material
+/// (see [`emit_cut`]).
 pub fn assemble(
     tool: Tool,
     opts: &PocketOptions,
-    roughing: &LevelPlan,
+    roughing: &[LevelPlan],
     finishing: Option<&LevelPlan>,
-) -> Toolpath {
+) -> Result<Toolpath, InputError> {
     let clear = opts.clearance_height;
     let start_xy = roughing
-        .cuts
         .first()
+        .and_then(|p| p.cuts.first())
         .and_then(|c| c.path.first())
         .map_or(Point::ORIGIN, |s| s.a);
     let mut tp = Toolpath::new(tool, Point3::from_xy(start_xy, clear));
     let mut top = 0.0;
     let depths = level_depths(opts);
-    let mut plans: Vec<(f64, f64, &LevelPlan, LevelKind)> = depths
-        .iter()
-        .map(|&z| {
-            let t = top;
-            top = z;
-            (t, z, roughing, LevelKind::Roughing)
-        })
-        .collect();
+    let mut plans: Vec<(f64, f64, &LevelPlan, LevelKind)> = Vec::with_capacity(depths.len() + 1);
+    for (i, &z) in depths.iter().enumerate() {
+        let Some(plan) = roughing.get(i).or(roughing.last()) else {
+            break;
+        };
+        plans.push((top, z, plan, LevelKind::Roughing));
+        top = z;
+    }
     if let (Some(f), Some(&z)) = (finishing, depths.last()) {
         plans.push((z, z, f, LevelKind::Finishing));
     }
     for (top, z, plan, kind) in plans {
         let start = tp.moves.len();
         for cut in &plan.cuts {
-            emit_cut(&mut tp, opts, cut, top, z);
+            emit_cut(&mut tp, opts, cut, top, z)?;
         }
         let end_xy = tp.end().xy();
         tp.push(Move::rapid(Point3::from_xy(end_xy, clear)));
@@ -114,12 +127,62 @@ pub fn assemble(
             end: tp.moves.len(),
         });
     }
-    tp
+    Ok(tp)
 }
 
-fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64) {
+/// Replaces the ramp of every cut after the first by a direct entry over cleared material
+/// where one is at hand: `from` is the end point of a segment of an earlier cut of the same
+/// level (the tool disc there was swept at this depth, and the tool is a cylinder, so the
+/// whole column above it is air: feeding down there is no plunge into material), at most
+/// `max_link` from the cut's start, joined to it by a straight feed move that crosses no loop
+/// of `region` (the tool-centre region: the move cannot gouge). A direct entry costs a feed
+/// down through one slab of air and the lead-in; a ramp at angle α costs `Δz / tan α` of path
+/// at the plunge feed (114 mm for a 6 mm slab at 3°), so this is both safer for sliver cuts
+/// (a cut too short to ramp along) and faster.
+///
+/// Cuts too short to ramp into (shorter than `min_ramp_path`) are first moved after the
+/// others, keeping their order, so that an earlier cut has cleared material for them (a
+/// zigzag row grazing an island can be a few µm long, and may come first).
+pub fn direct_entries(
+    plan: &mut LevelPlan,
+    region: &OffsetRegion,
+    max_link: f64,
+    min_ramp_path: f64,
+) {
+    let (long, short): (Vec<Cut>, Vec<Cut>) = std::mem::take(&mut plan.cuts)
+        .into_iter()
+        .partition(|c| !matches!(c.entry, CutEntry::Ramp) || path_length(&c.path) >= min_ramp_path);
+    plan.cuts = long;
+    plan.cuts.extend(short);
+    let mut cleared: Vec<Point> = Vec::new();
+    for cut in &mut plan.cuts {
+        if let (CutEntry::Ramp, Some(first)) = (cut.entry, cut.path.first()) {
+            let start = first.a;
+            let best = cleared
+                .iter()
+                .map(|&q| (q, q.distance(start)))
+                .filter(|&(_, d)| d <= max_link)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((q, _)) = best
+                && !super::offset::crosses(region, q, start)
+            {
+                cut.entry = CutEntry::Direct { from: q };
+            }
+        }
+        cleared.extend(cut.path.iter().map(|sg| sg.b));
+    }
+}
+
+/// Emits one cut with its entry (see the module docs).
+fn emit_cut(
+    tp: &mut Toolpath,
+    opts: &PocketOptions,
+    cut: &Cut,
+    top: f64,
+    z: f64,
+) -> Result<(), InputError> {
     let Some(first) = cut.path.first() else {
-        return;
+        return Ok(());
     };
     let clear = opts.clearance_height;
     let safe = top + opts.safe_height;
@@ -129,7 +192,7 @@ fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64
     };
     let here = tp.end();
     let approach = match cut.entry {
-        CutEntry::Helix { center, radius } => center + Vec2::new(radius, 0.0),
+        CutEntry::Helix { center, radius } => helix_approach(center, radius, first.a),
         CutEntry::Ramp => first.a,
         CutEntry::Direct { from } => from,
     };
@@ -177,15 +240,13 @@ fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64
             let passes = (need / head_len).ceil().max(1.0);
             let fits = passes <= MAX_RAMP_PASSES; // false for NaN
             if !fits {
-                // A degenerate cut (a path shorter than need / MAX_RAMP_PASSES, e.g. a sliver
-                // region a few µm long) has no room to ramp along: without this cap the pass
-                // count grew without bound and the toolpath exhausted memory. Plunge straight
-                // down instead, as a direct entry does.
-                tp.push(Move::line(Point3::from_xy(first.a, z), opts.plunge_feed));
-                for s in &cut.path {
-                    tp.push(seg_move(s, z, opts.feed));
-                }
-                return;
+                // A sliver cut (a path shorter than need / MAX_RAMP_PASSES, e.g. a loop a few
+                // µm long) has no room to ramp along, and no cleared point was at hand for a
+                // direct entry ([`direct_entries`]): entering it would take a plunge into
+                // material, which we never do.
+                return Err(InputError::new("pocket entry", format!("{:.4} mm of path", total))
+                    .at(format!("level at z = {z:.3}"))
+                    .expected("a cut long enough to ramp into (a smaller tool, or a pre-drilled entry)"));
             }
             let passes = passes as usize;
             let passes = passes + passes % 2; // end back at the start
@@ -210,15 +271,102 @@ fn emit_cut(tp: &mut Toolpath, opts: &PocketOptions, cut: &Cut, top: f64, z: f64
     for s in &cut.path {
         tp.push(seg_move(s, z, opts.feed));
     }
+    Ok(())
+}
+
+/// Where a helix about `center` of `radius` starts and ends: on the ray from the centre to the
+/// cut's start `to` (so the lead-in is radial and as short as it can be, and turns with the
+/// pocket), or at `+x` when the cut starts at the centre.
+pub fn helix_approach(center: Point, radius: f64, to: Point) -> Point {
+    center
+        + (to - center)
+            .normalize()
+            .map_or(Vec2::new(radius, 0.0), |u| u * radius)
+}
+
+/// The shortest path a ramp entry can use at any level of `opts`: the drop (safe height plus
+/// the thickest slab) over `MAX_RAMP_PASSES · tan α`.
+pub fn min_ramp_path(opts: &PocketOptions) -> f64 {
+    let ramp_angle = match opts.entry {
+        Entry::Helix { ramp_angle, .. } | Entry::Ramp { ramp_angle } => ramp_angle,
+    };
+    let depths = level_depths(opts);
+    let slab = depths
+        .iter()
+        .scan(0.0, |top, &z| {
+            let t = *top - z;
+            *top = z;
+            Some(t)
+        })
+        .fold(0.0, f64::max);
+    (opts.safe_height + slab) / (MAX_RAMP_PASSES * ramp_angle.tan())
 }
 
 /// The most back-and-forth passes a ramp entry makes; a cut too short for this many passes to
-/// reach the depth at the ramp angle is entered by a straight plunge.
+/// reach the depth at the ramp angle, with no cleared point to enter from, is refused.
 const MAX_RAMP_PASSES: f64 = 1000.0;
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn square_region() -> OffsetRegion {
+        let mut pl = cavalier_contours::polyline::Polyline::new_closed();
+        use cavalier_contours::polyline::PlineSourceMut;
+        for (x, y) in [(0.0, 0.0), (20.0, 0.0), (20.0, 20.0), (0.0, 20.0)] {
+            pl.add(x, y, 0.0);
+        }
+        OffsetRegion {
+            outers: vec![pl],
+            islands: Vec::new(),
+        }
+    }
+
+    /// A sliver cut is entered over cleared material, never plunged; alone on its level it
+    /// is refused.
+    #[test]
+    fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
+        use super::super::chain::segs_from_points;
+        let p = Point::new;
+        let big = Cut {
+            entry: CutEntry::Ramp,
+            path: segs_from_points(&[p(2.0, 2.0), p(18.0, 2.0), p(18.0, 18.0), p(2.0, 2.0)]),
+        };
+        let sliver = Cut {
+            entry: CutEntry::Ramp,
+            path: segs_from_points(&[p(12.0, 12.5), p(12.001, 12.5)]),
+        };
+        let opts = PocketOptions {
+            depth: 4.0,
+            step_down: 4.0,
+            ..PocketOptions::default()
+        };
+        let tool = Tool::flat(4.0).unwrap();
+        // The sliver first: it is moved after the big cut and entered from its nearest point.
+        let mut plan = LevelPlan {
+            cuts: vec![sliver.clone(), big],
+        };
+        direct_entries(&mut plan, &square_region(), 12.0, min_ramp_path(&opts));
+        assert_eq!(plan.cuts[0].entry, CutEntry::Ramp);
+        assert_eq!(
+            plan.cuts[1].entry,
+            CutEntry::Direct {
+                from: p(18.0, 18.0)
+            }
+        );
+        let tp = assemble(tool, &opts, &[plan], None).unwrap();
+        // No move steeper than 45° ends below the top except the feed down at (18, 18).
+        for (from, m) in tp.segments() {
+            let dz = from.z - m.to.z;
+            if m.is_feed() && m.to.z < 0.0 && dz > from.xy().distance(m.to.xy()) {
+                assert!(m.to.xy().distance(p(18.0, 18.0)) < 1e-12, "{m:?}");
+            }
+        }
+        // Alone, the sliver cannot be entered.
+        let alone = LevelPlan { cuts: vec![sliver] };
+        let e = assemble(tool, &opts, &[alone], None).unwrap_err();
+        assert!(e.to_string().contains("entry"), "{e}");
+    }
 
     #[test]
     fn levels_are_equal_and_reach_the_floor() {

@@ -7,6 +7,16 @@
 //! engagement of every move and [`feed`] slows the feed where it exceeds the nominal one;
 //! the same simulation and the exact gouge check give the [`Verification`].
 //!
+//! **Levels and sections.** [`plan_levels`] asks [`walls::level_shapes`] for the section of
+//! the pocket at every level (the top outline for vertical walls; the outline shrunk by the
+//! draft, or interpolated towards a bottom outline, for inclined ones) and plans each level
+//! in its own section with [`plan_level`]; a pocket with vertical walls is planned once.
+//! Every strategy's `plan(&PocketShape, &Tool, &PocketOptions)` therefore receives a planar
+//! pocket (outline and islands of one level) and need not know about walls. After planning,
+//! [`levels::direct_entries`] enters every later cut of a level over material an earlier cut
+//! of that level has cleared, where one is near (no ramp, no plunge); [`generate`] verifies
+//! each level against its own section ([`crate::stock::verify_levels`]).
+//!
 //! * [`zigzag`]: parallel passes at an angle plus a boundary clean-up pass;
 //! * [`offset`]: contour-parallel offsets from the inside out;
 //! * [`spiral`]: the adaptive spiral, a central spiral morphing harmonically into the
@@ -20,10 +30,12 @@ pub mod options;
 pub mod samples;
 pub mod shape;
 pub mod spiral;
+pub mod walls;
 pub mod zigzag;
 
 pub use options::{Direction, Entry, PocketOptions, Stepover, StrategyKind};
 pub use shape::PocketShape;
+pub use walls::Walls;
 
 use crate::error::Result;
 use crate::stock::{self, SimOptions, StockSpec, Verification};
@@ -48,18 +60,61 @@ pub fn nominal_engagement(s: f64, r: f64) -> f64 {
     (1.0 - (s / r).clamp(0.0, 2.0)).acos()
 }
 
-/// Plans one level with `kind` (no feeds, no levels).
+/// Plans one level with `kind` (no feeds, no levels) in the planar `shape` (a level's
+/// section: its walls are ignored). The spiral refuses islands.
 pub fn plan_level(
     kind: StrategyKind,
     shape: &PocketShape,
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<levels::LevelPlan> {
-    Ok(match kind {
+    let mut plan = match kind {
         StrategyKind::Zigzag => zigzag::plan(shape, tool, opts)?,
         StrategyKind::Offset => offset::plan(shape, tool, opts)?,
-        StrategyKind::Spiral => spiral::plan(shape, tool, opts)?,
-    })
+        StrategyKind::Spiral => {
+            if !shape.islands.is_empty() {
+                return Err(crate::InputError::new("islands", shape.islands.len())
+                    .at("--strategy spiral")
+                    .expected("a pocket without islands for the spiral (use --strategy offset)")
+                    .into());
+            }
+            spiral::plan(shape, tool, opts)?
+        }
+    };
+    let region = shape.offset(tool.radius() + opts.wall_stock.max(0.0));
+    levels::direct_entries(
+        &mut plan,
+        &region,
+        DIRECT_ENTRY_REACH * tool.diameter,
+        levels::min_ramp_path(opts),
+    );
+    Ok(plan)
+}
+
+/// Longest lead-in of a direct entry, in tool diameters (see [`levels::direct_entries`]).
+pub const DIRECT_ENTRY_REACH: f64 = 3.0;
+
+/// The roughing plans of every level (one per level of [`levels::level_depths`]), each in
+/// its section ([`walls::level_shapes`]); a pocket with vertical walls is planned once.
+pub fn plan_levels(
+    kind: StrategyKind,
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<(Vec<PocketShape>, Vec<levels::LevelPlan>)> {
+    let sections = walls::level_shapes(shape, opts)?;
+    let plans = if shape.is_prismatic() {
+        match sections.first() {
+            Some(s) => vec![plan_level(kind, s, tool, opts)?],
+            None => Vec::new(),
+        }
+    } else {
+        sections
+            .iter()
+            .map(|s| plan_level(kind, s, tool, opts))
+            .collect::<Result<Vec<_>>>()?
+    };
+    Ok((sections, plans))
 }
 
 /// The toolpath without feed modulation or verification.
@@ -69,21 +124,37 @@ pub fn toolpath(
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<Toolpath> {
-    opts.validate(tool)?;
-    let rough = plan_level(kind, shape, tool, opts)?;
-    let finish = if opts.finish {
-        let fo = PocketOptions {
-            wall_stock: 0.0,
-            ..opts.clone()
-        };
-        Some(finishing_plan(shape, tool, &fo)?)
-    } else {
-        None
-    };
-    Ok(levels::assemble(*tool, opts, &rough, finish.as_ref()))
+    toolpath_and_sections(kind, shape, tool, opts).map(|(tp, _)| tp)
 }
 
-/// Generates, modulates the feed and verifies.
+/// The toolpath and the section of each of its levels (the finishing level's is the last
+/// roughing level's).
+fn toolpath_and_sections(
+    kind: StrategyKind,
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<(Toolpath, Vec<PocketShape>)> {
+    opts.validate(tool)?;
+    let (mut sections, rough) = plan_levels(kind, shape, tool, opts)?;
+    let finish = match (opts.finish, sections.last()) {
+        (true, Some(last)) => {
+            let fo = PocketOptions {
+                wall_stock: 0.0,
+                ..opts.clone()
+            };
+            let plan = finishing_plan(last, tool, &fo, opts.wall_stock)?;
+            sections.push(last.clone());
+            Some(plan)
+        }
+        _ => None,
+    };
+    let tp = levels::assemble(*tool, opts, &rough, finish.as_ref())?;
+    Ok((tp, sections))
+}
+
+/// Generates, modulates the feed and verifies: every level against its own section (and the
+/// section of the slab's top, see [`crate::stock::verify_levels`]).
 pub fn generate(
     kind: StrategyKind,
     shape: &PocketShape,
@@ -91,20 +162,31 @@ pub fn generate(
     opts: &PocketOptions,
     sim: &SimOptions,
 ) -> Result<PocketResult> {
-    let mut tp = toolpath(kind, shape, tool, opts)?;
+    let (mut tp, sections) = toolpath_and_sections(kind, shape, tool, opts)?;
     let s = opts.stepover_mm(tool);
     let nominal = nominal_engagement(s, tool.radius());
-    // With a finishing pass the walls end at zero stock.
-    let spec = StockSpec {
-        outer: &shape.outer,
-        islands: &shape.islands,
-        wall_stock: if opts.finish { 0.0 } else { opts.wall_stock },
-    };
-    let simulation = stock::simulate(&tp, spec, nominal.to_degrees(), sim);
+    // The roughing levels leave the wall stock; a finishing pass (on the last level's slab)
+    // takes the walls of that slab to zero stock.
+    let last_slab_stock = if opts.finish { 0.0 } else { opts.wall_stock };
+    let n_rough = levels::level_depths(opts).len();
+    let specs: Vec<StockSpec<'_>> = sections
+        .iter()
+        .enumerate()
+        .map(|(i, sec)| StockSpec {
+            outer: &sec.outer,
+            islands: &sec.islands,
+            wall_stock: if i + 1 >= n_rough {
+                last_slab_stock
+            } else {
+                opts.wall_stock
+            },
+        })
+        .collect();
+    let simulation = stock::simulate_levels(&tp, &specs, nominal.to_degrees(), sim);
     if opts.modulate_feed {
         feed::modulate(&mut tp, &simulation.per_move, nominal, opts.slowdown);
     }
-    let verification = stock::combine(&tp, spec, &simulation);
+    let verification = stock::combine_levels(&tp, &specs, &simulation);
     Ok(PocketResult {
         toolpath: tp,
         verification,
@@ -119,9 +201,10 @@ fn finishing_plan(
     shape: &PocketShape,
     tool: &Tool,
     opts: &PocketOptions,
+    rough_stock: f64,
 ) -> Result<levels::LevelPlan> {
     let region = shape.offset(tool.radius());
-    let rough = shape.offset(tool.radius() + opts.wall_stock.max(0.0));
+    let rough = shape.offset(tool.radius() + rough_stock.max(0.0));
     let mut cuts = Vec::new();
     for lp in region.loops() {
         let lp = if opts.direction == Direction::Climb {

@@ -5,58 +5,38 @@
 //! `d = r + stock` and the islands outward by the same `d` (cavalier_contours' shape offset,
 //! exact arcs). Its loops are where the last pass runs.
 
+use super::walls::Walls;
 use crate::error::InputError;
 use crate::geom::{Outline, Point, Winding};
 use cavalier_contours::core::math::Vector2;
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
 
-/// A pocket: an outer outline (counter-clockwise) and islands (clockwise) strictly inside it.
+/// A pocket: an outer outline (counter-clockwise) and islands (clockwise) strictly inside it,
+/// as they are at the top of the stock (z = 0), and how the walls run down from there.
 #[derive(Debug, Clone)]
 pub struct PocketShape {
     /// The outer outline, counter-clockwise.
     pub outer: Outline,
     /// Islands, clockwise, strictly inside the outer outline and apart from each other.
     pub islands: Vec<Outline>,
+    /// Vertical, drafted, or interpolated to a bottom outline (see [`super::walls`]).
+    pub walls: Walls,
 }
 
-/// Two loops closer than this (mm) count as touching.
-pub const TOUCH_EPS: f64 = 1e-6;
+pub use crate::geom::region::{TOUCH_EPS, loops_touch};
 
 impl PocketShape {
     /// A pocket from an outer outline and islands, in any winding; `origin` names the source.
-    /// Islands must lie strictly inside the outer outline and must not touch it or each other.
+    /// Islands must lie strictly inside the outer outline and must not touch it or each other
+    /// ([`crate::geom::region::validate_islands`]). The walls are vertical.
     pub fn new(outer: Outline, islands: Vec<Outline>, origin: &str) -> Result<Self, InputError> {
-        let outer = outer.with_winding(Winding::CounterClockwise);
-        let islands: Vec<Outline> = islands
-            .into_iter()
-            .map(|i| i.with_winding(Winding::Clockwise))
-            .collect();
-        for (k, isl) in islands.iter().enumerate() {
-            let (p, _) = isl.vertices().next().unwrap_or((Point::ORIGIN, 0.0));
-            if !outer.contains(p) {
-                return Err(InputError::new("island", k)
-                    .at(format!("{origin}, island {k} at ({:.3}, {:.3})", p.x, p.y))
-                    .expected("islands inside the outer outline"));
-            }
-            if loops_touch(outer.polyline(), isl.polyline()) {
-                return Err(InputError::new("island", k)
-                    .at(format!("{origin}, island {k} at ({:.3}, {:.3})", p.x, p.y))
-                    .expected("islands that do not touch or cross the outer outline"));
-            }
-            for (j, other) in islands.iter().enumerate().take(k) {
-                let (q, _) = other.vertices().next().unwrap_or((Point::ORIGIN, 0.0));
-                if loops_touch(other.polyline(), isl.polyline())
-                    || isl.contains(q)
-                    || other.contains(p)
-                {
-                    return Err(InputError::new("island", k)
-                        .at(format!("{origin}, islands {j} and {k}"))
-                        .expected("islands apart from each other"));
-                }
-            }
-        }
-        Ok(PocketShape { outer, islands })
+        let (outer, islands) = crate::geom::region::validate_islands(outer, islands, origin)?;
+        Ok(PocketShape {
+            outer,
+            islands,
+            walls: Walls::Vertical,
+        })
     }
 
     /// A pocket without islands.
@@ -64,6 +44,7 @@ impl PocketShape {
         PocketShape {
             outer: outer.with_winding(Winding::CounterClockwise),
             islands: Vec::new(),
+            walls: Walls::Vertical,
         }
     }
 
@@ -127,22 +108,6 @@ impl OffsetRegion {
     pub fn loops(&self) -> impl Iterator<Item = &Polyline<f64>> {
         self.outers.iter().chain(self.islands.iter())
     }
-}
-
-/// True when two closed loops intersect or come within [`TOUCH_EPS`].
-pub fn loops_touch(a: &Polyline<f64>, b: &Polyline<f64>) -> bool {
-    if !a.find_intersects(b).basic_intersects.is_empty()
-        || !a.find_intersects(b).overlapping_intersects.is_empty()
-    {
-        return true;
-    }
-    a.iter_vertexes().any(|v| {
-        b.closest_point(v.pos(), 1e-12)
-            .is_some_and(|c| c.distance <= TOUCH_EPS)
-    }) || b.iter_vertexes().any(|v| {
-        a.closest_point(v.pos(), 1e-12)
-            .is_some_and(|c| c.distance <= TOUCH_EPS)
-    })
 }
 
 /// A point as a cavalier vector.

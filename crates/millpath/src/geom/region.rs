@@ -1,0 +1,314 @@
+//! Planar regions: an outer outline with islands, validated once for every importer and
+//! every strategy; and the region's principal frame.
+//!
+//! # Validation
+//!
+//! [`validate_islands`] normalises windings (outer counter-clockwise, islands clockwise, the
+//! convention of [`crate::geom::Outline`] users) and refuses, with an input error naming the
+//! island and where it came from:
+//! * an island that touches or crosses the outer outline ([`loops_touch`]: a true or
+//!   overlapping intersection, or a vertex of either loop within [`TOUCH_EPS`] of the other);
+//! * an island outside the outer outline;
+//! * two islands that touch, cross or nest.
+//!
+//! `TOUCH_EPS` = 1 µm: two walls closer than that cannot be told apart by any machine, and
+//! the offsets the strategies take of the region would merge them anyway; it is far above the
+//! f64 rounding of coordinates up to [`crate::geom::MAX_COORDINATE_MM`].
+//!
+//! # Principal frame
+//!
+//! [`principal_angle`] gives the direction of the outline's major principal axis, so that a
+//! strategy can lay its passes in the pocket's own frame (zigzag): turning the pocket turns
+//! the path with it. With the boundary sampled at `n` points `p_i` equally spaced in arc
+//! length and `m` their mean, the second moments are `S_xx = Σ(x_i − m_x)²`, `S_yy`, `S_xy`;
+//! the covariance matrix has its major eigenvector at
+//! `θ = ½·atan2(2·S_xy, S_xx − S_yy)` (from `tan 2θ = 2S_xy / (S_xx − S_yy)`, the stationary
+//! point of the quadratic form along the direction `θ`). An isotropic boundary (a square, a
+//! circle: `|S_xx − S_yy| + 2|S_xy|` below 1e-3 of the trace) has no principal axis; there the
+//! direction of its longest straight edge is used (and 0 for a boundary of arcs only). The
+//! axis is then oriented: of `u` and `−u`, the one along which the third moment
+//! `Σ((p_i − m)·u)³` is positive (the side the boundary's mass leans to), or, for a shape
+//! symmetric along `u`, the one that makes the third moment along the normal `u⊥` positive.
+//! So a half turn of the pocket turns the frame with it, and passes laid in that frame start
+//! from the same end of the pocket. (A shape symmetric both ways keeps `θ` in `(−π/2, π/2]`;
+//! it looks the same either way round.) Moments from samples are exact to about 1e-6 rad, so
+//! an axis within [`SNAP_RAD`] of a straight edge is snapped onto that edge: passes parallel
+//! to an edge, not a micro-radian off it (which would cut a sliver along the edge).
+
+use super::{Outline, Point, Winding};
+use crate::error::InputError;
+use cavalier_contours::polyline::{PlineSource, Polyline, seg_arc_radius_and_center};
+
+/// Two loops closer than this (mm) count as touching.
+pub const TOUCH_EPS: f64 = 1e-6;
+
+/// True when two closed loops intersect, overlap or come within [`TOUCH_EPS`] at a vertex.
+pub fn loops_touch(a: &Polyline<f64>, b: &Polyline<f64>) -> bool {
+    let hits = a.find_intersects(b);
+    if !hits.basic_intersects.is_empty() || !hits.overlapping_intersects.is_empty() {
+        return true;
+    }
+    let near = |p: &Polyline<f64>, q: &Polyline<f64>| {
+        p.iter_vertexes().any(|v| {
+            q.closest_point(v.pos(), 1e-12)
+                .is_some_and(|c| c.distance <= TOUCH_EPS)
+        })
+    };
+    near(a, b) || near(b, a)
+}
+
+/// The first vertex of an outline (the origin for an empty one, which `Outline` never is).
+fn first_vertex(o: &Outline) -> Point {
+    o.vertices().next().map_or(Point::ORIGIN, |v| v.0)
+}
+
+/// Normalises windings and checks that every island lies strictly inside `outer` and apart
+/// from the other islands (see the module docs). `origin` names the source (file, flag).
+pub fn validate_islands(
+    outer: Outline,
+    islands: Vec<Outline>,
+    origin: &str,
+) -> Result<(Outline, Vec<Outline>), InputError> {
+    let outer = outer.with_winding(Winding::CounterClockwise);
+    let islands: Vec<Outline> = islands
+        .into_iter()
+        .map(|i| i.with_winding(Winding::Clockwise))
+        .collect();
+    for (k, isl) in islands.iter().enumerate() {
+        let p = first_vertex(isl);
+        let at = format!("{origin}, island {k} near ({:.3}, {:.3})", p.x, p.y);
+        if loops_touch(outer.polyline(), isl.polyline()) {
+            return Err(InputError::new("island", k)
+                .at(at)
+                .expected("islands that do not touch or cross the outer outline"));
+        }
+        if !outer.contains(p) {
+            return Err(InputError::new("island", k)
+                .at(at)
+                .expected("islands inside the outer outline"));
+        }
+        for (j, other) in islands.iter().enumerate().take(k) {
+            let q = first_vertex(other);
+            if loops_touch(other.polyline(), isl.polyline()) || isl.contains(q) || other.contains(p)
+            {
+                return Err(InputError::new("island", k)
+                    .at(format!("{origin}, islands {j} and {k}"))
+                    .expected("islands apart from each other (not touching, crossing or nested)"));
+            }
+        }
+    }
+    Ok((outer, islands))
+}
+
+/// Points equally spaced in arc length along a closed polyline (`n` of them, from vertex 0).
+pub fn sample_loop(pl: &Polyline<f64>, n: usize) -> Vec<Point> {
+    let segs: Vec<(Point, Point, f64, f64)> = pl
+        .iter_segments()
+        .map(|(v1, v2)| {
+            let a = Point::new(v1.x, v1.y);
+            let b = Point::new(v2.x, v2.y);
+            let len = if v1.bulge_is_zero() {
+                a.distance(b)
+            } else {
+                let (r, _) = seg_arc_radius_and_center(v1, v2);
+                r * (4.0 * v1.bulge.atan()).abs()
+            };
+            (a, b, v1.bulge, len)
+        })
+        .collect();
+    let total: f64 = segs.iter().map(|s| s.3).sum();
+    if total.is_nan() || total <= 0.0 || n == 0 {
+        return Vec::new();
+    }
+    let mut out = Vec::with_capacity(n);
+    let (mut acc, mut i) = (0.0, 0);
+    for k in 0..n {
+        let t = total * k as f64 / n as f64;
+        while i + 1 < segs.len() && acc + segs[i].3 < t {
+            acc += segs[i].3;
+            i += 1;
+        }
+        let Some(&(a, b, bulge, len)) = segs.get(i) else {
+            break;
+        };
+        let f = if len > 0.0 {
+            ((t - acc) / len).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        out.push(point_on_bulge_seg(a, b, bulge, f));
+    }
+    out
+}
+
+/// The point at fraction `f` of the arc length of the segment `a → b` with `bulge`.
+fn point_on_bulge_seg(a: Point, b: Point, bulge: f64, f: f64) -> Point {
+    let chord = b - a;
+    let c = chord.length();
+    if bulge.abs() < 1e-12 || c <= 0.0 {
+        return a.lerp(b, f);
+    }
+    // Sweep θ = 4·atan(bulge); the centre lies on the chord's bisector at R·cos(θ/2),
+    // R = c / (2·sin(|θ|/2)), on the side the arc turns to.
+    let theta = 4.0 * bulge.atan();
+    let half = 0.5 * theta.abs();
+    let radius = c / (2.0 * half.sin());
+    let n = chord.perp() / c;
+    let center = a.midpoint(b) + n * (theta.signum() * radius * half.cos());
+    let a0 = (a - center).angle();
+    center + super::Vec2::from_angle(a0 + theta * f) * radius
+}
+
+/// How close (rad) the moments' axis must come to a straight edge to be snapped onto it.
+pub const SNAP_RAD: f64 = 1e-3;
+
+/// The outline's principal-axis direction in `(−π, π]` (see the module docs).
+pub fn principal_angle(o: &Outline) -> f64 {
+    let pts = sample_loop(o.polyline(), 720);
+    let m = pts.len().max(1) as f64;
+    let (cx, cy) = pts
+        .iter()
+        .fold((0.0, 0.0), |a, p| (a.0 + p.x / m, a.1 + p.y / m));
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for p in &pts {
+        let (dx, dy) = (p.x - cx, p.y - cy);
+        sxx += dx * dx;
+        syy += dy * dy;
+        sxy += dx * dy;
+    }
+    let raw = if (sxx - syy).abs() + 2.0 * sxy.abs() > 1e-3 * (sxx + syy) {
+        0.5 * (2.0 * sxy).atan2(sxx - syy)
+    } else {
+        // Isotropic: the longest straight edge (the first of equal ones from the lowest
+        // direction angle, so that the choice does not depend on the start vertex).
+        let mut best: Option<(f64, f64)> = None;
+        for (v1, v2) in o.polyline().iter_segments() {
+            if !v1.bulge_is_zero() {
+                continue;
+            }
+            let d = Point::new(v2.x, v2.y) - Point::new(v1.x, v1.y);
+            let len = d.length();
+            let ang = fold(d.angle());
+            let better = match best {
+                None => true,
+                Some((l, a)) => len > l * (1.0 + 1e-9) || (len > l * (1.0 - 1e-9) && ang < a),
+            };
+            if better {
+                best = Some((len, ang));
+            }
+        }
+        best.map_or(0.0, |b| b.1)
+    };
+    // Snap to a straight edge within SNAP_RAD: the sampled moments are exact only to about
+    // 1e-6 rad, and passes a micro-radian off an edge cut slivers along it.
+    let snap = o
+        .polyline()
+        .iter_segments()
+        .filter(|(v1, v2)| v1.bulge_is_zero() && (v2.x - v1.x).hypot(v2.y - v1.y) > 0.0)
+        .map(|(v1, v2)| fold((v2.y - v1.y).atan2(v2.x - v1.x) - raw))
+        .filter(|d| d.abs() <= SNAP_RAD)
+        .min_by(|a, b| a.abs().total_cmp(&b.abs()));
+    let theta = fold(raw + snap.unwrap_or(0.0));
+    // Orient the axis: the sign that makes the third moment along it positive (then along
+    // its normal), so that a half turn of the pocket turns the frame with it.
+    let u = super::Vec2::from_angle(theta);
+    let third = |dir: super::Vec2| {
+        pts.iter()
+            .map(|p| {
+                let t = (p.x - cx) * dir.x + (p.y - cy) * dir.y;
+                t * t * t
+            })
+            .sum::<f64>()
+    };
+    let scale = (sxx + syy).max(1e-300).powf(1.5) / m.sqrt();
+    let s1 = third(u);
+    let s2 = third(u.perp());
+    let flip = if s1.abs() > 1e-6 * scale {
+        s1 < 0.0
+    } else {
+        s2.abs() > 1e-6 * scale && s2 < 0.0
+    };
+    if flip {
+        if theta > 0.0 {
+            theta - std::f64::consts::PI
+        } else {
+            theta + std::f64::consts::PI
+        }
+    } else {
+        theta
+    }
+}
+
+/// An angle modulo π, in `(−π/2, π/2]`.
+fn fold(a: f64) -> f64 {
+    use std::f64::consts::PI;
+    let mut t = a.rem_euclid(PI);
+    if t > 0.5 * PI {
+        t -= PI;
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rect(x: f64, y: f64, w: f64, h: f64) -> Outline {
+        Outline::from_points(
+            &[
+                Point::new(x, y),
+                Point::new(x + w, y),
+                Point::new(x + w, y + h),
+                Point::new(x, y + h),
+            ],
+            "rect",
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn islands_are_checked_and_windings_normalised() {
+        let (o, i) = validate_islands(
+            rect(0.0, 0.0, 20.0, 20.0),
+            vec![rect(5.0, 5.0, 4.0, 4.0)],
+            "t",
+        )
+        .unwrap();
+        assert_eq!(o.winding(), Winding::CounterClockwise);
+        assert_eq!(i[0].winding(), Winding::Clockwise);
+        for bad in [
+            vec![rect(0.0, 5.0, 4.0, 4.0)],  // touches the outline
+            vec![rect(-2.0, 5.0, 4.0, 4.0)], // crosses it
+            vec![rect(30.0, 5.0, 4.0, 4.0)], // outside
+            vec![rect(5.0, 5.0, 4.0, 4.0), rect(9.0, 5.0, 4.0, 4.0)], // islands touch
+            vec![rect(5.0, 5.0, 8.0, 8.0), rect(6.0, 6.0, 2.0, 2.0)], // nested
+        ] {
+            let e = validate_islands(rect(0.0, 0.0, 20.0, 20.0), bad, "t").unwrap_err();
+            assert!(e.to_string().contains("island"), "{e}");
+        }
+    }
+
+    #[test]
+    fn principal_angle_follows_rotation() {
+        let r = rect(-30.0, -10.0, 60.0, 20.0);
+        assert!(principal_angle(&r).abs() < 1e-9);
+        let a = 0.7;
+        let v: Vec<(Point, f64)> = r
+            .vertices()
+            .map(|(p, b)| (p.rotate_about(Point::ORIGIN, a), b))
+            .collect();
+        let turned = Outline::new(&v, "turned").unwrap();
+        assert!((principal_angle(&turned) - a).abs() < 1e-9);
+        // A rounded rectangle: exactly along its edges (a micro-radian off would cut slivers).
+        let rr =
+            crate::strategy::pocket::samples::rounded_rectangle(-75.0, -50.0, 150.0, 100.0, 6.0);
+        let a = principal_angle(&rr);
+        assert!(
+            a.abs() < 1e-12 || (a - std::f64::consts::PI).abs() < 1e-12,
+            "{a}"
+        );
+        // A square: its edge direction.
+        let sq = rect(0.0, 0.0, 10.0, 10.0);
+        assert!(principal_angle(&sq).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,299 @@
+//! Inclined walls: each level gets its own boundary (the paper's §3.2).
+//!
+//! A pocket whose walls lean into it (a draft, or a bottom smaller than the top) cannot be
+//! roughed with the top outline at every level: the tool would gouge the lower part of the
+//! wall. Cut with the *bottom* outline at every level it leaves the whole wedge above the
+//! inclined wall. The paper intersects the part with a plane at every axial step and plans
+//! each level inside its own section; so do we. A flat end mill at level `i` (depth `t_i`
+//! below the top) is a vertical cylinder reaching up through the slab `[t_{i−1}, t_i]`; where
+//! the walls lean inward going down, the section at the slab's bottom, `S(t_i)`, is the
+//! narrowest of the slab, so planning level `i` inside `S(t_i)` gouges no wall of the slab and
+//! leaves only the staircase step above the wall, at most `(t_i − t_{i−1})·tan α` wide for a
+//! wall inclined by α (the axial counterpart of the corner cusp; a finishing tool follows the
+//! wall). Levels must therefore be nested, `S(t_i) ⊆ S(t_{i−1})`: a bottom wider than the top
+//! would be an undercut, which no 3-axis flat end mill can cut; [`level_shapes`] refuses it.
+//!
+//! Sections:
+//! * [`Walls::Draft`]`(α)`: every wall leans into the pocket by α from the vertical. The
+//!   section at depth `t` is the set of points at distance at least `t·tan α` from the walls
+//!   of the top region, i.e. the top region offset inward by `δ = t·tan α` (outline inward,
+//!   islands outward: cavalier_contours' shape offset, exact arcs). This is exact for a
+//!   drafted wall: a point of the wall at depth `t` lies `t·tan α` from the top edge,
+//!   measured horizontally along the wall's normal, and the offset of a line or an arc is a
+//!   line or a concentric arc. Convex corners stay sharp (a drafted sharp corner is a sharp
+//!   corner at every depth), concave ones round to radius `δ` (the offset's arcs): the
+//!   section of a drafted concave corner is that arc only if the corner was drafted as a
+//!   cone, which is what a draft angle on a CAD part does.
+//! * [`Walls::Bottom`]: the bottom outline (and its islands) at the pocket's depth, vertex
+//!   for vertex like the top. The wall is the ruled surface between corresponding segments;
+//!   the section at fraction `f = t/depth` has the vertices `(1 − f)·p_top + f·p_bottom` and,
+//!   for arcs, the sweep `(1 − f)·θ_top + f·θ_bottom` (bulge `tan(θ/4)`). Where the two arcs
+//!   are concentric with equal sweeps (a drafted rounded corner) this is the exact section; where
+//!   they are not, the ruled surface's section is not a circular arc and the interpolated arc
+//!   stands in for it. Either way the verifier checks the path against the very section it
+//!   was planned in, and each level against the section of the slab's top.
+//!
+//! The section of the deepest roughing level (at `depth − floor stock`) is interpolated at
+//! that depth; the finishing pass runs in that same section.
+
+use super::options::PocketOptions;
+use super::shape::PocketShape;
+use crate::error::InputError;
+use crate::geom::region::{sample_loop, validate_islands};
+use crate::geom::{Outline, Point};
+
+/// How the walls run from the top outline (z = 0) down to the floor.
+#[derive(Debug, Clone, Default)]
+pub enum Walls {
+    /// Vertical walls: every level is cut in the top outline.
+    #[default]
+    Vertical,
+    /// Every wall leans into the pocket by this angle from the vertical, rad, in `[0, π/2)`.
+    Draft(f64),
+    /// The outline and islands at the pocket's depth, vertex for vertex like the top.
+    Bottom {
+        /// Bottom outer outline, counter-clockwise.
+        outer: Outline,
+        /// Bottom islands, clockwise, in the order of the top's.
+        islands: Vec<Outline>,
+    },
+}
+
+/// Largest draft angle accepted, degrees (beyond, the pocket closes within a few mm).
+pub const MAX_DRAFT_DEG: f64 = 60.0;
+
+impl PocketShape {
+    /// The same pocket with `walls`; checks that a bottom outline matches the top (same
+    /// number of islands, same number of vertices loop for loop) and that a draft is in
+    /// `[0, 60°]`. `origin` names where the walls came from (`--draft`, a file).
+    pub fn with_walls(mut self, walls: Walls, origin: &str) -> Result<Self, InputError> {
+        match &walls {
+            Walls::Vertical => {}
+            Walls::Draft(a) => {
+                let deg = a.to_degrees();
+                if !(deg.is_finite() && (0.0..=MAX_DRAFT_DEG).contains(&deg)) {
+                    return Err(InputError::new("draft angle", deg)
+                        .at(origin)
+                        .expected("an angle in [0, 60] degrees, the walls leaning into the pocket (undercuts cannot be cut with a flat end mill)"));
+                }
+            }
+            Walls::Bottom { outer, islands } => {
+                let (outer, islands) = validate_islands(outer.clone(), islands.clone(), origin)?;
+                if islands.len() != self.islands.len() {
+                    return Err(InputError::new("bottom islands", islands.len())
+                        .at(origin)
+                        .expected(format!(
+                            "as many islands as the top outline ({})",
+                            self.islands.len()
+                        )));
+                }
+                for (k, (top, bot)) in std::iter::once((&self.outer, &outer))
+                    .chain(self.islands.iter().zip(islands.iter()))
+                    .enumerate()
+                {
+                    if top.len() != bot.len() {
+                        let which = if k == 0 {
+                            "outline".to_owned()
+                        } else {
+                            format!("island {}", k - 1)
+                        };
+                        return Err(InputError::new("bottom vertex count", bot.len())
+                            .at(format!("{origin}, {which}"))
+                            .expected(format!(
+                                "the same number of vertices as the top's {which} ({})",
+                                top.len()
+                            )));
+                    }
+                }
+                self.walls = Walls::Bottom { outer, islands };
+                return Ok(self);
+            }
+        }
+        self.walls = walls;
+        Ok(self)
+    }
+
+    /// True when the walls are vertical (every level has the top's boundary).
+    pub fn is_prismatic(&self) -> bool {
+        match self.walls {
+            Walls::Vertical => true,
+            Walls::Draft(a) => a == 0.0,
+            Walls::Bottom { .. } => false,
+        }
+    }
+
+    /// The planar pocket at `t` mm below the top, for a pocket `depth` mm deep: the section
+    /// every strategy plans a level in (vertical walls in the result).
+    pub fn section(&self, t: f64, depth: f64) -> Result<PocketShape, InputError> {
+        let planar = |outer: Outline, islands: Vec<Outline>| PocketShape {
+            outer,
+            islands,
+            walls: Walls::Vertical,
+        };
+        let closed = || {
+            InputError::new("pocket section", format!("{t:.3} mm deep"))
+                .at("--draft / --bottom-outline")
+                .expected("walls that leave the pocket one region with its islands apart down to the floor (a smaller draft, or a bottom outline closer to the top)")
+        };
+        match &self.walls {
+            Walls::Vertical => Ok(planar(self.outer.clone(), self.islands.clone())),
+            Walls::Draft(a) => {
+                let delta = t.max(0.0) * a.tan();
+                if delta <= 0.0 {
+                    return Ok(planar(self.outer.clone(), self.islands.clone()));
+                }
+                let off = planar(self.outer.clone(), self.islands.clone()).offset(delta);
+                let [outer] = off.outers.as_slice() else {
+                    return Err(closed());
+                };
+                let origin = format!("section {t:.3} mm deep");
+                let outer = Outline::from_polyline(outer.clone(), &origin).map_err(|_| closed())?;
+                let islands = off
+                    .islands
+                    .iter()
+                    .map(|i| Outline::from_polyline(i.clone(), &origin))
+                    .collect::<Result<Vec<_>, _>>()
+                    .map_err(|_| closed())?;
+                let (outer, islands) =
+                    validate_islands(outer, islands, &origin).map_err(|_| closed())?;
+                Ok(planar(outer, islands))
+            }
+            Walls::Bottom { outer, islands } => {
+                let f = if depth > 0.0 {
+                    (t / depth).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let origin = format!("section {t:.3} mm deep");
+                let lerp_loop = |a: &Outline, b: &Outline| {
+                    let v: Vec<(Point, f64)> = a
+                        .vertices()
+                        .zip(b.vertices())
+                        .map(|((pa, ba), (pb, bb))| {
+                            let theta = (1.0 - f) * 4.0 * ba.atan() + f * 4.0 * bb.atan();
+                            (pa.lerp(pb, f), (0.25 * theta).tan())
+                        })
+                        .collect();
+                    Outline::new(&v, &origin)
+                };
+                let o = lerp_loop(&self.outer, outer).map_err(|_| closed())?;
+                let isl = self
+                    .islands
+                    .iter()
+                    .zip(islands.iter())
+                    .map(|(a, b)| lerp_loop(a, b))
+                    .collect::<Result<Vec<_>, _>>()
+                    .map_err(|_| closed())?;
+                let (o, isl) = validate_islands(o, isl, &origin).map_err(|_| closed())?;
+                Ok(planar(o, isl))
+            }
+        }
+    }
+
+    /// True when this (planar) region lies within `other`'s, sampled: 256 points of every
+    /// loop of each, each inside the other region or within 1 µm of its boundary.
+    pub fn within(&self, other: &PocketShape) -> bool {
+        let on_or_in =
+            |shape: &PocketShape, p: Point| shape.contains(p) || shape.distance_to(p) <= 1e-6;
+        let outside =
+            |shape: &PocketShape, p: Point| !shape.contains(p) || shape.distance_to(p) <= 1e-6;
+        // Our boundary inside theirs, and their islands' boundaries outside our region.
+        self.loops()
+            .flat_map(|l| sample_loop(l.polyline(), 256))
+            .all(|p| on_or_in(other, p))
+            && other
+                .islands
+                .iter()
+                .flat_map(|l| sample_loop(l.polyline(), 256))
+                .all(|p| outside(self, p))
+    }
+}
+
+/// The section of every roughing level of `opts` (top to bottom, see
+/// [`super::levels::level_depths`]); refuses sections that are not nested (an undercut).
+pub fn level_shapes(
+    shape: &PocketShape,
+    opts: &PocketOptions,
+) -> Result<Vec<PocketShape>, InputError> {
+    let depths = super::levels::level_depths(opts);
+    if shape.is_prismatic() {
+        let planar = shape.section(0.0, opts.depth)?;
+        return Ok(vec![planar; depths.len()]);
+    }
+    let mut out: Vec<PocketShape> = Vec::with_capacity(depths.len());
+    let mut above = shape.section(0.0, opts.depth)?;
+    for z in depths {
+        let s = shape.section(-z, opts.depth)?;
+        if !s.within(&above) {
+            return Err(InputError::new("pocket section", format!("{:.3} mm deep", -z))
+                .at("--bottom-outline")
+                .expected("a bottom outline inside the top one: walls that lean into the pocket (an undercut cannot be cut with a flat end mill)"));
+        }
+        above = s.clone();
+        out.push(s);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::strategy::pocket::samples::rounded_rectangle;
+
+    #[test]
+    fn draft_sections_shrink_by_depth_times_tan() {
+        let top = PocketShape::simple(rounded_rectangle(0.0, 0.0, 100.0, 60.0, 10.0))
+            .with_walls(Walls::Draft(5f64.to_radians()), "--draft")
+            .unwrap();
+        let s = top.section(20.0, 20.0).unwrap();
+        let d = 20.0 * 5f64.to_radians().tan();
+        let b = s.outer.bounds();
+        assert!((b.min.x - d).abs() < 1e-9 && (b.max.y - (60.0 - d)).abs() < 1e-9);
+        // The drafted rounded rectangle is the same rounded rectangle, shrunk by d.
+        let want = rounded_rectangle(d, d, 100.0 - 2.0 * d, 60.0 - 2.0 * d, 10.0 - d);
+        assert!((s.outer.signed_area() - want.signed_area()).abs() < 1e-6);
+        assert!(
+            top.with_walls(Walls::Draft(-0.1), "--draft").is_err(),
+            "an undercut draft is refused"
+        );
+    }
+
+    #[test]
+    fn bottom_outline_sections_interpolate_and_undercuts_are_refused() {
+        let top = PocketShape::simple(rounded_rectangle(0.0, 0.0, 100.0, 60.0, 10.0));
+        let bottom = rounded_rectangle(10.0, 10.0, 80.0, 40.0, 10.0);
+        let p = top
+            .clone()
+            .with_walls(
+                Walls::Bottom {
+                    outer: bottom,
+                    islands: Vec::new(),
+                },
+                "bottom",
+            )
+            .unwrap();
+        let half = p.section(10.0, 20.0).unwrap();
+        let b = half.outer.bounds();
+        assert!((b.min.x - 5.0).abs() < 1e-9 && (b.max.x - 95.0).abs() < 1e-9);
+        let opts = PocketOptions {
+            depth: 20.0,
+            step_down: 5.0,
+            ..PocketOptions::default()
+        };
+        let levels = level_shapes(&p, &opts).unwrap();
+        assert_eq!(levels.len(), 4);
+        assert!(levels[3].within(&levels[2]) && !levels[2].within(&levels[3]));
+        // Bottom wider than the top: an undercut.
+        let wide = rounded_rectangle(-10.0, -10.0, 120.0, 80.0, 10.0);
+        let u = top
+            .with_walls(
+                Walls::Bottom {
+                    outer: wide,
+                    islands: Vec::new(),
+                },
+                "bottom",
+            )
+            .unwrap();
+        assert!(level_shapes(&u, &opts).is_err());
+    }
+}
