@@ -91,6 +91,24 @@ fn planner_limit_violations_found_by_the_fuzzer() {
     h.finish(1);
 }
 
+/// Found by the corpus replay after main's pocket walls landed: a zigzag pocket with a depth
+/// of 1e300 mm and a step-down of 333 mm (tool diameter 1e300 mm) makes
+/// `strategy::pocket::levels::level_depths` (called from `walls::level_shapes`) allocate
+/// ~3e297 levels: "capacity overflow". `PocketOptions::validate` should bound the level count
+/// (and lengths) as `ContourOptions::validate` now does.
+#[test]
+#[ignore = "crash: capacity overflow in pocket::levels::level_depths for depth 1e300 (fuzz/regressions/pocket-crash)"]
+fn pocket_depth_1e300_does_not_overflow() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-crash");
+    let mut h = Harness::new("pocket crash");
+    for e in std::fs::read_dir(&dir).expect("regressions dir") {
+        let f = e.expect("entry").path();
+        let data = std::fs::read(&f).expect("file");
+        h.run(&f.display(), || harness::pocket(&data));
+    }
+    h.finish(1);
+}
+
 /// Replays one file: `FUZZ_TARGET=pocket FUZZ_FILE=path FUZZ_TRACE=1 cargo test -p millpath
 /// --test hostile_corpus -- --ignored replay_one --nocapture` (prints the decoded input).
 #[test]
