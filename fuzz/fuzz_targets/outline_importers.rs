@@ -1,16 +1,10 @@
-//! The outline importers (DXF, SVG, outline JSON) and machine profiles over arbitrary bytes:
-//! they must return outlines or input errors, never panic.
+//! Fuzz target `outline_importers`: the body is `harness::outline_importers` (fuzz/harness/mod.rs), shared with the corpus
+//! replay test `crates/millpath/tests/hostile_corpus.rs`.
 #![no_main]
 
-use libfuzzer_sys::fuzz_target;
-use millpath::io::{dxf, outline_json, svg};
-use millpath::machine::Machine;
+#[path = "../harness/mod.rs"]
+mod harness;
 
-fuzz_target!(|data: &[u8]| {
-    let _ = dxf::parse(data, "fuzz.dxf", &dxf::DxfOptions::default());
-    if let Ok(text) = std::str::from_utf8(data) {
-        let _ = svg::parse(text, "fuzz.svg", 0.01);
-        let _ = outline_json::parse(text, "fuzz.json");
-        let _ = Machine::from_toml_str(text, "fuzz.toml");
-    }
-});
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| harness::outline_importers(data));

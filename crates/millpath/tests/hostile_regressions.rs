@@ -120,3 +120,126 @@ fn pocket_ramp_on_a_sliver_cut_is_bounded() {
     assert!(tp.moves.len() < 100_000, "{} moves", tp.moves.len());
     assert!(tp.moves.iter().all(|m| m.to.is_finite()));
 }
+
+/// The `contour` fuzzer (17 crash files): a depth of 1e300 mm with a 1 mm step-down made
+/// `contour::layer_depths` allocate `1e300` layers (capacity overflow). Fixed in
+/// `ContourOptions::validate`: at most `MAX_LAYERS` (10,000) layers.
+#[test]
+fn contour_depth_1e300_is_refused() {
+    use millpath::strategy::contour::{self, ContourOptions};
+    let (c, base) = contour::sample().unwrap();
+    let opt = ContourOptions {
+        depth: 1e300,
+        step_down: 1.0,
+        ..base
+    };
+    let e: Error = contour::contour(&c, &opt).unwrap_err();
+    assert_eq!(e.exit_code(), 2);
+    let msg = e.to_string();
+    assert!(
+        msg.contains("step-down") && msg.contains("10000 layers"),
+        "{msg}"
+    );
+}
+
+/// The `contour` fuzzer: a curve through a point at y = 1e300 reached kurbo's flattening in
+/// the contour report, which asked for a capacity overflow. Fixed in `curve::build`: points
+/// beyond ±1e6 mm are refused, naming the point.
+#[test]
+fn curve_point_at_1e300_is_refused() {
+    use millpath::curve::{self, CurveKind, LabeledPoint};
+    let pts = [(0.0, 0.0), (10.0, 0.0), (10.0, 1e300), (0.0, 10.0)];
+    let group: Vec<LabeledPoint> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, &(x, y))| LabeledPoint {
+            p: millpath::Point::new(x, y),
+            origin: format!("p.csv:{}", i + 1),
+        })
+        .collect();
+    for kind in [
+        CurveKind::FourPoint,
+        CurveKind::CatmullRom,
+        CurveKind::Spline,
+    ] {
+        let e = curve::build(std::slice::from_ref(&group), kind, "p.csv").unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("p.csv:3") && msg.contains("±1000000 mm"),
+            "{kind:?}: {msg}"
+        );
+    }
+}
+
+/// The `planner` fuzzer (150 crash files): a move to y = 1e300 planned to an infinite cycle
+/// time (and the verifier then reported an infinite position error); a feed of 1e-300 mm/s or
+/// a dwell of 1e300 s does the same. Fixed in `motion::plan` (`Builder::push`): coordinates
+/// within ±1e6 mm, feeds ≥ `MIN_FEED` (1e-6 mm/s), dwells ≤ `MAX_DWELL` (1e6 s).
+#[test]
+fn planner_refuses_moves_whose_time_overflows() {
+    use millpath::machine::Machine;
+    use millpath::motion::plan_toolpath;
+    use millpath::{Move, Point3, Tool, Toolpath};
+    let m = Machine::preset("hsm").unwrap();
+    let cases = [
+        (Move::line(Point3::new(0.0, 1e300, 0.0), 10.0), "end point"),
+        (Move::line(Point3::new(0.0, 10.0, 0.0), 1e-300), "feed"),
+        (Move::dwell(Point3::ORIGIN, 1e300), "dwell"),
+    ];
+    for (mv, what) in cases {
+        let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
+        tp.push(Move::line(Point3::new(1.0, 0.0, 0.0), 10.0));
+        tp.push(mv);
+        let e = plan_toolpath(&tp, &m).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{what}: {e}");
+        let msg = e.to_string();
+        assert!(
+            msg.contains(what) && msg.contains("move 2"),
+            "{what}: {msg}"
+        );
+    }
+}
+
+/// The `contour` fuzzer (timeout, 22 s under ASan; 8.7 s in release): a contour with a lead
+/// radius, safe and clearance heights of 1e300 mm; and (out of memory, 2 GB) a tool of
+/// 1e300 mm, whose corner joins `contour::pass::join_corner` sampled with 3e9 points. Fixed in
+/// `ContourOptions::validate`: lengths beyond ±1e6 mm are refused.
+#[test]
+fn contour_lengths_of_1e300_are_refused() {
+    use millpath::strategy::contour::{self, ContourOptions};
+    let (c, base) = contour::sample().unwrap();
+    for (what, opt) in [
+        (
+            "lead radius",
+            ContourOptions {
+                lead_radius: 1e300,
+                ..base.clone()
+            },
+        ),
+        (
+            "safe height",
+            ContourOptions {
+                safe_height: 1e300,
+                clearance_height: 1.0,
+                ..base.clone()
+            },
+        ),
+        (
+            "tool diameter",
+            ContourOptions {
+                tool: millpath::Tool {
+                    diameter: 1e300,
+                    ..base.tool
+                },
+                ..base.clone()
+            },
+        ),
+    ] {
+        let e: Error = contour::contour(&c, &opt).unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains(what) && msg.contains("±1000000 mm"),
+            "{what}: {msg}"
+        );
+    }
+}

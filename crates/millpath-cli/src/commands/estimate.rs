@@ -123,6 +123,29 @@ pub fn run(args: &Args) -> Result<(), Error> {
     };
     let mut reader = Reader::new(BufReader::new(counting), opts);
     let mut n_read: u64 = 0;
+    if args.samples.is_none() && args.html.is_none() && args.svg.is_none() {
+        // Bounded memory: the planner streams, the verifier checks each chunk as it is timed.
+        let mut at = start;
+        let stream = std::iter::from_fn(|| {
+            let item = reader.next()?;
+            n_read += 1;
+            if let Some(b) = &bar
+                && n_read % 65_536 == 0
+            {
+                b.set_position(count.get());
+            }
+            Some(item.map(|rm| {
+                let f = at;
+                at = rm.mv.to;
+                (f, rm.mv)
+            }))
+        });
+        let streamed = run_streaming(stream, &machine, args);
+        if let Some(b) = &bar {
+            b.finish_and_clear();
+        }
+        return streamed;
+    }
     let keep =
         !args.no_verify || args.samples.is_some() || args.html.is_some() || args.svg.is_some();
     let mut moves: Vec<(Point3, millpath::Move)> = Vec::new();
@@ -263,6 +286,60 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     .join(", ")
             ));
         }
+    }
+    Ok(())
+}
+
+/// `estimate` without `--samples` or `--html`: plans in bounded memory
+/// ([`millpath::motion::stream::plan_stream`]) and verifies each chunk as it is timed (a
+/// chunk boundary is a knot where the acceleration is zero; its junction is the one check the
+/// chunked verifier does not repeat across chunks). Same output as the whole-program path.
+fn run_streaming<I>(stream: I, machine: &Machine, args: &Args) -> Result<(), Error>
+where
+    I: Iterator<Item = Result<(Point3, millpath::Move), Error>>,
+{
+    use millpath::motion::stream::{StreamOptions, plan_stream};
+    let mut violations = 0usize;
+    let mut per_block = Vec::new();
+    let vopts = VerifyOptions {
+        rate: args.rate,
+        ..VerifyOptions::default()
+    };
+    let sum = plan_stream(stream, machine, &StreamOptions::default(), |chunk| {
+        if !args.no_verify {
+            violations += verify_plan(&chunk.plan, &chunk.moves, machine, &vopts)?.violations;
+        }
+        if args.json && args.blocks {
+            per_block.extend(chunk.plan.blocks.iter().map(|b| {
+                serde_json::json!({"start_s": chunk.start_time + b.start_time, "time_s": b.time,
+                    "peak_feed_mm_s": b.peak_feed, "length_mm": b.length})
+            }));
+        }
+        Ok(())
+    })?;
+    let violations = (!args.no_verify).then_some(violations);
+    if args.json {
+        let mut obj = serde_json::json!({
+            "cycle_time_s": sum.total_time,
+            "blocks": sum.blocks,
+            "spans": sum.spans,
+            "violations": violations,
+            "machine": machine.name,
+            "time_at_programmed_feed_s": sum.time_at_programmed_feed,
+        });
+        if args.blocks {
+            obj["per_block"] = serde_json::Value::Array(per_block);
+        }
+        print(&obj.to_string());
+    } else {
+        print(&format!(
+            "cycle time {:.3} s on {} ({} blocks; {:.3} s at programmed feeds); limit violations: {}",
+            sum.total_time,
+            machine.name,
+            sum.blocks,
+            sum.time_at_programmed_feed,
+            violations.map_or("not checked".into(), |v| v.to_string())
+        ));
     }
     Ok(())
 }

@@ -235,11 +235,14 @@ impl CompositeCurve {
 }
 
 fn check_points(pts: &[LabeledPoint]) -> Result<(), InputError> {
+    let max = crate::geom::MAX_COORDINATE_MM;
     for p in pts {
-        if !p.p.is_finite() {
+        // Beyond ±1e6 mm, lengths and flattening counts overflow (kurbo's flattening of a
+        // curve through 1e300 asked for a capacity overflow; found by the `contour` fuzzer).
+        if !(p.p.x.abs() <= max && p.p.y.abs() <= max) {
             return Err(InputError::new("point", format!("({}, {})", p.p.x, p.p.y))
                 .at(p.origin.clone())
-                .expected("finite coordinates"));
+                .expected(format!("finite coordinates within ±{max} mm")));
         }
     }
     for w in pts.windows(2) {

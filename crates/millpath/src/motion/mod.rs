@@ -68,6 +68,7 @@ pub mod path;
 pub mod plan;
 pub mod profile;
 pub mod sample;
+pub mod stream;
 pub mod table2;
 pub mod verify;
 

@@ -30,9 +30,16 @@ use super::limits::{block_limits, junction_cap, junction_mode};
 use super::path::Geom;
 use super::profile::{Limits1, SpanProfile, reachable_velocity};
 use crate::error::Error;
-use crate::geom::Point3;
+use crate::geom::{MAX_COORDINATE_MM, Point3};
 use crate::machine::Machine;
 use crate::toolpath::{Move, MoveKind, Toolpath};
+
+/// The slowest feed a feed move may have, mm/s (0.00006 mm/min): below it the time of a
+/// block overflows long before it means anything.
+pub const MIN_FEED: f64 = 1e-6;
+
+/// The longest dwell, s (11.6 days): keeps the total time of any program finite.
+pub const MAX_DWELL: f64 = 1e6;
 
 /// Options of [`plan_moves`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -126,13 +133,29 @@ impl Plan {
     }
 }
 
-struct Builder {
-    spans: Vec<Span>,
-    knots: Vec<f64>,
+/// The incremental half of the planner: blocks are pushed one at a time and grouped into
+/// spans; [`time_spans`] then times spans whose knot speeds are known. [`plan_moves`] pushes
+/// a whole program, [`super::stream`] a window at a time.
+pub(crate) struct Builder {
+    /// Open spans (block indices global).
+    pub(crate) spans: Vec<Span>,
+    /// Knot speed caps: `knots[k]` is the cap at the start of `spans[k]`.
+    pub(crate) knots: Vec<f64>,
+    /// Global index of `spans[0]` (spans already timed and dropped by a streaming caller).
+    pub(crate) span_base: usize,
     last: Option<(Geom, Move, Limits1)>,
 }
 
 impl Builder {
+    pub(crate) fn new() -> Self {
+        Builder {
+            spans: Vec::new(),
+            knots: Vec::new(),
+            span_base: 0,
+            last: None,
+        }
+    }
+
     fn open(&mut self, first: usize, knot: f64, lim: Limits1) {
         self.knots.push(knot);
         self.spans.push(Span {
@@ -146,6 +169,193 @@ impl Builder {
             dwell: 0.0,
         });
     }
+
+    /// Adds move `i` (from `from`) to the spans; returns its untimed block and its geometry.
+    pub(crate) fn push(
+        &mut self,
+        i: usize,
+        from: Point3,
+        m: &Move,
+        machine: &Machine,
+    ) -> Result<(BlockPlan, Option<Geom>), Error> {
+        let zero = Limits1 {
+            v: 0.0,
+            a: 1.0,
+            j: 1.0,
+        };
+        // Coordinates beyond ±1e6 mm overflow lengths and times (a target at 1e300 gave an
+        // infinite cycle time; found by the `planner` fuzzer).
+        let far = |p: Point3| {
+            !(p.x.abs() <= MAX_COORDINATE_MM
+                && p.y.abs() <= MAX_COORDINATE_MM
+                && p.z.abs() <= MAX_COORDINATE_MM)
+        };
+        let centre = match m.kind {
+            MoveKind::Arc { center, .. } => Some(center),
+            _ => None,
+        };
+        for (what, p) in [
+            ("start point", Some(from)),
+            ("end point", Some(m.to)),
+            ("arc centre", centre),
+        ] {
+            if let Some(p) = p
+                && far(p)
+            {
+                return Err(
+                    crate::InputError::new(what, format!("({}, {}, {})", p.x, p.y, p.z))
+                        .at(format!("move {}", i + 1))
+                        .expected(format!("finite coordinates within ±{MAX_COORDINATE_MM} mm"))
+                        .into(),
+                );
+            }
+        }
+        let g = Geom::of(from, m);
+        let length = g.as_ref().map_or(0.0, Geom::length);
+        if m.is_feed() && !(m.feed.is_finite() && m.feed >= MIN_FEED) && length > 0.0 {
+            return Err(crate::InputError::new("feed", m.feed)
+                .at(format!("move {}", i + 1))
+                .expected(format!("a finite feed >= {MIN_FEED} mm/s on a feed move"))
+                .into());
+        }
+        let mut span_offset = 0.0;
+        match (&g, m.kind) {
+            (_, MoveKind::Dwell { seconds }) => {
+                if !(seconds.is_finite() && (0.0..=MAX_DWELL).contains(&seconds)) {
+                    return Err(crate::InputError::new("dwell", seconds)
+                        .at(format!("move {}", i + 1))
+                        .expected(format!("a number of seconds in [0, {MAX_DWELL}]"))
+                        .into());
+                }
+                self.open(i, 0.0, zero);
+                if let Some(s) = self.spans.last_mut() {
+                    s.dwell = seconds;
+                }
+                self.last = None;
+            }
+            (Some(g), _) => {
+                let lim = block_limits(g, m, machine);
+                if !(lim.v > 0.0 && lim.a > 0.0 && lim.j > 0.0) {
+                    return Err(Error::internal(format!("block {i}: limits {lim:?}")));
+                }
+                let join = match &self.last {
+                    Some((pg, pm, pl)) => {
+                        let cap = junction_cap(pg, g, junction_mode(pm.corner, machine), machine);
+                        let vmin = pl.v.min(lim.v);
+                        let same = (pl.v - lim.v).abs() <= 1e-12 * lim.v;
+                        // Blocks with very different path acceleration or jerk limits (a line
+                        // into an arc) get a knot (a = 0) rather than sharing the smaller
+                        // limit over a whole span.
+                        let near = |x: f64, y: f64| x <= 2.0 * y && y <= 2.0 * x;
+                        let alike = near(pl.a, lim.a)
+                            && ((pl.j.is_infinite() && lim.j.is_infinite()) || near(pl.j, lim.j));
+                        if same && alike && cap >= vmin {
+                            None
+                        } else {
+                            Some(cap.min(vmin))
+                        }
+                    }
+                    None => Some(0.0),
+                };
+                match join {
+                    Some(knot) => self.open(i, knot, lim),
+                    None => {
+                        if let Some(s) = self.spans.last_mut() {
+                            s.limits.a = s.limits.a.min(lim.a);
+                            s.limits.j = s.limits.j.min(lim.j);
+                        }
+                    }
+                }
+                if let Some(s) = self.spans.last_mut() {
+                    span_offset = s.length;
+                    s.length += length;
+                }
+                self.last = Some((*g, *m, lim));
+            }
+            (None, _) => {
+                if let Some(s) = self.spans.last() {
+                    span_offset = s.length;
+                }
+            }
+        }
+        if let Some(s) = self.spans.last_mut() {
+            s.end = i + 1;
+        }
+        let span = (self.span_base + self.spans.len()).saturating_sub(1);
+        let block = BlockPlan {
+            kind: m.kind,
+            length,
+            start_time: 0.0,
+            time: 0.0,
+            peak_feed: 0.0,
+            programmed_feed: if m.is_feed() { m.feed } else { 0.0 },
+            span: u32::try_from(span).unwrap_or(u32::MAX),
+            span_offset,
+        };
+        Ok((block, g))
+    }
+}
+
+/// Pins the knots on both sides of a dwell span (a span without length) to 0; `knots` has one
+/// more entry than `spans`.
+pub(crate) fn pin_dwells(spans: &[Span], knots: &mut [f64]) {
+    for (k, s) in spans.iter().enumerate() {
+        if s.length <= 0.0 {
+            for i in [k, k + 1] {
+                if let Some(v) = knots.get_mut(i) {
+                    *v = 0.0;
+                }
+            }
+        }
+    }
+}
+
+/// Times `spans` (knot speeds final: `knots[k]` and `knots[k + 1]` bound `spans[k]`) from
+/// time `t0`, and their blocks (`blocks[0]` is global block `block_base`); returns the end
+/// time.
+pub(crate) fn time_spans(
+    spans: &mut [Span],
+    knots: &[f64],
+    blocks: &mut [BlockPlan],
+    block_base: usize,
+    t0: f64,
+    check: bool,
+) -> Result<f64, Error> {
+    let mut t = t0;
+    for (k, s) in spans.iter_mut().enumerate() {
+        s.v0 = knots.get(k).copied().unwrap_or(0.0);
+        s.v1 = knots.get(k + 1).copied().unwrap_or(0.0);
+        s.start_time = t;
+        let first = s.first.saturating_sub(block_base);
+        let end = s.end.saturating_sub(block_base);
+        if s.length <= 0.0 {
+            if let Some(bp) = blocks.get_mut(first) {
+                bp.start_time = t;
+                bp.time = s.dwell;
+            }
+            t += s.dwell;
+            continue;
+        }
+        let p = SpanProfile::new(s.v0, s.v1, s.length, s.limits)?;
+        if check {
+            p.check(s.limits)?;
+        }
+        let mut tb = 0.0;
+        for bp in blocks.get_mut(first..end).unwrap_or_default() {
+            let te = if bp.span_offset + bp.length >= s.length {
+                p.duration
+            } else {
+                p.time_at(bp.span_offset + bp.length)
+            };
+            bp.start_time = t + tb;
+            bp.time = (te - tb).max(0.0);
+            let tpk = p.t_peak.clamp(tb, te);
+            bp.peak_feed = if bp.length > 0.0 { p.state(tpk).v } else { 0.0 };
+            tb = te;
+        }
+        t += p.duration;
+    }
+    Ok(t)
 }
 
 /// Plans a toolpath with the default options.
@@ -172,100 +382,11 @@ where
     let mut blocks = Vec::new();
     let mut geometry = Vec::new();
     let mut ends = Vec::new();
-    let mut b = Builder {
-        spans: Vec::new(),
-        knots: Vec::new(),
-        last: None,
-    };
-    let zero = Limits1 {
-        v: 0.0,
-        a: 1.0,
-        j: 1.0,
-    };
+    let mut b = Builder::new();
     for item in moves {
         let (from, m) = item?;
-        let i = blocks.len();
-        let g = Geom::of(from, &m);
-        let length = g.as_ref().map_or(0.0, Geom::length);
-        if m.is_feed() && !(m.feed.is_finite() && m.feed > 0.0) && length > 0.0 {
-            return Err(crate::InputError::new("feed", m.feed)
-                .at(format!("move {}", i + 1))
-                .expected("a finite feed > 0 mm/s on a feed move")
-                .into());
-        }
-        let mut span_offset = 0.0;
-        match (&g, m.kind) {
-            (_, MoveKind::Dwell { seconds }) => {
-                if !(seconds.is_finite() && seconds >= 0.0) {
-                    return Err(crate::InputError::new("dwell", seconds)
-                        .at(format!("move {}", i + 1))
-                        .expected("a finite number of seconds >= 0")
-                        .into());
-                }
-                b.open(i, 0.0, zero);
-                if let Some(s) = b.spans.last_mut() {
-                    s.dwell = seconds;
-                }
-                b.last = None;
-            }
-            (Some(g), _) => {
-                let lim = block_limits(g, &m, machine);
-                if !(lim.v > 0.0 && lim.a > 0.0 && lim.j > 0.0) {
-                    return Err(Error::internal(format!("block {i}: limits {lim:?}")));
-                }
-                let join = match &b.last {
-                    Some((pg, pm, pl)) => {
-                        let cap = junction_cap(pg, g, junction_mode(pm.corner, machine), machine);
-                        let vmin = pl.v.min(lim.v);
-                        let same = (pl.v - lim.v).abs() <= 1e-12 * lim.v;
-                        // Blocks with very different path acceleration or jerk limits (a line
-                        // into an arc) get a knot (a = 0) rather than sharing the smaller
-                        // limit over a whole span.
-                        let near = |x: f64, y: f64| x <= 2.0 * y && y <= 2.0 * x;
-                        let alike = near(pl.a, lim.a)
-                            && ((pl.j.is_infinite() && lim.j.is_infinite()) || near(pl.j, lim.j));
-                        if same && alike && cap >= vmin {
-                            None
-                        } else {
-                            Some(cap.min(vmin))
-                        }
-                    }
-                    None => Some(0.0),
-                };
-                match join {
-                    Some(knot) => b.open(i, knot, lim),
-                    None => {
-                        if let Some(s) = b.spans.last_mut() {
-                            s.limits.a = s.limits.a.min(lim.a);
-                            s.limits.j = s.limits.j.min(lim.j);
-                        }
-                    }
-                }
-                if let Some(s) = b.spans.last_mut() {
-                    span_offset = s.length;
-                    s.length += length;
-                }
-                b.last = Some((*g, m, lim));
-            }
-            (None, _) => {
-                if let Some(s) = b.spans.last() {
-                    span_offset = s.length;
-                }
-            }
-        }
-        if let Some(s) = b.spans.last_mut() {
-            s.end = i + 1;
-        }
-        blocks.push(BlockPlan {
-            kind: m.kind,
-            length,
-            start_time: 0.0,
-            time: 0.0,
-            peak_feed: 0.0,
-            programmed_feed: if m.is_feed() { m.feed } else { 0.0 },
-            span: u32::try_from(b.spans.len().saturating_sub(1)).unwrap_or(u32::MAX),
-            span_offset,
-        });
+        let (block, g) = b.push(blocks.len(), from, &m, machine)?;
+        blocks.push(block);
         if opts.keep_geometry {
             geometry.push(g);
             ends.push((from, m.to));
@@ -277,13 +398,7 @@ where
         mut knots,
         ..
     } = b;
-    // Dwell spans pin their knots to 0.
-    for (k, s) in spans.iter().enumerate() {
-        if s.length <= 0.0 {
-            knots[k] = 0.0;
-            knots[k + 1] = 0.0;
-        }
-    }
+    pin_dwells(&spans, &mut knots);
     // Look-ahead: backward then forward.
     for k in (0..spans.len()).rev() {
         let s = &spans[k];
@@ -295,38 +410,7 @@ where
         let r = reachable_velocity(knots[k], s.length, s.limits.a, s.limits.j);
         knots[k + 1] = knots[k + 1].min(r).min(s.limits.v);
     }
-    let mut t = 0.0;
-    for (k, s) in spans.iter_mut().enumerate() {
-        s.v0 = knots[k];
-        s.v1 = knots[k + 1];
-        s.start_time = t;
-        if s.length <= 0.0 {
-            if let Some(bp) = blocks.get_mut(s.first) {
-                bp.start_time = t;
-                bp.time = s.dwell;
-            }
-            t += s.dwell;
-            continue;
-        }
-        let p = SpanProfile::new(s.v0, s.v1, s.length, s.limits)?;
-        if opts.check_profiles {
-            p.check(s.limits)?;
-        }
-        let mut tb = 0.0;
-        for bp in blocks.get_mut(s.first..s.end).unwrap_or_default() {
-            let te = if bp.span_offset + bp.length >= s.length {
-                p.duration
-            } else {
-                p.time_at(bp.span_offset + bp.length)
-            };
-            bp.start_time = t + tb;
-            bp.time = (te - tb).max(0.0);
-            let tpk = p.t_peak.clamp(tb, te);
-            bp.peak_feed = if bp.length > 0.0 { p.state(tpk).v } else { 0.0 };
-            tb = te;
-        }
-        t += p.duration;
-    }
+    let t = time_spans(&mut spans, &knots, &mut blocks, 0, 0.0, opts.check_profiles)?;
     Ok(Plan {
         machine: machine.name.clone(),
         blocks,

@@ -112,6 +112,9 @@ impl Default for ContourOptions {
     }
 }
 
+/// The most Z layers a contour may have (`depth / step-down`).
+pub const MAX_LAYERS: f64 = 10_000.0;
+
 impl ContourOptions {
     /// Checks every value; errors name the option.
     pub fn validate(&self) -> Result<(), InputError> {
@@ -119,6 +122,16 @@ impl ContourOptions {
         require_positive("tolerance", self.tolerance, "contour options")?;
         require_positive("depth", self.depth, "contour options")?;
         require_positive("step-down", self.step_down, "contour options")?;
+        // The layer count `depth / step-down` is allocated: bounded (a depth of 1e300 asked
+        // for a capacity overflow in `layer_depths`; found by the `contour` fuzzer).
+        if self.depth / self.step_down > MAX_LAYERS {
+            return Err(InputError::new("step-down", self.step_down)
+                .at("contour options")
+                .expected(format!(
+                    "at most {MAX_LAYERS} layers: a step-down >= depth / {MAX_LAYERS} = {} mm",
+                    self.depth / MAX_LAYERS
+                )));
+        }
         require_positive("feed", self.feed, "contour options")?;
         require_positive("plunge feed", self.plunge_feed, "contour options")?;
         require_positive("rapid speed", self.rapid_speed, "contour options")?;
@@ -135,6 +148,26 @@ impl ContourOptions {
             }
         }
         crate::error::require_finite("top Z", self.top_z, "contour options")?;
+        // Lengths beyond ±1e6 mm (1 km) mean nothing on a machine and make the work explode
+        // (a lead radius of 1e300 took seconds; a tool of 1e300 mm asked the corner join for
+        // 3e9 points; found by the `contour` fuzzer).
+        let max = crate::geom::MAX_COORDINATE_MM;
+        for (what, v) in [
+            ("tool diameter", self.tool.diameter),
+            ("top Z", self.top_z),
+            ("depth", self.depth),
+            ("finish allowance", self.finish_allowance),
+            ("lead radius", self.lead_radius),
+            ("safe height", self.safe_height),
+            ("clearance height", self.clearance_height),
+            ("tolerance", self.tolerance),
+        ] {
+            if v.abs() > max {
+                return Err(InputError::new(what, v)
+                    .at("contour options")
+                    .expected(format!("a length within ±{max} mm")));
+            }
+        }
         if !(self.safe_height.is_finite() && self.safe_height >= self.clearance_height) {
             return Err(InputError::new("safe height", self.safe_height)
                 .at("contour options")

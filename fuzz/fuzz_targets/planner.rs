@@ -1,0 +1,10 @@
+//! Fuzz target `planner`: the body is `harness::planner` (fuzz/harness/mod.rs), shared with the corpus
+//! replay test `crates/millpath/tests/hostile_corpus.rs`.
+#![no_main]
+
+#[path = "../harness/mod.rs"]
+mod harness;
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| harness::planner(data));

@@ -1,0 +1,496 @@
+//! The bodies of the fuzz targets, shared by the cargo-fuzz binaries (`fuzz/fuzz_targets/*`)
+//! and by the corpus replay test (`crates/millpath/tests/hostile_corpus.rs`), which includes
+//! this file with `#[path]`: CI replays the committed corpus (`fuzz/corpus-min/TARGET/*`)
+//! through exactly the code libFuzzer runs, on stable Rust and without libFuzzer.
+//!
+//! Each function takes arbitrary bytes and must return without panicking; where the call
+//! succeeds, it also checks cheap invariants of the result (finite coordinates, finite
+//! times, the planner's limits as measured by the independent verifier) and panics when one
+//! fails, so libFuzzer reports broken results as well as crashes.
+//!
+//! Structured inputs are decoded by [`Bytes`]: each number is two bytes mapped into a sane
+//! range, or (when a selector byte says so) a hostile value (NaN, ±∞, 0, negative, 1e300,
+//! 1e-300). Ranges are chosen so that the work per input stays bounded (at most ~20 passes
+//! per pocket level, a few levels, short programs).
+
+#![allow(dead_code)]
+
+use millpath::curve::{self, CurveKind, LabeledPoint};
+use millpath::gcode::{Dialect, Reader, ReaderOptions, read_str};
+use millpath::geom::Outline;
+use millpath::io::{dxf, outline_json, points, svg};
+use millpath::machine::{AxisLimits, Machine};
+use millpath::motion::verify::{VerifyOptions, verify_plan};
+use millpath::motion::{PlanOptions, plan_moves};
+use millpath::strategy::contour::{self, ContourOptions, Side};
+use millpath::strategy::pocket::{
+    self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind,
+};
+use millpath::toolpath::{Corner, MoveKind, Plane};
+use millpath::{Move, Point, Point3, Tool, Toolpath};
+
+/// A cursor over fuzz bytes that never fails: past the end it yields zeros.
+pub struct Bytes<'a> {
+    data: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Bytes<'a> {
+    /// Decodes from `data`.
+    pub fn new(data: &'a [u8]) -> Self {
+        Bytes { data, at: 0 }
+    }
+
+    /// The next byte (0 past the end).
+    pub fn byte(&mut self) -> u8 {
+        let b = self.data.get(self.at).copied().unwrap_or(0);
+        self.at += 1;
+        b
+    }
+
+    /// The bytes not decoded yet.
+    pub fn rest(&self) -> &'a [u8] {
+        self.data.get(self.at..).unwrap_or(&[])
+    }
+
+    /// True when every byte has been decoded.
+    pub fn done(&self) -> bool {
+        self.at >= self.data.len()
+    }
+
+    /// A boolean.
+    pub fn flag(&mut self) -> bool {
+        self.byte() & 1 == 1
+    }
+
+    /// An index below `n` (`n` ≥ 1).
+    pub fn pick(&mut self, n: usize) -> usize {
+        usize::from(self.byte()) % n.max(1)
+    }
+
+    /// A number in `[lo, hi]` from two bytes.
+    pub fn unit(&mut self, lo: f64, hi: f64) -> f64 {
+        let v = u16::from_le_bytes([self.byte(), self.byte()]);
+        lo + (hi - lo) * f64::from(v) / f64::from(u16::MAX)
+    }
+
+    /// A number in `[lo, hi]`, or a hostile value when the selector byte is 250 or more.
+    pub fn num(&mut self, lo: f64, hi: f64) -> f64 {
+        let sel = self.byte();
+        if sel >= 250 {
+            hostile(sel - 250)
+        } else {
+            self.unit(lo, hi)
+        }
+    }
+}
+
+/// The hostile values: NaN, +∞, −∞, 0, −1, 1e300 (index mod 6; 1e-300 for the rest).
+pub fn hostile(i: u8) -> f64 {
+    match i % 7 {
+        0 => f64::NAN,
+        1 => f64::INFINITY,
+        2 => f64::NEG_INFINITY,
+        3 => 0.0,
+        4 => -1.0,
+        5 => 1e300,
+        _ => 1e-300,
+    }
+}
+
+/// A polygon of 3..=14 vertices within `size` of `(cx, cy)`: a star (sorted angles) or, when
+/// `chaos`, points in byte order (self-intersecting, repeated, collinear...).
+pub fn polygon(b: &mut Bytes<'_>, size: f64) -> Vec<Point> {
+    let n = 3 + b.pick(12);
+    let chaos = b.byte() < 64;
+    let (cx, cy) = (b.unit(-50.0, 50.0), b.unit(-50.0, 50.0));
+    let mut pts: Vec<(f64, f64)> = (0..n)
+        .map(|_| {
+            if chaos {
+                (b.num(-size, size), b.num(-size, size))
+            } else {
+                (b.unit(0.0, std::f64::consts::TAU), b.unit(0.3, 1.0) * size)
+            }
+        })
+        .collect();
+    if chaos {
+        return pts
+            .into_iter()
+            .map(|(x, y)| Point::new(cx + x, cy + y))
+            .collect();
+    }
+    pts.sort_by(|p, q| p.0.total_cmp(&q.0));
+    pts.into_iter()
+        .map(|(a, r)| Point::new(cx + r * a.cos(), cy + r * a.sin()))
+        .collect()
+}
+
+/// Panics unless every move of `tp` ends at a finite point with a finite feed.
+pub fn assert_finite(tp: &Toolpath, what: &str) {
+    for (i, m) in tp.moves.iter().enumerate() {
+        assert!(
+            m.to.is_finite(),
+            "{what}: move {i} ends at a non-finite point {:?}",
+            m.to
+        );
+        assert!(
+            m.feed.is_finite(),
+            "{what}: move {i} has a non-finite feed {}",
+            m.feed
+        );
+    }
+}
+
+/// With `FUZZ_TRACE` set, prints the decoded input (to reproduce a slow or failing input).
+#[allow(clippy::print_stderr)]
+pub fn trace(input: &dyn std::fmt::Debug) {
+    if std::env::var_os("FUZZ_TRACE").is_some() {
+        eprintln!("{input:#?}");
+    }
+}
+
+/// `gcode_reader`: arbitrary bytes to the streaming reader (first byte picks dialect,
+/// lenient, block delete) and to `read_str`.
+pub fn gcode_reader(data: &[u8]) {
+    let Some((&flags, body)) = data.split_first() else {
+        return;
+    };
+    let opts = ReaderOptions {
+        dialect: match flags % 4 {
+            0 => Dialect::LinuxCnc,
+            1 => Dialect::Fanuc,
+            2 => Dialect::Sinumerik,
+            _ => Dialect::Grbl,
+        },
+        lenient: flags & 4 != 0,
+        block_delete: flags & 8 != 0,
+        ..ReaderOptions::default()
+    };
+    let mut rd = Reader::new(std::io::Cursor::new(body), opts.clone());
+    for rm in rd.by_ref().take(100_000).flatten() {
+        assert!(!rm.mv.to.x.is_nan(), "reader produced a NaN target");
+    }
+    if let Ok(text) = std::str::from_utf8(body) {
+        let _ = read_str(text, opts);
+    }
+}
+
+/// `outline_importers`: arbitrary bytes to the DXF, SVG and outline-JSON importers and to the
+/// machine-profile reader.
+pub fn outline_importers(data: &[u8]) {
+    let _ = dxf::parse(data, "fuzz.dxf", &dxf::DxfOptions::default());
+    if let Ok(text) = std::str::from_utf8(data) {
+        let _ = svg::parse(text, "fuzz.svg", 0.01);
+        let _ = outline_json::parse(text, "fuzz.json");
+        let _ = Machine::from_toml_str(text, "fuzz.toml");
+    }
+}
+
+/// `points`: arbitrary text to the point-list parser, then the curve built through whatever
+/// points it accepts, in all three curve kinds.
+pub fn points(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    if let Ok(groups) = points::parse(text, "fuzz.csv") {
+        for kind in [
+            CurveKind::FourPoint,
+            CurveKind::CatmullRom,
+            CurveKind::Spline,
+        ] {
+            let _ = curve::build(&groups, kind, "fuzz");
+        }
+    }
+}
+
+/// `pocket`: a polygon (and maybe an island) with a tool and options from the bytes, through
+/// `pocket::toolpath` in the strategy the bytes pick.
+pub fn pocket(data: &[u8]) {
+    let mut b = Bytes::new(data);
+    let kind = match b.pick(3) {
+        0 => StrategyKind::Zigzag,
+        1 => StrategyKind::Offset,
+        _ => StrategyKind::Spiral,
+    };
+    let size = b.unit(4.0, 60.0);
+    let outer = polygon(&mut b, size);
+    let island = b.flag().then(|| polygon(&mut b, size * 0.25));
+    // Tool and stepover bounded below relative to the polygon (at most ~20 passes a level,
+    // at most ~4 levels): the adaptive spiral takes seconds on a 60 mm triangle at a 0.6 mm
+    // stepover, too slow for fuzzing.
+    let d = b.num(size * 0.05, size * 0.6);
+    let tool = Tool {
+        diameter: d,
+        flutes: b.pick(5) as u32,
+        flute_length: b.num(5.0, 50.0),
+        number: b.pick(100) as u32,
+    };
+    let depth = b.num(0.5, 8.0);
+    let opts = PocketOptions {
+        stepover: if b.flag() {
+            Stepover::Fraction(b.num(0.3, 1.0))
+        } else {
+            Stepover::Distance(b.num(size * 0.05, size * 0.3))
+        },
+        depth,
+        step_down: b.num(depth.abs().min(1e3) / 3.0 + 0.1, 10.0),
+        wall_stock: b.num(0.0, 0.5),
+        floor_stock: b.num(0.0, 0.3),
+        direction: if b.flag() {
+            Direction::Climb
+        } else {
+            Direction::Conventional
+        },
+        entry: if b.flag() {
+            Entry::Helix {
+                radius: b.num(0.5, 5.0),
+                ramp_angle: b.num(0.02, 0.3),
+            }
+        } else {
+            Entry::Ramp {
+                ramp_angle: b.num(0.02, 0.3),
+            }
+        },
+        safe_height: b.num(0.5, 2.0),
+        clearance_height: b.num(2.0, 10.0),
+        feed: b.num(1.0, 50.0),
+        plunge_feed: b.num(1.0, 20.0),
+        slowdown: b.num(0.2, 1.0),
+        zigzag_angle: b.num(-3.2, 3.2),
+        transition: b.num(0.0, 1.0),
+        min_radius: b.num(0.1, 2.0),
+        morph: if b.flag() {
+            pocket::spiral::SpiralMorph::Fronts
+        } else {
+            pocket::spiral::SpiralMorph::Harmonic
+        },
+        finish: b.flag(),
+        modulate_feed: false,
+    };
+    trace(&(&kind, &outer, &island, &tool, &opts));
+    let Ok(outer) = Outline::from_points(&outer, "fuzz outer") else {
+        return;
+    };
+    let islands: Vec<Outline> = island
+        .iter()
+        .filter_map(|p| Outline::from_points(p, "fuzz island").ok())
+        .collect();
+    let Ok(shape) = PocketShape::new(outer, islands, "fuzz") else {
+        return;
+    };
+    if let Ok(tp) = pocket::toolpath(kind, &shape, &tool, &opts) {
+        assert_finite(&tp, "pocket");
+    }
+}
+
+/// `contour`: points from the bytes grouped in fours, a curve kind, options; then
+/// `curve::build` and `contour::contour`.
+pub fn contour(data: &[u8]) {
+    let mut b = Bytes::new(data);
+    let kind = match b.pick(3) {
+        0 => CurveKind::FourPoint,
+        1 => CurveKind::CatmullRom,
+        _ => CurveKind::Spline,
+    };
+    let size = b.unit(2.0, 80.0);
+    let pts = polygon(&mut b, size);
+    let groups: Vec<Vec<LabeledPoint>> = pts
+        .chunks(4)
+        .map(|c| {
+            c.iter()
+                .enumerate()
+                .map(|(i, p)| LabeledPoint {
+                    p: *p,
+                    origin: format!("point {i}"),
+                })
+                .collect()
+        })
+        .collect();
+    let opt = ContourOptions {
+        tool: Tool {
+            diameter: b.num(0.2, size * 0.5),
+            flutes: 2,
+            flute_length: b.num(5.0, 50.0),
+            number: 1,
+        },
+        tolerance: b.num(size * 1e-4, size * 1e-2),
+        side: match b.pick(3) {
+            0 => Side::Inside,
+            1 => Side::Outside,
+            _ => Side::On,
+        },
+        top_z: b.num(-5.0, 5.0),
+        depth: b.num(0.5, 6.0),
+        step_down: b.num(1.0, 4.0),
+        finish_allowance: b.num(0.0, 1.0),
+        safe_height: b.num(1.0, 10.0),
+        clearance_height: b.num(0.5, 2.0),
+        feed: b.num(1.0, 50.0),
+        plunge_feed: b.num(1.0, 20.0),
+        lead_radius: b.num(0.0, 5.0),
+        rapid_speed: b.num(50.0, 200.0),
+        arcs: b.flag(),
+        ..ContourOptions::default()
+    };
+    trace(&(&kind, &pts, &opt));
+    let Ok(c) = curve::build(&groups, kind, "fuzz") else {
+        return;
+    };
+    if let Ok(res) = contour::contour(&c, &opt) {
+        assert_finite(&res.toolpath, "contour");
+    }
+}
+
+/// A machine: a preset, or a preset with limits from the bytes.
+pub fn machine(b: &mut Bytes<'_>) -> Option<Machine> {
+    let base = Machine::preset(Machine::PRESET_NAMES[b.pick(3)]).ok()?;
+    if b.flag() {
+        return Some(base);
+    }
+    let axis = |b: &mut Bytes<'_>| AxisLimits {
+        max_velocity: b.num(5.0, 1000.0),
+        max_acceleration: b.num(50.0, 20000.0),
+        max_jerk: if b.byte() < 40 {
+            f64::INFINITY
+        } else {
+            b.num(500.0, 1e6)
+        },
+    };
+    Some(Machine {
+        axes: [axis(b), axis(b), axis(b)],
+        max_feed: b.num(5.0, 500.0),
+        rapid: [
+            b.num(50.0, 1000.0),
+            b.num(50.0, 1000.0),
+            b.num(50.0, 1000.0),
+        ],
+        path_tolerance: b.num(0.0, 0.1),
+        ipo_cycle: b.num(0.0005, 0.01),
+        curvature_accel_share: b.num(0.1, 0.9),
+        curvature_jerk_share: b.num(0.1, 0.9),
+        ..base
+    })
+}
+
+/// A program of up to 48 moves from the bytes (lines, rapids, arcs in any plane with extra
+/// turns, dwells, every corner mode), starting at the origin.
+pub fn program(b: &mut Bytes<'_>) -> Toolpath {
+    let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
+    let mut at = Point3::ORIGIN;
+    let n = b.pick(49);
+    for _ in 0..n {
+        if b.done() {
+            break;
+        }
+        let step = if b.byte() < 20 { 1e-6 } else { 30.0 };
+        let to = Point3::new(
+            at.x + b.num(-step, step),
+            at.y + b.num(-step, step),
+            at.z + b.num(-step, step) * 0.2,
+        );
+        let feed = b.num(0.5, 300.0);
+        let mut m = match b.pick(10) {
+            0 => Move::rapid(to),
+            1 => Move::dwell(at, b.num(0.0, 2.0)),
+            2..=4 => {
+                let c = Point3::new(at.x + b.num(-step, step), at.y + b.num(-step, step), at.z);
+                let mut m = Move::arc_xy(to, c, b.flag(), feed);
+                if let MoveKind::Arc { plane, turns, .. } = &mut m.kind {
+                    *plane = match b.pick(3) {
+                        0 => Plane::Xy,
+                        1 => Plane::Zx,
+                        _ => Plane::Yz,
+                    };
+                    *turns = u32::from(b.byte() % 3);
+                }
+                m
+            }
+            _ => Move::line(to, feed),
+        };
+        m = m.with_corner(match b.pick(5) {
+            0 => Corner::ExactStop,
+            1 => Corner::ExactPath,
+            2 => Corner::Blend(b.num(0.001, 1.0)),
+            _ => Corner::Machine,
+        });
+        if !matches!(m.kind, MoveKind::Dwell { .. }) {
+            at = m.to;
+        }
+        tp.push(m);
+    }
+    tp
+}
+
+/// Most machine time a planner input may take before the verifier is skipped, s (1 kHz
+/// sampling: at most ~60,000 samples an input).
+pub const VERIFY_MAX_TIME: f64 = 60.0;
+
+/// `planner`: a machine from the bytes, then a program (G-code text through the reader, or
+/// moves generated from the bytes); plans it and, when it plans, checks the plan with the
+/// independent limit verifier: a plan that violates its machine's limits is a failure.
+pub fn planner(data: &[u8]) {
+    let mut b = Bytes::new(data);
+    let Some(m) = machine(&mut b) else {
+        return;
+    };
+    let check = b.flag();
+    let tp = if b.byte() < 64 {
+        let Ok(text) = std::str::from_utf8(b.rest()) else {
+            return;
+        };
+        let opts = ReaderOptions {
+            lenient: true,
+            ..ReaderOptions::default()
+        };
+        match read_str(text, opts) {
+            Ok((mut tp, _)) => {
+                tp.moves.truncate(200);
+                tp
+            }
+            Err(_) => return,
+        }
+    } else {
+        program(&mut b)
+    };
+    trace(&(&m, &tp, check));
+    let moves: Vec<(Point3, Move)> = tp.segments().map(|(f, mv)| (f, *mv)).collect();
+    let opts = PlanOptions {
+        keep_geometry: true,
+        check_profiles: check,
+    };
+    let Ok(plan) = plan_moves(moves.iter().map(|x| Ok(*x)), &m, &opts) else {
+        return;
+    };
+    let t = plan.total_time();
+    assert!(t.is_finite() && t >= 0.0, "total time {t}");
+    for blk in &plan.blocks {
+        assert!(
+            blk.time.is_finite() && blk.time >= 0.0,
+            "block time {}",
+            blk.time
+        );
+    }
+    if t <= VERIFY_MAX_TIME
+        && let Ok(rep) = verify_plan(&plan, &moves, &m, &VerifyOptions::default())
+        && strict_verify()
+    {
+        assert_eq!(
+            rep.violations, 0,
+            "the verifier found {} limit violations: {:?}",
+            rep.violations, rep.first
+        );
+    }
+}
+
+/// Whether the `planner` target fails on limit violations the verifier finds
+/// (`FUZZ_STRICT_VERIFY` set). Off by default: the first runs found plans that violate their
+/// machine's limits (kept in `fuzz/regressions/planner-limits/`, replayed strictly by an
+/// ignored test in `hostile_corpus.rs` until the planner is fixed), and a target that stops
+/// at each of them cannot look for panics.
+pub fn strict_verify() -> bool {
+    STRICT_VERIFY.load(std::sync::atomic::Ordering::Relaxed)
+        || std::env::var_os("FUZZ_STRICT_VERIFY").is_some()
+}
+
+/// Turns the strict check of [`strict_verify`] on from code (tests).
+pub static STRICT_VERIFY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
