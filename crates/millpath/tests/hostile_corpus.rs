@@ -94,10 +94,9 @@ fn planner_limit_violations_found_by_the_fuzzer() {
 /// Found by the corpus replay after main's pocket walls landed: a zigzag pocket with a depth
 /// of 1e300 mm and a step-down of 333 mm (tool diameter 1e300 mm) makes
 /// `strategy::pocket::levels::level_depths` (called from `walls::level_shapes`) allocate
-/// ~3e297 levels: "capacity overflow". `PocketOptions::validate` should bound the level count
-/// (and lengths) as `ContourOptions::validate` now does.
+/// ~3e297 levels: "capacity overflow". Fixed: `PocketOptions::validate` bounds the depth
+/// (1e6 mm) and the level count (10 000), as `ContourOptions::validate` does.
 #[test]
-#[ignore = "crash: capacity overflow in pocket::levels::level_depths for depth 1e300 (fuzz/regressions/pocket-crash)"]
 fn pocket_depth_1e300_does_not_overflow() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-crash");
     let mut h = Harness::new("pocket crash");

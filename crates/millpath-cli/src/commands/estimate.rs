@@ -294,7 +294,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
 /// ([`millpath::motion::stream::plan_stream`]) and verifies each chunk as it is timed (a
 /// chunk boundary is a knot where the acceleration is zero; its junction is the one check the
 /// chunked verifier does not repeat across chunks). Same output as the whole-program path.
-fn run_streaming<I>(stream: I, machine: &Machine, args: &Args) -> Result<(), Error>
+fn run_streaming<I>(
+    stream: I,
+    machine: &millpath::machine::Machine,
+    args: &Args,
+) -> Result<(), Error>
 where
     I: Iterator<Item = Result<(Point3, millpath::Move), Error>>,
 {

@@ -6,6 +6,11 @@
 use crate::error::InputError;
 use crate::toolpath::Tool;
 
+/// Largest length accepted in the options, mm (as for outlines' coordinates).
+const MAX_LENGTH_MM: f64 = 1e6;
+/// Most levels a pocket may have.
+const MAX_LEVELS: f64 = 10_000.0;
+
 /// The radial depth of cut between neighbouring passes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Stepover {
@@ -194,9 +199,9 @@ impl PocketOptions {
         check(
             "depth",
             self.depth,
-            self.depth > 0.0,
+            self.depth > 0.0 && self.depth <= MAX_LENGTH_MM,
             "--depth",
-            "a depth > 0 mm",
+            "a depth > 0 mm and at most 1e6 mm",
         )?;
         check(
             "step-down",
@@ -232,6 +237,14 @@ impl PocketOptions {
             self.clearance_height >= self.safe_height,
             "--clearance-height",
             "a height at least the safe height",
+        )?;
+        let levels = (self.depth - self.floor_stock) / self.step_down;
+        check(
+            "levels (depth / step-down)",
+            levels,
+            levels <= MAX_LEVELS,
+            "--depth and --step-down",
+            "at most 10000 levels",
         )?;
         check("feed", self.feed, self.feed > 0.0, "--feed", "a feed > 0")?;
         check(
