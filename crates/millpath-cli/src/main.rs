@@ -172,6 +172,7 @@ mod tests {
             "verify",
             "sweep",
             "five-axis",
+            "pocket",
         ] {
             let sub = cmd.find_subcommand(name).unwrap();
             assert!(

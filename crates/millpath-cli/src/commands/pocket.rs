@@ -31,6 +31,10 @@ pub struct Args {
     /// Write a self-contained HTML report (summary, viewer with playback, feed plot).
     #[arg(long)]
     pub html: Option<PathBuf>,
+    /// Print the report (as written by `--report`) as one JSON object on stdout instead of
+    /// the summary line.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Options shared by `pocket` and `sweep`.
@@ -419,6 +423,13 @@ pub fn run(args: &Args) -> Result<(), Error> {
             &plan,
         )?;
         super::html::write(path, &html)?;
+    }
+    if args.json {
+        super::print_json(&rep)?;
+        for p in &rep.problems {
+            super::eprint(&format!("verification: {p}"));
+        }
+        return Ok(());
     }
     super::print(&format!(
         "{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
