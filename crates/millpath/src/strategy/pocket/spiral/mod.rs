@@ -151,7 +151,7 @@ pub fn plan_with_stats(
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<(LevelPlan, SpiralStats), InputError> {
-    let theta = principal_angle(&shape.outer);
+    let theta = crate::geom::region::principal_angle(&shape.outer);
     if opts.morph == SpiralMorph::Fronts {
         if let Some(found) = plan_fronts(shape, tool, opts, theta)? {
             return Ok(found);
@@ -196,7 +196,10 @@ fn plan_fronts(
         return Ok(None);
     }
     let s = opts.stepover_mm(tool);
-    let sp = FRONT_STEP * s;
+    // The fronts are up to √2 steps apart at right-angle corners: the step is capped so that
+    // this stays below the tool's diameter (1.3·r·√2 = 1.84·r), or a ridge of material would
+    // stand between two laps (large stepovers).
+    let sp = (FRONT_STEP * s).min(1.3 * tool.radius());
     let d0 = tool.radius() + opts.wall_stock;
     let region = shape.offset(d0);
     let b = match region.outers.as_slice() {
@@ -252,44 +255,6 @@ const FRONT_STEP: f64 = 0.98;
 /// path tolerance the corner blend at a vertex is as wide as the curve itself only when
 /// `h² ≤ 8·ε·R` (chord `h`, radius `R`): 0.5 mm keeps that for `R ≥ 3 mm`.
 const FRONT_SAMPLE: f64 = 0.5;
-
-/// The principal-axis angle of an outline (see [`plan_with_stats`]).
-fn principal_angle(o: &crate::geom::Outline) -> f64 {
-    let segs = segs_from_vertices(&closed_chain(o.polyline()));
-    let total: f64 = segs.iter().map(Seg::length).sum();
-    let n = 512;
-    let mut pts = Vec::with_capacity(n);
-    let (mut acc, mut i) = (0.0, 0);
-    for k in 0..n {
-        let t = total * k as f64 / n as f64;
-        while i + 1 < segs.len() && acc + segs[i].length() < t {
-            acc += segs[i].length();
-            i += 1;
-        }
-        if let Some(sg) = segs.get(i) {
-            pts.push(sg.point_at(t - acc));
-        }
-    }
-    let m = pts.len().max(1) as f64;
-    let (cx, cy) = pts
-        .iter()
-        .fold((0.0, 0.0), |a, p| (a.0 + p.x / m, a.1 + p.y / m));
-    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for p in &pts {
-        let (dx, dy) = (p.x - cx, p.y - cy);
-        sxx += dx * dx;
-        syy += dy * dy;
-        sxy += dx * dy;
-    }
-    if (sxx - syy).abs() + 2.0 * sxy.abs() > 1e-3 * (sxx + syy) {
-        0.5 * (2.0 * sxy).atan2(sxx - syy)
-    } else {
-        segs.iter()
-            .filter(|sg| sg.arc.is_none())
-            .max_by(|a, b| a.length().total_cmp(&b.length()))
-            .map_or(0.0, |sg| (sg.b - sg.a).angle())
-    }
-}
 
 /// The shape turned by `a` about the origin.
 fn turn_shape(shape: &PocketShape, a: f64) -> Result<PocketShape, InputError> {
