@@ -33,6 +33,20 @@ fn program(r: &mut ChaCha8Rng) -> Toolpath {
         let mut m = match r.random_range(0..10) {
             0 => Move::rapid(to),
             1 => Move::dwell(at, mostly_sane(r, 0.0, 2.0, 0.1)),
+            2..=4 if r.random_bool(0.97) => {
+                // A consistent arc or helix in XY (the end on the start's circle): the planner
+                // refuses arcs whose radii differ beyond LinuxCNC's rule, and most of the pass
+                // must reach the planner proper.
+                let c = point(r, at);
+                let a = r.random_range(-7.0..7.0f64);
+                let (dx, dy) = (at.x - c.x, at.y - c.y);
+                let end = Point3::new(
+                    c.x + dx * a.cos() - dy * a.sin(),
+                    c.y + dx * a.sin() + dy * a.cos(),
+                    to.z,
+                );
+                Move::arc_xy(end, Point3::new(c.x, c.y, at.z), r.random_bool(0.5), feed)
+            }
             2..=4 => {
                 let c = point(r, at);
                 let mut m = Move::arc_xy(to, Point3::new(c.x, c.y, at.z), r.random_bool(0.5), feed);

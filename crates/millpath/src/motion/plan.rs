@@ -211,6 +211,24 @@ impl Builder {
             }
         }
         let g = Geom::of(from, m);
+        if let Some(Geom::Helix { r0, r1, .. }) = g {
+            // The block limits take the arc as circular (a spiral's radial terms are not
+            // modelled): arcs whose end radius differs from the start radius beyond what
+            // LinuxCNC accepts (and the G-code reader with it) are refused, not mistimed.
+            let tau = crate::gcode::arc::center_arc_radius_tolerance_mm(crate::gcode::Units::Mm);
+            let delta = (r1 - r0).abs();
+            if delta > 100.0 * tau
+                || (delta / r0.max(r1) > crate::gcode::arc::SPIRAL_RELATIVE_TOLERANCE
+                    && delta > tau)
+            {
+                return Err(crate::InputError::new("arc end radius", r1)
+                    .at(format!("move {}", i + 1))
+                    .expected(format!(
+                        "within {tau:.4} mm or 0.1 % of the start radius {r0} mm (a circular arc)"
+                    ))
+                    .into());
+            }
+        }
         let length = g.as_ref().map_or(0.0, Geom::length);
         if m.is_feed() && !(m.feed.is_finite() && m.feed >= MIN_FEED) && length > 0.0 {
             return Err(crate::InputError::new("feed", m.feed)
