@@ -123,34 +123,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
     };
     let mut reader = Reader::new(BufReader::new(counting), opts);
     let mut n_read: u64 = 0;
-    if args.samples.is_none() && args.html.is_none() && args.svg.is_none() {
-        // Bounded memory: the planner streams, the verifier checks each chunk as it is timed.
-        let mut at = start;
-        let stream = std::iter::from_fn(|| {
-            let item = reader.next()?;
-            n_read += 1;
-            if let Some(b) = &bar
-                && n_read % 65_536 == 0
-            {
-                b.set_position(count.get());
-            }
-            Some(item.map(|rm| {
-                let f = at;
-                at = rm.mv.to;
-                (f, rm.mv)
-            }))
-        });
-        let streamed = run_streaming(stream, &machine, args);
-        if let Some(b) = &bar {
-            b.finish_and_clear();
-        }
-        return streamed;
-    }
-    let keep =
-        !args.no_verify || args.samples.is_some() || args.html.is_some() || args.svg.is_some();
-    let mut moves: Vec<(Point3, millpath::Move)> = Vec::new();
-    let mut from = start;
-    let stream = std::iter::from_fn(|| {
+    let mut at = start;
+    // Every move with where it starts, the progress bar advanced as the file is read.
+    let tracked = std::iter::from_fn(|| {
         let item = reader.next()?;
         n_read += 1;
         if let Some(b) = &bar
@@ -159,22 +134,27 @@ pub fn run(args: &Args) -> Result<(), Error> {
             b.set_position(count.get());
         }
         Some(item.map(|rm| {
-            let f = from;
-            from = rm.mv.to;
-            if keep {
-                moves.push((f, rm.mv));
-            }
+            let f = at;
+            at = rm.mv.to;
             (f, rm.mv)
         }))
     });
-    let plan = plan_moves(
-        stream,
-        &machine,
-        &PlanOptions {
-            keep_geometry: keep,
-            ..PlanOptions::default()
-        },
-    )?;
+    if args.samples.is_none() && args.html.is_none() && args.svg.is_none() {
+        // Bounded memory: the planner streams, the verifier checks each chunk as it is timed.
+        let streamed = run_streaming(tracked, &machine, args);
+        if let Some(b) = &bar {
+            b.finish_and_clear();
+        }
+        return streamed;
+    }
+    // Samples and pictures need the whole plan and every move (so does the verifier then).
+    let mut moves: Vec<(Point3, millpath::Move)> = Vec::new();
+    let stream = tracked.inspect(|item| {
+        if let Ok(x) = item {
+            moves.push(*x);
+        }
+    });
+    let plan = plan_moves(stream, &machine, &PlanOptions::default())?;
     if let Some(b) = &bar {
         b.finish_and_clear();
     }

@@ -14,7 +14,7 @@ use super::super::chain::{segs_from_points, segs_from_vertices};
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::shape::{closed_chain, restart_near, reversed};
 use super::fronts::{FrontOptions, fronts};
-use super::{LoopWalker, SpiralStats, fractions, sample_loop};
+use super::{LoopWalker, SpiralStats, blend_lap, fractions, sample_loop};
 use crate::geom::{Point, Vec2};
 use cavalier_contours::polyline::{PlineSource, Polyline};
 use std::f64::consts::TAU;
@@ -132,10 +132,7 @@ impl FrontSpiral<'_> {
                     stats.morph_laps += 1;
                     continue;
                 }
-                for (p, fr) in lap.iter().zip(fractions(&lap)) {
-                    let q = along.at(fr * len);
-                    pts.push(*p + (q - *p) * fr);
-                }
+                blend_lap(&lap, &along, len, &mut pts);
                 // Equal spacing along the whole loop (not per segment of the front, whose
                 // vertices depend on the offsets' internals): no short chords for the
                 // look-ahead to stumble on, and the same samples however the pocket is turned.
@@ -150,10 +147,7 @@ impl FrontSpiral<'_> {
             let target = restart_near(&orient(self.b_eps), ahead);
             let len = target.path_length();
             let along = LoopWalker::new(&target);
-            for (p, fr) in fine.iter().zip(fractions(&fine)) {
-                let q = along.at(fr * len);
-                pts.push(*p + (q - *p) * fr);
-            }
+            blend_lap(&fine, &along, len, &mut pts);
             let close = target.at(0).pos();
             pts.push(Point::new(close.x, close.y));
             stats.morph_laps += 1;

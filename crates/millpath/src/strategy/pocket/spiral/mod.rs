@@ -206,22 +206,11 @@ fn plan_fronts(
         [one] => one.clone(),
         _ => return Ok(None),
     };
-    let b_eps = match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
-        [one] => one.clone(),
-        _ => b.clone(),
-    };
+    let b_eps = last_loop(&b);
     let Some((c, rho_b)) = fronts::ridge_centre(&b) else {
         return Ok(None);
     };
-    let helix = match opts.entry {
-        Entry::Helix { radius, .. } => radius,
-        Entry::Ramp { .. } => 0.25 * tool.radius(),
-    };
-    let rho_h = helix.min(0.9 * tool.radius()).min(0.45 * rho_b);
-    if rho_h < 1e-3 {
-        return Err(too_large(tool));
-    }
-    let r0 = (opts.transition * rho_b).max(rho_h).min(0.9 * rho_b);
+    let (rho_h, r0) = centre_radii(tool, opts, rho_b)?;
     let ds = (s / 3.0).clamp(0.05, FRONT_SAMPLE);
     let spiral = laps::FrontSpiral {
         b: &b,
@@ -239,6 +228,29 @@ fn plan_fronts(
         start_angle,
     };
     Ok(spiral.plan())
+}
+
+/// `B_ε`, the spiral's last loop: `B` moved inward by [`LAST_LOOP_MARGIN`] (`B` itself if that
+/// offset is not one loop).
+fn last_loop(b: &Polyline<f64>) -> Polyline<f64> {
+    match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
+        [one] => one.clone(),
+        _ => b.clone(),
+    }
+}
+
+/// The entry helix's radius `ρ_h` and the central spiral's outer radius `R₀ = C·ρ_B`, both
+/// morphs alike. A helix wider than the tool would leave a pillar at its centre.
+fn centre_radii(tool: &Tool, opts: &PocketOptions, rho_b: f64) -> Result<(f64, f64), InputError> {
+    let helix = match opts.entry {
+        Entry::Helix { radius, .. } => radius,
+        Entry::Ramp { .. } => 0.25 * tool.radius(),
+    };
+    let rho_h = helix.min(0.9 * tool.radius()).min(0.45 * rho_b);
+    if rho_h < 1e-3 {
+        return Err(too_large(tool));
+    }
+    Ok((rho_h, (opts.transition * rho_b).max(rho_h).min(0.9 * rho_b)))
 }
 
 /// The fronts' smoothing radius as a fraction of the stepover (at least `--min-radius`).
@@ -330,21 +342,9 @@ fn plan_in_frame(
                     ),
             ),
         };
-    let b_eps = match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
-        [one] => one.clone(),
-        _ => b.clone(),
-    };
+    let b_eps = last_loop(&b);
     let (c, rho_b) = inscribed_centre(&b, &[], 48);
-    let helix = match opts.entry {
-        Entry::Helix { radius, .. } => radius,
-        Entry::Ramp { .. } => 0.25 * tool.radius(),
-    };
-    // A helix wider than the tool would leave a pillar at its centre.
-    let rho_h = helix.min(0.9 * tool.radius()).min(0.45 * rho_b);
-    if rho_h < 1e-3 {
-        return Err(too_large(tool));
-    }
-    let r0 = (opts.transition * rho_b).max(rho_h).min(0.9 * rho_b);
+    let (rho_h, r0) = centre_radii(tool, opts, rho_b)?;
     let ccw = opts.direction == Direction::Climb;
     let sign = if ccw { 1.0 } else { -1.0 };
     let mut stats = SpiralStats {
@@ -487,14 +487,13 @@ impl Morph<'_> {
             if haus_b <= sp && haus_l <= sp {
                 // The last lap: onto B_ε at equal arc-length fractions.
                 let fine = resample(&lap, self.ds_last);
-                let fr = fractions(&fine);
                 let start = restart_near(&self.b_dir, fine[0]);
-                let blen = start.path_length();
-                let along = LoopWalker::new(&start);
-                for (p, f) in fine.iter().zip(&fr) {
-                    let q = along.at(f * blen);
-                    pts.push(*p + (q - *p) * *f);
-                }
+                blend_lap(
+                    &fine,
+                    &LoopWalker::new(&start),
+                    start.path_length(),
+                    &mut pts,
+                );
                 let close = start.at(0).pos();
                 pts.push(Point::new(close.x, close.y));
                 return Some(MorphResult {
@@ -554,6 +553,17 @@ impl Morph<'_> {
             lap = resample(&next, ds);
         }
         None
+    }
+}
+
+/// One lap of the morph from the closed loop `lap` onto the loop walked by `along` (of length
+/// `len`, starting near `lap[0]`): the point at arc-length fraction `f` of `lap` moves the
+/// fraction `f` of the way to the point at the same fraction of the target, so the lap starts
+/// on `lap` and ends on the target. Appended to `out`.
+fn blend_lap(lap: &[Point], along: &LoopWalker, len: f64, out: &mut Vec<Point>) {
+    for (p, f) in lap.iter().zip(fractions(lap)) {
+        let q = along.at(f * len);
+        out.push(*p + (q - *p) * f);
     }
 }
 
