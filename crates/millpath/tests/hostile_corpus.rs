@@ -73,7 +73,6 @@ fn corpus_planner() {
 /// and jerk over the limit, position inconsistency, corner deviation), replayed with the
 /// verifier check on (`FUZZ_STRICT_VERIFY`). See fuzz/README.md, "Findings".
 #[test]
-#[ignore = "bug: the planner violates machine limits on these fuzzer inputs (fuzz/regressions/planner-limits)"]
 fn planner_limit_violations_found_by_the_fuzzer() {
     harness::STRICT_VERIFY.store(true, std::sync::atomic::Ordering::Relaxed);
     let dir =

@@ -22,6 +22,12 @@
 //!   depressed cubic in `V` with one positive root, solved in the sinh form), and the
 //!   tangential jerk gets `J = (1 − η_j)·J_ax`. On a circle at constant speed this is the
 //!   familiar `v³/r² ≤ η_j·J`.
+//! * on a spiral arc (end radius ≠ start radius, within the G-code tolerance) the parameter
+//!   is not arc length and `acc = P''·v² + P'·a_t`, `jerk = P'''·v³ + 3P''·v·a_t + P'·j_t`
+//!   with `|P'| ≤ g1`, `|P''| ≤ g2`, `|P'''| ≤ g3` ([`Geom::derivative_bounds`]; `1`, `κ`,
+//!   `κ√(κ²+τ²)` on a helix): the same shares with `κ → g2`, `κ√(κ²+τ²) → g3`, the
+//!   tangential limits divided by `g1`, and the feed bounding `g1·v`. (Treating spirals as
+//!   circles let the fuzzer's tiny spiral arcs exceed the axis acceleration 1.6×.)
 //! * the axis velocities: `V ≤ min_i vmax_i/m_i` with `m_i` the largest tangent component
 //!   of axis `i` over the block.
 //!
@@ -34,6 +40,9 @@
 //!   (the 840D bounds it by `PATH_TRANS_JERK_LIM`, MD32432), so we require the mean jerk over
 //!   one cycle to stay within each axis's jerk: `v²·|Δ(κN)_i| ≤ jmax_i·T_ipo`. With infinite
 //!   jerk there is no such cap.
+//!   Where a spiral arc (see [`Geom::derivatives`]) meets another block, `P'` may also
+//!   change length: the axis velocities step by `v·|ΔP'_i|`, capped as at an exact-path
+//!   junction below.
 //! * **exact stop** (`Corner::ExactStop`, or a path tolerance of 0): the junction speed is 0.
 //! * **exact path** (`Corner::ExactPath`, G61): the direction changes within one
 //!   interpolation cycle, each axis's velocity stepping by `v·|t2_i − t1_i|`; the mean
@@ -86,15 +95,18 @@ pub fn block_limits(g: &Geom, m: &Move, machine: &Machine) -> Limits1 {
             j: j_line,
         },
         Geom::Helix { .. } => {
-            let (k, tau) = g.curvature_torsion();
+            // g1, g2, g3 bound |P'|, |P''|, |P'''| (κ, κ√(κ²+τ²) on a circle; a spiral's
+            // radial terms included, see `Geom::derivative_bounds`).
+            let (g1, g2, g3) = g.derivative_bounds();
             let (ea, ej) = (machine.curvature_accel_share, machine.curvature_jerk_share);
-            let a = (1.0 - ea) * a_ax;
-            v = v.min((ea * a_ax / k).sqrt());
+            let a = (1.0 - ea) * a_ax / g1;
+            // The feed bounds the tool's speed |P'|·ṡ.
+            v = v.min(prog / g1);
+            v = v.min((ea * a_ax / g2).sqrt());
             let j = if j_ax.is_finite() {
-                // κ·n·V³ + 3κ·A·V = η_j·J with n = √(κ²+τ²):  V³ + p·V − q = 0.
-                let n = k.hypot(tau);
-                let p = 3.0 * a / n;
-                let q = ej * j_ax / (k * n);
+                // g3·V³ + 3·g2·A·V = η_j·J:  V³ + p·V − q = 0.
+                let p = 3.0 * g2 * a / g3;
+                let q = ej * j_ax / g3;
                 let arg = 1.5 * q / p * (3.0 / p).sqrt();
                 let vj = if arg > 1e100 {
                     q.cbrt()
@@ -102,7 +114,7 @@ pub fn block_limits(g: &Geom, m: &Move, machine: &Machine) -> Limits1 {
                     2.0 * (p / 3.0).sqrt() * (arg.asinh() / 3.0).sinh()
                 };
                 v = v.min(vj * (1.0 - 1e-12));
-                (1.0 - ej) * j_ax
+                (1.0 - ej) * j_ax / g1
             } else {
                 f64::INFINITY
             };
@@ -144,13 +156,16 @@ pub fn junction_cap(g1: &Geom, g2: &Geom, mode: JunctionMode, machine: &Machine)
     let t1 = g1.end_tangent();
     let t2 = g2.start_tangent();
     let du = t2 - t1;
+    let dp = g2.derivatives(0.0)[1] - g1.derivatives(g1.length())[1];
     let mut cap = f64::INFINITY;
     let tipo = machine.ipo_cycle;
     if du.length() > 1e-9 {
         match mode {
             JunctionMode::Stop => return 0.0,
             JunctionMode::ExactPath => {
-                for (i, d) in du.to_array().iter().enumerate() {
+                // The axis velocities step by ṡ·(P'₂ − P'₁) (unit tangents on lines and
+                // circles; a spiral's P' is not unit).
+                for (i, d) in dp.to_array().iter().enumerate() {
                     let ax = machine.axes[i];
                     let step = (ax.max_acceleration * tipo).min(ax.max_jerk * tipo * tipo);
                     if d.abs() > 1e-15 {
@@ -187,14 +202,21 @@ pub fn junction_cap(g1: &Geom, g2: &Geom, mode: JunctionMode, machine: &Machine)
             }
         }
     }
-    // Tangent: the curvature step.
+    // Tangent: the curvature step, and the step of |P'| where a spiral meets another block
+    // (P' is a unit tangent on lines and circles only): the axis velocities step by
+    // ṡ·(P'₂ − P'₁) within one interpolation cycle, as at an exact-path corner.
     let (_, k1) = g1.curvature_ends();
     let (k2, _) = g2.curvature_ends();
     let dk = k2 - k1;
-    for (i, d) in dk.to_array().iter().enumerate() {
-        let jm = machine.axes[i].max_jerk;
+    for (i, (d, e)) in dk.to_array().iter().zip(dp.to_array()).enumerate() {
+        let ax = machine.axes[i];
+        let jm = ax.max_jerk;
         if d.abs() > 1e-12 && jm.is_finite() {
             cap = cap.min((jm * tipo / d.abs()).sqrt());
+        }
+        if e.abs() > 1e-15 {
+            let step = (ax.max_acceleration * tipo).min(jm * tipo * tipo);
+            cap = cap.min(step / e.abs());
         }
     }
     cap

@@ -30,7 +30,8 @@ pub enum Geom {
         sweep: f64,
         /// Start radius.
         r0: f64,
-        /// End radius (differs from `r0` only by the input's rounding).
+        /// End radius (differs from `r0` by the input's rounding or within LinuxCNC's
+        /// tolerance: the arc is then a spiral, see [`Geom::derivatives`]).
         r1: f64,
         /// Axial start.
         w0: f64,
@@ -92,7 +93,21 @@ impl Geom {
         }
     }
 
-    /// Position and the first three derivatives with respect to arc length at `s`.
+    /// Position and the first three derivatives with respect to the block's parameter `s`
+    /// (arc length on lines and circles) at `s`.
+    ///
+    /// An arc is the spiral `P(s) = c + r(s)·e_r(θ(s)) + w(s)·e_w` with `r`, `θ` and `w`
+    /// linear in `s` (`r' = (r1 − r0)/L`, `θ' = sweep/L`, `h = w' = dw/L`, `L` the nominal
+    /// length of [`Move::length_from`]); with `e_r' = θ'·e_θ` and `e_θ' = −θ'·e_r`:
+    /// * `P'   = r'·e_r + r·θ'·e_θ + h·e_w`
+    /// * `P''  = −r·θ'²·e_r + 2r'·θ'·e_θ`
+    /// * `P''' = −3r'·θ'²·e_r − r·θ'³·e_θ`
+    ///
+    /// For a circle (`r' = 0`) `|P'| = 1` and `P''` is the curvature vector `κN`. For a
+    /// spiral (an arc whose end is off its start circle by the input's rounding, or a tiny
+    /// arc within LinuxCNC's absolute tolerance) `s` is not exactly arc length and the radial
+    /// terms matter: on an arc of radius 5e-8 mm → 9e-7 mm found by the fuzzer they
+    /// dominate.
     pub fn derivatives(&self, s: f64) -> [Vec3; 4] {
         match *self {
             Geom::Line { from, dir, length } => {
@@ -113,16 +128,48 @@ impl Geom {
             } => {
                 let f = (s / length).clamp(0.0, 1.0);
                 let r = r0 + (r1 - r0) * f;
+                let rp = (r1 - r0) / length;
                 let om = sweep / length;
                 let th = theta0 + sweep * f;
                 let (sn, cs) = th.sin_cos();
                 let h = dw / length;
+                // Components along e_r = (cs, sn) and e_θ = (−sn, cs).
+                let polar =
+                    |er: f64, et: f64, w: f64| plane.join(er * cs - et * sn, er * sn + et * cs, w);
                 [
                     plane.join(cu + r * cs, cv + r * sn, w0 + dw * f),
-                    plane.join(-r * om * sn, r * om * cs, h),
-                    plane.join(-r * om * om * cs, -r * om * om * sn, 0.0),
-                    plane.join(r * om.powi(3) * sn, -r * om.powi(3) * cs, 0.0),
+                    polar(rp, r * om, h),
+                    polar(-r * om * om, 2.0 * rp * om, 0.0),
+                    polar(-3.0 * rp * om * om, -r * om.powi(3), 0.0),
                 ]
+            }
+        }
+    }
+
+    /// Bounds `(g1, g2, g3)` of `|P'|`, `|P''|`, `|P'''|` over the block (see
+    /// [`Geom::derivatives`]): with `r ≤ r_max = max(r0, r1)`,
+    /// `g1 = √(r'² + r_max²θ'² + h²)`, `g2 = |θ'|·√(r_max²θ'² + 4r'²)`,
+    /// `g3 = θ'²·√(r_max²θ'² + 9r'²)`. Lines: `(1, 0, 0)`. For a helix of radius `r` and
+    /// pitch `2πc` these are `1`, the curvature `κ = r/(r² + c²)` and `κ·√(κ² + τ²)`.
+    pub fn derivative_bounds(&self) -> (f64, f64, f64) {
+        match *self {
+            Geom::Line { .. } => (1.0, 0.0, 0.0),
+            Geom::Helix {
+                sweep,
+                r0,
+                r1,
+                dw,
+                length,
+                ..
+            } => {
+                let rm = r0.max(r1);
+                let rp = (r1 - r0) / length;
+                let om = (sweep / length).abs();
+                let h = dw / length;
+                let g1 = rp.hypot(rm * om).hypot(h);
+                let g2 = om * (rm * om).hypot(2.0 * rp);
+                let g3 = om * om * (rm * om).hypot(3.0 * rp);
+                (g1, g2, g3)
             }
         }
     }
@@ -142,27 +189,13 @@ impl Geom {
         unit(self.derivatives(self.length())[1])
     }
 
-    /// Curvature vector (κ·N) at the start and at the end (zero for lines).
+    /// `P''` at the start and at the end (the curvature vector `κN` on circles; zero on
+    /// lines).
     pub fn curvature_ends(&self) -> (Vec3, Vec3) {
         (self.derivatives(0.0)[2], self.derivatives(self.length())[2])
     }
 
-    /// Curvature κ and torsion τ (constant on a helix; 0 for lines).
-    pub fn curvature_torsion(&self) -> (f64, f64) {
-        match *self {
-            Geom::Line { .. } => (0.0, 0.0),
-            Geom::Helix {
-                sweep, r0, r1, dw, ..
-            } => {
-                let r = r0.min(r1);
-                let c = dw / sweep; // pitch / 2π
-                let den = r * r + c * c;
-                (r0.max(r1) / den, c.abs() / den)
-            }
-        }
-    }
-
-    /// The largest absolute tangent component of each axis over the block.
+    /// The largest absolute component of `P'` along each axis over the block.
     pub fn max_direction(&self) -> [f64; 3] {
         match *self {
             Geom::Line { dir, .. } => [dir.x.abs(), dir.y.abs(), dir.z.abs()],
@@ -175,7 +208,9 @@ impl Geom {
                 length,
                 ..
             } => {
-                let inplane = (r0.max(r1) * sweep.abs() / length).min(1.0);
+                // In the plane |P'| = √(r'² + r²θ'²): at most 1 on a circle, possibly more on
+                // a spiral, whose parameter is not exactly arc length.
+                let inplane = ((r1 - r0) / length).hypot(r0.max(r1) * sweep / length);
                 let axial = (dw / length).abs();
                 let v = plane.join(inplane, inplane, axial);
                 [v.x.abs(), v.y.abs(), v.z.abs()]
@@ -186,4 +221,61 @@ impl Geom {
 
 fn unit(v: Vec3) -> Vec3 {
     v.normalize().unwrap_or(Vec3::ZERO)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+        /// Root cause of the fuzzer's acceleration/jerk violations on tiny arcs: a spiral arc
+        /// (end radius ≠ start radius) was differentiated as a circle. The derivatives must
+        /// match central differences of the position, and `derivative_bounds` must bound them
+        /// everywhere on the block.
+        #[test]
+        fn spiral_derivatives_match_finite_differences_and_bounds(
+            r0 in 0.5f64..5.0, ratio in 0.2f64..5.0, a0 in -3.0f64..3.0, a1 in -3.0f64..3.0,
+            dz in -2.0f64..2.0, ccw in any::<bool>(), turns in 0u32..2, plane in 0usize..3,
+        ) {
+            let plane = [Plane::Xy, Plane::Zx, Plane::Yz][plane];
+            let c = Point3::new(1.0, -2.0, 0.5);
+            let (su, sv) = (r0 * a0.cos(), r0 * a0.sin());
+            let r1 = r0 * ratio;
+            let (eu, ev) = (r1 * a1.cos(), r1 * a1.sin());
+            let from = c + plane.join(su, sv, 0.0);
+            let to = c + plane.join(eu, ev, dz);
+            let mut m = Move::arc_xy(to, c, ccw, 10.0);
+            if let MoveKind::Arc { plane: p, turns: t, .. } = &mut m.kind {
+                *p = plane;
+                *t = turns;
+            }
+            let g = Geom::of(from, &m).expect("geometry");
+            prop_assert!((g.length() - m.length_from(from)).abs() <= 1e-12 * g.length());
+            prop_assert!((g.point(g.length()) - to).length() <= 1e-9);
+            let (g1, g2, g3) = g.derivative_bounds();
+            let l = g.length();
+            let h = 1e-4 * l;
+            for k in 1..20 {
+                let s = l * f64::from(k) / 20.0;
+                let [_, d1, d2, d3] = g.derivatives(s);
+                let fd = |i: usize| {
+                    (g.derivatives(s + h)[i] - g.derivatives(s - h)[i]) / (2.0 * h)
+                };
+                for (i, (d, lower)) in [(d1, 0usize), (d2, 1), (d3, 2)].into_iter().enumerate() {
+                    let e = fd(lower);
+                    prop_assert!((d - e).length() <= 1e-5 * (1.0 + d.length()),
+                        "derivative {}: {d:?} vs {e:?}", i + 1);
+                }
+                prop_assert!(d1.length() <= g1 * (1.0 + 1e-12));
+                prop_assert!(d2.length() <= g2 * (1.0 + 1e-12));
+                prop_assert!(d3.length() <= g3 * (1.0 + 1e-12));
+                let md = g.max_direction();
+                for (x, m) in d1.to_array().iter().zip(md) {
+                    prop_assert!(x.abs() <= m * (1.0 + 1e-12) + 1e-15);
+                }
+            }
+        }
+    }
 }

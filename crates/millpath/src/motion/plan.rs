@@ -211,6 +211,19 @@ impl Builder {
             }
         }
         let g = Geom::of(from, m);
+        if g.is_none()
+            && matches!(m.kind, MoveKind::Arc { .. })
+            && (from.distance(m.to) > 1e-12 || m.length_from(from) > 1e-12)
+        {
+            // An arc whose start is its centre has no circle to follow; skipping it as a
+            // zero-length move teleported the tool to its end (a 32 mm jump found by the
+            // `planner` fuzzer).
+            let r0 = m.sweep_from(from).map_or(0.0, |(r, _)| r);
+            return Err(crate::InputError::new("arc start radius", r0)
+                .at(format!("move {}", i + 1))
+                .expected("a start point more than 1e-12 mm from the arc's centre")
+                .into());
+        }
         if let Some(Geom::Helix { r0, r1, .. }) = g {
             // The block limits take the arc as circular (a spiral's radial terms are not
             // modelled): arcs whose end radius differs from the start radius beyond what
@@ -437,4 +450,92 @@ where
         ends,
         total_time: t,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::motion::verify::{VerifyOptions, verify_plan};
+    use crate::toolpath::{Corner, Plane};
+    use proptest::prelude::*;
+
+    fn plan_and_verify(moves: &[(Point3, Move)], machine: &Machine) -> Result<usize, Error> {
+        let plan = plan_moves(
+            moves.iter().map(|x| Ok(*x)),
+            machine,
+            &PlanOptions::default(),
+        )?;
+        let rep = verify_plan(&plan, moves, machine, &VerifyOptions::default())?;
+        Ok(rep.violations)
+    }
+
+    /// Root cause of the fuzzer's 32 mm position jump: an arc whose start point is its centre
+    /// (radius 0) was skipped as a zero-length move although its end is elsewhere.
+    #[test]
+    fn arc_starting_at_its_centre_is_refused() {
+        let m = Machine::preset("hsm").unwrap();
+        let c = Point3::new(1.0, 2.0, 0.0);
+        let arc = Move::arc_xy(Point3::new(20.0, -3.0, -4.0), c, true, 50.0);
+        let moves = [(c, arc)];
+        match plan_and_verify(&moves, &m) {
+            Err(Error::Input(e)) => {
+                let msg = e.to_string();
+                assert!(
+                    msg.contains("arc start radius") && msg.contains("move 1"),
+                    "{msg}"
+                );
+            }
+            other => panic!("expected an input error, got {other:?}"),
+        }
+        // A full circle of radius 0 that goes nowhere is a zero-length move, not an error.
+        let still = [(c, Move::arc_xy(c, c, true, 50.0))];
+        assert_eq!(plan_and_verify(&still, &m).unwrap(), 0);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// Root cause of the fuzzer's acceleration, jerk, feed and corner violations on arcs:
+        /// spiral arcs (end radius off the start circle within the G-code tolerance, tiny arcs
+        /// whose radius changes many times over) were timed as circles, and the planner and
+        /// the verifier parametrised them by different lengths. Lines joined by spiral arcs of
+        /// every size, in every plane and corner mode, on every preset, plan with 0
+        /// violations.
+        #[test]
+        fn spiral_arcs_plan_within_the_limits(
+            preset in 0usize..3,
+            arcs in proptest::collection::vec(
+                (-8.0f64..0.0, 0.2f64..5.0, -3.0f64..3.0, -3.0f64..3.0, 0usize..3, any::<bool>(),
+                 0usize..4, 1.0f64..300.0, -1.0f64..1.0),
+                1..5),
+        ) {
+            let m = Machine::preset(Machine::PRESET_NAMES[preset]).unwrap();
+            let mut at = Point3::ORIGIN;
+            let mut moves = Vec::new();
+            for (lr, ratio, a0, a1, plane, ccw, corner, feed, dz) in arcs {
+                let plane = [Plane::Xy, Plane::Zx, Plane::Yz][plane];
+                let r0 = 10f64.powf(lr).max(1e-6) * 10.0;
+                // Keep the end radius within the planner's acceptance (LinuxCNC's rule).
+                let tau = crate::gcode::arc::center_arc_radius_tolerance_mm(crate::gcode::Units::Mm);
+                let lim = (0.9 * tau).max(0.9e-3 * r0);
+                let r1 = r0 + (r0 * ratio - r0).clamp(-lim, lim);
+                let c = at - plane.join(r0 * a0.cos(), r0 * a0.sin(), 0.0);
+                let to = c + plane.join(r1 * a1.cos(), r1 * a1.sin(), dz * r0);
+                let corner = [Corner::Machine, Corner::ExactPath, Corner::ExactStop, Corner::Blend(0.01)][corner];
+                let mut mv = Move::arc_xy(to, c, ccw, feed).with_corner(corner);
+                if let MoveKind::Arc { plane: p, .. } = &mut mv.kind {
+                    *p = plane;
+                }
+                moves.push((at, mv));
+                at = to;
+                let next = at + crate::geom::Vec3::new(3.0 * a1.sin(), 2.0, dz);
+                moves.push((at, Move::line(next, feed).with_corner(corner)));
+                at = next;
+            }
+            match plan_and_verify(&moves, &m) {
+                Ok(n) => prop_assert_eq!(n, 0),
+                Err(Error::Input(_)) => {}
+                Err(e) => prop_assert!(false, "internal error {e}"),
+            }
+        }
+    }
 }

@@ -16,7 +16,14 @@
 //!   (`R = max(v²/A, √(v³/J))`) must stay within the path tolerance
 //!   (`R·(1/cos(θ/2) − 1) ≤ tol`) and fit in the blocks, or in exact-path mode
 //!   (`v·|Δt_i| ≤ min(A_i·T_ipo, J_i·T_ipo²)`); at tangent junctions the acceleration step
-//!   `v²·|Δ(κN)_i|` must stay within `J_i·T_ipo`.
+//!   `v²·|Δ(κN)_i|` must stay within `J_i·T_ipo`, and the velocity step `v·|ΔP'_i|` (zero
+//!   unless a spiral arc's `|P'| ≠ 1` meets another block) within
+//!   `min(A_i·T_ipo, J_i·T_ipo²)`.
+//!
+//! Arcs whose end radius differs from the start radius (G-code rounding, tiny arcs within
+//! LinuxCNC's tolerance) are the spiral with the radius linear in the angle, parametrised by
+//! `s = u·L` with `L` = [`Move::length_from`] (mean radius); the verifier differentiates it
+//! exactly, radial terms included, and checks the feed against the tool's speed `|P'|·ṡ`.
 
 use super::plan::Plan;
 use crate::error::Error;
@@ -117,16 +124,29 @@ impl Shape {
                 let (tu, tv, tw) = plane.split(m.to - Point3::ORIGIN);
                 let r1 = (tu - cu).hypot(tv - cv);
                 let a0 = (fv - cv).atan2(fu - cu);
+                // The spiral r(u) = r0 + (r1 − r0)·u, angle a0 + sweep·u, u = s/len, in
+                // Cartesian form: x = cu + r·cos a, y = cv + r·sin a, differentiated three
+                // times in s with dr/ds = q and da/ds = w constant.
                 let r = r0 + (r1 - r0) * u;
+                let q = (r1 - r0) / self.len;
                 let a = a0 + sweep * u;
                 let w = sweep / self.len;
                 let h = (tw - fw) / self.len;
                 let (c, sn) = (a.cos(), a.sin());
+                let (w2, w3) = (w * w, w * w * w);
                 [
                     plane.join(cu + r * c, cv + r * sn, fw + (tw - fw) * u),
-                    plane.join(-r * w * sn, r * w * c, h),
-                    plane.join(-r * w * w * c, -r * w * w * sn, 0.0),
-                    plane.join(r * w * w * w * sn, -r * w * w * w * c, 0.0),
+                    plane.join(q * c - r * w * sn, q * sn + r * w * c, h),
+                    plane.join(
+                        -2.0 * q * w * sn - r * w2 * c,
+                        2.0 * q * w * c - r * w2 * sn,
+                        0.0,
+                    ),
+                    plane.join(
+                        -3.0 * q * w2 * c + r * w3 * sn,
+                        -3.0 * q * w2 * sn - r * w3 * c,
+                        0.0,
+                    ),
                 ]
             }
             _ => {
@@ -224,13 +244,15 @@ pub fn verify_plan(
         }
         if sh.m.is_feed() {
             let flim = sh.m.feed.min(machine.max_feed);
-            rep.worst_ratio[3] = rep.worst_ratio[3].max(st.v / flim);
-            if st.v > flim * (1.0 + tol) + 1e-9 {
+            // The tool's speed |P'|·ṡ (ṡ itself on lines and circles, where |P'| = 1).
+            let speed = v.length();
+            rep.worst_ratio[3] = rep.worst_ratio[3].max(speed / flim);
+            if speed > flim * (1.0 + tol) + 1e-9 {
                 rep.add(Violation {
                     kind: ViolationKind::Feed,
                     block: smp.block,
                     t: smp.t,
-                    value: st.v,
+                    value: speed,
                     limit: flim,
                 });
             }
@@ -316,6 +338,9 @@ fn check_junction(
     let t1 = ea[1] / ea[1].length().max(1e-300);
     let t2 = eb[1] / eb[1].length().max(1e-300);
     let du = t2 - t1;
+    // The axis velocities step by v·(P'_b − P'_a): the unit tangents' difference on lines and
+    // circles, plus a change of |P'| where a spiral arc meets another block.
+    let dp = eb[1] - ea[1];
     let tipo = machine.ipo_cycle;
     let mut bad = |value: f64, limit: f64| {
         if value > limit * (1.0 + tol) + 1e-12 {
@@ -330,11 +355,15 @@ fn check_junction(
     };
     if du.length() <= 1e-9 {
         let dk = eb[2] - ea[2];
-        for (i, d) in dk.to_array().iter().enumerate() {
-            let jm = machine.axes[i].max_jerk;
-            if jm.is_finite() {
-                bad(v * v * d.abs(), jm * tipo);
+        for (i, (d, e)) in dk.to_array().iter().zip(dp.to_array()).enumerate() {
+            let ax = machine.axes[i];
+            if ax.max_jerk.is_finite() {
+                bad(v * v * d.abs(), ax.max_jerk * tipo);
             }
+            bad(
+                v * e.abs(),
+                (ax.max_acceleration * tipo).min(ax.max_jerk * tipo * tipo),
+            );
         }
         return;
     }
@@ -343,7 +372,7 @@ fn check_junction(
         Corner::Blend(x) => x,
         Corner::ExactStop => 0.0,
         Corner::ExactPath => {
-            for (i, d) in du.to_array().iter().enumerate() {
+            for (i, d) in dp.to_array().iter().enumerate() {
                 let ax = machine.axes[i];
                 bad(
                     v * d.abs(),
@@ -374,4 +403,41 @@ fn check_junction(
     let half = 0.5 * t1.dot(t2).clamp(-1.0, 1.0).acos();
     bad(r * (1.0 / half.cos() - 1.0), tolerance);
     bad(r * half.tan(), 0.5 * a.len.min(b.len));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The verifier's own spiral derivatives (radial terms included; it differentiated
+    /// spiral arcs as circles before, like the planner) against central differences of its
+    /// own positions.
+    #[test]
+    fn verifier_differentiates_spirals_exactly() {
+        let c = Point3::new(0.0, 0.0, 0.0);
+        for (r1, dz, ccw) in [(3.0, 0.0, true), (0.4, 1.5, false), (1.0, -2.0, true)] {
+            let from = Point3::new(1.0, 0.0, 0.0);
+            let to = Point3::new(0.0, r1, dz);
+            let m = Move::arc_xy(to, c, ccw, 10.0);
+            let sh = Shape {
+                from,
+                m,
+                len: m.length_from(from),
+            };
+            let h = 1e-5 * sh.len;
+            for k in 1..10 {
+                let s = sh.len * f64::from(k) / 10.0;
+                let d = sh.eval(s);
+                for (i, di) in d.iter().enumerate().skip(1) {
+                    let fd = (sh.eval(s + h)[i - 1] - sh.eval(s - h)[i - 1]) / (2.0 * h);
+                    assert!(
+                        (*di - fd).length() <= 1e-5 * (1.0 + di.length()),
+                        "r1 {r1} s {s} derivative {i}: {di:?} vs {fd:?}"
+                    );
+                }
+            }
+            let end = sh.eval(sh.len)[0];
+            assert!((end - (to - Point3::ORIGIN)).length() < 1e-12);
+        }
+    }
 }

@@ -203,14 +203,22 @@ impl Move {
     }
 
     /// Path length of this move starting from `from`, in mm (helices included).
+    ///
+    /// An arc whose end is not exactly on its start circle (G-code rounds coordinates; the
+    /// reader accepts LinuxCNC's tolerance) is the spiral whose radius changes linearly with
+    /// the angle; its length is taken as `r̄·|sweep|` (hypot the axial travel) with `r̄` the
+    /// mean of the start and end radii: exact for a circle, and the nominal length by which
+    /// the planner and the verifier both parametrise the spiral.
     pub fn length_from(&self, from: Point3) -> f64 {
         match self.kind {
             MoveKind::Rapid | MoveKind::Line => from.distance(self.to),
             MoveKind::Dwell { .. } => 0.0,
-            MoveKind::Arc { plane, .. } => {
-                let (r, sweep) = self.sweep_from(from).unwrap_or((0.0, 0.0));
+            MoveKind::Arc { plane, center, .. } => {
+                let (r0, sweep) = self.sweep_from(from).unwrap_or((0.0, 0.0));
+                let (eu, ev, _) = plane.split(self.to - center);
+                let r1 = eu.hypot(ev);
                 let (_, _, axial) = plane.split(self.to - from);
-                (r * sweep).hypot(axial)
+                (0.5 * (r0 + r1) * sweep).hypot(axial)
             }
         }
     }
