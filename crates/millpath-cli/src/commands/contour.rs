@@ -202,10 +202,29 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
         opt.tolerance = t;
     }
+    // Checked here so the error names the flag (ContourOptions::validate can only say
+    // "contour options").
+    let max = millpath::geom::MAX_COORDINATE_MM;
     if let Some(d) = args.depth {
+        if !(d.is_finite() && d > 0.0 && d <= max) {
+            return Err(input(
+                "depth",
+                d,
+                "--depth",
+                &format!("a finite number > 0 mm and at most {max} mm"),
+            ));
+        }
         opt.depth = d;
     }
     if let Some(s) = args.step_down {
+        if !(s.is_finite() && s > 0.0) {
+            return Err(input(
+                "step-down",
+                s,
+                "--step-down",
+                "a finite number > 0 mm",
+            ));
+        }
         opt.step_down = s;
     }
     opt.side = match args.side {

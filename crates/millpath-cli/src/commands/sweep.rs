@@ -149,17 +149,25 @@ pub fn sweep(
     })
 }
 
-fn list(text: &str, flag: &str) -> Result<Vec<f64>, Error> {
+/// Parses the comma-separated list given to `flag`; an entry that is not a number accepted by
+/// `ok` is refused by name, as typed (not a converted value), with the flag.
+fn list(
+    text: &str,
+    flag: &str,
+    what: &str,
+    ok: fn(f64) -> bool,
+    expected: &str,
+) -> Result<Vec<f64>, Error> {
     text.split(',')
         .map(|t| {
             t.trim()
                 .parse::<f64>()
                 .ok()
-                .filter(|v| v.is_finite())
+                .filter(|v| ok(*v))
                 .ok_or_else(|| {
-                    millpath::InputError::new("list value", t)
+                    millpath::InputError::new(what, t.trim())
                         .at(flag)
-                        .expected("comma-separated numbers")
+                        .expected(format!("comma-separated {expected}"))
                         .into()
                 })
         })
@@ -184,8 +192,20 @@ pub fn write_chart(chart: &plots::Chart, path: &std::path::Path) -> Result<(), E
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
     let (tool, base) = args.common.options()?;
-    let ratios = list(&args.ratios, "--ratios")?;
-    let feeds = list(&args.feeds, "--feeds")?;
+    let ratios = list(
+        &args.ratios,
+        "--ratios",
+        "transition ratio",
+        |c| (0.0..=1.0).contains(&c),
+        "ratios in [0, 1]",
+    )?;
+    let feeds = list(
+        &args.feeds,
+        "--feeds",
+        "feed",
+        |f| f.is_finite() && f > 0.0,
+        "finite feeds > 0 in/min",
+    )?;
     let loops = load_outline(&args.outline)?;
     let shape = PocketShape::new(loops.outer, loops.islands, &args.outline)?;
     let machine = super::load_machine(&args.common.machine)?;

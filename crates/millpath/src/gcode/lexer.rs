@@ -3,7 +3,8 @@
 //! A line is `[/] [N…] word*` with comments `( … )` (not nested) and `;` to the end of the
 //! line. A word is a letter and a number (`G1`, `X-1.5`, `x .5`: case and spaces between
 //! letter and number do not matter, as in RS274/NGC). Numbers are decimal without exponent:
-//! `[+-]? digits [. digits]` or `[+-]? . digits`; anything else (`NaN`, `1e5`, `#1`,
+//! `[+-]? digits [. digits]` or `[+-]? . digits`; anything else (`NaN`, `1e5` (refused as
+//! the word it is in, not read as `1` and a word `E5`), `#1`,
 //! `[1+2]`) is an error naming the column and the text. Two Sinumerik forms are lexed too:
 //! assignments `NAME=number` (`TURN=2`) and calls `NAME(args)` (`CYCLE832(0.01,_FINISH,1)`).
 //! A `%` line (Fanuc framing) is reported as such.
@@ -107,6 +108,23 @@ pub fn lex(line: &str, tokens: &mut Vec<Token>) -> Result<LineKind, LexError> {
                 } else {
                     let (value, end) = number(line, j)
                         .ok_or_else(|| err(line, start, "a letter followed by a number"))?;
+                    // `X1e400` is not `X1` and a word `E400`: G-code has no exponent, and a
+                    // number in exponent notation is refused as the word it was typed in.
+                    let mut k = end;
+                    if matches!(b.get(k), Some(b'e' | b'E')) {
+                        k += 1;
+                        if matches!(b.get(k), Some(b'+' | b'-')) {
+                            k += 1;
+                        }
+                        if b.get(k).is_some_and(u8::is_ascii_digit) {
+                            return Err(err(
+                                line,
+                                start,
+                                "a decimal number without exponent notation, of magnitude at \
+                                 most 1e9",
+                            ));
+                        }
+                    }
                     tokens.push(Token::Word {
                         letter: c.to_ascii_uppercase(),
                         value,
@@ -275,6 +293,18 @@ mod tests {
             let e = lex(line, &mut t).unwrap_err();
             assert_eq!(e.column, col, "{line}: {e:?}");
         }
+        // Exponent notation is refused as the word it was typed in (`X1e400` was lexed as
+        // X1 and a word E400; the error named `e400`), with the word's column.
+        for line in ["G1 X1e400 F600", "G1 X1E5", "G1 X-2.5e-3"] {
+            let e = lex(line, &mut t).unwrap_err();
+            assert_eq!(e.column, 3, "{line}: {e:?}");
+            assert!(
+                e.text.starts_with('X') && e.expected.contains("exponent"),
+                "{e:?}"
+            );
+        }
+        // A word E after a number with no digits after it is still a word of its own.
+        assert!(lex("G1 X1 E", &mut t).is_err());
         // A number too large for f64 is garbage, not infinity.
         let big = format!("X1{}", "0".repeat(400));
         assert!(lex(&big, &mut t).is_err());
