@@ -64,8 +64,11 @@ fn corpus_contour() {
     replay("contour", 50, harness::contour);
 }
 
+/// Strict: every plan of the corpus must also pass the independent verifier (0 limit
+/// violations), not only finish without a panic.
 #[test]
 fn corpus_planner() {
+    harness::STRICT_VERIFY.store(true, std::sync::atomic::Ordering::Relaxed);
     replay("planner", 50, harness::planner);
 }
 
