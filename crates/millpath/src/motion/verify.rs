@@ -319,6 +319,11 @@ pub fn verify_plan(
     Ok(rep)
 }
 
+/// Tangent-difference below which a corner also gets the tangent junction's curvature-step
+/// check (the planner's `limits::NEAR_TANGENT`, restated here: the verifier does not import
+/// the planner's model).
+const NEAR_TANGENT: f64 = 1e-3;
+
 #[allow(clippy::too_many_arguments)]
 fn check_junction(
     a: &Shape,
@@ -366,6 +371,18 @@ fn check_junction(
             );
         }
         return;
+    }
+    // A near-tangent corner (G-code rounding tilts tangent junctions by up to ~1e-3 rad)
+    // keeps the curvature step of the tangent case: a blend of so small a corner does not
+    // remove the arc's curvature.
+    if du.length() <= NEAR_TANGENT {
+        let dk = eb[2] - ea[2];
+        for (i, d) in dk.to_array().iter().enumerate() {
+            let jm = machine.axes[i].max_jerk;
+            if jm.is_finite() {
+                bad(v * v * d.abs(), jm * tipo);
+            }
+        }
     }
     let tolerance = match a.m.corner {
         Corner::Machine => machine.path_tolerance,
