@@ -243,3 +243,65 @@ fn contour_lengths_of_1e300_are_refused() {
         );
     }
 }
+
+/// The `contour` fuzzer (600 s run, session 3; `fuzz/corpus-min/contour/regression-timeout-
+/// cusp-biarcs-*`): a four-point curve through a repeated point (a cusp) contoured on the
+/// line with biarcs took over a minute (ASan: > 20 s, a timeout): near the cusp the biarcs
+/// shrank without end, ~10⁶ deviation evaluations. Fixed in `curve::biarc::fit`: after
+/// `MAX_DEV_EVALUATIONS` the rest of the stretch is cut in chords within the tolerance.
+#[test]
+fn contour_biarcs_through_a_cusp_finish() {
+    use millpath::curve::{self, CurveKind, LabeledPoint};
+    use millpath::strategy::contour::{self, ContourOptions, Side};
+    let pts = [
+        (-8.0302257886446, -60.24298466468299),
+        (-48.7718128166808, -60.24176609714611),
+        (-8.0302257886446, -60.24298466468299),
+        (-8.037537193865873, -60.24298466468299),
+    ];
+    let group: Vec<LabeledPoint> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, &(x, y))| LabeledPoint {
+            p: millpath::Point::new(x, y),
+            origin: format!("point {i}"),
+        })
+        .collect();
+    let Ok(c) = curve::build(std::slice::from_ref(&group), CurveKind::FourPoint, "fuzz") else {
+        return;
+    };
+    let opt = ContourOptions {
+        tool: millpath::Tool {
+            diameter: 12.988927335640138,
+            flutes: 2,
+            flute_length: 24.01007095445182,
+            number: 1,
+        },
+        tolerance: 0.15452526985580226,
+        rounding: 7.071067811865475e-5,
+        side: Side::On,
+        top_z: -0.1561760891126882,
+        depth: 3.3226367589837493,
+        step_down: 1.0117189288166628,
+        finish_allowance: 0.0,
+        safe_height: 1.0,
+        clearance_height: 0.5585946440833143,
+        feed: 26.07460135805295,
+        plunge_feed: 1.0,
+        lead_radius: 0.0,
+        rapid_speed: 50.13275349050126,
+        arcs: true,
+    };
+    let res = contour::contour(&c, &opt).expect("contour");
+    // Four layers of a short closed curve: thousands of moves at most, not ~10⁶.
+    assert!(
+        res.toolpath.moves.len() < 20_000,
+        "{} moves",
+        res.toolpath.moves.len()
+    );
+    assert!(
+        res.report.max_deviation_mm <= opt.tolerance,
+        "deviation {}",
+        res.report.max_deviation_mm
+    );
+}

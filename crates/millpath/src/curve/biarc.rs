@@ -171,6 +171,16 @@ impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
     fn fit(&self, s0: f64, s1: f64) -> Option<[ArcSeg; 2]> {
         biarc(self.pt(s0), self.tan(s0), self.pt(s1), self.tan(s1), s0, s1)
     }
+    /// Largest distance of 65 samples of `[s0, s1]` from the chord between its ends.
+    fn chord_dev(&self, s0: f64, s1: f64) -> f64 {
+        let (a, b) = (self.pt(s0), self.pt(s1));
+        (1..64)
+            .map(|j| {
+                let q = self.pt(s0 + (s1 - s0) * f64::from(j) / 64.0);
+                super::flatten::dist_to_segment(q, a, b)
+            })
+            .fold(0.0, f64::max)
+    }
     fn dev(&self, s0: f64, s1: f64) -> f64 {
         let Some(arcs) = self.fit(s0, s1) else {
             return f64::INFINITY;
@@ -218,6 +228,9 @@ impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
     }
 }
 
+/// Deviation evaluations [`fit`] spends on one stretch before it cuts the rest in chords.
+pub const MAX_DEV_EVALUATIONS: usize = 20_000;
+
 /// Fits biarcs within `tol` to the smooth stretch `[s0, s1]` (unwrapped global parameters,
 /// no corner strictly inside) of `c`.
 pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<ArcSeg> {
@@ -232,8 +245,32 @@ pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<Ar
     let mut s = s0;
     let mut h = (s1 - s0).min(0.05);
     let eps = 1e-7;
+    // Deviation evaluations allowed per stretch before the rest is cut in chords: near a cusp
+    // biarcs shrink without end (a `contour` fuzzer timeout spent a minute on ~10⁶ of them);
+    // a normal stretch needs a few hundred.
+    let budget = std::cell::Cell::new(MAX_DEV_EVALUATIONS);
     while s < s1 - 1e-12 {
-        let ok = |t: f64| sm.dev(s, t) <= tol;
+        if budget.get() == 0 {
+            // Chords within `tol` for the rest: the longest found by halving from `s1`.
+            let mut t = s1;
+            while t - s > eps && sm.chord_dev(s, t) > tol {
+                t = s + 0.5 * (t - s);
+            }
+            let t = t.max((s + eps).min(s1));
+            out.push(ArcSeg {
+                start: sm.pt(s),
+                end: sm.pt(t),
+                center: None,
+                ccw: true,
+                s_end: t,
+            });
+            s = t;
+            continue;
+        }
+        let ok = |t: f64| {
+            budget.set(budget.get().saturating_sub(1));
+            sm.dev(s, t) <= tol
+        };
         let mut lo;
         let mut up;
         let first = (s + h).min(s1);
@@ -262,8 +299,15 @@ pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<Ar
                 up = t;
             }
             if lo <= s {
-                // Cannot fit even a tiny biarc: fall back to a chord.
-                let t = (s + eps).min(s1);
+                // Cannot fit even a tiny biarc (a cusp, a vanishing tangent): fall back to
+                // the longest chord within `tol` found by halving from `first` (a chord of
+                // `eps` at a time took minutes along a cusped stretch: a `contour` fuzzer
+                // timeout), at least `eps`.
+                let mut t = first;
+                while t - s > eps && sm.chord_dev(s, t) > tol {
+                    t = s + 0.5 * (t - s);
+                }
+                let t = t.max((s + eps).min(s1));
                 out.push(ArcSeg {
                     start: sm.pt(s),
                     end: sm.pt(t),

@@ -108,6 +108,13 @@ pub struct Machine {
     pub curvature_jerk_share: f64,
 }
 
+/// The largest velocity (axis, rapid or feed) a machine may have: 1 km/s, in mm/s.
+pub const MAX_VELOCITY: f64 = 1e6;
+/// The largest axis acceleration: 1e9 mm/s² (100 000 g).
+pub const MAX_ACCELERATION: f64 = 1e9;
+/// The largest finite axis jerk, mm/s³ (jerk may also be unlimited).
+pub const MAX_JERK: f64 = 1e13;
+
 impl Machine {
     /// The names of the built-in presets.
     pub const PRESET_NAMES: [&'static str; 3] = ["hsm", "linuxcnc-sim", "router"];
@@ -182,39 +189,61 @@ impl Machine {
     }
 
     /// Checks every value; `origin` names where the machine came from.
+    ///
+    /// Limits are bounded above ([`MAX_VELOCITY`], [`MAX_ACCELERATION`], [`MAX_JERK`], an
+    /// interpolation cycle of at most 1 s, a path tolerance within ±1e6 mm): far beyond any
+    /// machine, and small enough that the planner's squares and cubes of them stay finite (a
+    /// machine with every limit at 1e300 planned a move whose samples ended 43 mm from its
+    /// end point; found by the `planner` fuzzer).
     pub fn validate(&self, origin: &str) -> Result<(), InputError> {
-        let pos = |what: String, v: f64| -> Result<(), InputError> {
-            if v.is_finite() && v > 0.0 {
+        let pos = |what: String, v: f64, max: f64, unit: &str| -> Result<(), InputError> {
+            if v.is_finite() && v > 0.0 && v <= max {
                 Ok(())
             } else {
                 Err(InputError::new(what, v)
                     .at(origin)
-                    .expected("a finite number > 0"))
+                    .expected(format!("a finite number > 0 and at most {max:e} {unit}")))
             }
         };
         for (axis, name) in self.axes.iter().zip(["x", "y", "z"]) {
-            pos(format!("axes.{name}.max_velocity"), axis.max_velocity)?;
+            pos(
+                format!("axes.{name}.max_velocity"),
+                axis.max_velocity,
+                MAX_VELOCITY,
+                "mm/s",
+            )?;
             pos(
                 format!("axes.{name}.max_acceleration"),
                 axis.max_acceleration,
+                MAX_ACCELERATION,
+                "mm/s²",
             )?;
-            if axis.max_jerk.is_nan() || axis.max_jerk <= 0.0 {
+            if axis.max_jerk.is_nan()
+                || axis.max_jerk <= 0.0
+                || (axis.max_jerk.is_finite() && axis.max_jerk > MAX_JERK)
+            {
                 return Err(
                     InputError::new(format!("axes.{name}.max_jerk"), axis.max_jerk)
                         .at(origin)
-                        .expected("a finite number > 0 or \"unlimited\""),
+                        .expected(format!(
+                            "a finite number > 0 and at most {MAX_JERK:e} mm/s³, or \"unlimited\""
+                        )),
                 );
             }
         }
         for (r, name) in self.rapid.iter().zip(["x", "y", "z"]) {
-            pos(format!("axes.{name}.rapid"), *r)?;
+            pos(format!("axes.{name}.rapid"), *r, MAX_VELOCITY, "mm/s")?;
         }
-        pos("max_feed".into(), self.max_feed)?;
-        pos("ipo_cycle".into(), self.ipo_cycle)?;
-        if !(self.path_tolerance.is_finite() && self.path_tolerance >= 0.0) {
+        pos("max_feed".into(), self.max_feed, MAX_VELOCITY, "mm/s")?;
+        pos("ipo_cycle".into(), self.ipo_cycle, 1.0, "s")?;
+        let max_tol = crate::geom::MAX_COORDINATE_MM;
+        if !(self.path_tolerance.is_finite()
+            && self.path_tolerance >= 0.0
+            && self.path_tolerance <= max_tol)
+        {
             return Err(InputError::new("path_tolerance", self.path_tolerance)
                 .at(origin)
-                .expected("a finite number >= 0"));
+                .expected(format!("a finite number >= 0 and at most {max_tol:e} mm")));
         }
         for (what, v) in [
             ("curvature_accel_share", self.curvature_accel_share),
@@ -334,6 +363,34 @@ impl Machine {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The `planner` fuzzer (session 3): a machine with every limit at 1e300 planned a move
+    /// whose samples ended 43 mm from its end point (squares of the limits overflow). Limits
+    /// beyond the documented maxima are refused, naming the key.
+    #[test]
+    fn limits_beyond_the_maxima_are_refused() {
+        let base = Machine::preset("hsm").unwrap();
+        let mut m = base.clone();
+        m.axes[1].max_velocity = 1e300;
+        let e = m.validate("m.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("axes.y.max_velocity") && e.contains("1e6"),
+            "{e}"
+        );
+        let mut m = base.clone();
+        m.axes[2].max_jerk = 1e300;
+        let e = m.validate("m.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("axes.z.max_jerk") && e.contains("unlimited"),
+            "{e}"
+        );
+        let mut m = base.clone();
+        m.axes[2].max_jerk = f64::INFINITY;
+        m.validate("m.toml").unwrap();
+        let mut m = base;
+        m.path_tolerance = 1e300;
+        assert!(m.validate("m.toml").is_err());
+    }
 
     #[test]
     fn presets_are_valid_and_named() {
