@@ -483,10 +483,9 @@ pub fn planner(data: &[u8]) {
 }
 
 /// Whether the `planner` target fails on limit violations the verifier finds
-/// (`FUZZ_STRICT_VERIFY` set). Off by default: the first runs found plans that violate their
-/// machine's limits (kept in `fuzz/regressions/planner-limits/`, replayed strictly by an
-/// ignored test in `hostile_corpus.rs` until the planner is fixed), and a target that stops
-/// at each of them cannot look for panics.
+/// (`FUZZ_STRICT_VERIFY` set, or [`STRICT_VERIFY`] from a test). The corpus replay in
+/// `hostile_corpus.rs` is strict; fuzz runs should set `FUZZ_STRICT_VERIFY=1` (the session-3
+/// runs did). Off without it so that a run can look for panics alone.
 pub fn strict_verify() -> bool {
     STRICT_VERIFY.load(std::sync::atomic::Ordering::Relaxed)
         || std::env::var_os("FUZZ_STRICT_VERIFY").is_some()
