@@ -48,15 +48,15 @@ fn aerospace_pocket_all_strategies_verify() {
 /// exceeds the stepover; with the fronts morph it never exceeds it along the sides and is at
 /// most √2 times it at the boundary's right-angle corners (as for contour-parallel offsets).
 /// Either way the share of path above the nominal engagement is no larger than offset's, and
-/// the fronts spiral is shorter and faster than the harmonic one.
+/// the fronts spiral is shorter and faster than the harmonic one, and than zigzag and offset.
 #[test]
 fn spiral_spacing_and_engagement_share() {
     use millpath::strategy::pocket::spiral::SpiralMorph as Morph;
     let shape = samples::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
     let base = PocketOptions {
-        depth: 6.0,
-        step_down: 6.0,
+        depth: 6.25,
+        step_down: 6.25,
         ..PocketOptions::default()
     };
     let s = 0.4 * 12.7;
@@ -95,6 +95,24 @@ fn spiral_spacing_and_engagement_share() {
     }
     assert!(times[1].0 < 0.85 * times[0].0, "{times:?}");
     assert!(times[1].1 < times[0].1, "{times:?}");
+    // The target on this pocket (one level here; four levels in BENCHMARKS.md):
+    // the default spiral at most 0.84 × zigzag's cycle time and below offset's (measured:
+    // 17.85 s against 21.63 s and 19.05 s at 6.25 mm). The feeds are modulated by the
+    // engagement the stock simulation measures, so this runs at the CLI's raster (0.05 mm):
+    // on the coarse one zigzag's moves read a little less engagement and it runs 2% faster.
+    let sim = SimOptions::default();
+    let t = |kind| {
+        let r = pocket::generate(kind, &shape, &tool, &base, &sim).unwrap();
+        assert!(r.verification.problems().is_empty(), "{kind:?}");
+        pocket::cycle_time(&r.toolpath).unwrap()
+    };
+    let (t_sp, t_zig, t_off) = (
+        t(StrategyKind::Spiral),
+        t(StrategyKind::Zigzag),
+        t(StrategyKind::Offset),
+    );
+    assert!(t_sp <= 0.84 * t_zig, "spiral {t_sp} zigzag {t_zig}");
+    assert!(t_sp < t_off, "spiral {t_sp} offset {t_off}");
 }
 
 /// Non-convex, non-star-shaped pockets: the spiral still verifies.
