@@ -17,7 +17,7 @@
 //! a grid); only the start direction of the central spiral is taken from the pocket's principal
 //! axis, so that turning the pocket turns the path.
 
-use super::super::chain::{segs_from_points, segs_from_vertices};
+use super::super::chain::segs_from_vertices;
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::shape::{closed_chain, restart_near, reversed};
 use super::fronts::{FrontOptions, capsule, circle, fronts};
@@ -54,6 +54,8 @@ pub struct FrontSpiral<'a> {
     /// The ridge segment, when the central spiral is a capsule spiral about it
     /// ([`super::fronts::ridge_segment`]); `None`: a circular spiral about `c`.
     pub ridge: Option<(Point, Point)>,
+    /// Output the sampled laps as tangent-continuous arcs ([`super::ARC_TOLERANCE`]).
+    pub arcs: bool,
 }
 
 impl FrontSpiral<'_> {
@@ -195,7 +197,7 @@ impl FrontSpiral<'_> {
             let first = last.at(0).pos();
             pts.push(Point::new(first.x, first.y));
             stats.morph_laps += 1;
-            let mut path = segs_from_points(&pts);
+            let mut path = super::path_from_points(&pts, self.arcs);
             path.extend(segs_from_vertices(&closed_chain(&last)));
             last_loop = Some(path);
             break;

@@ -101,6 +101,20 @@ use std::f64::consts::TAU;
 
 /// Inward margin of the spiral's last loop, mm (see the module docs).
 pub const LAST_LOOP_MARGIN: f64 = 0.005;
+/// With `--arcs`: the largest distance between the fitted arcs and the smooth curve through
+/// the spiral's samples, mm. Below [`LAST_LOOP_MARGIN`], so that the last lap's arcs stay
+/// inside the boundary offset where the lap runs onto it.
+pub const ARC_TOLERANCE: f64 = 0.004;
+
+/// The spiral's sampled path as moves: G1 chords, or with `arcs` tangent-continuous biarcs
+/// within [`ARC_TOLERANCE`].
+fn path_from_points(pts: &[Point], arcs: bool) -> Vec<Seg> {
+    if arcs {
+        super::chain::fit_arcs(pts, ARC_TOLERANCE)
+    } else {
+        segs_from_points(pts)
+    }
+}
 /// Most restarts of the harmonic field from an intermediate lap.
 const MAX_RESTARTS: usize = 20;
 /// Most laps the morph may take.
@@ -247,6 +261,7 @@ fn plan_fronts(
             ccw: opts.direction == Direction::Climb,
             start_angle,
             ridge,
+            arcs: opts.arcs,
         };
         if let Some((plan, stats)) = spiral.plan() {
             let len: f64 = plan
@@ -455,7 +470,7 @@ fn plan_in_frame(
             stats.max_loop_distance = m.max_distance;
             stats.distance_field = attempt == 1;
             pts.extend(m.points);
-            let mut path = segs_from_points(&pts);
+            let mut path = path_from_points(&pts, opts.arcs);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {
