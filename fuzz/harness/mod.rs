@@ -264,8 +264,15 @@ pub fn pocket(data: &[u8]) {
         } else {
             pocket::spiral::SpiralMorph::Harmonic
         },
+        arcs: false,
         finish: b.flag(),
         modulate_feed: false,
+    };
+    // `--arcs` on about half the inputs, derived from a drawn value so that the committed
+    // corpus keeps its meaning (no extra byte drawn).
+    let opts = PocketOptions {
+        arcs: opts.min_radius > 1.05,
+        ..opts
     };
     trace(&(&kind, &outer, &island, &tool, &opts));
     let Ok(outer) = Outline::from_points(&outer, "fuzz outer") else {

@@ -134,3 +134,32 @@ fn estimate_writes_a_self_contained_html_report() {
         .count();
     assert_eq!(external, 0, "the report must not reference the network");
 }
+
+/// `sweep` honours the wall flags of `pocket`: with a 10° draft every level's section is
+/// smaller, so both strategies take less time (it used to ignore the flag).
+#[test]
+fn sweep_honours_the_draft() {
+    let dir = tempfile::tempdir().unwrap();
+    let zigzag = |extra: &[&str]| -> f64 {
+        let mut args = vec![
+            "sweep",
+            "sample:aerospace",
+            "--ratios",
+            "0.5",
+            "--feeds",
+            "600",
+            "--depth",
+            "6",
+            "--step-down",
+            "3",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let o = millpath(&args, dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["zigzag_s"][0].as_f64().unwrap()
+    };
+    let (plain, drafted) = (zigzag(&[]), zigzag(&["--draft", "10"]));
+    assert!(drafted < plain - 0.1, "{drafted} vs {plain}");
+}

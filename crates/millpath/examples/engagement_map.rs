@@ -26,7 +26,13 @@ fn main() {
         None => samples::aerospace_pocket(),
     };
     let tool = Tool::flat(12.7).expect("tool");
-    let opts = PocketOptions::default();
+    let mut opts = PocketOptions::default();
+    if let Some(c) = std::env::var("MILLPATH_C")
+        .ok()
+        .and_then(|c| c.parse().ok())
+    {
+        opts.transition = c;
+    }
     let tp = toolpath(kind, &shape, &tool, &opts).expect("toolpath");
     let s = opts.stepover_mm(&tool);
     let nominal = nominal_engagement(s, tool.radius());
@@ -68,6 +74,15 @@ fn main() {
         );
     }
     svg.push_str("</g></svg>");
+    let b = shape.outer.bounds();
+    let vb = format!(
+        "{:.3} {:.3} {:.3} {:.3}",
+        b.min.x - 2.0,
+        -b.max.y - 2.0,
+        b.width() + 4.0,
+        b.height() + 4.0
+    );
+    let svg = svg.replace("{vb}", &vb);
     std::fs::write(&out, svg).expect("write");
     println!(
         "level 1: {:.0} mm cut, {:.0} mm above nominal ({:.1}%), whole: {:.1}%",

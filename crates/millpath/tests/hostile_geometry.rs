@@ -181,8 +181,15 @@ fn pocket_toolpaths_survive_arbitrary_polygons_and_options() {
             transition: mostly_sane(&mut r, 0.0, 1.0, 0.05),
             min_radius: mostly_sane(&mut r, 0.1, 2.0, 0.05),
             morph: Default::default(),
+            arcs: false,
             finish: r.random_bool(0.3),
             modulate_feed: false,
+        };
+        // Half the cases with `--arcs`, derived from a drawn value so that the seeded
+        // sequence (and the cases the other fields get) stays as it was.
+        let opts = PocketOptions {
+            arcs: opts.min_radius > 1.05,
+            ..opts
         };
         let done = h.run(&(&pts, &island, &t, kind, &opts), || {
             let Ok(outer) = Outline::from_points(&pts, "fuzz outer") else {

@@ -113,6 +113,7 @@ fn pocket_ramp_on_a_sliver_cut_is_bounded() {
         transition: 0.7358653342432562,
         min_radius: 0.8251498205924716,
         morph: Default::default(),
+        arcs: false,
         finish: false,
         modulate_feed: false,
     };

@@ -96,17 +96,17 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 5, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
-    fn convex_pockets_verify(r in 10.0f64..16.0, n in 5usize..8, d in 3.0f64..7.0, so in 0.2f64..1.0) {
+    fn convex_pockets_verify(r in 10.0f64..16.0, n in 5usize..8, d in 3.0f64..7.0, so in 0.2f64..1.0, arcs: bool) {
         let Some(o) = star(&vec![r; n], 2.0) else { return Ok(()) };
         let tool = Tool::flat(d).unwrap();
-        check(&ALL, &PocketShape::simple(o), &tool, &one_level(so))?;
+        check(&ALL, &PocketShape::simple(o), &tool, &PocketOptions { arcs, ..one_level(so) })?;
     }
 
     #[test]
-    fn non_convex_pockets_verify(radii in prop::collection::vec(9.0f64..17.0, 6..9), d in 2.5f64..5.0, so in 0.2f64..1.0) {
+    fn non_convex_pockets_verify(radii in prop::collection::vec(9.0f64..17.0, 6..9), d in 2.5f64..5.0, so in 0.2f64..1.0, arcs: bool) {
         let Some(o) = star(&radii, 1.5) else { return Ok(()) };
         let tool = Tool::flat(d).unwrap();
-        check(&ALL, &PocketShape::simple(o), &tool, &one_level(so))?;
+        check(&ALL, &PocketShape::simple(o), &tool, &PocketOptions { arcs, ..one_level(so) })?;
     }
 
     #[test]

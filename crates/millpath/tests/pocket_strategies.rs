@@ -48,15 +48,15 @@ fn aerospace_pocket_all_strategies_verify() {
 /// exceeds the stepover; with the fronts morph it never exceeds it along the sides and is at
 /// most √2 times it at the boundary's right-angle corners (as for contour-parallel offsets).
 /// Either way the share of path above the nominal engagement is no larger than offset's, and
-/// the fronts spiral is shorter and faster than the harmonic one.
+/// the fronts spiral is shorter and faster than the harmonic one, and than zigzag and offset.
 #[test]
 fn spiral_spacing_and_engagement_share() {
     use millpath::strategy::pocket::spiral::SpiralMorph as Morph;
     let shape = samples::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
     let base = PocketOptions {
-        depth: 6.0,
-        step_down: 6.0,
+        depth: 6.25,
+        step_down: 6.25,
         ..PocketOptions::default()
     };
     let s = 0.4 * 12.7;
@@ -95,6 +95,24 @@ fn spiral_spacing_and_engagement_share() {
     }
     assert!(times[1].0 < 0.85 * times[0].0, "{times:?}");
     assert!(times[1].1 < times[0].1, "{times:?}");
+    // The target on this pocket (one level here; four levels in BENCHMARKS.md):
+    // the default spiral at most 0.84 × zigzag's cycle time and below offset's (measured:
+    // 17.85 s against 21.63 s and 19.05 s at 6.25 mm). The feeds are modulated by the
+    // engagement the stock simulation measures, so this runs at the CLI's raster (0.05 mm):
+    // on the coarse one zigzag's moves read a little less engagement and it runs 2% faster.
+    let sim = SimOptions::default();
+    let t = |kind| {
+        let r = pocket::generate(kind, &shape, &tool, &base, &sim).unwrap();
+        assert!(r.verification.problems().is_empty(), "{kind:?}");
+        pocket::cycle_time(&r.toolpath).unwrap()
+    };
+    let (t_sp, t_zig, t_off) = (
+        t(StrategyKind::Spiral),
+        t(StrategyKind::Zigzag),
+        t(StrategyKind::Offset),
+    );
+    assert!(t_sp <= 0.84 * t_zig, "spiral {t_sp} zigzag {t_zig}");
+    assert!(t_sp < t_off, "spiral {t_sp} offset {t_off}");
 }
 
 /// Non-convex, non-star-shaped pockets: the spiral still verifies.
@@ -245,4 +263,79 @@ fn spiral_invariance_under_reversal_rotation_translation() {
         assert!((l - l0).abs() <= 1e-3 * l0, "{name}: length {l} vs {l0}");
         assert!((t - t0).abs() <= 5e-3 * t0, "{name}: time {t} vs {t0}");
     }
+}
+
+/// `--arcs`: the spiral's laps as tangent-continuous arcs. Where the boundary offset is
+/// smooth (corner radius above the tool's), consecutive cutting moves of the level meet at a
+/// tangent angle of at most 1° from the end of the entry helix to the end of the last loop,
+/// the toolpath verifies, and it has far fewer blocks than with G1 chords.
+#[test]
+fn spiral_arcs_are_tangent_continuous() {
+    use millpath::geom::{Point, Vec2};
+    use millpath::toolpath::{Move, MoveKind};
+    let shape =
+        pocket::PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 120.0, 80.0, 10.0));
+    let tool = Tool::flat(12.7).unwrap();
+    let base = PocketOptions {
+        depth: 5.0,
+        step_down: 5.0,
+        ..PocketOptions::default()
+    };
+    let arcs = PocketOptions {
+        arcs: true,
+        ..base.clone()
+    };
+    let r = pocket::generate(StrategyKind::Spiral, &shape, &tool, &arcs, &coarse()).unwrap();
+    assert!(
+        r.verification.problems().is_empty(),
+        "{:?}",
+        r.verification.problems()
+    );
+    let chords = pocket::generate(StrategyKind::Spiral, &shape, &tool, &base, &coarse()).unwrap();
+    assert!(
+        5 * r.toolpath.moves.len() < chords.toolpath.moves.len(),
+        "{} {}",
+        r.toolpath.moves.len(),
+        chords.toolpath.moves.len()
+    );
+    // Unit tangents at the start and end of a planar move.
+    let tangents = |from: Point, m: &Move| -> (Vec2, Vec2) {
+        let (a, b) = (from, m.to.xy());
+        match m.kind {
+            MoveKind::Arc { center, ccw, .. } => {
+                let c = center.xy();
+                let t = |p: Point| {
+                    let v = (p - c).perp();
+                    (if ccw { v } else { -v }).normalize().unwrap()
+                };
+                (t(a), t(b))
+            }
+            _ => {
+                let d = (b - a).normalize().unwrap();
+                (d, d)
+            }
+        }
+    };
+    let z = r.toolpath.levels[0].z;
+    let mut prev: Option<Vec2> = None;
+    let mut from = r.toolpath.start;
+    let mut worst: f64 = 0.0;
+    let mut joints = 0;
+    for m in &r.toolpath.moves {
+        let start = from;
+        from = m.to;
+        let planar = (start.z - z).abs() < 1e-9 && (m.to.z - z).abs() < 1e-9;
+        if !planar || matches!(m.kind, MoveKind::Rapid) || start.xy().distance(m.to.xy()) < 1e-9 {
+            prev = None;
+            continue;
+        }
+        let (t0, t1) = tangents(start.xy(), m);
+        if let Some(p) = prev {
+            worst = worst.max(p.cross(t0).atan2(p.dot(t0)).abs().to_degrees());
+            joints += 1;
+        }
+        prev = Some(t1);
+    }
+    assert!(joints > 100, "{joints}");
+    assert!(worst <= 1.0, "largest tangent angle {worst}°");
 }

@@ -98,6 +98,10 @@ pub struct CommonArgs {
     /// corners too, more laps)
     #[arg(long, default_value = "fronts")]
     pub morph: String,
+    /// Spiral laps as tangent-continuous arcs (G2/G3 biarcs within 0.004 mm of the smooth
+    /// curve through the samples) instead of G1 chords
+    #[arg(long)]
+    pub arcs: bool,
     /// Finishing pass along the walls.
     #[arg(long)]
     pub finish: bool,
@@ -203,6 +207,7 @@ impl CommonArgs {
                         .into());
                 }
             },
+            arcs: self.arcs,
             finish: self.finish,
             modulate_feed: !self.no_feed_modulation,
         };

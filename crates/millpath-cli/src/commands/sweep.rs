@@ -207,7 +207,10 @@ pub fn run(args: &Args) -> Result<(), Error> {
         "finite feeds > 0 in/min",
     )?;
     let loops = load_outline(&args.outline)?;
-    let shape = PocketShape::new(loops.outer, loops.islands, &args.outline)?;
+    // `--draft` / `--bottom-outline` give each level its own section, as in `pocket`.
+    let shape =
+        args.common
+            .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;
     let machine = super::load_machine(&args.common.machine)?;
     let table = sweep(
         &shape,

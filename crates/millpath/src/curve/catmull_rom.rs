@@ -12,6 +12,7 @@
 //! G1 in the piece-uniform parameter millpath stores).
 
 use super::Cubic;
+use super::flatten::PlanarCurve;
 use crate::geom::{Point, Vec2};
 
 /// The closed centripetal Catmull-Rom curve through `pts` (at least 3 distinct consecutive
@@ -33,9 +34,82 @@ pub fn closed(pts: &[Point]) -> Vec<Cubic> {
         .collect()
 }
 
+/// The open centripetal Catmull-Rom curve through `pts` (consecutive points closer than
+/// 1e-9 mm dropped), one piece per gap; the end tangents are one-sided (the chord to the
+/// neighbour). Fewer than 2 distinct points: no pieces.
+pub fn open(pts: &[Point]) -> Vec<Cubic> {
+    let mut p: Vec<Point> = Vec::with_capacity(pts.len());
+    for q in pts {
+        if p.last().is_none_or(|l| l.distance(*q) > 1e-9) {
+            p.push(*q);
+        }
+    }
+    let n = p.len();
+    if n < 2 {
+        return Vec::new();
+    }
+    let dt: Vec<f64> = p.windows(2).map(|w| w[1].distance(w[0]).sqrt()).collect();
+    let tangent = |i: usize| -> Vec2 {
+        if i == 0 {
+            (p[1] - p[0]) / dt[0]
+        } else if i == n - 1 {
+            (p[n - 1] - p[n - 2]) / dt[n - 2]
+        } else {
+            let (d0, d1) = (dt[i - 1], dt[i]);
+            (p[i] - p[i - 1]) / d0 - (p[i + 1] - p[i - 1]) / (d0 + d1) + (p[i + 1] - p[i]) / d1
+        }
+    };
+    let m: Vec<Vec2> = (0..n).map(tangent).collect();
+    (0..n - 1)
+        .map(|i| Cubic::from_hermite(p[i], m[i] * dt[i], p[i + 1], m[i + 1] * dt[i]))
+        .collect()
+}
+
+/// An open chain of cubic pieces as a [`PlanarCurve`] (no corners: the caller fits it
+/// over `[0, piece_count]`).
+#[derive(Debug, Clone)]
+pub struct OpenChain(pub Vec<Cubic>);
+
+impl PlanarCurve for OpenChain {
+    fn piece_count(&self) -> usize {
+        self.0.len()
+    }
+    fn point_at(&self, i: usize, u: f64) -> Point {
+        self.0.get(i).map_or(Point::ORIGIN, |c| c.eval(u))
+    }
+    fn critical(&self, i: usize, dir: Vec2, u0: f64, u1: f64, out: &mut Vec<f64>) {
+        if let Some(c) = self.0.get(i) {
+            c.parallel_roots(dir, u0, u1, out);
+        }
+    }
+    fn breaks(&self) -> Vec<usize> {
+        Vec::new()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn open_chain_passes_through_points_tangent_continuously() {
+        let pts: Vec<Point> = (0..20)
+            .map(|i| {
+                let a = 0.3 * f64::from(i);
+                Point::new(10.0 * a.cos(), 10.0 * a.sin() + 0.1 * f64::from(i))
+            })
+            .collect();
+        let c = open(&pts);
+        assert_eq!(c.len(), 19);
+        for i in 0..19 {
+            assert!(c[i].p0.distance(pts[i]) < 1e-12 && c[i].p3.distance(pts[i + 1]) < 1e-12);
+        }
+        for w in c.windows(2) {
+            let (a, b) = (w[0].d1(1.0), w[1].d1(0.0));
+            assert!(a.cross(b).abs() < 1e-9 * a.length() * b.length() && a.dot(b) > 0.0);
+        }
+        assert!(open(&pts[..1]).is_empty());
+    }
 
     #[test]
     fn passes_through_points_with_continuous_tangent_direction() {

@@ -153,6 +153,36 @@ pub fn segs_from_points(points: &[Point]) -> Vec<Seg> {
         .collect()
 }
 
+/// The path through `points` as tangent-continuous arcs (G2/G3): biarcs fitted within `tol`
+/// to the open centripetal Catmull-Rom curve through the points ([`crate::curve::biarc`]).
+/// Consecutive biarcs share their end tangents (the curve's), so the moves meet at tangent
+/// angles of the fit's order (far below 1°); the curve itself is within about `h³κ'`
+/// of the polyline for samples `h` apart on a smooth path (0.5 mm samples: microns).
+pub fn fit_arcs(points: &[Point], tol: f64) -> Vec<Seg> {
+    use crate::curve::biarc::fit;
+    use crate::curve::catmull_rom::{OpenChain, open};
+    let chain = OpenChain(open(points));
+    let n = chain.0.len();
+    if n == 0 {
+        return segs_from_points(points);
+    }
+    fit(&chain, 0.0, n as f64, tol)
+        .into_iter()
+        .filter(|a| a.start.distance(a.end) > 1e-9)
+        .map(|a| {
+            // Nearly straight arcs (centres far away) become lines when their sagitta
+            // `chord·|bulge|/2` is below a tenth of the tolerance: the tangent then turns
+            // by about `8·sagitta/chord` at most (0.02° for a 10 mm chord).
+            let bulge = (0.25 * a.sweep()).tan();
+            if a.center.is_none() || 0.5 * a.start.distance(a.end) * bulge.abs() < 0.1 * tol {
+                Seg::line(a.start, a.end)
+            } else {
+                Seg::from_bulge(a.start, a.end, bulge)
+            }
+        })
+        .collect()
+}
+
 /// Total length of a path in mm.
 pub fn path_length(path: &[Seg]) -> f64 {
     path.iter().map(Seg::length).sum()

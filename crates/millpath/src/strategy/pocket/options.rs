@@ -136,6 +136,10 @@ pub struct PocketOptions {
     pub min_radius: f64,
     /// How the spiral morphs from its central circle into the boundary offset.
     pub morph: super::spiral::SpiralMorph,
+    /// Output the spiral's laps as tangent-continuous arcs (G2/G3, biarcs within
+    /// [`super::spiral::ARC_TOLERANCE`]) instead of G1 chords (`--arcs`). The other strategies'
+    /// paths are lines and exact arcs already.
+    pub arcs: bool,
     /// A finishing pass along the walls at the last level (no wall stock).
     pub finish: bool,
     /// Modulate the feed with the engagement measured by the stock simulation.
@@ -164,6 +168,7 @@ impl Default for PocketOptions {
             transition: 0.5,
             min_radius: 1.0,
             morph: super::spiral::SpiralMorph::default(),
+            arcs: false,
             finish: false,
             modulate_feed: true,
         }

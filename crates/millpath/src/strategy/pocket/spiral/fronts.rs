@@ -8,11 +8,16 @@
 //! radius of the central spiral's last loop. For `τ ∈ [0, ρ_B]` let
 //!
 //! ```text
-//! Ω_τ = disc(c, R₀) ∪ { x : D(x) ≥ ρ_B − τ }        (then smoothed, see below)
+//! Ω_τ = K ∪ { x : D(x) ≥ ρ_B − τ }        (then smoothed, see below)
 //! ```
 //!
-//! `Ω_0` is the disc (the set `D ≥ ρ_B` is the medial "ridge", inside the disc when `R₀` covers
-//! it) and `Ω_{ρ_B}` is the whole region inside `B`. The second set is an exact inward offset
+//! where the core `K` is the disc of radius `R₀` about `c` or, when the medial "ridge"
+//! `D ≥ ρ_B` is a straight segment `PQ` ([`ridge_segment`]), the capsule of radius `R₀` about
+//! it ([`capsule`]): the points within `R₀` of `PQ`. On a 3:2 rectangle the disc's later
+//! fronts keep running round the disc across the short sides, where the offsets are still
+//! inside it (laps that cut next to nothing); the capsule's sides are offsets of `B`'s long
+//! sides, and the laps after it are as many as the offsets need. `Ω_0 = K` (the ridge is
+//! inside the core when `R₀` covers it) and `Ω_{ρ_B}` is the whole region inside `B`. The second set is an exact inward offset
 //! of `B` (cavalier_contours keeps the arcs), so the loops `∂Ω_τ` are the contour-parallel
 //! offsets of the `offset` strategy wherever they have left the disc, and the disc where they
 //! have not yet reached it.
@@ -40,6 +45,15 @@
 //! Smoothing moves a loop inward at convex corners and outward at concave kinks by a
 //! fraction of the radius; the spacing is measured after it, loop by loop (below).
 //!
+//! **The last front** is `B` opened with the interior fronts' radius (rounded convex
+//! corners), unless that moves a point of `B` by more than half the spacing bound; `B`
+//! itself is the spiral's last loop. Without it the step from the last rounded front onto
+//! `B`'s sharp right-angle corners is `√2·Δ + (√2 − 1)·ρ_o`, above the bound: a halved
+//! step, that is one whole extra lap.
+//!
+//! **Skipped fronts.** A front within half a step of the previous loop everywhere (the
+//! first fronts, still inside the core) is skipped: its lap would cut next to nothing.
+//!
 //! **Measured steps.** The steps in `τ` are `Δ = ρ_B / n` with `n = ⌈ρ_B / s'⌉`. After each
 //! loop the directed distance from the new loop to the previous one is sampled; above
 //! `√2·s'` (more than a right-angle corner explains) the step is halved, down to `s'/64`,
@@ -53,6 +67,9 @@ use cavalier_contours::polyline::{
 
 /// The largest number of loops the fronts may take.
 const MAX_LOOPS: usize = 2000;
+/// A front that lies within this fraction of a step of the previous loop everywhere is
+/// skipped (it would make a lap that cuts next to nothing: the first fronts inside the core).
+const SKIP_FRACTION: f64 = 0.5;
 
 /// What the fronts need.
 #[derive(Debug, Clone, Copy)]
@@ -86,6 +103,77 @@ pub fn circle(c: Point, r: f64) -> Polyline<f64> {
     pl.add(c.x - r, c.y, 1.0);
     pl.add(c.x + r, c.y, 1.0);
     pl
+}
+
+/// A counter-clockwise capsule (stadium): the points within `r` of the segment `p`–`q`,
+/// starting at the middle of its right-hand side (seen from `p` towards `q`). A circle when
+/// `p = q`.
+pub fn capsule(p: Point, q: Point, r: f64) -> Polyline<f64> {
+    let Some(u) = (q - p).normalize() else {
+        return circle(p, r);
+    };
+    let n = u.perp() * r;
+    let m = p.lerp(q, 0.5);
+    let mut pl = Polyline::with_capacity(5, true);
+    for (v, bulge) in [
+        (m - n, 0.0),
+        (q - n, 1.0),
+        (q + n, 0.0),
+        (p + n, 1.0),
+        (p - n, 0.0),
+    ] {
+        pl.add(v.x, v.y, bulge);
+    }
+    pl
+}
+
+/// The ridge of `b` as a straight segment through `c`, when it is one: the set
+/// `D ≥ 0.99·ρ_B` (`ρ_B = rho`) is a thin sliver around the medial axis's flat top; its
+/// extent along its own principal axis, less the sliver's half-width `0.01·ρ_B` at each end,
+/// is the segment. `None` when that is shorter than `min_len` (the ridge is a point: a
+/// square, a circle) or when some point of it is closer than `r0` to `b` (a curved ridge,
+/// whose chord would leave the region: the capsule of radius `r0` must lie inside `b`).
+/// The direction is signed to agree with `hint` (the pocket's principal direction), so the
+/// path turns with the pocket.
+pub fn ridge_segment(
+    b: &Polyline<f64>,
+    c: Point,
+    rho: f64,
+    r0: f64,
+    min_len: f64,
+    hint: crate::geom::Vec2,
+) -> Option<(Point, Point)> {
+    let sliver = offset(b, 0.99 * rho)?;
+    let pts = super::sample_loop(&sliver, (0.01 * rho).max(1e-3));
+    let m = pts.len().max(1) as f64;
+    let (mx, my) = pts
+        .iter()
+        .fold((0.0, 0.0), |a, p| (a.0 + p.x / m, a.1 + p.y / m));
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    for p in &pts {
+        let (dx, dy) = (p.x - mx, p.y - my);
+        sxx += dx * dx;
+        syy += dy * dy;
+        sxy += dx * dy;
+    }
+    let mut u = crate::geom::Vec2::from_angle(0.5 * (2.0 * sxy).atan2(sxx - syy));
+    if u.dot(hint) < 0.0 {
+        u = -u;
+    }
+    let (lo, hi) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+        let t = (*p - c).dot(u);
+        (a.0.min(t), a.1.max(t))
+    });
+    let (lo, hi) = (lo + 0.01 * rho, hi - 0.01 * rho);
+    if !(hi - lo >= min_len && lo < 0.0 && hi > 0.0) {
+        return None;
+    }
+    let (p, q) = (c + u * lo, c + u * hi);
+    let inside = (0..=32).all(|i| {
+        let x = p.lerp(q, f64::from(i) / 32.0);
+        b.winding_number(v2(x)) != 0 && loop_distance(b, x) >= r0 * (1.0 + 1e-9)
+    });
+    inside.then_some((p, q))
 }
 
 /// The largest counter-clockwise piece of a set of loops.
@@ -235,15 +323,23 @@ pub fn directed_distance(a: &Polyline<f64>, b: &Polyline<f64>, ds: f64) -> f64 {
 /// with measured steps (see the module docs).
 pub fn fronts(
     b: &Polyline<f64>,
-    c: Point,
+    core: &Polyline<f64>,
     rho_b: f64,
-    r0: f64,
     o: &FrontOptions,
 ) -> Option<Fronts> {
-    let disc = circle(c, r0);
+    let disc = core.clone();
     let n = ((rho_b / o.step).ceil() as usize).max(1);
     let delta = rho_b / n as f64;
     let limit = std::f64::consts::SQRT_2 * o.step;
+    // The last front: `B` with its corners rounded like the interior fronts' (`B` itself
+    // when that moves any point of `B` by more than half the spacing bound, e.g. where
+    // opening would drop a narrow part). A step from a rounded front onto `B`'s sharp
+    // corners would be `√2·Δ + (√2 − 1)·ρ_o` long at each right-angle corner, over the bound:
+    // a halved step, a whole extra lap. The spiral's last loop, `B` itself, then clears the
+    // corners (`(√2 − 1)·ρ_o` deep).
+    let b_round = smooth(b, b, o.open_radius, o.close_radius)
+        .filter(|r| directed_distance(b, r, o.sample) <= 0.5 * limit)
+        .unwrap_or_else(|| b.clone());
     let mut loops = vec![disc.clone()];
     let mut max_distance: f64 = 0.0;
     let mut ridge: f64 = 0.0;
@@ -261,7 +357,7 @@ pub fn fronts(
             let t = (tau + h).min(rho_b);
             let last = t >= rho_b - 1e-9 * rho_b;
             let cand = if last {
-                b.clone()
+                b_round.clone()
             } else {
                 let raw = front(b, &disc, rho_b, t)?;
                 let ro = o.open_radius.min(0.9 * t);
@@ -290,6 +386,14 @@ pub fn fronts(
             }
             h *= 0.5;
         };
+        let reached = t_next >= rho_b - 1e-9 * rho_b;
+        if dist < SKIP_FRACTION * o.step && !reached {
+            // The front has hardly left the core (or the previous loop): a lap onto it would
+            // cut next to nothing. Go on to the next front, measured from the same loop.
+            tau = t_next;
+            step = delta;
+            continue;
+        }
         if !(first && ridge > 0.0) {
             max_distance = max_distance.max(dist);
         }
@@ -342,7 +446,7 @@ mod tests {
             close_radius: 5.0,
             sample: 0.5,
         };
-        let f = fronts(&b, c, rho, 25.0, &o).unwrap();
+        let f = fronts(&b, &circle(c, 25.0), rho, &o).unwrap();
         // ⌈43.65 / 4.8⌉ = 10 steps after the circle, and at most one halved step where the
         // ridge's ends first leave the disc (the harmonic morph needs 12 laps after a
         // *larger* circle on this pocket).
@@ -353,6 +457,66 @@ mod tests {
             assert!(d <= std::f64::consts::SQRT_2 * 4.8 + 1e-6, "{d}");
         }
         assert!(f.max_distance <= std::f64::consts::SQRT_2 * 4.8 + 1e-9);
+    }
+
+    #[test]
+    fn ridge_of_a_rectangle_is_its_medial_segment_and_a_square_has_none() {
+        let b = rect(137.3, 87.3);
+        let (c, rho) = ridge_centre(&b).unwrap();
+        let hint = crate::geom::Vec2::new(-1.0, 0.1);
+        let (p, q) = ridge_segment(&b, c, rho, 0.5 * rho, 1.0, hint).unwrap();
+        // Signed to agree with the hint: from x = 93.65 to x = 43.65 on y = 43.65.
+        for (got, want) in [(p, Point::new(93.65, 43.65)), (q, Point::new(43.65, 43.65))] {
+            assert!(got.distance(want) < 1e-6, "{got:?} {want:?}");
+        }
+        let sq = rect(80.0, 80.0);
+        let (c, rho) = ridge_centre(&sq).unwrap();
+        assert!(ridge_segment(&sq, c, rho, 0.5 * rho, 1.0, hint).is_none());
+    }
+
+    #[test]
+    fn capsule_is_the_segments_neighbourhood() {
+        let (p, q, r) = (Point::new(1.0, 2.0), Point::new(31.0, 2.0), 4.0);
+        let cap = capsule(p, q, r);
+        let want = 2.0 * r * 30.0 + std::f64::consts::PI * r * r;
+        assert!((cap.area() - want).abs() < 1e-9, "{}", cap.area());
+        // Starts in the middle of the right-hand side.
+        let v = cap.at(0);
+        assert!((v.x - 16.0).abs() < 1e-12 && (v.y + 2.0).abs() < 1e-12);
+        // Degenerate segment: the circle.
+        let c = capsule(p, p, r);
+        assert!((c.area() - std::f64::consts::PI * r * r).abs() < 1e-9);
+    }
+
+    /// With the capsule core the laps after the core are as many as the offsets need between
+    /// the capsule and `B` (plus one for the corners), spaced within the bound; with the disc
+    /// of the same radius they are more.
+    #[test]
+    fn capsule_core_needs_fewer_fronts_than_the_disc() {
+        let b = rect(137.3, 87.3);
+        let (c, rho) = ridge_centre(&b).unwrap();
+        let o = FrontOptions {
+            step: 4.98,
+            open_radius: 7.1,
+            close_radius: 7.1,
+            sample: 0.5,
+        };
+        let r0 = 0.5 * rho;
+        let (p, q) = ridge_segment(&b, c, rho, r0, 1.0, crate::geom::Vec2::new(1.0, 0.0)).unwrap();
+        let cap = fronts(&b, &capsule(p, q, r0), rho, &o).unwrap();
+        let disc = fronts(&b, &circle(c, r0), rho, &o).unwrap();
+        // ⌈(43.65 − 21.8)/4.98⌉ = 5 along the sides, 6 at the corners (√2 steps).
+        assert!(cap.loops.len() - 1 <= 6, "{}", cap.loops.len());
+        assert!(
+            disc.loops.len() > cap.loops.len(),
+            "{} {}",
+            disc.loops.len(),
+            cap.loops.len()
+        );
+        for w in cap.loops.windows(2) {
+            let d = directed_distance(&w[1], &w[0], 0.5);
+            assert!(d <= std::f64::consts::SQRT_2 * 4.98 + 1e-6, "{d}");
+        }
     }
 
     #[test]

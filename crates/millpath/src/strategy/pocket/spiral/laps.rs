@@ -1,5 +1,12 @@
-//! The spiral on offset fronts: central Archimedean spiral, then one lap from each front to
-//! the next, then the boundary offset once with exact arcs.
+//! The spiral on offset fronts: central spiral, then one lap from each front to the next,
+//! then the boundary offset once with exact arcs.
+//!
+//! The central spiral is the paper's Archimedean spiral about the centre or, when the fronts'
+//! core is a capsule about the ridge segment `PQ` ([`super::fronts`]), a spiral of capsules:
+//! lap `j` blends the capsule of radius `ρ_{j−1}` into that of radius `ρ_j` at equal
+//! arc-length fractions, from the middle of the capsule's right-hand side (on the entry
+//! helix's circle). The radii `ρ_j` are the circular spiral's whole turns, so the caps are
+//! paced like the circle; along the sides the pitch is at most `s'`.
 //!
 //! Lap `k` runs from front `L_k` to front `L_{k+1}`: its point at arc-length fraction `f` of
 //! `L_k` is `p + f·(q − p)`, `q` the point of `L_{k+1}` at the same arc-length fraction, the
@@ -10,10 +17,10 @@
 //! a grid); only the start direction of the central spiral is taken from the pocket's principal
 //! axis, so that turning the pocket turns the path.
 
-use super::super::chain::{segs_from_points, segs_from_vertices};
+use super::super::chain::segs_from_vertices;
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::shape::{closed_chain, restart_near, reversed};
-use super::fronts::{FrontOptions, fronts};
+use super::fronts::{FrontOptions, capsule, circle, fronts};
 use super::{LoopWalker, SpiralStats, blend_lap, fractions, sample_loop};
 use crate::geom::{Point, Vec2};
 use cavalier_contours::polyline::{PlineSource, Polyline};
@@ -44,6 +51,11 @@ pub struct FrontSpiral<'a> {
     pub ccw: bool,
     /// Start direction of the central spiral, rad.
     pub start_angle: f64,
+    /// The ridge segment, when the central spiral is a capsule spiral about it
+    /// ([`super::fronts::ridge_segment`]); `None`: a circular spiral about `c`.
+    pub ridge: Option<(Point, Point)>,
+    /// Output the sampled laps as tangent-continuous arcs ([`super::ARC_TOLERANCE`]).
+    pub arcs: bool,
 }
 
 impl FrontSpiral<'_> {
@@ -55,8 +67,11 @@ impl FrontSpiral<'_> {
             close_radius: self.smooth,
             sample: self.ds,
         };
-        let f = fronts(self.b, self.c, self.rho_b, self.r0, &opts)?;
-        let sign = if self.ccw { 1.0 } else { -1.0 };
+        let core = match self.ridge {
+            Some((p, q)) => capsule(p, q, self.r0),
+            None => circle(self.c, self.r0),
+        };
+        let f = fronts(self.b, &core, self.rho_b, &opts)?;
         let orient = |pl: &Polyline<f64>| if self.ccw { pl.clone() } else { reversed(pl) };
         let mut stats = SpiralStats {
             r0: self.r0,
@@ -65,26 +80,51 @@ impl FrontSpiral<'_> {
             ridge_slot: f.ridge_slot,
             ..SpiralStats::default()
         };
-        let (c, r0, rho_h, ds) = (self.c, self.r0, self.rho_h, self.ds);
+        let (c, rho_h, ds) = (self.c, self.rho_h, self.ds);
         // Central spiral from the helix out to R₀, its pitch set by the engagement (below).
         let mut pts: Vec<Point> = Vec::new();
-        let a0 = self.start_angle;
-        let (turns, radius_at) = central_spiral(rho_h, r0, self.tool_radius, self.sp);
+        let (turns, radius_at) = central_spiral(
+            rho_h,
+            self.r0,
+            self.tool_radius,
+            CENTRAL_DEPTH * self.sp,
+            self.sp,
+        );
         stats.central_turns = turns;
-        if turns > 0 {
-            let total = TAU * turns as f64;
-            let mut th = 0.0;
-            while th < total {
-                let rho = radius_at(th);
-                pts.push(c + Vec2::from_angle(a0 + sign * th) * rho);
-                th += (ds / rho.max(1e-3)).min(0.2);
+        let mut lap = if let Some((p, q)) = self.ridge {
+            // About the ridge segment: laps between capsules of the spiral's radii, blended
+            // at equal arc-length fractions, from the middle of the capsule's right-hand side
+            // (which lies on the entry helix's circle about `c`).
+            stats.capsule = p.distance(q);
+            let cap = |rho: f64| {
+                let raw = capsule(p, q, rho);
+                let start = raw.at(0).pos();
+                restart_near(&orient(&raw), Point::new(start.x, start.y))
+            };
+            let mut lap = super::resample(&sample_loop(&cap(rho_h), 0.25 * ds), ds);
+            // The first blend lap passes the ridge on one side at about (ρ_h + ρ_1)/2 and on
+            // the other at ρ_1 (the half it starts on was passed at ρ_h): when those are more
+            // than 1.8 r apart the ridge between them would stand uncut, so the first capsule
+            // is traced all the way round first (a slot along the ridge).
+            let r1 = radius_at(TAU);
+            if turns == 0 || 0.5 * (rho_h + r1) + r1 > 1.8 * self.tool_radius {
+                pts.extend(lap.iter().copied());
             }
-        }
-        // L_0: the circle of radius R₀ from the start direction.
-        let n0 = ((TAU * r0 / ds).ceil() as usize).max(16);
-        let mut lap: Vec<Point> = (0..n0)
-            .map(|i| c + Vec2::from_angle(a0 + sign * TAU * i as f64 / n0 as f64) * r0)
-            .collect();
+            for j in 1..=turns {
+                let target = cap(radius_at(TAU * j as f64));
+                blend_lap(
+                    &lap,
+                    &LoopWalker::new(&target),
+                    target.path_length(),
+                    &mut pts,
+                );
+                lap = super::resample(&sample_loop(&target, 0.25 * ds), ds);
+            }
+            lap
+        } else {
+            self.circle_spiral(turns, &radius_at, &mut pts)
+        };
+        let _ = c;
         let count = f.loops.len();
         let mut last_loop = None;
         for (k, next) in f.loops.iter().enumerate().skip(1) {
@@ -143,16 +183,22 @@ impl FrontSpiral<'_> {
             // The last lap: from L_{n-1} onto B_ε (sampled finely enough that its chords stay
             // inside B at concave arcs), then B_ε once round with exact arcs: B's neighbour
             // is then the last lap, at most one step away everywhere.
+            // The last front is `B` with rounded corners (see [`fronts`]): the lap ends on
+            // it (moved in by ε), and the last loop `B_ε` starts from the nearest point.
             let fine = super::resample(&lap, self.ds_last);
-            let target = restart_near(&orient(self.b_eps), ahead);
+            let target = restart_near(&orient(&super::last_loop(next)), ahead);
             let len = target.path_length();
             let along = LoopWalker::new(&target);
             blend_lap(&fine, &along, len, &mut pts);
             let close = target.at(0).pos();
-            pts.push(Point::new(close.x, close.y));
+            let close = Point::new(close.x, close.y);
+            pts.push(close);
+            let last = restart_near(&orient(self.b_eps), close);
+            let first = last.at(0).pos();
+            pts.push(Point::new(first.x, first.y));
             stats.morph_laps += 1;
-            let mut path = segs_from_points(&pts);
-            path.extend(segs_from_vertices(&closed_chain(&target)));
+            let mut path = super::path_from_points(&pts, self.arcs);
+            path.extend(segs_from_vertices(&closed_chain(&last)));
             last_loop = Some(path);
             break;
         }
@@ -168,7 +214,40 @@ impl FrontSpiral<'_> {
         };
         Some((plan, stats))
     }
+
+    /// The circular central spiral (appended to `pts`) and its last loop, the circle `L_0` of
+    /// radius `R₀` from the start direction.
+    fn circle_spiral(
+        &self,
+        turns: usize,
+        radius_at: &dyn Fn(f64) -> f64,
+        pts: &mut Vec<Point>,
+    ) -> Vec<Point> {
+        let (c, r0, ds, a0) = (self.c, self.r0, self.ds, self.start_angle);
+        let sign = if self.ccw { 1.0 } else { -1.0 };
+        if turns > 0 {
+            let total = TAU * turns as f64;
+            let mut th = 0.0;
+            while th < total {
+                let rho = radius_at(th);
+                pts.push(c + Vec2::from_angle(a0 + sign * th) * rho);
+                th += (ds / rho.max(1e-3)).min(0.2);
+            }
+        }
+        let n0 = ((TAU * r0 / ds).ceil() as usize).max(16);
+        (0..n0)
+            .map(|i| c + Vec2::from_angle(a0 + sign * TAU * i as f64 / n0 as f64) * r0)
+            .collect()
+    }
 }
+
+/// The removal-rate-equivalent radial depth the central spiral is paced to, as a multiple of
+/// the step `s'` (its pitch never exceeds `s'`). At 1.1 (1.08·s at the default 0.98·s step:
+/// an engagement angle of 82° against the nominal 78.5° at 40% of a 12.7 mm tool) the
+/// built-in pocket's capsule spiral takes one turn fewer than at 1.0 (−3.2 s of 75.5 s) and
+/// its caps stay near the nominal engagement (the share above it: 13.6%; a constant pitch
+/// `s'`, the paper's, puts every cap above it: 23.7%).
+const CENTRAL_DEPTH: f64 = 1.1;
 
 /// `3x² − 2x³` on [0, 1]: zero slope at both ends, so a transition leaves one curve and joins
 /// the other tangentially.
@@ -189,10 +268,16 @@ fn smoothstep(x: f64) -> f64 {
 /// `dρ/dθ = a(ρ)/(2π)`. The angle this takes from `ρ_h` to `R₀` is rounded up to whole turns
 /// (so the spiral ends where the circle `L_0` starts) by scaling the pitch down uniformly; the
 /// radius is then tabulated by a midpoint integration and interpolated.
-pub fn central_spiral(rho_h: f64, r0: f64, r: f64, sp: f64) -> (usize, impl Fn(f64) -> f64) {
+pub fn central_spiral(
+    rho_h: f64,
+    r0: f64,
+    r: f64,
+    sp: f64,
+    cap: f64,
+) -> (usize, impl Fn(f64) -> f64) {
     let pitch = |rho: f64| {
         let q = rho + r;
-        (q - (q * q - 2.0 * sp * rho).max(0.0).sqrt()).clamp(0.05 * sp, sp)
+        (q - (q * q - 2.0 * sp * rho).max(0.0).sqrt()).clamp(0.05 * sp, cap)
     };
     let n = 256usize;
     let h = (r0 - rho_h).max(0.0) / n as f64;
@@ -232,7 +317,7 @@ mod tests {
     #[test]
     fn central_spiral_pitch_keeps_the_equivalent_depth() {
         let (rho_h, r0, r, sp) = (2.5, 21.8, 6.35, 4.9);
-        let (turns, at) = central_spiral(rho_h, r0, r, sp);
+        let (turns, at) = central_spiral(rho_h, r0, r, sp, sp);
         assert!(turns >= 4, "{turns}");
         assert!((at(0.0) - rho_h).abs() < 1e-9);
         assert!(

@@ -3,23 +3,38 @@
 //! Two morphs from the central circle into the boundary offset are implemented
 //! ([`SpiralMorph`]):
 //!
-//! * **Fronts** (default, [`fronts`] and [`laps`]): the central disc united with the boundary
-//!   offset's exact inward offsets, smoothed; ⌈ρ_B/s'⌉ laps, like contour-parallel offsets.
-//!   The central spiral's pitch keeps the removal-rate-equivalent radial depth at the stepover
-//!   ([`laps::central_spiral`]). Where the fronts do not reach the boundary with measured steps
-//!   (the ridge of a long pocket far outside the circle, a front that splits), the harmonic
-//!   morph is used.
+//! * **Fronts** (default, [`fronts`] and [`laps`]): the central *core* united with the
+//!   boundary offset's exact inward offsets, smoothed; ⌈ρ_B/s'⌉ laps, like contour-parallel
+//!   offsets. The core is the paper's central circle of radius `R₀ = C·ρ_B` where the medial
+//!   axis peaks at a point (squares, circles, triangles), and, where it peaks along a straight
+//!   segment (rectangles, slots: the "ridge", [`fronts::ridge_segment`]), the *capsule* of
+//!   radius `R₀` about that segment, so that the central spiral runs along the pocket instead
+//!   of re-cutting a circle across its short sides. On a circle the two are the same thing.
+//!   The central spiral's pitch keeps the removal-rate-equivalent radial depth near the
+//!   stepover ([`laps::central_spiral`]). The last front is `B` with rounded corners; `B`
+//!   itself, with its corners, is the last loop. Where the fronts do not reach the boundary
+//!   with measured steps (a plateau of the medial axis that appears at once, as in the
+//!   arms of an L; a front that splits), the harmonic morph is used.
 //! * **Harmonic** (`--morph harmonic`, described below): the stepover holds everywhere,
 //!   corners included, but the lap count is set by the point of `B` farthest from the circle.
 //!
 //! Measured on the built-in 150 × 100 mm pocket (12.7 mm tool, 40%, 600 in/min, 4 levels of
-//! 6.25 mm, `hsm`): fronts 84.0 s, 15.1 m, 16.4% of the path above the nominal engagement;
-//! harmonic 103.7 s, 20.6 m, 5.1%; `offset` 77.3 s, 11.1 m, 17.5%; `zigzag` 88.0 s, 13.7 m,
-//! 10.8%. The spiral is the faster of the two morphs and beats zigzag, but not yet offset:
-//! a continuous spiral traces one loop more than the offsets (its last lap runs onto `B`,
-//! which must then be cut once more), the central circle's turns are extra on an elongated
-//! pocket, and every rounded corner (needed for speed) cuts above the nominal engagement
-//! (the material wraps round the tool), which bounds how large the corner radii may be.
+//! 6.25 mm, `hsm`; cycle time, path length, share of the path above the nominal engagement):
+//! fronts with the capsule core 72.3 s, 14.3 m, 13.6%; harmonic 103.7 s, 20.6 m, 5.1%;
+//! `offset` 77.0 s, 11.1 m, 17.4%; `zigzag` 88.0 s, 13.7 m, 10.8%: the spiral is 0.82 ×
+//! zigzag and 0.94 × offset. What it took, from 85.1 s (the circular core, session 2):
+//! the capsule core (a circle's later laps ran round the circle across the short sides,
+//! cutting next to nothing there: 3.7 m per level against 2.8 m for `offset`), fronts that
+//! would lap within half a step of the core skipped, `B`'s corners rounded on the last
+//! front (a step from a rounded front onto a sharp corner is `√2·Δ + (√2 − 1)·ρ_o` long: a
+//! halved step, one whole extra lap), the central spiral paced to 1.1 s' and the fronts
+//! smoothed with 1.4 s (both measured, see [`laps`] and `SMOOTH_FRACTION`).
+//!
+//! **Output.** The laps are sampled at ≤ 0.5 mm and written as G1 chords, or with `--arcs`
+//! ([`PocketOptions::arcs`]) as biarcs within [`ARC_TOLERANCE`] of the open centripetal
+//! Catmull-Rom curve through the samples: tangent-continuous (consecutive moves within 1°),
+//! 11× fewer blocks, but each biarc joint is a curvature jump that a jerk-limited controller
+//! slows for (aerospace pocket on `hsm`: 105.8 s against 72.3 s), so chords are the default.
 //!
 //! # The harmonic morph
 //!
@@ -92,6 +107,20 @@ use std::f64::consts::TAU;
 
 /// Inward margin of the spiral's last loop, mm (see the module docs).
 pub const LAST_LOOP_MARGIN: f64 = 0.005;
+/// With `--arcs`: the largest distance between the fitted arcs and the smooth curve through
+/// the spiral's samples, mm. Below [`LAST_LOOP_MARGIN`], so that the last lap's arcs stay
+/// inside the boundary offset where the lap runs onto it.
+pub const ARC_TOLERANCE: f64 = 0.004;
+
+/// The spiral's sampled path as moves: G1 chords, or with `arcs` tangent-continuous biarcs
+/// within [`ARC_TOLERANCE`].
+fn path_from_points(pts: &[Point], arcs: bool) -> Vec<Seg> {
+    if arcs {
+        super::chain::fit_arcs(pts, ARC_TOLERANCE)
+    } else {
+        segs_from_points(pts)
+    }
+}
 /// Most restarts of the harmonic field from an intermediate lap.
 const MAX_RESTARTS: usize = 20;
 /// Most laps the morph may take.
@@ -128,6 +157,9 @@ pub struct SpiralStats {
     pub fronts: bool,
     /// Length of the ridge cut as a slot by the fronts' first lap, mm (0: none).
     pub ridge_slot: f64,
+    /// Length of the ridge segment the central spiral's capsules are drawn about, mm (0: a
+    /// circular central spiral).
+    pub capsule: f64,
 }
 
 /// The spiral strategy's plan for one level.
@@ -212,27 +244,49 @@ fn plan_fronts(
     };
     let (rho_h, r0) = centre_radii(tool, opts, rho_b)?;
     let ds = (s / 3.0).clamp(0.05, FRONT_SAMPLE);
-    let spiral = laps::FrontSpiral {
-        b: &b,
-        b_eps: &b_eps,
-        c,
-        rho_b,
-        r0,
-        rho_h,
-        sp,
-        ds,
-        ds_last: ds.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
-        tool_radius: tool.radius(),
-        smooth: opts.min_radius.max(SMOOTH_FRACTION * s),
-        ccw: opts.direction == Direction::Climb,
-        start_angle,
-    };
-    Ok(spiral.plan())
+    let ridge = fronts::ridge_segment(&b, c, rho_b, r0, 0.5 * sp, Vec2::from_angle(start_angle));
+    // Both smoothing radii; the shorter spiral is kept. The larger radius runs faster where
+    // it takes no more laps; where its rounded fronts need an extra (halved) step, or cannot
+    // reach `B` within the spacing bound at all (acute corners, where rounding moves the
+    // corner point by `ρ_o·(1/sin(α/2) − 1)`), the smaller one is shorter. Neither: the
+    // harmonic morph.
+    let mut best: Option<(LevelPlan, SpiralStats, f64)> = None;
+    for fraction in [SMOOTH_FRACTION, SMOOTH_FALLBACK] {
+        let spiral = laps::FrontSpiral {
+            b: &b,
+            b_eps: &b_eps,
+            c,
+            rho_b,
+            r0,
+            rho_h,
+            sp,
+            ds,
+            ds_last: ds.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
+            tool_radius: tool.radius(),
+            smooth: opts.min_radius.max(fraction * s),
+            ccw: opts.direction == Direction::Climb,
+            start_angle,
+            ridge,
+            arcs: opts.arcs,
+        };
+        if let Some((plan, stats)) = spiral.plan() {
+            let len: f64 = plan
+                .cuts
+                .iter()
+                .map(|c| super::chain::path_length(&c.path))
+                .sum();
+            // Ties (within 1%) go to the larger radius, tried first.
+            if best.as_ref().is_none_or(|b| len < 0.99 * b.2) {
+                best = Some((plan, stats, len));
+            }
+        }
+    }
+    Ok(best.map(|(plan, stats, _)| (plan, stats)))
 }
 
 /// `B_ε`, the spiral's last loop: `B` moved inward by [`LAST_LOOP_MARGIN`] (`B` itself if that
 /// offset is not one loop).
-fn last_loop(b: &Polyline<f64>) -> Polyline<f64> {
+pub(super) fn last_loop(b: &Polyline<f64>) -> Polyline<f64> {
     match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
         [one] => one.clone(),
         _ => b.clone(),
@@ -254,10 +308,16 @@ fn centre_radii(tool: &Tool, opts: &PocketOptions, rho_b: f64) -> Result<(f64, f
 }
 
 /// The fronts' smoothing radius as a fraction of the stepover (at least `--min-radius`).
-/// Larger radii run faster on the `hsm` preset (1.2·s: −2% cycle time on the aerospace
-/// pocket) but raise the share of the path above the nominal engagement (the corners' arcs
-/// are longer); 1.0 keeps that share below the `offset` strategy's.
-const SMOOTH_FRACTION: f64 = 1.0;
+/// Measured on the built-in pocket (C = 0.5, capsule core, 600 in/min, `hsm`; cycle time and
+/// the share of the path above the nominal engagement): 0.8 → 75.3 s / 11.8%, 1.0 → 74.1 s /
+/// 12.4%, 1.2 → 73.1 s / 13.0%, 1.4 → 72.3 s / 13.6%, 1.6 → 72.7 s / 14.6%, 2.0 → 79.9 s
+/// (a halved step at the last front). Larger radii run faster on the `hsm` preset until the
+/// rounding of `B`'s corners (the last front) takes a halved step; the share rises slowly
+/// (longer corner arcs) and stays below the `offset` strategy's (17.4%).
+const SMOOTH_FRACTION: f64 = 1.4;
+/// The smoothing radius also tried, the shorter spiral kept (the sample part's triangle:
+/// 1.4 → harmonic fallback, 3.1 m; 1.0 → fronts, 2.3 m; its trapezoid: 1.7 m against 1.5 m).
+const SMOOTH_FALLBACK: f64 = 1.0;
 /// Largest step between fronts as a fraction of the stepover: the straight parts of the laps
 /// then sit just below the nominal engagement (at exactly `s` the raster's noise puts half of
 /// them above it).
@@ -416,7 +476,7 @@ fn plan_in_frame(
             stats.max_loop_distance = m.max_distance;
             stats.distance_field = attempt == 1;
             pts.extend(m.points);
-            let mut path = segs_from_points(&pts);
+            let mut path = path_from_points(&pts, opts.arcs);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {
