@@ -56,8 +56,10 @@
 //!
 //! **Measured steps.** The steps in `τ` are `Δ = ρ_B / n` with `n = ⌈ρ_B / s'⌉`. After each
 //! loop the directed distance from the new loop to the previous one is sampled; above
-//! `√2·s'` (more than a right-angle corner explains) the step is halved, down to `s'/64`,
-//! and if that does not help the family is abandoned and the harmonic morph is used.
+//! the gap bound ([`FrontOptions::max_gap`], at least `√2·s'`, what a right-angle corner
+//! explains; the spiral uses `1.8·s'`, what a 67° corner explains, capped at `1.8·r`) the
+//! step is halved, down to `s'/64`, and if that does not help the family is abandoned and
+//! the harmonic morph is used.
 
 use super::super::shape::{loop_distance, v2};
 use crate::geom::Point;
