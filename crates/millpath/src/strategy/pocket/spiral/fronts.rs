@@ -56,8 +56,10 @@
 //!
 //! **Measured steps.** The steps in `τ` are `Δ = ρ_B / n` with `n = ⌈ρ_B / s'⌉`. After each
 //! loop the directed distance from the new loop to the previous one is sampled; above
-//! `√2·s'` (more than a right-angle corner explains) the step is halved, down to `s'/64`,
-//! and if that does not help the family is abandoned and the harmonic morph is used.
+//! the gap bound ([`FrontOptions::max_gap`], at least `√2·s'`, what a right-angle corner
+//! explains; the spiral uses `1.8·s'`, what a 67° corner explains, capped at `1.8·r`) the
+//! step is halved, down to `s'/64`, and if that does not help the family is abandoned and
+//! the harmonic morph is used.
 
 use super::super::shape::{loop_distance, v2};
 use crate::geom::Point;
@@ -82,6 +84,10 @@ pub struct FrontOptions {
     pub close_radius: f64,
     /// Sample spacing for the distance checks, mm.
     pub sample: f64,
+    /// Largest measured distance from a loop to the one before it, mm (at least `√2·step`,
+    /// the gap at right-angle corners; larger lets sharper corners through without
+    /// halved steps: see `CORNER_GAP` in the spiral module).
+    pub max_gap: f64,
 }
 
 /// The loops of the morph, from the disc (first) to `B` (last), counter-clockwise.
@@ -330,7 +336,7 @@ pub fn fronts(
     let disc = core.clone();
     let n = ((rho_b / o.step).ceil() as usize).max(1);
     let delta = rho_b / n as f64;
-    let limit = std::f64::consts::SQRT_2 * o.step;
+    let limit = (std::f64::consts::SQRT_2 * o.step).max(o.max_gap);
     // The last front: `B` with its corners rounded like the interior fronts' (`B` itself
     // when that moves any point of `B` by more than half the spacing bound, e.g. where
     // opening would drop a narrow part). A step from a rounded front onto `B`'s sharp
@@ -445,6 +451,7 @@ mod tests {
             open_radius: 5.0,
             close_radius: 5.0,
             sample: 0.5,
+            max_gap: 0.0,
         };
         let f = fronts(&b, &circle(c, 25.0), rho, &o).unwrap();
         // ⌈43.65 / 4.8⌉ = 10 steps after the circle, and at most one halved step where the
@@ -500,6 +507,7 @@ mod tests {
             open_radius: 7.1,
             close_radius: 7.1,
             sample: 0.5,
+            max_gap: 0.0,
         };
         let r0 = 0.5 * rho;
         let (p, q) = ridge_segment(&b, c, rho, r0, 1.0, crate::geom::Vec2::new(1.0, 0.0)).unwrap();

@@ -56,6 +56,8 @@ pub struct FrontSpiral<'a> {
     pub ridge: Option<(Point, Point)>,
     /// Output the sampled laps as tangent-continuous arcs ([`super::ARC_TOLERANCE`]).
     pub arcs: bool,
+    /// Largest gap between consecutive fronts, mm ([`super::fronts::FrontOptions::max_gap`]).
+    pub max_gap: f64,
 }
 
 impl FrontSpiral<'_> {
@@ -66,6 +68,7 @@ impl FrontSpiral<'_> {
             open_radius: self.smooth,
             close_radius: self.smooth,
             sample: self.ds,
+            max_gap: self.max_gap,
         };
         let core = match self.ridge {
             Some((p, q)) => capsule(p, q, self.r0),

@@ -268,6 +268,7 @@ fn plan_fronts(
             start_angle,
             ridge,
             arcs: opts.arcs,
+            max_gap: (CORNER_GAP * sp).min(CORNER_GAP * tool.radius()),
         };
         if let Some((plan, stats)) = spiral.plan() {
             let len: f64 = plan
@@ -318,6 +319,16 @@ const SMOOTH_FRACTION: f64 = 1.4;
 /// The smoothing radius also tried, the shorter spiral kept (the sample part's triangle:
 /// 1.4 → harmonic fallback, 3.1 m; 1.0 → fronts, 2.3 m; its trapezoid: 1.7 m against 1.5 m).
 const SMOOTH_FALLBACK: f64 = 1.0;
+/// The largest gap between consecutive fronts (measured from the new front to the previous
+/// one) as a multiple of the step `s'`, and at most this multiple of the tool radius (so that
+/// no ridge stands between two passes: `1.8·r < 2r`). Contour-parallel loops are
+/// `s'/sin(α/2)` apart at a convex corner of angle `α` (`√2·s'` at right angles, the least
+/// this may be); 1.8 lets corners down to 67° through with uniform steps, sharper ones take
+/// halved steps. Sample part (zigzag / offset / spiral, s): triangle 23.1 / 15.8 / 19.7 (at
+/// `√2`: 28.4), trapezoid 22.0 / 16.9 / 16.2 (23.8), square 25.5 / 21.6 / 18.3 (19.8); the
+/// share above the nominal engagement stays below offset's on each; the aerospace pocket is
+/// unchanged (right-angle corners).
+const CORNER_GAP: f64 = 1.8;
 /// Largest step between fronts as a fraction of the stepover: the straight parts of the laps
 /// then sit just below the nominal engagement (at exactly `s` the raster's noise puts half of
 /// them above it).
