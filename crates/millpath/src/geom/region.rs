@@ -162,20 +162,29 @@ fn point_on_bulge_seg(a: Point, b: Point, bulge: f64, f: f64) -> Point {
 /// How close (rad) the moments' axis must come to a straight edge to be snapped onto it.
 pub const SNAP_RAD: f64 = 1e-3;
 
-/// The outline's principal-axis direction in `(−π, π]` (see the module docs).
-pub fn principal_angle(o: &Outline) -> f64 {
-    let pts = sample_loop(o.polyline(), 720);
+/// The centroid of a point set and its centred second moments `(sxx, syy, sxy)` (sums over
+/// the points).
+pub fn second_moments(pts: &[Point]) -> (Point, f64, f64, f64) {
     let m = pts.len().max(1) as f64;
     let (cx, cy) = pts
         .iter()
         .fold((0.0, 0.0), |a, p| (a.0 + p.x / m, a.1 + p.y / m));
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for p in &pts {
+    for p in pts {
         let (dx, dy) = (p.x - cx, p.y - cy);
         sxx += dx * dx;
         syy += dy * dy;
         sxy += dx * dy;
     }
+    (Point::new(cx, cy), sxx, syy, sxy)
+}
+
+/// The outline's principal-axis direction in `(−π, π]` (see the module docs).
+pub fn principal_angle(o: &Outline) -> f64 {
+    let pts = sample_loop(o.polyline(), 720);
+    let (centroid, sxx, syy, sxy) = second_moments(&pts);
+    let (cx, cy) = (centroid.x, centroid.y);
+    let m = pts.len().max(1) as f64;
     let raw = if (sxx - syy).abs() + 2.0 * sxy.abs() > 1e-3 * (sxx + syy) {
         0.5 * (2.0 * sxy).atan2(sxx - syy)
     } else {

@@ -151,17 +151,7 @@ pub fn ridge_segment(
 ) -> Option<(Point, Point)> {
     let sliver = offset(b, 0.99 * rho)?;
     let pts = super::sample_loop(&sliver, (0.01 * rho).max(1e-3));
-    let m = pts.len().max(1) as f64;
-    let (mx, my) = pts
-        .iter()
-        .fold((0.0, 0.0), |a, p| (a.0 + p.x / m, a.1 + p.y / m));
-    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for p in &pts {
-        let (dx, dy) = (p.x - mx, p.y - my);
-        sxx += dx * dx;
-        syy += dy * dy;
-        sxy += dx * dy;
-    }
+    let (_, sxx, syy, sxy) = crate::geom::region::second_moments(&pts);
     let mut u = crate::geom::Vec2::from_angle(0.5 * (2.0 * sxy).atan2(sxx - syy));
     if u.dot(hint) < 0.0 {
         u = -u;
