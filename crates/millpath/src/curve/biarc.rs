@@ -168,6 +168,22 @@ impl<C: PlanarCurve + ?Sized> Sampler<'_, C> {
         let (i, u) = self.loc(s);
         self.c.tangent_at(i, u)
     }
+    /// The longest chord from `s` within `tol` of the curve, found by halving from `from`,
+    /// at least `eps` long (and not beyond `hi`).
+    fn chord(&self, s: f64, from: f64, tol: f64, eps: f64) -> ArcSeg {
+        let mut t = from;
+        while t - s > eps && self.chord_dev(s, t) > tol {
+            t = s + 0.5 * (t - s);
+        }
+        let t = t.max((s + eps).min(self.hi));
+        ArcSeg {
+            start: self.pt(s),
+            end: self.pt(t),
+            center: None,
+            ccw: true,
+            s_end: t,
+        }
+    }
     fn fit(&self, s0: f64, s1: f64) -> Option<[ArcSeg; 2]> {
         biarc(self.pt(s0), self.tan(s0), self.pt(s1), self.tan(s1), s0, s1)
     }
@@ -252,19 +268,9 @@ pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<Ar
     while s < s1 - 1e-12 {
         if budget.get() == 0 {
             // Chords within `tol` for the rest: the longest found by halving from `s1`.
-            let mut t = s1;
-            while t - s > eps && sm.chord_dev(s, t) > tol {
-                t = s + 0.5 * (t - s);
-            }
-            let t = t.max((s + eps).min(s1));
-            out.push(ArcSeg {
-                start: sm.pt(s),
-                end: sm.pt(t),
-                center: None,
-                ccw: true,
-                s_end: t,
-            });
-            s = t;
+            let chord = sm.chord(s, s1, tol, eps);
+            s = chord.s_end;
+            out.push(chord);
             continue;
         }
         let ok = |t: f64| {
@@ -303,19 +309,9 @@ pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<Ar
                 // the longest chord within `tol` found by halving from `first` (a chord of
                 // `eps` at a time took minutes along a cusped stretch: a `contour` fuzzer
                 // timeout), at least `eps`.
-                let mut t = first;
-                while t - s > eps && sm.chord_dev(s, t) > tol {
-                    t = s + 0.5 * (t - s);
-                }
-                let t = t.max((s + eps).min(s1));
-                out.push(ArcSeg {
-                    start: sm.pt(s),
-                    end: sm.pt(t),
-                    center: None,
-                    ccw: true,
-                    s_end: t,
-                });
-                s = t;
+                let chord = sm.chord(s, first, tol, eps);
+                s = chord.s_end;
+                out.push(chord);
                 continue;
             }
         }

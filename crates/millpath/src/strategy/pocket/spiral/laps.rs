@@ -127,7 +127,6 @@ impl FrontSpiral<'_> {
         } else {
             self.circle_spiral(turns, &radius_at, &mut pts)
         };
-        let _ = c;
         let count = f.loops.len();
         let mut last_loop = None;
         for (k, next) in f.loops.iter().enumerate().skip(1) {
