@@ -1,5 +1,6 @@
 //! Criterion benchmarks: planning one level of the built-in aerospace pocket (150 × 100 mm,
-//! 12.7 mm tool, 40% stepover) with each strategy.
+//! 12.7 mm tool, 40% stepover) with each strategy; and the spiral on each pocket of the sample
+//! part (the L takes the harmonic morph, the slowest planning path).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use millpath::strategy::pocket::{PocketOptions, StrategyKind, plan_level, samples};
@@ -18,6 +19,14 @@ fn plan(c: &mut Criterion) {
     ] {
         g.bench_function(kind.name(), |b| {
             b.iter(|| plan_level(kind, black_box(&shape), &tool, &opts));
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("spiral level, sample part");
+    g.sample_size(10);
+    for (name, shape) in samples::structural_part() {
+        g.bench_function(name.as_str(), |b| {
+            b.iter(|| plan_level(StrategyKind::Spiral, black_box(&shape), &tool, &opts));
         });
     }
     g.finish();

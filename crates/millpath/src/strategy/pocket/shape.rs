@@ -9,8 +9,12 @@ use super::walls::Walls;
 use crate::error::InputError;
 use crate::geom::{Outline, Point, Winding};
 use cavalier_contours::core::math::Vector2;
-use cavalier_contours::polyline::{PlineSource, PlineSourceMut, PlineVertex, Polyline};
+use cavalier_contours::polyline::{
+    PlineSource, PlineSourceMut, PlineVertex, Polyline, seg_closest_point,
+};
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
+use cavalier_contours::static_aabb2d_index::{Control, NeighborPriorityQueue, StaticAABB2DIndex};
+use std::cell::RefCell;
 
 /// A pocket: an outer outline (counter-clockwise) and islands (clockwise) strictly inside it,
 /// as they are at the top of the stock (z = 0), and how the walls run down from there.
@@ -126,6 +130,51 @@ pub fn loop_distance(pl: &Polyline<f64>, p: Point) -> f64 {
         .map_or(f64::INFINITY, |c| c.distance)
 }
 
+/// A loop with a spatial index of its segments (cavalier_contours' `StaticAABB2DIndex`, exact
+/// segment boxes): the same distance as [`loop_distance`], visiting only the segments whose
+/// boxes are nearer than the best distance found so far (about `O(log n)` instead of `O(n)`
+/// per query). For the many queries against one loop of the spiral's morph.
+#[derive(Debug)]
+pub struct IndexedLoop<'a> {
+    pl: &'a Polyline<f64>,
+    index: StaticAABB2DIndex<f64>,
+    queue: RefCell<NeighborPriorityQueue<f64>>,
+}
+
+impl<'a> IndexedLoop<'a> {
+    /// Indexes the segments of `pl` (closed or open).
+    pub fn new(pl: &'a Polyline<f64>) -> Self {
+        IndexedLoop {
+            pl,
+            index: pl.create_aabb_index(),
+            queue: RefCell::new(NeighborPriorityQueue::new()),
+        }
+    }
+
+    /// Distance from `p` to the loop (infinite for a loop without segments).
+    pub fn distance(&self, p: Point) -> f64 {
+        let n = self.pl.vertex_count();
+        let mut best = f64::INFINITY;
+        let q = v2(p);
+        let mut visit = |i: usize, box_d2: f64| -> Control<()> {
+            if box_d2 > best * best {
+                return Control::Break(());
+            }
+            let (a, b) = (self.pl.at(i), self.pl.at((i + 1) % n));
+            let c = seg_closest_point(a, b, q, 1e-12);
+            best = best.min((c - q).length());
+            Control::Continue
+        };
+        if n >= 2 {
+            // The queue is cleared by the query; kept to save an allocation per query.
+            let mut queue = self.queue.borrow_mut();
+            self.index
+                .visit_neighbors_with_queue(p.x, p.y, &mut visit, &mut queue);
+        }
+        best
+    }
+}
+
 /// The closed loop `pl` restarted at its point nearest to `p` (split there if needed).
 pub fn restart_near(pl: &Polyline<f64>, p: Point) -> Polyline<f64> {
     match pl.closest_point(v2(p), 1e-12) {
@@ -210,4 +259,53 @@ pub fn inscribed_centre(
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The indexed distance is the brute-force one, on a loop with arcs (a rounded rectangle's
+    /// offset) and on a jagged polygon, at points inside, outside and on the loops.
+    #[test]
+    fn indexed_distance_matches_brute_force() {
+        // The sample part's rounded rectangle (120 × 80, corner radius 8).
+        let (_, outline) = super::super::samples::structural_part().swap_remove(0);
+        let region = outline.offset(3.0);
+        let arcs = region.outers[0].clone();
+        assert!(
+            arcs.iter_vertexes().any(|v| v.bulge != 0.0),
+            "test loop has arcs"
+        );
+        let mut jagged = Polyline::new_closed();
+        for i in 0..97 {
+            let a = std::f64::consts::TAU * i as f64 / 97.0;
+            let r = 20.0 + 7.0 * ((i * 37 % 11) as f64);
+            jagged.add(r * a.cos(), r * a.sin(), 0.0);
+        }
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for pl in [&arcs, &jagged] {
+            let idx = IndexedLoop::new(pl);
+            let mut worst: f64 = 0.0;
+            for k in 0..2000 {
+                let p = if k % 10 == 0 {
+                    let v = pl.at(k % pl.vertex_count());
+                    Point::new(v.x, v.y)
+                } else {
+                    Point::new(200.0 * next() - 60.0, 180.0 * next() - 70.0)
+                };
+                worst = worst.max((idx.distance(p) - loop_distance(pl, p)).abs());
+            }
+            assert!(
+                worst < 1e-9,
+                "indexed and brute-force distances differ by {worst}"
+            );
+        }
+    }
 }

@@ -28,7 +28,7 @@
 //! it are smooth.
 
 use crate::geom::{Point, Vec2};
-use crate::strategy::pocket::shape::v2;
+use crate::strategy::pocket::shape::{IndexedLoop, v2};
 use cavalier_contours::polyline::{PlineSource, Polyline};
 
 /// The discrete harmonic function on a grid.
@@ -55,16 +55,47 @@ impl Harmonic {
     }
 
     /// Solves with the inner boundary given by its signed distance `inner` (negative or zero
-    /// inside, where u = 0): a circle, or a loop the morph has reached and restarts from.
+    /// inside, where u = 0): the circle.
     pub fn solve_with(b: &Polyline<f64>, inner: impl Fn(Point) -> f64, h: f64) -> Self {
-        let e = b.extents();
-        let (x0, y0, x1, y1) = e.map_or((0.0, 0.0, 1.0, 1.0), |e| {
-            (e.min_x, e.min_y, e.max_x, e.max_y)
-        });
-        let origin = Point::new(x0 - 2.0 * h, y0 - 2.0 * h);
-        let nx = ((x1 - x0) / h).ceil() as usize + 5;
-        let ny = ((y1 - y0) / h).ceil() as usize + 5;
+        let (origin, nx, ny) = Self::grid(b, h);
+        Self::solve_on_grid(b, origin, h, nx, ny, |_, p| inner(p))
+    }
+
+    /// Solves with the closed polygon `lap` (its vertices; a loop the morph reached and restarts
+    /// from) as the inner boundary: `u = 0` on the nodes inside it. Which nodes those are is
+    /// found row by row (even-odd crossings of the row's line, `O(rows · n + nodes)`); the
+    /// initial guess takes `d_c` from a chamfer distance transform of that mask (within 8% of
+    /// the Euclidean distance, `O(nodes)`). Before, a winding number and a closest point per
+    /// node cost `O(nodes · n)`: half the time of a restarted morph. Only the initial guess
+    /// changes; the solution is the same to the SOR tolerance.
+    pub fn solve_from_loop(b: &Polyline<f64>, lap: &[Point], h: f64) -> Self {
+        let (origin, nx, ny) = Self::grid(b, h);
+        let inside = scanline_inside(lap, origin, h, nx, ny);
+        let dist = chamfer(&inside, nx, ny, h);
+        Self::solve_on_grid(
+            b,
+            origin,
+            h,
+            nx,
+            ny,
+            |k, _| {
+                if inside[k] { 0.0 } else { dist[k] }
+            },
+        )
+    }
+
+    /// The solve on the grid at `origin` (spacing `h`, `nx × ny` nodes); `inner(k, p)` is the
+    /// signed distance of node `k` at `p` from the inner boundary.
+    fn solve_on_grid(
+        b: &Polyline<f64>,
+        origin: Point,
+        h: f64,
+        nx: usize,
+        ny: usize,
+        inner: impl Fn(usize, Point) -> f64,
+    ) -> Self {
         let n = nx * ny;
+        let b_index = IndexedLoop::new(b);
         let mut u = vec![1.0; n];
         // 0 = free, 1 = fixed.
         let mut fixed = vec![true; n];
@@ -72,12 +103,14 @@ impl Harmonic {
             for i in 0..nx {
                 let p = Point::new(origin.x + h * i as f64, origin.y + h * j as f64);
                 let k = j * nx + i;
-                let dc = inner(p);
+                let dc = inner(k, p);
                 if dc <= 0.0 {
                     u[k] = 0.0;
                 } else if b.winding_number(v2(p)) != 0 {
-                    let db = b.closest_point(v2(p), 1e-12).map_or(1.0, |r| r.distance);
-                    u[k] = dc / (dc + db);
+                    let db = b_index.distance(p);
+                    let db = if db.is_finite() { db } else { 1.0 };
+                    // (An infinite `dc`: no inner node at all, a degenerate lap.)
+                    u[k] = if dc.is_finite() { dc / (dc + db) } else { 1.0 };
                     fixed[k] = false;
                 }
             }
@@ -165,6 +198,7 @@ impl Harmonic {
             }
         }
         let mut u = vec![1.0; n];
+        let b_index = IndexedLoop::new(b);
         for j in 0..ny {
             for i in 0..nx {
                 let k = j * nx + i;
@@ -172,7 +206,8 @@ impl Harmonic {
                 if p.distance(c) <= r0 {
                     u[k] = 0.0;
                 } else if inside[k] && g[k].is_finite() {
-                    let db = b.closest_point(v2(p), 1e-12).map_or(1.0, |r| r.distance);
+                    let db = b_index.distance(p);
+                    let db = if db.is_finite() { db } else { 1.0 };
                     u[k] = g[k] / (g[k] + db).max(1e-12);
                 }
             }
@@ -295,10 +330,155 @@ impl Ord for OrdF64 {
     }
 }
 
+/// Which nodes of the grid (`origin`, spacing `h`, `nx × ny`, row-major) lie inside the closed
+/// polygon `pts`, by the even-odd rule: for each row, the crossings of its line with the edges
+/// (half-open in y, so a vertex on the line counts once), sorted, fill the nodes between pairs.
+fn scanline_inside(pts: &[Point], origin: Point, h: f64, nx: usize, ny: usize) -> Vec<bool> {
+    let mut inside = vec![false; nx * ny];
+    let mut xs: Vec<f64> = Vec::new();
+    for j in 0..ny {
+        let y = origin.y + h * j as f64;
+        xs.clear();
+        for (i, a) in pts.iter().enumerate() {
+            let b = pts[(i + 1) % pts.len()];
+            if (a.y <= y) != (b.y <= y) {
+                xs.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+            }
+        }
+        xs.sort_by(f64::total_cmp);
+        for pair in xs.chunks_exact(2) {
+            // Nodes with pair[0] < x < pair[1] (a node exactly on an edge counts as outside,
+            // as its distance 0 fixes it at u = 0 anyway).
+            let lo = ((pair[0] - origin.x) / h).floor() + 1.0;
+            let hi = ((pair[1] - origin.x) / h).ceil() - 1.0;
+            let lo = lo.max(0.0) as usize;
+            let hi = hi.min(nx as f64 - 1.0);
+            if hi < 0.0 {
+                continue;
+            }
+            for i in lo..=(hi as usize) {
+                inside[j * nx + i] = true;
+            }
+        }
+    }
+    inside
+}
+
+/// Distance from each node to the nearest node of `mask`, by the two-pass 8-neighbour chamfer
+/// transform (steps `h` and `√2·h`; exact along the axes and diagonals, at most 8% long in
+/// between); infinite where `mask` is empty.
+fn chamfer(mask: &[bool], nx: usize, ny: usize, h: f64) -> Vec<f64> {
+    let d1 = h;
+    let d2 = std::f64::consts::SQRT_2 * h;
+    let mut d: Vec<f64> = mask
+        .iter()
+        .map(|&m| if m { 0.0 } else { f64::INFINITY })
+        .collect();
+    for j in 0..ny {
+        for i in 0..nx {
+            let k = j * nx + i;
+            let mut v = d[k];
+            if i > 0 {
+                v = v.min(d[k - 1] + d1);
+            }
+            if j > 0 {
+                v = v.min(d[k - nx] + d1);
+                if i > 0 {
+                    v = v.min(d[k - nx - 1] + d2);
+                }
+                if i + 1 < nx {
+                    v = v.min(d[k - nx + 1] + d2);
+                }
+            }
+            d[k] = v;
+        }
+    }
+    for j in (0..ny).rev() {
+        for i in (0..nx).rev() {
+            let k = j * nx + i;
+            let mut v = d[k];
+            if i + 1 < nx {
+                v = v.min(d[k + 1] + d1);
+            }
+            if j + 1 < ny {
+                v = v.min(d[k + nx] + d1);
+                if i + 1 < nx {
+                    v = v.min(d[k + nx + 1] + d2);
+                }
+                if i > 0 {
+                    v = v.min(d[k + nx - 1] + d2);
+                }
+            }
+            d[k] = v;
+        }
+    }
+    d
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::strategy::pocket::shape::loop_distance;
     use cavalier_contours::polyline::PlineSourceMut;
+
+    /// A star-shaped, non-convex polygon of 61 vertices about the origin, radius 9 to 19.
+    fn star() -> Vec<Point> {
+        (0..61)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / 61.0;
+                let r = 9.0 + 10.0 * ((i * 7 % 5) as f64) / 4.0;
+                Point::new(r * a.cos() + 0.013, r * a.sin() - 0.007)
+            })
+            .collect()
+    }
+
+    /// The row-by-row inside test agrees with the winding number on every node.
+    #[test]
+    fn scanline_matches_winding_number() {
+        let pts = star();
+        let pl = super::super::closed_pline(&pts);
+        let (origin, h, nx, ny) = (Point::new(-21.0, -20.5), 0.25, 170, 166);
+        let inside = scanline_inside(&pts, origin, h, nx, ny);
+        let mut disagree = 0;
+        for j in 0..ny {
+            for i in 0..nx {
+                let p = Point::new(origin.x + h * i as f64, origin.y + h * j as f64);
+                if inside[j * nx + i] != (pl.winding_number(v2(p)) != 0) {
+                    disagree += 1;
+                }
+            }
+        }
+        assert_eq!(disagree, 0);
+        assert!(inside.iter().filter(|&&x| x).count() > 5000);
+    }
+
+    /// The restart solve equals the solve with the brute-force signed distance (the code
+    /// before the index and the scanline) to the SOR tolerance.
+    #[test]
+    fn restart_solve_matches_brute_force() {
+        let mut b = Polyline::new_closed();
+        b.add(-30.0, 0.0, 1.0);
+        b.add(30.0, 0.0, 1.0);
+        let pts = star();
+        let pl = super::super::closed_pline(&pts);
+        let fast = Harmonic::solve_from_loop(&b, &pts, 0.5);
+        let slow = Harmonic::solve_with(
+            &b,
+            |p| {
+                let d = loop_distance(&pl, p);
+                if pl.winding_number(v2(p)) != 0 { -d } else { d }
+            },
+            0.5,
+        );
+        let worst = fast
+            .u
+            .iter()
+            .zip(&slow.u)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-6, "{worst}");
+        assert!(fast.value(Point::new(25.0, 0.0)) > 0.2);
+    }
 
     /// Between two concentric circles the solution is ln(ρ/R₀)/ln(R₁/R₀).
     #[test]

@@ -96,7 +96,7 @@ use super::levels::{Cut, CutEntry, LevelPlan};
 use super::offset::too_large;
 use super::options::{Direction, Entry, PocketOptions};
 use super::shape::{
-    PocketShape, closed_chain, inscribed_centre, loop_distance, restart_near, reversed, v2,
+    IndexedLoop, PocketShape, closed_chain, inscribed_centre, restart_near, reversed, v2,
 };
 use crate::error::InputError;
 use crate::geom::{Point, Vec2};
@@ -467,19 +467,7 @@ fn plan_in_frame(
                     Harmonic::distance_blend(&b, c, r0, h)
                 }
             } else {
-                let inner = closed_pline(lap);
-                Harmonic::solve_with(
-                    &b,
-                    |p| {
-                        let d = loop_distance(&inner, p);
-                        if inner.winding_number(v2(p)) != 0 {
-                            -d
-                        } else {
-                            d
-                        }
-                    },
-                    h,
-                )
+                Harmonic::solve_from_loop(&b, lap, h)
             }
         };
         if let Some(m) = ctx.run(&make, lap0.clone()) {
@@ -541,6 +529,7 @@ impl Morph<'_> {
             [one] => Some(one.clone()),
             _ => None,
         };
+        let b_index = IndexedLoop::new(b);
         let mut pts = Vec::new();
         let mut t = 0.0;
         let mut dt: f64 = 0.25;
@@ -549,12 +538,13 @@ impl Morph<'_> {
         for laps in 0..MAX_LAPS {
             let fr = fractions(&lap);
             let lap_poly = closed_pline(&lap);
+            let lap_index = IndexedLoop::new(&lap_poly);
             let haus_b = self
                 .b_samples
                 .iter()
-                .map(|&q| loop_distance(&lap_poly, q))
+                .map(|&q| lap_index.distance(q))
                 .fold(0.0, f64::max);
-            let haus_l = lap.iter().map(|&p| loop_distance(b, p)).fold(0.0, f64::max);
+            let haus_l = lap.iter().map(|&p| b_index.distance(p)).fold(0.0, f64::max);
             if haus_b <= sp && haus_l <= sp {
                 // The last lap: onto B_ε at equal arc-length fractions.
                 let fine = resample(&lap, self.ds_last);
@@ -740,7 +730,7 @@ fn resample(pts: &[Point], ds: f64) -> Vec<Point> {
 }
 
 /// A closed polyline through `pts` (for distance queries).
-fn closed_pline(pts: &[Point]) -> Polyline<f64> {
+pub(super) fn closed_pline(pts: &[Point]) -> Polyline<f64> {
     let mut pl = Polyline::with_capacity(pts.len(), true);
     for p in pts {
         pl.add(p.x, p.y, 0.0);
