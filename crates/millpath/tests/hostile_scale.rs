@@ -209,11 +209,10 @@ fn program_of_100k_lines_streams_through_the_planner_and_verifier() {
 
 /// Found while writing the scale test: a smooth 50,000-vertex star of radius 500 mm (vertices
 /// 0.063 mm apart, the radius a single-valued function of the angle, so simple by
-/// construction) is refused as "self-intersecting" by `Outline::new`
-/// (`cavalier_contours::Polyline::scan_for_self_intersect`); 20,000 vertices of the same
-/// star pass. A false positive of the intersection scan on dense, nearly collinear segments.
+/// construction) was refused as "self-intersecting": `cavalier_contours`' scan reports two
+/// consecutive segments that turn by 1e-4 rad as overlapping (its parallel test is not scaled
+/// by the segments' lengths). `Outline::new` now drops that report (see `first_crossing`).
 #[test]
-#[ignore = "bug: dense smooth outline (0.06 mm segments) refused as self-intersecting"]
 fn dense_smooth_outline_is_not_self_intersecting() {
     let pts: Vec<millpath::Point> = star_of_radius(50_000, 500.0)
         .into_iter()
