@@ -150,6 +150,26 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
+            what: "spiral into a 6° sliver triangle",
+            args: &[
+                "pocket",
+                "sliver.json",
+                "--tool-diameter",
+                "3",
+                "--depth",
+                "0.5",
+                "--step-down",
+                "0.3",
+                "-o",
+                "out.ngc",
+            ],
+            files: &[(
+                "sliver.json",
+                br#"{"outline": [[18.1786, -26.8795], [-56.5653, -75.0708], [39.1783, -26.8795]]}"#,
+            )],
+            outputs: &["out.ngc"],
+        },
+        Case {
             what: "tool larger than the pocket",
             args: &[
                 "pocket",

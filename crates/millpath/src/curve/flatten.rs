@@ -243,6 +243,12 @@ fn farthest<C: PlanarCurve + ?Sized>(
     let eps = PARAM_EPS * (1.0 + s.abs());
     let mut lo;
     let mut up;
+    // What is left of the range is below the parameter resolution: one chord to its end
+    // (`clamp` below would panic on an empty range; found by the seeded mutation pass,
+    // tests/hostile_mutate.rs, and kept as fuzz/corpus-min/contour/regression-clamp-min-gt-max).
+    if hi - s <= eps || hi.is_nan() || s.is_nan() {
+        return hi;
+    }
     let mut h = h0.clamp(eps, hi - s);
     // Predictor: on a smooth arc the deviation grows like the square of the step, so
     // h·√(tol/dev(h)) lands close to the end; a few rounds, then a tight bracket.

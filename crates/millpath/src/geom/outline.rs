@@ -4,7 +4,7 @@
 //! of sweep `θ` that leaves the vertex (positive counter-clockwise, 0 for a straight segment).
 //! Arcs stay exact all the way to G2/G3 output.
 
-use super::{Aabb, LENGTH_EPS, Point};
+use super::{Aabb, LENGTH_EPS, Point, Vec2};
 use crate::error::InputError;
 use cavalier_contours::polyline::{
     PlineCreation, PlineOrientation, PlineSource, PlineSourceMut, PlineVertex, Polyline,
@@ -136,6 +136,37 @@ impl Outline {
         self.pline
             .iter_vertexes()
             .map(|v: PlineVertex<f64>| (Point::new(v.x, v.y), v.bulge))
+    }
+
+    /// The sharpest convex corner: its interior angle (radians, in `(0, π)`) and its vertex;
+    /// `None` when no vertex is a convex corner (a circle of arcs, tangent joins). The angle is
+    /// between the tangents of the two segments meeting there (an arc's tangent leaves its
+    /// chord by half the arc's sweep `θ = 4·atan(bulge)`).
+    pub fn sharpest_corner(&self) -> Option<(f64, Point)> {
+        let n = self.pline.vertex_count();
+        let ccw = self.pline.area() > 0.0;
+        let tangents = |i: usize| -> (Vec2, Vec2) {
+            let a = self.pline.at(i);
+            let b = self.pline.at(self.pline.next_wrapping_index(i));
+            let chord = Vec2::new(b.x - a.x, b.y - a.y);
+            let half = 2.0 * a.bulge.atan();
+            (chord.rotate(-half), chord.rotate(half))
+        };
+        let mut best: Option<(f64, Point)> = None;
+        for i in 0..n {
+            let (_, incoming) = tangents(self.pline.prev_wrapping_index(i));
+            let (outgoing, _) = tangents(i);
+            let turn = incoming.cross(outgoing).atan2(incoming.dot(outgoing));
+            let turn = if ccw { turn } else { -turn };
+            if turn > 1e-9 {
+                let interior = std::f64::consts::PI - turn;
+                if best.is_none_or(|(a, _)| interior < a) {
+                    let v = self.pline.at(i);
+                    best = Some((interior, Point::new(v.x, v.y)));
+                }
+            }
+        }
+        best
     }
 
     /// Number of vertices (= number of segments, the outline being closed).
@@ -349,6 +380,35 @@ mod tests {
         ];
         let e = Outline::from_points(&spike, "spike").unwrap_err();
         assert!(e.to_string().contains("self-intersecting"), "{e}");
+    }
+
+    /// A 30-60-90 triangle, either way round and from any start: 30° at its sharpest vertex;
+    /// arcs count by their tangents (a D shape's corners are right angles).
+    #[test]
+    fn sharpest_corner_of_a_triangle_and_a_d_shape() {
+        let tri = [
+            Point::new(0.0, 0.0),
+            Point::new(3f64.sqrt() * 10.0, 0.0),
+            Point::new(0.0, 10.0),
+        ];
+        for pts in [tri.to_vec(), tri.iter().rev().copied().collect()] {
+            for k in 0..3 {
+                let mut p = pts.clone();
+                p.rotate_left(k);
+                let o = Outline::from_points(&p, "tri").unwrap();
+                let (a, at) = o.sharpest_corner().unwrap();
+                assert!((a.to_degrees() - 30.0).abs() < 1e-9, "{}", a.to_degrees());
+                assert!(at.distance(tri[1]) < 1e-12, "{at:?}");
+            }
+        }
+        // A half disc: the diameter from (-5, 0) to (5, 0), then a half circle back over the top.
+        let d = Outline::new(
+            &[(Point::new(-5.0, 0.0), 0.0), (Point::new(5.0, 0.0), 1.0)],
+            "d",
+        )
+        .unwrap();
+        let (a, _) = d.sharpest_corner().unwrap();
+        assert!((a.to_degrees() - 90.0).abs() < 1e-9, "{}", a.to_degrees());
     }
 
     #[test]

@@ -211,10 +211,38 @@ pub fn plan_with_stats(
     }
     match (best, last_err) {
         (Some((plan, stats, _)), _) => Ok((plan, stats)),
-        (None, Some(e)) => Err(e),
+        (None, Some(e)) => Err(name_sharp_corner(e, shape)),
         (None, None) => Err(InputError::new("pocket shape", "no spiral").at("--strategy spiral")),
     }
 }
+
+/// A spiral that did not converge on a pocket with a corner sharper than 60°: the corner is
+/// the likely cause (the loops' rounded tips cannot reach into it within the spacing bound,
+/// README: Known limits), so the message names it.
+fn name_sharp_corner(e: InputError, shape: &PocketShape) -> InputError {
+    match shape.outer.sharpest_corner() {
+        Some((angle, at)) if e.value == NO_CONVERGENCE && angle < 60f64.to_radians() => {
+            InputError::new(
+                "pocket shape",
+                format!(
+                    "{NO_CONVERGENCE}; its sharpest corner is {:.1}° at ({:.3}, {:.3})",
+                    angle.to_degrees(),
+                    at.x,
+                    at.y
+                ),
+            )
+            .at("--strategy spiral")
+            .expected(
+                "a pocket the spiral can morph into within 400 laps; corners much sharper \
+                 than 60° often are not (use --strategy offset)",
+            )
+        }
+        _ => e,
+    }
+}
+
+/// The value of the error of a spiral that does not reach the boundary.
+const NO_CONVERGENCE: &str = "spiral did not converge";
 
 /// The spiral on offset fronts ([`fronts`], [`laps`]); `None` when the fronts do not reach
 /// the boundary and the harmonic morph must be used.
@@ -489,7 +517,7 @@ fn plan_in_frame(
             return Ok((plan, stats));
         }
     }
-    Err(InputError::new("pocket shape", "spiral did not converge")
+    Err(InputError::new("pocket shape", NO_CONVERGENCE)
         .at("--strategy spiral")
         .expected("a pocket the spiral can morph into within 400 laps (use --strategy offset)"))
 }
