@@ -170,6 +170,18 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
+            what: "safe height of 1e300 mm (the fuzzer's helix of 1e300 turns)",
+            args: &["pocket", "sample:aerospace", "--safe-height", "1e300", "-o", "out.ngc"],
+            files: &[],
+            outputs: &["out.ngc"],
+        },
+        Case {
+            what: "ramp angle of 1e-7 degrees (a helix of millions of turns)",
+            args: &["pocket", "sample:aerospace", "--ramp-angle", "0.0000001", "-o", "keep.ngc"],
+            files: &[("keep.ngc", KEEP)],
+            outputs: &["keep.ngc"],
+        },
+        Case {
             what: "tool larger than the pocket",
             args: &[
                 "pocket",

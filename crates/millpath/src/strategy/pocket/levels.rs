@@ -207,7 +207,21 @@ fn emit_cut(
         CutEntry::Helix { center, radius } => {
             let c = |h: f64| Point3::from_xy(center, h);
             let per_turn = std::f64::consts::TAU * radius * ramp_angle.tan();
-            let turns = ((safe - z) / per_turn).ceil().max(1.0) as usize;
+            let turns = ((safe - z) / per_turn).ceil().max(1.0);
+            // Bounded like the ramp's passes: a helix of millions of turns (a safe height of
+            // 1e300 mm, found by the `pocket` fuzzer, asked for 3.5 GB of moves) is no entry.
+            let fits = turns <= MAX_RAMP_PASSES; // false for NaN
+            if !fits {
+                return Err(InputError::new("helix entry", format!("{turns:.3e} turns"))
+                    .at(format!(
+                        "--ramp-angle, --safe-height, --helix-radius; level at z = {z:.3}"
+                    ))
+                    .expected(format!(
+                        "at most {MAX_RAMP_PASSES} turns: a lower safe height, a steeper ramp \
+                         angle or a larger helix radius"
+                    )));
+            }
+            let turns = turns as usize;
             for k in 1..=turns {
                 let h = safe - (safe - z) * k as f64 / turns as f64;
                 tp.push(Move::arc_xy(

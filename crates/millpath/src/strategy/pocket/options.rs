@@ -179,7 +179,13 @@ fn check(what: &str, v: f64, ok: bool, flag: &str, expected: &str) -> Result<(),
     if v.is_finite() && ok {
         Ok(())
     } else {
-        Err(InputError::new(what, v).at(flag).expected(expected))
+        // 1e300 in exponent form, not as 301 digits.
+        let shown = if v.is_finite() && v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
+            format!("{v:e}")
+        } else {
+            v.to_string()
+        };
+        Err(InputError::new(what, shown).at(flag).expected(expected))
     }
 }
 
@@ -218,9 +224,9 @@ impl PocketOptions {
         check(
             "wall stock",
             self.wall_stock,
-            self.wall_stock >= 0.0,
+            (0.0..=MAX_LENGTH_MM).contains(&self.wall_stock),
             "--wall-stock",
-            "a stock >= 0 mm",
+            "a stock >= 0 mm and at most 1e6 mm",
         )?;
         check(
             "floor stock",
@@ -232,16 +238,16 @@ impl PocketOptions {
         check(
             "safe height",
             self.safe_height,
-            self.safe_height > 0.0,
+            self.safe_height > 0.0 && self.safe_height <= MAX_LENGTH_MM,
             "--safe-height",
-            "a height > 0 mm",
+            "a height > 0 mm and at most 1e6 mm",
         )?;
         check(
             "clearance height",
             self.clearance_height,
-            self.clearance_height >= self.safe_height,
+            self.clearance_height >= self.safe_height && self.clearance_height <= MAX_LENGTH_MM,
             "--clearance-height",
-            "a height at least the safe height",
+            "a height at least the safe height and at most 1e6 mm",
         )?;
         let levels = (self.depth - self.floor_stock) / self.step_down;
         check(
@@ -283,18 +289,18 @@ impl PocketOptions {
         check(
             "min radius",
             self.min_radius,
-            self.min_radius >= 0.0,
+            (0.0..=MAX_LENGTH_MM).contains(&self.min_radius),
             "--min-radius",
-            "a radius >= 0 mm",
+            "a radius >= 0 mm and at most 1e6 mm",
         )?;
         match self.entry {
             Entry::Helix { radius, ramp_angle } => {
                 check(
                     "helix radius",
                     radius,
-                    radius > 0.0,
+                    radius > 0.0 && radius <= MAX_LENGTH_MM,
                     "--helix-radius",
-                    "a radius > 0 mm",
+                    "a radius > 0 mm and at most 1e6 mm",
                 )?;
                 check_ramp(ramp_angle)?;
             }
@@ -317,6 +323,59 @@ fn check_ramp(a: f64) -> Result<(), InputError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Heights, stocks and radii of 1e300 mm are refused, named in exponent form (the
+    /// `pocket` fuzzer's safe height of 1e300 mm made a helix entry of 1e300 turns).
+    #[test]
+    fn huge_lengths_are_refused_in_exponent_form() {
+        let tool = Tool::flat(10.0).unwrap();
+        for (flag, opts) in [
+            (
+                "--safe-height",
+                PocketOptions {
+                    safe_height: 1e300,
+                    clearance_height: 1e300,
+                    ..PocketOptions::default()
+                },
+            ),
+            (
+                "--clearance-height",
+                PocketOptions {
+                    clearance_height: 2e6,
+                    ..PocketOptions::default()
+                },
+            ),
+            (
+                "--wall-stock",
+                PocketOptions {
+                    wall_stock: 1e300,
+                    ..PocketOptions::default()
+                },
+            ),
+            (
+                "--min-radius",
+                PocketOptions {
+                    min_radius: 1e300,
+                    ..PocketOptions::default()
+                },
+            ),
+            (
+                "--helix-radius",
+                PocketOptions {
+                    entry: Entry::Helix {
+                        radius: 1e300,
+                        ramp_angle: 0.05,
+                    },
+                    ..PocketOptions::default()
+                },
+            ),
+        ] {
+            let e = opts.validate(&tool).unwrap_err().to_string();
+            assert!(e.contains(flag) && e.contains("at most 1e6 mm"), "{e}");
+            assert!(e.len() < 200, "{e}");
+        }
+        assert!(PocketOptions::default().validate(&tool).is_ok());
+    }
 
     #[test]
     fn stepover_parses_fraction_and_distance() {
