@@ -11,24 +11,8 @@
 mod harness;
 mod hostile_common;
 
-use hostile_common::Harness;
+use hostile_common::{Harness, corpus};
 use std::path::PathBuf;
-
-fn corpus(target: &str) -> Vec<(String, Vec<u8>)> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fuzz/corpus-min")
-        .join(target);
-    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("corpus {} missing: {e}", dir.display()))
-        .map(|e| {
-            let e = e.expect("corpus entry");
-            let name = e.file_name().to_string_lossy().into_owned();
-            (name, std::fs::read(e.path()).expect("corpus file"))
-        })
-        .collect();
-    files.sort();
-    files
-}
 
 fn replay(target: &'static str, min_files: usize, f: fn(&[u8])) {
     let files = corpus(target);

@@ -14,26 +14,9 @@
 mod harness;
 mod hostile_common;
 
-use hostile_common::{Harness, rng};
+use hostile_common::{Harness, corpus, env_or, rng};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
-use std::path::PathBuf;
-
-fn corpus(target: &str) -> Vec<Vec<u8>> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../fuzz/corpus-min")
-        .join(target);
-    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(&dir)
-        .unwrap_or_else(|e| panic!("corpus {} missing: {e}", dir.display()))
-        .map(|e| {
-            let e = e.expect("corpus entry");
-            let name = e.file_name().to_string_lossy().into_owned();
-            (name, std::fs::read(e.path()).expect("corpus file"))
-        })
-        .collect();
-    files.sort();
-    files.into_iter().map(|(_, d)| d).collect()
-}
 
 /// Integers libFuzzer also tries: boundaries of the signed and unsigned widths.
 const INTERESTING: [u64; 12] = [
@@ -154,27 +137,13 @@ fn mutate_once(d: &mut Vec<u8>, other: &[u8], r: &mut ChaCha8Rng, max_len: usize
     d.truncate(max_len);
 }
 
-fn seed() -> u64 {
-    std::env::var("MILLPATH_MUTATE_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(20_261_122)
-}
-
-fn scale() -> usize {
-    std::env::var("MILLPATH_MUTATE_SCALE")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1)
-}
-
 /// `count` mutants (times the scale) of the `target` corpus through `f`; the corpus files are
 /// taken in turn, so every file gets mutants when `count` is at least the corpus size.
 fn pass(target: &'static str, salt: u64, count: usize, f: fn(&[u8])) {
-    let files = corpus(target);
+    let files: Vec<Vec<u8>> = corpus(target).into_iter().map(|(_, d)| d).collect();
     assert!(!files.is_empty(), "{target}: empty corpus");
-    let count = count * scale();
-    let mut r = rng(seed() ^ salt);
+    let count = count * env_or("MILLPATH_MUTATE_SCALE", 1usize);
+    let mut r = rng(env_or("MILLPATH_MUTATE_SEED", 20_261_122u64) ^ salt);
     let mut h = Harness::new(target);
     for k in 0..count {
         let src = k % files.len();

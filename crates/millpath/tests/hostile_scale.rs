@@ -12,6 +12,8 @@
 //! tests below and `millpath estimate` on a generated program; see README "Long runs" and
 //! BENCHMARKS.md. Sizes come from `MILLPATH_SCALE_VERTICES` / `MILLPATH_SCALE_LINES`.
 
+mod hostile_common;
+
 use millpath::curve::{self, CurveKind, flatten::flatten_curve};
 use millpath::gcode::{Reader, ReaderOptions};
 use millpath::io::{outline_json, points};
@@ -35,13 +37,6 @@ fn star_of_radius(n: usize, r0: f64) -> Vec<(f64, f64)> {
             (r * a.cos(), r * a.sin())
         })
         .collect()
-}
-
-fn size_from_env(var: &str, default: usize) -> usize {
-    std::env::var(var)
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
 }
 
 fn outline_at_scale(n: usize) {
@@ -226,7 +221,7 @@ fn dense_smooth_outline_is_not_self_intersecting() {
 #[test]
 #[ignore = "long run (README: Long runs)"]
 fn outline_long() {
-    outline_at_scale(size_from_env("MILLPATH_SCALE_VERTICES", 1_000_000));
+    outline_at_scale(hostile_common::env_or("MILLPATH_SCALE_VERTICES", 1_000_000));
 }
 
 /// Long run: `MILLPATH_SCALE_LINES=10000000 cargo test --release -p millpath --test
@@ -234,5 +229,8 @@ fn outline_long() {
 #[test]
 #[ignore = "long run (README: Long runs)"]
 fn gcode_long() {
-    gcode_at_scale(size_from_env("MILLPATH_SCALE_LINES", 10_000_000), false);
+    gcode_at_scale(
+        hostile_common::env_or("MILLPATH_SCALE_LINES", 10_000_000),
+        false,
+    );
 }

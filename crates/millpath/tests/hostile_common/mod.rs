@@ -11,6 +11,33 @@ use rand_chacha::ChaCha8Rng;
 use std::fmt::Debug;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+/// The committed fuzz corpus of `target` (`fuzz/corpus-min/TARGET/*`): names and bytes, sorted
+/// by name (the replay and the mutation pass see the same order on every machine).
+pub fn corpus(target: &str) -> Vec<(String, Vec<u8>)> {
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz/corpus-min")
+        .join(target);
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("corpus {} missing: {e}", dir.display()))
+        .map(|e| {
+            let e = e.expect("corpus entry");
+            let name = e.file_name().to_string_lossy().into_owned();
+            (name, std::fs::read(e.path()).expect("corpus file"))
+        })
+        .collect();
+    files.sort();
+    files
+}
+
+/// The environment variable `var` parsed, or `default` when it is unset or does not parse
+/// (sizes, seeds and scales of the long runs).
+pub fn env_or<T: std::str::FromStr>(var: &str, default: T) -> T {
+    std::env::var(var)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
 /// The deterministic RNG of a pass (`seed` differs per test so the passes do not correlate).
 pub fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
