@@ -67,10 +67,19 @@ pub struct InputError {
 
 impl InputError {
     /// A new input error about `what`, whose value was `value`.
+    ///
+    /// Numbers that `f64`'s `Display` wrote out in full (1e300 is 301 digits, 1e-300 is 302
+    /// characters) are shown in exponent form, here and in [`InputError::expected`]:
+    ///
+    /// ```
+    /// use millpath::InputError;
+    /// let e = InputError::new("point", format!("({}, {})", 1e300, -1e-300));
+    /// assert_eq!(e.value, "(1e300, -1e-300)");
+    /// ```
     pub fn new(what: impl Into<String>, value: impl fmt::Display) -> Self {
         InputError {
             what: what.into(),
-            value: value.to_string(),
+            value: compact_numbers(&value.to_string()),
             origin: None,
             expected: None,
         }
@@ -86,9 +95,38 @@ impl InputError {
     /// What would be accepted (or a short explanation of what is wrong).
     #[must_use]
     pub fn expected(mut self, expected: impl Into<String>) -> Self {
-        self.expected = Some(expected.into());
+        self.expected = Some(compact_numbers(&expected.into()));
         self
     }
+}
+
+/// Longest number `f64`'s `Display` writes that is still shown as written (20 characters:
+/// 1e19 has 20 digits, 1e-18 is `0.000000000000000001`).
+const LONGEST_PLAIN_NUMBER: usize = 20;
+
+/// Rewrites every run of digits and points longer than [`LONGEST_PLAIN_NUMBER`] that is
+/// exactly how `f64`'s `Display` writes some value into exponent form (`1e300`). Any other
+/// run (a 24-digit line number as the user wrote it) is kept as it is.
+fn compact_numbers(s: &str) -> String {
+    let mut out = String::with_capacity(s.len().min(256));
+    let mut rest = s;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit() || c == '.') {
+        out.push_str(&rest[..start]);
+        let run = &rest[start..];
+        let len = run
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(run.len());
+        let (number, tail) = run.split_at(len);
+        match number.parse::<f64>() {
+            Ok(v) if len > LONGEST_PLAIN_NUMBER && v.to_string() == number => {
+                out.push_str(&format!("{v:e}"));
+            }
+            _ => out.push_str(number),
+        }
+        rest = tail;
+    }
+    out.push_str(rest);
+    out
 }
 
 impl fmt::Display for InputError {
@@ -164,6 +202,26 @@ mod tests {
     fn exit_codes_separate_the_families() {
         assert_eq!(Error::from(InputError::new("x", 1)).exit_code(), 2);
         assert_eq!(Error::internal("broken").exit_code(), 1);
+    }
+
+    #[test]
+    fn long_display_numbers_are_shown_in_exponent_form() {
+        let e = InputError::new("feed", 1e300)
+            .at("--feed")
+            .expected(format!("at most {}", 1e21));
+        assert_eq!(
+            e.to_string(),
+            "invalid feed = 1e300 (from --feed): expected at most 1e21"
+        );
+        assert_eq!(InputError::new("x", 1e-300).value, "1e-300");
+        assert_eq!(InputError::new("x", -2.5e40).value, "-2.5e40");
+        // Short numbers, and long digit runs that no f64 displays as, stay as written.
+        assert_eq!(InputError::new("x", 1e19).value, "10000000000000000000");
+        assert_eq!(InputError::new("x", 0.001).value, "0.001");
+        let line = "N123456789012345678901234 G1";
+        assert_eq!(InputError::new("word", line).value, line);
+        assert_eq!(InputError::new("x", "1..2 .").value, "1..2 .");
+        assert_eq!(InputError::new("x", "").value, "");
     }
 
     #[test]

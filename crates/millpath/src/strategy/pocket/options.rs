@@ -179,13 +179,8 @@ fn check(what: &str, v: f64, ok: bool, flag: &str, expected: &str) -> Result<(),
     if v.is_finite() && ok {
         Ok(())
     } else {
-        // 1e300 in exponent form, not as 301 digits.
-        let shown = if v.is_finite() && v != 0.0 && !(1e-6..1e15).contains(&v.abs()) {
-            format!("{v:e}")
-        } else {
-            v.to_string()
-        };
-        Err(InputError::new(what, shown).at(flag).expected(expected))
+        // `InputError::new` shows 1e300 in exponent form, not as 301 digits.
+        Err(InputError::new(what, v).at(flag).expected(expected))
     }
 }
 
