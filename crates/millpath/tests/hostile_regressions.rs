@@ -249,7 +249,9 @@ fn contour_lengths_of_1e300_are_refused() {
 /// cusp-biarcs-*`): a four-point curve through a repeated point (a cusp) contoured on the
 /// line with biarcs took over a minute (ASan: > 20 s, a timeout): near the cusp the biarcs
 /// shrank without end, ~10⁶ deviation evaluations. Fixed in `curve::biarc::fit`: after
-/// `MAX_DEV_EVALUATIONS` the rest of the stretch is cut in chords within the tolerance.
+/// `MAX_DEV_EVALUATIONS` the rest of the stretch is cut in chords within the tolerance
+/// (13,082 moves; 22,112 since session 5, whose biarc ends are bisected to 1e-4 of their
+/// length instead of 1e-7, so the same budget makes more, cheaper biarcs near the cusp).
 #[test]
 fn contour_biarcs_through_a_cusp_finish() {
     use millpath::curve::{self, CurveKind, LabeledPoint};
@@ -294,9 +296,9 @@ fn contour_biarcs_through_a_cusp_finish() {
         arcs: true,
     };
     let res = contour::contour(&c, &opt).expect("contour");
-    // Four layers of a short closed curve: thousands of moves at most, not ~10⁶.
+    // Four layers of a short closed curve: thousands of moves a layer at most, not ~10⁶.
     assert!(
-        res.toolpath.moves.len() < 20_000,
+        res.toolpath.moves.len() < 30_000,
         "{} moves",
         res.toolpath.moves.len()
     );
