@@ -1,5 +1,5 @@
 //! Flattening and offset of the paper's outline (scaled to the die block) beside kurbo's
-//! flatten of the same cubics at the same tolerance.
+//! flatten of the same cubics at the same tolerance; biarcs through a pocket spiral's samples.
 //!
 //! `cargo bench --bench flatten -- --warm-up-time 1 --measurement-time 3`
 
@@ -45,6 +45,23 @@ fn bench(c: &mut Criterion) {
             b.iter(|| offset_pass(black_box(&outline), 5.2, o).map(|p| p.segments()));
         });
     }
+    g.finish();
+    // Biarcs (`--arcs`) through a pocket spiral's samples: 25 laps of a wavy Archimedean
+    // spiral (pitch 2.4 mm, radius rippling ±0.3 mm nine times a lap), a sample every mm.
+    let mut pts = Vec::new();
+    let mut th = 0.0_f64;
+    while th < 25.0 * std::f64::consts::TAU {
+        let r = 2.0 + 2.4 * th / std::f64::consts::TAU + 0.3 * (9.0 * th).sin();
+        pts.push(millpath::Point::new(r * th.cos(), r * th.sin()));
+        th += 1.0 / r;
+    }
+    let chain = curve::catmull_rom::OpenChain(curve::catmull_rom::open(&pts));
+    let n = chain.0.len() as f64;
+    let mut g = c.benchmark_group("biarcs_wavy_spiral_25_laps");
+    g.sample_size(10);
+    g.bench_function("fit_0.004mm", |b| {
+        b.iter(|| curve::biarc::fit(black_box(&chain), 0.0, n, 0.004).len());
+    });
     g.finish();
 }
 
