@@ -277,6 +277,15 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
+            what: "SVG elliptical arc of radius 1e55 mm (the fuzzer's 7.5 GB abort)",
+            args: &["pocket", "arc.svg", "--tool-diameter", "6", "-o", "out.ngc"],
+            files: &[(
+                "arc.svg",
+                br#"<svg><path d="M 0 0 A 1e55 1e11 10 1 1 1000 0 Z"/></svg>"#,
+            )],
+            outputs: &["out.ngc"],
+        },
+        Case {
             what: "outline file that does not exist",
             args: &["pocket", "missing.dxf", "--tool-diameter", "6", "-o", "out.ngc"],
             files: &[],

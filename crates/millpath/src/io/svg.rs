@@ -287,6 +287,28 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                     };
                     match kurbo::Arc::from_svg_arc(&arc) {
                         Some(a) => {
+                            // kurbo cuts an arc into about (1.1163·R/t)^(1/6)·|sweep|/2π
+                            // cubics (R the larger radius, t = tol/10): a half turn of radius
+                            // 1e55 mm was ~10¹⁰ of them (7.5 GB, an abort found by the
+                            // `outline_importers` fuzzer). An arc within ±MAX_COORDINATE_MM
+                            // needs a few hundred; more than a million is refused.
+                            let r = a.radii.x.max(a.radii.y);
+                            let cubics = (1.1163 * r / (0.1 * tol)).powf(1.0 / 6.0)
+                                * a.sweep_angle.abs()
+                                / std::f64::consts::TAU;
+                            if !(cubics <= 1e6) {
+                                return Err(InputError::new(
+                                    "SVG arc",
+                                    format!(
+                                        "radii ({rx}, {ry}) sweeping {:.1}°",
+                                        a.sweep_angle.to_degrees()
+                                    ),
+                                )
+                                .at(at.to_owned())
+                                .expected(format!(
+                                    "an elliptical arc within ±{MAX_COORDINATE_MM} mm"
+                                )));
+                            }
                             let p = a.to_path(0.1 * tol);
                             flatten_into(&mut cur, &p)?;
                         }
@@ -356,5 +378,38 @@ mod tests {
     fn open_path_is_an_error() {
         let e = parse(r#"<path d="M 0 0 L 10 0 L 10 10"/>"#, "o.svg", 0.01).unwrap_err();
         assert!(e.to_string().contains("open"), "{e}");
+    }
+
+    /// The `outline_importers` fuzzer's abort (7.5 GB): an elliptical half turn of radius
+    /// 1e55 mm. Refused by its radius and sweep before kurbo subdivides it; a legitimate
+    /// elliptical arc, and a nearly straight one of a huge ellipse, still read.
+    #[test]
+    fn huge_elliptical_arcs_are_refused_before_subdivision() {
+        let e = parse(
+            r#"<path d="M 0 0 A 1e55 1e11 10 1 1 1000 0 Z"/>"#,
+            "huge.svg",
+            1e-6,
+        )
+        .unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("SVG arc") && msg.contains("1e55") && msg.contains("huge.svg"),
+            "{msg}"
+        );
+        let ok = parse(
+            r#"<path d="M 0 0 A 20 10 0 0 0 40 0 L 40 -10 L 0 -10 Z"/>"#,
+            "ellipse.svg",
+            0.001,
+        )
+        .unwrap();
+        assert!(ok.outer.signed_area().abs() > 400.0);
+        // A 10 mm chord of an ellipse with a 1e9 mm radius: a straight line, in bounds.
+        let flat = parse(
+            r#"<path d="M 0 0 A 1e9 5e8 0 0 1 10 0 L 10 -10 L 0 -10 Z"/>"#,
+            "flat.svg",
+            0.001,
+        )
+        .unwrap();
+        assert!((flat.outer.signed_area().abs() - 100.0).abs() < 1e-3);
     }
 }
