@@ -296,7 +296,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                             let cubics = (1.1163 * r / (0.1 * tol)).powf(1.0 / 6.0)
                                 * a.sweep_angle.abs()
                                 / std::f64::consts::TAU;
-                            if !(cubics <= 1e6) {
+                            if cubics.is_nan() || cubics > 1e6 {
                                 return Err(InputError::new(
                                     "SVG arc",
                                     format!(
