@@ -124,7 +124,7 @@ impl Prepared {
             delta <= sw.abs()
         };
         if inside {
-            // `sqrt` rather than `hypot`: lengths here are within ±1e7 mm, far from overflow.
+            // `sqrt` rather than `hypot`: no overflow below 1e154 mm.
             (w.length_squared().sqrt() - r).abs()
         } else {
             p.distance(self.start).min(p.distance(self.end))

@@ -289,7 +289,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                         Some(a) => {
                             // kurbo cuts an arc into about (1.1163·R/t)^(1/6)·|sweep|/2π
                             // cubics (R the larger radius, t = tol/10): a half turn of radius
-                            // 1e55 mm was ~10¹⁰ of them (7.5 GB, an abort found by the
+                            // 1e55 mm was ~2·10⁹ of them (7.5 GB, an abort found by the
                             // `outline_importers` fuzzer). An arc within ±MAX_COORDINATE_MM
                             // needs a few hundred; more than a million is refused.
                             let r = a.radii.x.max(a.radii.y);
