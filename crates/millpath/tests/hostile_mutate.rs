@@ -3,7 +3,8 @@
 //! on stable Rust and without libFuzzer. `hostile_corpus.rs` replays the corpus as it is;
 //! this pass changes each input the way libFuzzer's mutators do (bit and byte changes,
 //! interesting integers and floats, inserted, erased, repeated and copied bytes, ASCII
-//! numbers changed, two inputs spliced), one to five changes stacked, from a fixed seed, so
+//! numbers changed, two inputs spliced, the tokens of `fuzz/dicts/TARGET.dict` inserted where a
+//! target has a dictionary), one to five changes stacked, from a fixed seed, so
 //! that a regression just beside the corpus fails `cargo test` too, the same way on every run.
 //!
 //! Every mutant that panics is reported with its target, the corpus file it came from, the
@@ -14,7 +15,7 @@
 mod harness;
 mod hostile_common;
 
-use hostile_common::{Harness, corpus, env_or, rng};
+use hostile_common::{Harness, corpus, dictionary, env_or, rng};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
@@ -47,10 +48,19 @@ const FLOATS: [f64; 9] = [
     -1e-300,
 ];
 
-/// One change to `d` (`other`: another corpus input, for splicing).
-fn mutate_once(d: &mut Vec<u8>, other: &[u8], r: &mut ChaCha8Rng, max_len: usize) {
+/// One change to `d` (`other`: another corpus input, for splicing; `dict`: the target's
+/// dictionary tokens, for the twelfth kind of change, drawn only when there are any, so that a
+/// target without a dictionary sees the same mutants as before dictionaries existed).
+fn mutate_once(
+    d: &mut Vec<u8>,
+    other: &[u8],
+    dict: &[Vec<u8>],
+    r: &mut ChaCha8Rng,
+    max_len: usize,
+) {
     let len = d.len();
-    match r.random_range(0..11u32) {
+    let kinds = if dict.is_empty() { 11u32 } else { 12 };
+    match r.random_range(0..kinds) {
         // Flip a bit.
         0 if len > 0 => {
             let i = r.random_range(0..len);
@@ -127,6 +137,17 @@ fn mutate_once(d: &mut Vec<u8>, other: &[u8], r: &mut ChaCha8Rng, max_len: usize
             d.truncate(cut);
             d.extend_from_slice(&other[from..]);
         }
+        // Insert a dictionary token (a keyword of the format) or write it over the input
+        // (libFuzzer's -dict mutations).
+        11 => {
+            let t = &dict[r.random_range(0..dict.len())];
+            let i = r.random_range(0..=len);
+            if r.random_bool(0.5) || i + t.len() > len {
+                d.splice(i..i, t.iter().copied());
+            } else {
+                d[i..i + t.len()].copy_from_slice(t);
+            }
+        }
         // Swap two bytes.
         _ if len > 1 => {
             let (i, j) = (r.random_range(0..len), r.random_range(0..len));
@@ -144,18 +165,31 @@ fn pass(target: &'static str, salt: u64, count: usize, f: fn(&[u8])) {
     assert!(!files.is_empty(), "{target}: empty corpus");
     let count = count * env_or("MILLPATH_MUTATE_SCALE", 1usize);
     let mut r = rng(env_or("MILLPATH_MUTATE_SEED", 20_261_122u64) ^ salt);
+    let dict = dictionary(target);
     let mut h = Harness::new(target);
     for k in 0..count {
         let src = k % files.len();
         let mut d = files[src].clone();
         let other = &files[r.random_range(0..files.len())];
         for _ in 0..r.random_range(1..=5u32) {
-            mutate_once(&mut d, other, &mut r, 4096);
+            mutate_once(&mut d, other, &dict, &mut r, 4096);
         }
         let label = format!("{target} mutant {k} of corpus file #{src} (sorted): {d:?}");
         h.run(&label, || f(&d));
     }
     h.finish(count);
+}
+
+/// The dictionary reader decodes libFuzzer's escapes (a DXF token holds newlines, an SVG one
+/// quotes), so the mutants carry the same tokens as the libFuzzer runs.
+#[test]
+fn outline_importers_dictionary_decodes() {
+    let d = dictionary("outline_importers");
+    assert!(d.len() > 100, "{} tokens", d.len());
+    assert!(d.iter().any(|t| t == b"0\nSECTION\n"));
+    assert!(d.iter().any(|t| t == b" d=\""));
+    assert!(d.iter().any(|t| t == b"AutoCAD Binary DXF\r\n\x1a\x00"));
+    assert!(dictionary("no-such-target").is_empty());
 }
 
 #[test]

@@ -29,6 +29,57 @@ pub fn corpus(target: &str) -> Vec<(String, Vec<u8>)> {
     files
 }
 
+/// The libFuzzer dictionary of `target` (`fuzz/dicts/TARGET.dict`), decoded, or nothing when
+/// the target has none. The format: one `name="value"` a line, `#` comments, the escapes `\\`,
+/// `\"` and `\xNN` in the value. A line that does not parse fails the test (a broken dictionary
+/// would also be refused by libFuzzer).
+pub fn dictionary(target: &str) -> Vec<Vec<u8>> {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz/dicts")
+        .join(format!("{target}.dict"));
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        return Vec::new();
+    };
+    let mut tokens = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let quoted = line
+            .split_once('=')
+            .map(|(_, v)| v)
+            .and_then(|v| v.strip_prefix('"'))
+            .and_then(|v| v.strip_suffix('"'))
+            .unwrap_or_else(|| panic!("{}:{}: not name=\"value\"", path.display(), n + 1));
+        let b = quoted.as_bytes();
+        let mut token = Vec::with_capacity(b.len());
+        let mut i = 0;
+        while i < b.len() {
+            match (b[i], b.get(i + 1)) {
+                (b'\\', Some(b'x')) => {
+                    let hex = std::str::from_utf8(&b[(i + 2).min(b.len())..(i + 4).min(b.len())])
+                        .ok()
+                        .and_then(|h| u8::from_str_radix(h, 16).ok())
+                        .unwrap_or_else(|| panic!("{}:{}: bad \\x escape", path.display(), n + 1));
+                    token.push(hex);
+                    i += 4;
+                }
+                (b'\\', Some(&c)) => {
+                    token.push(c);
+                    i += 2;
+                }
+                (c, _) => {
+                    token.push(c);
+                    i += 1;
+                }
+            }
+        }
+        tokens.push(token);
+    }
+    tokens
+}
+
 /// The environment variable `var` parsed, or `default` when it is unset or does not parse
 /// (sizes, seeds and scales of the long runs).
 pub fn env_or<T: std::str::FromStr>(var: &str, default: T) -> T {
