@@ -77,6 +77,34 @@ fn planner_limit_violations_found_by_the_fuzzer() {
     h.finish(1);
 }
 
+/// The hand-written seeds of the `outline_importers` corpus (`seed-*.dxf`, `.svg`, `.json`,
+/// `.toml`: every entity kind, path command and key the importers read, each under the fuzz
+/// runs' 4,096-byte limit) are valid documents: without valid starting points libFuzzer never
+/// reached the DXF importer's entity code or the machine checks (session 6, fuzz/README.md).
+#[test]
+fn importer_seeds_are_accepted() {
+    use millpath::{io, machine::Machine};
+    let seeds: Vec<_> = corpus("outline_importers")
+        .into_iter()
+        .filter(|(n, _)| n.starts_with("seed-"))
+        .collect();
+    assert!(seeds.len() >= 11, "{} seeds", seeds.len());
+    for (name, data) in &seeds {
+        assert!(data.len() <= 4096, "{name}: {} bytes", data.len());
+        let text = std::str::from_utf8(data).expect("seeds are text");
+        let ok = match name.rsplit('.').next() {
+            Some("dxf") => io::dxf::parse(data, name, &Default::default()).map(|_| ()),
+            Some("svg") => io::svg::parse(text, name, 0.01).map(|_| ()),
+            Some("json") => io::outline_json::parse(text, name).map(|_| ()),
+            Some("toml") => Machine::from_toml_str(text, name).map(|_| ()),
+            _ => panic!("{name}: unknown seed kind"),
+        };
+        if let Err(e) = ok {
+            panic!("seed {name} refused: {e}");
+        }
+    }
+}
+
 /// Found by the corpus replay after main's pocket walls landed: a zigzag pocket with a depth
 /// of 1e300 mm and a step-down of 333 mm (tool diameter 1e300 mm) makes
 /// `strategy::pocket::levels::level_depths` (called from `walls::level_shapes`) allocate
