@@ -286,6 +286,17 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
+            what: "DXF SPLINE of degree 2 with two control points (the fuzzer's index panic)",
+            args: &["pocket", "spline.dxf", "--tool-diameter", "6", "-o", "out.ngc"],
+            files: &[(
+                "spline.dxf",
+                b"0\nSECTION\n2\nENTITIES\n0\nSPLINE\n70\n8\n71\n2\n72\n5\n73\n2\n\
+                  40\n0\n40\n0\n40\n0\n40\n1\n40\n1\n10\n0\n20\n0\n30\n0\n10\n10\n20\n10\n30\n0\n\
+                  0\nENDSEC\n0\nEOF\n",
+            )],
+            outputs: &["out.ngc"],
+        },
+        Case {
             what: "outline file that does not exist",
             args: &["pocket", "missing.dxf", "--tool-diameter", "6", "-o", "out.ngc"],
             files: &[],

@@ -188,7 +188,15 @@ fn flatten_spline(s: &dxf::entities::Spline, tol: f64, at: &str) -> Result<Vec<P
     } else {
         vec![1.0; ctrl.len()]
     };
-    if p == 0 || knots.len() != ctrl.len() + p + 1 || w.iter().any(|x| !x.is_finite() || *x <= 0.0)
+    // At least `p + 1` control points (de Boor's window of `p + 1` points; a degree-2 spline
+    // with two control points indexed past them, found by the outline_importers fuzzer) and
+    // non-decreasing, finite knots.
+    if p == 0
+        || ctrl.len() <= p
+        || knots.len() != ctrl.len() + p + 1
+        || knots.iter().any(|k| !k.is_finite())
+        || knots.windows(2).any(|k| k[1] < k[0])
+        || w.iter().any(|x| !x.is_finite() || *x <= 0.0)
     {
         return Err(InputError::new(
             "SPLINE",
@@ -199,7 +207,10 @@ fn flatten_spline(s: &dxf::entities::Spline, tol: f64, at: &str) -> Result<Vec<P
             ),
         )
         .at(at)
-        .expected("knots = control points + degree + 1, positive weights"));
+        .expected(
+            "degree + 1 control points or more, knots = control points + degree + 1 \
+             (non-decreasing, finite), positive weights",
+        ));
     }
     let eval = |u: f64| de_boor(p, knots, &ctrl, &w, u);
     let (u0, u1) = (knots[p], knots[ctrl.len()]);
@@ -284,6 +295,35 @@ mod tests {
         assert!(r[0].1.abs() < 1e-12 && (r[1].1 + 0.5).abs() < 1e-12 && r[2].1.abs() < 1e-12);
         let r2 = reverse(&r);
         assert!((r2[0].1 - 0.5).abs() < 1e-12);
+    }
+
+    /// Found by the outline_importers fuzzer (session 6): a degree-2 SPLINE with two control
+    /// points and five knots passed the count check and de Boor indexed a third point.
+    #[test]
+    fn splines_with_too_few_points_or_bad_knots_are_refused() {
+        let spline = |degree: i32, knots: &[f64], n: usize| dxf::entities::Spline {
+            degree_of_curve: degree,
+            knot_values: knots.to_vec(),
+            control_points: (0..n)
+                .map(|i| dxf::Point::new(i as f64, (i % 2) as f64, 0.0))
+                .collect(),
+            ..Default::default()
+        };
+        for (deg, knots, n) in [
+            (2, &[0.0, 0.0, 0.0, 1.0, 1.0][..], 2),
+            (3, &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0][..], 2),
+            (2, &[0.0, 0.0, 1.0, 0.5, 1.0, 1.0][..], 3),
+            (2, &[0.0, 0.0, 0.0, f64::NAN, 1.0, 1.0][..], 3),
+        ] {
+            let e = flatten_spline(&spline(deg, knots, n), 0.01, "t.dxf, entity 1")
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("t.dxf, entity 1") && e.contains("degree + 1 control points"),
+                "{e}"
+            );
+        }
+        assert!(flatten_spline(&spline(2, &[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], 3), 0.01, "t").is_ok());
     }
 
     #[test]
