@@ -22,6 +22,7 @@ use millpath::io::{dxf, outline_json, points, svg};
 use millpath::machine::{AxisLimits, Machine};
 use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves};
+use millpath::stock::SimOptions;
 use millpath::strategy::contour::{self, ContourOptions, Side};
 use millpath::strategy::pocket::{
     self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind,
@@ -203,9 +204,47 @@ pub fn points(data: &[u8]) {
     }
 }
 
+/// A `pocket` input decoded: strategy, pocket, tool, options and simulation raster.
+pub type PocketCase = (StrategyKind, PocketShape, Tool, PocketOptions, SimOptions);
+
 /// `pocket`: a polygon (and maybe an island) with a tool and options from the bytes, through
-/// `pocket::toolpath` in the strategy the bytes pick.
+/// `pocket::generate` (what `millpath pocket` runs) in the strategy the bytes pick.
 pub fn pocket(data: &[u8]) {
+    let Some((kind, shape, tool, opts, sim)) = pocket_case(data) else {
+        return;
+    };
+    // The strategy, the stock simulation, the feed modulation and the verification of every
+    // level.
+    // Strict (like the planner's limits): no internal error (a gouge `generate` refused is
+    // one) and no gouge beyond `GOUGE_TOLERANCE` in what it returns. The gouge check is
+    // geometric (distances to the walls, not the raster).
+    match pocket::generate(kind, &shape, &tool, &opts, &sim) {
+        Ok(r) => {
+            assert_finite(&r.toolpath, "pocket");
+            let v = &r.verification;
+            assert!(!v.min_clearance_mm.is_nan(), "clearance NaN: {v:?}");
+            if strict_verify() {
+                assert!(
+                    v.min_clearance_mm >= v.required_clearance_mm - pocket::GOUGE_TOLERANCE,
+                    "gouge: {kind:?} {v:?}"
+                );
+            }
+        }
+        Err(millpath::Error::Internal(e)) if strict_verify() => {
+            // A gouge `generate` refused is an open finding (fuzz/README.md, session 6:
+            // `fuzz/regressions/pocket-gouge`), flagged by runs with `FUZZ_GOUGE=1`; any other
+            // internal error is a bug.
+            let refused_gouge = e.to_string().contains("toolpath gouges");
+            if !refused_gouge || std::env::var_os("FUZZ_GOUGE").is_some() {
+                panic!("internal error: {kind:?}: {e}")
+            }
+        }
+        Err(_) => {}
+    }
+}
+
+/// Decodes a `pocket` input; `None` when its outline or island is not a valid pocket.
+pub fn pocket_case(data: &[u8]) -> Option<PocketCase> {
     let mut b = Bytes::new(data);
     let kind = match b.pick(3) {
         0 => StrategyKind::Zigzag,
@@ -274,20 +313,28 @@ pub fn pocket(data: &[u8]) {
         arcs: opts.min_radius > 1.05,
         ..opts
     };
-    trace(&(&kind, &outer, &island, &tool, &opts));
-    let Ok(outer) = Outline::from_points(&outer, "fuzz outer") else {
-        return;
+    // Drawn after every other value, so that the committed corpus keeps its meaning (its
+    // inputs end before these bytes, which then read as zeros: the finest cell, no
+    // modulation). The stock simulation's raster as the CLI's `--cell` makes it after its
+    // check (> 0 mm), coarse enough for fuzzing (at most ~150 cells across the pocket).
+    let cell = b.unit(size / 150.0, size / 25.0);
+    let opts = PocketOptions {
+        modulate_feed: b.flag(),
+        ..opts
     };
+    let sim = SimOptions {
+        cell,
+        step: (2.0 * cell).max(0.1),
+        ..SimOptions::default()
+    };
+    trace(&(&kind, &outer, &island, &tool, &opts, &sim));
+    let outer = Outline::from_points(&outer, "fuzz outer").ok()?;
     let islands: Vec<Outline> = island
         .iter()
         .filter_map(|p| Outline::from_points(p, "fuzz island").ok())
         .collect();
-    let Ok(shape) = PocketShape::new(outer, islands, "fuzz") else {
-        return;
-    };
-    if let Ok(tp) = pocket::toolpath(kind, &shape, &tool, &opts) {
-        assert_finite(&tp, "pocket");
-    }
+    let shape = PocketShape::new(outer, islands, "fuzz").ok()?;
+    Some((kind, shape, tool, opts, sim))
 }
 
 /// `contour`: points from the bytes grouped in fours, a curve kind, options; then
@@ -489,9 +536,9 @@ pub fn planner(data: &[u8]) {
     }
 }
 
-/// Whether the `planner` target fails on limit violations the verifier finds
-/// (`FUZZ_STRICT_VERIFY` set, or [`STRICT_VERIFY`] from a test). The corpus replay in
-/// `hostile_corpus.rs` is strict; fuzz runs should set `FUZZ_STRICT_VERIFY=1` (the session-3
+/// Whether the `planner` target fails on limit violations the verifier finds, and the `pocket`
+/// target on a gouge (`FUZZ_STRICT_VERIFY` set, or [`STRICT_VERIFY`] from a test). The corpus
+/// replay in `hostile_corpus.rs` is strict; fuzz runs should set `FUZZ_STRICT_VERIFY=1` (the session-3
 /// runs did). Off without it so that a run can look for panics alone.
 pub fn strict_verify() -> bool {
     STRICT_VERIFY.load(std::sync::atomic::Ordering::Relaxed)

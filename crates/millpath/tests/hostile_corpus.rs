@@ -12,6 +12,7 @@ mod harness;
 mod hostile_common;
 
 use hostile_common::{Harness, corpus};
+use millpath::strategy::pocket;
 use std::path::PathBuf;
 
 fn replay(target: &'static str, min_files: usize, f: fn(&[u8])) {
@@ -38,8 +39,10 @@ fn corpus_points() {
     replay("points", 50, harness::points);
 }
 
+/// Strict: no accepted pocket may gouge (the geometric clearance check of the verification).
 #[test]
 fn corpus_pocket() {
+    harness::STRICT_VERIFY.store(true, std::sync::atomic::Ordering::Relaxed);
     replay("pocket", 50, harness::pocket);
 }
 
@@ -120,6 +123,68 @@ fn pocket_depth_1e300_does_not_overflow() {
         h.run(&f.display(), || harness::pocket(&data));
     }
     h.finish(1);
+}
+
+/// Pockets on which the spiral gouged (found in session 6 when the `pocket` target began to
+/// run `pocket::generate` with its verification: 10 of 663 corpus inputs gouged, 0.002 µm to
+/// 2.9 mm; `generate` now retries the default fronts morph with the harmonic one and refuses
+/// what still gouges by more than `GOUGE_TOLERANCE`). These four still gouge (0.015–1.5 mm,
+/// three of them into the wall stock only): never a silent gouge, an internal error naming
+/// it. Open: when the spiral is fixed, each returns a clean toolpath and this test still
+/// passes; `spiral_gouges_are_fixed` (ignored) says whether they are.
+#[test]
+fn spiral_gouges_are_refused_not_written() {
+    for (name, r) in gouge_cases() {
+        match r {
+            Ok(v) => assert!(
+                v.min_clearance_mm >= v.required_clearance_mm - pocket::GOUGE_TOLERANCE,
+                "{name}: a gouging toolpath returned: {v:?}"
+            ),
+            Err(millpath::Error::Internal(e)) => {
+                let e = e.to_string();
+                assert!(
+                    e.contains("toolpath gouges") && e.contains("mm deep"),
+                    "{name}: {e}"
+                );
+            }
+            Err(e) => panic!("{name}: {e}"),
+        }
+    }
+}
+
+#[test]
+#[ignore = "open (issue 7 note, session 6): the spiral gouges on these four fuzz outlines"]
+fn spiral_gouges_are_fixed() {
+    let bad: Vec<String> = gouge_cases()
+        .into_iter()
+        .filter(|(_, r)| r.is_err())
+        .map(|(n, r)| {
+            format!(
+                "{n}: {}",
+                r.err().map(|e| e.to_string()).unwrap_or_default()
+            )
+        })
+        .collect();
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+fn gouge_cases() -> Vec<(String, millpath::Result<millpath::stock::Verification>)> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-gouge");
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .expect("regressions dir")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 4, "{names:?}");
+    names
+        .iter()
+        .map(|f| {
+            let data = std::fs::read(f).expect("file");
+            let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+            let r = pocket::generate(kind, &shape, &tool, &opts, &sim).map(|r| r.verification);
+            (f.display().to_string(), r)
+        })
+        .collect()
 }
 
 /// Replays one file: `FUZZ_TARGET=pocket FUZZ_FILE=path FUZZ_TRACE=1 cargo test -p millpath

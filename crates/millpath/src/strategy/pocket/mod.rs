@@ -153,9 +153,77 @@ fn toolpath_and_sections(
     Ok((tp, sections))
 }
 
+/// The deepest gouge [`generate`] lets through, mm: the tool centre may come this much closer
+/// to a wall than the tool radius plus the wall stock. Above the spiral's `--arcs` fit and
+/// the offsets' rounding (micrometres, which [`Verification::problems`] still reports, from
+/// 1e-6 mm), below any machining tolerance.
+pub const GOUGE_TOLERANCE: f64 = 0.01;
+
 /// Generates, modulates the feed and verifies: every level against its own section (and the
 /// section of the slab's top, see [`crate::stock::verify_levels`]).
+///
+/// A toolpath that gouges by more than [`GOUGE_TOLERANCE`] is never returned. The spiral's
+/// default morph ([`spiral::SpiralMorph::Fronts`]) is then planned again with the harmonic
+/// one (the fuzzer found chaotic outlines whose fronts spiral cut up to 2.9 mm into a wall,
+/// fuzz/README.md session 6); what still gouges is an internal error naming the depth, the
+/// move and the point.
 pub fn generate(
+    kind: StrategyKind,
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+    sim: &SimOptions,
+) -> Result<PocketResult> {
+    let r = generate_unchecked(kind, shape, tool, opts, sim)?;
+    if gouge(&r.verification) <= GOUGE_TOLERANCE {
+        return Ok(r);
+    }
+    let retry =
+        (kind == StrategyKind::Spiral && opts.morph == spiral::SpiralMorph::Fronts).then(|| {
+            PocketOptions {
+                morph: spiral::SpiralMorph::Harmonic,
+                ..opts.clone()
+            }
+        });
+    if let Some(h) = retry {
+        if let Ok(r2) = generate_unchecked(kind, shape, tool, &h, sim) {
+            if gouge(&r2.verification) <= GOUGE_TOLERANCE {
+                return Ok(r2);
+            }
+        }
+    }
+    let (_, sections) = toolpath_and_sections(kind, shape, tool, opts)?;
+    let specs: Vec<StockSpec<'_>> = sections
+        .iter()
+        .map(|sec| StockSpec {
+            outer: &sec.outer,
+            islands: &sec.islands,
+            wall_stock: 0.0,
+        })
+        .collect();
+    let c = stock::min_clearance_levels(&r.toolpath, &specs);
+    Err(crate::Error::internal(format!(
+        "the {} toolpath gouges: the tool centre comes within {:.4} mm of a wall (needs {:.4}, \
+         {:.4} mm deep) at ({:.4}, {:.4}, {:.4}), move {}; nothing written. Another strategy \
+         (or --morph harmonic) may avoid it; please report the outline",
+        kind.name(),
+        r.verification.min_clearance_mm,
+        r.verification.required_clearance_mm,
+        gouge(&r.verification),
+        c.at.x,
+        c.at.y,
+        c.at.z,
+        c.move_index
+    )))
+}
+
+/// How far the tool centre comes inside the required clearance, mm (≤ 0: no gouge).
+fn gouge(v: &Verification) -> f64 {
+    v.required_clearance_mm - v.min_clearance_mm
+}
+
+/// [`generate`] without the gouge guard.
+fn generate_unchecked(
     kind: StrategyKind,
     shape: &PocketShape,
     tool: &Tool,
