@@ -231,13 +231,7 @@ pub fn pocket(data: &[u8]) {
             }
         }
         Err(millpath::Error::Internal(e)) if strict_verify() => {
-            // A gouge `generate` refused is an open finding (fuzz/README.md, session 6:
-            // `fuzz/regressions/pocket-gouge`), flagged by runs with `FUZZ_GOUGE=1`; any other
-            // internal error is a bug.
-            let refused_gouge = e.to_string().contains("toolpath gouges");
-            if !refused_gouge || std::env::var_os("FUZZ_GOUGE").is_some() {
-                panic!("internal error: {kind:?}: {e}")
-            }
+            panic!("internal error: {kind:?}: {e}")
         }
         Err(_) => {}
     }
@@ -316,8 +310,8 @@ pub fn pocket_case(data: &[u8]) -> Option<PocketCase> {
     // Drawn after every other value, so that the committed corpus keeps its meaning (its
     // inputs end before these bytes, which then read as zeros: the finest cell, no
     // modulation). The stock simulation's raster as the CLI's `--cell` makes it after its
-    // check (> 0 mm), coarse enough for fuzzing (at most ~150 cells across the pocket).
-    let cell = b.unit(size / 150.0, size / 25.0);
+    // check (> 0 mm), coarse enough for fuzzing (at most ~80 cells across the pocket).
+    let cell = b.unit(size / 80.0, size / 20.0);
     let opts = PocketOptions {
         modulate_feed: b.flag(),
         ..opts

@@ -17,6 +17,15 @@
 //! of that level has cleared, where one is near (no ramp, no plunge); [`generate`] verifies
 //! each level against its own section ([`crate::stock::verify_levels`]).
 //!
+//! **Gouge guard.** The verification's clearance is exact (distances from the tool centre to
+//! the walls, not the raster): [`Verification::problems`] reports any gouge deeper than
+//! 1e-6 mm, and [`generate`] refuses, as an internal error, a toolpath whose tool centre
+//! comes closer to a wall than the tool radius plus the wall stock minus [`GOUGE_TOLERANCE`]
+//! (0.01 mm), after retrying the spiral's fronts morph with the harmonic one. The tolerance
+//! sits above the spiral's arc fit (its last lap is [`spiral::LAST_LOOP_MARGIN`] inside the
+//! boundary offset, its arcs within [`spiral::ARC_TOLERANCE`] of the lap) and below any
+//! machining tolerance.
+//!
 //! * [`zigzag`]: parallel passes at an angle plus a boundary clean-up pass;
 //! * [`offset`]: contour-parallel offsets from the inside out;
 //! * [`spiral`]: the adaptive spiral, a central spiral morphing harmonically into the

@@ -112,6 +112,44 @@ pub const LAST_LOOP_MARGIN: f64 = 0.005;
 /// inside the boundary offset where the lap runs onto it.
 pub const ARC_TOLERANCE: f64 = 0.004;
 
+/// `pts` with every sample outside `b_eps` (the last loop, [`last_loop`]) moved onto its
+/// nearest point, and the stretches next to a moved sample resampled at `max_chord / 2`
+/// (each new sample moved in the same way), so that a chord between two moved samples stays
+/// within the arc-fit margin of `b_eps`. A lap blends the previous loop into the next one
+/// point by point; where the next one is `B` (or near it) and `B` has a concave arc (round
+/// a corner of the wall pointing into the pocket), the blend of two points on either side of
+/// the dent cuts across it: the tool centre inside the wall's clearance, a gouge. The pocket
+/// fuzzer found such laps 0.2 mm deep on a 4.7 mm tool (fuzz/README.md, session 6). A path
+/// whose samples never leave `B_ε` is returned unchanged.
+fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> Vec<Point> {
+    let project = |p: Point| -> (Point, bool) {
+        if b_eps.winding_number(v2(p)) != 0 {
+            return (p, false);
+        }
+        match b_eps.closest_point(v2(p), 1e-12) {
+            Some(c) => (Point::new(c.seg_point.x, c.seg_point.y), true),
+            None => (p, false),
+        }
+    };
+    let step = 0.5 * max_chord.max(1e-3);
+    let mut out = Vec::with_capacity(pts.len());
+    let mut prev: Option<(Point, bool)> = None;
+    for &p in pts {
+        let (q, moved) = project(p);
+        if let Some((a, a_moved)) = prev
+            && (moved || a_moved)
+        {
+            let n = ((a.distance(p) / step).ceil() as usize).clamp(1, 10_000);
+            for k in 1..n {
+                out.push(project(a + (p - a) * (k as f64 / n as f64)).0);
+            }
+        }
+        out.push(q);
+        prev = Some((p, moved));
+    }
+    out
+}
+
 /// The spiral's sampled path as moves: G1 chords, or with `arcs` tangent-continuous biarcs
 /// within [`ARC_TOLERANCE`].
 fn path_from_points(pts: &[Point], arcs: bool) -> Vec<Seg> {
@@ -503,6 +541,7 @@ fn plan_in_frame(
             stats.max_loop_distance = m.max_distance;
             stats.distance_field = attempt == 1;
             pts.extend(m.points);
+            let pts = keep_inside(&pts, &b_eps, ds_last);
             let mut path = path_from_points(&pts, opts.arcs);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
