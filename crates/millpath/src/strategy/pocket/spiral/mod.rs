@@ -120,8 +120,12 @@ pub const ARC_TOLERANCE: f64 = 0.004;
 /// a corner of the wall pointing into the pocket), the blend of two points on either side of
 /// the dent cuts across it: the tool centre inside the wall's clearance, a gouge. The pocket
 /// fuzzer found such laps 0.2 mm deep on a 4.7 mm tool (fuzz/README.md, session 6). A path
-/// whose samples never leave `B_ε` is returned unchanged.
-fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> Vec<Point> {
+/// whose samples never leave `B_ε` is returned unchanged, with `false` (`true`: some moved).
+///
+/// A moved stretch has a kink where it meets `B_ε`, and the biarcs fitted through such samples
+/// overshoot it by more than their tolerance (18 µm found by the fuzzer): with `--arcs`, a
+/// path with moved samples is written as chords ([`path_from_points`]).
+fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Point>, bool) {
     let project = |p: Point| -> (Point, bool) {
         if b_eps.winding_number(v2(p)) != 0 {
             return (p, false);
@@ -134,8 +138,10 @@ fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> Vec<Poin
     let step = 0.5 * max_chord.max(1e-3);
     let mut out = Vec::with_capacity(pts.len());
     let mut prev: Option<(Point, bool)> = None;
+    let mut any = false;
     for &p in pts {
         let (q, moved) = project(p);
+        any |= moved;
         if let Some((a, a_moved)) = prev
             && (moved || a_moved)
         {
@@ -147,7 +153,7 @@ fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> Vec<Poin
         out.push(q);
         prev = Some((p, moved));
     }
-    out
+    (out, any)
 }
 
 /// The spiral's sampled path as moves: G1 chords, or with `arcs` tangent-continuous biarcs
@@ -541,8 +547,8 @@ fn plan_in_frame(
             stats.max_loop_distance = m.max_distance;
             stats.distance_field = attempt == 1;
             pts.extend(m.points);
-            let pts = keep_inside(&pts, &b_eps, ds_last);
-            let mut path = path_from_points(&pts, opts.arcs);
+            let (pts, moved) = keep_inside(&pts, &b_eps, ds_last);
+            let mut path = path_from_points(&pts, opts.arcs && !moved);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {
