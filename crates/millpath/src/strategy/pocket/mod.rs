@@ -21,7 +21,8 @@
 //! the walls, not the raster): [`Verification::problems`] reports any gouge deeper than
 //! 1e-6 mm, and [`generate`] refuses, as an internal error, a toolpath whose tool centre
 //! comes closer to a wall than the tool radius plus the wall stock minus [`GOUGE_TOLERANCE`]
-//! (0.01 mm), after retrying the spiral's fronts morph with the harmonic one. The tolerance
+//! (0.01 mm), after retrying the spiral's fronts morph with the harmonic one and `--arcs`
+//! laps as chords. The tolerance
 //! sits above the spiral's arc fit (its last lap is [`spiral::LAST_LOOP_MARGIN`] inside the
 //! boundary offset, its arcs within [`spiral::ARC_TOLERANCE`] of the lap) and below any
 //! machining tolerance.
@@ -173,7 +174,8 @@ pub const GOUGE_TOLERANCE: f64 = 0.01;
 ///
 /// A toolpath that gouges by more than [`GOUGE_TOLERANCE`] is never returned. The spiral's
 /// default morph ([`spiral::SpiralMorph::Fronts`]) is then planned again with the harmonic
-/// one (the fuzzer found chaotic outlines whose fronts spiral cut up to 2.9 mm into a wall,
+/// one, and `--arcs` paths again as chords (the fuzzer found chaotic outlines on which the
+/// spiral cut up to 2.9 mm into a wall, and biarcs overshooting a sharp corner by 0.011 mm,
 /// fuzz/README.md session 6); what still gouges is an internal error naming the depth, the
 /// move and the point.
 pub fn generate(
@@ -187,18 +189,28 @@ pub fn generate(
     if gouge(&r.verification) <= GOUGE_TOLERANCE {
         return Ok(r);
     }
-    let retry =
-        (kind == StrategyKind::Spiral && opts.morph == spiral::SpiralMorph::Fronts).then(|| {
-            PocketOptions {
-                morph: spiral::SpiralMorph::Harmonic,
-                ..opts.clone()
-            }
+    // The fallbacks, in order: the spiral's harmonic morph, then G1 chords instead of biarcs
+    // (chords between the spiral's samples stay inside the boundary offset; biarcs fitted
+    // through samples at a sharp corner of it can overshoot by more than their tolerance).
+    let mut retries = Vec::new();
+    if kind == StrategyKind::Spiral && opts.morph == spiral::SpiralMorph::Fronts {
+        retries.push(PocketOptions {
+            morph: spiral::SpiralMorph::Harmonic,
+            ..opts.clone()
         });
-    if let Some(h) = retry {
-        if let Ok(r2) = generate_unchecked(kind, shape, tool, &h, sim) {
-            if gouge(&r2.verification) <= GOUGE_TOLERANCE {
-                return Ok(r2);
-            }
+    }
+    if opts.arcs {
+        let chords: Vec<PocketOptions> = std::iter::once(opts.clone())
+            .chain(retries.iter().cloned())
+            .map(|o| PocketOptions { arcs: false, ..o })
+            .collect();
+        retries.extend(chords);
+    }
+    for o in &retries {
+        if let Ok(r2) = generate_unchecked(kind, shape, tool, o, sim)
+            && gouge(&r2.verification) <= GOUGE_TOLERANCE
+        {
+            return Ok(r2);
         }
     }
     let (_, sections) = toolpath_and_sections(kind, shape, tool, opts)?;

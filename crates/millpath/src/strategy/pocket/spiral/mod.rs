@@ -112,10 +112,10 @@ pub const LAST_LOOP_MARGIN: f64 = 0.005;
 /// inside the boundary offset where the lap runs onto it.
 pub const ARC_TOLERANCE: f64 = 0.004;
 
-/// `pts` with every sample outside `b_eps` (the last loop, [`last_loop`]) moved onto its
-/// nearest point, and the stretches next to a moved sample resampled at `max_chord / 2`
-/// (each new sample moved in the same way), so that a chord between two moved samples stays
-/// within the arc-fit margin of `b_eps`. A lap blends the previous loop into the next one
+/// `pts` with every sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` (the last loop,
+/// [`last_loop`]) moved onto its nearest point, and the stretches next to a moved sample
+/// resampled at `max_chord / 2` (each new sample moved in the same way), so that a chord
+/// between two moved samples stays within the arc-fit margin of `b_eps`. A lap blends the previous loop into the next one
 /// point by point; where the next one is `B` (or near it) and `B` has a concave arc (round
 /// a corner of the wall pointing into the pocket), the blend of two points on either side of
 /// the dent cuts across it: the tool centre inside the wall's clearance, a gouge. The pocket
@@ -130,9 +130,14 @@ fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Poi
         if b_eps.winding_number(v2(p)) != 0 {
             return (p, false);
         }
+        // Samples on `B_ε` (the last lap ends on it) or less than half the margin outside it
+        // are still well inside `B`: left alone, so that a lap merely touching `B_ε` keeps its
+        // arcs.
         match b_eps.closest_point(v2(p), 1e-12) {
-            Some(c) => (Point::new(c.seg_point.x, c.seg_point.y), true),
-            None => (p, false),
+            Some(c) if c.distance > 0.5 * LAST_LOOP_MARGIN => {
+                (Point::new(c.seg_point.x, c.seg_point.y), true)
+            }
+            _ => (p, false),
         }
     };
     let step = 0.5 * max_chord.max(1e-3);
