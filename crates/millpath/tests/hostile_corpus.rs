@@ -147,6 +147,28 @@ fn spiral_laps_stay_out_of_the_walls_on_fuzz_outlines() {
     }
 }
 
+/// Found by the last `pocket` run of session 6 (fuzz/README.md): on a 4 × 6.5 mm pocket with
+/// a 1.08 mm tool, the finishing pass's lead-in, a straight feed move from the nearest point
+/// of the roughed region to the finishing loop, cut 0.09 mm into a wall spike between them,
+/// whatever the morph or arcs (`generate` refused it). The lead-in now starts from the
+/// nearest point whose move stays inside the tool-centre region.
+#[test]
+fn finishing_lead_in_stays_out_of_the_walls() {
+    let f = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(
+        "../../fuzz/regressions/pocket-finish-entry/finish-entry-4d52e850db73be008726bf53f0d538c8a6211e67",
+    );
+    let data = std::fs::read(&f).expect("file");
+    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    let v = pocket::generate(kind, &shape, &tool, &opts, &sim)
+        .expect("a toolpath")
+        .verification;
+    assert!(
+        v.min_clearance_mm >= v.required_clearance_mm - 1e-6,
+        "gouges {:.4} mm",
+        v.required_clearance_mm - v.min_clearance_mm
+    );
+}
+
 fn gouge_cases() -> Vec<(String, millpath::Result<millpath::stock::Verification>)> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-gouge");
     let mut names: Vec<_> = std::fs::read_dir(&dir)

@@ -303,11 +303,23 @@ fn finishing_plan(
         };
         let first = lp.at(0).pos();
         let start = crate::geom::Point::new(first.x, first.y);
-        let from = rough
+        // The lead-in: from the nearest point of the roughed region whose straight feed move
+        // to the loop's start stays inside the tool-centre region (the nearest point itself
+        // can lie across a thin wall spike: a 0.09 mm gouge found by the fuzzer), else from
+        // the nearest vertex of the roughed region that qualifies, else straight down.
+        let nearest = rough
             .loops()
             .filter_map(|l| l.closest_point(shape::v2(start), 1e-12))
-            .min_by(|a, b| a.distance.total_cmp(&b.distance))
-            .map_or(start, |c| shape::pt(c.seg_point));
+            .map(|c| shape::pt(c.seg_point));
+        let vertices = rough.loops().flat_map(|l| {
+            (0..l.vertex_count()).map(move |i| crate::geom::Point::new(l.at(i).x, l.at(i).y))
+        });
+        let mut candidates: Vec<crate::geom::Point> = nearest.chain(vertices).collect();
+        candidates.sort_by(|a, b| a.distance(start).total_cmp(&b.distance(start)));
+        let from = candidates
+            .into_iter()
+            .find(|&q| !offset::crosses(&region, q, start))
+            .unwrap_or(start);
         cuts.push(levels::Cut {
             entry: levels::CutEntry::Direct { from },
             path: chain::segs_from_vertices(&shape::closed_chain(&lp)),
