@@ -169,6 +169,35 @@ fn finishing_lead_in_stays_out_of_the_walls() {
     );
 }
 
+/// Open (found by the last `pocket` run of session 6, 12,308 executions into it,
+/// fuzz/README.md): a spiral on which the tool centre comes 0.023 mm inside the wall
+/// clearance, after every fallback. `generate`'s guard refuses it (nothing written): this
+/// test holds that; `open_spiral_gouge_is_fixed` (ignored) says when the spiral is fixed.
+#[test]
+fn open_spiral_gouge_is_refused() {
+    let e = open_spiral_case().expect_err("the gouge is still open");
+    let e = e.to_string();
+    assert!(
+        e.contains("toolpath gouges") && e.contains("mm deep"),
+        "{e}"
+    );
+}
+
+#[test]
+#[ignore = "open (issue 7 note, session 6): the spiral gouges 0.023 mm on this fuzz pocket"]
+fn open_spiral_gouge_is_fixed() {
+    let v = open_spiral_case().expect("a toolpath");
+    assert!(v.min_clearance_mm >= v.required_clearance_mm - pocket::GOUGE_TOLERANCE);
+}
+
+fn open_spiral_case() -> millpath::Result<millpath::stock::Verification> {
+    let f = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz/regressions/pocket-open/spiral-698ed17dd3667271d84c42ae237ca51342c81822");
+    let data = std::fs::read(&f).expect("file");
+    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    pocket::generate(kind, &shape, &tool, &opts, &sim).map(|r| r.verification)
+}
+
 fn gouge_cases() -> Vec<(String, millpath::Result<millpath::stock::Verification>)> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-gouge");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
