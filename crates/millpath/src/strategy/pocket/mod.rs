@@ -22,10 +22,9 @@
 //! 1e-6 mm, and [`generate`] refuses, as an internal error, a toolpath whose tool centre
 //! comes closer to a wall than the tool radius plus the wall stock minus [`GOUGE_TOLERANCE`]
 //! (0.01 mm), after retrying the spiral's fronts morph with the harmonic one and `--arcs`
-//! laps as chords. The tolerance
-//! sits above the spiral's arc fit (its last lap is [`spiral::LAST_LOOP_MARGIN`] inside the
-//! boundary offset, its arcs within [`spiral::ARC_TOLERANCE`] of the lap) and below any
-//! machining tolerance.
+//! laps as chords. The tolerance sits above the spiral's arc fit (its last lap is
+//! [`spiral::LAST_LOOP_MARGIN`] inside the boundary offset, its arcs within
+//! [`spiral::ARC_TOLERANCE`] of the lap) and below any machining tolerance.
 //!
 //! * [`zigzag`]: parallel passes at an angle plus a boundary clean-up pass;
 //! * [`offset`]: contour-parallel offsets from the inside out;
@@ -311,9 +310,9 @@ fn finishing_plan(
             .loops()
             .filter_map(|l| l.closest_point(shape::v2(start), 1e-12))
             .map(|c| shape::pt(c.seg_point));
-        let vertices = rough.loops().flat_map(|l| {
-            (0..l.vertex_count()).map(move |i| crate::geom::Point::new(l.at(i).x, l.at(i).y))
-        });
+        let vertices = rough
+            .loops()
+            .flat_map(|l| (0..l.vertex_count()).map(move |i| shape::pt(l.at(i).pos())));
         let mut candidates: Vec<crate::geom::Point> = nearest.chain(vertices).collect();
         candidates.sort_by(|a, b| a.distance(start).total_cmp(&b.distance(start)));
         let from = candidates

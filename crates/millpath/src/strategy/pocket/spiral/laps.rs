@@ -199,8 +199,7 @@ impl FrontSpiral<'_> {
             let first = last.at(0).pos();
             pts.push(Point::new(first.x, first.y));
             stats.morph_laps += 1;
-            let (pts, moved) = super::keep_inside(&pts, self.b_eps, self.ds_last);
-            let mut path = super::path_from_points(&pts, self.arcs && !moved);
+            let mut path = super::inside::lap_path(&pts, self.b_eps, self.ds_last, self.arcs);
             path.extend(segs_from_vertices(&closed_chain(&last)));
             last_loop = Some(path);
             break;

@@ -89,9 +89,10 @@
 
 pub mod fronts;
 pub mod harmonic;
+mod inside;
 pub mod laps;
 
-use super::chain::{Seg, segs_from_points, segs_from_vertices};
+use super::chain::{Seg, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
 use super::offset::too_large;
 use super::options::{Direction, Entry, PocketOptions};
@@ -112,64 +113,6 @@ pub const LAST_LOOP_MARGIN: f64 = 0.005;
 /// inside the boundary offset where the lap runs onto it.
 pub const ARC_TOLERANCE: f64 = 0.004;
 
-/// `pts` with every sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` (the last loop,
-/// [`last_loop`]) moved onto its nearest point, and the stretches next to a moved sample
-/// resampled at `max_chord / 2` (each new sample moved in the same way), so that a chord
-/// between two moved samples stays within the arc-fit margin of `b_eps`. A lap blends the previous loop into the next one
-/// point by point; where the next one is `B` (or near it) and `B` has a concave arc (round
-/// a corner of the wall pointing into the pocket), the blend of two points on either side of
-/// the dent cuts across it: the tool centre inside the wall's clearance, a gouge. The pocket
-/// fuzzer found such laps 0.2 mm deep on a 4.7 mm tool (fuzz/README.md, session 6). A path
-/// whose samples never leave `B_ε` is returned unchanged, with `false` (`true`: some moved).
-///
-/// A moved stretch has a kink where it meets `B_ε`, and the biarcs fitted through such samples
-/// overshoot it by more than their tolerance (18 µm found by the fuzzer): with `--arcs`, a
-/// path with moved samples is written as chords ([`path_from_points`]).
-fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Point>, bool) {
-    let project = |p: Point| -> (Point, bool) {
-        if b_eps.winding_number(v2(p)) != 0 {
-            return (p, false);
-        }
-        // Samples on `B_ε` (the last lap ends on it) or less than half the margin outside it
-        // are still well inside `B`: left alone, so that a lap merely touching `B_ε` keeps its
-        // arcs.
-        match b_eps.closest_point(v2(p), 1e-12) {
-            Some(c) if c.distance > 0.5 * LAST_LOOP_MARGIN => {
-                (Point::new(c.seg_point.x, c.seg_point.y), true)
-            }
-            _ => (p, false),
-        }
-    };
-    let step = 0.5 * max_chord.max(1e-3);
-    let mut out = Vec::with_capacity(pts.len());
-    let mut prev: Option<(Point, bool)> = None;
-    let mut any = false;
-    for &p in pts {
-        let (q, moved) = project(p);
-        any |= moved;
-        if let Some((a, a_moved)) = prev
-            && (moved || a_moved)
-        {
-            let n = ((a.distance(p) / step).ceil() as usize).clamp(1, 10_000);
-            for k in 1..n {
-                out.push(project(a + (p - a) * (k as f64 / n as f64)).0);
-            }
-        }
-        out.push(q);
-        prev = Some((p, moved));
-    }
-    (out, any)
-}
-
-/// The spiral's sampled path as moves: G1 chords, or with `arcs` tangent-continuous biarcs
-/// within [`ARC_TOLERANCE`].
-fn path_from_points(pts: &[Point], arcs: bool) -> Vec<Seg> {
-    if arcs {
-        super::chain::fit_arcs(pts, ARC_TOLERANCE)
-    } else {
-        segs_from_points(pts)
-    }
-}
 /// Most restarts of the harmonic field from an intermediate lap.
 const MAX_RESTARTS: usize = 20;
 /// Most laps the morph may take.
@@ -552,8 +495,7 @@ fn plan_in_frame(
             stats.max_loop_distance = m.max_distance;
             stats.distance_field = attempt == 1;
             pts.extend(m.points);
-            let (pts, moved) = keep_inside(&pts, &b_eps, ds_last);
-            let mut path = path_from_points(&pts, opts.arcs && !moved);
+            let mut path = inside::lap_path(&pts, &b_eps, ds_last, opts.arcs);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {
