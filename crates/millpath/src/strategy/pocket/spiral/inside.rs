@@ -6,18 +6,31 @@
 //! centre inside the wall's clearance, a gouge. The pocket fuzzer found such laps 0.2 mm deep
 //! on a 4.7 mm tool (fuzz/README.md, session 6). [`keep_inside`] moves such samples onto
 //! `B_ε`; [`lap_path`] then writes the samples as moves.
+//!
+//! Samples inside `B_ε` are not enough: a chord between two of them can still cross a
+//! concave arc of `B_ε` (its sagitta `L²/8ρ` for a chord `L` on an arc of radius `ρ`), and a
+//! moved stretch is where that happens, since projecting the samples of a chord that cuts
+//! deep across a dent onto the arc round it spreads them far apart (0.69 mm chords, 0.023 mm
+//! deep on a 4.3 mm tool, found by the fuzzer in session 6). So every chord is checked
+//! against `T`, `B_ε` moved outward by ¾ of [`LAST_LOOP_MARGIN`] (so ¼ of it inside `B`),
+//! with a segment index; a chord that crosses it is split at its midpoint (moved onto `B_ε`
+//! if it lies outside), again until none does.
 
 use super::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
 use crate::geom::Point;
 use crate::strategy::pocket::chain::{Seg, fit_arcs, segs_from_points};
 use crate::strategy::pocket::shape::v2;
-use cavalier_contours::polyline::{PlineSource, Polyline};
+use cavalier_contours::polyline::{
+    PlineSegIntr, PlineSource, PlineVertex, Polyline, pline_seg_intr,
+};
+use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 
 /// The samples `pts` as moves, kept inside `b_eps` ([`keep_inside`], resampling at
-/// `max_chord / 2` beside a moved sample): G1 chords, or with `arcs` tangent-continuous
-/// biarcs within [`ARC_TOLERANCE`]. A moved stretch has a kink where it meets `B_ε`, and
-/// biarcs fitted through it overshoot by more than their tolerance (18 µm found by the
-/// fuzzer): a path with moved samples is written as chords.
+/// `max_chord / 2` beside a moved sample, and splitting chords that leave it): G1 chords, or
+/// with `arcs` tangent-continuous biarcs within [`ARC_TOLERANCE`]. A moved stretch has a kink
+/// where it meets `B_ε`, and biarcs fitted through it overshoot by more than their tolerance
+/// (18 µm found by the fuzzer): a path with moved samples or split chords is written as
+/// chords.
 pub(super) fn lap_path(
     pts: &[Point],
     b_eps: &Polyline<f64>,
@@ -32,43 +45,221 @@ pub(super) fn lap_path(
     }
 }
 
+/// Moves a sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` onto its nearest point
+/// (`true`: moved). Samples on `B_ε` (the last lap ends on it) or less than half the margin
+/// outside it are still well inside `B`: left alone, so that a lap merely touching `B_ε`
+/// keeps its arcs.
+fn project(b_eps: &Polyline<f64>, p: Point) -> (Point, bool) {
+    if b_eps.winding_number(v2(p)) != 0 {
+        return (p, false);
+    }
+    match b_eps.closest_point(v2(p), 1e-12) {
+        Some(c) if c.distance > 0.5 * LAST_LOOP_MARGIN => {
+            (Point::new(c.seg_point.x, c.seg_point.y), true)
+        }
+        _ => (p, false),
+    }
+}
+
 /// `pts` with every sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` moved onto its
-/// nearest point, and the stretches next to a moved sample resampled at `max_chord / 2` (each
-/// new sample moved in the same way), so that a chord between two moved samples stays within
-/// the arc-fit margin of `b_eps`. A path whose samples never leave `B_ε` is returned
-/// unchanged, with `false` (`true`: some moved).
+/// nearest point ([`project_samples`]), then every chord that crosses the test loop `T` split
+/// ([`ChordGuard`]). A path whose samples and chords never leave `B_ε` is returned unchanged,
+/// with `false` (`true`: some moved or split).
 fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Point>, bool) {
-    let project = |p: Point| -> (Point, bool) {
-        if b_eps.winding_number(v2(p)) != 0 {
-            return (p, false);
+    let (out, moved) = project_samples(pts, b_eps, max_chord);
+    match ChordGuard::new(b_eps) {
+        Some(guard) => {
+            let (out, split) = guard.split_chords(&out);
+            (out, moved || split)
         }
-        // Samples on `B_ε` (the last lap ends on it) or less than half the margin outside it
-        // are still well inside `B`: left alone, so that a lap merely touching `B_ε` keeps its
-        // arcs.
-        match b_eps.closest_point(v2(p), 1e-12) {
-            Some(c) if c.distance > 0.5 * LAST_LOOP_MARGIN => {
-                (Point::new(c.seg_point.x, c.seg_point.y), true)
-            }
-            _ => (p, false),
-        }
-    };
+        None => (out, moved),
+    }
+}
+
+/// `pts` with every sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` moved onto its
+/// nearest point ([`project`]), and the stretches next to a moved sample resampled at
+/// `max_chord / 2` (each new sample moved in the same way); `true` if any was moved.
+fn project_samples(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Point>, bool) {
     let step = 0.5 * max_chord.max(1e-3);
     let mut out = Vec::with_capacity(pts.len());
     let mut prev: Option<(Point, bool)> = None;
     let mut any = false;
     for &p in pts {
-        let (q, moved) = project(p);
+        let (q, moved) = project(b_eps, p);
         any |= moved;
         if let Some((a, a_moved)) = prev
             && (moved || a_moved)
         {
             let n = ((a.distance(p) / step).ceil() as usize).clamp(1, 10_000);
             for k in 1..n {
-                out.push(project(a + (p - a) * (k as f64 / n as f64)).0);
+                out.push(project(b_eps, a + (p - a) * (k as f64 / n as f64)).0);
             }
         }
         out.push(q);
         prev = Some((p, moved));
     }
     (out, any)
+}
+
+/// Deepest recursion of a chord split: a chord is halved (about) at each level, so 2⁻³⁰ of a
+/// lap's longest chord, far below any tolerance.
+const MAX_SPLIT_DEPTH: u32 = 30;
+
+/// The chord check of [`keep_inside`]: `T`, `B_ε` moved outward by ¾ of
+/// [`LAST_LOOP_MARGIN`], and an index of its segments. Every sample is at most half the margin
+/// outside `B_ε` (so at least ¼ of it inside `T`); a chord that stays inside `T` stays at least
+/// ¼ of the margin inside `B`, clear of the wall's clearance.
+struct ChordGuard<'a> {
+    b_eps: &'a Polyline<f64>,
+    t: Polyline<f64>,
+    index: StaticAABB2DIndex<f64>,
+}
+
+impl<'a> ChordGuard<'a> {
+    /// `None` if `T` is not one loop (chords then go unchecked, as samples are).
+    fn new(b_eps: &'a Polyline<f64>) -> Option<Self> {
+        let t = match b_eps.parallel_offset(-0.75 * LAST_LOOP_MARGIN).as_slice() {
+            [one] if one.vertex_count() >= 2 => one.clone(),
+            _ => return None,
+        };
+        let index = t.create_aabb_index();
+        Some(ChordGuard { b_eps, t, index })
+    }
+
+    /// Whether the chord `a → b` meets `T`.
+    fn crosses(&self, a: Point, b: Point) -> bool {
+        let n = self.t.vertex_count();
+        let (v1, v2) = (
+            PlineVertex::new(a.x, a.y, 0.0),
+            PlineVertex::new(b.x, b.y, 0.0),
+        );
+        self.index
+            .query_iter(a.x.min(b.x), a.y.min(b.y), a.x.max(b.x), a.y.max(b.y))
+            .any(|i| {
+                let (u1, u2) = (self.t.at(i), self.t.at((i + 1) % n));
+                !matches!(
+                    pline_seg_intr(v1, v2, u1, u2, 1e-9),
+                    PlineSegIntr::NoIntersect
+                )
+            })
+    }
+
+    /// `pts` with every chord that crosses `T` split at its midpoint (projected onto `B_ε`,
+    /// [`project`]), recursively; `true` if any was.
+    fn split_chords(&self, pts: &[Point]) -> (Vec<Point>, bool) {
+        let mut out = Vec::with_capacity(pts.len());
+        let mut any = false;
+        for (i, &p) in pts.iter().enumerate() {
+            if let Some(&prev) = i.checked_sub(1).and_then(|j| pts.get(j)) {
+                any |= self.split(prev, p, 0, &mut out);
+            }
+            out.push(p);
+        }
+        (out, any)
+    }
+
+    /// Pushes the points strictly between `a` and `b` that keep the chord inside `T`.
+    fn split(&self, a: Point, b: Point, depth: u32, out: &mut Vec<Point>) -> bool {
+        if depth >= MAX_SPLIT_DEPTH || a.distance(b) < 1e-9 || !self.crosses(a, b) {
+            return false;
+        }
+        let (m, _) = project(self.b_eps, a.midpoint(b));
+        if m.distance(a) < 1e-12 || m.distance(b) < 1e-12 {
+            return false;
+        }
+        self.split(a, m, depth + 1, out);
+        out.push(m);
+        self.split(m, b, depth + 1, out);
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cavalier_contours::polyline::PlineSourceMut;
+
+    /// A 10 × 10 square, counter-clockwise, whose top edge has a dent: a concave arc of
+    /// radius 1.25 from (6, 10) to (4, 10) reaching down to y = 9.5.
+    fn dented() -> Polyline<f64> {
+        let mut pl = Polyline::new_closed();
+        for (x, y, bulge) in [
+            (0.0, 0.0, 0.0),
+            (10.0, 0.0, 0.0),
+            (10.0, 10.0, 0.0),
+            (6.0, 10.0, -0.5),
+            (4.0, 10.0, 0.0),
+            (0.0, 10.0, 0.0),
+        ] {
+            pl.add(x, y, bulge);
+        }
+        pl
+    }
+
+    /// How far the chords of `pts` go outside `pl`, sampled 200 times per chord (a verifier
+    /// apart from the chord test: winding number and closest point).
+    fn deepest_outside(pl: &Polyline<f64>, pts: &[Point]) -> f64 {
+        let mut worst: f64 = 0.0;
+        for w in pts.windows(2) {
+            for k in 0..=200 {
+                let p = w[0] + (w[1] - w[0]) * (k as f64 / 200.0);
+                if pl.winding_number(v2(p)) == 0
+                    && let Some(c) = pl.closest_point(v2(p), 1e-12)
+                {
+                    worst = worst.max(c.distance);
+                }
+            }
+        }
+        worst
+    }
+
+    #[test]
+    fn a_lap_across_a_dent_follows_it_within_the_margin() {
+        let b = dented();
+        // Samples 0.5 mm apart on a line just outside the top edge, 0.15 mm from the dent's
+        // centre: projected onto the arc, samples 0.1 mm apart on the line land 0.8 mm apart.
+        let pts: Vec<Point> = (0..=12)
+            .map(|i| Point::new(8.0 - 0.5 * i as f64, 10.6))
+            .collect();
+        let (projected, moved) = project_samples(&pts, &b, 0.2);
+        assert!(moved);
+        let deep = deepest_outside(&b, &projected);
+        assert!(
+            deep > 2.0 * LAST_LOOP_MARGIN,
+            "the samples alone are not enough: {deep}"
+        );
+        let (out, moved) = keep_inside(&pts, &b, 0.2);
+        assert!(moved);
+        let deep = deepest_outside(&b, &out);
+        assert!(deep <= 0.75 * LAST_LOOP_MARGIN + 1e-9, "{deep}");
+    }
+
+    #[test]
+    fn chords_across_the_arc_are_split_until_their_sagitta_is_within_the_margin() {
+        let b = dented();
+        // Two points on the arc, 1.6 mm apart: the chord's sagitta is 0.3 mm.
+        let c = Point::new(5.0, 10.75);
+        let on = |deg: f64| c + crate::geom::Vec2::from_angle(deg.to_radians()) * 1.25;
+        let pts = [on(-90.0 - 40.0), on(-90.0 + 40.0)];
+        assert!(deepest_outside(&b, &pts) > 0.1);
+        let (out, moved) = keep_inside(&pts, &b, 10.0);
+        assert!(moved && out.len() > 2, "{out:?}");
+        assert!(deepest_outside(&b, &out) <= 0.75 * LAST_LOOP_MARGIN + 1e-9);
+        assert_eq!(out.first(), pts.first());
+        assert_eq!(out.last(), pts.last());
+    }
+
+    #[test]
+    fn a_lap_well_inside_is_unchanged() {
+        let b = dented();
+        let pts: Vec<Point> = (0..40)
+            .map(|i| {
+                let t = i as f64 / 40.0 * std::f64::consts::TAU;
+                Point::new(5.0 + 3.0 * t.cos(), 5.0 + 3.0 * t.sin())
+            })
+            .collect();
+        let (out, moved) = keep_inside(&pts, &b, 0.2);
+        assert!(!moved);
+        assert_eq!(out, pts);
+    }
 }
