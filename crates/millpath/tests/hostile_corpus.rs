@@ -172,6 +172,37 @@ fn finishing_lead_in_stays_out_of_the_walls() {
     );
 }
 
+/// Found by the first `pocket` run of session 7, 1,300 executions into it: the zigzag linked
+/// two pieces of a pinched tool-centre region with a straight move that ran along one piece's
+/// edge, across the 1.2 mm neck between them and along the other's edge, 0.017 mm into the
+/// wall stock (`generate` refused it). `offset::crosses` tested only crossings away from the
+/// ends and the link's midpoint, which lay on the first edge; it now tests every piece
+/// between the loops' crossings and overlaps. The small piece is then a cut of its own, too
+/// short to ramp into and with no cleared point it can be reached from: refused as bad input
+/// (exit 2), as any such sliver is.
+#[test]
+fn zigzag_links_stay_inside_a_pinched_region() {
+    let f = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz/regressions/pocket-link/668b7c4357e1e0b5fb27fe08deacc4eb4e48339f");
+    let data = std::fs::read(&f).expect("file");
+    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    assert_eq!(kind, pocket::StrategyKind::Zigzag);
+    match pocket::generate(kind, &shape, &tool, &opts, &sim) {
+        Ok(r) => {
+            let v = r.verification;
+            assert!(
+                v.min_clearance_mm >= v.required_clearance_mm - 1e-6,
+                "gouges {:.4} mm",
+                v.required_clearance_mm - v.min_clearance_mm
+            );
+        }
+        Err(millpath::Error::Input(e)) => {
+            assert!(e.to_string().contains("ramp into"), "{e}");
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
 fn gouge_cases() -> Vec<(String, millpath::Result<millpath::stock::Verification>)> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-gouge");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
