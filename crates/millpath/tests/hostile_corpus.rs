@@ -150,6 +150,29 @@ fn spiral_laps_stay_out_of_the_walls_on_fuzz_outlines() {
     }
 }
 
+/// `generate`'s fallbacks are not silent: the `--arcs` path of `ef412b15…` cut 0.017 mm into
+/// the clearance and was planned again as chords, which the result's notes say (the CLI
+/// prints them as `note:` lines and puts them in the JSON report). The other regressions
+/// needed no fallback and have no notes.
+#[test]
+fn fallbacks_are_noted() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-gouge");
+    let data = std::fs::read(dir.join("ef412b15773f575d85fdb0b286fc292aa5dca6e2")).expect("file");
+    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    assert!(opts.arcs);
+    let r = pocket::generate(kind, &shape, &tool, &opts, &sim).expect("a toolpath");
+    assert_eq!(r.notes.len(), 1, "{:?}", r.notes);
+    assert!(
+        r.notes[0].contains("chords instead of arcs") && r.notes[0].contains("0.0173 mm"),
+        "{}",
+        r.notes[0]
+    );
+    let data = std::fs::read(dir.join("0d07921593a987f888841f55848864f8dc995676")).expect("file");
+    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    let r = pocket::generate(kind, &shape, &tool, &opts, &sim).expect("a toolpath");
+    assert!(r.notes.is_empty(), "{:?}", r.notes);
+}
+
 /// Found by the last `pocket` run of session 6 (fuzz/README.md): on a 4 × 6.5 mm pocket with
 /// a 1.08 mm tool, the finishing pass's lead-in, a straight feed move from the nearest point
 /// of the roughed region to the finishing loop, cut 0.09 mm into a wall spike between them,

@@ -529,6 +529,9 @@ fn pockets(
             for p in r.verification.problems() {
                 problems.push(format!("{pname}: {p}"));
             }
+            for n in &r.notes {
+                pb.println(format!("note: {pname}, {name}: {n}"));
+            }
             max_eng = max_eng.max(r.verification.max_engagement_deg);
             program = Some(match program {
                 None => r.toolpath,

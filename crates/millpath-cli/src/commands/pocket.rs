@@ -326,6 +326,8 @@ pub struct Report {
     pub verification: millpath::stock::Verification,
     /// Problems found (empty when the path passes).
     pub problems: Vec<String>,
+    /// What was changed from the options asked for, and why (a fallback after a gouge).
+    pub notes: Vec<String>,
 }
 
 /// Builds the report of a generated pocket.
@@ -347,6 +349,7 @@ pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Rep
         moves: r.toolpath.moves.len(),
         verification: r.verification.clone(),
         problems: r.verification.problems(),
+        notes: r.notes.clone(),
     })
 }
 
@@ -428,6 +431,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
             &plan,
         )?;
         super::html::write(path, &html)?;
+    }
+    for n in &rep.notes {
+        super::eprint(&format!("note: {n}"));
     }
     if args.json {
         super::print_json(&rep)?;

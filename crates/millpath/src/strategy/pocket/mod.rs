@@ -62,6 +62,9 @@ pub struct PocketResult {
     pub nominal_engagement_deg: f64,
     /// The stepover in mm.
     pub stepover_mm: f64,
+    /// What [`generate`] changed from the options asked for, and why (empty when nothing):
+    /// the fallbacks it took because the first path gouged.
+    pub notes: Vec<String>,
 }
 
 /// The nominal engagement angle (rad) for stepover `s` and tool radius `r`: `arccos(1 − s/r)`.
@@ -175,8 +178,9 @@ pub const GOUGE_TOLERANCE: f64 = 0.01;
 /// default morph ([`spiral::SpiralMorph::Fronts`]) is then planned again with the harmonic
 /// one, and `--arcs` paths again as chords (the fuzzer found chaotic outlines on which the
 /// spiral cut up to 2.9 mm into a wall, and biarcs overshooting a sharp corner by 0.011 mm,
-/// fuzz/README.md session 6); what still gouges is an internal error naming the depth, the
-/// move and the point.
+/// fuzz/README.md session 6), and [`PocketResult::notes`] says which fallback was taken and
+/// how deep the path asked for cut; what still gouges is an internal error naming the depth,
+/// the move and the point.
 pub fn generate(
     kind: StrategyKind,
     shape: &PocketShape,
@@ -206,9 +210,11 @@ pub fn generate(
         retries.extend(chords);
     }
     for o in &retries {
-        if let Ok(r2) = generate_unchecked(kind, shape, tool, o, sim)
+        if let Ok(mut r2) = generate_unchecked(kind, shape, tool, o, sim)
             && gouge(&r2.verification) <= GOUGE_TOLERANCE
         {
+            r2.notes
+                .push(fallback_note(kind, opts, o, gouge(&r.verification)));
             return Ok(r2);
         }
     }
@@ -235,6 +241,28 @@ pub fn generate(
         c.at.z,
         c.move_index
     )))
+}
+
+/// The note of a fallback: what the path asked for did, and what replaced it.
+fn fallback_note(
+    kind: StrategyKind,
+    asked: &PocketOptions,
+    used: &PocketOptions,
+    depth: f64,
+) -> String {
+    let mut changes = Vec::new();
+    if asked.morph != used.morph {
+        changes.push("the harmonic morph instead of the fronts (`--morph harmonic`)");
+    }
+    if asked.arcs && !used.arcs {
+        changes.push("G1 chords instead of arcs (no `--arcs`)");
+    }
+    format!(
+        "the {} toolpath as asked for cut {depth:.4} mm into the walls' clearance (more than \
+         the {GOUGE_TOLERANCE} mm allowed); planned again with {}, which clears them",
+        kind.name(),
+        changes.join(" and ")
+    )
 }
 
 /// How far the tool centre comes inside the required clearance, mm (≤ 0: no gouge).
@@ -280,6 +308,7 @@ fn generate_unchecked(
         verification,
         nominal_engagement_deg: nominal.to_degrees(),
         stepover_mm: s,
+        notes: Vec::new(),
     })
 }
 
