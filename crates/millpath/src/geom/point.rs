@@ -87,9 +87,17 @@ impl Vec2 {
         self.x * o.y - self.y * o.x
     }
 
-    /// Euclidean length.
+    /// Euclidean length: `√(x² + y²)`, through `f64::hypot` only where the squares would
+    /// overflow or lose precision to underflow (beyond about 1e±145; `hypot` avoids both at
+    /// about three times the cost, which profiles of the pocket fuzz target put at a fifth of
+    /// its time).
     pub fn length(self) -> f64 {
-        self.x.hypot(self.y)
+        let s = self.x * self.x + self.y * self.y;
+        if (1e-290..=1e290).contains(&s) {
+            s.sqrt()
+        } else {
+            self.x.hypot(self.y)
+        }
     }
 
     /// Squared length.
