@@ -20,7 +20,7 @@
 //! never binds) and `G_k(0)` as the backward pass from 0 without caps. The leading knots that
 //! pass the test are final; the forward pass (`y_{k+1} ← min(y_{k+1}, R_k(y_k))`) needs only
 //! earlier knots, so the spans between final knots are timed exactly as the whole-program
-//! planner times them ([`super::plan::time_spans`], shared code).
+//! planner times them (`plan::time_spans`, shared code).
 //!
 //! The window is counted in blocks (what memory is made of): when it holds more than
 //! [`StreamOptions::window`] blocks, the final prefix is handed out. A window in which no knot

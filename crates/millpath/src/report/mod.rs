@@ -1,4 +1,4 @@
-//! Reports: SVG previews of toolpaths ([`svg`]), plots over plain data series ([`plots`]) and a
+//! Reports: SVG previews of toolpaths (`svg`), plots over plain data series (`plots`) and a
 //! self-contained interactive HTML report ([`html`]); [`series`] extracts plot data from plans.
 
 pub mod five_axis_plots;

@@ -1,11 +1,11 @@
 //! Material-removal simulation: engagement, gouge and coverage checks.
 //!
-//! This module reads a finished [`Toolpath`](crate::toolpath::Toolpath) and the pocket's
+//! This module reads a finished [`Toolpath`] and the pocket's
 //! outline; it shares no code with the strategies that made the path (it uses the geometry
 //! library directly).
 //!
 //! * [`raster`]: the material of one slab as a bitset of cells (≤ 0.05 mm by default).
-//! * [`simulate`]: sweeps the tool disc along every move (sample spacing 0.1 mm: the scallop
+//! * [`simulate`](mod@simulate): sweeps the tool disc along every move (sample spacing 0.1 mm: the scallop
 //!   between two discs of radius `r` that far apart is `0.1²/(8r)`, below 1 µm for `r ≥ 2 mm`)
 //!   and measures, at every sample, the **true radial depth of cut** as the area removed per
 //!   unit of travel, `a_e = ΔA / Δs`, averaged over 0.5 mm of travel. For a straight cut

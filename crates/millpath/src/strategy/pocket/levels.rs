@@ -86,7 +86,7 @@ fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
 /// there are fewer plans than levels), `finishing` (if any) once at the last level.
 ///
 /// Fails when a cut can be entered neither by its helix or ramp nor over cleared material
-/// (see [`emit_cut`]).
+/// (see `emit_cut`).
 pub fn assemble(
     tool: Tool,
     opts: &PocketOptions,

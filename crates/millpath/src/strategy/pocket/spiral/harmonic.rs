@@ -26,7 +26,7 @@
 //! chamfer transform): the region's lowest Dirichlet eigenvalue is set by its inradius within
 //! a constant factor, and on the thin band of a restart (between a lap and `B`) the extent
 //! of the grid would overestimate `L` many times, an `ω` so close to 2 that SOR converges
-//! like `ω − 1` per sweep (measured: see [`relaxation`]).
+//! like `ω − 1` per sweep (measured: see `relaxation`).
 //!
 //! [`Harmonic::value`] interpolates `u` bilinearly; [`Harmonic::gradient`] interpolates the
 //! nodal central differences bilinearly, which makes it continuous, so streamlines traced with

@@ -63,7 +63,11 @@
 //! 6. **Last loop**: `B_ε`, the boundary offset moved inward by `ε` = 5 µm so that the chords of
 //!    the last lap (spaced at most `√(8·(r+stock)·ε)`) cannot cross it at concave arcs; it is
 //!    cut once, with exact arcs. The 5 µm is extra wall stock, far below any roughing
-//!    tolerance; `--finish` cuts the exact wall.
+//!    tolerance; `--finish` cuts the exact wall. Every lap is then kept inside `B_ε`
+//!    (`spiral/inside.rs`): samples more than `ε/2` outside it are moved onto it, and every chord
+//!    that leaves `B_ε` by more than `3ε/4` is split until none does, so the tool centre
+//!    stays at least `ε/4` inside `B` (the fuzzer found laps that blended across a concave
+//!    arc of `B`, and chords between moved samples that cut across one).
 //!
 //! 7. **Restarts and fallback.** In the arms of long pockets `1 − u` decays like
 //!    `exp(−πx/w)`, so the level sets crowd within rounding of 1 before they reach the ends;
