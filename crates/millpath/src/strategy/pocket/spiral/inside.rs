@@ -14,14 +14,19 @@
 //! deep on a 4.3 mm tool, found by the fuzzer in session 6). So every chord is checked
 //! against `T`, `B_ε` moved outward by ¾ of [`LAST_LOOP_MARGIN`] (so ¼ of it inside `B`),
 //! with a segment index; a chord that crosses it is split at its midpoint (moved onto `B_ε`
-//! if it lies outside), again until none does.
+//! if it lies outside), again until none does. Where that does not settle within
+//! [`SPLIT_BUDGET`] splits (a chord across a thin wall spike: each midpoint lands on the side
+//! of the spike nearer it, so the splits only creep towards the tip, 0.3 mm a split, found by
+//! the fuzzer in session 7 with a 22 mm chord through the wall), the chord is replaced by the
+//! way along `B_ε`: from its start's nearest point round to its end's, the shorter way.
 
 use super::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
 use crate::geom::Point;
 use crate::strategy::pocket::chain::{Seg, fit_arcs, segs_from_points};
-use crate::strategy::pocket::shape::v2;
+use crate::strategy::pocket::shape::{reversed, v2};
 use cavalier_contours::polyline::{
-    PlineSegIntr, PlineSource, PlineVertex, Polyline, pline_seg_intr,
+    PlineSegIntr, PlineSource, PlineVertex, Polyline, dist_from_segment_start, pline_seg_intr,
+    seg_length,
 };
 use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 
@@ -67,7 +72,7 @@ fn project(b_eps: &Polyline<f64>, p: Point) -> (Point, bool) {
 /// with `false` (`true`: some moved or split).
 fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Point>, bool) {
     let (out, moved) = project_samples(pts, b_eps, max_chord);
-    match ChordGuard::new(b_eps) {
+    match ChordGuard::new(b_eps, max_chord) {
         Some(guard) => {
             let (out, split) = guard.split_chords(&out);
             (out, moved || split)
@@ -101,9 +106,10 @@ fn project_samples(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec
     (out, any)
 }
 
-/// Deepest recursion of a chord split: a chord is halved (about) at each level, so 2⁻³⁰ of a
-/// lap's longest chord, far below any tolerance.
-const MAX_SPLIT_DEPTH: u32 = 30;
+/// Most midpoint splits of one chord before it is walked along `B_ε` instead
+/// ([`ChordGuard::walk`]): a chord across a concave arc settles in a few (each split quarters
+/// the sagitta), one across a thin spike of the wall never does.
+const SPLIT_BUDGET: u32 = 64;
 
 /// The chord check of [`keep_inside`]: `T`, `B_ε` moved outward by ¾ of
 /// [`LAST_LOOP_MARGIN`], and an index of its segments. Every sample is at most half the margin
@@ -113,17 +119,24 @@ struct ChordGuard<'a> {
     b_eps: &'a Polyline<f64>,
     t: Polyline<f64>,
     index: StaticAABB2DIndex<f64>,
+    /// Sample spacing on the arcs of a walk along `B_ε`, mm.
+    step: f64,
 }
 
 impl<'a> ChordGuard<'a> {
     /// `None` if `T` is not one loop (chords then go unchecked, as samples are).
-    fn new(b_eps: &'a Polyline<f64>) -> Option<Self> {
+    fn new(b_eps: &'a Polyline<f64>, max_chord: f64) -> Option<Self> {
         let t = match b_eps.parallel_offset(-0.75 * LAST_LOOP_MARGIN).as_slice() {
             [one] if one.vertex_count() >= 2 => one.clone(),
             _ => return None,
         };
         let index = t.create_aabb_index();
-        Some(ChordGuard { b_eps, t, index })
+        Some(ChordGuard {
+            b_eps,
+            t,
+            index,
+            step: 0.5 * max_chord.max(1e-3),
+        })
     }
 
     /// Whether the chord `a → b` meets `T`.
@@ -145,33 +158,109 @@ impl<'a> ChordGuard<'a> {
     }
 
     /// `pts` with every chord that crosses `T` split at its midpoint (projected onto `B_ε`,
-    /// [`project`]), recursively; `true` if any was.
+    /// [`project`]), recursively, or where that does not settle walked along `B_ε`; `true` if
+    /// any chord was.
     fn split_chords(&self, pts: &[Point]) -> (Vec<Point>, bool) {
         let mut out = Vec::with_capacity(pts.len());
         let mut any = false;
         for (i, &p) in pts.iter().enumerate() {
-            if let Some(&prev) = i.checked_sub(1).and_then(|j| pts.get(j)) {
-                any |= self.split(prev, p, 0, &mut out);
+            if let Some(&prev) = i.checked_sub(1).and_then(|j| pts.get(j))
+                && self.crosses(prev, p)
+            {
+                any = true;
+                let mark = out.len();
+                let mut budget = SPLIT_BUDGET;
+                if !self.split(prev, p, &mut budget, &mut out)
+                    && let Some(way) = self.walk(prev, p)
+                {
+                    out.truncate(mark);
+                    // The walk's own chords run on `B_ε`; what still crosses (a concave arc
+                    // sampled too coarsely) is split once more.
+                    let mut a = prev;
+                    for q in way.into_iter().chain(std::iter::once(p)) {
+                        let mut budget = SPLIT_BUDGET;
+                        self.split(a, q, &mut budget, &mut out);
+                        if q != p {
+                            out.push(q);
+                        }
+                        a = q;
+                    }
+                }
             }
             out.push(p);
         }
         (out, any)
     }
 
-    /// Pushes the points strictly between `a` and `b` that keep the chord inside `T`.
-    fn split(&self, a: Point, b: Point, depth: u32, out: &mut Vec<Point>) -> bool {
-        if depth >= MAX_SPLIT_DEPTH || a.distance(b) < 1e-9 || !self.crosses(a, b) {
+    /// Pushes points strictly between `a` and `b` that keep the chord inside `T`, splitting
+    /// at most `budget` times; `false` if the budget ran out (or a split made no progress)
+    /// with a piece still crossing.
+    fn split(&self, a: Point, b: Point, budget: &mut u32, out: &mut Vec<Point>) -> bool {
+        if a.distance(b) < 1e-9 || !self.crosses(a, b) {
+            return true;
+        }
+        if *budget == 0 {
             return false;
         }
+        *budget -= 1;
         let (m, _) = project(self.b_eps, a.midpoint(b));
         if m.distance(a) < 1e-12 || m.distance(b) < 1e-12 {
             return false;
         }
-        self.split(a, m, depth + 1, out);
+        let left = self.split(a, m, budget, out);
         out.push(m);
-        self.split(m, b, depth + 1, out);
-        true
+        left && self.split(m, b, budget, out)
     }
+
+    /// The way from `a` to `b` along `B_ε`, without its ends: `a`'s nearest point on `B_ε`,
+    /// the vertices of `B_ε` from there to `b`'s nearest point the shorter way round (arcs
+    /// sampled every `step`), and that point. `None` if a nearest point cannot be found.
+    fn walk(&self, a: Point, b: Point) -> Option<Vec<Point>> {
+        let ca = self.b_eps.closest_point(v2(a), 1e-12)?;
+        let fwd = self
+            .b_eps
+            .rotate_start(ca.seg_start_index, ca.seg_point, 1e-9)?;
+        let back = reversed(&fwd);
+        let (w1, l1) = walk_to(&fwd, b, self.step)?;
+        let (w2, l2) = walk_to(&back, b, self.step)?;
+        let mut way = vec![Point::new(ca.seg_point.x, ca.seg_point.y)];
+        way.extend(if l1 <= l2 { w1 } else { w2 });
+        way.dedup_by(|p, q| p.distance(*q) < 1e-9);
+        Some(way)
+    }
+}
+
+/// The points of the closed loop `lp` from its start to the nearest point of `b` (its vertices,
+/// arcs sampled every `step`, that point last), and the length of that way.
+fn walk_to(lp: &Polyline<f64>, b: Point, step: f64) -> Option<(Vec<Point>, f64)> {
+    let cb = lp.closest_point(v2(b), 1e-12)?;
+    let n = lp.vertex_count();
+    let mut way = Vec::new();
+    let mut len = 0.0;
+    for k in 0..=cb.seg_start_index.min(n.saturating_sub(1)) {
+        let (v1, v2) = (lp.at(k), lp.at((k + 1) % n));
+        let a = Point::new(v1.x, v1.y);
+        let last = k == cb.seg_start_index;
+        let end = if last {
+            dist_from_segment_start(v1, v2, cb.seg_point, 1e-9)
+        } else {
+            seg_length(v1, v2)
+        };
+        if !v1.bulge_is_zero() {
+            let sg = Seg::from_bulge(a, Point::new(v2.x, v2.y), v1.bulge);
+            let pieces = (end / step).ceil().clamp(1.0, 1e5) as usize;
+            for i in 1..pieces {
+                way.push(sg.point_at(end * i as f64 / pieces as f64));
+            }
+        }
+        way.push(if last {
+            Point::new(cb.seg_point.x, cb.seg_point.y)
+        } else {
+            Point::new(v2.x, v2.y)
+        });
+        len += end;
+    }
+    Some((way, len))
 }
 
 #[cfg(test)]
@@ -247,6 +336,45 @@ mod tests {
         assert!(deepest_outside(&b, &out) <= 0.75 * LAST_LOOP_MARGIN + 1e-9);
         assert_eq!(out.first(), pts.first());
         assert_eq!(out.last(), pts.last());
+    }
+
+    /// A 20 × 20 square, counter-clockwise, with a thin spike of wall from its right side to
+    /// (5, 10): 0.2 mm wide at the side.
+    fn spiked() -> Polyline<f64> {
+        let mut pl = Polyline::new_closed();
+        for (x, y) in [
+            (0.0, 0.0),
+            (20.0, 0.0),
+            (20.0, 9.9),
+            (5.0, 10.0),
+            (20.0, 10.1),
+            (20.0, 20.0),
+            (0.0, 20.0),
+        ] {
+            pl.add(x, y, 0.0);
+        }
+        pl
+    }
+
+    #[test]
+    fn a_lap_across_a_thin_spike_goes_round_its_tip() {
+        let b = spiked();
+        // Samples 0.5 mm apart across the spike at x = 12: the two inside it are moved onto
+        // its sides, and the chord between them runs through it.
+        let pts: Vec<Point> = (0..=20)
+            .map(|i| Point::new(12.0, 5.0 + 0.5 * i as f64))
+            .collect();
+        let (projected, _) = project_samples(&pts, &b, 0.2);
+        assert!(deepest_outside(&b, &projected) > 0.01);
+        let (out, moved) = keep_inside(&pts, &b, 0.2);
+        assert!(moved);
+        let deep = deepest_outside(&b, &out);
+        assert!(deep <= 0.75 * LAST_LOOP_MARGIN + 1e-9, "{deep}");
+        // Round the tip (the midpoint splits only creep towards it), not round the square.
+        let min_x = out.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
+        assert!((4.9..=5.1).contains(&min_x), "{min_x}");
+        let len: f64 = out.windows(2).map(|w| w[0].distance(w[1])).sum();
+        assert!(len < 10.0 + 2.0 * 7.1, "{len}");
     }
 
     #[test]
