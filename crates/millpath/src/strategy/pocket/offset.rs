@@ -301,7 +301,7 @@ fn nearest_loop(loops: &[&Polyline<f64>], p: Point) -> usize {
 /// outside, and its midpoint says which. Testing only for crossings away from the ends and
 /// then the segment's midpoint missed a link running along one loop's edge, across a pinched
 /// neck of the region and along the other loop's edge (the zigzag's link between two pieces of
-/// a fuzz pocket's region, 0.017 mm into the wall stock: `pocket-gouge` regressions).
+/// a fuzz pocket's region, 0.017 mm into the wall stock: `fuzz/regressions/pocket-link`).
 pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
     let d = b - a;
     let len2 = d.dot(d);
@@ -311,7 +311,7 @@ pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
     let mut seg = Polyline::new();
     seg.add(a.x, a.y, 0.0);
     seg.add(b.x, b.y, 0.0);
-    let at = |p: Vector2<f64>| ((Point::new(p.x, p.y) - a).dot(d) / len2).clamp(0.0, 1.0);
+    let at = |p: Vector2<f64>| ((p.into_point() - a).dot(d) / len2).clamp(0.0, 1.0);
     let mut ts = vec![0.0, 1.0];
     for l in region.loops() {
         let hits = l.find_intersects(&seg);

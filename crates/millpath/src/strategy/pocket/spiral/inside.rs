@@ -23,7 +23,7 @@
 use super::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
 use crate::geom::Point;
 use crate::strategy::pocket::chain::{Seg, fit_arcs, segs_from_points};
-use crate::strategy::pocket::shape::{reversed, v2};
+use crate::strategy::pocket::shape::{pt, reversed, v2};
 use cavalier_contours::polyline::{
     PlineSegIntr, PlineSource, PlineVertex, Polyline, dist_from_segment_start, pline_seg_intr,
     seg_length,
@@ -59,9 +59,7 @@ fn project(b_eps: &Polyline<f64>, p: Point) -> (Point, bool) {
         return (p, false);
     }
     match b_eps.closest_point(v2(p), 1e-12) {
-        Some(c) if c.distance > 0.5 * LAST_LOOP_MARGIN => {
-            (Point::new(c.seg_point.x, c.seg_point.y), true)
-        }
+        Some(c) if c.distance > 0.5 * LAST_LOOP_MARGIN => (pt(c.seg_point), true),
         _ => (p, false),
     }
 }
@@ -85,7 +83,7 @@ fn keep_inside(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Poi
 /// nearest point ([`project`]), and the stretches next to a moved sample resampled at
 /// `max_chord / 2` (each new sample moved in the same way); `true` if any was moved.
 fn project_samples(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Point>, bool) {
-    let step = 0.5 * max_chord.max(1e-3);
+    let step = resample_step(max_chord);
     let mut out = Vec::with_capacity(pts.len());
     let mut prev: Option<(Point, bool)> = None;
     let mut any = false;
@@ -104,6 +102,13 @@ fn project_samples(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec
         prev = Some((p, moved));
     }
     (out, any)
+}
+
+/// Spacing of the samples [`keep_inside`] adds (beside a moved sample, on the arcs of a walk
+/// along `B_ε`), mm: half the largest chord whose sagitta on a concave arc of `B_ε` stays
+/// within the margin.
+fn resample_step(max_chord: f64) -> f64 {
+    0.5 * max_chord.max(1e-3)
 }
 
 /// Most midpoint splits of one chord before it is walked along `B_ε` instead
@@ -135,7 +140,7 @@ impl<'a> ChordGuard<'a> {
             b_eps,
             t,
             index,
-            step: 0.5 * max_chord.max(1e-3),
+            step: resample_step(max_chord),
         })
     }
 
@@ -164,15 +169,12 @@ impl<'a> ChordGuard<'a> {
         let mut out = Vec::with_capacity(pts.len());
         let mut any = false;
         for (i, &p) in pts.iter().enumerate() {
-            if let Some(&prev) = i.checked_sub(1).and_then(|j| pts.get(j))
-                && self.crosses(prev, p)
-            {
-                any = true;
+            if let Some(&prev) = i.checked_sub(1).and_then(|j| pts.get(j)) {
                 let mark = out.len();
                 let mut budget = SPLIT_BUDGET;
-                if !self.split(prev, p, &mut budget, &mut out)
-                    && let Some(way) = self.walk(prev, p)
-                {
+                let settled = self.split(prev, p, &mut budget, &mut out);
+                any |= !settled || out.len() > mark;
+                if !settled && let Some(way) = self.walk(prev, p) {
                     out.truncate(mark);
                     // The walk's own chords run on `B_ε`; what still crosses (a concave arc
                     // sampled too coarsely) is split once more.
@@ -223,7 +225,7 @@ impl<'a> ChordGuard<'a> {
         let back = reversed(&fwd);
         let (w1, l1) = walk_to(&fwd, b, self.step)?;
         let (w2, l2) = walk_to(&back, b, self.step)?;
-        let mut way = vec![Point::new(ca.seg_point.x, ca.seg_point.y)];
+        let mut way = vec![pt(ca.seg_point)];
         way.extend(if l1 <= l2 { w1 } else { w2 });
         way.dedup_by(|p, q| p.distance(*q) < 1e-9);
         Some(way)
@@ -239,7 +241,7 @@ fn walk_to(lp: &Polyline<f64>, b: Point, step: f64) -> Option<(Vec<Point>, f64)>
     let mut len = 0.0;
     for k in 0..=cb.seg_start_index.min(n.saturating_sub(1)) {
         let (v1, v2) = (lp.at(k), lp.at((k + 1) % n));
-        let a = Point::new(v1.x, v1.y);
+        let a = pt(v1.pos());
         let last = k == cb.seg_start_index;
         let end = if last {
             dist_from_segment_start(v1, v2, cb.seg_point, 1e-9)
@@ -247,17 +249,13 @@ fn walk_to(lp: &Polyline<f64>, b: Point, step: f64) -> Option<(Vec<Point>, f64)>
             seg_length(v1, v2)
         };
         if !v1.bulge_is_zero() {
-            let sg = Seg::from_bulge(a, Point::new(v2.x, v2.y), v1.bulge);
+            let sg = Seg::from_bulge(a, pt(v2.pos()), v1.bulge);
             let pieces = (end / step).ceil().clamp(1.0, 1e5) as usize;
             for i in 1..pieces {
                 way.push(sg.point_at(end * i as f64 / pieces as f64));
             }
         }
-        way.push(if last {
-            Point::new(cb.seg_point.x, cb.seg_point.y)
-        } else {
-            Point::new(v2.x, v2.y)
-        });
+        way.push(pt(if last { cb.seg_point } else { v2.pos() }));
         len += end;
     }
     Some((way, len))
