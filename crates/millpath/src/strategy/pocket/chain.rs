@@ -66,6 +66,15 @@ impl Seg {
         }
     }
 
+    /// cavalier_contours' bulge of the segment: `tan(θ/4)` for the signed sweep `θ`
+    /// (positive counter-clockwise), 0 for a line.
+    pub fn bulge(&self) -> f64 {
+        self.arc.map_or(0.0, |arc| {
+            let t = (0.25 * arc.sweep).tan();
+            if arc.ccw { t } else { -t }
+        })
+    }
+
     /// Length in mm.
     pub fn length(&self) -> f64 {
         match self.arc {
@@ -159,28 +168,71 @@ pub fn segs_from_points(points: &[Point]) -> Vec<Seg> {
 /// angles of the fit's order (far below 1°); the curve itself is within about `h³κ'`
 /// of the polyline for samples `h` apart on a smooth path (0.5 mm samples: microns).
 pub fn fit_arcs(points: &[Point], tol: f64) -> Vec<Seg> {
+    fit_arcs_where(points, tol, |_| true).unwrap_or_else(|| segs_from_points(points))
+}
+
+/// [`fit_arcs`], with every fitted segment that `keep` rejects replaced by the chords through
+/// the samples it spans (from its start to the first sample after it, sample to sample, and
+/// from the last one to its end): the path keeps its arcs wherever they pass, and is no
+/// longer tangent-continuous only at the replaced stretches' ends. `None` if `keep` rejects
+/// one of those chords as well.
+pub fn fit_arcs_where(
+    points: &[Point],
+    tol: f64,
+    mut keep: impl FnMut(&Seg) -> bool,
+) -> Option<Vec<Seg>> {
     use crate::curve::biarc::fit;
     use crate::curve::catmull_rom::{OpenChain, open};
-    let chain = OpenChain(open(points));
+    // `open` drops the same repeated points; the curve passes through `p[k]` at parameter `k`.
+    let mut p: Vec<Point> = Vec::with_capacity(points.len());
+    for q in points {
+        if p.last().is_none_or(|l| l.distance(*q) > 1e-9) {
+            p.push(*q);
+        }
+    }
+    let chain = OpenChain(open(&p));
     let n = chain.0.len();
     if n == 0 {
-        return segs_from_points(points);
+        return Some(segs_from_points(points));
     }
-    fit(&chain, 0.0, n as f64, tol)
-        .into_iter()
-        .filter(|a| a.start.distance(a.end) > 1e-9)
-        .map(|a| {
-            // Nearly straight arcs (centres far away) become lines when their sagitta
-            // `chord·|bulge|/2` is below a tenth of the tolerance: the tangent then turns
-            // by about `8·sagitta/chord` at most (0.02° for a 10 mm chord).
-            let bulge = (0.25 * a.sweep()).tan();
-            if a.center.is_none() || 0.5 * a.start.distance(a.end) * bulge.abs() < 0.1 * tol {
-                Seg::line(a.start, a.end)
-            } else {
-                Seg::from_bulge(a.start, a.end, bulge)
+    let mut out = Vec::new();
+    let mut s0 = 0.0_f64;
+    for a in fit(&chain, 0.0, n as f64, tol) {
+        let s1 = a.s_end;
+        let span = (s0, s1);
+        s0 = s1;
+        if a.start.distance(a.end) <= 1e-9 {
+            continue;
+        }
+        // Nearly straight arcs (centres far away) become lines when their sagitta
+        // `chord·|bulge|/2` is below a tenth of the tolerance: the tangent then turns
+        // by about `8·sagitta/chord` at most (0.02° for a 10 mm chord).
+        let bulge = (0.25 * a.sweep()).tan();
+        let seg = if a.center.is_none() || 0.5 * a.start.distance(a.end) * bulge.abs() < 0.1 * tol {
+            Seg::line(a.start, a.end)
+        } else {
+            Seg::from_bulge(a.start, a.end, bulge)
+        };
+        if keep(&seg) {
+            out.push(seg);
+            continue;
+        }
+        let inner = (span.0.floor() as usize + 1..)
+            .take_while(|&k| (k as f64) < span.1 && k < p.len())
+            .map(|k| p[k]);
+        let mut from = a.start;
+        for q in inner.chain(std::iter::once(a.end)) {
+            if from.distance(q) > 1e-9 {
+                let chord = Seg::line(from, q);
+                if !keep(&chord) {
+                    return None;
+                }
+                out.push(chord);
+                from = q;
             }
-        })
-        .collect()
+        }
+    }
+    Some(out)
 }
 
 /// Total length of a path in mm.
@@ -226,5 +278,47 @@ mod tests {
         assert!((h.length() - 2.5 * PI).abs() < 1e-9);
         let r = s.reversed();
         assert!(r.point_at(r.length() * 0.5).distance(Point::new(0.0, -5.0)) < 1e-9);
+    }
+
+    /// 33 samples of a half circle of radius 10 above the x axis, from (10, 0) to (−10, 0).
+    fn half_circle() -> Vec<Point> {
+        (0..=32)
+            .map(|k| {
+                let a = PI * f64::from(k) / 32.0;
+                Point::new(10.0 * a.cos(), 10.0 * a.sin())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn rejected_arcs_become_the_chords_through_their_samples() {
+        let pts = half_circle();
+        let all = fit_arcs(&pts, 0.004);
+        assert!(all.iter().all(|s| s.arc.is_some()), "{all:?}");
+        // Reject what reaches left of x = 0: those stretches become chords through samples.
+        let path = fit_arcs_where(&pts, 0.004, |s| s.arc.is_none() || s.a.x.min(s.b.x) > 0.0)
+            .expect("chords pass");
+        let (arcs, lines): (Vec<Seg>, Vec<Seg>) = path.iter().partition(|s| s.arc.is_some());
+        assert!(!arcs.is_empty() && !lines.is_empty());
+        assert!(arcs.iter().all(|s| s.a.x.min(s.b.x) > 0.0));
+        // Still one connected path from the first sample to the last.
+        assert_eq!(path[0].a, pts[0]);
+        assert!(path.last().expect("moves").b.distance(pts[32]) < 1e-9);
+        assert!(path.windows(2).all(|w| w[0].b.distance(w[1].a) < 1e-12));
+        // Every sample left of x = 0 is a chord's end.
+        for p in pts.iter().filter(|p| p.x < -1e-9) {
+            assert!(lines.iter().any(|s| s.b.distance(*p) < 1e-12), "{p:?}");
+        }
+        // Rejecting chords as well: no path.
+        assert!(fit_arcs_where(&pts, 0.004, |_| false).is_none());
+    }
+
+    #[test]
+    fn bulge_round_trips() {
+        for b in [-1.5, -0.3, 0.2, 1.0] {
+            let s = Seg::from_bulge(Point::new(1.0, 2.0), Point::new(4.0, -1.0), b);
+            assert!((s.bulge() - b).abs() < 1e-12, "{b}: {}", s.bulge());
+        }
+        assert!(Seg::line(Point::ORIGIN, Point::new(1.0, 0.0)).bulge().abs() < 1e-300);
     }
 }

@@ -32,6 +32,7 @@
 //!   boundary offset.
 
 pub mod chain;
+pub mod fallback;
 pub mod feed;
 pub mod levels;
 pub mod offset;
@@ -165,22 +166,19 @@ fn toolpath_and_sections(
     Ok((tp, sections))
 }
 
-/// The deepest gouge [`generate`] lets through, mm: the tool centre may come this much closer
-/// to a wall than the tool radius plus the wall stock. Above the spiral's `--arcs` fit and
-/// the offsets' rounding (micrometres, which [`Verification::problems`] still reports, from
-/// 1e-6 mm), below any machining tolerance.
-pub const GOUGE_TOLERANCE: f64 = 0.01;
+pub use fallback::GOUGE_TOLERANCE;
 
 /// Generates, modulates the feed and verifies: every level against its own section (and the
 /// section of the slab's top, see [`crate::stock::verify_levels`]).
 ///
 /// A toolpath that gouges by more than [`GOUGE_TOLERANCE`] is never returned. The spiral's
 /// default morph ([`spiral::SpiralMorph::Fronts`]) is then planned again with the harmonic
-/// one, and `--arcs` paths again as chords (the fuzzer found chaotic outlines on which the
-/// spiral cut up to 2.9 mm into a wall, and biarcs overshooting a sharp corner by 0.011 mm,
-/// fuzz/README.md session 6), and [`PocketResult::notes`] says which fallback was taken and
-/// how deep the path asked for cut; what still gouges is an internal error naming the depth,
-/// the move and the point.
+/// one, and `--arcs` paths again as chords ([`fallback`]: the fuzzer found chaotic outlines
+/// on which the spiral cut up to 2.9 mm into a wall, and biarcs overshooting a sharp corner by
+/// 0.011 mm, fuzz/README.md session 6; the spiral now keeps its laps and arcs inside itself,
+/// and no input of the fuzz corpora needs a fallback), and [`PocketResult::notes`] says which
+/// fallback was taken and how deep the path asked for cut; what still gouges is an internal
+/// error naming the depth, the move and the point.
 pub fn generate(
     kind: StrategyKind,
     shape: &PocketShape,
@@ -188,36 +186,11 @@ pub fn generate(
     opts: &PocketOptions,
     sim: &SimOptions,
 ) -> Result<PocketResult> {
-    let r = generate_unchecked(kind, shape, tool, opts, sim)?;
-    if gouge(&r.verification) <= GOUGE_TOLERANCE {
-        return Ok(r);
-    }
-    // The fallbacks, in order: the spiral's harmonic morph, then G1 chords instead of biarcs
-    // (chords between the spiral's samples stay inside the boundary offset; biarcs fitted
-    // through samples at a sharp corner of it can overshoot by more than their tolerance).
-    let mut retries = Vec::new();
-    if kind == StrategyKind::Spiral && opts.morph == spiral::SpiralMorph::Fronts {
-        retries.push(PocketOptions {
-            morph: spiral::SpiralMorph::Harmonic,
-            ..opts.clone()
-        });
-    }
-    if opts.arcs {
-        let chords: Vec<PocketOptions> = std::iter::once(opts.clone())
-            .chain(retries.iter().cloned())
-            .map(|o| PocketOptions { arcs: false, ..o })
-            .collect();
-        retries.extend(chords);
-    }
-    for o in &retries {
-        if let Ok(mut r2) = generate_unchecked(kind, shape, tool, o, sim)
-            && gouge(&r2.verification) <= GOUGE_TOLERANCE
-        {
-            r2.notes
-                .push(fallback_note(kind, opts, o, gouge(&r.verification)));
-            return Ok(r2);
-        }
-    }
+    let attempt = |o: &PocketOptions| generate_unchecked(kind, shape, tool, o, sim);
+    let r = match fallback::first_clear(kind, opts, attempt)? {
+        fallback::Attempts::Clears(r) => return Ok(r),
+        fallback::Attempts::Gouges(r) => r,
+    };
     let (_, sections) = toolpath_and_sections(kind, shape, tool, opts)?;
     let specs: Vec<StockSpec<'_>> = sections
         .iter()
@@ -235,39 +208,12 @@ pub fn generate(
         kind.name(),
         r.verification.min_clearance_mm,
         r.verification.required_clearance_mm,
-        gouge(&r.verification),
+        fallback::gouge(&r.verification),
         c.at.x,
         c.at.y,
         c.at.z,
         c.move_index
     )))
-}
-
-/// The note of a fallback: what the path asked for did, and what replaced it.
-fn fallback_note(
-    kind: StrategyKind,
-    asked: &PocketOptions,
-    used: &PocketOptions,
-    depth: f64,
-) -> String {
-    let mut changes = Vec::new();
-    if asked.morph != used.morph {
-        changes.push("the harmonic morph instead of the fronts (`--morph harmonic`)");
-    }
-    if asked.arcs && !used.arcs {
-        changes.push("G1 chords instead of arcs (no `--arcs`)");
-    }
-    format!(
-        "the {} toolpath as asked for cut {depth:.4} mm into the walls' clearance (more than \
-         the {GOUGE_TOLERANCE} mm allowed); planned again with {}, which clears them",
-        kind.name(),
-        changes.join(" and ")
-    )
-}
-
-/// How far the tool centre comes inside the required clearance, mm (≤ 0: no gouge).
-fn gouge(v: &Verification) -> f64 {
-    v.required_clearance_mm - v.min_clearance_mm
 }
 
 /// [`generate`] without the gouge guard.

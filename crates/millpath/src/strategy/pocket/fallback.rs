@@ -1,0 +1,185 @@
+//! [`super::generate`]'s gouge guard: a toolpath that cuts more than [`GOUGE_TOLERANCE`] into
+//! the walls' clearance is planned again with other options, and the one that clears them is
+//! returned with a note saying what changed and why.
+//!
+//! The fallbacks, in order: the spiral's harmonic morph instead of the fronts, then G1 chords
+//! instead of biarcs (with the fronts, then the harmonic morph). The spiral keeps its laps,
+//! chords and arcs inside its last loop itself ([`super::spiral`]), so these are a safety net:
+//! no input of the fuzz corpora needs one (fuzz/README.md, session 8).
+
+use super::{PocketOptions, PocketResult, StrategyKind, spiral};
+use crate::error::Result;
+use crate::stock::Verification;
+
+/// The deepest gouge [`super::generate`] lets through, mm: the tool centre may come this much
+/// closer to a wall than the tool radius plus the wall stock. Above the offsets' rounding and
+/// the stock simulation's sampling (nanometres to micrometres, which
+/// [`Verification::problems`] still reports, from 1e-6 mm), below any machining tolerance.
+pub const GOUGE_TOLERANCE: f64 = 0.01;
+
+/// What [`first_clear`] found.
+#[derive(Debug)]
+pub enum Attempts {
+    /// The first result that clears the walls to within [`GOUGE_TOLERANCE`]: the one asked
+    /// for, or a fallback with its note.
+    Clears(PocketResult),
+    /// Every attempt gouged: the one asked for.
+    Gouges(PocketResult),
+}
+
+/// Runs `attempt` with `opts`, then with each fallback of `opts` while the result gouges by
+/// more than [`GOUGE_TOLERANCE`]. An error of the first attempt is returned; a fallback that
+/// fails is skipped.
+pub fn first_clear(
+    kind: StrategyKind,
+    opts: &PocketOptions,
+    mut attempt: impl FnMut(&PocketOptions) -> Result<PocketResult>,
+) -> Result<Attempts> {
+    let r = attempt(opts)?;
+    if gouge(&r.verification) <= GOUGE_TOLERANCE {
+        return Ok(Attempts::Clears(r));
+    }
+    for o in &fallbacks(kind, opts) {
+        if let Ok(mut r2) = attempt(o)
+            && gouge(&r2.verification) <= GOUGE_TOLERANCE
+        {
+            r2.notes.push(note(kind, opts, o, gouge(&r.verification)));
+            return Ok(Attempts::Clears(r2));
+        }
+    }
+    Ok(Attempts::Gouges(r))
+}
+
+/// The options to try after `opts`, in order: the harmonic morph (a spiral with the fronts),
+/// then the same without `--arcs`.
+fn fallbacks(kind: StrategyKind, opts: &PocketOptions) -> Vec<PocketOptions> {
+    let mut out = Vec::new();
+    if kind == StrategyKind::Spiral && opts.morph == spiral::SpiralMorph::Fronts {
+        out.push(PocketOptions {
+            morph: spiral::SpiralMorph::Harmonic,
+            ..opts.clone()
+        });
+    }
+    if opts.arcs {
+        let chords: Vec<PocketOptions> = std::iter::once(opts.clone())
+            .chain(out.iter().cloned())
+            .map(|o| PocketOptions { arcs: false, ..o })
+            .collect();
+        out.extend(chords);
+    }
+    out
+}
+
+/// The note of a fallback: what the path asked for did, and what replaced it.
+fn note(kind: StrategyKind, asked: &PocketOptions, used: &PocketOptions, depth: f64) -> String {
+    let mut changes = Vec::new();
+    if asked.morph != used.morph {
+        changes.push("the harmonic morph instead of the fronts (`--morph harmonic`)");
+    }
+    if asked.arcs && !used.arcs {
+        changes.push("G1 chords instead of arcs (no `--arcs`)");
+    }
+    format!(
+        "the {} toolpath as asked for cut {depth:.4} mm into the walls' clearance (more than \
+         the {GOUGE_TOLERANCE} mm allowed); planned again with {}, which clears them",
+        kind.name(),
+        changes.join(" and ")
+    )
+}
+
+/// How far the tool centre comes inside the required clearance, mm (≤ 0: no gouge).
+pub fn gouge(v: &Verification) -> f64 {
+    v.required_clearance_mm - v.min_clearance_mm
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stock::SimOptions;
+    use crate::strategy::pocket::{generate, samples};
+    use crate::toolpath::Tool;
+
+    /// A real spiral (a 40 × 30 mm pocket, an 8 mm tool), made to look as if it gouged 0.02 mm whenever
+    /// `gouges` says so of the options it was planned with; the options tried, in order.
+    fn run(
+        opts: &PocketOptions,
+        gouges: impl Fn(&PocketOptions) -> bool,
+    ) -> (Attempts, Vec<PocketOptions>) {
+        let outline = samples::rounded_rectangle(0.0, 0.0, 40.0, 30.0, 5.0);
+        let shape = crate::strategy::pocket::PocketShape::simple(outline);
+        let tool = Tool::flat(8.0).expect("tool");
+        let sim = SimOptions::default();
+        let mut tried = Vec::new();
+        let out = first_clear(StrategyKind::Spiral, opts, |o| {
+            tried.push(o.clone());
+            let mut r = generate(StrategyKind::Spiral, &shape, &tool, o, &sim)?;
+            if gouges(o) {
+                r.verification.min_clearance_mm = r.verification.required_clearance_mm - 0.02;
+            }
+            Ok(r)
+        })
+        .expect("plans");
+        (out, tried)
+    }
+
+    #[test]
+    fn a_path_that_clears_is_returned_without_a_note() {
+        let (out, tried) = run(&PocketOptions::default(), |_| false);
+        assert!(
+            matches!(out, Attempts::Clears(ref r) if r.notes.is_empty()),
+            "{out:?}"
+        );
+        assert_eq!(tried.len(), 1);
+    }
+
+    #[test]
+    fn gouging_arcs_are_planned_again_as_chords_and_noted() {
+        let opts = PocketOptions {
+            arcs: true,
+            ..PocketOptions::default()
+        };
+        let (out, tried) = run(&opts, |o| o.arcs);
+        let Attempts::Clears(r) = out else {
+            panic!("{out:?}")
+        };
+        // The harmonic morph with arcs first, then the fronts as chords.
+        assert_eq!(tried.len(), 3);
+        assert!(tried[1].arcs && tried[1].morph == spiral::SpiralMorph::Harmonic);
+        assert!(!tried[2].arcs && tried[2].morph == spiral::SpiralMorph::Fronts);
+        assert_eq!(r.notes.len(), 1, "{:?}", r.notes);
+        assert!(
+            r.notes[0].contains("G1 chords instead of arcs")
+                && r.notes[0].contains("0.0200 mm")
+                && !r.notes[0].contains("harmonic"),
+            "{}",
+            r.notes[0]
+        );
+    }
+
+    #[test]
+    fn a_gouging_fronts_morph_falls_back_to_the_harmonic_one() {
+        let fronts = |o: &PocketOptions| o.morph == spiral::SpiralMorph::Fronts;
+        let (out, tried) = run(&PocketOptions::default(), fronts);
+        let Attempts::Clears(r) = out else {
+            panic!("{out:?}")
+        };
+        assert_eq!(tried.len(), 2);
+        assert!(r.notes[0].contains("the harmonic morph instead of the fronts"));
+    }
+
+    #[test]
+    fn what_gouges_whatever_the_options_is_returned_as_asked() {
+        let opts = PocketOptions {
+            arcs: true,
+            ..PocketOptions::default()
+        };
+        let (out, tried) = run(&opts, |_| true);
+        // Asked, harmonic, fronts as chords, harmonic as chords.
+        assert_eq!(tried.len(), 4);
+        let Attempts::Gouges(r) = out else {
+            panic!("{out:?}")
+        };
+        assert!(r.notes.is_empty());
+        assert!((gouge(&r.verification) - 0.02).abs() < 1e-12);
+    }
+}
