@@ -25,7 +25,7 @@ use millpath::motion::{PlanOptions, plan_moves};
 use millpath::stock::SimOptions;
 use millpath::strategy::contour::{self, ContourOptions, Side};
 use millpath::strategy::pocket::{
-    self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind,
+    self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind, Walls,
 };
 use millpath::toolpath::{Corner, MoveKind, Plane};
 use millpath::{Move, Point, Point3, Tool, Toolpath};
@@ -321,13 +321,48 @@ pub fn pocket_case(data: &[u8]) -> Option<PocketCase> {
         step: (2.0 * cell).max(0.1),
         ..SimOptions::default()
     };
-    trace(&(&kind, &outer, &island, &tool, &opts, &sim));
-    let outer = Outline::from_points(&outer, "fuzz outer").ok()?;
-    let islands: Vec<Outline> = island
-        .iter()
-        .filter_map(|p| Outline::from_points(p, "fuzz island").ok())
-        .collect();
-    let shape = PocketShape::new(outer, islands, "fuzz").ok()?;
+    // The walls, drawn after everything else for the same reason (zeros: vertical): a draft
+    // angle in [0, 60°], or a bottom outline vertex for vertex like the top, the outer loop
+    // shrunk towards its centroid and the island grown about its own (walls leaning into
+    // the pocket; other shapes are refused as undercuts, as bad input).
+    let walls_kind = b.pick(3);
+    let lean = b.unit(0.0, 1.0);
+    trace(&(&kind, &outer, &island, &tool, &opts, &sim, walls_kind, lean));
+    let scaled = |pts: &[Point], f: f64| -> Vec<Point> {
+        let n = pts.len().max(1) as f64;
+        let c = pts.iter().fold(Point::new(0.0, 0.0), |c, p| {
+            Point::new(c.x + p.x / n, c.y + p.y / n)
+        });
+        pts.iter()
+            .map(|p| Point::new(c.x + (p.x - c.x) * f, c.y + (p.y - c.y) * f))
+            .collect()
+    };
+    let bottom = (
+        scaled(&outer, 1.0 - 0.4 * lean),
+        island.as_ref().map(|p| scaled(p, 1.0 + 0.3 * lean)),
+    );
+    let loops = |outer: &[Point], island: &Option<Vec<Point>>, what: &str| {
+        let o = Outline::from_points(outer, &format!("fuzz {what} outer")).ok()?;
+        let islands: Vec<Outline> = island
+            .iter()
+            .filter_map(|p| Outline::from_points(p, &format!("fuzz {what} island")).ok())
+            .collect();
+        Some((o, islands))
+    };
+    let (top_outer, top_islands) = loops(&outer, &island, "top")?;
+    let shape = PocketShape::new(top_outer, top_islands, "fuzz").ok()?;
+    let shape = match walls_kind {
+        0 => shape,
+        1 => shape
+            .with_walls(Walls::Draft((60.0 * lean).to_radians()), "fuzz draft")
+            .ok()?,
+        _ => {
+            let (outer, islands) = loops(&bottom.0, &bottom.1, "bottom")?;
+            shape
+                .with_walls(Walls::Bottom { outer, islands }, "fuzz bottom")
+                .ok()?
+        }
+    };
     Some((kind, shape, tool, opts, sim))
 }
 
