@@ -19,6 +19,8 @@
 //! of the spike nearer it, so the splits only creep towards the tip, 0.3 mm a split, found by
 //! the fuzzer in session 7 with a 22 mm chord through the wall), the chord is replaced by the
 //! way along `B_ε`: from its start's nearest point round to its end's, the shorter way.
+//! With `--arcs`, each biarc fitted through the samples is checked against `T` in the same
+//! way, and one that crosses it is written as the chords it spans.
 
 use super::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
 use crate::geom::Point;
@@ -179,6 +181,7 @@ impl<'a> ChordGuard<'a> {
             )
         })
     }
+
     /// `pts` with every chord that crosses `T` split at its midpoint (projected onto `B_ε`,
     /// [`project`]), recursively, or where that does not settle walked along `B_ε`; `true` if
     /// any chord was.

@@ -32,7 +32,8 @@
 //!
 //! **Output.** The laps are sampled at ≤ 0.5 mm and written as G1 chords, or with `--arcs`
 //! ([`PocketOptions::arcs`]) as biarcs within [`ARC_TOLERANCE`] of the open centripetal
-//! Catmull-Rom curve through the samples: tangent-continuous (consecutive moves within 1°),
+//! Catmull-Rom curve through the samples: tangent-continuous (consecutive moves within 1°,
+//! except where a biarc that would leave the last loop is written as chords, `spiral::inside`),
 //! 11× fewer blocks, but each biarc joint is a curvature jump that a jerk-limited controller
 //! slows for (aerospace pocket on `hsm`: 105.8 s against 72.3 s), so chords are the default.
 //!
