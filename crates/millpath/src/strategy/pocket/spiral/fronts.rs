@@ -202,6 +202,12 @@ pub fn ridge_centre(b: &Polyline<f64>) -> Option<(Point, f64)> {
     }
     while hi - lo > 1e-9 * hi {
         let mid = 0.5 * (lo + hi);
+        // Adjacent floats: no progress left (from `lo = 0` the interval shrinks through the
+        // subnormals, where `1e-9 * hi` is 0, and `mid` rounds to `lo`; without this the loop
+        // never ended on a loop no positive offset leaves anything of, found by the fuzzer).
+        if mid <= lo || mid >= hi {
+            break;
+        }
         if b.parallel_offset(mid).iter().any(|p| p.area() > 0.0) {
             lo = mid;
         } else {
@@ -430,6 +436,30 @@ mod tests {
             (c.x - 68.65).abs() < 1e-6 && (c.y - 43.65).abs() < 1e-6,
             "{c:?}"
         );
+    }
+
+    /// A tool-centre region 2 µm across (found by the fuzzer, session 8): no inward offset
+    /// leaves anything of it, so the bisection's interval shrank from `lo = 0` through the
+    /// subnormals until `mid` rounded to 0 and the loop never ended (20 s timeouts). It ends,
+    /// with no centre.
+    #[test]
+    fn ridge_centre_of_a_micrometre_sliver_ends() {
+        let mut b = Polyline::with_capacity(3, true);
+        for (x, y) in [
+            (36.39953067577565, 7.562344663834283),
+            (36.39749893860321, 7.5623215979103735),
+            (36.39473449630062, 7.56039908449441),
+        ] {
+            b.add(x, y, 0.0);
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = tx.send(ridge_centre(&b));
+        });
+        let got = rx
+            .recv_timeout(std::time::Duration::from_secs(20))
+            .expect("ridge_centre returns");
+        assert!(got.is_none_or(|(_, rho)| rho < 1e-5), "{got:?}");
     }
 
     #[test]
