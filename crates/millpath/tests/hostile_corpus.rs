@@ -170,7 +170,8 @@ fn arcs_stay_out_of_the_walls_without_a_fallback() {
         "corpus-min/pocket/fb1e90b28d693df640c8a89fb42add74817e663e",
     ] {
         let data = std::fs::read(root.join(f)).expect("file");
-        let (kind, shape, tool, mut opts, sim) = harness::pocket_case(&data).expect("a pocket");
+        let (kind, shape, tool, mut opts, sim) =
+            harness::pocket_case_vertical(&data).expect("a pocket");
         assert_eq!(kind, pocket::StrategyKind::Spiral, "{f}");
         opts.arcs = true;
         let r = pocket::generate(kind, &shape, &tool, &opts, &sim).expect("a toolpath");
@@ -202,7 +203,7 @@ fn finishing_lead_in_stays_out_of_the_walls() {
         "../../fuzz/regressions/pocket-finish-entry/finish-entry-4d52e850db73be008726bf53f0d538c8a6211e67",
     );
     let data = std::fs::read(&f).expect("file");
-    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    let (kind, shape, tool, opts, sim) = harness::pocket_case_vertical(&data).expect("a pocket");
     let v = pocket::generate(kind, &shape, &tool, &opts, &sim)
         .expect("a toolpath")
         .verification;
@@ -226,7 +227,7 @@ fn zigzag_links_stay_inside_a_pinched_region() {
     let f = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../fuzz/regressions/pocket-link/668b7c4357e1e0b5fb27fe08deacc4eb4e48339f");
     let data = std::fs::read(&f).expect("file");
-    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    let (kind, shape, tool, opts, sim) = harness::pocket_case_vertical(&data).expect("a pocket");
     assert_eq!(kind, pocket::StrategyKind::Zigzag);
     match pocket::generate(kind, &shape, &tool, &opts, &sim) {
         Ok(r) => {
@@ -256,7 +257,8 @@ fn gouge_cases() -> Vec<(String, millpath::Result<millpath::stock::Verification>
         .iter()
         .map(|f| {
             let data = std::fs::read(f).expect("file");
-            let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+            let (kind, shape, tool, opts, sim) =
+                harness::pocket_case_vertical(&data).expect("a pocket");
             let r = pocket::generate(kind, &shape, &tool, &opts, &sim).map(|r| r.verification);
             (f.display().to_string(), r)
         })
@@ -275,7 +277,7 @@ fn arcs_clearance_over_the_corpus() {
     let mut rows = Vec::new();
     let mut fallbacks = 0;
     for (name, data) in corpus("pocket") {
-        let Some((kind, shape, tool, mut opts, sim)) = harness::pocket_case(&data) else {
+        let Some((kind, shape, tool, mut opts, sim)) = harness::pocket_case_vertical(&data) else {
             continue;
         };
         if kind != pocket::StrategyKind::Spiral {
