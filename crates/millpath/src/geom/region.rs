@@ -37,7 +37,10 @@
 
 use super::{Outline, Point, Winding};
 use crate::error::InputError;
-use cavalier_contours::polyline::{PlineSource, Polyline, seg_arc_radius_and_center};
+use cavalier_contours::core::math::Vector2;
+use cavalier_contours::polyline::{
+    PlineSource, Polyline, seg_arc_radius_and_center, seg_split_at_point,
+};
 
 /// Two loops closer than this (mm) count as touching.
 pub const TOUCH_EPS: f64 = 1e-6;
@@ -137,6 +140,86 @@ pub fn sample_loop(pl: &Polyline<f64>, n: usize) -> Vec<Point> {
             0.0
         };
         out.push(point_on_bulge_seg(a, b, bulge, f));
+    }
+    out
+}
+
+/// One point on every piece into which the loops `others` cut the closed loop `l`: its
+/// boundary between consecutive points where another loop meets it (crossing, touching or
+/// overlapping, as cavalier_contours' `find_intersects` reports them). A piece meets no other
+/// loop inside, so it lies wholly inside or wholly outside each of them, and its point tells
+/// which: a region test over these points is exact, where one over points sampled at a fixed
+/// spacing steps over anything narrower than the spacing. Pieces that run along another loop
+/// (an overlap) are left out, and so is a piece shorter than 1e-9 of its segment. A loop that
+/// meets none of `others` gets one point.
+///
+/// There are as many points as meeting points (plus one per run of segments without any),
+/// each found through cavalier's spatial index, so two loops that meet a few times cost
+/// `O((n + m) log(n + m))`.
+pub fn piece_points(l: &Polyline<f64>, others: &[&Polyline<f64>]) -> Vec<Point> {
+    let n = l.vertex_count();
+    if n < 2 {
+        return l.iter_vertexes().map(|v| Point::new(v.x, v.y)).collect();
+    }
+    let seg = |i: usize| (l.at(i), l.at((i + 1) % n));
+    // The fraction of segment `i`'s arc length at which `p` (a point on it) lies.
+    let frac = |i: usize, p: Vector2<f64>| -> f64 {
+        let (v1, v2) = seg(i);
+        let f = if v1.bulge_is_zero() {
+            let d = v2.pos() - v1.pos();
+            let dd = d.dot(d);
+            if dd > 0.0 {
+                (p - v1.pos()).dot(d) / dd
+            } else {
+                0.0
+            }
+        } else {
+            let first = seg_split_at_point(v1, v2, p, 1e-12).updated_start.bulge;
+            first.atan() / v1.bulge.atan()
+        };
+        if f.is_finite() {
+            f.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    let mut cuts: Vec<Vec<f64>> = vec![Vec::new(); n];
+    let mut along: Vec<Vec<(f64, f64)>> = vec![Vec::new(); n];
+    for o in others {
+        let hits = l.find_intersects(*o);
+        for h in &hits.basic_intersects {
+            cuts[h.start_index1].push(frac(h.start_index1, h.point));
+        }
+        for h in &hits.overlapping_intersects {
+            let i = h.start_index1;
+            let (a, b) = (frac(i, h.point1), frac(i, h.point2));
+            cuts[i].extend([a, b]);
+            along[i].push((a.min(b), a.max(b)));
+        }
+    }
+    let none = cuts.iter().all(Vec::is_empty);
+    let mut out = Vec::new();
+    for i in 0..n {
+        let prev_cut = !cuts[(i + n - 1) % n].is_empty();
+        // Segments inside a run without meeting points need no point of their own: the run
+        // has one on the segment where it starts (after a cut, or segment 0 if none).
+        if cuts[i].is_empty() && !(prev_cut || (none && i == 0)) {
+            continue;
+        }
+        let mut f = cuts[i].clone();
+        f.sort_by(f64::total_cmp);
+        let bounds: Vec<f64> = std::iter::once(0.0).chain(f).chain([1.0]).collect();
+        let (v1, v2) = seg(i);
+        let (a, b) = (Point::new(v1.x, v1.y), Point::new(v2.x, v2.y));
+        for w in bounds.windows(2) {
+            let (fa, fb) = (w[0], w[1]);
+            let on_other = along[i]
+                .iter()
+                .any(|&(s, e)| s <= fa + 1e-9 && fb <= e + 1e-9);
+            if fb - fa > 1e-9 && !on_other {
+                out.push(point_on_bulge_seg(a, b, v1.bulge, 0.5 * (fa + fb)));
+            }
+        }
     }
     out
 }
@@ -319,5 +402,45 @@ mod tests {
         // A square: its edge direction.
         let sq = rect(0.0, 0.0, 10.0, 10.0);
         assert!(principal_angle(&sq).abs() < 1e-9);
+    }
+
+    #[test]
+    fn piece_points_stand_for_every_piece_between_meeting_points() {
+        let a = rect(0.0, 0.0, 10.0, 10.0);
+        let far = rect(20.0, 0.0, 5.0, 5.0);
+        // No meeting point: one point, on the loop.
+        let p = piece_points(a.polyline(), &[far.polyline()]);
+        assert_eq!(p.len(), 1);
+        assert!(a.distance_to(p[0]) < 1e-12);
+        // A 0.1 mm slit crossing the square's right edge twice: the square's loop has a
+        // piece inside the slit's loop and one outside (a piece may get more than one
+        // point, never none), and so has the slit's.
+        let slit = rect(9.0, 4.95, 5.0, 0.1);
+        let p = piece_points(a.polyline(), &[slit.polyline()]);
+        assert!(p.iter().all(|&q| a.distance_to(q) < 1e-12), "{p:?}");
+        assert_eq!(p.iter().filter(|&&q| slit.contains(q)).count(), 1, "{p:?}");
+        assert!(p.len() >= 2 && p.len() <= 4, "{p:?}");
+        let q = piece_points(slit.polyline(), &[a.polyline()]);
+        assert!(q.iter().any(|&q| a.contains(q)), "{q:?}");
+        assert!(q.iter().any(|&q| !a.contains(q)), "{q:?}");
+        // The same loop: every piece runs along the other, none is left to test.
+        assert!(piece_points(a.polyline(), &[a.polyline()]).is_empty());
+        // An arc cut once by a line: its two pieces' points lie on the arc, either side.
+        let disc = Outline::new(
+            &[(Point::new(-5.0, 0.0), 1.0), (Point::new(5.0, 0.0), 1.0)],
+            "disc",
+        )
+        .unwrap();
+        let band = rect(-1.0, -10.0, 2.0, 20.0);
+        let p = piece_points(disc.polyline(), &[band.polyline()]);
+        assert!(
+            p.iter().all(|q| (q.to_vec2().length() - 5.0).abs() < 1e-9),
+            "{p:?}"
+        );
+        assert_eq!(p.iter().filter(|&&q| band.contains(q)).count(), 2, "{p:?}");
+        assert!(
+            p.iter().filter(|&&q| !band.contains(q)).count() >= 2,
+            "{p:?}"
+        );
     }
 }

@@ -39,8 +39,9 @@
 use super::options::PocketOptions;
 use super::shape::PocketShape;
 use crate::error::InputError;
-use crate::geom::region::{sample_loop, validate_islands};
+use crate::geom::region::{piece_points, validate_islands};
 use crate::geom::{Outline, Point};
+use cavalier_contours::polyline::Polyline;
 
 /// How the walls run from the top outline (z = 0) down to the floor.
 #[derive(Debug, Clone, Default)]
@@ -190,21 +191,26 @@ impl PocketShape {
         }
     }
 
-    /// True when this (planar) region lies within `other`'s, sampled: 256 points of every
-    /// loop of each, each inside the other region or within 1 µm of its boundary.
+    /// True when this (planar) region lies within `other`'s, to within 1 µm: every piece of
+    /// our loops between the points where they meet `other`'s loops is inside `other`'s
+    /// region or on its boundary, and every piece of `other`'s loops (its outer loop too:
+    /// a slit of material reaching in from its wall) is outside ours or on our boundary
+    /// ([`piece_points`]: one point stands for each piece, since a piece meets no loop of
+    /// the other region inside). Exact up to that tolerance; the check sampled 256 points a
+    /// loop before, which stepped over a 0.8 mm slit (fuzz/README.md, session 9).
     pub fn within(&self, other: &PocketShape) -> bool {
         let on_or_in =
             |shape: &PocketShape, p: Point| shape.contains(p) || shape.distance_to(p) <= 1e-6;
         let outside =
             |shape: &PocketShape, p: Point| !shape.contains(p) || shape.distance_to(p) <= 1e-6;
-        // Our boundary inside theirs, and their islands' boundaries outside our region.
-        self.loops()
-            .flat_map(|l| sample_loop(l.polyline(), 256))
+        let ours: Vec<&Polyline<f64>> = self.loops().map(Outline::polyline).collect();
+        let theirs: Vec<&Polyline<f64>> = other.loops().map(Outline::polyline).collect();
+        ours.iter()
+            .flat_map(|l| piece_points(l, &theirs))
             .all(|p| on_or_in(other, p))
-            && other
-                .islands
+            && theirs
                 .iter()
-                .flat_map(|l| sample_loop(l.polyline(), 256))
+                .flat_map(|l| piece_points(l, &ours))
                 .all(|p| outside(self, p))
     }
 }
@@ -295,5 +301,54 @@ mod tests {
             )
             .unwrap();
         assert!(level_shapes(&u, &opts).is_err());
+    }
+
+    /// A thin slit of material reaching into the pocket from its wall (the `pocket` fuzzer's
+    /// outline, pk29): shrunk towards the centroid, the slit moves into the region above it,
+    /// so the lower sections are not nested in the upper ones (an undercut). The check
+    /// sampled 256 points a loop before, which stepped over the 0.8 mm slit, and the spiral
+    /// planned in the bottom section cut 0.68 mm into the slit's wall.
+    #[test]
+    fn a_slit_that_moves_with_the_bottom_outline_is_an_undercut() {
+        let top = [
+            (-2.2938494268365766, -7.583206032835491),
+            (13.819938916514431, -6.812874942264327),
+            (16.2161533731014, 39.13737775224321),
+            (-1.482161754909228, 49.30004148995412),
+            (-15.656458898355005, 9.745343526113583),
+            (-32.64774958642704, 37.94042171885479),
+            (-45.87747179616305, 14.960294013186743),
+            (-52.02980149585056, 8.894402514466268),
+            (-53.57964918278162, -6.01340127859758),
+            (-56.480421317380525, -37.957137949013195),
+            (-32.96794177381195, -53.45783349487589),
+            (13.279087045403138, -42.89703327482558),
+            (13.865384908827345, -7.647058823529421),
+        ]
+        .map(|(x, y)| Point::new(x, y));
+        let n = top.len() as f64;
+        let c = top.iter().fold(Point::new(0.0, 0.0), |c, p| {
+            Point::new(c.x + p.x / n, c.y + p.y / n)
+        });
+        let bottom: Vec<Point> = top.iter().map(|&p| c.lerp(p, 0.72)).collect();
+        let shape = PocketShape::simple(Outline::from_points(&top, "top").unwrap())
+            .with_walls(
+                Walls::Bottom {
+                    outer: Outline::from_points(&bottom, "bottom").unwrap(),
+                    islands: Vec::new(),
+                },
+                "bottom",
+            )
+            .unwrap();
+        let opts = PocketOptions {
+            depth: 6.794117647058823,
+            step_down: 2.3652884179535856,
+            ..PocketOptions::default()
+        };
+        let e = level_shapes(&shape, &opts).expect_err("an undercut");
+        assert!(e.to_string().contains("undercut"), "{e}");
+        // The sections themselves are valid pockets: only their nesting fails.
+        let s = shape.section(opts.depth, opts.depth).unwrap();
+        assert!(!s.within(&shape.section(0.0, opts.depth).unwrap()));
     }
 }
