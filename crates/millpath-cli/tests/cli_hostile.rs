@@ -170,6 +170,35 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
+            what: "bottom outline that moves a slit of material into the pocket above (an undercut)",
+            args: &[
+                "pocket",
+                "slit.json",
+                "--bottom-outline",
+                "slit-bottom.json",
+                "--tool-diameter",
+                "3",
+                "--depth",
+                "6",
+                "--step-down",
+                "2",
+                "-o",
+                "keep.ngc",
+            ],
+            files: &[
+                (
+                    "slit.json",
+                    br#"{"outline": [[0,0],[60,0],[60,29.6],[20,30],[60,30.4],[60,60],[0,60]]}"#,
+                ),
+                (
+                    "slit-bottom.json",
+                    br#"{"outline": [[7.4286,6],[55.4286,6],[55.4286,29.68],[23.4286,30],[55.4286,30.32],[55.4286,54],[7.4286,54]]}"#,
+                ),
+                ("keep.ngc", KEEP),
+            ],
+            outputs: &["keep.ngc"],
+        },
+        Case {
             what: "safe height of 1e300 mm (the fuzzer's helix of 1e300 turns)",
             args: &["pocket", "sample:aerospace", "--safe-height", "1e300", "-o", "out.ngc"],
             files: &[],
