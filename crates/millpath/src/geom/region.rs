@@ -197,6 +197,9 @@ pub fn piece_points(l: &Polyline<f64>, others: &[&Polyline<f64>]) -> Vec<Point> 
             along[i].push((a.min(b), a.max(b)));
         }
     }
+    for c in &mut cuts {
+        c.sort_by(f64::total_cmp);
+    }
     let none = cuts.iter().all(Vec::is_empty);
     let mut out = Vec::new();
     for i in 0..n {
@@ -206,9 +209,10 @@ pub fn piece_points(l: &Polyline<f64>, others: &[&Polyline<f64>]) -> Vec<Point> 
         if cuts[i].is_empty() && !(prev_cut || (none && i == 0)) {
             continue;
         }
-        let mut f = cuts[i].clone();
-        f.sort_by(f64::total_cmp);
-        let bounds: Vec<f64> = std::iter::once(0.0).chain(f).chain([1.0]).collect();
+        let bounds: Vec<f64> = std::iter::once(0.0)
+            .chain(cuts[i].iter().copied())
+            .chain([1.0])
+            .collect();
         let (v1, v2) = seg(i);
         let (a, b) = (Point::new(v1.x, v1.y), Point::new(v2.x, v2.y));
         for w in bounds.windows(2) {

@@ -326,10 +326,7 @@ mod tests {
             (13.865384908827345, -7.647058823529421),
         ]
         .map(|(x, y)| Point::new(x, y));
-        let n = top.len() as f64;
-        let c = top.iter().fold(Point::new(0.0, 0.0), |c, p| {
-            Point::new(c.x + p.x / n, c.y + p.y / n)
-        });
+        let c = crate::geom::region::second_moments(&top).0;
         let bottom: Vec<Point> = top.iter().map(|&p| c.lerp(p, 0.72)).collect();
         let shape = PocketShape::simple(Outline::from_points(&top, "top").unwrap())
             .with_walls(
