@@ -14,6 +14,7 @@ use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, samples};
 use millpath::toolpath::Tool;
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 
 fn coarse() -> SimOptions {
     SimOptions {
@@ -83,6 +84,17 @@ fn check(
     Ok(())
 }
 
+/// The properties' random seed: fixed, so that the test command is repeatable (a randomly
+/// seeded run found the spiral's uncut ridge slot below, and then failed CI at random);
+/// `PROPTEST_RNG_SEED=N` explores others:
+/// `for n in $(seq 1 50); do PROPTEST_RNG_SEED=$n cargo test --release -p millpath --test pocket_props || break; done`.
+fn seed() -> RngSeed {
+    std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .map_or(RngSeed::Fixed(1), RngSeed::Fixed)
+}
+
 fn one_level(so: f64) -> PocketOptions {
     PocketOptions {
         depth: 1.0,
@@ -93,7 +105,7 @@ fn one_level(so: f64) -> PocketOptions {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 5, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 5, rng_seed: seed(), failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
     fn convex_pockets_verify(r in 10.0f64..16.0, n in 5usize..8, d in 3.0f64..7.0, so in 0.2f64..1.0, arcs: bool) {
@@ -131,6 +143,47 @@ proptest! {
         };
         let tool = Tool::flat(d).unwrap();
         check(&OFFSET_ZIGZAG, &shape, &tool, &one_level(so))?;
+    }
+}
+
+/// A randomly seeded `non_convex_pockets_verify` found this star (8 radii, a 4.97 mm tool at
+/// 72% stepover): the distance to the boundary offset has a second maximum in the upper-left
+/// lobe nearly as high as the one the spiral's core sits on, so the first front reached into
+/// the lobe at once. The fronts took it as a ridge slot (a thin neighbourhood of the medial
+/// ridge, cut by the first lap tracing the front) without checking that it was thin: the lap
+/// ran round the lobe 7 mm from the core and left 21 mm² uncut inside it, with chords and with
+/// `--arcs`. Now a front whose new part is not within 0.9 r of its loops is no slot, and the
+/// harmonic morph takes the pocket.
+#[test]
+fn a_second_maximum_of_the_distance_is_not_taken_for_a_ridge_slot() {
+    let radii = [
+        15.920744303040173,
+        10.097192062822225,
+        16.69617998230954,
+        16.271318990413548,
+        15.169366527125218,
+        10.978016778729064,
+        16.67245195186218,
+        15.181104768615349,
+    ];
+    let o = star(&radii, 1.5).unwrap();
+    let tool = Tool::flat(4.9680392574462475).unwrap();
+    for arcs in [false, true] {
+        let opts = PocketOptions {
+            arcs,
+            ..one_level(0.7175041304758163)
+        };
+        let r = pocket::generate(
+            StrategyKind::Spiral,
+            &PocketShape::simple(o.clone()),
+            &tool,
+            &opts,
+            &coarse(),
+        )
+        .unwrap();
+        let p = r.verification.problems();
+        assert!(p.is_empty(), "arcs {arcs}: {p:?}");
+        assert!(r.verification.uncut_area_mm2 < 0.05, "arcs {arcs}");
     }
 }
 

@@ -73,6 +73,11 @@ const MAX_LOOPS: usize = 2000;
 /// skipped (it would make a lap that cuts next to nothing: the first fronts inside the core).
 const SKIP_FRACTION: f64 = 0.5;
 
+/// The area, mm², of the first front's new part that may lie beyond the slot's reach
+/// ([`is_slot`]): slivers of the offsets' rounding, far below the verifier's uncut-area
+/// tolerance.
+const SLOT_AREA: f64 = 1e-3;
+
 /// What the fronts need.
 #[derive(Debug, Clone, Copy)]
 pub struct FrontOptions {
@@ -88,6 +93,9 @@ pub struct FrontOptions {
     /// the gap at right-angle corners; larger lets sharper corners through without
     /// halved steps: see `CORNER_GAP` in the spiral module).
     pub max_gap: f64,
+    /// How far from the loops that bound it a point of the first front's ridge slot may lie,
+    /// mm: a little less than the tool radius (the first lap traces the front all round).
+    pub slot_reach: f64,
 }
 
 /// The loops of the morph, from the disc (first) to `B` (last), counter-clockwise.
@@ -313,6 +321,31 @@ fn front(b: &Polyline<f64>, disc: &Polyline<f64>, rho_b: f64, tau: f64) -> Optio
     Some(acc)
 }
 
+/// True when the part of `front` outside `core` is a slot that a lap tracing `front` clears:
+/// every point of it is within `reach` of `front`'s loop or of `core`'s, that is `front`
+/// eroded by `reach` lies within `core` dilated by `reach` (to [`SLOT_AREA`]). The first front
+/// may reach beyond the core along the ridge, a thin neighbourhood of it; where the offsets'
+/// new part is wider (a second maximum of the distance to `B` nearly as high as the first,
+/// away from the ridge: found by `pocket_props`, 21 mm² left uncut), it is not a slot and the
+/// harmonic morph takes the pocket.
+fn is_slot(front: &Polyline<f64>, core: &Polyline<f64>, reach: f64) -> bool {
+    if !(reach > 0.0) {
+        return false;
+    }
+    let Some(grown) = offset(core, -reach) else {
+        return false;
+    };
+    front.parallel_offset(reach).iter().all(|inner| {
+        let outside: f64 = inner
+            .boolean(&grown, BooleanOp::Not)
+            .pos_plines
+            .iter()
+            .map(|p| p.pline.area().abs())
+            .sum();
+        outside <= SLOT_AREA
+    })
+}
+
 /// Sampled directed distance: the largest distance from a point of `a` to the loop `b`.
 pub fn directed_distance(a: &Polyline<f64>, b: &Polyline<f64>, ds: f64) -> f64 {
     super::sample_loop(a, ds)
@@ -379,7 +412,7 @@ pub fn fronts(
                 // within the slotting bound, as zigzag's first pass). Anything else that will
                 // not come within the bound is left to the harmonic morph.
                 match full_step.take() {
-                    Some(f) if first => {
+                    Some(f) if first && is_slot(&f.0, prev, o.slot_reach) => {
                         ridge = f.1;
                         break f;
                     }
@@ -472,6 +505,7 @@ mod tests {
             close_radius: 5.0,
             sample: 0.5,
             max_gap: 0.0,
+            slot_reach: 1.0,
         };
         let f = fronts(&b, &circle(c, 25.0), rho, &o).unwrap();
         // ⌈43.65 / 4.8⌉ = 10 steps after the circle, and at most one halved step where the
@@ -528,6 +562,7 @@ mod tests {
             close_radius: 7.1,
             sample: 0.5,
             max_gap: 0.0,
+            slot_reach: 1.0,
         };
         let r0 = 0.5 * rho;
         let (p, q) = ridge_segment(&b, c, rho, r0, 1.0, crate::geom::Vec2::new(1.0, 0.0)).unwrap();

@@ -69,6 +69,7 @@ impl FrontSpiral<'_> {
             close_radius: self.smooth,
             sample: self.ds,
             max_gap: self.max_gap,
+            slot_reach: SLOT_REACH * self.tool_radius,
         };
         let core = match self.ridge {
             Some((p, q)) => capsule(p, q, self.r0),
@@ -250,6 +251,12 @@ impl FrontSpiral<'_> {
 /// its caps stay near the nominal engagement (the share above it: 13.6%; a constant pitch
 /// `s'`, the paper's, puts every cap above it: 23.7%).
 const CENTRAL_DEPTH: f64 = 1.1;
+
+/// The first front's ridge slot is cut by a lap that traces the front all round: every point
+/// of the slot must lie within this fraction of the tool radius of that lap or of the core's
+/// last loop ([`super::fronts::FrontOptions::slot_reach`]). Below 1 for the laps' chords,
+/// their smoothed join and the verifier's raster cells.
+const SLOT_REACH: f64 = 0.9;
 
 /// `3x² − 2x³` on [0, 1]: zero slope at both ends, so a transition leaves one curve and joins
 /// the other tangentially.
