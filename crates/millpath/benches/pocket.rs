@@ -1,10 +1,17 @@
 //! Criterion benchmarks: planning one level of the built-in aerospace pocket (150 × 100 mm,
 //! 12.7 mm tool, 40% stepover) with each strategy; and the spiral on each pocket of the sample
 //! part (the L takes the harmonic morph, the slowest planning path); the aerospace spiral
-//! also with `--arcs` (biarcs fitted to the laps and each checked against the last loop).
+//! also with `--arcs` (biarcs fitted to the laps and each checked against the last loop);
+//! and the sections of a pocket with inclined walls (`walls::level_shapes`: a draft, or a
+//! bottom outline with the exact nesting check `PocketShape::within` between levels) on the
+//! aerospace pocket and on a 512-vertex wavy outline.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use millpath::strategy::pocket::{PocketOptions, StrategyKind, plan_level, samples};
+use millpath::geom::{Outline, Point};
+use millpath::strategy::pocket::walls::level_shapes;
+use millpath::strategy::pocket::{
+    PocketOptions, PocketShape, StrategyKind, Walls, plan_level, samples,
+};
 use millpath::toolpath::Tool;
 use std::hint::black_box;
 
@@ -40,5 +47,64 @@ fn plan(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, plan);
+/// A wavy closed outline of `n` vertices about `(cx, cy)`: radius `r` ± 8 %, 7 waves.
+fn wavy(n: usize, r: f64) -> Outline {
+    let v: Vec<(Point, f64)> = (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            let rr = r * (1.0 + 0.08 * (7.0 * a).sin());
+            (Point::new(rr * a.cos(), rr * a.sin()), 0.0)
+        })
+        .collect();
+    Outline::new(&v, "bench wavy outline").expect("a wavy outline is valid")
+}
+
+fn walls(c: &mut Criterion) {
+    // Four roughing levels, 25 mm deep by 6.35 mm (the aerospace pocket's CLI example).
+    let opts = PocketOptions {
+        depth: 25.0,
+        step_down: 6.35,
+        ..PocketOptions::default()
+    };
+    let cases = [
+        (
+            "aerospace 150x100",
+            samples::rounded_rectangle(-75.0, -50.0, 150.0, 100.0, 6.0),
+            samples::rounded_rectangle(-70.0, -45.0, 140.0, 90.0, 6.0),
+        ),
+        ("wavy 512 vertices", wavy(512, 60.0), wavy(512, 54.0)),
+    ];
+    let mut g = c.benchmark_group("pocket walls");
+    for (name, top, bottom) in cases {
+        let bottom_walls = Walls::Bottom {
+            outer: bottom,
+            islands: Vec::new(),
+        };
+        let Ok(drafted) = PocketShape::simple(top.clone()).with_walls(Walls::Draft(0.1), name)
+        else {
+            panic!("{name}: a 0.1 rad draft is accepted");
+        };
+        let Ok(shrunk) = PocketShape::simple(top).with_walls(bottom_walls, name) else {
+            panic!("{name}: the bottom outline matches the top");
+        };
+        assert_eq!(level_shapes(&shrunk, &opts).map(|l| l.len()).ok(), Some(4));
+        g.bench_function(format!("{name}: 4 level sections, draft"), |b| {
+            b.iter(|| level_shapes(black_box(&drafted), &opts));
+        });
+        g.bench_function(format!("{name}: 4 level sections, bottom outline"), |b| {
+            b.iter(|| level_shapes(black_box(&shrunk), &opts));
+        });
+        let (Ok(upper), Ok(lower)) = (shrunk.section(6.35, 25.0), shrunk.section(12.7, 25.0))
+        else {
+            panic!("{name}: sections");
+        };
+        assert!(lower.within(&upper) && !upper.within(&lower));
+        g.bench_function(format!("{name}: within (nested)"), |b| {
+            b.iter(|| black_box(&lower).within(&upper));
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, plan, walls);
 criterion_main!(benches);
