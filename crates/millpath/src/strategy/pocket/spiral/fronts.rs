@@ -59,7 +59,11 @@
 //! the gap bound ([`FrontOptions::max_gap`], at least `√2·s'`, what a right-angle corner
 //! explains; the spiral uses `1.8·s'`, what a 67° corner explains, capped at `1.8·r`) the
 //! step is halved, down to `s'/64`, and if that does not help the family is abandoned and
-//! the harmonic morph is used.
+//! the harmonic morph is used. The one exception is the first front beyond the core along the
+//! ridge, cut as a slot by a lap that traces it all round; it is taken only where it is one
+//! (every point of its new part within `0.9·r` of its loop or of the core's, `is_slot`): a
+//! second maximum of `D` nearly as high as the first makes the first front reach into a whole
+//! lobe at once, which such a lap would leave uncut inside.
 
 use super::super::shape::{loop_distance, v2};
 use crate::geom::Point;
@@ -329,7 +333,7 @@ fn front(b: &Polyline<f64>, disc: &Polyline<f64>, rho_b: f64, tau: f64) -> Optio
 /// away from the ridge: found by `pocket_props`, 21 mm² left uncut), it is not a slot and the
 /// harmonic morph takes the pocket.
 fn is_slot(front: &Polyline<f64>, core: &Polyline<f64>, reach: f64) -> bool {
-    if !(reach > 0.0) {
+    if reach.is_nan() || reach <= 0.0 {
         return false;
     }
     let Some(grown) = offset(core, -reach) else {
