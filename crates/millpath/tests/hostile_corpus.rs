@@ -321,7 +321,7 @@ fn uncut_over_the_corpus() {
         let Some((kind, shape, tool, opts, sim)) = harness::pocket_case(&data) else {
             continue;
         };
-        let k = slot(kind);
+        let k = strategy_index(kind);
         if let Ok(r) = pocket::generate(kind, &shape, &tool, &opts, &sim) {
             planned[k] += 1;
             let v = r.verification;
@@ -339,7 +339,7 @@ fn uncut_over_the_corpus() {
         let n = rows.iter().filter(|r| r.1 == kind).count();
         eprintln!(
             "{kind:?}: {} planned, {n} with uncut material",
-            planned[slot(kind)]
+            planned[strategy_index(kind)]
         );
     }
     for (area, kind, name) in rows.iter().take(12) {
@@ -347,7 +347,8 @@ fn uncut_over_the_corpus() {
     }
 }
 
-fn slot(kind: pocket::StrategyKind) -> usize {
+/// Where `kind` counts in [`uncut_over_the_corpus`]'s table.
+fn strategy_index(kind: pocket::StrategyKind) -> usize {
     match kind {
         pocket::StrategyKind::Zigzag => 0,
         pocket::StrategyKind::Offset => 1,

@@ -85,7 +85,7 @@ fn check(
 }
 
 /// The properties' random seed: fixed, so that the test command is repeatable (a randomly
-/// seeded run found the spiral's uncut ridge slot below, and then failed CI at random);
+/// seeded run found the spiral's uncut ridge slot below, and then failed the test command at random);
 /// `PROPTEST_RNG_SEED=N` explores others:
 /// `for n in $(seq 1 50); do PROPTEST_RNG_SEED=$n cargo test --release -p millpath --test pocket_props || break; done`.
 fn seed() -> RngSeed {
