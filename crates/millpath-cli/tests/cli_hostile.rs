@@ -150,10 +150,12 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
-            what: "spiral into a 6° sliver triangle",
+            what: "spiral with the fronts morph into a 6° sliver triangle",
             args: &[
                 "pocket",
                 "sliver.json",
+                "--morph",
+                "fronts",
                 "--tool-diameter",
                 "3",
                 "--depth",

@@ -109,11 +109,18 @@ fn islands_touching_or_crossing() {
 }
 
 #[test]
-fn spiral_with_islands_suggests_offset() {
+fn the_fronts_spiral_with_islands_suggests_offset() {
     refused(
         "isl.json",
         r#"{"outline": [[0,0],[60,0],[60,40],[0,40]], "islands": [[[25,15],[35,15],[35,25],[25,25]]]}"#,
-        &["--tool-diameter", "6", "--strategy", "spiral"],
+        &[
+            "--tool-diameter",
+            "6",
+            "--strategy",
+            "spiral",
+            "--morph",
+            "fronts",
+        ],
         "offset",
     );
 }

@@ -1,7 +1,8 @@
 //! Pockets with islands: offset and zigzag pass the stock simulation and the gouge check with
-//! one to three islands (also with a finishing pass and floor/wall stock); the spiral refuses
-//! them with a message suggesting `offset`; islands touching the outline or each other are
-//! input errors.
+//! one to three islands (also with a finishing pass and floor/wall stock); so does the spiral
+//! (its default morph), as long as `offset` or shorter by at most 15 %, while its `fronts` and
+//! `harmonic` morphs refuse them with a message suggesting `offset`; islands touching the
+//! outline or each other are input errors.
 
 use millpath::Error;
 use millpath::geom::{Outline, Point};
@@ -150,19 +151,45 @@ fn islands_with_stock_levels_and_finishing() {
 }
 
 #[test]
-fn the_spiral_refuses_islands_and_suggests_offset() {
+fn the_spiral_verifies_with_islands_and_is_about_as_long_as_offset() {
+    let tool = Tool::flat(8.0).unwrap();
+    for (name, shape) in pockets() {
+        let r = pocket::generate(StrategyKind::Spiral, &shape, &tool, &one_level(), &coarse())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let v = &r.verification;
+        assert!(v.problems().is_empty(), "{name}: {:?}", v.problems());
+        assert!(
+            v.uncut_area_mm2 < 0.05,
+            "{name}: uncut {}",
+            v.uncut_area_mm2
+        );
+        let o =
+            pocket::generate(StrategyKind::Offset, &shape, &tool, &one_level(), &coarse()).unwrap();
+        let (ls, lo) = (r.toolpath.cut_length(), o.toolpath.cut_length());
+        assert!(
+            ls <= 1.15 * lo,
+            "{name}: spiral {ls:.1} mm, offset {lo:.1} mm"
+        );
+    }
+}
+
+#[test]
+fn the_older_spiral_morphs_refuse_islands_and_suggest_offset() {
     let tool = Tool::flat(8.0).unwrap();
     let shapes = pockets();
-    let e = pocket::generate(
-        StrategyKind::Spiral,
-        &shapes[0].1,
-        &tool,
-        &one_level(),
-        &coarse(),
-    )
-    .unwrap_err();
-    assert!(matches!(e, Error::Input(_)), "{e}");
-    assert!(e.to_string().contains("offset"), "{e}");
+    for morph in [
+        pocket::spiral::SpiralMorph::Fronts,
+        pocket::spiral::SpiralMorph::Harmonic,
+    ] {
+        let opts = PocketOptions {
+            morph,
+            ..one_level()
+        };
+        let e = pocket::generate(StrategyKind::Spiral, &shapes[0].1, &tool, &opts, &coarse())
+            .unwrap_err();
+        assert!(matches!(e, Error::Input(_)), "{e}");
+        assert!(e.to_string().contains("offset"), "{e}");
+    }
 }
 
 #[test]

@@ -94,9 +94,10 @@ pub struct CommonArgs {
     /// Smallest curvature radius wanted on the spiral's interior loops, mm.
     #[arg(long, default_value_t = 1.0)]
     pub min_radius: f64,
-    /// Spiral morph: `fronts` (offset fronts, fewest laps) or `harmonic` (stepover held at
-    /// corners too, more laps)
-    #[arg(long, default_value = "fronts")]
+    /// Spiral morph: `offsets` (the contour-parallel loops, rounded, joined by lane
+    /// changes), `fronts` (the paper's central spiral of radius C·ρ grown by offset fronts) or
+    /// `harmonic` (stepover held at corners too, more laps)
+    #[arg(long, default_value = "offsets")]
     pub morph: String,
     /// Spiral laps as tangent-continuous arcs (G2/G3 biarcs within 0.004 mm of the smooth
     /// curve through the samples) instead of G1 chords
@@ -198,12 +199,13 @@ impl CommonArgs {
             transition: self.transition,
             min_radius: self.min_radius,
             morph: match self.morph.as_str() {
+                "offsets" => pocket::spiral::SpiralMorph::Offsets,
                 "fronts" => pocket::spiral::SpiralMorph::Fronts,
                 "harmonic" => pocket::spiral::SpiralMorph::Harmonic,
                 other => {
                     return Err(InputError::new("morph", other)
                         .at("--morph")
-                        .expected("fronts or harmonic")
+                        .expected("offsets, fronts or harmonic")
                         .into());
                 }
             },

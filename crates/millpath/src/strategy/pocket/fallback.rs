@@ -2,10 +2,10 @@
 //! the walls' clearance is planned again with other options, and the one that clears them is
 //! returned with a note saying what changed and why.
 //!
-//! The fallbacks, in order: the spiral's harmonic morph instead of the fronts, then G1 chords
-//! instead of biarcs (with the fronts, then the harmonic morph). The spiral keeps its laps,
-//! chords and arcs inside its last loop itself ([`super::spiral`]), so these are a safety net:
-//! no input of the fuzz corpora needs one (fuzz/README.md, session 8).
+//! The fallbacks, in order: for the spiral's fronts morph, the harmonic morph instead; then G1
+//! chords instead of arcs (with the morph asked for, then the harmonic one). The spiral keeps
+//! its laps, chords and arcs inside its walls' loops itself ([`super::spiral`]), so these are
+//! a safety net: no input of the fuzz corpora needed one (fuzz/README.md, 2026-11-23).
 
 use super::{PocketOptions, PocketResult, StrategyKind, spiral};
 use crate::error::Result;
@@ -51,7 +51,7 @@ pub fn first_clear(
 }
 
 /// The options to try after `opts`, in order: the harmonic morph (a spiral with the fronts),
-/// then the same without `--arcs`.
+/// then the same without `--arcs` (any morph).
 fn fallbacks(kind: StrategyKind, opts: &PocketOptions) -> Vec<PocketOptions> {
     let mut out = Vec::new();
     if kind == StrategyKind::Spiral && opts.morph == spiral::SpiralMorph::Fronts {
@@ -106,6 +106,10 @@ mod tests {
         gouges: impl Fn(&PocketOptions) -> bool,
     ) -> (Attempts, Vec<PocketOptions>) {
         let outline = samples::rounded_rectangle(0.0, 0.0, 40.0, 30.0, 5.0);
+        let opts = &PocketOptions {
+            morph: spiral::SpiralMorph::Fronts,
+            ..opts.clone()
+        };
         let shape = crate::strategy::pocket::PocketShape::simple(outline);
         let tool = Tool::flat(8.0).expect("tool");
         let sim = SimOptions::default();
@@ -165,6 +169,19 @@ mod tests {
         };
         assert_eq!(tried.len(), 2);
         assert!(r.notes[0].contains("the harmonic morph instead of the fronts"));
+    }
+
+    #[test]
+    fn the_offsets_morph_falls_back_to_chords_only() {
+        let opts = PocketOptions {
+            arcs: true,
+            ..PocketOptions::default()
+        };
+        assert_eq!(opts.morph, spiral::SpiralMorph::Offsets);
+        let f = fallbacks(StrategyKind::Spiral, &opts);
+        assert_eq!(f.len(), 1);
+        assert!(!f[0].arcs && f[0].morph == spiral::SpiralMorph::Offsets);
+        assert!(fallbacks(StrategyKind::Spiral, &PocketOptions::default()).is_empty());
     }
 
     #[test]

@@ -35,6 +35,7 @@ pub mod chain;
 pub mod fallback;
 pub mod feed;
 pub mod levels;
+pub mod loops;
 pub mod offset;
 pub mod options;
 pub mod samples;
@@ -74,7 +75,8 @@ pub fn nominal_engagement(s: f64, r: f64) -> f64 {
 }
 
 /// Plans one level with `kind` (no feeds, no levels) in the planar `shape` (a level's
-/// section: its walls are ignored). The spiral refuses islands.
+/// section: its walls are ignored). The spiral's `fronts` and `harmonic` morphs refuse
+/// islands; its default morph (`offsets`) takes them.
 pub fn plan_level(
     kind: StrategyKind,
     shape: &PocketShape,
@@ -85,7 +87,7 @@ pub fn plan_level(
         StrategyKind::Zigzag => zigzag::plan(shape, tool, opts)?,
         StrategyKind::Offset => offset::plan(shape, tool, opts)?,
         StrategyKind::Spiral => {
-            if !shape.islands.is_empty() {
+            if !shape.islands.is_empty() && opts.morph != spiral::SpiralMorph::Offsets {
                 return Err(crate::InputError::new("islands", shape.islands.len())
                     .at("--strategy spiral")
                     .expected("a pocket without islands for the spiral (use --strategy offset)")

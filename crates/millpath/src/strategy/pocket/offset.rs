@@ -347,7 +347,7 @@ fn inside_or_on(region: &OffsetRegion, p: Point) -> bool {
 /// tool leaves a pillar at its centre), and at least [`MIN_HELIX_RADIUS`]; the lead from the
 /// helix to the loop must cross no loop of the boundary offset. Island loops never get a
 /// helix (their inside is the island): the caller does not ask for one.
-fn entry_for(
+pub(super) fn entry_for(
     lp: &Polyline<f64>,
     innermost: bool,
     level_islands: &[Polyline<f64>],

@@ -95,7 +95,11 @@
 pub mod fronts;
 pub mod harmonic;
 mod inside;
+mod lanes;
 pub mod laps;
+pub mod offsets;
+pub mod ring;
+pub mod rounding;
 
 use super::chain::{Seg, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
@@ -126,11 +130,14 @@ const MAX_LAPS: usize = 400;
 /// How the spiral morphs from its central circle into the boundary offset.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SpiralMorph {
+    /// The contour-parallel loops, rounded, each chain of them joined into one spiral by
+    /// curvature-continuous lane changes ([`offsets`]).
+    #[default]
+    Offsets,
     /// The central disc united with the boundary offset's inward offsets ([`fronts`]): as
     /// many laps as contour-parallel offsets, smoothed corners; at convex corners of the
     /// boundary the loops are up to `s/sin(α/2)` apart along the bisector, as offsets are.
     /// Falls back to [`SpiralMorph::Harmonic`] where the fronts do not reach the boundary.
-    #[default]
     Fronts,
     /// Level sets of a harmonic function ([`harmonic`]): the stepover holds everywhere,
     /// corners included, at the price of laps crowding where the pocket is narrow.
@@ -157,6 +164,8 @@ pub struct SpiralStats {
     /// Length of the ridge segment the central spiral's capsules are drawn about, mm (0: a
     /// circular central spiral).
     pub capsule: f64,
+    /// Chains of offset loops, each one continuous spiral ([`SpiralMorph::Offsets`]).
+    pub chains: usize,
 }
 
 /// The spiral strategy's plan for one level.
@@ -180,6 +189,16 @@ pub fn plan_with_stats(
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<(LevelPlan, SpiralStats), InputError> {
+    if opts.morph == SpiralMorph::Offsets {
+        let (plan, st) = offsets::plan(shape, tool, opts)?;
+        let stats = SpiralStats {
+            morph_laps: st.loops,
+            chains: st.chains,
+            max_loop_distance: st.max_radius,
+            ..SpiralStats::default()
+        };
+        return Ok((plan, stats));
+    }
     let theta = crate::geom::region::principal_angle(&shape.outer);
     if opts.morph == SpiralMorph::Fronts {
         if let Some(found) = plan_fronts(shape, tool, opts, theta)? {

@@ -1,0 +1,197 @@
+//! One chain of loops as one continuous spiral: each loop once round, then a smooth lane
+//! change onto the next loop out.
+//!
+//! The loops `R₀` (innermost) … `R_m` of a chain are nested and about `h` apart. The path runs
+//! round `R₀` once, then, from position `P_i` of loop `R_i`, changes lane onto `R_{i+1}` over a
+//! window of `D_i` mm: with `a(u) = R_i(P_i + u)` and `b(u)` the point of `R_{i+1}` nearest to
+//! it,
+//!
+//! ```text
+//!   x(u) = a(u) + σ(u/D)·(b(u) − a(u)),   σ(t) = 10t³ − 15t⁴ + 6t⁵,   0 ≤ u ≤ D
+//! ```
+//!
+//! `σ` has zero first and second derivatives at both ends, so the path leaves `R_i` and joins
+//! `R_{i+1}` with the loops' own tangent and curvature (curvature-continuous where the loops
+//! are). On parallel straight stretches `h` apart its curvature peaks at `5.77·h/D²`. Then
+//! the path follows `R_{i+1}` round to `P_{i+1}`, the point of `R_{i+1}` nearest to `P_i`: the
+//! windows are stacked across the loops, so every lane change runs next to the previous one
+//! `h` inside it, and the radial depth of cut stays that of the loops (a window not stacked
+//! would leave a stretch of the next loop cutting `2h`). The outermost loop is run once
+//! round from where the last lane change lands on it and closed, so it is cut whole (it is
+//! the wall's loop, or the loop the next chain starts from). Length: each loop once, plus
+//! the last window: as long as the contour-parallel loops without their links.
+//!
+//! **Where.** The windows should lie where every loop is straight: the start `P₀` is chosen
+//! among positions of `R₀` every `WINDOW_STEP` mm to minimise the total turning of all the
+//! loops over their windows, plus a small charge for the distance run round `R₀` past the
+//! point where the chain is entered (the first loop is run whole from there).
+
+use super::super::chain::{Seg, fit_arcs, segs_from_points};
+use super::ring::Ring;
+use crate::geom::Point;
+
+/// What a chain's path needs.
+#[derive(Debug, Clone, Copy)]
+pub struct LaneOptions {
+    /// Length of a lane change, mm (shorter on loops less than four times as long).
+    pub window: f64,
+    /// Largest chord along a lane change, mm.
+    pub chord: f64,
+    /// Lane changes as tangent-continuous arcs (biarcs within `arc_tolerance` of the smooth
+    /// curve through the chords' points), except one that lands on a wall's loop (whose
+    /// arcs could overshoot it into the wall).
+    pub arcs: bool,
+    /// See `arcs`, mm.
+    pub arc_tolerance: f64,
+    /// Largest chord of a lane change that lands on a wall's loop, mm.
+    pub wall_chord: f64,
+}
+
+/// Candidate window starts along the first loop, mm apart.
+const WINDOW_STEP: f64 = 1.0;
+/// What a straight step instead of a lane change costs in the choice of the windows, rad of
+/// turning: a step is a corner the controller must slow for.
+const STEP_COST: f64 = 3.0;
+/// Turning (rad) that one mm of extra path past the entry point is worth in the choice of
+/// the windows.
+const ENTRY_CHARGE: f64 = 0.002;
+
+/// One lane change: the chords' points from `from` at `p` onto `to`, and the position on
+/// `to` where it lands; `None` when the nearest points of `to` do not follow smoothly (they
+/// jump to another part of the loop, or the loops are not about one step apart there).
+fn lane(from: &Ring, to: &Ring, p: f64, d: f64, q: f64, chord: f64) -> Option<(Vec<Point>, f64)> {
+    let k = ((d / chord).ceil() as usize).max(4);
+    let du = d / k as f64;
+    // The nearest point of the longer loop moves faster, in proportion.
+    let ahead = du * (2.0 + 4.0 * (to.len() / from.len()).max(1.0));
+    let mut pts = Vec::with_capacity(k + 1);
+    let mut sb = q;
+    let mut gap0 = None;
+    for j in 0..=k {
+        let u = du * j as f64;
+        let a = from.point(p + u);
+        let (s, dist) = to.project_near(a, sb, 2.0 * du, ahead);
+        let g0 = *gap0.get_or_insert(dist);
+        if !(dist <= 2.0 * g0 + chord && dist >= 0.5 * g0 - chord) {
+            return None;
+        }
+        sb = s;
+        let b = to.point(s);
+        pts.push(a + (b - a) * smoothstep(u / d));
+    }
+    let land = to.wrap(sb);
+    // The skipped stretch of the next loop is the window itself, not more.
+    let span = to.wrap(land - q);
+    if span > 2.0 * d * (to.len() / from.len()).max(1.0) + chord {
+        return None;
+    }
+    Some((pts, land))
+}
+
+/// How the path gets from one loop to the next: a lane change (its points and where it lands)
+/// or, where none follows the loops, a straight step at the window's start.
+type Change = Option<(Vec<Point>, f64)>;
+/// The changes of a chain, each with its window's start on its loop.
+type Changes = Vec<(f64, Change)>;
+
+/// The spiral through `rings` (innermost first, all in the cutting direction), entered at the
+/// point of the first ring nearest to `enter`. Returns the path (its first point is that
+/// entry point).
+pub fn chain_path(
+    rings: &[Ring],
+    enter: Point,
+    last_is_wall: bool,
+    opts: &LaneOptions,
+) -> Vec<Seg> {
+    let Some(first) = rings.first() else {
+        return Vec::new();
+    };
+    let (s_in, _) = first.project(enter);
+    let mut path = first.slice(s_in, first.len());
+    if rings.len() == 1 {
+        return path;
+    }
+    let windows = |i: usize| opts.window.min(0.25 * rings[i].len());
+    // The stacked changes for a start `p0` on the first ring (each with its start on its
+    // loop), and their cost: the loops' turning over the windows, a step's worth for a step.
+    let stack = |p0: f64| -> (Changes, f64) {
+        let mut changes = Vec::with_capacity(rings.len() - 1);
+        let mut p = p0;
+        let mut cost = 0.0;
+        for i in 0..rings.len() - 1 {
+            let d = windows(i);
+            let (q, _) = rings[i + 1].project(rings[i].point(p));
+            let chord = if last_is_wall && i + 2 == rings.len() {
+                opts.wall_chord
+            } else {
+                opts.chord
+            };
+            let change = lane(&rings[i], &rings[i + 1], p, d, q, chord);
+            cost += match &change {
+                Some((_, land)) => {
+                    rings[i].turning(p, d) + rings[i + 1].turning(q, rings[i + 1].wrap(land - q))
+                }
+                None => STEP_COST,
+            };
+            changes.push((p, change));
+            p = q;
+        }
+        (changes, cost)
+    };
+    let n = ((first.len() / WINDOW_STEP).ceil() as usize).max(8);
+    let step = first.len() / n as f64;
+    let mut best: Option<(Changes, f64, f64)> = None;
+    for j in 0..n {
+        let past = step * j as f64;
+        let (changes, turn) = stack(first.wrap(s_in + past));
+        let cost = turn + ENTRY_CHARGE * past;
+        if best.as_ref().is_none_or(|b| cost < b.1 - 1e-12) {
+            best = Some((changes, cost, past));
+        }
+    }
+    let Some((changes, _, past)) = best else {
+        return path;
+    };
+    // The rest of the first loop up to the first window.
+    path.extend(first.slice(s_in, past));
+    for (i, (p, change)) in changes.iter().enumerate() {
+        let (from, to) = (&rings[i], &rings[i + 1]);
+        // Where the path is on `to` after the change, and how much of `to` is still to run
+        // before the next change (or, on the outermost loop, to close it).
+        let (land, whole) = match change {
+            Some((pts, land)) => {
+                let onto_wall = last_is_wall && i + 2 == rings.len();
+                if opts.arcs && !onto_wall {
+                    path.extend(fit_arcs(pts, opts.arc_tolerance));
+                } else {
+                    path.extend(segs_from_points(pts));
+                }
+                (*land, false)
+            }
+            None => {
+                let a = from.point(*p);
+                let (q, _) = to.project(a);
+                let b = to.point(q);
+                if a.distance(b) > 1e-12 {
+                    path.push(Seg::line(a, b));
+                }
+                (q, true)
+            }
+        };
+        match changes.get(i + 1) {
+            Some((next_p, _)) => {
+                let run = to.wrap(next_p - land);
+                let run = if whole && run < 1e-9 { to.len() } else { run };
+                path.extend(to.slice(land, run));
+            }
+            None => path.extend(to.slice(land, to.len())),
+        }
+    }
+    path
+}
+
+/// `10t³ − 15t⁴ + 6t⁵`: 0 → 1 with zero first and second derivatives at both ends.
+fn smoothstep(t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
+}

@@ -1,0 +1,383 @@
+//! The spiral on the contour-parallel loops: as long as `offset`, none of its stops.
+//!
+//! 1. **Loops**: the offsets of the pocket at `d₀ + k·h` ([`OffsetLoops`]: `h = min(s,
+//!    0.95·r)`, the `offset` strategy's spacing, so the two cover the pocket with the same
+//!    loops), and which loop is cut after which.
+//! 2. **Rounding**: every interior loop opened by the largest radius the stepover bound
+//!    allows ([`super::rounding`]): the corners a controller would stop at become arcs whose
+//!    radii grow towards the middle.
+//! 3. **Chains**: where one loop follows another with nothing else attached, they form one
+//!    band of the pocket; each chain becomes one continuous spiral ([`super::lanes`]): each
+//!    loop once round, then a curvature-continuous lane change onto the next loop out, the
+//!    changes stacked so that the radial depth stays the step's. A convex or star-shaped
+//!    pocket, an L, a T, a U are one chain (their innermost loop, a thin loop round the
+//!    medial axis, is cut like `offset`'s, as a slot); a neck that pinches the loops off (a
+//!    dumbbell) or islands make several, cut innermost first like `offset`'s loop tree,
+//!    linked by a straight feed move where that is short and stays in the tool-centre region,
+//!    else entered again.
+//!
+//! The first chain is entered by a helix at its innermost loop's centroid where there is
+//! room (as `offset` does), else by a ramp; the entry moves then choose direct entries over
+//! cleared material ([`super::super::levels::direct_entries`]).
+
+use super::super::chain::{Seg, segs_from_points};
+use super::super::levels::{Cut, CutEntry, LevelPlan};
+use super::super::loops::{OffsetLoops, samples};
+use super::super::offset::{RIDGE_SPACING, crosses, entry_for, too_large};
+use super::super::options::{Direction, PocketOptions};
+use super::super::shape::{IndexedLoop, OffsetRegion, PocketShape, reversed};
+use super::lanes::{LaneOptions, chain_path};
+use super::ring::Ring;
+use super::rounding::{RoundOptions, round};
+use super::{LAST_LOOP_MARGIN, last_loop};
+use crate::error::InputError;
+use crate::geom::Point;
+use crate::toolpath::Tool;
+use cavalier_contours::polyline::{PlineSource, Polyline};
+
+/// Largest gap between a loop and the rounded loop inside it, in steps (see
+/// [`super::rounding`]): `√2` is what right-angle corners of exact offsets have.
+pub const CORNER_GAP: f64 = 1.8;
+/// Largest rounding radius, in steps.
+const MAX_RADIUS: f64 = 12.0;
+/// Least distance between a rounded loop and the loops inside it, in steps.
+const MIN_CLEARANCE: f64 = 0.25;
+/// Lane change length, in steps.
+const WINDOW: f64 = 6.0;
+/// Sagitta of the chords that replace interior loops' arcs, mm.
+const CHORD_TOLERANCE: f64 = 0.002;
+/// Longest chord on interior loops' arcs, mm.
+const MAX_CHORD: f64 = 1.0;
+/// Longest chord along a lane change, mm.
+const LANE_CHORD: f64 = 0.5;
+
+/// What the offsets spiral measured.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct OffsetsStats {
+    /// Offset loops.
+    pub loops: usize,
+    /// Chains (continuous spirals).
+    pub chains: usize,
+    /// Largest rounding radius, mm.
+    pub max_radius: f64,
+}
+
+/// The spiral of the module docs for one level.
+pub fn plan(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+) -> Result<(LevelPlan, OffsetsStats), InputError> {
+    let r = tool.radius();
+    let s = opts.stepover_mm(tool);
+    let h = s.min(RIDGE_SPACING * r);
+    let d0 = r + opts.wall_stock;
+    let loops = OffsetLoops::build(shape, d0, h)?;
+    if loops.nodes.is_empty() {
+        return Err(too_large(tool));
+    }
+    let boundary = shape.offset(d0);
+    let gap = (CORNER_GAP * h).min(CORNER_GAP * r);
+    let (rounded, radii) = round(
+        &loops,
+        &RoundOptions {
+            max_gap: gap,
+            max_radius: MAX_RADIUS * h,
+            min_clearance: MIN_CLEARANCE * h,
+            sample: (h / 8.0).clamp(0.05, 0.5),
+        },
+    );
+    let chains = loops.chains();
+    let mut chain_of = vec![0; loops.nodes.len()];
+    for (c, ch) in chains.iter().enumerate() {
+        for &i in ch {
+            chain_of[i] = c;
+        }
+    }
+    let ccw = opts.direction == Direction::Climb;
+    let mut em = Emitter {
+        loops: &loops,
+        rounded: &rounded,
+        boundary: &boundary,
+        opts,
+        r,
+        s,
+        ccw,
+        lanes: LaneOptions {
+            window: WINDOW * h,
+            chord: LANE_CHORD,
+            arcs: opts.arcs,
+            arc_tolerance: super::ARC_TOLERANCE,
+            wall_chord: LANE_CHORD.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
+        },
+        cuts: Vec::new(),
+        here: None,
+    };
+    // Post-order over the chains: a chain after every chain feeding its first loop.
+    let deps = |c: usize| -> Vec<usize> {
+        let mut d: Vec<usize> = loops.nodes[chains[c][0]]
+            .prev
+            .iter()
+            .map(|&p| chain_of[p])
+            .collect();
+        d.sort_unstable();
+        d.dedup();
+        d
+    };
+    let mut done = vec![false; chains.len()];
+    let mut roots: Vec<usize> = (0..chains.len())
+        .filter(|&c| {
+            chains[c]
+                .last()
+                .is_some_and(|&l| loops.nodes[l].next.is_empty())
+        })
+        .collect();
+    while !roots.is_empty() {
+        let pick = em.nearest(&chains, &roots);
+        let root = roots.swap_remove(pick);
+        let mut stack: Vec<(usize, Vec<usize>)> = vec![(root, deps(root))];
+        while let Some((c, kids)) = stack.last_mut() {
+            kids.retain(|&k| !done[k]);
+            if kids.is_empty() {
+                let c = *c;
+                stack.pop();
+                if !done[c] {
+                    done[c] = true;
+                    em.emit(&chains[c]);
+                }
+            } else {
+                let pick = em.nearest(&chains, kids);
+                let kid = kids.swap_remove(pick);
+                let kd = deps(kid);
+                stack.push((kid, kd));
+            }
+        }
+    }
+    let stats = OffsetsStats {
+        loops: loops.nodes.len(),
+        chains: chains.len(),
+        max_radius: radii.iter().copied().fold(0.0, f64::max),
+    };
+    Ok((LevelPlan { cuts: em.cuts }, stats))
+}
+
+/// Turns chains into cuts.
+struct Emitter<'a> {
+    loops: &'a OffsetLoops,
+    rounded: &'a [Polyline<f64>],
+    boundary: &'a OffsetRegion,
+    opts: &'a PocketOptions,
+    r: f64,
+    s: f64,
+    ccw: bool,
+    lanes: LaneOptions,
+    cuts: Vec<Cut>,
+    here: Option<Point>,
+}
+
+impl Emitter<'_> {
+    /// The chain of `of` whose first loop is nearest to the tool; before the first cut, the
+    /// one of largest area.
+    fn nearest(&self, chains: &[Vec<usize>], of: &[usize]) -> usize {
+        let first = |c: usize| &self.loops.nodes[chains[c][0]].pline;
+        match self.here {
+            Some(p) => {
+                let mut best = (0, f64::INFINITY);
+                for (i, &c) in of.iter().enumerate() {
+                    let d = super::super::shape::loop_distance(first(c), p);
+                    if d < best.1 {
+                        best = (i, d);
+                    }
+                }
+                best.0
+            }
+            None => of
+                .iter()
+                .enumerate()
+                .max_by(|a, b| {
+                    first(*a.1)
+                        .area()
+                        .abs()
+                        .total_cmp(&first(*b.1).area().abs())
+                })
+                .map_or(0, |(i, _)| i),
+        }
+    }
+
+    /// The ring of loop `i` in the cutting direction; interior loops' arcs as chords
+    /// (the walls' loops keep their exact arcs: chords of a concave arc would cut into the
+    /// wall by their sagitta).
+    fn ring(&self, i: usize) -> Ring {
+        let pl = &self.rounded[i];
+        let ring = if self.ccw {
+            Ring::new(pl)
+        } else {
+            Ring::new(&reversed(pl))
+        };
+        if self.loops.nodes[i].level == 0 {
+            // The walls' loops moved in by LAST_LOOP_MARGIN (5 µm of extra stock): the lane
+            // change's chords onto one, at most `wall_chord` long, then stay inside the wall
+            // loop itself at its concave arcs too (sagitta c²/(8·d₀) below the margin).
+            // Not where that drops a part of the loop (a zero-width bridge where an island
+            // meets the wall at exactly the tool's diameter: the tool centre must run along
+            // it to clear the gap).
+            let moved = last_loop(pl);
+            let idx = IndexedLoop::new(&moved);
+            let faithful = samples(pl, 0.5)
+                .into_iter()
+                .all(|p| idx.distance(p) <= 2.0 * LAST_LOOP_MARGIN)
+                && samples(&moved, 0.5)
+                    .into_iter()
+                    .all(|p| self.in_boundary(p));
+            let b_eps = if self.ccw {
+                Ring::new(&moved)
+            } else {
+                Ring::new(&reversed(&moved))
+            };
+            if b_eps.is_empty() || !faithful {
+                ring
+            } else {
+                b_eps
+            }
+        } else if self.opts.arcs {
+            ring
+        } else {
+            ring.chorded(CHORD_TOLERANCE, MAX_CHORD)
+        }
+    }
+
+    /// True when `p` is inside the tool-centre region (the walls' loops) or on its edge.
+    fn in_boundary(&self, p: Point) -> bool {
+        let v = super::super::shape::v2(p);
+        let on = |l: &Polyline<f64>| super::super::shape::loop_distance(l, p) < 1e-9;
+        self.boundary
+            .outers
+            .iter()
+            .any(|o| o.winding_number(v) != 0 || on(o))
+            && self
+                .boundary
+                .islands
+                .iter()
+                .all(|i| i.winding_number(v) == 0 || on(i))
+    }
+
+    /// `path` led in from the entry helix about `c` of radius `rho` along a tangent curve:
+    /// the helix (counter-clockwise when climbing) is left at the point a quarter turn
+    /// before the direction of the path's start from `c`, and a cubic Hermite curve with the
+    /// helix's and the path's tangents (scaled by the chord) joins the two, as chords (as
+    /// arcs with `--arcs`). The path then starts on the helix circle, so the entry ends there
+    /// ([`super::super::levels::helix_approach`] of a point on the circle is the point).
+    fn helix_lead(&self, c: Point, rho: f64, path: Vec<Seg>) -> Vec<Seg> {
+        let Some(first) = path.first() else {
+            return path;
+        };
+        let e = first.a;
+        let te = first.tangent_at(0.0);
+        let Some(u) = (e - c).normalize() else {
+            return path;
+        };
+        let sign = if self.ccw { 1.0 } else { -1.0 };
+        // Quarter a turn back: the helix's tangent there points at `e`'s direction.
+        let radial = u.rotate(-sign * std::f64::consts::FRAC_PI_2);
+        let h = c + radial * rho;
+        let th = radial.perp() * sign;
+        let k = h.distance(e);
+        if k < 1e-9 {
+            return path;
+        }
+        // The biarc with both tangents (exact arcs, tangent at both ends); the cubic
+        // Hermite curve with the same ends where it degenerates.
+        let lead: Vec<Seg> = match crate::curve::biarc::biarc(h, th, e, te, 0.0, 1.0) {
+            Some(arcs) => arcs
+                .iter()
+                .filter(|a| a.start.distance(a.end) > 1e-9)
+                .map(|a| Seg::from_bulge(a.start, a.end, (0.25 * a.sweep()).tan()))
+                .collect(),
+            None => {
+                let n = ((k / 0.1).ceil() as usize).max(16);
+                let pts: Vec<Point> = (0..=n)
+                    .map(|j| {
+                        let t = j as f64 / n as f64;
+                        let (t2, t3) = (t * t, t * t * t);
+                        let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+                        let h10 = t3 - 2.0 * t2 + t;
+                        let h01 = -2.0 * t3 + 3.0 * t2;
+                        let h11 = t3 - t2;
+                        (h.to_vec2() * h00 + th * (k * h10) + e.to_vec2() * h01 + te * (k * h11))
+                            .to_point()
+                    })
+                    .collect();
+                segs_from_points(&pts)
+            }
+        };
+        let mut out = if self.opts.arcs {
+            lead
+        } else {
+            let ring = Ring::from_segs(lead);
+            ring.chorded(CHORD_TOLERANCE, MAX_CHORD)
+                .slice(0.0, ring.len())
+        };
+        out.extend(path);
+        out
+    }
+
+    /// Appends one chain: linked to the previous cut where the link is short and safe, else
+    /// a new cut with its own entry.
+    fn emit(&mut self, chain: &[usize]) {
+        let Some(&first) = chain.first() else { return };
+        let node = &self.loops.nodes[first];
+        let rings: Vec<Ring> = chain.iter().map(|&i| self.ring(i)).collect();
+        let leaf = node.prev.is_empty();
+        // Where the chain is entered: near the tool, or at the helix.
+        let mut entry = CutEntry::Ramp;
+        let enter = match self.here {
+            Some(p) if !leaf => p,
+            _ => {
+                entry = if node.island {
+                    CutEntry::Ramp
+                } else {
+                    let level_islands: Vec<Polyline<f64>> = self
+                        .loops
+                        .level(node.level)
+                        .filter(|&j| self.loops.nodes[j].island)
+                        .map(|j| self.loops.nodes[j].pline.clone())
+                        .collect();
+                    let lp = if self.ccw {
+                        self.rounded[first].clone()
+                    } else {
+                        reversed(&self.rounded[first])
+                    };
+                    entry_for(&lp, true, &level_islands, self.boundary, self.opts, self.r)
+                };
+                match entry {
+                    CutEntry::Helix { center, .. } => center,
+                    _ => self.here.unwrap_or_else(|| rings[0].point(0.0)),
+                }
+            }
+        };
+        let last_is_wall = chain
+            .last()
+            .is_some_and(|&l| self.loops.nodes[l].level == 0);
+        let mut path: Vec<Seg> = chain_path(&rings, enter, last_is_wall, &self.lanes);
+        if let CutEntry::Helix { center, radius } = entry {
+            path = self.helix_lead(center, radius, path);
+        }
+        let Some(start) = path.first().map(|g| g.a) else {
+            return;
+        };
+        let end = path.last().map(|g| g.b);
+        let linkable = !leaf
+            && self.here.is_some_and(|h| {
+                h.distance(start) <= 2.0 * self.s + 1e-9 && !crosses(self.boundary, h, start)
+            });
+        if let (true, Some(last), Some(h)) = (linkable, self.cuts.last_mut(), self.here) {
+            if h.distance(start) > 1e-9 {
+                last.path.push(Seg::line(h, start));
+            }
+            last.path.extend(path);
+        } else {
+            self.cuts.push(Cut { entry, path });
+        }
+        self.here = end;
+    }
+}

@@ -1,0 +1,180 @@
+//! Rounding the interior offset loops as much as the stepover bound allows.
+//!
+//! Contour-parallel loops keep the walls' convex corners: every inward offset of a rectangle
+//! is a rectangle, and a controller must nearly stop at each of its corners. Loop `X` of level
+//! `k ≥ 1` is replaced by its *opening* `X_ρ` (the region inside it eroded by `ρ`, then
+//! dilated by `ρ`: two exact offsets, arcs kept): convex corners become arcs of radius `ρ`,
+//! everything else stays. The walls' own loops (level 0) are never rounded.
+//!
+//! **Bound.** Rounding moves a convex corner of interior angle `α` inward by
+//! `ρ·(1/sin(α/2) − 1)`, so the band between `X_ρ` and the (rounded) loop `Y'` cut after it
+//! widens there. For every sample `y` of `Y'` whose nearest loop of `X`'s level is `X`:
+//!
+//! ```text
+//!   dist(y, X_ρ) ≤ max(g, dist(y, X) + ε)          g = [`RoundOptions::max_gap`]
+//! ```
+//!
+//! that is, the directed gap stays below `g` (a multiple of the step, below the tool's
+//! diameter so that no ridge of material stands between two passes) except where the exact
+//! offsets themselves are farther apart (acute corners: `h/sin(α/2)`), where it may not grow.
+//! And the loops fed into `X` stay inside `X_ρ`, at least [`RoundOptions::min_clearance`]
+//! from it. Each loop takes the largest `ρ ≤` [`RoundOptions::max_radius`] that keeps both
+//! (bisection; the gap grows with `ρ`), level by level from the walls inward, so that inner
+//! loops are measured against the rounded loops outside them. At right angles with
+//! `g = 1.8·h` each loop can be rounded about `0.93·h` more than the one outside it, so the
+//! radii grow inward until the loops are as round as their size allows.
+
+use super::super::loops::{OffsetLoops, samples};
+use super::super::shape::IndexedLoop;
+use crate::geom::Point;
+use cavalier_contours::polyline::{PlineSource, Polyline};
+
+/// What the rounding may do.
+#[derive(Debug, Clone, Copy)]
+pub struct RoundOptions {
+    /// Largest directed gap from a loop to the rounded loop inside it, mm (where the exact
+    /// offsets are closer).
+    pub max_gap: f64,
+    /// Largest rounding radius, mm.
+    pub max_radius: f64,
+    /// Least distance between a rounded loop and the loops fed into it, mm.
+    pub min_clearance: f64,
+    /// Sample spacing of the checks, mm.
+    pub sample: f64,
+}
+
+/// Bisection steps on the radius.
+const BISECTIONS: usize = 10;
+/// Slack on the exact offsets' gap, as a fraction of the step.
+const GAP_SLACK: f64 = 1e-3;
+
+/// The rounded loops, one per loop of `loops` (same indices), and their radii.
+pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, Vec<f64>) {
+    let mut out: Vec<Polyline<f64>> = loops.nodes.iter().map(|n| n.pline.clone()).collect();
+    let mut radii = vec![0.0; loops.nodes.len()];
+    for k in 1..loops.levels() {
+        let level: Vec<usize> = loops.level(k).collect();
+        let exact: Vec<IndexedLoop<'_>> = level
+            .iter()
+            .map(|&i| IndexedLoop::new(&loops.nodes[i].pline))
+            .collect();
+        for (a, &x) in level.iter().enumerate() {
+            // The samples of the rounded loops cut after X that X must reach.
+            let mut assigned: Vec<(Point, f64)> = Vec::new();
+            for &y in &loops.nodes[x].next {
+                for p in samples(&out[y], opts.sample) {
+                    let near = exact
+                        .iter()
+                        .enumerate()
+                        .map(|(b, l)| (b, l.distance(p)))
+                        .min_by(|u, v| u.1.total_cmp(&v.1));
+                    if let Some((b, d)) = near
+                        && b == a
+                    {
+                        assigned.push((p, d));
+                    }
+                }
+            }
+            let inner: Vec<Point> = loops.nodes[x]
+                .prev
+                .iter()
+                .flat_map(|&z| samples(&loops.nodes[z].pline, opts.sample))
+                .collect();
+            let island = loops.nodes[x].island;
+            let ok = |rho: f64| -> Option<Polyline<f64>> {
+                let opened = open(&loops.nodes[x].pline, rho)?;
+                let idx = IndexedLoop::new(&opened);
+                let slack = GAP_SLACK * loops.step;
+                let gap_ok = assigned
+                    .iter()
+                    .all(|&(p, d)| idx.distance(p) <= opts.max_gap.max(d + slack));
+                let inside_ok = inner.iter().all(|&z| {
+                    let wn = opened.winding_number(super::super::shape::v2(z));
+                    let side = if island { wn == 0 } else { wn != 0 };
+                    side && idx.distance(z) >= opts.min_clearance
+                });
+                (gap_ok && inside_ok).then_some(opened)
+            };
+            let hi = opts.max_radius;
+            let best = if let Some(p) = ok(hi) {
+                Some((hi, p))
+            } else {
+                let (mut lo, mut hi) = (0.0, hi);
+                let mut best = None;
+                for _ in 0..BISECTIONS {
+                    let mid = 0.5 * (lo + hi);
+                    match ok(mid) {
+                        Some(p) => {
+                            lo = mid;
+                            best = Some((mid, p));
+                        }
+                        None => hi = mid,
+                    }
+                }
+                best
+            };
+            if let Some((rho, p)) = best {
+                radii[x] = rho;
+                out[x] = p;
+            }
+        }
+    }
+    (out, radii)
+}
+
+/// The opening of loop `pl` by `rho` towards the region's side (the inside of a
+/// counter-clockwise loop, the outside of a clockwise one): `None` unless it is one loop of
+/// the same orientation.
+pub fn open(pl: &Polyline<f64>, rho: f64) -> Option<Polyline<f64>> {
+    if rho <= 0.0 {
+        return Some(pl.clone());
+    }
+    let ccw = pl.area() > 0.0;
+    let eroded = single(pl.parallel_offset(rho), ccw)?;
+    single(eroded.parallel_offset(-rho), ccw)
+}
+
+/// The one loop of `pieces` with the given orientation.
+fn single(pieces: Vec<Polyline<f64>>, ccw: bool) -> Option<Polyline<f64>> {
+    let mut it = pieces
+        .into_iter()
+        .filter(|p| p.vertex_count() > 1 && p.area().abs() > 1e-12);
+    let one = it.next()?;
+    if it.next().is_some() || (one.area() > 0.0) != ccw {
+        return None;
+    }
+    Some(one)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cavalier_contours::polyline::PlineSourceMut;
+
+    fn square(ccw: bool) -> Polyline<f64> {
+        let mut pl = Polyline::new_closed();
+        let mut v = vec![(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)];
+        if !ccw {
+            v.reverse();
+        }
+        for (x, y) in v {
+            pl.add(x, y, 0.0);
+        }
+        pl
+    }
+
+    #[test]
+    fn opening_rounds_convex_corners_on_the_regions_side() {
+        // Counter-clockwise: the square's own corners become arcs of radius 2.
+        let o = open(&square(true), 2.0).expect("one loop");
+        assert!(o.area() > 0.0);
+        let want = 100.0 - (4.0 - std::f64::consts::PI) * 4.0;
+        assert!((o.area() - want).abs() < 1e-6, "{}", o.area());
+        // Clockwise (a loop around an island): the region is outside, whose corners are
+        // concave; nothing changes.
+        let c = open(&square(false), 2.0).expect("one loop");
+        assert!((c.area() + 100.0).abs() < 1e-6, "{}", c.area());
+        // Too large: the square vanishes.
+        assert!(open(&square(true), 6.0).is_none());
+    }
+}
