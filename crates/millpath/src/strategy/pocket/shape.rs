@@ -156,6 +156,14 @@ impl<'a> IndexedLoop<'a> {
         let n = self.pl.vertex_count();
         let mut best = f64::INFINITY;
         let q = v2(p);
+        if n <= BRUTE_FORCE_SEGMENTS {
+            // A few segments: visiting each is faster than the index's priority queue.
+            for i in 0..n {
+                let c = seg_closest_point(self.pl.at(i), self.pl.at((i + 1) % n), q, 1e-12);
+                best = best.min((c - q).length());
+            }
+            return best;
+        }
         let mut visit = |i: usize, box_d2: f64| -> Control<()> {
             if box_d2 > best * best {
                 return Control::Break(());
@@ -174,6 +182,9 @@ impl<'a> IndexedLoop<'a> {
         best
     }
 }
+
+/// Loops of at most this many segments are searched segment by segment.
+const BRUTE_FORCE_SEGMENTS: usize = 48;
 
 /// The closed loop `pl` restarted at its point nearest to `p` (split there if needed).
 pub fn restart_near(pl: &Polyline<f64>, p: Point) -> Polyline<f64> {

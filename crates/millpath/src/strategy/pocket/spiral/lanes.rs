@@ -45,6 +45,9 @@ pub struct LaneOptions {
     pub arc_tolerance: f64,
     /// Largest chord of a lane change that lands on a wall's loop, mm.
     pub wall_chord: f64,
+    /// Interior loops' arcs as chords: their largest sagitta and length, mm (`None`: exact
+    /// arcs).
+    pub chords: Option<(f64, f64)>,
 }
 
 /// Candidate window starts along the first loop, mm apart.
@@ -52,6 +55,8 @@ const WINDOW_STEP: f64 = 1.0;
 /// What a straight step instead of a lane change costs in the choice of the windows, rad of
 /// turning: a step is a corner the controller must slow for.
 const STEP_COST: f64 = 3.0;
+/// Window starts tried in full, best first estimate first.
+const CANDIDATES: usize = 12;
 /// Turning (rad) that one mm of extra path past the entry point is worth in the choice of
 /// the windows.
 const ENTRY_CHARGE: f64 = 0.002;
@@ -106,14 +111,37 @@ pub fn chain_path(
     let Some(first) = rings.first() else {
         return Vec::new();
     };
+    let onto_wall = |i: usize| last_is_wall && i + 2 == rings.len();
+    // The loops' stretches, as exact segments or as chords (never a wall's loop).
+    let stretch = |i: usize, s: f64, len: f64| -> Vec<Seg> {
+        let segs = rings[i].slice(s, len);
+        match opts.chords {
+            Some((tol, max)) if !(last_is_wall && i + 1 == rings.len()) => chorded(&segs, tol, max),
+            _ => segs,
+        }
+    };
     let (s_in, _) = first.project(enter);
-    let mut path = first.slice(s_in, first.len());
+    let mut path = stretch(0, s_in, first.len());
     if rings.len() == 1 {
         return path;
     }
     let windows = |i: usize| opts.window.min(0.25 * rings[i].len());
-    // The stacked changes for a start `p0` on the first ring (each with its start on its
-    // loop), and their cost: the loops' turning over the windows, a step's worth for a step.
+    // A first estimate for a start `p0` on the first ring: the loops' turning over the
+    // stacked windows (the landing stretch taken in proportion to the loops' lengths).
+    let estimate = |p0: f64| -> f64 {
+        let mut p = p0;
+        let mut cost = 0.0;
+        for i in 0..rings.len() - 1 {
+            let d = windows(i);
+            let (q, _) = rings[i + 1].project(rings[i].point(p));
+            let span = d * rings[i + 1].len() / rings[i].len();
+            cost += rings[i].turning(p, d) + rings[i + 1].turning(q, span);
+            p = q;
+        }
+        cost
+    };
+    // The stacked changes for `p0` (each with its start on its loop), and their cost: the
+    // loops' turning over the windows, a step's worth for a step.
     let stack = |p0: f64| -> (Changes, f64) {
         let mut changes = Vec::with_capacity(rings.len() - 1);
         let mut p = p0;
@@ -121,7 +149,7 @@ pub fn chain_path(
         for i in 0..rings.len() - 1 {
             let d = windows(i);
             let (q, _) = rings[i + 1].project(rings[i].point(p));
-            let chord = if last_is_wall && i + 2 == rings.len() {
+            let chord = if onto_wall(i) {
                 opts.wall_chord
             } else {
                 opts.chord
@@ -140,28 +168,41 @@ pub fn chain_path(
     };
     let n = ((first.len() / WINDOW_STEP).ceil() as usize).max(8);
     let step = first.len() / n as f64;
+    let mut order: Vec<(f64, f64)> = (0..n)
+        .map(|j| {
+            let past = step * j as f64;
+            (
+                estimate(first.wrap(s_in + past)) + ENTRY_CHARGE * past,
+                past,
+            )
+        })
+        .collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    // The best estimates in full, until one needs no step.
     let mut best: Option<(Changes, f64, f64)> = None;
-    for j in 0..n {
-        let past = step * j as f64;
+    for &(_, past) in order.iter().take(CANDIDATES) {
         let (changes, turn) = stack(first.wrap(s_in + past));
         let cost = turn + ENTRY_CHARGE * past;
+        let clean = changes.iter().all(|c| c.1.is_some());
         if best.as_ref().is_none_or(|b| cost < b.1 - 1e-12) {
             best = Some((changes, cost, past));
+        }
+        if clean {
+            break;
         }
     }
     let Some((changes, _, past)) = best else {
         return path;
     };
     // The rest of the first loop up to the first window.
-    path.extend(first.slice(s_in, past));
+    path.extend(stretch(0, s_in, past));
     for (i, (p, change)) in changes.iter().enumerate() {
         let (from, to) = (&rings[i], &rings[i + 1]);
         // Where the path is on `to` after the change, and how much of `to` is still to run
         // before the next change (or, on the outermost loop, to close it).
         let (land, whole) = match change {
             Some((pts, land)) => {
-                let onto_wall = last_is_wall && i + 2 == rings.len();
-                if opts.arcs && !onto_wall {
+                if opts.arcs && !onto_wall(i) {
                     path.extend(fit_arcs(pts, opts.arc_tolerance));
                 } else {
                     path.extend(segs_from_points(pts));
@@ -182,12 +223,40 @@ pub fn chain_path(
             Some((next_p, _)) => {
                 let run = to.wrap(next_p - land);
                 let run = if whole && run < 1e-9 { to.len() } else { run };
-                path.extend(to.slice(land, run));
+                path.extend(stretch(i + 1, land, run));
             }
-            None => path.extend(to.slice(land, to.len())),
+            None => path.extend(stretch(i + 1, land, to.len())),
         }
     }
     path
+}
+
+/// `segs` with every arc replaced by chords whose sagitta is at most `tol` and no longer
+/// than `max_chord` (for controllers that plan chords faster than arcs).
+pub fn chorded(segs: &[Seg], tol: f64, max_chord: f64) -> Vec<Seg> {
+    let mut out = Vec::with_capacity(segs.len());
+    for g in segs {
+        match g.arc {
+            None => out.push(*g),
+            Some(arc) => {
+                // Sagitta of a chord of length c on radius R: c²/(8R).
+                let c = (8.0 * arc.radius * tol).sqrt().min(max_chord);
+                let len = g.length();
+                let n = ((len / c.max(1e-9)).ceil() as usize).max(1);
+                let mut a = g.a;
+                for k in 1..=n {
+                    let b = if k == n {
+                        g.b
+                    } else {
+                        g.point_at(len * k as f64 / n as f64)
+                    };
+                    out.push(Seg::line(a, b));
+                    a = b;
+                }
+            }
+        }
+    }
+    out
 }
 
 /// `10t³ − 15t⁴ + 6t⁵`: 0 → 1 with zero first and second derivatives at both ends.

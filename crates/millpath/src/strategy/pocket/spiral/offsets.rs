@@ -26,7 +26,7 @@ use super::super::loops::{OffsetLoops, samples};
 use super::super::offset::{RIDGE_SPACING, crosses, entry_for, too_large};
 use super::super::options::{Direction, PocketOptions};
 use super::super::shape::{IndexedLoop, OffsetRegion, PocketShape, reversed};
-use super::lanes::{LaneOptions, chain_path};
+use super::lanes::{LaneOptions, chain_path, chorded};
 use super::ring::Ring;
 use super::rounding::{RoundOptions, round};
 use super::{LAST_LOOP_MARGIN, last_loop};
@@ -84,7 +84,7 @@ pub fn plan(
             max_gap: gap,
             max_radius: MAX_RADIUS * h,
             min_clearance: MIN_CLEARANCE * h,
-            sample: (h / 8.0).clamp(0.05, 0.5),
+            sample: (h / 4.0).clamp(0.05, 1.0),
         },
     );
     let chains = loops.chains();
@@ -109,6 +109,7 @@ pub fn plan(
             arcs: opts.arcs,
             arc_tolerance: super::ARC_TOLERANCE,
             wall_chord: LANE_CHORD.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
+            chords: (!opts.arcs).then_some((CHORD_TOLERANCE, MAX_CHORD)),
         },
         cuts: Vec::new(),
         here: None,
@@ -204,9 +205,7 @@ impl Emitter<'_> {
         }
     }
 
-    /// The ring of loop `i` in the cutting direction; interior loops' arcs as chords
-    /// (the walls' loops keep their exact arcs: chords of a concave arc would cut into the
-    /// wall by their sagitta).
+    /// The ring of loop `i` in the cutting direction.
     fn ring(&self, i: usize) -> Ring {
         let pl = &self.rounded[i];
         let ring = if self.ccw {
@@ -239,10 +238,8 @@ impl Emitter<'_> {
             } else {
                 b_eps
             }
-        } else if self.opts.arcs {
-            ring
         } else {
-            ring.chorded(CHORD_TOLERANCE, MAX_CHORD)
+            ring
         }
     }
 
@@ -313,9 +310,7 @@ impl Emitter<'_> {
         let mut out = if self.opts.arcs {
             lead
         } else {
-            let ring = Ring::from_segs(lead);
-            ring.chorded(CHORD_TOLERANCE, MAX_CHORD)
-                .slice(0.0, ring.len())
+            chorded(&lead, CHORD_TOLERANCE, MAX_CHORD)
         };
         out.extend(path);
         out

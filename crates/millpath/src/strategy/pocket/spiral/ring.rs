@@ -41,34 +41,6 @@ impl Ring {
         }
     }
 
-    /// The same loop with every arc replaced by chords whose sagitta is at most `tol` (and
-    /// no longer than `max_chord`): for controllers that plan chords faster than arcs.
-    pub fn chorded(&self, tol: f64, max_chord: f64) -> Ring {
-        let mut segs = Vec::with_capacity(self.segs.len());
-        for g in &self.segs {
-            match g.arc {
-                None => segs.push(*g),
-                Some(arc) => {
-                    // Sagitta of a chord of length c on radius R: c²/(8R).
-                    let c = (8.0 * arc.radius * tol).sqrt().min(max_chord);
-                    let len = g.length();
-                    let n = ((len / c.max(1e-9)).ceil() as usize).max(1);
-                    let mut a = g.a;
-                    for k in 1..=n {
-                        let b = if k == n {
-                            g.b
-                        } else {
-                            g.point_at(len * k as f64 / n as f64)
-                        };
-                        segs.push(Seg::line(a, b));
-                        a = b;
-                    }
-                }
-            }
-        }
-        Ring::from_segs(segs)
-    }
-
     /// Length in mm.
     pub fn len(&self) -> f64 {
         self.len
