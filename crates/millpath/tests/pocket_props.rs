@@ -1,12 +1,13 @@
 //! Property and invariance tests: random pockets (convex, non-convex, with islands) and random
 //! tools and stepovers; every strategy is verified by the stock simulation or refused with an
-//! input error. The same pocket reversed, rotated and translated gives the same cycle time.
+//! input error that names the value and where it came from, and most cases must be planned
+//! (a run where every case is refused fails). The same pocket reversed, rotated, translated
+//! and with its start vertex moved gives the same cycle time, for every strategy.
 //!
-//! The harness takes the strategies as a parameter ([`OFFSET_ZIGZAG`]; the spiral is added
-//! by listing it). Kept fast: pockets about 30 mm across, one level, a 0.15 mm raster cell
-//! (the verifier's coverage test looks only at cells within `r − 2c` of the reachable region,
-//! and its uncut-area tolerance is 0.05 mm², so a coarse cell does not make it lenient: it
-//! measures the same things at a coarser grain), four to six cases per property.
+//! Kept fast: pockets about 30 mm across, one level, a 0.15 mm raster cell (the verifier's
+//! coverage test looks only at cells within `r − 2c` of the reachable region, and its
+//! uncut-area tolerance is 0.05 mm², so a coarse cell does not make it lenient: it measures
+//! the same things at a coarser grain), [`CASES`] cases per property.
 
 use millpath::Error;
 use millpath::geom::{Outline, Point, Vec2};
@@ -14,7 +15,7 @@ use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, samples};
 use millpath::toolpath::Tool;
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
+use proptest::test_runner::{RngSeed, TestRunner};
 
 fn coarse() -> SimOptions {
     SimOptions {
@@ -24,9 +25,7 @@ fn coarse() -> SimOptions {
     }
 }
 
-/// The strategies of this crate's owner under test; the spiral joins by adding it.
-const OFFSET_ZIGZAG: [StrategyKind; 2] = [StrategyKind::Offset, StrategyKind::Zigzag];
-/// All three strategies (pockets without islands).
+/// All three strategies.
 const ALL: [StrategyKind; 3] = [
     StrategyKind::Offset,
     StrategyKind::Zigzag,
@@ -59,29 +58,75 @@ fn circle(c: Point, r: f64) -> Outline {
     .unwrap()
 }
 
-/// Every strategy of `kinds` verifies on the pocket, or refuses it with an input error.
+/// Random cases per property.
+const CASES: u32 = 12;
+/// Of which at least this many must be planned by every strategy (the rest may be refused
+/// as bad input: a tool that does not fit, a stepover beyond what a region allows).
+const MIN_PLANNED: usize = 8;
+
+/// Every strategy of `kinds` verifies on the pocket, or refuses it with an input error that
+/// says what is wrong, where it came from and what would be accepted. `Ok(true)` when all
+/// planned it.
 fn check(
     kinds: &[StrategyKind],
     shape: &PocketShape,
     tool: &Tool,
     opts: &PocketOptions,
-) -> Result<(), TestCaseError> {
+) -> Result<bool, TestCaseError> {
+    let mut all = true;
     for &kind in kinds {
         match pocket::generate(kind, shape, tool, opts, &coarse()) {
             Ok(r) => {
                 let p = r.verification.problems();
                 prop_assert!(p.is_empty(), "{kind:?}: {p:?}");
+                prop_assert!(r.verification.uncut_area_mm2 <= 0.05);
                 prop_assert!(r.toolpath.cut_length() > 0.0);
             }
             Err(Error::Input(e)) => {
-                // A clear refusal is acceptable; it must name what is wrong and where.
                 let text = e.to_string();
-                prop_assert!(text.contains("--") || text.contains("island"), "{text}");
+                prop_assert!(
+                    text.starts_with("invalid ")
+                        && text.contains("(from ")
+                        && text.contains("expected"),
+                    "{kind:?}: {text}"
+                );
+                all = false;
             }
             Err(e) => prop_assert!(false, "{kind:?}: internal error {e}"),
         }
     }
-    Ok(())
+    Ok(all)
+}
+
+/// Runs `case` on [`CASES`] values of `strategy`; fails unless at least [`MIN_PLANNED`] were
+/// planned by every strategy.
+fn property<S: Strategy>(
+    name: &str,
+    strategy: S,
+    case: impl Fn(S::Value) -> Result<bool, TestCaseError>,
+) {
+    let config = ProptestConfig {
+        cases: CASES,
+        rng_seed: seed(),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    };
+    let planned = std::sync::atomic::AtomicUsize::new(0);
+    let mut runner = TestRunner::new(config);
+    let result = runner.run(&strategy, |v| {
+        if case(v)? {
+            planned.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        }
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{name}: {e}");
+    }
+    let planned = planned.into_inner();
+    assert!(
+        planned >= MIN_PLANNED,
+        "{name}: only {planned} of {CASES} cases planned by every strategy"
+    );
 }
 
 /// The properties' random seed: fixed, so that the test command is repeatable (a randomly
@@ -104,46 +149,84 @@ fn one_level(so: f64) -> PocketOptions {
     }
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 5, rng_seed: seed(), failure_persistence: None, ..ProptestConfig::default() })]
-
-    #[test]
-    fn convex_pockets_verify(r in 10.0f64..16.0, n in 5usize..8, d in 3.0f64..7.0, so in 0.2f64..1.0, arcs: bool) {
-        let Some(o) = star(&vec![r; n], 2.0) else { return Ok(()) };
+#[test]
+fn convex_pockets_verify() {
+    let s = (
+        10.0f64..16.0,
+        5usize..8,
+        3.0f64..7.0,
+        0.2f64..1.0,
+        any::<bool>(),
+    );
+    property("convex", s, |(r, n, d, so, arcs)| {
+        let o = star(&vec![r; n], 2.0).expect("a regular polygon");
         let tool = Tool::flat(d).unwrap();
-        check(&ALL, &PocketShape::simple(o), &tool, &PocketOptions { arcs, ..one_level(so) })?;
-    }
+        check(
+            &ALL,
+            &PocketShape::simple(o),
+            &tool,
+            &PocketOptions {
+                arcs,
+                ..one_level(so)
+            },
+        )
+    });
+}
 
-    #[test]
-    fn non_convex_pockets_verify(radii in prop::collection::vec(9.0f64..17.0, 6..9), d in 2.5f64..5.0, so in 0.2f64..1.0, arcs: bool) {
-        let Some(o) = star(&radii, 1.5) else { return Ok(()) };
+#[test]
+fn non_convex_pockets_verify() {
+    let s = (
+        prop::collection::vec(9.0f64..17.0, 6..9),
+        2.5f64..5.0,
+        0.2f64..1.0,
+        any::<bool>(),
+    );
+    property("non-convex", s, |(radii, d, so, arcs)| {
+        let o = star(&radii, 1.5).expect("a star");
         let tool = Tool::flat(d).unwrap();
-        check(&ALL, &PocketShape::simple(o), &tool, &PocketOptions { arcs, ..one_level(so) })?;
-    }
+        check(
+            &ALL,
+            &PocketShape::simple(o),
+            &tool,
+            &PocketOptions {
+                arcs,
+                ..one_level(so)
+            },
+        )
+    });
+}
 
-    #[test]
-    fn pockets_with_islands_verify(
-        radii in prop::collection::vec(15.0f64..19.0, 6..8),
-        islands in prop::collection::vec((0.0f64..std::f64::consts::TAU, 0.0f64..7.0, 1.5f64..3.5), 1..4),
-        d in 2.5f64..4.5,
-        so in 0.25f64..0.7,
-    ) {
-        let Some(o) = star(&radii, 1.5) else { return Ok(()) };
-        let isl: Vec<Outline> = islands
-            .iter()
-            .map(|&(a, rho, ri)| circle(Point::ORIGIN + Vec2::from_angle(a) * rho, ri))
-            .collect();
-        // Overlapping random islands are an input error, which is also checked.
-        let shape = match PocketShape::new(o, isl, "random islands") {
-            Ok(s) => s,
-            Err(e) => {
-                prop_assert!(e.to_string().contains("island"), "{e}");
-                return Ok(());
+#[test]
+fn pockets_with_islands_verify() {
+    let s = (
+        prop::collection::vec(15.0f64..19.0, 6..8),
+        prop::collection::vec(
+            (0.0f64..std::f64::consts::TAU, 0.0f64..7.0, 1.5f64..3.5),
+            1..4,
+        ),
+        2.5f64..4.5,
+        0.25f64..0.7,
+    );
+    property("islands", s, |(radii, islands, d, so)| {
+        let o = star(&radii, 1.5).expect("a star");
+        // Random islands that overlap are moved apart along their angles (overlapping ones are
+        // an input error, checked elsewhere); each keeps 1 mm from the others.
+        let mut isl: Vec<(Point, f64)> = Vec::new();
+        for &(a, rho, ri) in &islands {
+            let c = Point::ORIGIN + Vec2::from_angle(a) * rho;
+            if isl.iter().all(|(q, rq)| q.distance(c) > ri + rq + 1.0) {
+                isl.push((c, ri));
             }
-        };
+        }
+        let shape = PocketShape::new(
+            o,
+            isl.iter().map(|&(c, r)| circle(c, r)).collect(),
+            "random islands",
+        )
+        .expect("islands apart");
         let tool = Tool::flat(d).unwrap();
-        check(&OFFSET_ZIGZAG, &shape, &tool, &one_level(so))?;
-    }
+        check(&ALL, &shape, &tool, &one_level(so))
+    });
 }
 
 /// A randomly seeded `non_convex_pockets_verify` found this star (8 radii, a 4.97 mm tool at
@@ -187,12 +270,15 @@ fn a_second_maximum_of_the_distance_is_not_taken_for_a_ridge_slot() {
     }
 }
 
-/// The pocket moved: turned by `angle` about the origin, translated, optionally reversed.
-fn transformed(o: &Outline, angle: f64, dx: f64, dy: f64, reverse: bool) -> Outline {
+/// The pocket moved: turned by `angle` about the origin, translated, optionally reversed,
+/// its vertices started `shift` places later.
+fn transformed(o: &Outline, angle: f64, dx: f64, dy: f64, reverse: bool, shift: usize) -> Outline {
     let mut v: Vec<(Point, f64)> = o
         .vertices()
         .map(|(p, b)| (p.rotate_about(Point::ORIGIN, angle) + Vec2::new(dx, dy), b))
         .collect();
+    let k = shift % v.len().max(1);
+    v.rotate_left(k);
     if reverse {
         // Reversed direction: vertices backwards, each bulge moves to the other end and flips.
         let n = v.len();
@@ -236,53 +322,57 @@ fn l_pocket() -> (Outline, Outline) {
     (ell, circle(p(10.0, 10.0), 3.0))
 }
 
-/// Reversed, translated, and turned by 90° and 180°: the cycle time on `hsm` within 0.5%
-/// (the machine's axes are alike, so quarter turns are symmetries of the machine too).
+/// Reversed, translated, turned by 90° and 180°, and started at another vertex: the cycle
+/// time on `hsm` within 0.5% (the machine's axes are alike, so quarter turns are symmetries
+/// of the machine too).
 #[test]
-fn invariance_under_reversal_translation_and_quarter_turns() {
+fn invariance_under_reversal_translation_quarter_turns_and_start_vertex() {
     let (base, isl) = l_pocket();
-    for kind in OFFSET_ZIGZAG {
+    for kind in ALL {
         let (l0, t0) = run(kind, base.clone(), isl.clone());
-        for (angle, dx, dy, rev) in [
-            (0.0, 0.0, 0.0, true),
-            (0.0, 123.0, -45.0, false),
-            (std::f64::consts::FRAC_PI_2, 0.0, 0.0, false),
-            (std::f64::consts::PI, 17.0, 3.0, true),
+        for (angle, dx, dy, rev, shift) in [
+            (0.0, 0.0, 0.0, true, 0),
+            (0.0, 123.0, -45.0, false, 0),
+            (std::f64::consts::FRAC_PI_2, 0.0, 0.0, false, 0),
+            (std::f64::consts::PI, 17.0, 3.0, true, 0),
+            (0.0, 0.0, 0.0, false, 3),
+            (0.0, 0.0, 0.0, false, 7),
+            (std::f64::consts::FRAC_PI_2, -8.0, 2.0, true, 5),
         ] {
             let (l, t) = run(
                 kind,
-                transformed(&base, angle, dx, dy, rev),
-                transformed(&isl, angle, dx, dy, rev),
+                transformed(&base, angle, dx, dy, rev, shift),
+                transformed(&isl, angle, dx, dy, rev, shift),
             );
             assert!(
                 (l - l0).abs() <= 0.005 * l0,
-                "{kind:?} length {l} vs {l0} ({angle}, {rev})"
+                "{kind:?} length {l} vs {l0} ({angle}, {rev}, {shift})"
             );
             assert!(
                 (t - t0).abs() <= 0.005 * t0,
-                "{kind:?} time {t} vs {t0} ({angle}, {rev})"
+                "{kind:?} time {t} vs {t0} ({angle}, {rev}, {shift})"
             );
         }
     }
 }
 
 /// Turned by arbitrary angles: the path is the same path turned (length within 0.5%: offset
-/// loops are a property of the region, zigzag passes are laid in the pocket's principal
-/// frame); the cycle time on `hsm` changes with the angle because its limits are per axis
+/// loops and the spiral on them are a property of the region, zigzag passes are laid in the
+/// pocket's principal frame); the cycle time on `hsm` changes with the angle because its limits are per axis
 /// (a move at 45° may use √2 times the axis velocity and acceleration along the path). How
 /// much is measured here and bounded; see the zigzag module docs.
 #[test]
 #[allow(clippy::print_stderr)]
 fn arbitrary_rotation_keeps_the_path_and_bounds_the_time_change() {
     let (base, isl) = l_pocket();
-    for kind in OFFSET_ZIGZAG {
+    for kind in ALL {
         let (l0, t0) = run(kind, base.clone(), isl.clone());
         let mut worst: f64 = 0.0;
         for angle in [0.3, 0.7, std::f64::consts::FRAC_PI_4, 2.0] {
             let (l, t) = run(
                 kind,
-                transformed(&base, angle, 5.0, -7.0, false),
-                transformed(&isl, angle, 5.0, -7.0, false),
+                transformed(&base, angle, 5.0, -7.0, false, 0),
+                transformed(&isl, angle, 5.0, -7.0, false, 0),
             );
             assert!(
                 (l - l0).abs() <= 0.005 * l0,

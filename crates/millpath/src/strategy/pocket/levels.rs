@@ -164,7 +164,7 @@ pub fn direct_entries(
                 .filter(|&(_, d)| d <= max_link)
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((q, _)) = best
-                && !super::offset::crosses(region, q, start)
+                && !super::shape::crosses(region, q, start)
             {
                 cut.entry = CutEntry::Direct { from: q };
             }

@@ -197,7 +197,7 @@ fn nearest(loops: &[IndexedLoop<'_>], p: Point, reach: f64) -> Option<usize> {
     best.map(|b| b.0)
 }
 
-/// Points along a closed loop, at most `ds` apart and at least [`MIN_SAMPLES`], plus its
+/// Points along a closed loop, at most `ds` apart and at least `MIN_SAMPLES` (32), plus its
 /// vertices.
 pub fn samples(pl: &Polyline<f64>, ds: f64) -> Vec<Point> {
     let len = pl.path_length();

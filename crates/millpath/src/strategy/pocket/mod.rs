@@ -294,7 +294,7 @@ fn finishing_plan(
         candidates.sort_by(|a, b| a.distance(start).total_cmp(&b.distance(start)));
         let from = candidates
             .into_iter()
-            .find(|&q| !offset::crosses(&region, q, start))
+            .find(|&q| !shape::crosses(&region, q, start))
             .unwrap_or(start);
         cuts.push(levels::Cut {
             entry: levels::CutEntry::Direct { from },

@@ -99,6 +99,23 @@ impl StrategyKind {
     }
 }
 
+/// How the spiral morphs from its central circle into the boundary offset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpiralMorph {
+    /// The contour-parallel loops, rounded, each chain of them joined into one spiral by
+    /// curvature-continuous lane changes (`spiral::offsets`).
+    #[default]
+    Offsets,
+    /// The central disc united with the boundary offset's inward offsets (`spiral::fronts`): as
+    /// many laps as contour-parallel offsets, smoothed corners; at convex corners of the
+    /// boundary the loops are up to `s/sin(α/2)` apart along the bisector, as offsets are.
+    /// Falls back to [`SpiralMorph::Harmonic`] where the fronts do not reach the boundary.
+    Fronts,
+    /// Level sets of a harmonic function (`spiral::harmonic`): the stepover holds everywhere,
+    /// corners included, at the price of laps crowding where the pocket is narrow.
+    Harmonic,
+}
+
 /// Everything a pocketing strategy needs besides the outline and the tool.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PocketOptions {
@@ -135,9 +152,9 @@ pub struct PocketOptions {
     /// Smallest radius of curvature wanted on the spiral's interior loops, mm.
     pub min_radius: f64,
     /// How the spiral morphs from its central circle into the boundary offset.
-    pub morph: super::spiral::SpiralMorph,
+    pub morph: SpiralMorph,
     /// Output the spiral's laps as tangent-continuous arcs (G2/G3, biarcs within
-    /// [`super::spiral::ARC_TOLERANCE`]) instead of G1 chords (`--arcs`). The other strategies'
+    /// `spiral::ARC_TOLERANCE`) instead of G1 chords (`--arcs`). The other strategies'
     /// paths are lines and exact arcs already.
     pub arcs: bool,
     /// A finishing pass along the walls at the last level (no wall stock).
@@ -167,7 +184,7 @@ impl Default for PocketOptions {
             zigzag_angle: 0.0,
             transition: 0.5,
             min_radius: 1.0,
-            morph: super::spiral::SpiralMorph::default(),
+            morph: SpiralMorph::default(),
             arcs: false,
             finish: false,
             modulate_feed: true,

@@ -5,7 +5,6 @@
 //! `d = r + stock` and the islands outward by the same `d` (cavalier_contours' shape offset,
 //! exact arcs). Its loops are where the last pass runs.
 
-use super::walls::Walls;
 use crate::error::InputError;
 use crate::geom::{Outline, Point, Winding};
 use cavalier_contours::core::math::Vector2;
@@ -15,6 +14,23 @@ use cavalier_contours::polyline::{
 use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
 use cavalier_contours::static_aabb2d_index::{Control, NeighborPriorityQueue, StaticAABB2DIndex};
 use std::cell::RefCell;
+
+/// How the walls run from the top outline (z = 0) down to the floor.
+#[derive(Debug, Clone, Default)]
+pub enum Walls {
+    /// Vertical walls: every level is cut in the top outline.
+    #[default]
+    Vertical,
+    /// Every wall leans into the pocket by this angle from the vertical, rad, in `[0, π/2)`.
+    Draft(f64),
+    /// The outline and islands at the pocket's depth, vertex for vertex like the top.
+    Bottom {
+        /// Bottom outer outline, counter-clockwise.
+        outer: Outline,
+        /// Bottom islands, clockwise, in the order of the top's.
+        islands: Vec<Outline>,
+    },
+}
 
 /// A pocket: an outer outline (counter-clockwise) and islands (clockwise) strictly inside it,
 /// as they are at the top of the stock (z = 0), and how the walls run down from there.
@@ -272,6 +288,52 @@ pub fn inscribed_centre(
     best
 }
 
+/// True when the segment `a–b` leaves `region` (touching a loop, or running along one, is
+/// inside).
+///
+/// The loops' crossings with the segment (points, and the ends of stretches where it runs
+/// along a loop) cut it into pieces; each piece is wholly inside the region or wholly
+/// outside, and its midpoint says which. Testing only for crossings away from the ends and
+/// then the segment's midpoint missed a link running along one loop's edge, across a pinched
+/// neck of the region and along the other loop's edge (the zigzag's link between two pieces of
+/// a fuzz pocket's region, 0.017 mm into the wall stock: `fuzz/regressions/pocket-link`).
+pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
+    let d = b - a;
+    let len2 = d.dot(d);
+    if len2 < 1e-18 {
+        return false;
+    }
+    let mut seg = Polyline::new();
+    seg.add(a.x, a.y, 0.0);
+    seg.add(b.x, b.y, 0.0);
+    let at = |p: Vector2<f64>| ((pt(p) - a).dot(d) / len2).clamp(0.0, 1.0);
+    let mut ts = vec![0.0, 1.0];
+    for l in region.loops() {
+        let hits = l.find_intersects(&seg);
+        ts.extend(hits.basic_intersects.iter().map(|i| at(i.point)));
+        for o in &hits.overlapping_intersects {
+            ts.push(at(o.point1));
+            ts.push(at(o.point2));
+        }
+    }
+    ts.sort_by(f64::total_cmp);
+    let min_piece = 1e-7 / len2.sqrt();
+    ts.windows(2)
+        .filter(|w| w[1] - w[0] > min_piece)
+        .any(|w| !inside_or_on(region, a + d * (0.5 * (w[0] + w[1]))))
+}
+
+/// `p` is inside `region` or within 1e-7 mm of one of its loops.
+fn inside_or_on(region: &OffsetRegion, p: Point) -> bool {
+    let inside = region.outers.iter().any(|o| o.winding_number(v2(p)) != 0)
+        && region.islands.iter().all(|i| i.winding_number(v2(p)) == 0);
+    inside
+        || region.loops().any(|l| {
+            l.closest_point(v2(p), 1e-12)
+                .is_some_and(|c| c.distance < 1e-7)
+        })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -318,5 +380,55 @@ mod tests {
                 "indexed and brute-force distances differ by {worst}"
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod crosses_tests {
+    use super::*;
+
+    fn rect(x0: f64, y0: f64, x1: f64, y1: f64) -> Polyline<f64> {
+        let mut pl = Polyline::new_closed();
+        for (x, y) in [(x0, y0), (x1, y0), (x1, y1), (x0, y1)] {
+            pl.add(x, y, 0.0);
+        }
+        pl
+    }
+
+    /// Two pieces of a region whose bottom edges lie on one line, 1 mm apart (a region
+    /// pinched off at a neck along a straight wall).
+    fn two_pieces() -> OffsetRegion {
+        OffsetRegion {
+            outers: vec![rect(0.0, 0.0, 3.0, 1.0), rect(4.0, 0.0, 5.0, 1.0)],
+            islands: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_link_along_both_pieces_edges_across_the_gap_leaves_the_region() {
+        let r = two_pieces();
+        // The midpoint (2.25, 0) lies on the first piece's edge: the old midpoint test passed
+        // this link, which runs outside from x = 3 to x = 4.
+        let (a, b) = (Point::new(0.0, 0.0), Point::new(4.5, 0.0));
+        assert!(crosses(&r, a, b));
+        assert!(crosses(&r, b, a));
+    }
+
+    #[test]
+    fn links_inside_or_along_an_edge_do_not_cross() {
+        let r = two_pieces();
+        let p = |x, y| Point::new(x, y);
+        assert!(!crosses(&r, p(0.5, 0.0), p(2.5, 0.0)), "along an edge");
+        assert!(
+            !crosses(&r, p(0.0, 0.0), p(3.0, 1.0)),
+            "a diagonal, corner to corner"
+        );
+        assert!(!crosses(&r, p(0.5, 0.5), p(2.5, 0.5)), "inside");
+        assert!(!crosses(&r, p(1.0, 1.0), p(1.0, 1.0)), "no length");
+        assert!(
+            crosses(&r, p(2.5, 0.5), p(4.5, 0.5)),
+            "from one piece into the other"
+        );
+        assert!(crosses(&r, p(2.5, 0.5), p(3.5, 0.5)), "out of the region");
     }
 }

@@ -43,22 +43,7 @@ use crate::geom::region::{piece_points, validate_islands};
 use crate::geom::{Outline, Point};
 use cavalier_contours::polyline::Polyline;
 
-/// How the walls run from the top outline (z = 0) down to the floor.
-#[derive(Debug, Clone, Default)]
-pub enum Walls {
-    /// Vertical walls: every level is cut in the top outline.
-    #[default]
-    Vertical,
-    /// Every wall leans into the pocket by this angle from the vertical, rad, in `[0, π/2)`.
-    Draft(f64),
-    /// The outline and islands at the pocket's depth, vertex for vertex like the top.
-    Bottom {
-        /// Bottom outer outline, counter-clockwise.
-        outer: Outline,
-        /// Bottom islands, clockwise, in the order of the top's.
-        islands: Vec<Outline>,
-    },
-}
+pub use super::shape::Walls;
 
 /// Largest draft angle accepted, degrees (beyond, the pocket closes within a few mm).
 pub const MAX_DRAFT_DEG: f64 = 60.0;

@@ -44,8 +44,9 @@
 
 use super::chain::{Seg, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
-use super::offset::{crosses, too_large};
+use super::offset::too_large;
 use super::options::{Direction, PocketOptions};
+use super::shape::crosses;
 use super::shape::{PocketShape, closed_chain, restart_near, reversed};
 use crate::error::InputError;
 use crate::geom::{Point, Vec2};

@@ -496,7 +496,7 @@ mod tests {
     #[test]
     fn scanline_matches_winding_number() {
         let pts = star();
-        let pl = super::super::closed_pline(&pts);
+        let pl = super::super::common::closed_pline(&pts);
         let (origin, h, nx, ny) = (Point::new(-21.0, -20.5), 0.25, 170, 166);
         let inside = scanline_inside(&pts, origin, h, nx, ny);
         let mut disagree = 0;
@@ -520,7 +520,7 @@ mod tests {
         b.add(-30.0, 0.0, 1.0);
         b.add(30.0, 0.0, 1.0);
         let pts = star();
-        let pl = super::super::closed_pline(&pts);
+        let pl = super::super::common::closed_pline(&pts);
         let fast = Harmonic::solve_from_loop(&b, &pts, 0.5);
         let slow = Harmonic::solve_with(
             &b,

@@ -1,4 +1,4 @@
-//! The spiral's sampled laps as moves, kept inside the last loop `B_ε` ([`super::last_loop`]).
+//! The spiral's sampled laps as moves, kept inside the last loop `B_ε` ([`super::common::last_loop`]).
 //!
 //! A lap blends the previous loop into the next one point by point; where the next one is
 //! `B` (or near it) and `B` has a concave arc (round a corner of the wall pointing into the
@@ -22,7 +22,7 @@
 //! With `--arcs`, each biarc fitted through the samples is checked against `T` in the same
 //! way, and one that crosses it is written as the chords it spans.
 
-use super::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
+use super::common::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
 use crate::geom::Point;
 use crate::strategy::pocket::chain::{Seg, fit_arcs, fit_arcs_where, segs_from_points};
 use crate::strategy::pocket::shape::{pt, reversed, v2};

@@ -37,6 +37,11 @@ pub struct LaneOptions {
     pub window: f64,
     /// Largest chord along a lane change, mm.
     pub chord: f64,
+    /// The loops' spacing, mm.
+    pub step: f64,
+    /// How far from a pass material counts as cut, mm (a little less than the tool radius):
+    /// a lane change only where its two loops are no farther apart than this.
+    pub reach: f64,
     /// Lane changes as tangent-continuous arcs (biarcs within `arc_tolerance` of the smooth
     /// curve through the chords' points), except one that lands on a wall's loop (whose
     /// arcs could overshoot it into the wall).
@@ -55,38 +60,86 @@ const WINDOW_STEP: f64 = 1.0;
 /// What a straight step instead of a lane change costs in the choice of the windows, rad of
 /// turning: a step is a corner the controller must slow for.
 const STEP_COST: f64 = 3.0;
+/// Most halvings of a lane change's sampling interval.
+const MAX_REFINE: usize = 10;
 /// Window starts tried in full, best first estimate first.
 const CANDIDATES: usize = 12;
 /// Turning (rad) that one mm of extra path past the entry point is worth in the choice of
 /// the windows.
 const ENTRY_CHARGE: f64 = 0.002;
 
+/// A lane change's sample: `u` along the window, the position of the nearest point on the
+/// next loop, and the distance to it.
+type Sample = (f64, f64, f64);
+
 /// One lane change: the chords' points from `from` at `p` onto `to`, and the position on
 /// `to` where it lands; `None` when the nearest points of `to` do not follow smoothly (they
 /// jump to another part of the loop, or the loops are not about one step apart there).
-fn lane(from: &Ring, to: &Ring, p: f64, d: f64, q: f64, chord: f64) -> Option<(Vec<Point>, f64)> {
+///
+/// The window is sampled densely enough on both loops: where the nearest point of `to`
+/// advances by more than a chord between two samples (a short loop's tight turn against a
+/// longer loop's wide one), the interval is halved, so that every point of the stretch of
+/// `to` the change passes by is near a sample of it, at most `(1 − σ)·gap` from the lane.
+/// The target points are taken `inset` mm short of `to` (towards `from`): chords onto a wall's
+/// exact loop must not sag across its concave arcs.
+fn lane(
+    from: &Ring,
+    to: &Ring,
+    (p, d, q): (f64, f64, f64),
+    (chord, inset, step, reach): (f64, f64, f64, f64),
+) -> Option<(Vec<Point>, f64)> {
     let k = ((d / chord).ceil() as usize).max(4);
     let du = d / k as f64;
-    // The nearest point of the longer loop moves faster, in proportion.
-    let ahead = du * (2.0 + 4.0 * (to.len() / from.len()).max(1.0));
-    let mut pts = Vec::with_capacity(k + 1);
+    // Samples (u, position on `to`, distance), refined where `to` runs ahead.
+    let mut samples: Vec<Sample> = Vec::with_capacity(2 * k + 2);
     let mut sb = q;
-    let mut gap0 = None;
     for j in 0..=k {
         let u = du * j as f64;
         let a = from.point(p + u);
-        let (s, dist) = to.project_near(a, sb, 2.0 * du, ahead);
-        let g0 = *gap0.get_or_insert(dist);
-        if !(dist <= 2.0 * g0 + chord && dist >= 0.5 * g0 - chord) {
+        let (s, dist) = to.project_near(a, sb, 2.0 * du, 4.0 * du + 2.0 * step);
+        samples.push((u, s, dist));
+        sb = s;
+    }
+    let mut refined = Vec::with_capacity(samples.len());
+    let mut stack: Vec<(Sample, Sample, usize)> =
+        samples.windows(2).rev().map(|w| (w[0], w[1], 0)).collect();
+    refined.push(samples[0]);
+    while let Some((l, r, depth)) = stack.pop() {
+        if r.1 - l.1 <= chord || depth >= MAX_REFINE {
+            refined.push(r);
+            continue;
+        }
+        let u = 0.5 * (l.0 + r.0);
+        let a = from.point(p + u);
+        let (s, dist) = to.project_near(a, l.1, 0.0, r.1 - l.1);
+        let m = (u, s, dist);
+        stack.push((m, r, depth + 1));
+        stack.push((l, m, depth + 1));
+    }
+    let g0 = refined[0].2;
+    let mut pts = Vec::with_capacity(refined.len());
+    for w in refined.windows(2) {
+        // Still a jump: the nearest points left the stretch (another part of `to`).
+        if w[1].1 - w[0].1 > 2.0 * chord + step || w[1].1 < w[0].1 - 1e-9 {
             return None;
         }
-        sb = s;
+    }
+    for &(u, s, dist) in &refined {
+        // The loops no farther apart than the tool reaches: the lane then cuts everything
+        // between them along the stretch of `to` it passes by (each point of that stretch is
+        // at most `(1 − σ)·dist` from the lane, and the lane's start was run round before).
+        if !(dist <= reach && dist >= 0.5 * g0 - chord) {
+            return None;
+        }
+        let a = from.point(p + u);
         let b = to.point(s);
+        let b = b + (a - b) * (inset / dist.max(inset)).min(1.0);
         pts.push(a + (b - a) * smoothstep(u / d));
     }
-    let land = to.wrap(sb);
+    let last = refined.last().map_or(q, |r| r.1);
+    let land = to.wrap(last);
     // The skipped stretch of the next loop is the window itself, not more.
-    let span = to.wrap(land - q);
+    let span = last - q;
     if span > 2.0 * d * (to.len() / from.len()).max(1.0) + chord {
         return None;
     }
@@ -99,15 +152,28 @@ type Change = Option<(Vec<Point>, f64)>;
 /// The changes of a chain, each with its window's start on its loop.
 type Changes = Vec<(f64, Change)>;
 
+/// What the outermost loop of a chain is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Outermost {
+    /// A loop inside the pocket (the next chain starts from it).
+    Interior,
+    /// A wall's loop: lane changes onto it stay chords, end `inset` mm short of it (0 when
+    /// the loop is already inside the wall's clearance by more than the chords' sagitta), and
+    /// step onto it.
+    Wall {
+        /// mm.
+        inset: f64,
+    },
+}
+
 /// The spiral through `rings` (innermost first, all in the cutting direction), entered at the
 /// point of the first ring nearest to `enter`. Returns the path (its first point is that
 /// entry point).
-pub fn chain_path(
-    rings: &[Ring],
-    enter: Point,
-    last_is_wall: bool,
-    opts: &LaneOptions,
-) -> Vec<Seg> {
+pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOptions) -> Vec<Seg> {
+    let (last_is_wall, wall_inset) = match outer {
+        Outermost::Interior => (false, 0.0),
+        Outermost::Wall { inset } => (true, inset),
+    };
     let Some(first) = rings.first() else {
         return Vec::new();
     };
@@ -149,12 +215,17 @@ pub fn chain_path(
         for i in 0..rings.len() - 1 {
             let d = windows(i);
             let (q, _) = rings[i + 1].project(rings[i].point(p));
-            let chord = if onto_wall(i) {
-                opts.wall_chord
+            let (chord, inset) = if onto_wall(i) {
+                (opts.wall_chord, wall_inset)
             } else {
-                opts.chord
+                (opts.chord, 0.0)
             };
-            let change = lane(&rings[i], &rings[i + 1], p, d, q, chord);
+            let change = lane(
+                &rings[i],
+                &rings[i + 1],
+                (p, d, q),
+                (chord, inset, opts.step, opts.reach),
+            );
             cost += match &change {
                 Some((_, land)) => {
                     rings[i].turning(p, d) + rings[i + 1].turning(q, rings[i + 1].wrap(land - q))
@@ -206,6 +277,11 @@ pub fn chain_path(
                     path.extend(fit_arcs(pts, opts.arc_tolerance));
                 } else {
                     path.extend(segs_from_points(pts));
+                }
+                // An inset lane ends just short of the loop: step onto it.
+                let (end, on) = (pts.last().copied(), to.point(*land));
+                if let Some(e) = end.filter(|e| e.distance(on) > 1e-12) {
+                    path.push(Seg::line(e, on));
                 }
                 (*land, false)
             }

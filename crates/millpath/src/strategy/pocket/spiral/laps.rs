@@ -20,8 +20,8 @@
 use super::super::chain::segs_from_vertices;
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::shape::{closed_chain, restart_near, reversed};
+use super::common::{LoopWalker, SpiralStats, blend_lap, fractions, resample, sample_loop};
 use super::fronts::{FrontOptions, capsule, circle, fronts};
-use super::{LoopWalker, SpiralStats, blend_lap, fractions, sample_loop};
 use crate::geom::{Point, Vec2};
 use cavalier_contours::polyline::{PlineSource, Polyline};
 use std::f64::consts::TAU;
@@ -31,7 +31,7 @@ use std::f64::consts::TAU;
 pub struct FrontSpiral<'a> {
     /// The boundary offset, counter-clockwise.
     pub b: &'a Polyline<f64>,
-    /// `B` moved inward by [`super::LAST_LOOP_MARGIN`] (the last loop), counter-clockwise.
+    /// `B` moved inward by [`super::common::LAST_LOOP_MARGIN`] (the last loop), counter-clockwise.
     pub b_eps: &'a Polyline<f64>,
     /// Centre and inscribed radius.
     pub c: Point,
@@ -54,7 +54,7 @@ pub struct FrontSpiral<'a> {
     /// The ridge segment, when the central spiral is a capsule spiral about it
     /// ([`super::fronts::ridge_segment`]); `None`: a circular spiral about `c`.
     pub ridge: Option<(Point, Point)>,
-    /// Output the sampled laps as tangent-continuous arcs ([`super::ARC_TOLERANCE`]).
+    /// Output the sampled laps as tangent-continuous arcs ([`super::common::ARC_TOLERANCE`]).
     pub arcs: bool,
     /// Largest gap between consecutive fronts, mm ([`super::fronts::FrontOptions::max_gap`]).
     pub max_gap: f64,
@@ -105,7 +105,7 @@ impl FrontSpiral<'_> {
                 let start = raw.at(0).pos();
                 restart_near(&orient(&raw), Point::new(start.x, start.y))
             };
-            let mut lap = super::resample(&sample_loop(&cap(rho_h), 0.25 * ds), ds);
+            let mut lap = resample(&sample_loop(&cap(rho_h), 0.25 * ds), ds);
             // The first blend lap passes the ridge on one side at about (ρ_h + ρ_1)/2 and on
             // the other at ρ_1 (the half it starts on was passed at ρ_h): when those are more
             // than 1.8 r apart the ridge between them would stand uncut, so the first capsule
@@ -122,7 +122,7 @@ impl FrontSpiral<'_> {
                     target.path_length(),
                     &mut pts,
                 );
-                lap = super::resample(&sample_loop(&target, 0.25 * ds), ds);
+                lap = resample(&sample_loop(&target, 0.25 * ds), ds);
             }
             lap
         } else {
@@ -163,7 +163,7 @@ impl FrontSpiral<'_> {
                         pts.push(*p + (along.at(acc) - *p) * w);
                         joined = acc;
                     }
-                    let fine = super::resample(&sample_loop(&target, 0.25 * ds), ds);
+                    let fine = resample(&sample_loop(&target, 0.25 * ds), ds);
                     let fr = fractions(&fine);
                     for (q, x) in fine.iter().zip(&fr) {
                         if x * len > joined {
@@ -179,7 +179,7 @@ impl FrontSpiral<'_> {
                 // Equal spacing along the whole loop (not per segment of the front, whose
                 // vertices depend on the offsets' internals): no short chords for the
                 // look-ahead to stumble on, and the same samples however the pocket is turned.
-                lap = super::resample(&sample_loop(&target, 0.25 * ds), ds);
+                lap = resample(&sample_loop(&target, 0.25 * ds), ds);
                 stats.morph_laps += 1;
                 continue;
             }
@@ -188,8 +188,8 @@ impl FrontSpiral<'_> {
             // is then the last lap, at most one step away everywhere.
             // The last front is `B` with rounded corners (see [`fronts`]): the lap ends on
             // it (moved in by ε), and the last loop `B_ε` starts from the nearest point.
-            let fine = super::resample(&lap, self.ds_last);
-            let target = restart_near(&orient(&super::last_loop(next)), ahead);
+            let fine = resample(&lap, self.ds_last);
+            let target = restart_near(&orient(&super::common::last_loop(next)), ahead);
             let len = target.path_length();
             let along = LoopWalker::new(&target);
             blend_lap(&fine, &along, len, &mut pts);

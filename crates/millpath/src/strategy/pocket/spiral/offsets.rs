@@ -23,13 +23,13 @@
 use super::super::chain::{Seg, segs_from_points};
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::loops::{OffsetLoops, samples};
-use super::super::offset::{RIDGE_SPACING, crosses, entry_for, too_large};
+use super::super::offset::{RIDGE_SPACING, entry_for, too_large};
 use super::super::options::{Direction, PocketOptions};
-use super::super::shape::{IndexedLoop, OffsetRegion, PocketShape, reversed};
-use super::lanes::{LaneOptions, chain_path, chorded};
+use super::super::shape::{IndexedLoop, OffsetRegion, PocketShape, crosses, reversed};
+use super::common::{ARC_TOLERANCE, LAST_LOOP_MARGIN, last_loop};
+use super::lanes::{LaneOptions, Outermost, chain_path, chorded};
 use super::ring::Ring;
 use super::rounding::{RoundOptions, round};
-use super::{LAST_LOOP_MARGIN, last_loop};
 use crate::error::InputError;
 use crate::geom::Point;
 use crate::toolpath::Tool;
@@ -38,6 +38,10 @@ use cavalier_contours::polyline::{PlineSource, Polyline};
 /// Largest gap between a loop and the rounded loop inside it, in steps (see
 /// [`super::rounding`]): `√2` is what right-angle corners of exact offsets have.
 pub const CORNER_GAP: f64 = 1.8;
+/// Largest gap between a loop and the rounded loop inside it, in tool radii: below the
+/// diameter by enough that the two passes' discs still meet where the loops curve (the
+/// spacing bound of the pocket's material, whatever the stepover).
+pub const COVERAGE_GAP: f64 = 1.5;
 /// Largest rounding radius, in steps.
 const MAX_RADIUS: f64 = 12.0;
 /// Least distance between a rounded loop and the loops inside it, in steps.
@@ -77,7 +81,7 @@ pub fn plan(
         return Err(too_large(tool));
     }
     let boundary = shape.offset(d0);
-    let gap = (CORNER_GAP * h).min(CORNER_GAP * r);
+    let gap = (CORNER_GAP * h).min(COVERAGE_GAP * r);
     let (rounded, radii) = round(
         &loops,
         &RoundOptions {
@@ -85,6 +89,7 @@ pub fn plan(
             max_radius: MAX_RADIUS * h,
             min_clearance: MIN_CLEARANCE * h,
             sample: (h / 4.0).clamp(0.05, 1.0),
+            reach: RIDGE_SPACING * r,
         },
     );
     let chains = loops.chains();
@@ -106,8 +111,10 @@ pub fn plan(
         lanes: LaneOptions {
             window: WINDOW * h,
             chord: LANE_CHORD,
+            step: h,
+            reach: RIDGE_SPACING * r,
             arcs: opts.arcs,
-            arc_tolerance: super::ARC_TOLERANCE,
+            arc_tolerance: ARC_TOLERANCE,
             wall_chord: LANE_CHORD.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
             chords: (!opts.arcs).then_some((CHORD_TOLERANCE, MAX_CHORD)),
         },
@@ -205,8 +212,9 @@ impl Emitter<'_> {
         }
     }
 
-    /// The ring of loop `i` in the cutting direction.
-    fn ring(&self, i: usize) -> Ring {
+    /// The ring of loop `i` in the cutting direction, and for a wall's loop how far the
+    /// lane changes onto it must stay short of it (see [`Outermost`]).
+    fn ring(&self, i: usize) -> (Ring, Outermost) {
         let pl = &self.rounded[i];
         let ring = if self.ccw {
             Ring::new(pl)
@@ -234,12 +242,16 @@ impl Emitter<'_> {
                 Ring::new(&reversed(&moved))
             };
             if b_eps.is_empty() || !faithful {
-                ring
+                // The exact loop: chords of `wall_chord` sag at most c²/(8·d₀) across its
+                // concave arcs (radius d₀ at least).
+                let c = self.lanes.wall_chord;
+                let inset = 1.1 * c * c / (8.0 * self.loops.d0);
+                (ring, Outermost::Wall { inset })
             } else {
-                b_eps
+                (b_eps, Outermost::Wall { inset: 0.0 })
             }
         } else {
-            ring
+            (ring, Outermost::Interior)
         }
     }
 
@@ -321,7 +333,9 @@ impl Emitter<'_> {
     fn emit(&mut self, chain: &[usize]) {
         let Some(&first) = chain.first() else { return };
         let node = &self.loops.nodes[first];
-        let rings: Vec<Ring> = chain.iter().map(|&i| self.ring(i)).collect();
+        let (rings, kinds): (Vec<Ring>, Vec<Outermost>) =
+            chain.iter().map(|&i| self.ring(i)).unzip();
+        let outer = kinds.last().copied().unwrap_or(Outermost::Interior);
         let leaf = node.prev.is_empty();
         // Where the chain is entered: near the tool, or at the helix.
         let mut entry = CutEntry::Ramp;
@@ -350,10 +364,7 @@ impl Emitter<'_> {
                 }
             }
         };
-        let last_is_wall = chain
-            .last()
-            .is_some_and(|&l| self.loops.nodes[l].level == 0);
-        let mut path: Vec<Seg> = chain_path(&rings, enter, last_is_wall, &self.lanes);
+        let mut path: Vec<Seg> = chain_path(&rings, enter, outer, &self.lanes);
         if let CutEntry::Helix { center, radius } = entry {
             path = self.helix_lead(center, radius, path);
         }

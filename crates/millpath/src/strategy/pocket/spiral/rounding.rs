@@ -18,7 +18,11 @@
 //! diameter so that no ridge of material stands between two passes) except where the exact
 //! offsets themselves are farther apart (acute corners: `h/sin(α/2)`), where it may not grow.
 //! And the loops fed into `X` stay inside `X_ρ`, at least [`RoundOptions::min_clearance`]
-//! from it. Each loop takes the largest `ρ ≤` [`RoundOptions::max_radius`] that keeps both
+//! from it; and the material `X`'s own pass covers when exact (the band from `X` to the
+//! loops fed into it, sampled on `X`, halfway in and on those loops) stays within
+//! [`RoundOptions::reach`] of `X_ρ`, of the rounded loops outside or of the exact loops
+//! inside: rounding a loop next to where the loops inside it end (a medial axis branch's
+//! tip) would otherwise move it beyond the tool's reach of that material. Each loop takes the largest `ρ ≤` [`RoundOptions::max_radius`] that keeps both
 //! (bisection; the gap grows with `ρ`), level by level from the walls inward, so that inner
 //! loops are measured against the rounded loops outside them. At right angles with
 //! `g = 1.8·h` each loop can be rounded about `0.93·h` more than the one outside it, so the
@@ -41,6 +45,10 @@ pub struct RoundOptions {
     pub min_clearance: f64,
     /// Sample spacing of the checks, mm.
     pub sample: f64,
+    /// How far from a pass material counts as cut, mm (a little less than the tool radius):
+    /// the material the exact loop would cut must stay within this of the rounded loop or of
+    /// its neighbours.
+    pub reach: f64,
 }
 
 /// Bisection steps on the radius.
@@ -84,10 +92,40 @@ pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, V
                 .iter()
                 .flat_map(|&z| samples(&loops.nodes[z].pline, opts.sample))
                 .collect();
+            // The material X's pass covers when exact: the band from X to the loops inside
+            // it, sampled on X, halfway in, and on the inner loops. What the rounded loops
+            // outside and the exact loops inside already reach needs nothing of X.
             let island = loops.nodes[x].island;
+            let fixed: Vec<Polyline<f64>> = loops.nodes[x]
+                .next
+                .iter()
+                .map(|&y| out[y].clone())
+                .chain(
+                    loops.nodes[x]
+                        .prev
+                        .iter()
+                        .map(|&z| loops.nodes[z].pline.clone()),
+                )
+                .collect();
+            let fixed_idx: Vec<IndexedLoop<'_>> = fixed.iter().map(IndexedLoop::new).collect();
+            let band: Vec<Point> = samples(&loops.nodes[x].pline, opts.sample)
+                .into_iter()
+                .chain(
+                    loops.nodes[x]
+                        .pline
+                        .parallel_offset(0.5 * loops.step)
+                        .iter()
+                        .flat_map(|p| samples(p, opts.sample)),
+                )
+                .chain(inner.iter().copied())
+                .filter(|&p| fixed_idx.iter().all(|l| l.distance(p) > opts.reach))
+                .collect();
             let ok = |rho: f64| -> Option<Polyline<f64>> {
                 let opened = open(&loops.nodes[x].pline, rho)?;
                 let idx = IndexedLoop::new(&opened);
+                if band.iter().any(|&p| idx.distance(p) > opts.reach) {
+                    return None;
+                }
                 let slack = GAP_SLACK * loops.step;
                 let gap_ok = assigned
                     .iter()

@@ -1,0 +1,141 @@
+//! The roughing strategies judged by a real controller: the aerospace pocket's three
+//! strategies (one 5 mm level, 600 in/min, with and without feed modulation) run through
+//! LinuxCNC 2.9's own trajectory planner (`../shared/tools/linuxcnc-time`, 500 mm/s,
+//! 2000 mm/s², the programs stating `G64 P0.01`). The spiral must be the fastest, by the
+//! margins the project claims: at most 0.90 × offset's time and 0.84 × zigzag's.
+//!
+//! LinuxCNC runs in simulated real time (about 25 s a program; two at a time). Without
+//! `linuxcnc` on the machine the test is skipped, unless `MILLPATH_REQUIRE_LINUXCNC=1` (set by
+//! `.ci/run`, which installs it), when it fails.
+
+use millpath::gcode::{WriterOptions, write_program};
+use millpath::stock::SimOptions;
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
+use millpath::toolpath::Tool;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The timing tool beside the repository, if LinuxCNC can run here.
+fn linuxcnc_time() -> Option<PathBuf> {
+    let tool = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/tools/linuxcnc-time/linuxcnc-time");
+    let installed = Command::new("sh")
+        .args(["-c", "command -v linuxcnc"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    let required = std::env::var("MILLPATH_REQUIRE_LINUXCNC").is_ok_and(|v| v == "1");
+    if tool.exists() && installed {
+        return Some(tool);
+    }
+    assert!(
+        !required,
+        "MILLPATH_REQUIRE_LINUXCNC=1 but LinuxCNC cannot run here (tool {} exists: {}, \
+         linuxcnc installed: {installed})",
+        tool.display(),
+        tool.exists()
+    );
+    None
+}
+
+/// LinuxCNC's motion time for `program`, s.
+fn time_on_linuxcnc(tool: &Path, program: &Path) -> f64 {
+    let out = Command::new(tool)
+        .arg(program)
+        .args(["500", "2000"])
+        .output()
+        .expect("linuxcnc-time runs");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "linuxcnc-time {}: {}{}",
+        program.display(),
+        text,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text.trim()
+        .lines()
+        .last()
+        .and_then(|l| l.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no time in {text:?}"))
+}
+
+#[test]
+#[allow(clippy::print_stderr)]
+fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
+    let Some(tool_path) = linuxcnc_time() else {
+        eprintln!("skipped: LinuxCNC is not installed");
+        return;
+    };
+    let dir = tempfile::tempdir().expect("temp dir");
+    let shape = samples::aerospace_pocket();
+    let tool = Tool::flat(12.7).expect("tool");
+    let sim = SimOptions {
+        cell: 0.2,
+        step: 0.4,
+        ..SimOptions::default()
+    };
+    let mut jobs = Vec::new();
+    for modulate in [true, false] {
+        let opts = PocketOptions {
+            depth: 5.0,
+            step_down: 5.0,
+            modulate_feed: modulate,
+            ..PocketOptions::default()
+        };
+        for kind in [
+            StrategyKind::Spiral,
+            StrategyKind::Offset,
+            StrategyKind::Zigzag,
+        ] {
+            let r = pocket::generate(kind, &shape, &tool, &opts, &sim).expect("pocket");
+            assert!(r.verification.problems().is_empty(), "{kind:?}");
+            let wopts = WriterOptions {
+                path_tolerance: Some(0.01),
+                ..WriterOptions::default()
+            };
+            let mut buf = Vec::new();
+            write_program(&r.toolpath, &wopts, &mut buf).expect("write");
+            let path = dir.path().join(format!("{}_{modulate}.ngc", kind.name()));
+            std::fs::write(&path, buf).expect("write program");
+            jobs.push((modulate, kind, path));
+        }
+    }
+    // Two at a time (each run is mostly the controller's real-time clock).
+    let times: Vec<f64> = jobs
+        .chunks(2)
+        .flat_map(|pair| {
+            std::thread::scope(|s| {
+                let handles: Vec<_> = pair
+                    .iter()
+                    .map(|(_, _, p)| s.spawn(|| time_on_linuxcnc(&tool_path, p)))
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("timing thread"))
+                    .collect::<Vec<f64>>()
+            })
+        })
+        .collect();
+    for modulate in [true, false] {
+        let t = |kind: StrategyKind| {
+            jobs.iter()
+                .zip(&times)
+                .find(|((m, k, _), _)| *m == modulate && *k == kind)
+                .map(|(_, &t)| t)
+                .expect("timed")
+        };
+        let (s, o, z) = (
+            t(StrategyKind::Spiral),
+            t(StrategyKind::Offset),
+            t(StrategyKind::Zigzag),
+        );
+        eprintln!(
+            "LinuxCNC, aerospace, one level, modulation {modulate}: spiral {s:.3} s, offset \
+             {o:.3} s, zigzag {z:.3} s"
+        );
+        assert!(
+            s <= 0.90 * o && s <= 0.84 * z,
+            "modulation {modulate}: spiral {s} s, offset {o} s, zigzag {z} s"
+        );
+    }
+}
