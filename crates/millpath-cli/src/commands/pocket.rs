@@ -88,17 +88,18 @@ pub struct CommonArgs {
     /// Zigzag angle, degrees, from the pocket's principal axis (its long direction).
     #[arg(long, default_value_t = 0.0)]
     pub angle: f64,
-    /// Spiral transition ratio C in [0, 1].
-    #[arg(long, default_value_t = 0.5)]
-    pub transition: f64,
+    /// Spiral transition ratio C in [0, 1] of the paper's central spiral (the `fronts` and
+    /// `harmonic` morphs, default 0.5; giving it selects `fronts` unless `--morph` is given)
+    #[arg(long)]
+    pub transition: Option<f64>,
     /// Smallest curvature radius wanted on the spiral's interior loops, mm.
     #[arg(long, default_value_t = 1.0)]
     pub min_radius: f64,
-    /// Spiral morph: `offsets` (the contour-parallel loops, rounded, joined by lane
+    /// Spiral morph: `offsets` (default: the contour-parallel loops, rounded, joined by lane
     /// changes), `fronts` (the paper's central spiral of radius C·ρ grown by offset fronts) or
     /// `harmonic` (stepover held at corners too, more laps)
-    #[arg(long, default_value = "offsets")]
-    pub morph: String,
+    #[arg(long)]
+    pub morph: Option<String>,
     /// Spiral laps as tangent-continuous arcs (G2/G3 biarcs within 0.004 mm of the smooth
     /// curve through the samples) instead of G1 chords
     #[arg(long)]
@@ -196,19 +197,9 @@ impl CommonArgs {
             plunge_feed: feed / 3.0,
             slowdown: self.slowdown,
             zigzag_angle: self.angle.to_radians(),
-            transition: self.transition,
+            transition: self.transition.unwrap_or(DEFAULT_TRANSITION),
             min_radius: self.min_radius,
-            morph: match self.morph.as_str() {
-                "offsets" => pocket::spiral::SpiralMorph::Offsets,
-                "fronts" => pocket::spiral::SpiralMorph::Fronts,
-                "harmonic" => pocket::spiral::SpiralMorph::Harmonic,
-                other => {
-                    return Err(InputError::new("morph", other)
-                        .at("--morph")
-                        .expected("offsets, fronts or harmonic")
-                        .into());
-                }
-            },
+            morph: self.morph()?,
             arcs: self.arcs,
             finish: self.finish,
             modulate_feed: !self.no_feed_modulation,
@@ -222,6 +213,28 @@ impl CommonArgs {
                 .into());
         }
         Ok((tool, opts))
+    }
+
+    /// The spiral's morph: `--morph`, else `fronts` when `--transition` is given (the
+    /// paper's central spiral is the fronts' and harmonic morphs'), else `offsets`.
+    fn morph(&self) -> Result<pocket::spiral::SpiralMorph, Error> {
+        use pocket::spiral::SpiralMorph;
+        match (self.morph.as_deref(), self.transition) {
+            (None | Some("offsets"), None) => Ok(SpiralMorph::Offsets),
+            (None | Some("fronts"), _) => Ok(SpiralMorph::Fronts),
+            (Some("harmonic"), _) => Ok(SpiralMorph::Harmonic),
+            (Some("offsets"), Some(c)) => Err(InputError::new("transition", c)
+                .at("--transition with --morph offsets")
+                .expected(
+                    "no --transition with the offsets morph (its spiral has no central circle); \
+                     --morph fronts or harmonic for the paper's transition C",
+                )
+                .into()),
+            (Some(other), _) => Err(InputError::new("morph", other)
+                .at("--morph")
+                .expected("offsets, fronts or harmonic")
+                .into()),
+        }
     }
 
     /// The pocket with the walls asked for (`--draft`, `--bottom-outline`).
@@ -251,6 +264,10 @@ impl CommonArgs {
         }
     }
 }
+
+/// The paper's transition C when `--transition` is not given (its Table 1 and Figure 10 go
+/// from 0.2 to 0.7; 0.5 is their middle).
+pub const DEFAULT_TRANSITION: f64 = 0.5;
 
 /// Reads an outline file (by extension) or a built-in sample.
 pub fn load_outline(name: &str) -> Result<Loops, Error> {

@@ -7,7 +7,7 @@ use super::pocket::{CommonArgs, load_outline};
 use millpath::Error;
 use millpath::machine::Machine;
 use millpath::report::plots;
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, SpiralMorph, StrategyKind};
 use millpath::toolpath::Tool;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -114,10 +114,17 @@ pub fn sweep(
 ) -> Result<Sweep, Error> {
     let total = feeds_ipm.len() * (1 + ratios.len());
     let mut done = 0;
+    // The transition C is the paper's central spiral's, which the fronts and harmonic morphs
+    // draw; the default (offsets) morph has none.
+    let morph = match base.morph {
+        SpiralMorph::Offsets => SpiralMorph::Fronts,
+        m => m,
+    };
     let mut time = |kind: StrategyKind, feed: f64, c: f64| -> Result<f64, Error> {
         let o = PocketOptions {
             feed: feed * 25.4 / 60.0,
             transition: c,
+            morph,
             ..base.clone()
         };
         let tp = pocket::toolpath(kind, shape, tool, &o)?;

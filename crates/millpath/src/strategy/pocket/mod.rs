@@ -44,7 +44,7 @@ pub mod spiral;
 pub mod walls;
 pub mod zigzag;
 
-pub use options::{Direction, Entry, PocketOptions, Stepover, StrategyKind};
+pub use options::{Direction, Entry, PocketOptions, SpiralMorph, Stepover, StrategyKind};
 pub use shape::PocketShape;
 pub use walls::Walls;
 
@@ -87,7 +87,7 @@ pub fn plan_level(
         StrategyKind::Zigzag => zigzag::plan(shape, tool, opts)?,
         StrategyKind::Offset => offset::plan(shape, tool, opts)?,
         StrategyKind::Spiral => {
-            if !shape.islands.is_empty() && opts.morph != spiral::SpiralMorph::Offsets {
+            if !shape.islands.is_empty() && opts.morph != SpiralMorph::Offsets {
                 return Err(crate::InputError::new("islands", shape.islands.len())
                     .at("--strategy spiral")
                     .expected("a pocket without islands for the spiral (use --strategy offset)")

@@ -209,31 +209,48 @@ pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOpt
     // The stacked changes for `p0` (each with its start on its loop), and their cost: the
     // loops' turning over the windows, a step's worth for a step.
     let stack = |p0: f64| -> (Changes, f64) {
-        let mut changes = Vec::with_capacity(rings.len() - 1);
+        let mut changes: Changes = Vec::with_capacity(rings.len() - 1);
+        // Where the next change starts on ring i: the first loop's window; then, after a lane
+        // change, the point stacked over the previous window's start; after a step, where
+        // the step landed (the loop is run whole from there first).
         let mut p = p0;
+        // Where the path entered ring i (after a lane change, a step needs the loop whole
+        // from there).
+        let mut entry = p0;
         let mut cost = 0.0;
         for i in 0..rings.len() - 1 {
             let d = windows(i);
-            let (q, _) = rings[i + 1].project(rings[i].point(p));
             let (chord, inset) = if onto_wall(i) {
                 (opts.wall_chord, wall_inset)
             } else {
                 (opts.chord, 0.0)
             };
+            let (q, _) = rings[i + 1].project(rings[i].point(p));
             let change = lane(
                 &rings[i],
                 &rings[i + 1],
                 (p, d, q),
                 (chord, inset, opts.step, opts.reach),
             );
-            cost += match &change {
-                Some((_, land)) => {
-                    rings[i].turning(p, d) + rings[i + 1].turning(q, rings[i + 1].wrap(land - q))
+            match change {
+                Some((pts, land)) => {
+                    cost += rings[i].turning(p, d)
+                        + rings[i + 1].turning(q, rings[i + 1].wrap(land - q));
+                    changes.push((p, Some((pts, land))));
+                    entry = land;
+                    p = q;
                 }
-                None => STEP_COST,
-            };
-            changes.push((p, change));
-            p = q;
+                None => {
+                    // A straight step, from where the path entered this loop once round: a
+                    // stretch a lane change onto this loop passed by is then cut, as no lane
+                    // change out of it runs over it.
+                    cost += STEP_COST;
+                    changes.push((entry, None));
+                    let (s, _) = rings[i + 1].project(rings[i].point(entry));
+                    entry = s;
+                    p = s;
+                }
+            }
         }
         (changes, cost)
     };
@@ -271,7 +288,7 @@ pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOpt
         let (from, to) = (&rings[i], &rings[i + 1]);
         // Where the path is on `to` after the change, and how much of `to` is still to run
         // before the next change (or, on the outermost loop, to close it).
-        let (land, whole) = match change {
+        let land = match change {
             Some((pts, land)) => {
                 if opts.arcs && !onto_wall(i) {
                     path.extend(fit_arcs(pts, opts.arc_tolerance));
@@ -283,7 +300,7 @@ pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOpt
                 if let Some(e) = end.filter(|e| e.distance(on) > 1e-12) {
                     path.push(Seg::line(e, on));
                 }
-                (*land, false)
+                *land
             }
             None => {
                 let a = from.point(*p);
@@ -292,14 +309,16 @@ pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOpt
                 if a.distance(b) > 1e-12 {
                     path.push(Seg::line(a, b));
                 }
-                (q, true)
+                q
             }
         };
         match changes.get(i + 1) {
+            // Round to the next change's start; once round when it starts where the path
+            // came onto the loop (after a step, or before one).
             Some((next_p, _)) => {
                 let run = to.wrap(next_p - land);
-                let run = if whole && run < 1e-9 { to.len() } else { run };
-                path.extend(stretch(i + 1, land, run));
+                let full = run < 1e-9 || to.len() - run < 1e-9;
+                path.extend(stretch(i + 1, land, if full { to.len() } else { run }));
             }
             None => path.extend(stretch(i + 1, land, to.len())),
         }
