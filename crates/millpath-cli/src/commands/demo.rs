@@ -201,13 +201,16 @@ fn die_cavity(
     let pb = spinner("die cavity: curve, exact offset, flattening at 0.00004 mm");
     let (curve, opt) = contour::sample()?;
     let result = contour::contour(&curve, &opt)?;
+    // Stated in the program and timed with: the machine's path tolerance, or the contour's
+    // where that is tighter (see `contour::program_machine`).
+    let machine = &super::contour::program_machine(machine, opt.tolerance);
     let wopt = WriterOptions {
         dialect: Dialect::LinuxCnc,
         decimals: Some(6),
         program_name: Some("die cavity (Mohamed 2006)".to_owned()),
+        path_tolerance: Some(machine.path_tolerance),
         ..WriterOptions::default()
-    }
-    .with_tolerance(machine.path_tolerance.max(1e-3));
+    };
     let blocks = write_gcode(&out.join("die_cavity.ngc"), &result.toolpath, &wopt)?;
     pb.set_message("die cavity: cycle time and limit check");
     let (full_plan, check) = time_and_verify(&result.toolpath, machine)?;
@@ -543,7 +546,7 @@ fn pockets(
             program_name: Some(format!("sample part, {name} roughing")),
             ..WriterOptions::default()
         }
-        .with_tolerance(machine.path_tolerance);
+        .with_path_tolerance(machine.path_tolerance);
         let blocks = write_gcode(&out.join(format!("part_{name}.ngc")), &tp, &wopt)?;
         pb.set_message(format!("pockets: {name}: cycle time and limit check"));
         let (plan, check) = time_and_verify(&tp, machine)?;

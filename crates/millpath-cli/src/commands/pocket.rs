@@ -2,6 +2,7 @@
 
 use millpath::gcode::{WriterOptions, write_program};
 use millpath::io::outline_json::Loops;
+use millpath::machine::Machine;
 use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{
     self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind,
@@ -353,6 +354,17 @@ pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Rep
     })
 }
 
+/// How the pocket program is written: LinuxCNC, mm, stating the machine's path tolerance
+/// (`G64 P t`), the tolerance its cycle time was planned with and the one `millpath estimate`
+/// reads back.
+pub fn program_options(kind: StrategyKind, machine: &Machine) -> WriterOptions {
+    WriterOptions {
+        program_name: Some(format!("millpath pocket {}", kind.name())),
+        ..WriterOptions::default()
+    }
+    .with_path_tolerance(machine.path_tolerance)
+}
+
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
     let kind = parse_strategy(&args.common.strategy)?;
@@ -364,10 +376,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let r = pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?;
     let rep = report(kind, &r, &args.common.machine)?;
     if let Some(out) = &args.output {
-        let wopts = WriterOptions {
-            program_name: Some(format!("millpath pocket {}", kind.name())),
-            ..WriterOptions::default()
-        };
+        let m = super::load_machine(&args.common.machine)?;
+        let wopts = program_options(kind, &m);
         let mut buf = Vec::new();
         write_program(&r.toolpath, &wopts, &mut buf)?;
         millpath::io::write_atomic(out, &buf)?;
