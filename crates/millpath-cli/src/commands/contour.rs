@@ -312,7 +312,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
         )],
         ..WriterOptions::default()
     };
-    let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)?;
+    // The options carry the user's --decimals and --spindle: refused as input; what the
+    // writer refuses after that is in the toolpath the engine made.
+    wopt.validate()?;
+    let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)
+        .map_err(|e| e.engine_made("writing the contour program"))?;
     let mut report = result.report.clone();
     report.blocks = summary.blocks;
     report.lines = summary.lines;
@@ -329,7 +333,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
         millpath::io::write_atomic(rp, json.as_bytes())?;
     }
     let m = &machine;
-    let plan = millpath::motion::plan_toolpath(&result.toolpath, m)?;
+    let plan = millpath::motion::plan_toolpath(&result.toolpath, m)
+        .map_err(|e| e.engine_made("timing the contour toolpath"))?;
     let flat = curve::flatten::flatten_curve(&curve, opt.tolerance.max(1e-3))?;
     let outline = millpath::geom::Outline::from_points(&flat.points, &name)?;
     let mut pictures = Vec::new();

@@ -336,7 +336,8 @@ pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Rep
     let m = super::load_machine(machine)?;
     Ok(Report {
         strategy: kind.name().to_owned(),
-        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)?,
+        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)
+            .map_err(|e| e.engine_made("timing the pocket toolpath"))?,
         cycle_time_model: pocket::CYCLE_TIME_MODEL.to_owned(),
         path_length_mm: r.toolpath.cut_length(),
         rapid_length_mm: r.toolpath.rapid_length(),
@@ -379,7 +380,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
         let m = super::load_machine(&args.common.machine)?;
         let wopts = program_options(kind, &m);
         let mut buf = Vec::new();
-        write_program(&r.toolpath, &wopts, &mut buf)?;
+        write_program(&r.toolpath, &wopts, &mut buf)
+            .map_err(|e| e.engine_made("writing the pocket program"))?;
         millpath::io::write_atomic(out, &buf)?;
     }
     if let Some(path) = &args.report {
@@ -389,7 +391,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(path) = &args.html {
         let m = super::load_machine(&args.common.machine)?;
-        let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)?;
+        let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)
+            .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
         let mut summary = vec![
             super::html::machine_row(&m),
             ("strategy".to_owned(), kind.name().to_owned()),

@@ -120,7 +120,10 @@ impl WriterOptions {
         }
     }
 
-    fn validate(&self) -> Result<(), InputError> {
+    /// Checks the options (work offset, decimals, spindle speed, path tolerance), as
+    /// [`write_program`] does first: callers whose options come from the user check them here,
+    /// so that what `write_program` refuses afterwards is a property of the toolpath.
+    pub fn validate(&self) -> Result<(), InputError> {
         if !(54..=59).contains(&self.work_offset) {
             return Err(InputError::new("work offset", self.work_offset)
                 .at("writer options")
@@ -156,8 +159,9 @@ pub struct WriteSummary {
     pub blocks: usize,
     /// Decimals used.
     pub decimals: u32,
-    /// Arcs written as lines because they were too small to survive rounding (radius below
-    /// [`MIN_ARC_RADIUS_MM`], or a sweep that rounding would turn into a full circle).
+    /// Arcs written as lines because they were too small or too flat to survive rounding
+    /// (radius below [`MIN_ARC_RADIUS_MM`], a sweep that rounding would turn into a full
+    /// circle, or a sagitta at most the output rounding: see the `arcs` part of the writer).
     pub arcs_as_lines: usize,
     /// Multi-turn arcs split into single turns (dialects without a turn count).
     pub split_turns: usize,

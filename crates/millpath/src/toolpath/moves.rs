@@ -202,6 +202,21 @@ impl Move {
         Some((r, if ccw { sweep } else { -sweep }))
     }
 
+    /// For an arc starting at `from`: its sagitta in mm, the largest distance between the arc
+    /// (projected on its plane) and its chord, `r·(1 − cos(θ/2))` for the unsigned sweep
+    /// `θ ≤ 2π` (at most `2r`; `2r` for a multi-turn arc), `r` the start radius. A line
+    /// from `from` to the end stays within the sagitta of the arc in the plane (for a helix,
+    /// the axial travel is shared alike). `None` for other moves.
+    pub fn sagitta_from(&self, from: Point3) -> Option<f64> {
+        let (r, sweep) = self.sweep_from(from)?;
+        let theta = sweep.abs();
+        Some(if theta > TAU {
+            2.0 * r
+        } else {
+            r * (1.0 - (0.5 * theta).cos())
+        })
+    }
+
     /// Path length of this move starting from `from`, in mm (helices included).
     ///
     /// An arc whose end is not exactly on its start circle (G-code rounds coordinates; the
@@ -243,6 +258,23 @@ mod tests {
         assert!((full.length_from(from) - 20.0 * PI).abs() < 1e-9);
         let helix = Move::arc_xy(Point3::new(10.0, 0.0, -3.0), c, true, 1.0);
         assert!((helix.length_from(from) - (20.0 * PI).hypot(3.0)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn sagitta_of_arcs() {
+        let from = Point3::new(10.0, 0.0, 0.0);
+        let c = Point3::ORIGIN;
+        let quarter = Move::arc_xy(Point3::new(0.0, 10.0, 0.0), c, true, 1.0);
+        let s = quarter.sagitta_from(from).unwrap();
+        assert!((s - 10.0 * (1.0 - (PI / 4.0).cos())).abs() < 1e-12);
+        // The chord's midpoint is the sagitta away from the arc's midpoint.
+        let mid = Point3::new(10.0 * (PI / 4.0).cos(), 10.0 * (PI / 4.0).sin(), 0.0);
+        assert!((from.lerp(quarter.to, 0.5).distance(mid) - s).abs() < 1e-12);
+        let full = Move::arc_xy(from, c, true, 1.0);
+        assert!((full.sagitta_from(from).unwrap() - 20.0).abs() < 1e-12);
+        let three_quarter = Move::arc_xy(Point3::new(0.0, 10.0, 0.0), c, false, 1.0);
+        assert!(three_quarter.sagitta_from(from).unwrap() > 10.0);
+        assert!(Move::line(from, 1.0).sagitta_from(Point3::ORIGIN).is_none());
     }
 
     #[test]

@@ -73,12 +73,26 @@ pub fn level_depths(opts: &PocketOptions) -> Vec<f64> {
     (1..=n).map(|i| -total * i as f64 / n as f64).collect()
 }
 
-/// Emits `seg` at height `z`.
+/// Arcs whose sagitta is at most this (mm) are emitted as lines: the G-code writer's output
+/// rounding at its default 3 decimals in mm (`√2·½·10⁻³`, `gcode::rounding_error_mm`), below
+/// which the writer writes an arc as a line anyway. Emitting them as lines here makes the
+/// path that is verified and timed the path that is written; the line departs from the arc
+/// by at most its sagitta (a near-straight biarc along a slot's side, centre 1.4 km away,
+/// was refused by the planner and would have been by any controller's sanity check).
+pub const ARC_AS_LINE_SAGITTA: f64 = 0.5e-3 * std::f64::consts::SQRT_2;
+
+/// Emits `seg` at height `z` (a line for an arc flatter than [`ARC_AS_LINE_SAGITTA`]).
 fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
     let to = Point3::from_xy(seg.b, z);
     match seg.arc {
         None => Move::line(to, feed),
-        Some(arc) => Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed),
+        Some(arc) => {
+            let m = Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed);
+            let flat = m
+                .sagitta_from(Point3::from_xy(seg.a, z))
+                .is_none_or(|s| s <= ARC_AS_LINE_SAGITTA);
+            if flat { Move::line(to, feed) } else { m }
+        }
     }
 }
 
