@@ -86,13 +86,8 @@ fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
     let to = Point3::from_xy(seg.b, z);
     match seg.arc {
         None => Move::line(to, feed),
-        Some(arc) => {
-            let m = Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed);
-            let flat = m
-                .sagitta_from(Point3::from_xy(seg.a, z))
-                .is_none_or(|s| s <= ARC_AS_LINE_SAGITTA);
-            if flat { Move::line(to, feed) } else { m }
-        }
+        Some(arc) => Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed)
+            .line_if_flat(Point3::from_xy(seg.a, z), ARC_AS_LINE_SAGITTA),
     }
 }
 
