@@ -2,8 +2,9 @@
 //! moves split where the feed changes, so the samples fall differently) and at every sample
 //! the programmed feed must be at most the law's feed for the engagement measured there
 //! (within the documented tolerance), and a sample at or below the nominal engagement may
-//! run below full feed only within the documented ramp distance of a sample above it. Moves
-//! are split only where the feed changes, lines into lines and arcs into exact arcs.
+//! run below full feed only within the documented ramp distance of a sample above it (plus
+//! the length of its move on a helix turn, which is not split). Moves are split only where
+//! the feed changes, lines into lines and arcs into exact arcs.
 
 use millpath::stock::{self, EngagementSample, SimOptions, StockSpec};
 use millpath::strategy::pocket::feed::{FeedProfile, factor};
@@ -25,10 +26,14 @@ struct Along {
     s: f64,
     programmed: f64,
     angle: f64,
+    /// The length of the sample's move when it is a helix turn (an arc that changes z;
+    /// never split), else 0.
+    entry: f64,
 }
 
 fn along(tp: &Toolpath, samples: &[EngagementSample], opts: &PocketOptions) -> Vec<Along> {
     let mut start = vec![(0usize, 0.0f64); tp.moves.len()];
+    let mut entry = vec![0.0; tp.moves.len()];
     let (mut chain, mut s, mut open) = (0, 0.0, false);
     for (i, (from, m)) in tp.segments().enumerate() {
         if m.is_feed() {
@@ -39,6 +44,9 @@ fn along(tp: &Toolpath, samples: &[EngagementSample], opts: &PocketOptions) -> V
             }
             start[i] = (chain, s);
             s += m.length_from(from);
+            if matches!(m.kind, MoveKind::Arc { .. }) && (m.to.z - from.z).abs() > 1e-9 {
+                entry[i] = m.length_from(from);
+            }
         } else {
             open = false;
         }
@@ -60,6 +68,7 @@ fn along(tp: &Toolpath, samples: &[EngagementSample], opts: &PocketOptions) -> V
                 s: s0 + smp.at,
                 programmed: m.feed / nominal,
                 angle: smp.angle,
+                entry: entry[smp.move_index],
             }
         })
         .collect()
@@ -126,7 +135,7 @@ fn check(kind: StrategyKind) {
         reduced_nominal += ds;
         let near = pts
             .iter()
-            .filter(|q| q.chain == p.chain && (q.s - p.s).abs() <= ramp)
+            .filter(|q| q.chain == p.chain && (q.s - p.s).abs() <= ramp + p.entry)
             .any(|q| q.angle > nominal);
         if !near {
             far.push((p.chain, p.s, p.programmed));
