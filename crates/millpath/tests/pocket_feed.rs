@@ -199,7 +199,7 @@ fn check(kind: StrategyKind) {
                     (MoveKind::Arc { .. }, MoveKind::Line) => {
                         let sub = millpath::toolpath::Move { to: piece.to, ..*m };
                         let s = sub.sagitta_from(start).unwrap();
-                        assert!(s <= pocket::levels::ARC_AS_LINE_SAGITTA, "{kind:?}: {s}");
+                        assert!(s <= pocket::chain::ARC_AS_LINE_SAGITTA, "{kind:?}: {s}");
                     }
                     (a, b) => panic!("{kind:?}: {a:?} split into {b:?}"),
                 }

@@ -24,7 +24,7 @@
 //! Between cuts of a level and between levels the tool retracts to the clearance height and
 //! moves in rapid; rapids go down only to `z_{i−1} + safe`, above material.
 
-use super::chain::{Seg, path_head, path_length};
+use super::chain::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length};
 use super::options::{Direction, Entry, PocketOptions};
 use super::shape::OffsetRegion;
 use crate::error::InputError;
@@ -72,14 +72,6 @@ pub fn level_depths(opts: &PocketOptions) -> Vec<f64> {
     let n = (total / opts.step_down - 1e-9).ceil().max(1.0) as usize;
     (1..=n).map(|i| -total * i as f64 / n as f64).collect()
 }
-
-/// Arcs whose sagitta is at most this (mm) are emitted as lines: the G-code writer's output
-/// rounding at its default 3 decimals in mm (`√2·½·10⁻³`, `gcode::rounding_error_mm`), below
-/// which the writer writes an arc as a line anyway. Emitting them as lines here makes the
-/// path that is verified and timed the path that is written; the line departs from the arc
-/// by at most its sagitta (a near-straight biarc along a slot's side, centre 1.4 km away,
-/// was refused by the planner and would have been by any controller's sanity check).
-pub const ARC_AS_LINE_SAGITTA: f64 = 0.5e-3 * std::f64::consts::SQRT_2;
 
 /// Emits `seg` at height `z` (a line for an arc flatter than [`ARC_AS_LINE_SAGITTA`]).
 fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
