@@ -32,7 +32,10 @@
 //! * [`offset`]: contour-parallel offsets from the inside out;
 //! * [`spiral`]: the adaptive spiral, a central spiral morphing harmonically into the
 //!   boundary offset.
+//!
+//! [`auto`] plans all three, verifies and times each, and keeps the fastest verified one.
 
+pub mod auto;
 pub mod chain;
 pub mod fallback;
 pub mod feed;
