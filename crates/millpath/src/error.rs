@@ -36,6 +36,20 @@ impl Error {
     pub fn internal(message: impl Into<String>) -> Self {
         Error::Internal(InternalError::new(message))
     }
+
+    /// This error as an internal one when it is an input error: for a value the engine made
+    /// itself (a toolpath a strategy planned, given to the motion planner or the G-code
+    /// writer), whose refusal is a bug, never the user's input to fix. `doing` says what was
+    /// done with it ("timing the pocket toolpath"); the input error's text follows.
+    #[must_use]
+    pub fn engine_made(self, doing: &str) -> Self {
+        match self {
+            Error::Input(e) => Error::internal(format!(
+                "{doing}: a value millpath made itself was refused: {e}"
+            )),
+            e @ Error::Internal(_) => e,
+        }
+    }
 }
 
 /// The user's input is wrong.
@@ -202,6 +216,18 @@ mod tests {
     fn exit_codes_separate_the_families() {
         assert_eq!(Error::from(InputError::new("x", 1)).exit_code(), 2);
         assert_eq!(Error::internal("broken").exit_code(), 1);
+    }
+
+    #[test]
+    fn engine_made_values_refused_are_internal_errors() {
+        let e = Error::from(InputError::new("arc centre", "(0, 1e7)").at("move 3"))
+            .engine_made("timing the pocket toolpath");
+        assert_eq!(e.exit_code(), 1);
+        let text = e.to_string();
+        assert!(text.contains("timing the pocket toolpath") && text.contains("arc centre"));
+        assert!(text.contains("move 3") && text.contains("a bug"), "{text}");
+        let i = Error::internal("broken");
+        assert_eq!(i.clone().engine_made("x"), i);
     }
 
     #[test]

@@ -105,6 +105,58 @@ fn corner_modes_are_written_only_on_change() {
     assert_eq!(s.blocks, 6);
 }
 
+/// A tolerance that rounds to 0 is exact stop in every dialect, never `G64 P0` (which
+/// LinuxCNC reads as blending without a limit), and reads back as a stop.
+#[test]
+fn a_zero_path_tolerance_is_exact_stop_not_g64_p0() {
+    use millpath::gcode::{ReaderOptions, read_str};
+    let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
+    tp.push(Move::line(Point3::new(1.0, 0.0, 0.0), 10.0));
+    tp.push(Move::line(Point3::new(2.0, 0.0, 0.0), 10.0).with_corner(Corner::Blend(1e-9)));
+    tp.push(Move::line(Point3::new(3.0, 0.0, 0.0), 10.0).with_corner(Corner::Blend(0.02)));
+    tp.push(Move::line(Point3::new(4.0, 0.0, 0.0), 10.0));
+    for (d, stop) in [
+        (Dialect::LinuxCnc, "G61.1"),
+        (Dialect::Sinumerik, "G60"),
+        (Dialect::Fanuc, "G61"),
+    ] {
+        for t in [0.0, 1e-9] {
+            let o = WriterOptions {
+                dialect: d,
+                path_tolerance: Some(t),
+                ..WriterOptions::default()
+            };
+            let (text, _) = write_to_string(&tp, &o).unwrap();
+            assert!(!text.contains("G64 P0\n"), "{d}: {text}");
+            assert!(
+                !text.contains("G05.1"),
+                "{d}: no AI contour control at 0: {text}"
+            );
+            let header: Vec<&str> = text.lines().take_while(|l| !l.contains("G0")).collect();
+            assert!(header.contains(&stop), "{d}: {stop} in the header: {text}");
+            let (read, _) = read_str(
+                &text,
+                ReaderOptions {
+                    dialect: d,
+                    ..ReaderOptions::default()
+                },
+            )
+            .unwrap();
+            let corners: Vec<Corner> = read.moves.iter().map(|m| m.corner).collect();
+            // Moves 0, 1 and 3 stop; move 2 blends (LinuxCNC, Sinumerik) or runs in G64.
+            for k in [0, 1, 3] {
+                assert_eq!(corners[k], Corner::ExactStop, "{d} move {k}: {text}");
+            }
+            assert_ne!(corners[2], Corner::ExactStop, "{d}: {text}");
+        }
+    }
+    let bad = WriterOptions {
+        path_tolerance: Some(-0.01),
+        ..WriterOptions::default()
+    };
+    assert!(write_to_string(&tp, &bad).is_err());
+}
+
 #[test]
 fn line_numbers_count_up_and_skip_percent_lines() {
     let o = WriterOptions {

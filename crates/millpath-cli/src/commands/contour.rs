@@ -5,6 +5,7 @@
 
 use millpath::curve::{self, CurveKind};
 use millpath::gcode::{self, Dialect, Units, WriterOptions};
+use millpath::machine::Machine;
 use millpath::strategy::contour::{self, ContourOptions, Side};
 use millpath::{Error, InputError, Tool};
 use std::path::PathBuf;
@@ -134,6 +135,17 @@ fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> E
 }
 
 /// Runs the contour pipeline.
+/// The machine a contour program is timed on: `machine` with the path tolerance the
+/// program states, the machine's or the contour's tolerance `t` where that is tighter (a
+/// controller blending corners by more than `t` would cut outside the contour's budget, and
+/// LinuxCNC's `G64 P` also merges short segments within it).
+pub fn program_machine(machine: &Machine, t: f64) -> Machine {
+    Machine {
+        path_tolerance: t.min(machine.path_tolerance),
+        ..machine.clone()
+    }
+}
+
 pub fn run(args: &Args) -> Result<(), Error> {
     let machine = super::load_machine(&args.machine)?;
     let (curve, mut opt, name) = match (&args.points, args.sample) {
@@ -281,13 +293,15 @@ pub fn run(args: &Args) -> Result<(), Error> {
         ));
     }
     let result = contour::contour(&curve, &opt)?;
+    let machine = program_machine(&machine, opt.tolerance);
+    let path_tolerance = machine.path_tolerance;
     let wopt = WriterOptions {
         dialect: args.dialect,
         units: args.units,
         decimals: Some(decimals),
         line_numbers: args.line_numbers,
         spindle_rpm: args.spindle,
-        path_tolerance: Some(opt.tolerance),
+        path_tolerance: Some(path_tolerance),
         program_name: Some(format!("millpath contour {name}")),
         header_notes: vec![format!(
             "tolerance {} mm = chord {:.3e} + rounding {:.3e}; {} segments per pass",
@@ -298,7 +312,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
         )],
         ..WriterOptions::default()
     };
-    let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)?;
+    // The options carry the user's --decimals and --spindle: refused as input; what the
+    // writer refuses after that is in the toolpath the engine made.
+    wopt.validate()?;
+    let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)
+        .map_err(|e| e.engine_made("writing the contour program"))?;
     let mut report = result.report.clone();
     report.blocks = summary.blocks;
     report.lines = summary.lines;
@@ -315,7 +333,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
         millpath::io::write_atomic(rp, json.as_bytes())?;
     }
     let m = &machine;
-    let plan = millpath::motion::plan_toolpath(&result.toolpath, m)?;
+    let plan = millpath::motion::plan_toolpath(&result.toolpath, m)
+        .map_err(|e| e.engine_made("timing the contour toolpath"))?;
     let flat = curve::flatten::flatten_curve(&curve, opt.tolerance.max(1e-3))?;
     let outline = millpath::geom::Outline::from_points(&flat.points, &name)?;
     let mut pictures = Vec::new();

@@ -167,11 +167,13 @@ pub(crate) fn write_gcode(
     tp: &Toolpath,
     opts: &WriterOptions,
 ) -> Result<usize, Error> {
-    let mut blocks = 0;
-    millpath::io::write_atomic_with(path, |w| {
-        blocks = write_program(tp, opts, w)?.blocks;
-        Ok(())
-    })?;
+    // Written to memory first: what the writer refuses is in a toolpath the engine made (an
+    // internal error), what the file system refuses is not.
+    let mut buf = Vec::new();
+    let blocks = write_program(tp, opts, &mut buf)
+        .map_err(|e| e.engine_made(&format!("writing {}", path.display())))?
+        .blocks;
+    millpath::io::write_atomic(path, &buf)?;
     Ok(blocks)
 }
 
@@ -181,7 +183,7 @@ pub(crate) fn time_and_verify(
     tp: &Toolpath,
     machine: &Machine,
 ) -> Result<(millpath::motion::Plan, String), Error> {
-    let plan = plan_toolpath(tp, machine)?;
+    let plan = plan_toolpath(tp, machine).map_err(|e| e.engine_made("timing a demo toolpath"))?;
     let moves: Vec<_> = tp.segments().map(|(from, m)| (from, *m)).collect();
     let v = verify_plan(&plan, &moves, machine, &VerifyOptions::default())?;
     let check = if v.violations == 0 {
@@ -201,13 +203,16 @@ fn die_cavity(
     let pb = spinner("die cavity: curve, exact offset, flattening at 0.00004 mm");
     let (curve, opt) = contour::sample()?;
     let result = contour::contour(&curve, &opt)?;
+    // Stated in the program and timed with: the machine's path tolerance, or the contour's
+    // where that is tighter (see `contour::program_machine`).
+    let machine = &super::contour::program_machine(machine, opt.tolerance);
     let wopt = WriterOptions {
         dialect: Dialect::LinuxCnc,
         decimals: Some(6),
         program_name: Some("die cavity (Mohamed 2006)".to_owned()),
+        path_tolerance: Some(machine.path_tolerance),
         ..WriterOptions::default()
-    }
-    .with_tolerance(machine.path_tolerance.max(1e-3));
+    };
     let blocks = write_gcode(&out.join("die_cavity.ngc"), &result.toolpath, &wopt)?;
     pb.set_message("die cavity: cycle time and limit check");
     let (full_plan, check) = time_and_verify(&result.toolpath, machine)?;
@@ -254,7 +259,8 @@ fn die_cavity(
         &result.toolpath,
         result.toolpath.levels.len().saturating_sub(1),
     );
-    let plan = plan_toolpath(&finishing, machine)?;
+    let plan = plan_toolpath(&finishing, machine)
+        .map_err(|e| e.engine_made("timing the die cavity's finishing pass"))?;
     let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
     let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
     let mut chart = plots::feed_along_path(&achieved, Some(&programmed));
@@ -543,7 +549,7 @@ fn pockets(
             program_name: Some(format!("sample part, {name} roughing")),
             ..WriterOptions::default()
         }
-        .with_tolerance(machine.path_tolerance);
+        .with_path_tolerance(machine.path_tolerance);
         let blocks = write_gcode(&out.join(format!("part_{name}.ngc")), &tp, &wopt)?;
         pb.set_message(format!("pockets: {name}: cycle time and limit check"));
         let (plan, check) = time_and_verify(&tp, machine)?;
@@ -575,7 +581,8 @@ fn pockets(
             if let Some((bay, shape)) = part.first() {
                 let bay_tp = pocket::toolpath(kind, shape, &tool, &opts)?;
                 let first = level_toolpath(&bay_tp, 0);
-                let plan = plan_toolpath(&first, machine)?;
+                let plan = plan_toolpath(&first, machine)
+                    .map_err(|e| e.engine_made("timing the spiral's first level"))?;
                 let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
                 let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
                 let mut chart = plots::feed_along_path(&achieved, Some(&programmed));

@@ -2,6 +2,7 @@
 
 use millpath::gcode::{WriterOptions, write_program};
 use millpath::io::outline_json::Loops;
+use millpath::machine::Machine;
 use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{
     self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind,
@@ -15,7 +16,7 @@ use std::path::{Path, PathBuf};
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4"
+    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4"
 )]
 pub struct Args {
     /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`.
@@ -40,7 +41,8 @@ pub struct Args {
 /// Options shared by `pocket` and `sweep`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct CommonArgs {
-    /// Strategy: spiral, offset or zigzag.
+    /// Strategy: spiral, offset, zigzag, or auto (plan all three, verify and time each on
+    /// --machine, write the fastest verified one).
     #[arg(long, default_value = "spiral")]
     pub strategy: String,
     /// Tool diameter, mm.
@@ -148,15 +150,25 @@ pub fn parse_feed(text: &str) -> Result<f64, InputError> {
         })
 }
 
-/// The strategy named on the command line.
-pub fn parse_strategy(s: &str) -> Result<StrategyKind, InputError> {
+/// What `--strategy` asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Choice {
+    /// One strategy.
+    One(StrategyKind),
+    /// All three, the fastest verified one written (`pocket::auto`).
+    Auto,
+}
+
+/// `--strategy` of `pocket`: a strategy or `auto`.
+pub fn parse_choice(s: &str) -> Result<Choice, InputError> {
     match s {
-        "spiral" => Ok(StrategyKind::Spiral),
-        "offset" => Ok(StrategyKind::Offset),
-        "zigzag" => Ok(StrategyKind::Zigzag),
+        "spiral" => Ok(Choice::One(StrategyKind::Spiral)),
+        "offset" => Ok(Choice::One(StrategyKind::Offset)),
+        "zigzag" => Ok(Choice::One(StrategyKind::Zigzag)),
+        "auto" => Ok(Choice::Auto),
         _ => Err(InputError::new("strategy", s)
             .at("--strategy")
-            .expected("spiral, offset or zigzag")),
+            .expected("spiral, offset, zigzag or auto")),
     }
 }
 
@@ -347,6 +359,62 @@ pub struct Report {
     pub problems: Vec<String>,
     /// What was changed from the options asked for, and why (a fallback after a gouge).
     pub notes: Vec<String>,
+    /// With `--strategy auto`: every strategy tried, in `pocket::auto::ORDER`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub auto: Option<Vec<AutoEntry>>,
+}
+
+/// One strategy tried by `--strategy auto`.
+#[derive(Debug, Serialize)]
+pub struct AutoEntry {
+    /// Strategy name.
+    pub strategy: String,
+    /// Cycle time on the machine, s (`null` when not planned or not timed).
+    pub cycle_time_s: Option<f64>,
+    /// Cutting path length, mm (`null` when not planned).
+    pub path_length_mm: Option<f64>,
+    /// The verifier found no problem.
+    pub verified: bool,
+    /// Why it was not verified, or why it could not be planned.
+    pub why_not: Option<String>,
+    /// This one was written: the fastest verified.
+    pub chosen: bool,
+}
+
+/// The report's entries of `auto`'s candidates; `chosen` is the index written.
+pub fn auto_entries(candidates: &[pocket::auto::Candidate], chosen: usize) -> Vec<AutoEntry> {
+    candidates
+        .iter()
+        .enumerate()
+        .map(|(i, c)| AutoEntry {
+            strategy: c.kind.name().to_owned(),
+            cycle_time_s: c.cycle_time_s(),
+            path_length_mm: c.path_length_mm(),
+            verified: c.verified(),
+            why_not: c.why_not(),
+            chosen: i == chosen,
+        })
+        .collect()
+}
+
+/// One line per strategy `auto` tried.
+fn auto_line(e: &AutoEntry) -> String {
+    let mut line = format!("auto: {}:", e.strategy);
+    if let Some(t) = e.cycle_time_s {
+        line.push_str(&format!(" cycle time {t:.2} s,"));
+    }
+    if let Some(l) = e.path_length_mm {
+        line.push_str(&format!(" path {l:.1} mm,"));
+    }
+    match (&e.why_not, e.path_length_mm) {
+        (None, _) => line.push_str(" verified"),
+        (Some(w), Some(_)) => line.push_str(&format!(" not verified: {w}")),
+        (Some(w), None) => line.push_str(&format!(" not planned: {w}")),
+    }
+    if e.chosen {
+        line.push_str(" (fastest verified: written)");
+    }
+    line
 }
 
 /// Builds the report of a generated pocket.
@@ -354,7 +422,8 @@ pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Rep
     let m = super::load_machine(machine)?;
     Ok(Report {
         strategy: kind.name().to_owned(),
-        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)?,
+        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)
+            .map_err(|e| e.engine_made("timing the pocket toolpath"))?,
         cycle_time_model: pocket::CYCLE_TIME_MODEL.to_owned(),
         path_length_mm: r.toolpath.cut_length(),
         rapid_length_mm: r.toolpath.rapid_length(),
@@ -369,26 +438,58 @@ pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Rep
         verification: r.verification.clone(),
         problems: r.verification.problems(),
         notes: r.notes.clone(),
+        auto: None,
     })
+}
+
+/// How the pocket program is written: LinuxCNC, mm, stating the machine's path tolerance
+/// (`G64 P t`), the tolerance its cycle time was planned with and the one `millpath estimate`
+/// reads back.
+pub fn program_options(kind: StrategyKind, machine: &Machine) -> WriterOptions {
+    WriterOptions {
+        program_name: Some(format!("millpath pocket {}", kind.name())),
+        ..WriterOptions::default()
+    }
+    .with_path_tolerance(machine.path_tolerance)
 }
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let kind = parse_strategy(&args.common.strategy)?;
+    let choice = parse_choice(&args.common.strategy)?;
     let (tool, opts) = args.common.options()?;
     let loops = load_outline(&args.outline)?;
     let shape =
         args.common
             .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;
-    let r = pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?;
-    let rep = report(kind, &r, &args.common.machine)?;
+    let (kind, r, auto) = match choice {
+        Choice::One(kind) => (
+            kind,
+            pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?,
+            None,
+        ),
+        Choice::Auto => {
+            let m = super::load_machine(&args.common.machine)?;
+            let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
+            let cands = pocket::auto::plan_all(&shape, &tool, &opts, &args.common.sim(), &time);
+            let Some(i) = pocket::auto::choose(&cands) else {
+                return Err(pocket::auto::none_verified(&cands));
+            };
+            let Some(r) = cands.get(i).and_then(|c| c.result()).cloned() else {
+                return Err(Error::internal(
+                    "--strategy auto: the chosen path is missing",
+                ));
+            };
+            (cands[i].kind, r, Some(auto_entries(&cands, i)))
+        }
+    };
+    let mut rep = report(kind, &r, &args.common.machine)?;
+    rep.auto = auto;
     if let Some(out) = &args.output {
-        let wopts = WriterOptions {
-            program_name: Some(format!("millpath pocket {}", kind.name())),
-            ..WriterOptions::default()
-        };
+        let m = super::load_machine(&args.common.machine)?;
+        let wopts = program_options(kind, &m);
         let mut buf = Vec::new();
-        write_program(&r.toolpath, &wopts, &mut buf)?;
+        write_program(&r.toolpath, &wopts, &mut buf)
+            .map_err(|e| e.engine_made("writing the pocket program"))?;
         millpath::io::write_atomic(out, &buf)?;
     }
     if let Some(path) = &args.report {
@@ -398,7 +499,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(path) = &args.html {
         let m = super::load_machine(&args.common.machine)?;
-        let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)?;
+        let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)
+            .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
         let mut summary = vec![
             super::html::machine_row(&m),
             ("strategy".to_owned(), kind.name().to_owned()),
@@ -440,6 +542,12 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .iter()
                 .map(|p| ("problem".to_owned(), p.clone())),
         );
+        summary.extend(
+            rep.auto
+                .iter()
+                .flatten()
+                .map(|e| ("--strategy auto".to_owned(), auto_line(e))),
+        );
         let mut outlines = vec![shape.outer.clone()];
         outlines.extend(shape.islands.iter().cloned());
         let html = super::html::toolpath_report(
@@ -453,6 +561,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     for n in &rep.notes {
         super::eprint(&format!("note: {n}"));
+    }
+    if let (Some(entries), false) = (&rep.auto, args.json) {
+        for e in entries {
+            super::print(&auto_line(e));
+        }
     }
     if args.json {
         super::print_json(&rep)?;

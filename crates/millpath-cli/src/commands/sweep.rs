@@ -128,7 +128,8 @@ pub fn sweep(
             ..base.clone()
         };
         let tp = pocket::toolpath(kind, shape, tool, &o)?;
-        let t = pocket::cycle_time_on(&tp, machine)?;
+        let t = pocket::cycle_time_on(&tp, machine)
+            .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
         done += 1;
         progress(done, total);
         Ok(t)

@@ -41,10 +41,24 @@
 //! | tool | `T1 M6`, `G43` on the first move | `T1 M6`, `G43 H1` on the first move | `T1 M6` (D1 is active by default) | a comment: no M6 |
 //! | dwell | `G4 P`s | `G04 X`s (X with a decimal point is seconds; P would be ms) | `G4 F`s (own block; F does not change the feed) | `G4 P`s |
 //! | path tolerance | `G64 P`tol | `G05.1 Q1` (AI contour control; its tolerance is a machine parameter, written as a comment), `G05.1 Q0` at the end | `CYCLE832(tol,_FINISH,1)` | none (a comment) |
+//! | path tolerance 0 | `G61.1` (never `G64 P0`: LinuxCNC reads it as no limit) | `G61` | `G60` | none (a comment) |
 //! | exact stop / exact path | `G61.1` / `G61` | `G61` / `G61` (no exact-path mode) | `G60` / `G64` (continuous path without rounding) | – (grbl has only its planner) |
 //! | blend / machine | `G64 P`t / `G64 P`path or `G64` | `G64` / `G64` | `CYCLE832(t,_FINISH,1)` / CYCLE832 with the path tolerance, or `G642` | – |
 //! | multi-turn arcs | `P`turns+1 | split into full turns | `TURN=`n | split into full turns |
 //! | end | `M2` | `M30` | `M30` | `M2` |
+//!
+//! **The program's path tolerance** ([`WriterOptions::path_tolerance`],
+//! [`WriterOptions::with_path_tolerance`]) is stated once in the header, after the work
+//! offset. Programs that millpath times state the tolerance they were timed with: `pocket`
+//! and the demo's pocket programs the machine's (`--machine`, hsm's 0.01 mm by default),
+//! `contour` the machine's or the contour's tolerance where that is tighter. Read back, a
+//! LinuxCNC or Sinumerik program's moves carry it as `Blend(t)` (exact stop at 0), so
+//! `millpath estimate` plans it with that tolerance whatever machine it is given; Fanuc's
+//! `G64` and Grbl's silence read back as the estimating machine's own tolerance. Without it
+//! LinuxCNC runs in its default `G64` and blends each corner by up to a quarter of the
+//! shorter segment (`tc.c`, `tcFindBlendTolerance`); under `G64 P t` its naive-CAM merging
+//! (`Q`, which defaults to `P`: `interp_convert.cc`, `convert_control_mode`) also joins
+//! short collinear-within-t line segments of one feed.
 //!
 //! Corner modes are modal: the writer writes one on its own line only when a move's
 //! [`Corner`](crate::toolpath::Corner) differs from the last one written. What a corner mode

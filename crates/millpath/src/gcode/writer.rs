@@ -46,9 +46,13 @@ pub struct WriterOptions {
     pub spindle_cw: bool,
     /// Coolant.
     pub coolant: Coolant,
-    /// Path tolerance in mm for the controller's blending: `G64 P` (LinuxCNC),
-    /// `CYCLE832(tol,_FINISH,1)` (Sinumerik), `G05.1 Q1` (Fanuc AI contour control; its
-    /// tolerance is a machine parameter, so the value goes into a comment), nothing (Grbl).
+    /// Path tolerance in mm for the controller's blending, stated in the header: `G64 P`
+    /// (LinuxCNC), `CYCLE832(tol,_FINISH,1)` (Sinumerik), `G05.1 Q1` (Fanuc AI contour
+    /// control; its tolerance is a machine parameter, so the value goes into a comment),
+    /// nothing (Grbl: a comment). A tolerance that rounds to 0 at the written decimals
+    /// (`Some(0.0)` included) is exact stop at every corner (`G61.1`, `G60`, `G61`): LinuxCNC
+    /// reads `G64 P0` as *no* limit. `None` states nothing (the controller's default).
+    /// See [`WriterOptions::with_path_tolerance`].
     pub path_tolerance: Option<f64>,
     /// Program name: a header comment (and the Fanuc `O` line's comment).
     pub program_name: Option<String>,
@@ -101,7 +105,25 @@ impl WriterOptions {
         self
     }
 
-    fn validate(&self) -> Result<(), InputError> {
+    /// These options stating `tolerance_mm` as the program's path tolerance
+    /// ([`WriterOptions::path_tolerance`]), with enough decimals to hold it
+    /// ([`WriterOptions::with_tolerance`]; none are added for 0, exact stop). Programs that
+    /// are timed on a machine state that machine's path tolerance, so that the estimate of
+    /// the program read back uses the tolerance the program was timed with.
+    #[must_use]
+    pub fn with_path_tolerance(mut self, tolerance_mm: f64) -> Self {
+        self.path_tolerance = Some(tolerance_mm);
+        if tolerance_mm > 0.0 {
+            self.with_tolerance(tolerance_mm)
+        } else {
+            self
+        }
+    }
+
+    /// Checks the options (work offset, decimals, spindle speed, path tolerance), as
+    /// [`write_program`] does first: callers whose options come from the user check them here,
+    /// so that what `write_program` refuses afterwards is a property of the toolpath.
+    pub fn validate(&self) -> Result<(), InputError> {
         if !(54..=59).contains(&self.work_offset) {
             return Err(InputError::new("work offset", self.work_offset)
                 .at("writer options")
@@ -118,11 +140,11 @@ impl WriterOptions {
                 .expected("a finite number >= 0 rev/min"));
         }
         if let Some(t) = self.path_tolerance
-            && !(t.is_finite() && t > 0.0)
+            && !(t.is_finite() && t >= 0.0)
         {
             return Err(InputError::new("path tolerance", t)
                 .at("writer options")
-                .expected("a finite number > 0 mm"));
+                .expected("a finite number >= 0 mm (0: exact stop)"));
         }
         Ok(())
     }
@@ -137,8 +159,9 @@ pub struct WriteSummary {
     pub blocks: usize,
     /// Decimals used.
     pub decimals: u32,
-    /// Arcs written as lines because they were too small to survive rounding (radius below
-    /// [`MIN_ARC_RADIUS_MM`], or a sweep that rounding would turn into a full circle).
+    /// Arcs written as lines because they were too small or too flat to survive rounding
+    /// (radius below [`MIN_ARC_RADIUS_MM`], a sweep that rounding would turn into a full
+    /// circle, or a sagitta at most the output rounding: see the `arcs` part of the writer).
     pub arcs_as_lines: usize,
     /// Multi-turn arcs split into single turns (dialects without a turn count).
     pub split_turns: usize,
@@ -389,8 +412,10 @@ impl<'a> Emitter<'a> {
         self.block(&format!("G{}", o.work_offset))?;
         if let Some(t) = o.path_tolerance {
             match d {
-                Dialect::LinuxCnc => self.corner_block(Corner::Blend(t))?,
-                Dialect::Sinumerik => self.corner_block(Corner::Blend(t))?,
+                Dialect::LinuxCnc | Dialect::Sinumerik => self.corner_block(Corner::Blend(t))?,
+                Dialect::Fanuc if self.rounds_to_zero(t) => {
+                    self.corner_block(Corner::ExactStop)?;
+                }
                 Dialect::Fanuc => {
                     self.comment(&format!(
                         "path tolerance {t} mm: AI contour control parameters"
@@ -436,7 +461,12 @@ impl<'a> Emitter<'a> {
         if self.opts.spindle_rpm > 0.0 {
             self.block("M5")?;
         }
-        if d == Dialect::Fanuc && self.opts.path_tolerance.is_some() {
+        if d == Dialect::Fanuc
+            && self
+                .opts
+                .path_tolerance
+                .is_some_and(|t| !self.rounds_to_zero(t))
+        {
             self.block("G05.1 Q0")?;
         }
         match d {
@@ -454,18 +484,34 @@ impl<'a> Emitter<'a> {
         Ok(self.summary)
     }
 
+    /// Decimals of a written tolerance: at least 6.
+    fn tolerance_decimals(&self) -> u32 {
+        self.decimals.max(6)
+    }
+
+    /// A tolerance in mm as written: in program units, rounded *down* to
+    /// [`Emitter::tolerance_decimals`], so the controller never gets a looser one.
+    fn tolerance_in_units(&self, t: f64) -> f64 {
+        let scale = 10f64.powi(self.tolerance_decimals() as i32);
+        (t / self.unit * scale + 1e-6).floor() / scale
+    }
+
+    /// True when tolerance `t` (mm) is written as 0: exact stop, never `G64 P0` (LinuxCNC
+    /// blends without any limit under `G64 P0`, `tc.c` `tcFindBlendTolerance`).
+    fn rounds_to_zero(&self, t: f64) -> bool {
+        self.tolerance_in_units(t) <= 0.0
+    }
+
     /// The block that selects `corner`, if the dialect has one.
     fn corner_block(&mut self, corner: Corner) -> Result<(), Error> {
         let d = self.dialect();
         // Tolerances are in mm inside and in program units in the text.
-        // Rounded down to at least 6 decimals, so the controller never gets a looser one.
-        let dec = self.decimals.max(6);
-        let unit = self.unit;
-        let down =
-            |t: f64| (t / unit * 10f64.powi(dec as i32) + 1e-6).floor() / 10f64.powi(dec as i32);
-        let pt = self.opts.path_tolerance.map(down);
+        let dec = self.tolerance_decimals();
+        let pt = self.opts.path_tolerance.map(|t| self.tolerance_in_units(t));
         let corner_in_units = match corner {
-            Corner::Blend(t) => Corner::Blend(down(t)),
+            Corner::Blend(t) if self.rounds_to_zero(t) => Corner::ExactStop,
+            Corner::Blend(t) => Corner::Blend(self.tolerance_in_units(t)),
+            Corner::Machine if pt.is_some_and(|t| t <= 0.0) => Corner::ExactStop,
             c => c,
         };
         let text = match (d, corner_in_units) {

@@ -11,7 +11,9 @@
 //!   unit of travel, `a_e = ΔA / Δs`, averaged over 0.5 mm of travel. For a straight cut
 //!   removing a band of width `a_e` this is exact; the **engagement angle** follows from the
 //!   chord geometry of a one-sided cut, `φ = arccos(1 − a_e/r)` (0 at `a_e = 0`, 90° at
-//!   `a_e = r`, 180° at slotting, `a_e = 2r`). It also finds rapid moves through material,
+//!   `a_e = r`, 180° at slotting, `a_e = 2r`). With [`SimOptions::record_samples`] it keeps
+//!   the engagement at every tool position ([`EngagementSample`]), which the pockets' feed
+//!   profile is made from. It also finds rapid moves through material,
 //!   plunges (feed moves steeper than 45° ending in material), and the material left.
 //! * Coverage: a material cell left after a slab is *uncut* when the tool could have reached
 //!   it: its centre lies within `r − 2c` of the region the tool centre may visit (the pocket
@@ -28,7 +30,9 @@ pub mod raster;
 pub mod simulate;
 
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
-pub use simulate::{MoveEngagement, SimOptions, Simulation, simulate, simulate_levels};
+pub use simulate::{
+    EngagementSample, MoveEngagement, SimOptions, Simulation, simulate, simulate_levels,
+};
 
 use crate::geom::Outline;
 use crate::toolpath::Toolpath;

@@ -19,6 +19,9 @@ pub struct SimOptions {
     pub window: f64,
     /// Most cells in one raster.
     pub max_cells: usize,
+    /// Keep the engagement at every tool position of every feed move
+    /// ([`Simulation::samples`]); off by default (a long program has millions).
+    pub record_samples: bool,
 }
 
 impl Default for SimOptions {
@@ -28,6 +31,7 @@ impl Default for SimOptions {
             step: 0.1,
             window: 0.5,
             max_cells: 40_000_000,
+            record_samples: false,
         }
     }
 }
@@ -41,11 +45,31 @@ pub struct MoveEngagement {
     pub max_angle: f64,
 }
 
+/// The engagement at one tool position of a feed move (see [`SimOptions::record_samples`]).
+///
+/// A move of length `L` from `from` is sampled at `n = ⌈L / step⌉` positions `L·k/n`,
+/// `k = 1..n` (the end included, not the start); the sample at `L·k/n` stands for the travel
+/// from the previous one. Its engagement is the simulation's, averaged over the last
+/// [`SimOptions::window`] of travel in the slab.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EngagementSample {
+    /// Index of the move in the toolpath.
+    pub move_index: usize,
+    /// Path length from the move's start to this position, mm.
+    pub at: f64,
+    /// Engagement angle, rad: 0 where the tool cuts nothing (above the slab, in cleared
+    /// material), π when slotting.
+    pub angle: f64,
+}
+
 /// What the simulation found.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Simulation {
     /// Per move (same indices as the toolpath's moves): engagement, `None` when it cut nothing.
     pub per_move: Vec<Option<MoveEngagement>>,
+    /// With [`SimOptions::record_samples`]: every tool position of every feed move inside a
+    /// level, in path order; empty otherwise.
+    pub samples: Vec<EngagementSample>,
     /// Largest engagement, degrees.
     pub max_engagement_deg: f64,
     /// Mean engagement over the cutting samples, degrees.
@@ -233,10 +257,22 @@ pub fn simulate_levels(
                 }
                 let mut eng: Option<MoveEngagement> = None;
                 let mut prev = start;
-                for p in samples(start, m, opts.step) {
+                let at = samples(start, m, opts.step);
+                let (len, n) = (m.length_from(start), at.len() as f64);
+                for (j, p) in at.into_iter().enumerate() {
                     let ds = prev.distance(p);
                     prev = p;
+                    let mut record = |angle: f64| {
+                        if opts.record_samples {
+                            out.samples.push(EngagementSample {
+                                move_index: k,
+                                at: len * (j + 1) as f64 / n,
+                                angle,
+                            });
+                        }
+                    };
                     if p.z >= top - 1e-9 {
+                        record(0.0);
                         continue;
                     }
                     let removed = ras.clear_disc(p.xy(), r);
@@ -255,9 +291,11 @@ pub fn simulate_levels(
                         0.0
                     };
                     if removed == 0 && ae <= 0.0 {
+                        record(0.0);
                         continue;
                     }
                     let phi = engagement_angle(ae, r);
+                    record(phi);
                     sum_angle += phi * ds;
                     cut_len += ds;
                     if phi > nominal {

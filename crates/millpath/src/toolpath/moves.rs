@@ -202,6 +202,97 @@ impl Move {
         Some((r, if ccw { sweep } else { -sweep }))
     }
 
+    /// For an arc starting at `from`: its sagitta in mm, the largest distance between the arc
+    /// (projected on its plane) and its chord, `r·(1 − cos(θ/2))` for the unsigned sweep
+    /// `θ ≤ 2π` (at most `2r`; `2r` for a multi-turn arc), `r` the start radius. A line
+    /// from `from` to the end stays within the sagitta of the arc in the plane (for a helix,
+    /// the axial travel is shared alike). `None` for other moves.
+    pub fn sagitta_from(&self, from: Point3) -> Option<f64> {
+        let (r, sweep) = self.sweep_from(from)?;
+        let theta = sweep.abs();
+        Some(if theta > TAU {
+            2.0 * r
+        } else {
+            r * (1.0 - (0.5 * theta).cos())
+        })
+    }
+
+    /// This move, or a line to the same end (same feed, corner and tag) when it is an arc
+    /// whose sagitta from `from` ([`Move::sagitta_from`]) is at most `max_sagitta` mm: the
+    /// line stays within `max_sagitta` of the arc.
+    #[must_use]
+    pub fn line_if_flat(self, from: Point3, max_sagitta: f64) -> Move {
+        match self.sagitta_from(from) {
+            Some(s) if s <= max_sagitta => Move {
+                kind: MoveKind::Line,
+                ..self
+            },
+            _ => self,
+        }
+    }
+
+    /// The point at path length `t` (clamped to `[0, length]`) along this move from `from`:
+    /// on a line by linear interpolation; on an arc (helix, multi-turn arc) at the fraction
+    /// `f = t/length` of its sweep, with the radius and the axial coordinate interpolated
+    /// linearly in `f` (the parametrisation of [`Move::length_from`]). A dwell stays at `to`.
+    pub fn point_at(&self, from: Point3, t: f64) -> Point3 {
+        let len = self.length_from(from);
+        let f = if len > 0.0 {
+            (t / len).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        match (self.kind, self.sweep_from(from)) {
+            (MoveKind::Arc { center, plane, .. }, Some((r0, sweep))) => {
+                let (su, sv, sw) = plane.split(from - center);
+                let (eu, ev, ew) = plane.split(self.to - center);
+                let r = r0 + (eu.hypot(ev) - r0) * f;
+                let a = sv.atan2(su) + sweep * f;
+                center + plane.join(r * a.cos(), r * a.sin(), sw + (ew - sw) * f)
+            }
+            (MoveKind::Dwell { .. }, _) => self.to,
+            _ => from.lerp(self.to, f),
+        }
+    }
+
+    /// The piece of this move (from `from`) between path lengths `t0 < t1`: a line for a
+    /// line (or rapid), an arc about the same centre for an arc (its full turns counted in
+    /// `turns`), same feed, corner and tag; it starts at [`Move::point_at`]`(from, t0)`.
+    /// Exact arcs stay exact arcs.
+    pub fn piece(&self, from: Point3, t0: f64, t1: f64) -> Move {
+        let to = self.point_at(from, t1);
+        let kind = match (self.kind, self.sweep_from(from)) {
+            (
+                MoveKind::Arc {
+                    center, plane, ccw, ..
+                },
+                Some((_, sweep)),
+            ) => {
+                let len = self.length_from(from);
+                let part = if len > 0.0 {
+                    sweep.abs() * ((t1 - t0) / len).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                // `sweep_from` reads an end on the start as one full turn.
+                let full = (part / TAU).floor();
+                let turns = if part - full * TAU <= 1e-12 {
+                    full - 1.0
+                } else {
+                    full
+                };
+                MoveKind::Arc {
+                    center,
+                    plane,
+                    ccw,
+                    turns: turns.max(0.0) as u32,
+                }
+            }
+            (k, _) => k,
+        };
+        Move { kind, to, ..*self }
+    }
+
     /// Path length of this move starting from `from`, in mm (helices included).
     ///
     /// An arc whose end is not exactly on its start circle (G-code rounds coordinates; the
@@ -243,6 +334,76 @@ mod tests {
         assert!((full.length_from(from) - 20.0 * PI).abs() < 1e-9);
         let helix = Move::arc_xy(Point3::new(10.0, 0.0, -3.0), c, true, 1.0);
         assert!((helix.length_from(from) - (20.0 * PI).hypot(3.0)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn sagitta_of_arcs() {
+        let from = Point3::new(10.0, 0.0, 0.0);
+        let c = Point3::ORIGIN;
+        let quarter = Move::arc_xy(Point3::new(0.0, 10.0, 0.0), c, true, 1.0);
+        let s = quarter.sagitta_from(from).unwrap();
+        assert!((s - 10.0 * (1.0 - (PI / 4.0).cos())).abs() < 1e-12);
+        // The chord's midpoint is the sagitta away from the arc's midpoint.
+        let mid = Point3::new(10.0 * (PI / 4.0).cos(), 10.0 * (PI / 4.0).sin(), 0.0);
+        assert!((from.lerp(quarter.to, 0.5).distance(mid) - s).abs() < 1e-12);
+        let full = Move::arc_xy(from, c, true, 1.0);
+        assert!((full.sagitta_from(from).unwrap() - 20.0).abs() < 1e-12);
+        let three_quarter = Move::arc_xy(Point3::new(0.0, 10.0, 0.0), c, false, 1.0);
+        assert!(three_quarter.sagitta_from(from).unwrap() > 10.0);
+        assert!(Move::line(from, 1.0).sagitta_from(Point3::ORIGIN).is_none());
+    }
+
+    #[test]
+    fn pieces_of_lines_arcs_and_helices_join_up_and_keep_the_length() {
+        let from = Point3::new(10.0, 0.0, 0.0);
+        let c = Point3::ORIGIN;
+        let moves = [
+            Move::line(Point3::new(4.0, 7.0, -2.0), 3.0),
+            Move::arc_xy(Point3::new(0.0, 10.0, 0.0), c, true, 3.0),
+            Move::arc_xy(Point3::new(0.0, 10.0, -6.0), c, false, 3.0),
+            Move {
+                kind: MoveKind::Arc {
+                    center: c,
+                    plane: Plane::Xy,
+                    ccw: true,
+                    turns: 2,
+                },
+                ..Move::arc_xy(Point3::new(0.0, -10.0, -9.0), c, true, 3.0)
+            },
+            Move {
+                kind: MoveKind::Arc {
+                    center: Point3::new(10.0, 0.0, 5.0),
+                    plane: Plane::Zx,
+                    ccw: true,
+                    turns: 0,
+                },
+                ..Move::line(Point3::new(10.0, 3.0, 10.0), 3.0)
+            },
+        ];
+        for m in moves {
+            let len = m.length_from(from);
+            let cuts = [0.0, 0.13 * len, 0.5 * len, 0.51 * len, len];
+            let mut at = from;
+            let mut total = 0.0;
+            for w in cuts.windows(2) {
+                let p = m.piece(from, w[0], w[1]);
+                assert!(at.distance(m.point_at(from, w[0])) < 1e-9, "{m:?}");
+                let l = p.length_from(at);
+                assert!((l - (w[1] - w[0])).abs() < 1e-9, "{m:?}: {l} {w:?}");
+                // Every point of the piece is the move's point at the same length.
+                for f in [0.25, 0.5, 0.75] {
+                    let q = p.point_at(at, f * l);
+                    let want = m.point_at(from, w[0] + f * l);
+                    assert!(q.distance(want) < 1e-9, "{m:?} {w:?} {f}");
+                }
+                total += l;
+                at = p.to;
+            }
+            assert!(
+                at.distance(m.to) < 1e-9 && (total - len).abs() < 1e-9,
+                "{m:?}"
+            );
+        }
     }
 
     #[test]

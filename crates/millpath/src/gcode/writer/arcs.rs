@@ -6,6 +6,11 @@
 //! sweep rule of [`crate::toolpath::Move::sweep_from`]): an arc whose radius is below
 //! [`MIN_ARC_RADIUS_MM`], or whose short sweep rounding would turn into a full circle, is
 //! written as a line (its chord is within the arc's sagitta, smaller than one rounding unit);
+//! so is a **near-straight arc**, whose sagitta ([`crate::toolpath::Move::sagitta_from`]) is
+//! at most the output rounding `ρ = √2·½·10^−d` ([`crate::gcode::rounding_error_mm`], 0.0007
+//! mm at 3 decimals in mm): the line then departs from the arc by no more than rounding
+//! moves any written point, and a biarc fitted along a straight stretch (a centre 1.4 km
+//! away, beyond what planners accept) never reaches the program;
 //! a near-full circle whose end rounding moves past its start is written as a full circle and
 //! a line to the end. An arc as the first motion of a program (the machine position unknown)
 //! is preceded by a rapid to the toolpath's start. Dialects without a turn count get the full turns as separate circles,
@@ -14,6 +19,7 @@
 use super::{Dialect, Emitter, MIN_ARC_RADIUS_MM, Motion, round};
 use crate::error::{Error, InputError};
 use crate::gcode::arc;
+use crate::gcode::format::rounding_error_mm;
 use crate::gcode::interp::plane_axes;
 use crate::geom::Point3;
 use crate::toolpath::{Move, MoveKind, Plane};
@@ -61,8 +67,12 @@ impl Emitter<'_> {
         let r2 = (eu - cr.0).hypot(ev - cr.1) * self.unit;
         let single = sweep.abs() - TAU * f64::from(turns);
         let read_sweep = arc::unsigned_sweep((su, sv), (eu, ev), cr, ccw);
-        if r_mm < MIN_ARC_RADIUS_MM || (single < PI && read_sweep - single > PI) {
-            // Too small to survive rounding: the chord is within the arc's sagitta.
+        let straight = m
+            .sagitta_from(from)
+            .is_some_and(|s| s <= rounding_error_mm(self.decimals, self.opts.units));
+        if straight || r_mm < MIN_ARC_RADIUS_MM || (single < PI && read_sweep - single > PI) {
+            // Too flat or too small to survive rounding: the chord is within the arc's
+            // sagitta.
             self.summary.arcs_as_lines += 1;
             return self.linear(Motion::G1, m, m.feed);
         }

@@ -16,6 +16,12 @@
 //! before rounding and within `[d, d + T]` after it. `T ≤ 2ρ` is refused (the caller raises
 //! the decimals first). For `--side on` (d = 0) the budget is two-sided: `t = T − ρ`.
 //!
+//! With `--arcs` the biarcs are fitted within `t − ρ` (at least `t/2`,
+//! [`ContourOptions::arc_tolerance`]): the G-code writer writes an arc whose sagitta is at
+//! most `ρ` as its chord, which lies within the sagitta of the arc, so a written chord too
+//! stays within `t` of the offset curve. (Below `t/2`, i.e. `T < 6ρ` with the decimals
+//! given by hand, such a chord may come up to `ρ − t/2` nearer the outline.)
+//!
 //! # The paper's example
 //! [`sample`] reproduces Mohamed's die cavity: the Table 1 outline on a 400 × 450 × 50 mm
 //! block, 10 mm end mill, 2.5 mm step-down, T = 0.00004 mm. The paper reports "1900 steps
@@ -185,6 +191,13 @@ impl ContourOptions {
                 )));
         }
         Ok(())
+    }
+
+    /// The biarc tolerance of `--arcs` for an offset of `d` mm: `t − ρ`, at least `t/2`
+    /// (see the module docs: a written arc flatter than `ρ` becomes its chord).
+    pub fn arc_tolerance(&self, d: f64) -> f64 {
+        let t = self.chord_tolerance(d);
+        t - self.rounding.min(0.5 * t)
     }
 
     /// The chord tolerance `t` of the budget (module docs) for an offset of `d` mm.

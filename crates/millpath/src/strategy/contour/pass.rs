@@ -101,7 +101,7 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
             pass.arcs = pass
                 .loops
                 .iter()
-                .map(|l| loop_arcs(curve, curve, l, t))
+                .map(|l| loop_arcs(curve, curve, l, opt.arc_tolerance(d)))
                 .collect();
         }
         pass.max_deviation = measure(curve, &pass);
@@ -185,7 +185,7 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
         pass.arcs = pass
             .loops
             .iter()
-            .map(|l| loop_arcs(curve, &oc, l, t))
+            .map(|l| loop_arcs(curve, &oc, l, opt.arc_tolerance(d)))
             .collect();
     }
     pass.max_deviation = measure(curve, &pass);

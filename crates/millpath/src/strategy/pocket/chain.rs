@@ -32,6 +32,15 @@ pub struct Arc {
     pub sweep: f64,
 }
 
+/// Arcs whose sagitta is at most this (mm) become lines in a pocket's toolpath (when
+/// `levels` makes the moves of a plan, and when `feed` splits an arc): the G-code writer's
+/// output rounding at its default 3 decimals in mm (`√2·½·10⁻³`, `gcode::rounding_error_mm`),
+/// below which the writer writes an arc as a line anyway, so the path that is verified and
+/// timed is the path that is written. The line departs from the arc by at most its sagitta
+/// (a near-straight biarc along a slot's side, its centre 1.4 km away, was refused by the
+/// planner).
+pub const ARC_AS_LINE_SAGITTA: f64 = 0.5e-3 * std::f64::consts::SQRT_2;
+
 /// Bulges below this magnitude are straight lines (sagitta below 1e-12 of the chord).
 const BULGE_EPS: f64 = 1e-12;
 

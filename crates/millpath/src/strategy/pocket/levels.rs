@@ -24,7 +24,7 @@
 //! Between cuts of a level and between levels the tool retracts to the clearance height and
 //! moves in rapid; rapids go down only to `z_{i−1} + safe`, above material.
 
-use super::chain::{Seg, path_head, path_length};
+use super::chain::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length};
 use super::options::{Direction, Entry, PocketOptions};
 use super::shape::OffsetRegion;
 use crate::error::InputError;
@@ -73,12 +73,13 @@ pub fn level_depths(opts: &PocketOptions) -> Vec<f64> {
     (1..=n).map(|i| -total * i as f64 / n as f64).collect()
 }
 
-/// Emits `seg` at height `z`.
+/// Emits `seg` at height `z` (a line for an arc flatter than [`ARC_AS_LINE_SAGITTA`]).
 fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
     let to = Point3::from_xy(seg.b, z);
     match seg.arc {
         None => Move::line(to, feed),
-        Some(arc) => Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed),
+        Some(arc) => Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed)
+            .line_if_flat(Point3::from_xy(seg.a, z), ARC_AS_LINE_SAGITTA),
     }
 }
 

@@ -4,7 +4,9 @@
 //! [`Toolpath`]: the strategy plans one level in the plane ([`levels::LevelPlan`]: cuts of
 //! lines and exact arcs, each with its entry), [`levels::assemble`] repeats it at every
 //! step-down with entries and heights, the stock simulation ([`crate::stock`]) measures the
-//! engagement of every move and [`feed`] slows the feed where it exceeds the nominal one;
+//! engagement along the path and [`feed`] lays a feed profile along it, slowing down where
+//! the engagement exceeds the nominal one (rate-limited in arc length, the same for every
+//! strategy);
 //! the same simulation and the exact gouge check give the [`Verification`].
 //!
 //! **Levels and sections.** [`plan_levels`] asks [`walls::level_shapes`] for the section of
@@ -30,7 +32,10 @@
 //! * [`offset`]: contour-parallel offsets from the inside out;
 //! * [`spiral`]: the adaptive spiral, a central spiral morphing harmonically into the
 //!   boundary offset.
+//!
+//! [`auto`] plans all three, verifies and times each, and keeps the fastest verified one.
 
+pub mod auto;
 pub mod chain;
 pub mod fallback;
 pub mod feed;
@@ -246,9 +251,13 @@ fn generate_unchecked(
             },
         })
         .collect();
-    let simulation = stock::simulate_levels(&tp, &specs, nominal.to_degrees(), sim);
+    let sim = SimOptions {
+        record_samples: opts.modulate_feed,
+        ..*sim
+    };
+    let simulation = stock::simulate_levels(&tp, &specs, nominal.to_degrees(), &sim);
     if opts.modulate_feed {
-        feed::modulate(&mut tp, &simulation.per_move, nominal, opts.slowdown);
+        tp = feed::modulate(&tp, &simulation.samples, nominal, opts.slowdown);
     }
     let verification = stock::combine_levels(&tp, &specs, &simulation);
     Ok(PocketResult {

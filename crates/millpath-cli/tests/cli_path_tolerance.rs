@@ -1,0 +1,132 @@
+//! Every program states its path tolerance: the pocket program carries the chosen machine's
+//! (`G64 P t` on LinuxCNC, exact stop for a machine of tolerance 0), the contour program the
+//! machine's or the contour's where that is tighter; reading the program back gives the
+//! tolerance the command timed it with, and LinuxCNC's interpreter `rs274` accepts it.
+
+#[path = "../../millpath/tests/rs274_common/mod.rs"]
+mod rs274_common;
+
+use millpath::gcode::{ReaderOptions, read_str};
+use millpath::toolpath::Corner;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn millpath(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the millpath binary runs")
+}
+
+fn ok(o: &Output) -> serde_json::Value {
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).expect("JSON on stdout")
+}
+
+/// The header (the lines before the first motion block).
+fn header(text: &str) -> Vec<&str> {
+    text.lines()
+        .take_while(|l| !l.starts_with("G0 ") && !l.starts_with("G1 "))
+        .collect()
+}
+
+/// Every feed and rapid move of `text` read back has the corner `want`.
+fn corners_read_back(text: &str, want: Corner) {
+    let (tp, _) = read_str(text, ReaderOptions::default()).unwrap();
+    assert!(!tp.moves.is_empty());
+    for (i, m) in tp.moves.iter().enumerate() {
+        assert_eq!(m.corner, want, "move {i}");
+    }
+}
+
+const ZERO_TOLERANCE_MACHINE: &str = "name = \"exact\"\nunits = \"mm\"\nmax_feed = 500.0\n\
+    path_tolerance = 0\n[axes.x]\nmax_velocity = 500.0\nmax_acceleration = 2000.0\n\
+    max_jerk = \"unlimited\"\n[axes.y]\nmax_velocity = 500.0\nmax_acceleration = 2000.0\n\
+    max_jerk = \"unlimited\"\n[axes.z]\nmax_velocity = 500.0\nmax_acceleration = 2000.0\n\
+    max_jerk = \"unlimited\"\n";
+
+#[test]
+fn pocket_programs_state_the_machines_path_tolerance() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("exact.toml"), ZERO_TOLERANCE_MACHINE).unwrap();
+    for (machine, line, corner) in [
+        ("hsm", "G64 P0.01", Corner::Blend(0.01)),
+        ("linuxcnc-sim", "G64 P0.0254", Corner::Blend(0.0254)),
+        ("exact.toml", "G61.1", Corner::ExactStop),
+    ] {
+        let rep = ok(&millpath(
+            &[
+                "pocket",
+                "sample:aerospace",
+                "--strategy",
+                "offset",
+                "--depth",
+                "5",
+                "--step-down",
+                "5",
+                "--machine",
+                machine,
+                "-o",
+                "p.ngc",
+                "--json",
+            ],
+            dir.path(),
+        ));
+        let text = std::fs::read_to_string(dir.path().join("p.ngc")).unwrap();
+        assert!(
+            header(&text).contains(&line),
+            "{machine}: {line} in\n{text}"
+        );
+        corners_read_back(&text, corner);
+        rs274_common::rs274(&text).unwrap_or_else(|e| panic!("{machine}: rs274: {e}"));
+        // The estimate of the program read back times it with that tolerance: the pocket's
+        // own figure within the rounding of the written coordinates and feeds.
+        let est = ok(&millpath(
+            &["estimate", "p.ngc", "--machine", machine, "--json"],
+            dir.path(),
+        ));
+        let (a, b) = (
+            rep["cycle_time_s"].as_f64().unwrap(),
+            est["cycle_time_s"].as_f64().unwrap(),
+        );
+        assert!(
+            (a - b).abs() <= 0.01 * a,
+            "{machine}: pocket {a} s, estimate {b} s"
+        );
+    }
+}
+
+#[test]
+fn contour_programs_state_the_tighter_of_the_machine_and_contour_tolerances() {
+    let dir = tempfile::tempdir().unwrap();
+    for (tolerance, line, t) in [("0.002", "G64 P0.002", 0.002), ("0.05", "G64 P0.01", 0.01)] {
+        ok(&millpath(
+            &[
+                "contour",
+                "--sample",
+                "--tolerance",
+                tolerance,
+                "--depth",
+                "5",
+                "--step-down",
+                "5",
+                "--machine",
+                "hsm",
+                "-o",
+                "c.ngc",
+                "--json",
+            ],
+            dir.path(),
+        ));
+        let text = std::fs::read_to_string(dir.path().join("c.ngc")).unwrap();
+        assert!(header(&text).contains(&line), "{line} in\n{text}");
+        corners_read_back(&text, Corner::Blend(t));
+        rs274_common::rs274(&text).unwrap_or_else(|e| panic!("rs274: {e}"));
+    }
+}

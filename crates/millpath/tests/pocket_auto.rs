@@ -1,0 +1,66 @@
+//! `--strategy auto`: the chosen path is the fastest verified of the three, checked against
+//! the three strategies generated and timed again one by one; a strategy that fails
+//! verification is never chosen (with a finishing pass, measured 2026-11-25: the spiral is
+//! the fastest and fails verification, its finishing lead-in feeding into the 5 µm its last
+//! lap leaves; `auto`'s unit tests hold a synthetic case of this too).
+
+use millpath::machine::Machine;
+use millpath::motion::plan_toolpath;
+use millpath::stock::SimOptions;
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, auto, samples};
+use millpath::toolpath::{Tool, Toolpath};
+
+#[test]
+fn auto_writes_the_fastest_verified_strategy() {
+    let shape = samples::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap();
+    let sim = SimOptions {
+        cell: 0.1,
+        step: 0.2,
+        ..SimOptions::default()
+    };
+    let hsm = Machine::preset("hsm").unwrap();
+    let time = |tp: &Toolpath| pocket::cycle_time_on(tp, &hsm);
+    for finish in [false, true] {
+        let opts = PocketOptions {
+            depth: 5.0,
+            step_down: 5.0,
+            finish,
+            ..PocketOptions::default()
+        };
+        let cands = auto::plan_all(&shape, &tool, &opts, &sim, &time);
+        assert_eq!(
+            cands.iter().map(|c| c.kind).collect::<Vec<_>>(),
+            auto::ORDER.to_vec()
+        );
+        let chosen = auto::choose(&cands).expect("a verified strategy");
+        // Each strategy again, on its own, timed by the planner directly.
+        let mut best: Option<(StrategyKind, f64, Toolpath)> = None;
+        for (c, kind) in cands.iter().zip(auto::ORDER) {
+            let r = pocket::generate(kind, &shape, &tool, &opts, &sim).unwrap();
+            let t = plan_toolpath(&r.toolpath, &hsm).unwrap().total_time();
+            let verified = r.verification.problems().is_empty();
+            assert_eq!(c.verified(), verified, "{kind:?} finish {finish}");
+            assert!((c.cycle_time_s().unwrap() - t).abs() < 1e-9, "{kind:?}");
+            if !verified {
+                assert!(c.why_not().is_some());
+                continue;
+            }
+            if best.as_ref().is_none_or(|b| t < b.1) {
+                best = Some((kind, t, r.toolpath));
+            }
+        }
+        let (kind, t, tp) = best.unwrap();
+        let c = &cands[chosen];
+        assert_eq!(c.kind, kind, "finish {finish}");
+        assert!(c.verified());
+        assert!((c.cycle_time_s().unwrap() - t).abs() < 1e-9);
+        assert_eq!(c.result().unwrap().toolpath, tp, "the very toolpath");
+        // Nothing unverified is faster and chosen; anything faster is unverified.
+        for o in &cands {
+            if o.cycle_time_s().is_some_and(|u| u < t) {
+                assert!(!o.verified(), "{:?} is faster and verified", o.kind);
+            }
+        }
+    }
+}
