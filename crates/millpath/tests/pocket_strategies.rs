@@ -345,3 +345,35 @@ fn spiral_arcs_are_tangent_continuous() {
     assert!(joints > 100, "{joints}");
     assert!(worst <= 1.0, "largest tangent angle {worst}°");
 }
+
+/// A finishing pass after each strategy: the pass is led in from a point the roughing
+/// cleared (the spiral cuts its walls' loops 5 µm inside them, so a lead-in from the exact
+/// loop fed down into that sliver: a plunge, and a rapid through it).
+#[test]
+fn every_strategy_verifies_with_a_finishing_pass() {
+    let shape = samples::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap();
+    let opts = PocketOptions {
+        depth: 5.0,
+        step_down: 5.0,
+        finish: true,
+        ..PocketOptions::default()
+    };
+    for kind in [
+        StrategyKind::Spiral,
+        StrategyKind::Offset,
+        StrategyKind::Zigzag,
+    ] {
+        // The command line's raster (0.05 mm): a coarser one does not see the sliver.
+        let r = pocket::generate(kind, &shape, &tool, &opts, &SimOptions::default()).unwrap();
+        let v = &r.verification;
+        assert!(v.problems().is_empty(), "{kind:?}: {:?}", v.problems());
+        assert_eq!((v.plunges, v.rapids_through_material), (0, 0), "{kind:?}");
+        // The finish comes to the walls.
+        assert!(
+            (v.min_clearance_mm - 6.35).abs() < 1e-3,
+            "{kind:?}: {}",
+            v.min_clearance_mm
+        );
+    }
+}

@@ -278,7 +278,10 @@ fn finishing_plan(
     rough_stock: f64,
 ) -> Result<levels::LevelPlan> {
     let region = shape.offset(tool.radius());
-    let rough = shape.offset(tool.radius() + rough_stock.max(0.0));
+    // The roughing's last loops, a little inside: the spiral cuts its walls' loops
+    // LAST_LOOP_MARGIN inside them, so a lead-in from the exact loop would feed down into
+    // that sliver (a plunge, and the rapid above it through material).
+    let rough = shape.offset(tool.radius() + rough_stock.max(0.0) + 2.0 * spiral::LAST_LOOP_MARGIN);
     let mut cuts = Vec::new();
     for lp in region.loops() {
         let lp = if opts.direction == Direction::Climb {
