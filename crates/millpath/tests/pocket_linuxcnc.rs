@@ -39,7 +39,10 @@ fn linuxcnc_time() -> Option<PathBuf> {
 
 /// LinuxCNC's motion time for `program`, s.
 fn time_on_linuxcnc(tool: &Path, program: &Path) -> f64 {
+    // The motion is timed in servo cycles, whatever the load; the timeout is generous so
+    // that a busy machine (other tests, other runs) does not fail the run.
     let out = Command::new(tool)
+        .env("LCNC_TIMEOUT", "300")
         .arg(program)
         .args(["500", "2000"])
         .output()
