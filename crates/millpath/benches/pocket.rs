@@ -1,7 +1,8 @@
 //! Criterion benchmarks: planning one level of the built-in aerospace pocket (150 × 100 mm,
-//! 12.7 mm tool, 40% stepover) with each strategy; and the spiral on each pocket of the sample
-//! part (the L takes the harmonic morph, the slowest planning path); the aerospace spiral
-//! also with `--arcs` (biarcs fitted to the laps and each checked against the last loop);
+//! 12.7 mm tool, 40% stepover) with each strategy, the spiral with its default morph
+//! (`offsets`) and with the paper's (`fronts`) side by side; the spiral on a 200-vertex
+//! non-convex pocket (a wavy five-lobed star, 10 mm tool) with both morphs and `offset`; the
+//! spiral on each pocket of the sample part; the aerospace spiral also with `--arcs`;
 //! and the sections of a pocket with inclined walls (`walls::level_shapes`: a draft, or a
 //! bottom outline with the exact nesting check `PocketShape::within` between levels) on the
 //! aerospace pocket and on a 512-vertex wavy outline.
@@ -10,7 +11,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use millpath::geom::{Outline, Point};
 use millpath::strategy::pocket::walls::level_shapes;
 use millpath::strategy::pocket::{
-    PocketOptions, PocketShape, StrategyKind, Walls, plan_level, samples,
+    PocketOptions, PocketShape, SpiralMorph, StrategyKind, Walls, plan_level, samples,
 };
 use millpath::toolpath::Tool;
 use std::hint::black_box;
@@ -29,12 +30,33 @@ fn plan(c: &mut Criterion) {
             b.iter(|| plan_level(kind, black_box(&shape), &tool, &opts));
         });
     }
+    let fronts = PocketOptions {
+        morph: SpiralMorph::Fronts,
+        ..PocketOptions::default()
+    };
+    g.bench_function("spiral --morph fronts", |b| {
+        b.iter(|| plan_level(StrategyKind::Spiral, black_box(&shape), &tool, &fronts));
+    });
     let arcs = PocketOptions {
         arcs: true,
         ..PocketOptions::default()
     };
     g.bench_function("spiral --arcs", |b| {
         b.iter(|| plan_level(StrategyKind::Spiral, black_box(&shape), &tool, &arcs));
+    });
+    g.finish();
+    let lobed = PocketShape::simple(lobed_star(200, 60.0));
+    let small = Tool::flat(10.0).unwrap_or_default();
+    let mut g = c.benchmark_group("pocket level, 200-vertex non-convex");
+    g.sample_size(20);
+    g.bench_function("spiral", |b| {
+        b.iter(|| plan_level(StrategyKind::Spiral, black_box(&lobed), &small, &opts));
+    });
+    g.bench_function("spiral --morph fronts", |b| {
+        b.iter(|| plan_level(StrategyKind::Spiral, black_box(&lobed), &small, &fronts));
+    });
+    g.bench_function("offset", |b| {
+        b.iter(|| plan_level(StrategyKind::Offset, black_box(&lobed), &small, &opts));
     });
     g.finish();
     let mut g = c.benchmark_group("spiral level, sample part");
@@ -45,6 +67,18 @@ fn plan(c: &mut Criterion) {
         });
     }
     g.finish();
+}
+
+/// A non-convex outline of `n` vertices: radius `r·(1 + 0.3·sin 5θ)`, five lobes.
+fn lobed_star(n: usize, r: f64) -> Outline {
+    let v: Vec<(Point, f64)> = (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            let rr = r * (1.0 + 0.3 * (5.0 * a).sin());
+            (Point::new(rr * a.cos(), rr * a.sin()), 0.0)
+        })
+        .collect();
+    Outline::new(&v, "bench lobed outline").expect("a lobed outline is valid")
 }
 
 /// A wavy closed outline of `n` vertices about `(cx, cy)`: radius `r` ± 8 %, 7 waves.

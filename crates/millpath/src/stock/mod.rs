@@ -20,7 +20,8 @@
 //!   offset inward by `r + wall stock`). Cells farther away are the corner cusps and the wall
 //!   stock the tool radius implies.
 //! * [`gouge`]: the exact clearance between every move below the stock top and the outline
-//!   and islands, against `r + stock − 1e-6 mm`.
+//!   and islands, against `r + stock −` [`GOUGE_RESOLUTION`] (the resolution a program is
+//!   written at: closer than that is rounding, not a gouge).
 //! * Inclined walls ([`verify_levels`]): each level has its own section of the pocket; a
 //!   slab's material is its level's section, and a level's moves are checked against its
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
@@ -74,6 +75,14 @@ pub struct Verification {
     pub cell_mm: f64,
 }
 
+/// How much closer than the required clearance the tool centre may come before it is a
+/// gouge, mm: twice the rounding of a program written to 3 decimals in mm (`√2·½·10⁻³`
+/// mm, the coordinates'), once for the coordinates and once for an arc that the writer
+/// writes as its chord because its sagitta is below that rounding (a concave arc's chord
+/// lies on the wall's side). A program read back cannot be checked more finely than it is
+/// written; a plan is held to the same.
+pub const GOUGE_RESOLUTION: f64 = 2.0 * 0.5e-3 * std::f64::consts::SQRT_2;
+
 /// How far uncut material may add up, mm², before coverage fails (a few cells along a
 /// boundary where the raster's rounding leaves single cells).
 pub const UNCUT_AREA_TOLERANCE: f64 = 0.05;
@@ -82,7 +91,7 @@ impl Verification {
     /// The problems found, in words; empty when the path passes.
     pub fn problems(&self) -> Vec<String> {
         let mut out = Vec::new();
-        if self.min_clearance_mm < self.required_clearance_mm - 1e-6 {
+        if self.min_clearance_mm < self.required_clearance_mm - GOUGE_RESOLUTION {
             out.push(format!(
                 "gouge: the tool centre comes within {:.6} mm of a wall (needs {:.6})",
                 self.min_clearance_mm, self.required_clearance_mm

@@ -88,7 +88,7 @@ pub fn plan(
             max_gap: gap,
             max_radius: MAX_RADIUS * h,
             min_clearance: MIN_CLEARANCE * h,
-            sample: (h / 4.0).clamp(0.05, 1.0),
+            sample: (h / 3.0).clamp(0.05, 1.5),
             reach: RIDGE_SPACING * r,
         },
     );

@@ -52,7 +52,7 @@ pub struct RoundOptions {
 }
 
 /// Bisection steps on the radius.
-const BISECTIONS: usize = 7;
+const BISECTIONS: usize = 5;
 /// The radius tried first for a loop: this many steps more than the largest radius of the
 /// loops it feeds (at right angles a loop can be rounded about 0.93 steps more than the
 /// loop outside it; more where its corners are obtuse).
@@ -130,11 +130,14 @@ pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, V
                 let gap_ok = assigned
                     .iter()
                     .all(|&(p, d)| idx.distance(p) <= opts.max_gap.max(d + slack));
-                let inside_ok = inner.iter().all(|&z| {
+                // The inner loops on the region's side (one point tells, as none comes
+                // closer than the clearance, so none crosses).
+                let side = inner.first().is_none_or(|&z| {
                     let wn = opened.winding_number(super::super::shape::v2(z));
-                    let side = if island { wn == 0 } else { wn != 0 };
-                    side && idx.distance(z) >= opts.min_clearance
+                    if island { wn == 0 } else { wn != 0 }
                 });
+                let inside_ok =
+                    side && inner.iter().all(|&z| idx.distance(z) >= opts.min_clearance);
                 (gap_ok && inside_ok).then_some(opened)
             };
             let outside = loops.nodes[x]
@@ -143,19 +146,27 @@ pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, V
                 .map(|&y| radii[y])
                 .fold(0.0, f64::max);
             let hi = opts.max_radius.min(outside + GROWTH * loops.step);
+            // The largest radius that passes: `hi` if it does; else bisection, between the
+            // radius of the loops outside (when it passes) and `hi`, or below it.
             let best = if let Some(p) = ok(hi) {
                 Some((hi, p))
             } else {
-                let (mut lo, mut hi) = (0.0, hi);
-                let mut best = None;
+                let start = outside.min(hi);
+                let (mut lo, mut top, mut best) = match (start > 0.0).then(|| ok(start)).flatten() {
+                    Some(p) => (start, hi, Some((start, p))),
+                    None => (0.0, start.max(1e-9).min(hi), None),
+                };
+                if best.is_none() && start <= 0.0 {
+                    top = hi;
+                }
                 for _ in 0..BISECTIONS {
-                    let mid = 0.5 * (lo + hi);
+                    let mid = 0.5 * (lo + top);
                     match ok(mid) {
                         Some(p) => {
                             lo = mid;
                             best = Some((mid, p));
                         }
-                        None => hi = mid,
+                        None => top = mid,
                     }
                 }
                 best
