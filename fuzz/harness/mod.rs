@@ -238,7 +238,7 @@ pub fn pocket(data: &[u8]) {
 }
 
 /// [`pocket_case`] with the walls left vertical whatever the bytes after the other values
-/// say: the regression tests of inputs found before the target drew walls (session 8), which
+/// say: the regression tests of inputs found before the target drew walls (eb03bd9), which
 /// may have bytes left over that would now read as walls.
 pub fn pocket_case_vertical(data: &[u8]) -> Option<PocketCase> {
     decode_pocket(data, false)
@@ -580,8 +580,9 @@ pub fn planner(data: &[u8]) {
 
 /// Whether the `planner` target fails on limit violations the verifier finds, and the `pocket`
 /// target on a gouge (`FUZZ_STRICT_VERIFY` set, or [`STRICT_VERIFY`] from a test). The corpus
-/// replay in `hostile_corpus.rs` is strict; fuzz runs should set `FUZZ_STRICT_VERIFY=1` (the session-3
-/// runs did). Off without it so that a run can look for panics alone.
+/// replay in `hostile_corpus.rs` is strict; fuzz runs should set `FUZZ_STRICT_VERIFY=1`
+/// (the `planner` runs of 2026-11-22 did). Off without it so that a run can look for panics
+/// alone.
 pub fn strict_verify() -> bool {
     STRICT_VERIFY.load(std::sync::atomic::Ordering::Relaxed)
         || std::env::var_os("FUZZ_STRICT_VERIFY").is_some()

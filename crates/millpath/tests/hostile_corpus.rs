@@ -83,7 +83,7 @@ fn planner_limit_violations_found_by_the_fuzzer() {
 /// The hand-written seeds of the `outline_importers` corpus (`seed-*.dxf`, `.svg`, `.json`,
 /// `.toml`: every entity kind, path command and key the importers read, each under the fuzz
 /// runs' 4,096-byte limit) are valid documents: without valid starting points libFuzzer never
-/// reached the DXF importer's entity code or the machine checks (session 6, fuzz/README.md).
+/// reached the DXF importer's entity code or the machine checks (2026-11-22, fuzz/README.md).
 #[test]
 fn importer_seeds_are_accepted() {
     use millpath::{io, machine::Machine};
@@ -125,17 +125,17 @@ fn pocket_depth_1e300_does_not_overflow() {
     h.finish(1);
 }
 
-/// Pockets on which the spiral gouged (found in session 6 when the `pocket` target began to
+/// Pockets on which the spiral gouged (found on 2026-11-22 when the `pocket` target began to
 /// run `pocket::generate` with its verification: 10 of 663 corpus inputs gouged, 0.002 µm to
 /// 2.9 mm). Four of them gouged 0.015–2.9 mm into the wall clearance with either morph: a
 /// lap blending into the boundary offset cut across its concave arcs; `spiral::keep_inside`
 /// now moves such samples onto the last loop. Two more, found by the next runs (`ef412b15…`,
 /// `efe94e0e…`), gouged 0.011–0.018 mm where `--arcs` biarcs overshot the samples at a kink or
 /// a sharp corner: `generate` retries such a path as chords. The seventh (`698ed17d…`, found by
-/// the last run of session 6 and refused by `generate` until session 7) gouged 0.023 mm with
+/// the run pk20 and refused by `generate` until 5a67d3f) gouged 0.023 mm with
 /// chords: projecting the samples of a lap that cut across a dent onto the arc round it spread
 /// them 0.69 mm apart, and those chords cut across the arc; `spiral::inside` now splits every
-/// chord that leaves the last loop. The eighth (`b43b53a3…`, session 7, 62,000 executions
+/// chord that leaves the last loop. The eighth (`b43b53a3…`, pk23, 62,000 executions
 /// into a strict run) ran a 22 mm chord straight through a thin spike of the wall, 10.7 mm
 /// deep: the lap's samples inside the spike were moved onto its two sides, and midpoint splits
 /// of a chord from one side to the other only creep towards the tip; such a chord is now
@@ -198,7 +198,7 @@ fn arcs_stay_out_of_the_walls_without_a_fallback() {
     }
 }
 
-/// Found by the last `pocket` run of session 6 (fuzz/README.md): on a 4 × 6.5 mm pocket with
+/// Found by the `pocket` run pk19 on 2026-11-22 (fuzz/README.md): on a 4 × 6.5 mm pocket with
 /// a 1.08 mm tool, the finishing pass's lead-in, a straight feed move from the nearest point
 /// of the roughed region to the finishing loop, cut 0.09 mm into a wall spike between them,
 /// whatever the morph or arcs (`generate` refused it). The lead-in now starts from the
@@ -220,7 +220,7 @@ fn finishing_lead_in_stays_out_of_the_walls() {
     );
 }
 
-/// Found by the first `pocket` run of session 7, 1,300 executions into it: the zigzag linked
+/// Found by the `pocket` run pk21 on 2026-11-22, 1,300 executions into it: the zigzag linked
 /// two pieces of a pinched tool-centre region with a straight move that ran along one piece's
 /// edge, across the 1.2 mm neck between them and along the other's edge, 0.017 mm into the
 /// wall stock (`generate` refused it). `offset::crosses` tested only crossings away from the

@@ -245,12 +245,12 @@ fn contour_lengths_of_1e300_are_refused() {
     }
 }
 
-/// The `contour` fuzzer (600 s run, session 3; `fuzz/corpus-min/contour/regression-timeout-
+/// The `contour` fuzzer (600 s run, 2026-11-22; `fuzz/corpus-min/contour/regression-timeout-
 /// cusp-biarcs-*`): a four-point curve through a repeated point (a cusp) contoured on the
 /// line with biarcs took over a minute (ASan: > 20 s, a timeout): near the cusp the biarcs
 /// shrank without end, ~10⁶ deviation evaluations. Fixed in `curve::biarc::fit`: after
 /// `MAX_DEV_EVALUATIONS` the rest of the stretch is cut in chords within the tolerance
-/// (13,082 moves; 22,112 since session 5, whose biarc ends are bisected to 1e-4 of their
+/// (13,082 moves; 22,112 since 8a0e3b4, whose biarc ends are bisected to 1e-4 of their
 /// length instead of 1e-7, so the same budget makes more, cheaper biarcs near the cusp).
 #[test]
 fn contour_biarcs_through_a_cusp_finish() {

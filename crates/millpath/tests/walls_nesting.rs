@@ -3,7 +3,7 @@
 //! code path: 20,000 points sampled along every loop, each tested against the other region.
 //! Over every input of the committed `pocket` fuzz corpus that decodes to a pocket with a
 //! bottom outline, level by level, the two must agree. The sampled check `within` used
-//! before session 9 (256 points a loop, the other region's islands only) accepted five of
+//! before 873cf0f (256 points a loop, the other region's islands only) accepted five of
 //! these undercuts, one of which the spiral then gouged by 0.68 mm (fuzz/README.md).
 
 #[path = "../../../fuzz/harness/mod.rs"]

@@ -297,7 +297,7 @@ mod tests {
         assert!((r2[0].1 - 0.5).abs() < 1e-12);
     }
 
-    /// Found by the outline_importers fuzzer (session 6): a degree-2 SPLINE with two control
+    /// Found by the outline_importers fuzzer (2026-11-22): a degree-2 SPLINE with two control
     /// points and five knots passed the count check and de Boor indexed a third point.
     #[test]
     fn splines_with_too_few_points_or_bad_knots_are_refused() {

@@ -364,7 +364,7 @@ impl Machine {
 mod tests {
     use super::*;
 
-    /// The `planner` fuzzer (session 3): a machine with every limit at 1e300 planned a move
+    /// The `planner` fuzzer (2026-11-22): a machine with every limit at 1e300 planned a move
     /// whose samples ended 43 mm from its end point (squares of the limits overflow). Limits
     /// beyond the documented maxima are refused, naming the key.
     #[test]

@@ -182,7 +182,7 @@ pub use fallback::GOUGE_TOLERANCE;
 /// default morph ([`spiral::SpiralMorph::Fronts`]) is then planned again with the harmonic
 /// one, and `--arcs` paths again as chords ([`fallback`]: the fuzzer found chaotic outlines
 /// on which the spiral cut up to 2.9 mm into a wall, and biarcs overshooting a sharp corner by
-/// 0.011 mm, fuzz/README.md session 6; the spiral now keeps its laps and arcs inside itself,
+/// 0.011 mm, fuzz/README.md, 2026-11-22; the spiral now keeps its laps and arcs inside itself,
 /// and no input of the fuzz corpora needs a fallback), and [`PocketResult::notes`] says which
 /// fallback was taken and how deep the path asked for cut; what still gouges is an internal
 /// error naming the depth, the move and the point.

@@ -182,7 +182,7 @@ impl PocketShape {
     /// a slit of material reaching in from its wall) is outside ours or on our boundary
     /// ([`piece_points`]: one point stands for each piece, since a piece meets no loop of
     /// the other region inside). Exact up to that tolerance; the check sampled 256 points a
-    /// loop before, which stepped over a 0.8 mm slit (fuzz/README.md, session 9).
+    /// loop before, which stepped over a 0.8 mm slit (fuzz/README.md, 2026-11-23).
     pub fn within(&self, other: &PocketShape) -> bool {
         let on_or_in =
             |shape: &PocketShape, p: Point| shape.contains(p) || shape.distance_to(p) <= 1e-6;

@@ -475,7 +475,7 @@ mod tests {
         );
     }
 
-    /// A tool-centre region 2 µm across (found by the fuzzer, session 8): no inward offset
+    /// A tool-centre region 2 µm across (found by the fuzzer on 2026-11-23): no inward offset
     /// leaves anything of it, so the bisection's interval shrank from `lo = 0` through the
     /// subnormals until `mid` rounded to 0 and the loop never ended (20 s timeouts). It ends,
     /// with no centre.
