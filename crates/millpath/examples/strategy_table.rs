@@ -1,8 +1,11 @@
 //! The three roughing strategies side by side on the shape suite (`samples::shape_suite`):
-//! path length, mean engagement, verification, cycle time on `hsm` and on a profile with
-//! LinuxCNC's limits (500 mm/s, 2000 mm/s², jerk unlimited, 1 ms), one 5 mm level at
-//! 600 in/min, with and without feed modulation. With a directory argument, each program is
-//! also written there (`G64 P0.01` stated) for `../shared/tools/linuxcnc-time`.
+//! path length, mean engagement, share above nominal, verification, and the cycle time on
+//! `hsm` and on the `linuxcnc-time` machine (LinuxCNC's limits: 500 mm/s, 2000 mm/s², jerk
+//! unlimited, 1 ms; planned with `G64 P0.01`, the tolerance the programs state), one 5 mm
+//! level at 600 in/min, with and without feed modulation. Prints tab-separated rows; with a
+//! directory argument each program is also written there for
+//! `../shared/tools/linuxcnc-time` (`tools/strategy_table.sh` runs both and prints the
+//! table of BENCHMARKS.md).
 //!
 //! `cargo run --release --example strategy_table [-- OUT_DIR]`
 #![allow(clippy::print_stdout)]
@@ -13,6 +16,7 @@ use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
 use millpath::toolpath::Tool;
 
+/// The LinuxCNC judge's profile: 500 mm/s, 2000 mm/s², jerk unlimited, 1 ms.
 const LINUXCNC_LIMITS: &str = r#"
 name = "linuxcnc-limits"
 units = "mm"
@@ -33,18 +37,27 @@ max_acceleration = 2000.0
 max_jerk = "unlimited"
 "#;
 
+/// The machine with LinuxCNC's limits: the `linuxcnc-time` preset where there is one (its
+/// controller model), else the same limits on the generic planner; the programs' `G64 P0.01`.
+fn linuxcnc_judge() -> Machine {
+    let mut m = Machine::preset("linuxcnc-time")
+        .or_else(|_| Machine::from_toml_str(LINUXCNC_LIMITS, "linuxcnc limits"))
+        .expect("profile");
+    m.path_tolerance = 0.01;
+    m
+}
+
 fn main() {
     let out_dir = std::env::args().nth(1);
     let hsm = Machine::preset("hsm").expect("hsm");
-    let lc = Machine::from_toml_str(LINUXCNC_LIMITS, "linuxcnc limits").expect("profile");
+    let lc = linuxcnc_judge();
     let sim = SimOptions {
         cell: 0.1,
         step: 0.2,
         ..SimOptions::default()
     };
     println!(
-        "{:12} {:8} {:>4} {:>8} {:>6} {:>6} {:>8} {:>8} {:>7}",
-        "pocket", "strategy", "mod", "path mm", "eng°", ">nom%", "hsm s", "lcnc s", "uncut"
+        "pocket\tstrategy\tmodulation\tpath_mm\tmean_engagement_deg\tabove_nominal_pct\thsm_s\tlinuxcnc_model_s\tuncut_mm2\tproblems"
     );
     for p in samples::shape_suite() {
         let tool = Tool::flat(p.tool_diameter).expect("tool");
@@ -63,7 +76,7 @@ fn main() {
                 let r = match pocket::generate(kind, &p.shape, &tool, &opts, &sim) {
                     Ok(r) => r,
                     Err(e) => {
-                        println!("{:12} {:8} {e}", p.name, kind.name());
+                        println!("{}\t{}\t{modulate}\terror: {e}", p.name, kind.name());
                         continue;
                     }
                 };
@@ -71,7 +84,7 @@ fn main() {
                 let t_lc = plan_toolpath(&r.toolpath, &lc).expect("plan").total_time();
                 let v = &r.verification;
                 println!(
-                    "{:12} {:8} {:>4} {:8.1} {:6.1} {:6.1} {:8.2} {:8.2} {:7.2}",
+                    "{}\t{}\t{}\t{:.1}\t{:.1}\t{:.1}\t{:.2}\t{:.2}\t{:.2}\t{}",
                     p.name,
                     kind.name(),
                     if modulate { "on" } else { "off" },
@@ -81,6 +94,7 @@ fn main() {
                     t_hsm,
                     t_lc,
                     v.uncut_area_mm2,
+                    v.problems().join("; "),
                 );
                 if let Some(dir) = &out_dir {
                     let wopts = WriterOptions {
@@ -93,7 +107,7 @@ fn main() {
                         "{dir}/{}_{}_{}.ngc",
                         p.name.replace([' ', ':'], "_"),
                         kind.name(),
-                        if modulate { "mod" } else { "flat" }
+                        if modulate { "on" } else { "off" }
                     );
                     std::fs::write(&name, buf).expect("write file");
                 }
