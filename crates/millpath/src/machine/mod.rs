@@ -62,6 +62,8 @@
 //! # [axes.y] and [axes.z] alike
 //! ```
 //! Every limit must be a finite number > 0 (jerk may be `"unlimited"`); errors name the key.
+//! A key that is not one of these (a misspelt limit, which would otherwise fall back to its
+//! default without a word) is refused, naming the key and the file.
 
 pub mod kinematics;
 
@@ -266,6 +268,7 @@ impl Machine {
                 .at(origin)
                 .expected(format!("valid TOML ({})", e.message()))
         })?;
+        check_keys(&table, TOP_KEYS, "", origin)?;
         let unit = match table.get("units") {
             None => 1.0,
             Some(toml::Value::String(s)) if s == "mm" => 1.0,
@@ -293,7 +296,12 @@ impl Machine {
         };
         let name = match table.get("name") {
             Some(toml::Value::String(s)) => s.clone(),
-            _ => origin.to_string(),
+            None => origin.to_string(),
+            Some(v) => {
+                return Err(InputError::new("name", v)
+                    .at(origin)
+                    .expected("a string (the machine's name)"));
+            }
         };
         let axes_t = match table.get("axes") {
             Some(toml::Value::Table(t)) => t,
@@ -309,6 +317,7 @@ impl Machine {
             max_jerk: 0.0,
         }; 3];
         let mut rapid = [0.0; 3];
+        check_keys(axes_t, &["x", "y", "z"], "axes.", origin)?;
         for (i, an) in ["x", "y", "z"].iter().enumerate() {
             let t = match axes_t.get(*an) {
                 Some(toml::Value::Table(t)) => t,
@@ -318,11 +327,17 @@ impl Machine {
                         .expected("a table with max_velocity, max_acceleration, max_jerk"));
                 }
             };
+            check_keys(t, AXIS_KEYS, &format!("axes.{an}."), origin)?;
             let key = |k: &str| format!("axes.{an}.{k}");
             let v = required(t, "max_velocity", &key("max_velocity"))?;
             let a = required(t, "max_acceleration", &key("max_acceleration"))?;
             let j = match t.get("max_jerk") {
                 Some(toml::Value::String(s)) if s == "unlimited" => f64::INFINITY,
+                Some(v @ toml::Value::String(_)) => {
+                    return Err(InputError::new(key("max_jerk"), v)
+                        .at(origin)
+                        .expected("a finite number > 0 or \"unlimited\""));
+                }
                 _ => {
                     let j = required(t, "max_jerk", &key("max_jerk"))?;
                     if !j.is_finite() {
@@ -357,6 +372,46 @@ impl Machine {
         };
         m.validate(origin)?;
         Ok(m)
+    }
+}
+
+/// The keys a profile's top level may have.
+const TOP_KEYS: &[&str] = &[
+    "name",
+    "units",
+    "max_feed",
+    "path_tolerance",
+    "ipo_cycle",
+    "curvature_accel_share",
+    "curvature_jerk_share",
+    "axes",
+];
+
+/// The keys an `[axes.x|y|z]` table may have.
+const AXIS_KEYS: &[&str] = &["max_velocity", "max_acceleration", "max_jerk", "rapid"];
+
+/// Refuses a key of `table` that is not in `allowed` (a misspelt limit would otherwise fall
+/// back to its default without a word), naming it with its table `prefix` and the file.
+fn check_keys(
+    table: &toml::Table,
+    allowed: &[&str],
+    prefix: &str,
+    origin: &str,
+) -> Result<(), InputError> {
+    match table.keys().find(|k| !allowed.contains(&k.as_str())) {
+        Some(k) => Err(
+            InputError::new("machine profile key", format!("{prefix}{k}"))
+                .at(origin)
+                .expected(format!(
+                    "one of {}",
+                    allowed
+                        .iter()
+                        .map(|a| format!("{prefix}{a}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )),
+        ),
+        None => Ok(()),
     }
 }
 
@@ -462,6 +517,26 @@ rapid = 1
             e.contains("axes.z.max_velocity") && e.contains("missing"),
             "{e}"
         );
+        // Unknown keys and values are refused, naming the key and the file (a misspelt
+        // limit fell back to its default without a word).
+        for (bad, needle) in [
+            (format!("bogus_key = 3\n{PROFILE}"), "bogus_key"),
+            (
+                PROFILE.replace("rapid = 1", "rapid = 1\nmax_jerks = 5"),
+                "axes.z.max_jerks",
+            ),
+            (format!("{PROFILE}[axes.w]\nmax_velocity = 1\n"), "axes.w"),
+            (
+                PROFILE.replace("max_jerk = \"unlimited\"", "max_jerk = \"infinite\""),
+                "axes.x.max_jerk",
+            ),
+            (PROFILE.replace("name = \"t\"", "name = 5"), "name"),
+        ] {
+            let e = Machine::from_toml_str(&bad, "t.toml")
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle) && e.contains("t.toml"), "{e}");
+        }
         let bad = PROFILE.replace("max_jerk = 1000\nrapid", "max_jerk = nan\nrapid");
         let e = Machine::from_toml_str(&bad, "t.toml")
             .unwrap_err()
