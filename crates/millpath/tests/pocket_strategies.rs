@@ -95,24 +95,51 @@ fn spiral_spacing_and_engagement_share() {
     }
     assert!(times[1].0 < 0.85 * times[0].0, "{times:?}");
     assert!(times[1].1 < times[0].1, "{times:?}");
-    // The target on this pocket (one level here; four levels in BENCHMARKS.md):
-    // the default spiral at most 0.84 × zigzag's cycle time and below offset's (measured:
-    // 17.85 s against 21.63 s and 19.05 s at 6.25 mm). The feeds are modulated by the
-    // engagement the stock simulation measures, so this runs at the CLI's raster (0.05 mm):
-    // on the coarse one zigzag's moves read a little less engagement and it runs 2% faster.
+    // The target on this pocket (one level here; four levels in BENCHMARKS.md): the
+    // default spiral at most 0.84 × zigzag's cycle time and below offset's, on the planner
+    // the target was set on: the generic model with the `hsm` preset's former limits
+    // (5 m/s², 200 m/s³; measured: 17.85 s against 21.63 s and 19.05 s at 6.25 mm). The
+    // feeds are modulated by the engagement the stock simulation measures, so this runs at
+    // the CLI's raster (0.05 mm): on the coarse one zigzag's moves read a little less
+    // engagement and it runs 2% faster.
+    let mut generic = millpath::machine::Machine::preset("hsm").unwrap();
+    generic.controller = millpath::machine::Controller::Generic;
+    generic.exact_stop_time = 0.0;
+    generic.curvature_accel_share = 0.75;
+    for a in &mut generic.axes {
+        a.max_acceleration = 5000.0;
+        a.max_jerk = 200_000.0;
+    }
     let sim = SimOptions::default();
-    let t = |kind| {
+    let mut paths = Vec::new();
+    for kind in [
+        StrategyKind::Spiral,
+        StrategyKind::Zigzag,
+        StrategyKind::Offset,
+    ] {
         let r = pocket::generate(kind, &shape, &tool, &base, &sim).unwrap();
         assert!(r.verification.problems().is_empty(), "{kind:?}");
-        pocket::cycle_time(&r.toolpath).unwrap()
+        paths.push(r.toolpath);
+    }
+    let on = |m: &millpath::machine::Machine| -> Vec<f64> {
+        paths
+            .iter()
+            .map(|tp| pocket::cycle_time_on(tp, m).unwrap())
+            .collect()
     };
-    let (t_sp, t_zig, t_off) = (
-        t(StrategyKind::Spiral),
-        t(StrategyKind::Zigzag),
-        t(StrategyKind::Offset),
+    let g = on(&generic);
+    assert!(
+        g[0] <= 0.84 * g[1],
+        "generic: spiral {} zigzag {}",
+        g[0],
+        g[1]
     );
-    assert!(t_sp <= 0.84 * t_zig, "spiral {t_sp} zigzag {t_zig}");
-    assert!(t_sp < t_off, "spiral {t_sp} offset {t_off}");
+    assert!(g[0] < g[2], "generic: spiral {} offset {}", g[0], g[2]);
+    // On `hsm` itself (the sinumerik model fitted to Table 2, which charges the spiral's
+    // changes of curvature) the spiral still beats zigzag, not offset (2026-11-25: 20.74 s
+    // against 21.88 s and 19.29 s).
+    let h = on(&millpath::machine::Machine::preset("hsm").unwrap());
+    assert!(h[0] < 0.97 * h[1], "hsm: spiral {} zigzag {}", h[0], h[1]);
 }
 
 /// Non-convex, non-star-shaped pockets: the spiral still verifies.
@@ -261,7 +288,13 @@ fn spiral_invariance_under_reversal_rotation_translation() {
     ] {
         let (l, t) = run(&v);
         assert!((l - l0).abs() <= 1e-3 * l0, "{name}: length {l} vs {l0}");
-        assert!((t - t0).abs() <= 5e-3 * t0, "{name}: time {t} vs {t0}");
+        // Rotations other than by quarter turns change each line's per-axis limits (a 45°
+        // line accelerates √2 × faster than an axis-parallel one), and with them the
+        // acceleration phases between the curvature ramps of the `hsm` model: 0.5 % at 30°.
+        assert!((t - t0).abs() <= 1e-2 * t0, "{name}: time {t} vs {t0}");
+        if name == "reversed" || name == "moved" || name == "rotated 90°" {
+            assert!((t - t0).abs() <= 5e-3 * t0, "{name}: time {t} vs {t0}");
+        }
     }
 }
 
