@@ -405,6 +405,24 @@ fn cases() -> Vec<Case> {
             outputs: &[],
         },
         Case {
+            what: "calibration times without the header",
+            args: &["calibrate", "t.csv", "-o", "fit.toml"],
+            files: &[("t.csv", b"ok.ngc,1.5\n"), ("ok.ngc", GOOD_NGC)],
+            outputs: &["fit.toml"],
+        },
+        Case {
+            what: "calibration program that does not exist",
+            args: &["calibrate", "t.csv", "-o", "fit.toml"],
+            files: &[("t.csv", b"program,seconds\nmissing.ngc,1.5\n")],
+            outputs: &["fit.toml"],
+        },
+        Case {
+            what: "calibration time that is not a number",
+            args: &["calibrate", "t.csv", "-o", "fit.toml"],
+            files: &[("t.csv", b"program,seconds\nok.ngc,fast\n"), ("ok.ngc", GOOD_NGC)],
+            outputs: &["fit.toml"],
+        },
+        Case {
             what: "program file that does not exist",
             args: &["estimate", "missing.ngc", "--html", "out.html"],
             files: &[],
