@@ -45,7 +45,7 @@ pub const SMOOTH_CORNER: f64 = 0.35;
 /// How far back (mm) curvature samples are compared: beyond it the ramp is long enough.
 const HORIZON: f64 = 50.0;
 /// Samples kept at most.
-const MAX_SAMPLES: usize = 64;
+const MAX_SAMPLES: usize = 32;
 
 /// The sinumerik model's state between junctions: the recent curvature samples.
 #[derive(Debug, Clone, Default)]
@@ -87,6 +87,13 @@ impl Curvature {
             self.samples.push_back((self.s, k0));
         }
         self.s += g1.length();
+        // No cap above the fastest the path can go matters.
+        let vmax = 3f64.sqrt()
+            * machine
+                .axes
+                .iter()
+                .map(|a| a.max_velocity)
+                .fold(0.0, f64::max);
         let (_, k1_end) = g1.curvature_ends();
         let (k2_start, _) = g2.curvature_ends();
         let lines = matches!(g1, Geom::Line { .. }) && matches!(g2, Geom::Line { .. });
@@ -95,9 +102,11 @@ impl Curvature {
         // between two lines (a polyline's vertex) is sampled by its Menger curvature alone:
         // its lines are chords of a curve, not straight pieces of the part.
         let menger = deflection > 1e-9 && (lines || deflection > NEAR_TANGENT);
-        let mut new = Vec::with_capacity(3);
+        let mut new = [Vec3::ZERO; 3];
+        let mut n_new = 0;
         if !(lines && menger) {
-            new.push(k1_end);
+            new[n_new] = k1_end;
+            n_new += 1;
         }
         if menger {
             let p0 = g1.point(0.0);
@@ -117,26 +126,48 @@ impl Curvature {
                 let (ea, ej) = (machine.curvature_accel_share, machine.curvature_jerk_share);
                 let (a, j) = weakest(k, machine);
                 cap = cap.min((ea * a / kappa).sqrt());
-                if j.is_finite() {
-                    cap = cap.min((ej * j / (kappa * kappa)).cbrt());
+                let cube = ej * j / (kappa * kappa);
+                if j.is_finite() && cube < cap.min(vmax).powi(3) {
+                    cap = cap.min(cube.cbrt());
                 }
             }
-            new.push(k);
+            new[n_new] = k;
+            n_new += 1;
         }
         if !(lines && menger) {
-            new.push(k2_start);
+            new[n_new] = k2_start;
+            n_new += 1;
         }
-        for k in new {
+        for &k in new.iter().take(n_new) {
             for &(sk, kk) in &self.samples {
-                cap = cap.min(ramp_cap(k - kk, self.s - sk, tol, machine));
+                cap = cap.min(ramp_cap(k - kk, self.s - sk, tol, machine, cap.min(vmax)));
             }
-            self.samples.push_back((self.s, k));
+            match self.samples.back_mut() {
+                // A run of equal samples (a straight line's zeros): only the latest one can
+                // bind (the nearest gives the tightest ramp).
+                Some(last) if (last.1 - k).length() <= 1e-12 => *last = (self.s, k),
+                _ => self.samples.push_back((self.s, k)),
+            }
         }
+        // Samples farther back than any ramp that could bind: a ramp over `D` binds only if
+        // `∛(η_j·J·D/Δκ) < v_max` while `D ≤ √(24ε/Δκ)`, i.e. `D < v_max·∛(24ε/(η_j·J))`.
+        let horizon = if tol > 0.0 {
+            let (vmax, jmin) = machine
+                .axes
+                .iter()
+                .fold((0.0f64, f64::INFINITY), |(v, j), a| {
+                    (v.max(a.max_velocity), j.min(a.max_jerk))
+                });
+            (3f64.sqrt() * vmax * (24.0 * tol / (machine.curvature_jerk_share * jmin)).cbrt())
+                .min(HORIZON)
+        } else {
+            HORIZON
+        };
         while self.samples.len() > MAX_SAMPLES
             || self
                 .samples
                 .front()
-                .is_some_and(|&(sk, _)| self.s - sk > HORIZON)
+                .is_some_and(|&(sk, _)| self.s - sk > horizon)
         {
             self.samples.pop_front();
         }
@@ -146,21 +177,33 @@ impl Curvature {
 
 /// The speed at which the curvature may change by `step` over `distance` mm of path, the
 /// controller smoothing the change within the tolerance `tol` (see the module docs).
-fn ramp_cap(step: Vec3, distance: f64, tol: f64, machine: &Machine) -> f64 {
-    let dk = step.length();
-    if dk <= 1e-12 {
+/// Caps at or above `bound` are not computed (they would not bind).
+fn ramp_cap(step: Vec3, distance: f64, tol: f64, machine: &Machine, bound: f64) -> f64 {
+    let dk2 = step.dot(step);
+    if dk2 <= 1e-24 {
         return f64::INFINITY;
     }
+    // The cap is at least ∛(η_j·J_min·D/|Δκ|): skip it when that is above the bound
+    // (compared as cubes, without roots).
+    let jmin = machine
+        .axes
+        .iter()
+        .map(|a| a.max_jerk)
+        .fold(f64::INFINITY, f64::min);
+    if (machine.curvature_jerk_share * jmin * distance).powi(2) >= bound.powi(6) * dk2 {
+        return f64::INFINITY;
+    }
+    // Farther apart than the smoothing length (`D² > 24ε/|Δκ|`, checked without roots):
+    // the step between them was already met (and smoothed) by the samples in between.
+    if tol > 0.0 && (distance * distance).powi(2) * dk2 > (24.0 * tol).powi(2) {
+        return f64::INFINITY;
+    }
+    let dk = dk2.sqrt();
     let smoothing = if tol > 0.0 {
         (24.0 * tol / dk).sqrt()
     } else {
         0.0
     };
-    if distance > smoothing && smoothing > 0.0 {
-        // Farther apart than the smoothing length: the step between them was already met
-        // (and smoothed) by the samples in between.
-        return f64::INFINITY;
-    }
     let avail = distance.max(smoothing);
     let (_, j) = weakest(step, machine);
     if !j.is_finite() {
