@@ -29,6 +29,8 @@ enum Command {
     Estimate(commands::estimate::Args),
     /// List the built-in machine presets and their limits.
     Machines(commands::machines::Args),
+    /// Fit a machine profile to cycle times measured on the machine.
+    Calibrate(commands::calibrate::Args),
     /// 2.5D pocket roughing: zigzag, contour-offset or adaptive spiral.
     Pocket(commands::pocket::Args),
     /// Check a G-code program against an outline: gouges, uncut material, engagement.
@@ -107,6 +109,7 @@ fn run(cli: Cli) -> Result<(), millpath::Error> {
         Command::Contour(a) => commands::contour::run(&a),
         Command::Estimate(a) => commands::estimate::run(&a),
         Command::Machines(a) => commands::machines::run(&a),
+        Command::Calibrate(a) => commands::calibrate::run(&a),
         Command::Pocket(a) => commands::pocket::run(&a),
         Command::Verify(a) => commands::verify::run(&a),
         Command::Sweep(a) => commands::sweep::run(&a),

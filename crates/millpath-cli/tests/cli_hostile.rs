@@ -395,6 +395,36 @@ fn cases() -> Vec<Case> {
             outputs: &[],
         },
         Case {
+            what: "machine profile with an unknown key",
+            args: &["estimate", "ok.ngc", "--machine", "m.toml"],
+            files: &[
+                ("ok.ngc", GOOD_NGC),
+                (
+                    "m.toml",
+                    b"name = \"bad\"\nmax_feed = 200.0\npath_tolerence = 0.01\n[axes.x]\nmax_velocity = 500.0\nmax_acceleration = 3000.0\nmax_jerk = 50000.0\n[axes.y]\nmax_velocity = 500.0\nmax_acceleration = 3000.0\nmax_jerk = 50000.0\n[axes.z]\nmax_velocity = 200.0\nmax_acceleration = 2000.0\nmax_jerk = 50000.0\n",
+                ),
+            ],
+            outputs: &[],
+        },
+        Case {
+            what: "calibration times without the header",
+            args: &["calibrate", "t.csv", "-o", "fit.toml"],
+            files: &[("t.csv", b"ok.ngc,1.5\n"), ("ok.ngc", GOOD_NGC)],
+            outputs: &["fit.toml"],
+        },
+        Case {
+            what: "calibration program that does not exist",
+            args: &["calibrate", "t.csv", "-o", "fit.toml"],
+            files: &[("t.csv", b"program,seconds\nmissing.ngc,1.5\n")],
+            outputs: &["fit.toml"],
+        },
+        Case {
+            what: "calibration time that is not a number",
+            args: &["calibrate", "t.csv", "-o", "fit.toml"],
+            files: &[("t.csv", b"program,seconds\nok.ngc,fast\n"), ("ok.ngc", GOOD_NGC)],
+            outputs: &["fit.toml"],
+        },
+        Case {
             what: "program file that does not exist",
             args: &["estimate", "missing.ngc", "--html", "out.html"],
             files: &[],

@@ -74,11 +74,12 @@ fn machine_accepts_a_toml_profile_everywhere_and_rejects_unknown_names() {
     std::fs::write(dir.path().join("pts.csv"), "0,0\n10,0\n10,10\n0,10\n").unwrap();
     // The `hsm` preset written out as a TOML profile.
     let mut toml = String::from(
-        "name = \"my-hsm\"\nunits = \"mm\"\nmax_feed = 500.0\npath_tolerance = 0.01\nipo_cycle = 0.002\n",
+        "name = \"my-hsm\"\nunits = \"mm\"\nmax_feed = 500.0\npath_tolerance = 0.01\nipo_cycle = 0.002\n\
+         curvature_accel_share = 0.8\ncontroller = \"sinumerik\"\nexact_stop_time = 0.03\n",
     );
     for ax in ["x", "y", "z"] {
         toml.push_str(&format!(
-            "[axes.{ax}]\nmax_velocity = 500.0\nmax_acceleration = 5000.0\nmax_jerk = 200000.0\nrapid = 500.0\n"
+            "[axes.{ax}]\nmax_velocity = 500.0\nmax_acceleration = 4500.0\nmax_jerk = 175000.0\nrapid = 500.0\n"
         ));
     }
     std::fs::write(dir.path().join("mill.toml"), toml).unwrap();

@@ -1,4 +1,6 @@
-//! Planned moves per second for short-segment G1 programs (the estimator's hot path).
+//! Planned moves per second for short-segment G1 programs (the estimator's hot path), on
+//! each controller model: `hsm` (sinumerik), `linuxcnc-sim` (generic), `linuxcnc-time`
+//! (linuxcnc).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use millpath::machine::Machine;
@@ -27,7 +29,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("planner");
     g.throughput(Throughput::Elements(n as u64));
     g.sample_size(10);
-    for name in ["hsm", "linuxcnc-sim"] {
+    for name in ["hsm", "linuxcnc-sim", "linuxcnc-time"] {
         let m = Machine::preset(name).expect("preset");
         let opts = PlanOptions {
             keep_geometry: false,

@@ -26,6 +26,7 @@
 //! Two families, see [`Error`]: [`InputError`] is the user's to fix (it names the value, where
 //! it came from and what would be accepted), [`InternalError`] is a bug to report.
 
+pub mod calibrate;
 pub mod curve;
 pub mod error;
 pub mod gcode;

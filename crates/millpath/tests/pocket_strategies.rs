@@ -95,30 +95,36 @@ fn spiral_spacing_and_engagement_share() {
     }
     assert!(times[1].0 < 0.85 * times[0].0, "{times:?}");
     assert!(times[1].1 < times[0].1, "{times:?}");
-    // The default spiral below zigzag's and offset's cycle time on this pocket (one level
-    // here; four levels in BENCHMARKS.md). With the feed profile along the path (the same
-    // for every strategy, 2026-11-25) it is 0.87 × zigzag and 0.98 × offset (17.38 s against
-    // 19.95 s and 17.72 s at 6.25 mm); with the feed set per move, which charged zigzag's and
-    // offset's whole moves for their largest engagement, it was 0.83 × and 0.94 × (17.85 s
-    // against 21.63 s and 19.05 s), and issue 21 asks 0.84 × zigzag and 0.90 × offset of a
-    // new spiral. The feeds are modulated by the engagement the stock simulation measures,
-    // so this runs at the CLI's raster (0.05 mm).
+    // The issue's target on this pocket (one level here; more levels and LinuxCNC itself in
+    // BENCHMARKS.md and tests/pocket_linuxcnc.rs): the default spiral at most 0.90 × offset's
+    // cycle time and 0.84 × zigzag's on `hsm` (the sinumerik model fitted to Table 2). The
+    // feeds are modulated by the engagement the stock simulation measures, so this runs at
+    // the CLI's raster (0.05 mm).
     let sim = SimOptions::default();
-    let t = |kind| {
+    let mut paths = Vec::new();
+    for kind in [
+        StrategyKind::Spiral,
+        StrategyKind::Zigzag,
+        StrategyKind::Offset,
+    ] {
         let r = pocket::generate(kind, &shape, &tool, &base, &sim).unwrap();
         assert!(r.verification.problems().is_empty(), "{kind:?}");
-        pocket::cycle_time(&r.toolpath).unwrap()
+        paths.push(r.toolpath);
+    }
+    let on = |m: &millpath::machine::Machine| -> Vec<f64> {
+        paths
+            .iter()
+            .map(|tp| pocket::cycle_time_on(tp, m).unwrap())
+            .collect()
     };
-    let (t_sp, t_zig, t_off) = (
-        t(StrategyKind::Spiral),
-        t(StrategyKind::Zigzag),
-        t(StrategyKind::Offset),
-    );
+    let h = on(&millpath::machine::Machine::preset("hsm").unwrap());
     assert!(
-        t_sp <= 0.9 * t_zig,
-        "spiral {t_sp} zigzag {t_zig} offset {t_off}"
+        h[0] <= 0.90 * h[2] && h[0] <= 0.84 * h[1],
+        "hsm: spiral {} zigzag {} offset {}",
+        h[0],
+        h[1],
+        h[2]
     );
-    assert!(t_sp < t_off, "spiral {t_sp} offset {t_off}");
 }
 
 /// Non-convex, non-star-shaped pockets: the spiral still verifies.
@@ -267,7 +273,13 @@ fn spiral_invariance_under_reversal_rotation_translation() {
     ] {
         let (l, t) = run(&v);
         assert!((l - l0).abs() <= 1e-3 * l0, "{name}: length {l} vs {l0}");
-        assert!((t - t0).abs() <= 5e-3 * t0, "{name}: time {t} vs {t0}");
+        // Rotations other than by quarter turns change each line's per-axis limits (a 45°
+        // line accelerates √2 × faster than an axis-parallel one), and with them the
+        // acceleration phases between the curvature ramps of the `hsm` model: 0.5 % at 30°.
+        assert!((t - t0).abs() <= 1e-2 * t0, "{name}: time {t} vs {t0}");
+        if name == "reversed" || name == "moved" || name == "rotated 90°" {
+            assert!((t - t0).abs() <= 5e-3 * t0, "{name}: time {t} vs {t0}");
+        }
     }
 }
 

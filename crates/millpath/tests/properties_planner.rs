@@ -43,7 +43,7 @@ proptest! {
     #[test]
     fn streaming_plans_match_the_whole_program_plan(
         steps in prop::collection::vec(random_step(), 1..40),
-        preset in 0usize..3,
+        preset in 0usize..4,
         window in 2usize..12,
     ) {
         let tp = build_random(&steps);
@@ -53,7 +53,8 @@ proptest! {
         let mut next_block = 0;
         let mut t = 0.0;
         let mut violations = 0;
-        let verify = whole.total_time() < 120.0;
+        // The linuxcnc model's plans are judged against LinuxCNC, not the verifier.
+        let verify = whole.total_time() < 120.0 && !whole.reshaped;
         let sum = plan_stream(
             moves.iter().map(|x| Ok(*x)),
             &m,
@@ -78,8 +79,9 @@ proptest! {
                 Ok(())
             },
         ).unwrap();
-        prop_assert_eq!(sum.blocks, moves.len());
-        prop_assert_eq!(next_block, moves.len());
+        prop_assert_eq!(sum.moves, moves.len());
+        prop_assert_eq!(sum.blocks, whole.blocks.len());
+        prop_assert_eq!(next_block, whole.blocks.len());
         prop_assert_eq!(sum.spans, whole.spans.len());
         let (a, b) = (sum.total_time, whole.total_time());
         prop_assert!((a - b).abs() <= 1e-9 * (1.0 + b), "streamed {a} s vs whole {b} s");

@@ -350,7 +350,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     plan.total_time(),
                     m.name
                 )),
-                achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
+                achieved_feed: Some(plan.peak_feed_by_move(result.toolpath.moves.len())),
                 ..millpath::report::PreviewOptions::default()
             },
             args.per_level,

@@ -74,6 +74,13 @@ pub struct Args {
 }
 
 /// Runs the command.
+/// Whether the limit verifier runs: not with `--no-verify`, nor on the `linuxcnc` controller
+/// model, whose plans follow LinuxCNC's rules (kinks within its ratio, parabolic blends), not
+/// the verifier's, and are judged against LinuxCNC itself (`violations` is then null).
+fn verifies(args: &Args, machine: &millpath::machine::Machine) -> bool {
+    !args.no_verify && machine.controller != millpath::machine::Controller::LinuxCnc
+}
+
 pub fn run(args: &Args) -> Result<(), Error> {
     let machine = super::load_machine(&args.machine)?;
     if args.table2 {
@@ -107,6 +114,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let opts = ReaderOptions {
         lenient: args.lenient,
         origin: path.display().to_string(),
+        // LinuxCNC stops where its task waits for motion (spindle, coolant, tool commands).
+        sync_points: (machine.controller == millpath::machine::Controller::LinuxCnc)
+            .then_some(machine.sync_wait),
         ..ReaderOptions::default()
     };
     let start = opts.start;
@@ -158,7 +168,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    let violations = if args.no_verify {
+    let violations = if !verifies(args, &machine) {
         None
     } else {
         let rep = verify_plan(
@@ -193,7 +203,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     plan.total_time(),
                     machine.name
                 )),
-                achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
+                achieved_feed: Some(plan.peak_feed_by_move(tp.moves.len())),
                 ..millpath::report::PreviewOptions::default()
             },
             args.per_level,
@@ -242,7 +252,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
             let per: Vec<_> = plan
                 .blocks
                 .iter()
-                .map(|b| serde_json::json!({"start_s": b.start_time, "time_s": b.time, "peak_feed_mm_s": b.peak_feed, "length_mm": b.length}))
+                .map(|b| serde_json::json!({"start_s": b.start_time, "time_s": b.time, "peak_feed_mm_s": b.peak_feed, "length_mm": b.length, "move": b.origin}))
                 .collect();
             obj["per_block"] = serde_json::Value::Array(per);
         }
@@ -290,18 +300,18 @@ where
         ..VerifyOptions::default()
     };
     let sum = plan_stream(stream, machine, &StreamOptions::default(), |chunk| {
-        if !args.no_verify {
+        if verifies(args, machine) {
             violations += verify_plan(&chunk.plan, &chunk.moves, machine, &vopts)?.violations;
         }
         if args.json && args.blocks {
             per_block.extend(chunk.plan.blocks.iter().map(|b| {
                 serde_json::json!({"start_s": chunk.start_time + b.start_time, "time_s": b.time,
-                    "peak_feed_mm_s": b.peak_feed, "length_mm": b.length})
+                    "peak_feed_mm_s": b.peak_feed, "length_mm": b.length, "move": b.origin})
             }));
         }
         Ok(())
     })?;
-    let violations = (!args.no_verify).then_some(violations);
+    let violations = verifies(args, machine).then_some(violations);
     if args.json {
         let mut obj = serde_json::json!({
             "cycle_time_s": sum.total_time,

@@ -48,6 +48,7 @@ pub fn run(args: &Args) -> Result<(), millpath::Error> {
             m.path_tolerance,
             m.ipo_cycle * 1e3
         ));
+        print(&format!("  controller {}", m.controller.name()));
     }
     Ok(())
 }

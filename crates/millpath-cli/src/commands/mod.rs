@@ -1,5 +1,6 @@
 //! One module per subcommand, each thin over the engine.
 
+pub mod calibrate;
 pub mod contour;
 pub mod demo;
 pub mod estimate;

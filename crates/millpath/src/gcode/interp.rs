@@ -22,8 +22,9 @@
 //!   given in [`ReaderOptions::work_offsets`]; positions are machine positions, program
 //!   position plus the active offset. G53 moves the block in machine coordinates (G90 only).
 //! * Corner modes: G61.1 → exact stop, G61 → exact path (Fanuc: exact stop, its G61 is the
-//!   exact stop check mode), `G64 P t` → blend within t (LinuxCNC; its Q "naive CAM" tolerance
-//!   is accepted and ignored), G64 without P → machine (LinuxCNC, Fanuc, Grbl; Sinumerik:
+//!   exact stop check mode), `G64 P t` → blend within t (LinuxCNC; `G64 P t Q q` with q ≠ t →
+//!   [`Corner::BlendMerge`]: q is the merge tolerance of LinuxCNC's naive-CAM detector, which
+//!   defaults to P), G64 without P → machine (LinuxCNC, Fanuc, Grbl; Sinumerik:
 //!   exact path, its G64 is continuous path without rounding), G60 → exact stop, G642 →
 //!   machine, `CYCLE832(t, …)` → blend within t (`CYCLE832(0,_OFF,…)` → machine), G9/G09 →
 //!   exact stop for its block only. Dwells are exact stops.
@@ -61,6 +62,13 @@ pub struct ReaderOptions {
     pub block_delete: bool,
     /// Name of the source for messages (`part.ngc`).
     pub origin: String,
+    /// Emit a dwell of this many seconds where LinuxCNC's task waits for the motion to stop
+    /// before it goes on, once the program has moved: spindle, coolant and tool commands
+    /// (M3–M9, an S that changes the speed, G43/G49) before the block's motion, M0/M1 after
+    /// it (`emcTaskCheckPreconditions`). Set it (to the machine's
+    /// [`crate::machine::Machine::sync_wait`]) when timing for a LinuxCNC controller; other
+    /// controllers output such functions without stopping the path.
+    pub sync_points: Option<f64>,
 }
 
 impl Default for ReaderOptions {
@@ -72,6 +80,7 @@ impl Default for ReaderOptions {
             work_offsets: [Vec3::ZERO; 6],
             block_delete: false,
             origin: "G-code".to_string(),
+            sync_points: None,
         }
     }
 }
@@ -128,6 +137,8 @@ pub(crate) struct State {
     offset: usize,
     spindle_set: f64,
     pending_tool: u32,
+    /// A motion has been emitted (sync points before the first one do nothing).
+    moved: bool,
     pub(crate) ended: bool,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
@@ -366,6 +377,7 @@ impl State {
             offset: 0,
             spindle_set: 0.0,
             pending_tool: 0,
+            moved: false,
             ended: false,
             notes: Vec::new(),
         }
@@ -426,11 +438,24 @@ impl State {
                 FeedMode::InverseTime => block_f = Some(f),
             }
         }
+        let mut sync = b.m.iter().any(|m| matches!(m, 3..=9)) || b.has_g(430) || b.has_g(490);
         if let Some(s) = b.take(b'S') {
             if s < 0.0 {
                 return Err(BlockError::new("spindle speed", format!("S{s}"), "S >= 0"));
             }
+            sync |= (s - self.spindle_set).abs() > 0.0;
             self.spindle_set = s;
+        }
+        if let Some(wait) = opts.sync_points
+            && sync
+            && self.moved
+            && !dwell
+        {
+            out.push(ReadMove {
+                mv: Move::dwell(self.pos, wait),
+                line,
+                modal: self.modal,
+            });
         }
         if let Some(t) = b.take(b'T') {
             if t < 0.0 || t.fract() != 0.0 {
@@ -461,7 +486,30 @@ impl State {
             });
         }
         self.modal_groups(b, dialect)?;
+        let before = out.len();
+        let from = self.pos;
         self.motion(b, block_f, line, opts, out)?;
+        // A move that goes somewhere (a zero-length G0 to where the tool is does not).
+        self.moved |= out
+            .get(before..)
+            .unwrap_or_default()
+            .iter()
+            .any(|m| m.mv.is_feed() || m.mv.kind == crate::toolpath::MoveKind::Rapid)
+            && out
+                .get(before..)
+                .unwrap_or_default()
+                .iter()
+                .any(|m| m.mv.length_from(from) > 1e-12);
+        if let Some(wait) = opts.sync_points
+            && self.moved
+            && (b.m.contains(&0) || b.m.contains(&1))
+        {
+            out.push(ReadMove {
+                mv: Move::dwell(self.pos, wait),
+                line,
+                modal: self.modal,
+            });
+        }
         if b.m.contains(&2) || b.m.contains(&30) {
             self.ended = true;
         }
@@ -531,13 +579,26 @@ impl State {
                 610 => self.modal.corner = Corner::ExactPath,
                 640 if dialect == Dialect::Sinumerik => self.modal.corner = Corner::ExactPath,
                 640 => {
-                    b.take(b'Q');
-                    self.modal.corner = match b.take(b'P') {
-                        Some(p) if p < 0.0 => {
-                            return Err(BlockError::new("G64 P", p, "a tolerance >= 0"));
+                    let q = b.take(b'Q');
+                    let p = b.take(b'P');
+                    for (word, v) in [("G64 P", p), ("G64 Q", q)] {
+                        if let Some(v) = v
+                            && (v.is_nan() || v < 0.0)
+                        {
+                            return Err(BlockError::new(word, v, "a tolerance >= 0"));
                         }
-                        Some(p) if dialect == Dialect::LinuxCnc => Corner::Blend(p * self.unit()),
-                        _ => Corner::Machine,
+                    }
+                    let u = self.unit();
+                    self.modal.corner = match (p, q) {
+                        _ if dialect != Dialect::LinuxCnc => Corner::Machine,
+                        (None, None) => Corner::Machine,
+                        // Q defaults to P (LinuxCNC's convert_control_mode).
+                        (Some(p), None) => Corner::Blend(p * u),
+                        (Some(p), Some(q)) if (q - p).abs() <= 0.0 => Corner::Blend(p * u),
+                        (p, Some(q)) => Corner::BlendMerge {
+                            tolerance: p.unwrap_or(0.0) * u,
+                            merge: q * u,
+                        },
                     };
                 }
                 6420 => self.modal.corner = Corner::Machine,

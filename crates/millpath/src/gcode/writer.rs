@@ -235,8 +235,12 @@ fn check_move(i: usize, m: &Move, from: Point3) -> Result<(), InputError> {
             }
         }
     }
-    if let Corner::Blend(t) = m.corner
-        && !(t.is_finite() && t >= 0.0)
+    let merge = match m.corner {
+        Corner::BlendMerge { merge, .. } => merge,
+        _ => 0.0,
+    };
+    if let Some(t) = m.corner.blend_tolerance()
+        && !(t.is_finite() && t >= 0.0 && merge.is_finite() && merge >= 0.0)
     {
         return Err(InputError::new("blend tolerance", t)
             .at(at())
@@ -512,6 +516,16 @@ impl<'a> Emitter<'a> {
             Corner::Blend(t) if self.rounds_to_zero(t) => Corner::ExactStop,
             Corner::Blend(t) => Corner::Blend(self.tolerance_in_units(t)),
             Corner::Machine if pt.is_some_and(|t| t <= 0.0) => Corner::ExactStop,
+            Corner::BlendMerge { tolerance, merge } if d == Dialect::LinuxCnc => {
+                Corner::BlendMerge {
+                    tolerance: self.tolerance_in_units(tolerance),
+                    merge: self.tolerance_in_units(merge),
+                }
+            }
+            // Other dialects have no merge tolerance: the blend alone.
+            Corner::BlendMerge { tolerance, .. } => {
+                Corner::Blend(self.tolerance_in_units(tolerance))
+            }
             c => c,
         };
         let text = match (d, corner_in_units) {
@@ -519,15 +533,22 @@ impl<'a> Emitter<'a> {
             (Dialect::LinuxCnc, Corner::ExactStop) => "G61.1".to_string(),
             (Dialect::LinuxCnc, Corner::ExactPath) => "G61".to_string(),
             (Dialect::LinuxCnc, Corner::Blend(t)) => format!("G64 P{}", num(t, dec, false)),
+            (Dialect::LinuxCnc, Corner::BlendMerge { tolerance, merge }) => format!(
+                "G64 P{} Q{}",
+                num(tolerance, dec, false),
+                num(merge, dec, false)
+            ),
             (Dialect::LinuxCnc, Corner::Machine) => match pt {
                 Some(t) => format!("G64 P{}", num(t, dec, false)),
                 None => "G64".to_string(),
             },
             (Dialect::Fanuc, Corner::ExactStop | Corner::ExactPath) => "G61".to_string(),
-            (Dialect::Fanuc, Corner::Blend(_) | Corner::Machine) => "G64".to_string(),
+            (Dialect::Fanuc, Corner::Blend(_) | Corner::BlendMerge { .. } | Corner::Machine) => {
+                "G64".to_string()
+            }
             (Dialect::Sinumerik, Corner::ExactStop) => "G60".to_string(),
             (Dialect::Sinumerik, Corner::ExactPath) => "G64".to_string(),
-            (Dialect::Sinumerik, Corner::Blend(t)) => {
+            (Dialect::Sinumerik, Corner::Blend(t) | Corner::BlendMerge { tolerance: t, .. }) => {
                 format!("CYCLE832({},_FINISH,1)", num(t, dec, false))
             }
             (Dialect::Sinumerik, Corner::Machine) => match pt {
@@ -699,6 +720,16 @@ fn num(v: f64, decimals: u32, keep_point: bool) -> String {
 fn same_corner(a: Corner, b: Corner) -> bool {
     match (a, b) {
         (Corner::Blend(x), Corner::Blend(y)) => (x - y).abs() <= 1e-12,
+        (
+            Corner::BlendMerge {
+                tolerance: x,
+                merge: p,
+            },
+            Corner::BlendMerge {
+                tolerance: y,
+                merge: q,
+            },
+        ) => (x - y).abs() <= 1e-12 && (p - q).abs() <= 1e-12,
         _ => a == b,
     }
 }

@@ -7,38 +7,39 @@
 //!
 //! # Presets
 //!
-//! | preset | v_max x/y/z (mm/s) | a_max (mm/s²) | j_max (mm/s³) | max feed (mm/s) | rapid (mm/s) | tolerance (mm) | IPO (ms) |
-//! |---|---|---|---|---|---|---|---|
-//! | `hsm` | 500 / 500 / 500 | 5000 | 200 000 | 500 | 500 | 0.01 | 2 |
-//! | `linuxcnc-sim` | 101.6 (4 in/s) | 2540 (100 in/s²) | unlimited | 30.48 (1.2 in/s) | 30.48 | 0.0254 (0.001 in) | 1 |
-//! | `router` | 250 / 250 / 100 | 500 / 500 / 300 | 10 000 / 10 000 / 5 000 | 200 | 250 / 250 / 100 | 0.05 | 1 |
+//! | preset | v_max x/y/z (mm/s) | a_max (mm/s²) | j_max (mm/s³) | max feed (mm/s) | rapid (mm/s) | tolerance (mm) | IPO (ms) | controller |
+//! |---|---|---|---|---|---|---|---|---|
+//! | `hsm` | 500 / 500 / 500 | 4500 | 175 000 | 500 | 500 | 0.01 | 2 | sinumerik |
+//! | `linuxcnc-sim` | 101.6 (4 in/s) | 2540 (100 in/s²) | unlimited | 30.48 (1.2 in/s) | 30.48 | 0.0254 (0.001 in) | 1 | generic |
+//! | `linuxcnc-time` | 500 | 2000 | unlimited | 866 (500·√3) | 500 | 0 (G64: no limit) | 1 | linuxcnc |
+//! | `router` | 250 / 250 / 100 | 500 / 500 / 300 | 10 000 / 10 000 / 5 000 | 200 | 250 / 250 / 100 | 0.05 | 1 | generic |
 //!
 //! Where the numbers come from:
 //!
 //! * **`hsm`** — a Huron-class high-speed vertical mill with a Siemens 840D, the machine of the
-//!   adaptive-spiral paper's Table 2. Rapid 30 m/min (500 mm/s) and axis acceleration
-//!   5 m/s² are the published class of such machines (Huron KX/MX high-speed series:
-//!   30–40 m/min rapids, 3–6 m/s²); jerk 200 m/s³ is within the range the 840D's
-//!   `MAX_AX_JERK` (MD32431) is set to on such machines (50–500 m/s³). Both are chosen to be
-//!   consistent with Table 2: at 400 in/min (169 mm/s) on the r = 0.318 in (8.08 mm) circle
-//!   the 840D took 0.52 s for 0.30 s of path at feed, i.e. it kept nearly full feed with a
-//!   centripetal acceleration `v²/r ≈ 3.5 m/s²` and `v³/r² ≈ 74 m/s³`, so the axes allow at
-//!   least that; the squares' corner losses then fix the pair (A, J) = (5 m/s², 200 m/s³)
-//!   as the grid point that reproduces the table's trends with the smallest error (see
-//!   [`crate::motion::table2`] for the fit and the remaining error). Path tolerance 0.01 mm
-//!   (a typical G642/`CYCLE832` finishing tolerance; the paper does not give the 840D's
-//!   continuous-path settings; on Table 2's 90° corners it leaves the corner speed so low
-//!   that the squares behave almost as with exact stops; the grid search picks the same (A, J) with tolerance 0).
-//!   Interpolation cycle 2 ms (the 840D's IPO cycle is typically
-//!   2–4 ms, MD10071). On curved paths the 840D shares the axis acceleration between the
-//!   tangential and the centripetal direction (`CURV_EFFECT_ON_PATH_ACCEL`, MD20602); the
-//!   preset gives 3/4 of it (and of the jerk) to the curvature terms.
+//!   adaptive-spiral paper's Table 2, planned by the `sinumerik` controller model. Rapid
+//!   30 m/min (500 mm/s) is the published class of such machines (Huron KX/MX high-speed
+//!   series: 30–40 m/min rapids, 3–6 m/s²). Axis acceleration 4.5 m/s², jerk 175 m/s³ (within
+//!   the 50–500 m/s³ the 840D's `MAX_AX_JERK`, MD32431, is set to on such machines), a 0.8
+//!   share of the acceleration for the curvature on arcs (`CURV_EFFECT_ON_PATH_ACCEL`,
+//!   MD20602) and 0.03 s of settling at each exact stop are fitted to Table 2 (see
+//!   [`crate::motion::table2`] for the fit and its residuals: mean 2.7 %, max 9.9 %). Path
+//!   tolerance 0.01 mm (a typical G642/`CYCLE832` finishing tolerance; the paper does not give
+//!   the 840D's continuous-path settings). Interpolation cycle 2 ms (the 840D's IPO cycle is
+//!   typically 2–4 ms, MD10071).
 //! * **`linuxcnc-sim`** — LinuxCNC's sample simulator configuration
 //!   `configs/sim/axis/axis.ini` (inch units): every axis `MAX_VELOCITY = 4` in/s,
 //!   `MAX_ACCELERATION = 100.0` in/s², `[TRAJ] MAX_LINEAR_VELOCITY = 1.2` in/s (which caps
 //!   every move, rapids included, so it is both the maximum feed and the rapid here),
 //!   `SERVO_PERIOD = 1000000` ns. LinuxCNC's planner is trapezoidal: jerk unlimited. The path
 //!   tolerance 0.001 in is the usual `G64 P0.001`.
+//! * **`linuxcnc-time`** — the machine of `../shared/tools/linuxcnc-time` (LinuxCNC 2.9's own
+//!   motion controller on a simulated trivkins XYZ machine): every axis `MAX_VELOCITY = 500`
+//!   mm/s and `MAX_ACCELERATION = 2000` mm/s², `[TRAJ]` limits √3 times those (never binding
+//!   on three axes; `max_feed` is `[TRAJ] MAX_LINEAR_VELOCITY`), servo period 1 ms, jerk
+//!   unlimited (LinuxCNC's planner is trapezoidal), planned by the `linuxcnc` controller
+//!   model. Path tolerance 0: a program's `G64` without P blends without a tolerance limit,
+//!   as LinuxCNC does (a program that gives no path mode runs in G64).
 //! * **`router`** — a low-acceleration hobby router (steel-belt or lead-screw gantry): 15 m/min
 //!   rapids in XY, 6 m/min in Z, 0.5 m/s² in XY, 0.3 m/s² in Z, jerk 10 m/s³ (XY) and
 //!   5 m/s³ (Z), the class of GRBL-based routers' `$120..$122` settings.
@@ -47,12 +48,16 @@
 //!
 //! ```toml
 //! name = "my-mill"
+//! description = "…"       # optional
 //! units = "mm"            # "mm" or "in": every length below is in these units
 //! max_feed = 250.0        # units/s
 //! path_tolerance = 0.01   # units; 0 = exact stop at every corner
 //! ipo_cycle = 0.002       # s (optional, default 0.002)
 //! curvature_accel_share = 0.75   # optional, default 0.75
 //! curvature_jerk_share = 0.75    # optional, default 0.75
+//! controller = "generic"  # optional: "generic" (default), "sinumerik" or "linuxcnc"
+//! exact_stop_time = 0.0   # s, optional: settling at exact stops (sinumerik model only)
+//! sync_wait = 0.0         # s, optional: wait at spindle/coolant/tool commands (linuxcnc only)
 //!
 //! [axes.x]
 //! max_velocity = 500.0      # units/s
@@ -62,6 +67,8 @@
 //! # [axes.y] and [axes.z] alike
 //! ```
 //! Every limit must be a finite number > 0 (jerk may be `"unlimited"`); errors name the key.
+//! A key that is not one of these (a misspelt limit, which would otherwise fall back to its
+//! default without a word) is refused, naming the key and the file.
 
 pub mod kinematics;
 
@@ -80,6 +87,46 @@ pub struct AxisLimits {
     pub max_acceleration: f64,
     /// Maximum axis jerk in mm/s³ (`f64::INFINITY` for unlimited: trapezoidal profiles).
     pub max_jerk: f64,
+}
+
+/// The controller whose trajectory planner a machine's cycle times reproduce: the rules for
+/// corners, arcs, short blocks and look-ahead (see [`crate::motion::controller`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Controller {
+    /// millpath's own jerk-limited look-ahead planner (every limit kept, nothing else).
+    #[default]
+    Generic,
+    /// A Siemens 840D-class controller: jerk-limited, G64/G642 rounding within the path
+    /// tolerance, fitted to the adaptive-spiral paper's Table 2.
+    Sinumerik,
+    /// LinuxCNC 2.9's trajectory planner (trapezoidal, blend arcs, its look-ahead depth).
+    #[serde(rename = "linuxcnc")]
+    LinuxCnc,
+}
+
+impl Controller {
+    /// The names a profile's `controller` key takes.
+    pub const NAMES: [&'static str; 3] = ["linuxcnc", "sinumerik", "generic"];
+
+    /// The controller of a profile's `controller` value.
+    pub fn from_name(name: &str) -> Option<Controller> {
+        match name {
+            "generic" => Some(Controller::Generic),
+            "sinumerik" => Some(Controller::Sinumerik),
+            "linuxcnc" => Some(Controller::LinuxCnc),
+            _ => None,
+        }
+    }
+
+    /// The profile name of this controller.
+    pub fn name(self) -> &'static str {
+        match self {
+            Controller::Generic => "generic",
+            Controller::Sinumerik => "sinumerik",
+            Controller::LinuxCnc => "linuxcnc",
+        }
+    }
 }
 
 /// A three-axis Cartesian machine as the motion planner sees it.
@@ -106,7 +153,31 @@ pub struct Machine {
     pub curvature_accel_share: f64,
     /// Share of the axis jerk available for the jerk that curvature implies on arcs, in (0, 1).
     pub curvature_jerk_share: f64,
+    /// The controller model the planner follows.
+    #[serde(default)]
+    pub controller: Controller,
+    /// Time in s the controller waits at each exact stop and at the program's end for the
+    /// axes to settle in position (the 840D's exact-stop window, G60/G9); the `sinumerik`
+    /// model only.
+    #[serde(default)]
+    pub exact_stop_time: f64,
+    /// Time in s a LinuxCNC controller's task waits, at rest, at a spindle, coolant or tool
+    /// command in the program (its I/O controller's cycle, `[EMCIO] CYCLE_TIME`); the
+    /// `linuxcnc` model only.
+    #[serde(default)]
+    pub sync_wait: f64,
 }
+
+/// The `hsm` preset's exact-stop settling time, s (fitted to Table 2, see
+/// [`crate::motion::table2`]).
+pub const HSM_EXACT_STOP_TIME: f64 = 0.03;
+
+/// The `linuxcnc-time` preset's wait at a spindle, coolant or tool command, s: its
+/// `[EMCIO] CYCLE_TIME` (0.1 s). Measured on `../shared/tools/linuxcnc-time`: 20 coolant
+/// commands between moves of 3–17 mm at F3000 cost 0.097 s each on average (2 runs, 7.505
+/// and 7.511 s); the wait depends on the phase of the I/O cycle (between 0 and 0.3 s seen
+/// on single commands), so a program with few of them varies by up to that from run to run.
+pub const LINUXCNC_TIME_SYNC_WAIT: f64 = 0.1;
 
 /// The largest velocity (axis, rapid or feed) a machine may have: 1 km/s, in mm/s.
 pub const MAX_VELOCITY: f64 = 1e6;
@@ -117,7 +188,7 @@ pub const MAX_JERK: f64 = 1e13;
 
 impl Machine {
     /// The names of the built-in presets.
-    pub const PRESET_NAMES: [&'static str; 3] = ["hsm", "linuxcnc-sim", "router"];
+    pub const PRESET_NAMES: [&'static str; 4] = ["hsm", "linuxcnc-sim", "router", "linuxcnc-time"];
 
     /// A built-in preset by name (see the module docs for the values and their sources).
     pub fn preset(name: &str) -> Result<Machine, InputError> {
@@ -132,13 +203,16 @@ impl Machine {
                 description: "high-speed 3-axis aerospace mill, Siemens 840D-class controller \
                               (Huron, the adaptive-spiral paper's Table 2)"
                     .into(),
-                axes: [axis(500.0, 5000.0, 200_000.0); 3],
+                axes: [axis(500.0, 4500.0, 175_000.0); 3],
                 max_feed: 500.0,
                 rapid: [500.0; 3],
                 path_tolerance: 0.01,
                 ipo_cycle: 0.002,
-                curvature_accel_share: 0.75,
+                curvature_accel_share: 0.8,
                 curvature_jerk_share: 0.75,
+                controller: Controller::Sinumerik,
+                exact_stop_time: HSM_EXACT_STOP_TIME,
+                sync_wait: 0.0,
             }),
             "linuxcnc-sim" => {
                 let v = 4.0 * MM_PER_INCH;
@@ -153,8 +227,27 @@ impl Machine {
                     ipo_cycle: 0.001,
                     curvature_accel_share: 0.75,
                     curvature_jerk_share: 0.75,
+                    controller: Controller::Generic,
+                    exact_stop_time: 0.0,
+                    sync_wait: 0.0,
                 })
             }
+            "linuxcnc-time" => Ok(Machine {
+                name: "linuxcnc-time".into(),
+                description: "LinuxCNC 2.9 trajectory planner, the machine of \
+                              ../shared/tools/linuxcnc-time (500 mm/s, 2000 mm/s², 1 ms servo)"
+                    .into(),
+                axes: [axis(500.0, 2000.0, f64::INFINITY); 3],
+                max_feed: 500.0 * 3f64.sqrt(),
+                rapid: [500.0; 3],
+                path_tolerance: 0.0,
+                ipo_cycle: 0.001,
+                curvature_accel_share: 0.75,
+                curvature_jerk_share: 0.75,
+                controller: Controller::LinuxCnc,
+                exact_stop_time: 0.0,
+                sync_wait: LINUXCNC_TIME_SYNC_WAIT,
+            }),
             "router" => Ok(Machine {
                 name: "router".into(),
                 description: "low-acceleration hobby router".into(),
@@ -169,6 +262,9 @@ impl Machine {
                 ipo_cycle: 0.001,
                 curvature_accel_share: 0.75,
                 curvature_jerk_share: 0.75,
+                controller: Controller::Generic,
+                exact_stop_time: 0.0,
+                sync_wait: 0.0,
             }),
             _ => Err(InputError::new("machine preset", name)
                 .expected(format!("one of {}", Self::PRESET_NAMES.join(", ")))),
@@ -236,6 +332,16 @@ impl Machine {
         }
         pos("max_feed".into(), self.max_feed, MAX_VELOCITY, "mm/s")?;
         pos("ipo_cycle".into(), self.ipo_cycle, 1.0, "s")?;
+        for (what, t) in [
+            ("exact_stop_time", self.exact_stop_time),
+            ("sync_wait", self.sync_wait),
+        ] {
+            if !(t.is_finite() && (0.0..=10.0).contains(&t)) {
+                return Err(InputError::new(what, t)
+                    .at(origin)
+                    .expected("a time in [0, 10] s"));
+            }
+        }
         let max_tol = crate::geom::MAX_COORDINATE_MM;
         if !(self.path_tolerance.is_finite()
             && self.path_tolerance >= 0.0
@@ -258,6 +364,52 @@ impl Machine {
         Ok(())
     }
 
+    /// The machine as a TOML profile (millimetres; [`Machine::from_toml_str`] reads it back
+    /// to the same machine).
+    pub fn to_toml(&self) -> String {
+        use toml::Value;
+        let mut t = toml::Table::new();
+        t.insert("name".into(), Value::String(self.name.clone()));
+        t.insert(
+            "description".into(),
+            Value::String(self.description.clone()),
+        );
+        t.insert("units".into(), Value::String("mm".into()));
+        t.insert(
+            "controller".into(),
+            Value::String(self.controller.name().into()),
+        );
+        for (k, v) in [
+            ("max_feed", self.max_feed),
+            ("path_tolerance", self.path_tolerance),
+            ("ipo_cycle", self.ipo_cycle),
+            ("curvature_accel_share", self.curvature_accel_share),
+            ("curvature_jerk_share", self.curvature_jerk_share),
+            ("exact_stop_time", self.exact_stop_time),
+            ("sync_wait", self.sync_wait),
+        ] {
+            t.insert(k.into(), Value::Float(v));
+        }
+        let mut axes = toml::Table::new();
+        for ((a, r), name) in self.axes.iter().zip(self.rapid).zip(["x", "y", "z"]) {
+            let mut at = toml::Table::new();
+            at.insert("max_velocity".into(), Value::Float(a.max_velocity));
+            at.insert("max_acceleration".into(), Value::Float(a.max_acceleration));
+            at.insert(
+                "max_jerk".into(),
+                if a.max_jerk.is_finite() {
+                    Value::Float(a.max_jerk)
+                } else {
+                    Value::String("unlimited".into())
+                },
+            );
+            at.insert("rapid".into(), Value::Float(r));
+            axes.insert(name.into(), Value::Table(at));
+        }
+        t.insert("axes".into(), Value::Table(axes));
+        toml::to_string(&t).unwrap_or_default()
+    }
+
     /// Reads a TOML machine profile (format in the module docs); `origin` (a file name) is
     /// quoted in errors.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Machine, InputError> {
@@ -266,6 +418,7 @@ impl Machine {
                 .at(origin)
                 .expected(format!("valid TOML ({})", e.message()))
         })?;
+        check_keys(&table, TOP_KEYS, "", origin)?;
         let unit = match table.get("units") {
             None => 1.0,
             Some(toml::Value::String(s)) if s == "mm" => 1.0,
@@ -293,7 +446,12 @@ impl Machine {
         };
         let name = match table.get("name") {
             Some(toml::Value::String(s)) => s.clone(),
-            _ => origin.to_string(),
+            None => origin.to_string(),
+            Some(v) => {
+                return Err(InputError::new("name", v)
+                    .at(origin)
+                    .expected("a string (the machine's name)"));
+            }
         };
         let axes_t = match table.get("axes") {
             Some(toml::Value::Table(t)) => t,
@@ -309,6 +467,7 @@ impl Machine {
             max_jerk: 0.0,
         }; 3];
         let mut rapid = [0.0; 3];
+        check_keys(axes_t, &["x", "y", "z"], "axes.", origin)?;
         for (i, an) in ["x", "y", "z"].iter().enumerate() {
             let t = match axes_t.get(*an) {
                 Some(toml::Value::Table(t)) => t,
@@ -318,11 +477,17 @@ impl Machine {
                         .expected("a table with max_velocity, max_acceleration, max_jerk"));
                 }
             };
+            check_keys(t, AXIS_KEYS, &format!("axes.{an}."), origin)?;
             let key = |k: &str| format!("axes.{an}.{k}");
             let v = required(t, "max_velocity", &key("max_velocity"))?;
             let a = required(t, "max_acceleration", &key("max_acceleration"))?;
             let j = match t.get("max_jerk") {
                 Some(toml::Value::String(s)) if s == "unlimited" => f64::INFINITY,
+                Some(v @ toml::Value::String(_)) => {
+                    return Err(InputError::new(key("max_jerk"), v)
+                        .at(origin)
+                        .expected("a finite number > 0 or \"unlimited\""));
+                }
                 _ => {
                     let j = required(t, "max_jerk", &key("max_jerk"))?;
                     if !j.is_finite() {
@@ -344,9 +509,18 @@ impl Machine {
         let opt = |key: &str, default: f64| -> Result<f64, InputError> {
             Ok(num(&table, key, key)?.unwrap_or(default))
         };
+        let description = match table.get("description") {
+            None => format!("machine profile {origin}"),
+            Some(toml::Value::String(s)) => s.clone(),
+            Some(v) => {
+                return Err(InputError::new("description", v)
+                    .at(origin)
+                    .expected("a string"));
+            }
+        };
         let m = Machine {
             name,
-            description: format!("machine profile {origin}"),
+            description,
             axes,
             max_feed: required(&table, "max_feed", "max_feed")? * unit,
             rapid,
@@ -354,9 +528,63 @@ impl Machine {
             ipo_cycle: opt("ipo_cycle", 0.002)?,
             curvature_accel_share: opt("curvature_accel_share", 0.75)?,
             curvature_jerk_share: opt("curvature_jerk_share", 0.75)?,
+            exact_stop_time: opt("exact_stop_time", 0.0)?,
+            sync_wait: opt("sync_wait", 0.0)?,
+            controller: match table.get("controller") {
+                None => Controller::Generic,
+                Some(v) => v.as_str().and_then(Controller::from_name).ok_or_else(|| {
+                    InputError::new("controller", v)
+                        .at(origin)
+                        .expected(format!("one of {}", Controller::NAMES.join(", ")))
+                })?,
+            },
         };
         m.validate(origin)?;
         Ok(m)
+    }
+}
+
+/// The keys a profile's top level may have.
+const TOP_KEYS: &[&str] = &[
+    "name",
+    "description",
+    "units",
+    "max_feed",
+    "path_tolerance",
+    "ipo_cycle",
+    "curvature_accel_share",
+    "curvature_jerk_share",
+    "controller",
+    "exact_stop_time",
+    "sync_wait",
+    "axes",
+];
+
+/// The keys an `[axes.x|y|z]` table may have.
+const AXIS_KEYS: &[&str] = &["max_velocity", "max_acceleration", "max_jerk", "rapid"];
+
+/// Refuses a key of `table` that is not in `allowed` (a misspelt limit would otherwise fall
+/// back to its default without a word), naming it with its table `prefix` and the file.
+fn check_keys(
+    table: &toml::Table,
+    allowed: &[&str],
+    prefix: &str,
+    origin: &str,
+) -> Result<(), InputError> {
+    match table.keys().find(|k| !allowed.contains(&k.as_str())) {
+        Some(k) => Err(
+            InputError::new("machine profile key", format!("{prefix}{k}"))
+                .at(origin)
+                .expected(format!(
+                    "one of {}",
+                    allowed
+                        .iter()
+                        .map(|a| format!("{prefix}{a}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )),
+        ),
+        None => Ok(()),
     }
 }
 
@@ -392,12 +620,23 @@ mod tests {
         assert!(m.validate("m.toml").is_err());
     }
 
+    /// Every preset written as TOML reads back to itself (the calibrated profile is written
+    /// this way).
+    #[test]
+    fn presets_round_trip_through_toml() {
+        for m in Machine::presets() {
+            let text = m.to_toml();
+            let back = Machine::from_toml_str(&text, "m.toml").unwrap();
+            assert_eq!(back, m, "{text}");
+        }
+    }
+
     #[test]
     fn presets_are_valid_and_named() {
         for m in Machine::presets() {
             m.validate(&m.name).unwrap();
         }
-        assert_eq!(Machine::presets().len(), 3);
+        assert_eq!(Machine::presets().len(), 4);
         assert!(!Machine::preset("linuxcnc-sim").unwrap().jerk_limited());
         assert!(Machine::preset("hsm").unwrap().jerk_limited());
         let e = Machine::preset("nope").unwrap_err().to_string();
@@ -462,6 +701,26 @@ rapid = 1
             e.contains("axes.z.max_velocity") && e.contains("missing"),
             "{e}"
         );
+        // Unknown keys and values are refused, naming the key and the file (a misspelt
+        // limit fell back to its default without a word).
+        for (bad, needle) in [
+            (format!("bogus_key = 3\n{PROFILE}"), "bogus_key"),
+            (
+                PROFILE.replace("rapid = 1", "rapid = 1\nmax_jerks = 5"),
+                "axes.z.max_jerks",
+            ),
+            (format!("{PROFILE}[axes.w]\nmax_velocity = 1\n"), "axes.w"),
+            (
+                PROFILE.replace("max_jerk = \"unlimited\"", "max_jerk = \"infinite\""),
+                "axes.x.max_jerk",
+            ),
+            (PROFILE.replace("name = \"t\"", "name = 5"), "name"),
+        ] {
+            let e = Machine::from_toml_str(&bad, "t.toml")
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(needle) && e.contains("t.toml"), "{e}");
+        }
         let bad = PROFILE.replace("max_jerk = 1000\nrapid", "max_jerk = nan\nrapid");
         let e = Machine::from_toml_str(&bad, "t.toml")
             .unwrap_err()

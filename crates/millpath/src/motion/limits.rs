@@ -98,7 +98,7 @@ pub fn block_limits(g: &Geom, m: &Move, machine: &Machine) -> Limits1 {
             a: a_line,
             j: j_line,
         },
-        Geom::Helix { .. } => {
+        Geom::Helix { .. } | Geom::Arc3 { .. } => {
             // g1, g2, g3 bound |P'|, |P''|, |P'''| (κ, κ√(κ²+τ²) on a circle; a spiral's
             // radial terms included, see `Geom::derivative_bounds`).
             let (g1, g2, g3) = g.derivative_bounds();
@@ -151,7 +151,7 @@ pub fn junction_mode(corner: Corner, machine: &Machine) -> JunctionMode {
         Corner::Machine => blend(machine.path_tolerance),
         Corner::ExactStop => JunctionMode::Stop,
         Corner::ExactPath => JunctionMode::ExactPath,
-        Corner::Blend(t) => blend(t),
+        Corner::Blend(t) | Corner::BlendMerge { tolerance: t, .. } => blend(t),
     }
 }
 
@@ -190,10 +190,16 @@ pub fn junction_cap(g1: &Geom, g2: &Geom, mode: JunctionMode, machine: &Machine)
             cap
         };
     }
-    // Tangent: the curvature step, and the step of |P'| where a spiral meets another block
-    // (P' is a unit tangent on lines and circles only): the axis velocities step by
-    // ṡ·(P'₂ − P'₁) within one interpolation cycle, as at an exact-path corner.
-    let mut cap = curvature_cap;
+    // Tangent: the curvature step, and the step of |P'| where a spiral meets another block.
+    curvature_cap.min(speed_step_cap(dp, machine))
+}
+
+/// The step of `|P'|` where a spiral meets another block (P' is a unit tangent on lines and
+/// circles only): the axis velocities step by `ṡ·(P'₂ − P'₁)` within one interpolation cycle,
+/// as at an exact-path corner.
+pub(crate) fn speed_step_cap(dp: Vec3, machine: &Machine) -> f64 {
+    let tipo = machine.ipo_cycle;
+    let mut cap = f64::INFINITY;
     for (i, e) in dp.to_array().iter().enumerate() {
         let ax = machine.axes[i];
         if e.abs() > 1e-15 {
@@ -205,7 +211,7 @@ pub fn junction_cap(g1: &Geom, g2: &Geom, mode: JunctionMode, machine: &Machine)
 }
 
 /// The cap of a corner (`t1 ≠ t2`) by its mode (see the module docs).
-fn corner_cap(
+pub(crate) fn corner_cap(
     g1: &Geom,
     g2: &Geom,
     t1: Vec3,

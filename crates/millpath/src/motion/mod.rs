@@ -13,6 +13,10 @@
 //! ```
 //!
 //! # Pipeline
+//! 0. **Controller model** ([`controller`], chosen by the machine profile: `generic`,
+//!    `sinumerik`, `linuxcnc`): what the blocks are (the moves, or what LinuxCNC makes of
+//!    them: merged, trimmed, blend arcs) and which limits, corner rules and look-ahead apply.
+//!    Steps 1–2 below are the `generic` model's rules; steps 3–4 are shared by all models.
 //! 1. **Geometry** ([`path`]): lines and arcs/helices exactly as programmed (no flattening),
 //!    parametrised by arc length with their first three derivatives.
 //! 2. **Limits** ([`limits`]): each block's path velocity, acceleration and jerk limits — the
@@ -62,6 +66,7 @@
 //!
 //! The five-axis helpers live in [`five_axis`].
 
+pub mod controller;
 pub mod five_axis;
 pub mod limits;
 pub mod path;

@@ -40,6 +40,28 @@ pub enum Geom {
         /// Length in mm.
         length: f64,
     },
+    /// A circular arc in any plane, after an optional straight lead (a blend arc of the
+    /// `linuxcnc` controller model, which also takes the rest of a short line it consumes).
+    Arc3 {
+        /// Where the lead starts (the arc starts `lead` further along `lead_dir`).
+        start: Point3,
+        /// Unit direction of the lead (the arc's start tangent).
+        lead_dir: Vec3,
+        /// Length of the lead in mm (0 without one).
+        lead: f64,
+        /// Centre of the arc.
+        center: Point3,
+        /// Unit vector from the centre to the arc's start.
+        e0: Vec3,
+        /// Unit vector in the arc's plane, perpendicular to `e0`, along the motion.
+        e1: Vec3,
+        /// Radius in mm.
+        radius: f64,
+        /// Angle in radians (> 0).
+        angle: f64,
+        /// Length in mm (`lead + radius·angle`).
+        length: f64,
+    },
 }
 
 impl Geom {
@@ -89,7 +111,9 @@ impl Geom {
     /// Length in mm.
     pub fn length(&self) -> f64 {
         match *self {
-            Geom::Line { length, .. } | Geom::Helix { length, .. } => length,
+            Geom::Line { length, .. } | Geom::Helix { length, .. } | Geom::Arc3 { length, .. } => {
+                length
+            }
         }
     }
 
@@ -143,6 +167,36 @@ impl Geom {
                     polar(-3.0 * rp * om * om, -r * om.powi(3), 0.0),
                 ]
             }
+            Geom::Arc3 {
+                start,
+                lead_dir,
+                lead,
+                center,
+                e0,
+                e1,
+                radius,
+                angle,
+                ..
+            } => {
+                let s = s.clamp(0.0, lead + radius * angle);
+                if s < lead {
+                    return [
+                        (start + lead_dir * s) - Point3::ORIGIN,
+                        lead_dir,
+                        Vec3::ZERO,
+                        Vec3::ZERO,
+                    ];
+                }
+                let (sn, cs) = ((s - lead) / radius).sin_cos();
+                let radial = e0 * cs + e1 * sn;
+                let tangent = e1 * cs - e0 * sn;
+                [
+                    (center + radial * radius) - Point3::ORIGIN,
+                    tangent,
+                    radial * (-1.0 / radius),
+                    tangent * (-1.0 / (radius * radius)),
+                ]
+            }
         }
     }
 
@@ -171,6 +225,7 @@ impl Geom {
                 let g3 = om * om * (rm * om).hypot(3.0 * rp);
                 (g1, g2, g3)
             }
+            Geom::Arc3 { radius, .. } => (1.0, 1.0 / radius, 1.0 / (radius * radius)),
         }
     }
 
@@ -214,6 +269,28 @@ impl Geom {
                 let axial = (dw / length).abs();
                 let v = plane.join(inplane, inplane, axial);
                 [v.x.abs(), v.y.abs(), v.z.abs()]
+            }
+            Geom::Arc3 {
+                lead_dir,
+                lead,
+                e0,
+                e1,
+                ..
+            } => {
+                // The tangent −sin·e0 + cos·e1 has components at most √(e0ᵢ² + e1ᵢ²).
+                let arc = |i: usize| e0.to_array()[i].hypot(e1.to_array()[i]);
+                let line = |i: usize| {
+                    if lead > 0.0 {
+                        lead_dir.to_array()[i].abs()
+                    } else {
+                        0.0
+                    }
+                };
+                [
+                    arc(0).max(line(0)),
+                    arc(1).max(line(1)),
+                    arc(2).max(line(2)),
+                ]
             }
         }
     }

@@ -26,7 +26,7 @@
 //! accelerates through a junction into a span with a higher cap. Memory is a few words per
 //! block and per span; time is linear in the number of blocks.
 
-use super::limits::{block_limits, junction_cap, junction_mode};
+use super::controller::{Prepared, Shaper};
 use super::path::Geom;
 use super::profile::{Limits1, SpanProfile, reachable_velocity};
 use crate::error::Error;
@@ -79,6 +79,10 @@ pub struct BlockPlan {
     pub span: u32,
     /// Distance from the start of the span to the start of the block.
     pub span_offset: f64,
+    /// The input move this block times: its own index, except where the controller model
+    /// reshapes the path (the `linuxcnc` model's blend arcs, trimmed and merged moves; see
+    /// [`super::controller`]).
+    pub origin: usize,
 }
 
 /// One span: blocks sharing one S-curve profile.
@@ -100,6 +104,10 @@ pub struct Span {
     pub limits: Limits1,
     /// Dwell time (a dwell span has no length).
     pub dwell: f64,
+    /// Time spent at rest after the span when it ends in a stop (the controller's
+    /// exact-stop settling, [`crate::machine::Machine::exact_stop_time`]), counted in its
+    /// last block.
+    pub settle: f64,
 }
 
 impl Span {
@@ -114,7 +122,8 @@ impl Span {
 pub struct Plan {
     /// Name of the machine it was planned for.
     pub machine: String,
-    /// The blocks, one per input move.
+    /// The blocks: one per input move, except where the controller model reshapes the path
+    /// (`reshaped`; each block's [`BlockPlan::origin`] names its move).
     pub blocks: Vec<BlockPlan>,
     /// The spans.
     pub spans: Vec<Span>,
@@ -124,12 +133,28 @@ pub struct Plan {
     pub ends: Vec<(Point3, Point3)>,
     /// Total time in s.
     pub total_time: f64,
+    /// The controller model reshaped the path (the `linuxcnc` model's blend arcs, trimmed
+    /// and merged moves): blocks are not the input moves, and the limit verifier, which
+    /// checks the moves, does not apply.
+    pub reshaped: bool,
 }
 
 impl Plan {
     /// The cycle time in s.
     pub fn total_time(&self) -> f64 {
         self.total_time
+    }
+
+    /// The highest feed reached on each of the first `moves` input moves (0 where a move
+    /// has no block of its own: a dwell, a zero-length move, a move merged into a later one).
+    pub fn peak_feed_by_move(&self, moves: usize) -> Vec<f64> {
+        let mut out = vec![0.0; moves];
+        for b in &self.blocks {
+            if let Some(v) = out.get_mut(b.origin) {
+                *v = f64::max(*v, b.peak_feed);
+            }
+        }
+        out
     }
 }
 
@@ -143,7 +168,7 @@ pub(crate) struct Builder {
     pub(crate) knots: Vec<f64>,
     /// Global index of `spans[0]` (spans already timed and dropped by a streaming caller).
     pub(crate) span_base: usize,
-    last: Option<(Geom, Move, Limits1)>,
+    last: Option<Limits1>,
 }
 
 impl Builder {
@@ -167,117 +192,55 @@ impl Builder {
             v1: 0.0,
             limits: lim,
             dwell: 0.0,
+            settle: 0.0,
         });
     }
 
-    /// Adds move `i` (from `from`) to the spans; returns its untimed block and its geometry.
-    pub(crate) fn push(
-        &mut self,
-        i: usize,
-        from: Point3,
-        m: &Move,
-        machine: &Machine,
-    ) -> Result<(BlockPlan, Option<Geom>), Error> {
+    /// The last span, if it ends at rest, waits `t` s more there.
+    pub(crate) fn settle_last(&mut self, t: f64) {
+        if let Some(s) = self.spans.last_mut() {
+            s.settle += t;
+        }
+    }
+
+    /// Adds block `i` (one prepared by the controller model) to the spans; returns its
+    /// untimed block.
+    pub(crate) fn push(&mut self, i: usize, p: &Prepared) -> Result<BlockPlan, Error> {
         let zero = Limits1 {
             v: 0.0,
             a: 1.0,
             j: 1.0,
         };
-        // Coordinates beyond ±1e6 mm overflow lengths and times (a target at 1e300 gave an
-        // infinite cycle time; found by the `planner` fuzzer).
-        let far = |p: Point3| {
-            !(p.x.abs() <= MAX_COORDINATE_MM
-                && p.y.abs() <= MAX_COORDINATE_MM
-                && p.z.abs() <= MAX_COORDINATE_MM)
-        };
-        let centre = match m.kind {
-            MoveKind::Arc { center, .. } => Some(center),
-            _ => None,
-        };
-        for (what, p) in [
-            ("start point", Some(from)),
-            ("end point", Some(m.to)),
-            ("arc centre", centre),
-        ] {
-            if let Some(p) = p
-                && far(p)
-            {
-                return Err(
-                    crate::InputError::new(what, format!("({}, {}, {})", p.x, p.y, p.z))
-                        .at(format!("move {}", i + 1))
-                        .expected(format!("finite coordinates within ±{MAX_COORDINATE_MM} mm"))
-                        .into(),
-                );
-            }
-        }
-        let g = Geom::of(from, m);
-        if g.is_none()
-            && matches!(m.kind, MoveKind::Arc { .. })
-            && (from.distance(m.to) > 1e-12 || m.length_from(from) > 1e-12)
-        {
-            // An arc whose start is its centre has no circle to follow; skipping it as a
-            // zero-length move teleported the tool to its end (a 32 mm jump found by the
-            // `planner` fuzzer).
-            let r0 = m.sweep_from(from).map_or(0.0, |(r, _)| r);
-            return Err(crate::InputError::new("arc start radius", r0)
-                .at(format!("move {}", i + 1))
-                .expected("a start point more than 1e-12 mm from the arc's centre")
-                .into());
-        }
-        if let Some(Geom::Helix { r0, r1, .. }) = g {
-            // The block limits take the arc as circular (a spiral's radial terms are not
-            // modelled): arcs whose end radius differs from the start radius beyond what
-            // LinuxCNC accepts (and the G-code reader with it) are refused, not mistimed.
-            let tau = crate::gcode::arc::center_arc_radius_tolerance_mm(crate::gcode::Units::Mm);
-            let delta = (r1 - r0).abs();
-            if delta > 100.0 * tau
-                || (delta / r0.max(r1) > crate::gcode::arc::SPIRAL_RELATIVE_TOLERANCE
-                    && delta > tau)
-            {
-                return Err(crate::InputError::new("arc end radius", r1)
-                    .at(format!("move {}", i + 1))
-                    .expected(format!(
-                        "within {tau:.4} mm or 0.1 % of the start radius {r0} mm (a circular arc)"
-                    ))
-                    .into());
-            }
-        }
-        let length = g.as_ref().map_or(0.0, Geom::length);
-        if m.is_feed() && !(m.feed.is_finite() && m.feed >= MIN_FEED) && length > 0.0 {
-            return Err(crate::InputError::new("feed", m.feed)
-                .at(format!("move {}", i + 1))
-                .expected(format!("a finite feed >= {MIN_FEED} mm/s on a feed move"))
-                .into());
+        let m = &p.mv;
+        let length = p.geom.as_ref().map_or(0.0, Geom::length);
+        if p.settle_before > 0.0 {
+            self.settle_last(p.settle_before);
         }
         let mut span_offset = 0.0;
-        match (&g, m.kind) {
+        match (&p.geom, m.kind) {
             (_, MoveKind::Dwell { seconds }) => {
-                if !(seconds.is_finite() && (0.0..=MAX_DWELL).contains(&seconds)) {
-                    return Err(crate::InputError::new("dwell", seconds)
-                        .at(format!("move {}", i + 1))
-                        .expected(format!("a number of seconds in [0, {MAX_DWELL}]"))
-                        .into());
-                }
                 self.open(i, 0.0, zero);
                 if let Some(s) = self.spans.last_mut() {
                     s.dwell = seconds;
                 }
                 self.last = None;
             }
-            (Some(g), _) => {
-                let lim = block_limits(g, m, machine);
+            (Some(_), _) => {
+                let lim = p.limits;
                 if !(lim.v > 0.0 && lim.a > 0.0 && lim.j > 0.0) {
                     return Err(Error::internal(format!("block {i}: limits {lim:?}")));
                 }
                 let join = match &self.last {
-                    Some((pg, pm, pl)) => {
-                        let cap = junction_cap(pg, g, junction_mode(pm.corner, machine), machine);
+                    Some(pl) => {
+                        let cap = p.cap_in;
                         let vmin = pl.v.min(lim.v);
                         let same = (pl.v - lim.v).abs() <= 1e-12 * lim.v;
                         // Blocks with very different path acceleration or jerk limits (a line
                         // into an arc) get a knot (a = 0) rather than sharing the smaller
-                        // limit over a whole span.
-                        let near = |x: f64, y: f64| x <= 2.0 * y && y <= 2.0 * x;
+                        // limit over a whole span; with `exact_limits` (a controller that
+                        // runs each block at its own acceleration) any difference does.
+                        let f = if p.exact_limits { 1.0 + 1e-12 } else { 2.0 };
+                        let near = |x: f64, y: f64| x <= f * y && y <= f * x;
                         let alike = near(pl.a, lim.a)
                             && ((pl.j.is_infinite() && lim.j.is_infinite()) || near(pl.j, lim.j));
                         if same && alike && cap >= vmin {
@@ -301,7 +264,7 @@ impl Builder {
                     span_offset = s.length;
                     s.length += length;
                 }
-                self.last = Some((*g, *m, lim));
+                self.last = Some(lim);
             }
             (None, _) => {
                 if let Some(s) = self.spans.last() {
@@ -313,7 +276,7 @@ impl Builder {
             s.end = i + 1;
         }
         let span = (self.span_base + self.spans.len()).saturating_sub(1);
-        let block = BlockPlan {
+        Ok(BlockPlan {
             kind: m.kind,
             length,
             start_time: 0.0,
@@ -322,9 +285,89 @@ impl Builder {
             programmed_feed: if m.is_feed() { m.feed } else { 0.0 },
             span: u32::try_from(span).unwrap_or(u32::MAX),
             span_offset,
-        };
-        Ok((block, g))
+            origin: p.origin,
+        })
     }
+}
+
+/// Checks move `i` (from `from`) and returns its geometry (`None` for dwells and zero-length
+/// moves): coordinates within range, arcs circular within LinuxCNC's tolerance, a feed on
+/// every feed move, dwells within [`MAX_DWELL`].
+pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<Geom>, Error> {
+    // Coordinates beyond ±1e6 mm overflow lengths and times (a target at 1e300 gave an
+    // infinite cycle time; found by the `planner` fuzzer).
+    let far = |p: Point3| {
+        !(p.x.abs() <= MAX_COORDINATE_MM
+            && p.y.abs() <= MAX_COORDINATE_MM
+            && p.z.abs() <= MAX_COORDINATE_MM)
+    };
+    let centre = match m.kind {
+        MoveKind::Arc { center, .. } => Some(center),
+        _ => None,
+    };
+    for (what, p) in [
+        ("start point", Some(from)),
+        ("end point", Some(m.to)),
+        ("arc centre", centre),
+    ] {
+        if let Some(p) = p
+            && far(p)
+        {
+            return Err(
+                crate::InputError::new(what, format!("({}, {}, {})", p.x, p.y, p.z))
+                    .at(format!("move {}", i + 1))
+                    .expected(format!("finite coordinates within ±{MAX_COORDINATE_MM} mm"))
+                    .into(),
+            );
+        }
+    }
+    let g = Geom::of(from, m);
+    if g.is_none()
+        && matches!(m.kind, MoveKind::Arc { .. })
+        && (from.distance(m.to) > 1e-12 || m.length_from(from) > 1e-12)
+    {
+        // An arc whose start is its centre has no circle to follow; skipping it as a
+        // zero-length move teleported the tool to its end (a 32 mm jump found by the
+        // `planner` fuzzer).
+        let r0 = m.sweep_from(from).map_or(0.0, |(r, _)| r);
+        return Err(crate::InputError::new("arc start radius", r0)
+            .at(format!("move {}", i + 1))
+            .expected("a start point more than 1e-12 mm from the arc's centre")
+            .into());
+    }
+    if let Some(Geom::Helix { r0, r1, .. }) = g {
+        // The block limits take the arc as circular (a spiral's radial terms are not
+        // modelled): arcs whose end radius differs from the start radius beyond what
+        // LinuxCNC accepts (and the G-code reader with it) are refused, not mistimed.
+        let tau = crate::gcode::arc::center_arc_radius_tolerance_mm(crate::gcode::Units::Mm);
+        let delta = (r1 - r0).abs();
+        if delta > 100.0 * tau
+            || (delta / r0.max(r1) > crate::gcode::arc::SPIRAL_RELATIVE_TOLERANCE && delta > tau)
+        {
+            return Err(crate::InputError::new("arc end radius", r1)
+                .at(format!("move {}", i + 1))
+                .expected(format!(
+                    "within {tau:.4} mm or 0.1 % of the start radius {r0} mm (a circular arc)"
+                ))
+                .into());
+        }
+    }
+    let length = g.as_ref().map_or(0.0, Geom::length);
+    if m.is_feed() && !(m.feed.is_finite() && m.feed >= MIN_FEED) && length > 0.0 {
+        return Err(crate::InputError::new("feed", m.feed)
+            .at(format!("move {}", i + 1))
+            .expected(format!("a finite feed >= {MIN_FEED} mm/s on a feed move"))
+            .into());
+    }
+    if let MoveKind::Dwell { seconds } = m.kind
+        && !(seconds.is_finite() && (0.0..=MAX_DWELL).contains(&seconds))
+    {
+        return Err(crate::InputError::new("dwell", seconds)
+            .at(format!("move {}", i + 1))
+            .expected(format!("a number of seconds in [0, {MAX_DWELL}]"))
+            .into());
+    }
+    Ok(g)
 }
 
 /// Pins the knots on both sides of a dwell span (a span without length) to 0; `knots` has one
@@ -372,19 +415,26 @@ pub(crate) fn time_spans(
             p.check(s.limits)?;
         }
         let mut tb = 0.0;
-        for bp in blocks.get_mut(first..end).unwrap_or_default() {
+        let settle = if s.v1 <= 0.0 { s.settle } else { 0.0 };
+        let n_blocks = end.saturating_sub(first);
+        for (k, bp) in blocks
+            .get_mut(first..end)
+            .unwrap_or_default()
+            .iter_mut()
+            .enumerate()
+        {
             let te = if bp.span_offset + bp.length >= s.length {
                 p.duration
             } else {
                 p.time_at(bp.span_offset + bp.length)
             };
             bp.start_time = t + tb;
-            bp.time = (te - tb).max(0.0);
+            bp.time = (te - tb).max(0.0) + if k + 1 == n_blocks { settle } else { 0.0 };
             let tpk = p.t_peak.clamp(tb, te);
             bp.peak_feed = if bp.length > 0.0 { p.state(tpk).v } else { 0.0 };
             tb = te;
         }
-        t += p.duration;
+        t += p.duration + settle;
     }
     Ok(t)
 }
@@ -414,15 +464,26 @@ where
     let mut geometry = Vec::new();
     let mut ends = Vec::new();
     let mut b = Builder::new();
-    for item in moves {
-        let (from, m) = item?;
-        let (block, g) = b.push(blocks.len(), from, &m, machine)?;
-        blocks.push(block);
-        if opts.keep_geometry {
-            geometry.push(g);
-            ends.push((from, m.to));
+    let mut shaper = Shaper::new(machine);
+    let mut prepared = Vec::new();
+    let mut take = |prepared: &mut Vec<Prepared>, b: &mut Builder| -> Result<(), Error> {
+        for p in prepared.drain(..) {
+            blocks.push(b.push(blocks.len(), &p)?);
+            if opts.keep_geometry {
+                geometry.push(p.geom);
+                ends.push((p.from, p.mv.to));
+            }
         }
+        Ok(())
+    };
+    for (i, item) in moves.into_iter().enumerate() {
+        let (from, m) = item?;
+        shaper.push(i, from, &m, &mut prepared)?;
+        take(&mut prepared, &mut b)?;
     }
+    let settle = shaper.finish(&mut prepared)?;
+    take(&mut prepared, &mut b)?;
+    b.settle_last(settle);
     b.knots.push(0.0);
     let Builder {
         mut spans,
@@ -443,6 +504,7 @@ where
     }
     let t = time_spans(&mut spans, &knots, &mut blocks, 0, 0.0, opts.check_profiles)?;
     Ok(Plan {
+        reshaped: machine.controller == crate::machine::Controller::LinuxCnc,
         machine: machine.name.clone(),
         blocks,
         spans,

@@ -27,6 +27,7 @@
 //! is final yet (a long stretch of moves too short to brake in, or one span of many blocks) is
 //! doubled until one is.
 
+use super::controller::{Prepared, Shaper};
 use super::path::Geom;
 use super::plan::{BlockPlan, Builder, Plan, Span, pin_dwells, time_spans};
 use super::profile::reachable_velocity;
@@ -73,8 +74,11 @@ pub struct Chunk {
 pub struct StreamSummary {
     /// Cycle time, s.
     pub total_time: f64,
-    /// Blocks (moves) planned.
+    /// Blocks planned (one per move, except where the controller model reshapes the path:
+    /// see [`super::controller`]).
     pub blocks: usize,
+    /// Moves read.
+    pub moves: usize,
     /// Spans planned.
     pub spans: usize,
     /// Chunks handed out.
@@ -126,27 +130,29 @@ where
     };
     let base_window = opts.window.max(2);
     let mut window = base_window;
-    for item in moves {
+    let mut shaper = Shaper::new(machine);
+    let mut prepared = Vec::new();
+    for (k, item) in moves.into_iter().enumerate() {
         let (from, m) = item?;
-        let i = st.block_base + st.blocks.len();
-        let (block, g) = st.b.push(i, from, &m, machine)?;
-        st.sum.length += block.length;
-        if block.programmed_feed > 0.0 {
-            st.sum.time_at_programmed_feed += block.length / block.programmed_feed;
-        }
-        st.blocks.push(block);
-        st.moves.push((from, m));
-        st.geoms.push(g);
-        st.sum.max_buffered_blocks = st.sum.max_buffered_blocks.max(st.blocks.len());
-        if st.blocks.len() > window && st.b.spans.len() > 1 {
-            let done = st.flush(false)?;
-            window = if done == 0 {
-                window.saturating_mul(2)
-            } else {
-                base_window
-            };
+        st.sum.moves = k + 1;
+        shaper.push(k, from, &m, &mut prepared)?;
+        for p in prepared.drain(..) {
+            st.take(&p)?;
+            if st.blocks.len() > window && st.b.spans.len() > 1 {
+                let done = st.flush(false)?;
+                window = if done == 0 {
+                    window.saturating_mul(2)
+                } else {
+                    base_window
+                };
+            }
         }
     }
+    let settle = shaper.finish(&mut prepared)?;
+    for p in prepared.drain(..) {
+        st.take(&p)?;
+    }
+    st.b.settle_last(settle);
     st.flush(true)?;
     st.sum.blocks = st.block_base;
     st.sum.spans = st.b.span_base;
@@ -157,6 +163,21 @@ impl<F> State<'_, F>
 where
     F: FnMut(&Chunk) -> Result<(), Error>,
 {
+    /// Adds one prepared block to the window.
+    fn take(&mut self, p: &Prepared) -> Result<(), Error> {
+        let i = self.block_base + self.blocks.len();
+        let block = self.b.push(i, p)?;
+        self.sum.length += block.length;
+        if block.programmed_feed > 0.0 {
+            self.sum.time_at_programmed_feed += block.length / block.programmed_feed;
+        }
+        self.blocks.push(block);
+        self.moves.push((p.from, p.mv));
+        self.geoms.push(p.geom);
+        self.sum.max_buffered_blocks = self.sum.max_buffered_blocks.max(self.blocks.len());
+        Ok(())
+    }
+
     /// Times and hands out the leading spans whose knots are final (all of them at the end of
     /// the stream); returns how many spans were handed out.
     fn flush(&mut self, end: bool) -> Result<usize, Error> {
@@ -240,6 +261,7 @@ where
         let geometry: Vec<Option<Geom>> = self.geoms.drain(..nb).collect();
         let chunk = Chunk {
             plan: Plan {
+                reshaped: self.machine.controller == crate::machine::Controller::LinuxCnc,
                 machine: self.machine.name.clone(),
                 blocks,
                 spans,

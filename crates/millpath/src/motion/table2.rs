@@ -1,46 +1,54 @@
 //! The adaptive-spiral paper's Table 2: a square of side `L` and a circle of equal perimeter,
-//! run on a Huron mill with a Siemens 840D, against this planner with the `hsm` preset.
+//! run on a Huron mill with a Siemens 840D, against this planner with the `hsm` preset (the
+//! `sinumerik` controller model).
 //!
 //! Each program starts at rest, runs the closed path once at the programmed feed and stops:
-//! the square is four G1 blocks starting at a corner, the circle one full-circle G2 block
-//! starting on the circle. The paper's measured times (in s) are in [`MEASURED`].
+//! the square is four G1 blocks starting at a corner, each ending in an exact stop (`G60`,
+//! the 840D's power-on path mode; the paper gives no path mode, and its corner losses are
+//! those of stops), the circle one full-circle G2 block starting on the circle. The paper's
+//! measured times (in s) are in [`MEASURED`].
+//!
+//! # The fit (`hsm`, the `sinumerik` controller model)
+//! Four parameters were fitted on a grid (2026-11-25) by planning the 30 programs with
+//! `millpath estimate --table2 --machine PROFILE.toml`: axis acceleration
+//! A ∈ {4, 4.5, 5, 6, 8} m/s², axis jerk J ∈ {50, 65, 80, 100, 120, 150, 175, 200, 250, 300}
+//! m/s³, the share of acceleration the curvature takes on arcs η_a ∈ {0.7 … 0.9} (η_j = 0.75
+//! kept), and the settling time at an exact stop t_s ∈ {0.01 … 0.045} s
+//! ([`Machine::exact_stop_time`](crate::machine::Machine::exact_stop_time): the 840D waits
+//! at each exact stop, the program's end included, for the axes to reach the exact-stop
+//! window). The objective was mean |error| + 0.3 · max |error|, among the parameter sets
+//! that keep the table's orderings (the circle faster in every row, the gain falling with
+//! size and rising with feed). Result: A = 4.5 m/s², J = 175 m/s³, η_a = 0.8, t_s = 0.03 s.
+//!
+//! | | mean \|error\| | max \|error\| | squares | circles |
+//! |---|---|---|---|---|
+//! | `hsm` before (generic, 5 m/s², 200 m/s³, corners blended within 0.01 mm) | 8.0 % | 29.6 % | −28.7 … −1.2 % | −12.3 … −1.4 % |
+//! | `hsm` (sinumerik, fitted) | 2.66 % | 9.9 % | −9.9 … +9.3 % | −5.7 … +3.6 % |
 //!
 //! # The remaining error
-//! * The measured circles all take about 0.17–0.2 s more than perimeter/feed, at every size
-//!   and feed (e.g. L = 6 in: 7.40 − 7.20, 5.00 − 4.80, 3.82 − 3.60 s at 200, 300, 400 in/min),
-//!   although the acceleration/deceleration of a smooth circle costs only `v/A + A/J`
-//!   (≈ 0.05 s at 400 in/min). The constant part looks like the controller's block
-//!   preparation / program start and the way the time was measured (the paper gives no
-//!   protocol); no dynamic model reproduces it, so the planner under-estimates the circles by
-//!   about that constant. The gain (square − circle) is not affected by a constant.
-//! * The `hsm` limits (5 m/s², 200 m/s³, tolerance 0.01 mm) were chosen on a grid
-//!   (A ∈ {3, 4, 5, 6} m/s², J ∈ {100, 200, 300, 500} m/s³, tolerance ∈ {0, 0.01, 0.05} mm) as
-//!   the values for which the planned circle beats the square in all 15 rows and the gain
-//!   rises with feed and falls with size, with the smallest time error among those; with
-//!   smaller accelerations the small circles become centripetally limited (at 400 in/min on
-//!   r = 8.08 mm the 840D kept `v²/r ≈ 3.5 m/s²`), with smaller jerks the circles become
-//!   jerk-limited (`v³/r²`). The paper does not say whether the 840D ran with exact stops
-//!   (G60/G9) or in continuous-path mode (G64), nor its jerk settings.
-//! * Result with `hsm` (`millpath estimate --table2`): circles within −1.4% … −12.3%, squares
-//!   within −1.2% … −28.7% (largest on the smallest squares at the highest feeds); the planned
-//!   gain is 0.8–12.4% against the measured 0.5–29.7%: the trends (gain rising with feed,
-//!   falling with size, circle always faster) are reproduced, the magnitude at 300–400 in/min
-//!   is not. The measured square times grow faster with the feed than any stop-and-go profile
-//!   with one (A, J) pair allows (the loss per corner grows like `v/A + A/J`, linearly in `v`),
-//!   while the measured small circles at 400 in/min need `A ≥ 3.5 m/s²`; the 840D evidently
-//!   spends more at a 90° corner than the axis limits require (in-position window at exact
-//!   stop, block-change time, servo lag), which this planner does not model. Subtracting the
-//!   ~0.17 s constant from the measured times, the small squares at 400 in/min are within
-//!   −7% and the small circles become +30% too slow: the planner's arc model (a 3/4 share of
-//!   acceleration and jerk for the curvature terms) is more conservative than that 840D.
-//! * The measurements are given to 0.01 s: the relative rounding error is up to 2% on the
+//! * Squares: planned +9.3 % on the smallest square at 200 in/min and −9.9 % / −9.0 % on the
+//!   two smallest at 400 in/min: the measured loss per corner grows with the feed faster than
+//!   any stop with one (A, J) and a constant settling time gives (`v/A + A/J + t_s`); the
+//!   840D's servo lag (a following error proportional to the speed, to be worked off before
+//!   the exact-stop window is reached) would explain it, and is not modelled.
+//! * Circles: within −5.7 … +3.6 %. Without the settling time at the end, the circles were
+//!   0.17–0.2 s faster than measured at every size and feed; the settling time takes 0.03 s of
+//!   it, the arcs' curvature share the rest.
+//! * Gains (square − circle)/square are reproduced in trend, not in size at the small sizes:
+//!   16.9 % planned against 3.7 % measured at 200 in/min, 0.5 in; 20.0 % against 29.7 % at
+//!   400 in/min.
+//! * Lower jerk fits the squares better (J = 68 m/s³ with A = 5 m/s² and no settling time:
+//!   mean 2.1 %, max 7.5 % in a model without the arcs' coupling term), but the planner then
+//!   slows the small circles far below what the 840D ran: on an arc the planner keeps room for
+//!   the normal jerk `3κ·v·a_t` of accelerating along it at full tangential acceleration.
+//! * The measurements are given to 0.01 s: the relative rounding error is up to 2 % on the
 //!   shortest programs.
 
 use super::plan::plan_toolpath;
 use crate::error::Error;
 use crate::geom::Point3;
 use crate::machine::{MM_PER_INCH, Machine};
-use crate::toolpath::{Move, Tool, Toolpath};
+use crate::toolpath::{Corner, Move, Tool, Toolpath};
 use std::f64::consts::PI;
 
 /// Sides of the squares in inches.
@@ -110,7 +118,7 @@ impl Row {
 pub fn square(side: f64, feed: f64) -> Toolpath {
     let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
     for (x, y) in [(side, 0.0), (side, side), (0.0, side), (0.0, 0.0)] {
-        tp.push(Move::line(Point3::new(x, y, 0.0), feed));
+        tp.push(Move::line(Point3::new(x, y, 0.0), feed).with_corner(Corner::ExactStop));
     }
     tp
 }

@@ -176,6 +176,16 @@ pub fn verify_plan(
             .expected("at least 1000 Hz")
             .into());
     }
+    if plan.reshaped {
+        return Err(crate::InputError::new("controller model", "linuxcnc")
+            .at(format!("machine {}", machine.name))
+            .expected(
+                "a generic or sinumerik machine: a linuxcnc plan follows LinuxCNC's rules \
+                 (kinks, parabolic blends), not the limit verifier's, and is checked against \
+                 LinuxCNC itself",
+            )
+            .into());
+    }
     if moves.len() != plan.blocks.len() {
         return Err(Error::internal("verifier: moves and plan differ in length"));
     }
@@ -358,12 +368,33 @@ fn check_junction(
             });
         }
     };
+    // The path tolerance at this junction (what a smoothing controller may use).
+    let blend_tol = match a.m.corner {
+        Corner::Machine => machine.path_tolerance,
+        Corner::Blend(x) | Corner::BlendMerge { tolerance: x, .. } => x,
+        _ => 0.0,
+    };
+    // The acceleration step v²·|Δκᵢ| of a curvature step: within one interpolation cycle
+    // (jerk ≤ Jᵢ over T_ipo), or, on a controller that smooths it within the tolerance ε
+    // (sinumerik, G642), spread over a curvature ramp of length L = √(24ε/|Δκ|) (the ramp
+    // shifts the path by |Δκ|·L²/24): jerk v³·|Δκᵢ|/L ≤ Jᵢ.
+    let smooths = machine.controller == crate::machine::Controller::Sinumerik && blend_tol > 0.0;
+    let step_limit = |d: f64, dk_norm: f64, jm: f64| -> (f64, f64) {
+        if smooths && dk_norm > 0.0 {
+            let len = (24.0 * blend_tol / dk_norm).sqrt();
+            (v * v * v * d.abs(), jm * len)
+        } else {
+            (v * v * d.abs(), jm * tipo)
+        }
+    };
     if du.length() <= 1e-9 {
         let dk = eb[2] - ea[2];
+        let dkn = dk.length();
         for (i, (d, e)) in dk.to_array().iter().zip(dp.to_array()).enumerate() {
             let ax = machine.axes[i];
             if ax.max_jerk.is_finite() {
-                bad(v * v * d.abs(), ax.max_jerk * tipo);
+                let (value, limit) = step_limit(*d, dkn, ax.max_jerk);
+                bad(value, limit);
             }
             bad(
                 v * e.abs(),
@@ -377,16 +408,18 @@ fn check_junction(
     // remove the arc's curvature.
     if du.length() <= NEAR_TANGENT {
         let dk = eb[2] - ea[2];
+        let dkn = dk.length();
         for (i, d) in dk.to_array().iter().enumerate() {
             let jm = machine.axes[i].max_jerk;
             if jm.is_finite() {
-                bad(v * v * d.abs(), jm * tipo);
+                let (value, limit) = step_limit(*d, dkn, jm);
+                bad(value, limit);
             }
         }
     }
     let tolerance = match a.m.corner {
         Corner::Machine => machine.path_tolerance,
-        Corner::Blend(x) => x,
+        Corner::Blend(x) | Corner::BlendMerge { tolerance: x, .. } => x,
         Corner::ExactStop => 0.0,
         Corner::ExactPath => {
             for (i, d) in dp.to_array().iter().enumerate() {

@@ -207,7 +207,7 @@ impl HtmlReport {
             outlines,
             &super::PreviewOptions {
                 title: Some(name.clone()),
-                achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
+                achieved_feed: Some(plan.peak_feed_by_move(toolpath.moves.len())),
                 ..super::PreviewOptions::default()
             },
         );

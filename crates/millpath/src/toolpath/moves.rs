@@ -51,6 +51,26 @@ pub enum Corner {
     ExactPath,
     /// Blend within this tolerance in mm (G64 P).
     Blend(f64),
+    /// LinuxCNC's `G64 P p Q q` with a Q other than P: blend within `tolerance` (mm), and
+    /// merge runs of G1 moves whose points stay within `merge` (mm) of one straight line into
+    /// that line (LinuxCNC's "naive CAM detector"; `G64 P p` alone merges within p). Other
+    /// controllers take it as [`Corner::Blend`] of `tolerance`.
+    BlendMerge {
+        /// Blend tolerance in mm (P).
+        tolerance: f64,
+        /// Merge tolerance in mm (Q).
+        merge: f64,
+    },
+}
+
+impl Corner {
+    /// The blend tolerance of a blend mode (`Blend` and `BlendMerge`), `None` otherwise.
+    pub fn blend_tolerance(self) -> Option<f64> {
+        match self {
+            Corner::Blend(t) | Corner::BlendMerge { tolerance: t, .. } => Some(t),
+            _ => None,
+        }
+    }
 }
 
 /// Where a move came from on a source curve: curve index and parameter at the move's end.

@@ -1,0 +1,220 @@
+//! What LinuxCNC's canonical layer (`src/emc/task/emccanon.cc`) sends to the planner: the
+//! speed and acceleration of each line and arc, and the naive-CAM detector that merges runs of
+//! G1 points into one line.
+//!
+//! # Naive-CAM merging (`see_segment`, `linkable`, `flush_segments`)
+//! In `G64` with a merge tolerance `Q` (which defaults to `P`; `G64` alone has none), G1 end
+//! points are held while every held point stays within `Q` of the straight line from the last
+//! sent point to the newest point (at most 101 points); the first point that would break this
+//! sends the held run as one line to its last point. A change of feed or path mode, a rapid or
+//! an arc sends the run first. An arc in the XY plane whose chord deviates less than `Q` from
+//! it is taken as two such points (its middle and its end).
+
+use super::circle::Circle;
+use super::queue::{Shape, Tc, Term};
+use crate::geom::Point3;
+use crate::machine::Machine;
+use crate::motion::path::Geom;
+use crate::toolpath::{Corner, Move, MoveKind, Plane};
+
+/// `CART_FUZZ`: axis displacements below it do not count.
+const CART_FUZZ: f64 = 1e-9;
+/// `chained_points.size() > 100` stops a run.
+const MAX_CHAIN: usize = 100;
+
+/// The path mode of a move: LinuxCNC's termination condition, `G64 P` and `G64 Q`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Mode {
+    pub term: Term,
+    pub tolerance: f64,
+    pub merge: f64,
+}
+
+impl Mode {
+    /// The mode of `corner`; `Corner::Machine` is `G64 P` with the machine's path tolerance.
+    pub fn of(corner: Corner, machine: &Machine) -> Mode {
+        let blend = |tolerance: f64, merge: f64| Mode {
+            term: Term::Parabolic,
+            tolerance,
+            merge,
+        };
+        match corner {
+            Corner::ExactStop => Mode {
+                term: Term::Stop,
+                tolerance: 0.0,
+                merge: 0.0,
+            },
+            Corner::ExactPath => Mode {
+                term: Term::Exact,
+                tolerance: 0.0,
+                merge: 0.0,
+            },
+            Corner::Machine => blend(machine.path_tolerance, machine.path_tolerance),
+            Corner::Blend(t) => blend(t, t),
+            Corner::BlendMerge { tolerance, merge } => blend(tolerance, merge),
+        }
+    }
+}
+
+/// `getStraightVelocity` / `getStraightAcceleration`: the largest path speed and
+/// acceleration of a straight displacement `d` under per-axis bounds (0 for none).
+fn straight(d: [f64; 3], bounds: [f64; 3]) -> f64 {
+    let mut tmax = 0.0f64;
+    for (x, b) in d.iter().zip(bounds) {
+        if x.abs() >= CART_FUZZ {
+            tmax = tmax.max(x.abs() / b);
+        }
+    }
+    let dtot = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    if tmax > 0.0 { dtot / tmax } else { 0.0 }
+}
+
+/// The segment of a straight move (`flush_segments` for feeds, `STRAIGHT_TRAVERSE` for
+/// rapids), or `None` when it does not move.
+pub(super) fn line(from: Point3, to: Point3, feed: f64, rapid: bool, m: &Machine) -> Option<Tc> {
+    let d = (to - from).to_array();
+    let vb = if rapid {
+        m.rapid
+    } else {
+        m.axes.map(|a| a.max_velocity)
+    };
+    let ini_maxvel = straight(d, vb);
+    let acc = straight(d, m.axes.map(|a| a.max_acceleration));
+    let vel = if rapid {
+        ini_maxvel
+    } else {
+        feed.min(ini_maxvel)
+    };
+    let target = from.distance(to);
+    if vel <= 0.0 || acc <= 0.0 || target < 1e-12 {
+        return None;
+    }
+    let mut tc = Tc::new(
+        Shape::Line {
+            start: from,
+            end: to,
+        },
+        target,
+        vel,
+        ini_maxvel,
+        acc,
+    );
+    tc.traverse = rapid;
+    Some(tc)
+}
+
+/// The segment of an arc (`ARC_FEED` and `tpAddCircle`).
+pub(super) fn arc(g: &Geom, from: Point3, to: Point3, feed: f64, m: &Machine) -> Option<Tc> {
+    let Geom::Helix {
+        plane,
+        sweep,
+        r0,
+        r1,
+        dw,
+        ..
+    } = *g
+    else {
+        return None;
+    };
+    let c = Circle::of(g)?;
+    let (i1, i2, _) = match plane {
+        Plane::Xy => (0, 1, 2),
+        Plane::Zx => (2, 0, 1),
+        Plane::Yz => (1, 2, 0),
+    };
+    let full = sweep.abs();
+    let spiral = r1 - r0;
+    let dr = spiral / full;
+    let min_radius = r0.min(r1);
+    let r_eff = dr.hypot(min_radius);
+    let v_axes = m.axes[i1].max_velocity.min(m.axes[i2].max_velocity);
+    let a_axes = m.axes[i1].max_acceleration.min(m.axes[i2].max_acceleration);
+    let a_normal = a_axes * 3f64.sqrt() / 2.0;
+    let v_planar = (a_normal * r_eff).sqrt().min(v_axes);
+    let d = (to - from).to_array();
+    let t_motion = time_of(d, m.axes.map(|a| a.max_velocity));
+    let spiral_length = (min_radius * full).hypot(spiral);
+    let total = spiral_length.hypot(dw);
+    let t_max = t_motion.max(spiral_length / v_planar);
+    let v_max = total / t_max;
+    let tt_motion = time_of(d, m.axes.map(|a| a.max_acceleration));
+    let tt_max = tt_motion.max(spiral_length / a_axes);
+    let a_max = total / tt_max;
+    let vel = feed.min(v_max);
+    if !(vel > 0.0 && a_max > 0.0 && v_max.is_finite()) {
+        return None;
+    }
+    Some(Tc::new(Shape::Circle(c), g.length(), vel, v_max, a_max))
+}
+
+/// The largest `|dᵢ|/bᵢ` over the axes that move.
+fn time_of(d: [f64; 3], bounds: [f64; 3]) -> f64 {
+    d.iter()
+        .zip(bounds)
+        .filter(|(x, _)| x.abs() >= CART_FUZZ)
+        .map(|(x, b)| x.abs() / b)
+        .fold(0.0, f64::max)
+}
+
+/// `chord_deviation` of an XY arc: (deviation of the chord, middle point).
+pub(super) fn chord_deviation(from: Point3, m: &Move) -> Option<(f64, Point3)> {
+    let MoveKind::Arc {
+        center,
+        plane: Plane::Xy,
+        ccw,
+        ..
+    } = m.kind
+    else {
+        return None;
+    };
+    let (sx, sy, ex, ey, cx, cy) = (from.x, from.y, m.to.x, m.to.y, center.x, center.y);
+    let th1 = (sy - cy).atan2(sx - cx);
+    let mut th2 = (ey - cy).atan2(ex - cx);
+    let r = (sy - cy).hypot(sx - cx);
+    let tau = 2.0 * std::f64::consts::PI;
+    if ccw {
+        for _ in 0..2 {
+            if th2 - th1 <= 1e-5 {
+                th2 += tau;
+            }
+        }
+    } else {
+        for _ in 0..2 {
+            if th2 - th1 >= -1e-5 {
+                th2 -= tau;
+            }
+        }
+    }
+    let included = (th2 - th1).abs();
+    let mid = (th2 + th1) / 2.0;
+    let p = Point3::new(
+        cx + r * mid.cos(),
+        cy + r * mid.sin(),
+        (from.z + m.to.z) / 2.0,
+    );
+    Some((r * (1.0 - (included / 2.0).cos()), p))
+}
+
+/// The run of G1 points held by the naive-CAM detector.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Chain {
+    /// The last point sent (`canon.endPoint`).
+    pub start: Point3,
+    /// Held points with the move each came from.
+    pub points: Vec<(Point3, usize, Move)>,
+}
+
+impl Chain {
+    /// `linkable`: may `p` join the run under merge tolerance `tol`?
+    pub fn linkable(&self, p: Point3, tol: f64) -> bool {
+        if tol == 0.0 || self.points.len() > MAX_CHAIN || p == self.start {
+            return false;
+        }
+        let mv = p - self.start;
+        let mm = mv.dot(mv);
+        self.points.iter().all(|(q, _, _)| {
+            let t0 = (mv.dot(*q - self.start) / mm).clamp(0.0, 1.0);
+            (*q - (self.start + mv * t0)).length() <= tol
+        })
+    }
+}

@@ -1,0 +1,235 @@
+//! The `sinumerik` controller model: a Siemens 840D-class controller (jerk-limited, `G64` /
+//! `G642` rounding within the path tolerance), as the `hsm` preset uses it, fitted to the
+//! adaptive-spiral paper's Table 2 ([`crate::motion::table2`] has the fit and its residuals).
+//!
+//! It keeps the generic model's block limits and corner rules ([`crate::motion::limits`]) and
+//! replaces how a change of curvature is timed, so that a path costs the same whether it is
+//! written as exact arcs or as the chords of a CAM polyline:
+//!
+//! # Curvature samples
+//! The controller sees the path's curvature (the vector `κN`) at the junctions of blocks:
+//! on an arc its own `κN`, and at a corner of deflection `θ` between two blocks, the curvature
+//! of the circle through the corner and the blocks' far ends (Menger curvature,
+//! `2·sin θ / |P₀P₂|`, towards the inside of the corner): on chords of a circle of radius `r`
+//! that is `1/r`, on a corner after a long line nearly 0.
+//!
+//! # Rules
+//! * **Smooth corners** (deflection ≤ [`SMOOTH_CORNER`] and a blend within the tolerance):
+//!   the corner is part of a curve of curvature `κ` and gets an arc's speed cap,
+//!   `min(√(η_a·A/κ), ∛(η_j·J/κ²))`, on top of the blend rule — the same cap the arc it
+//!   approximates has.
+//! * **Curvature ramps**: between consecutive samples the curvature changes by `Δ(κN)`; the
+//!   centripetal acceleration then ramps by `v²·Δκ` over the distance `L` available, a jerk of
+//!   `v³·Δκ/L`, which must stay within the share `η_j·J` of the jerk (`J` the smallest of the
+//!   axes the step involves, `|Δκ|` the vector's length, so that a rotated path costs the
+//!   same): `v ≤ ∛(η_j·J·L/|Δκ|)`. Along a line between two corners `L` is the line's length; at a
+//!   junction of exact blocks (a line into an arc) the controller smooths the step within the
+//!   path tolerance `ε` (`G642`): a curvature ramp of length `L` shifts the path by about
+//!   `Δκ·L²/24`, so `L = √(24ε/Δκ)` (at most the shorter block). Either way `L` is at least
+//!   that smoothing length. With `ε = 0` the step falls within one interpolation cycle:
+//!   `v²·|Δκᵢ| ≤ J·T_ipo`, the generic rule.
+//!
+//! Before this rule, a 100 × 60 mm rounded rectangle (r = 10 mm, 5 laps, F15240) took 9.30 s
+//! on `hsm` with G1/G3 arcs and 6.60 s as 0.5 mm chords: the line→arc curvature step was
+//! charged over one IPO cycle while the same step along the chords was not seen at all.
+
+use crate::geom::Vec3;
+use crate::machine::Machine;
+use crate::motion::limits::{JunctionMode, NEAR_TANGENT, corner_cap, speed_step_cap};
+use crate::motion::path::Geom;
+
+/// Largest deflection (|t₂ − t₁|, about the angle in radians) of a corner taken as part of a
+/// curve (a CAM polyline's chord junction) rather than a corner of the part: 0.35 (20°).
+pub const SMOOTH_CORNER: f64 = 0.35;
+
+/// How far back (mm) curvature samples are compared: beyond it the ramp is long enough.
+const HORIZON: f64 = 50.0;
+/// Samples kept at most.
+const MAX_SAMPLES: usize = 32;
+
+/// The sinumerik model's state between junctions: the recent curvature samples.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Curvature {
+    /// Path length to the end of the last block, mm.
+    s: f64,
+    /// Recent samples: (position along the path, `κN`).
+    samples: std::collections::VecDeque<(f64, Vec3)>,
+}
+
+impl Curvature {
+    /// The speed cap at the junction from `g1` (corner mode `mode`) into `g2`.
+    pub(crate) fn junction_cap(
+        &mut self,
+        g1: &Geom,
+        g2: &Geom,
+        mode: JunctionMode,
+        machine: &Machine,
+    ) -> f64 {
+        let t1 = g1.end_tangent();
+        let t2 = g2.start_tangent();
+        let deflection = (t2 - t1).length();
+        let tol = match mode {
+            JunctionMode::Blend(t) => t,
+            _ => 0.0,
+        };
+        // The generic corner rules without their one-IPO-cycle curvature step (replaced by
+        // the ramp below), and the speed step where a spiral arc meets another block.
+        let dp = g2.derivatives(0.0)[1] - g1.derivatives(g1.length())[1];
+        let mut cap = if deflection > 1e-9 {
+            corner_cap(g1, g2, t1, t2, dp, mode, machine)
+        } else {
+            speed_step_cap(dp, machine)
+        };
+        if self.samples.is_empty() {
+            // The program (or the run after a dwell) starts from rest on a straight line's
+            // zero curvature, or on its first arc's.
+            let (k0, _) = g1.curvature_ends();
+            self.samples.push_back((self.s, k0));
+        }
+        self.s += g1.length();
+        // No cap above the fastest the path can go matters.
+        let vmax = 3f64.sqrt()
+            * machine
+                .axes
+                .iter()
+                .map(|a| a.max_velocity)
+                .fold(0.0, f64::max);
+        let (_, k1_end) = g1.curvature_ends();
+        let (k2_start, _) = g2.curvature_ends();
+        let lines = matches!(g1, Geom::Line { .. }) && matches!(g2, Geom::Line { .. });
+        // The samples at this junction: the curvature at the end of `g1`, then a corner's
+        // Menger curvature, then the curvature at the start of `g2` — except that a corner
+        // between two lines (a polyline's vertex) is sampled by its Menger curvature alone:
+        // its lines are chords of a curve, not straight pieces of the part.
+        let menger = deflection > 1e-9 && (lines || deflection > NEAR_TANGENT);
+        let mut new = [Vec3::ZERO; 3];
+        let mut n_new = 0;
+        if !(lines && menger) {
+            new[n_new] = k1_end;
+            n_new += 1;
+        }
+        if menger {
+            let p0 = g1.point(0.0);
+            let p2 = g2.point(g2.length());
+            let chord = (p2 - p0).length();
+            let c = t1.dot(t2).clamp(-1.0, 1.0);
+            let sin = (1.0 - c * c).max(0.0).sqrt();
+            let inward = (t2 - t1).normalize().unwrap_or(Vec3::ZERO);
+            let k = if chord > 0.0 {
+                inward * (2.0 * sin / chord)
+            } else {
+                Vec3::ZERO
+            };
+            // A smooth corner is part of a curve: an arc's speed cap for its curvature.
+            let kappa = k.length();
+            if deflection <= SMOOTH_CORNER && tol > 0.0 && kappa > 0.0 {
+                let (ea, ej) = (machine.curvature_accel_share, machine.curvature_jerk_share);
+                let (a, j) = weakest(k, machine);
+                cap = cap.min((ea * a / kappa).sqrt());
+                let cube = ej * j / (kappa * kappa);
+                if j.is_finite() && cube < cap.min(vmax).powi(3) {
+                    cap = cap.min(cube.cbrt());
+                }
+            }
+            new[n_new] = k;
+            n_new += 1;
+        }
+        if !(lines && menger) {
+            new[n_new] = k2_start;
+            n_new += 1;
+        }
+        for &k in new.iter().take(n_new) {
+            for &(sk, kk) in &self.samples {
+                cap = cap.min(ramp_cap(k - kk, self.s - sk, tol, machine, cap.min(vmax)));
+            }
+            match self.samples.back_mut() {
+                // A run of equal samples (a straight line's zeros): only the latest one can
+                // bind (the nearest gives the tightest ramp).
+                Some(last) if (last.1 - k).length() <= 1e-12 => *last = (self.s, k),
+                _ => self.samples.push_back((self.s, k)),
+            }
+        }
+        // Samples farther back than any ramp that could bind: a ramp over `D` binds only if
+        // `∛(η_j·J·D/Δκ) < v_max` while `D ≤ √(24ε/Δκ)`, i.e. `D < v_max·∛(24ε/(η_j·J))`.
+        let horizon = if tol > 0.0 {
+            let (vmax, jmin) = machine
+                .axes
+                .iter()
+                .fold((0.0f64, f64::INFINITY), |(v, j), a| {
+                    (v.max(a.max_velocity), j.min(a.max_jerk))
+                });
+            (3f64.sqrt() * vmax * (24.0 * tol / (machine.curvature_jerk_share * jmin)).cbrt())
+                .min(HORIZON)
+        } else {
+            HORIZON
+        };
+        while self.samples.len() > MAX_SAMPLES
+            || self
+                .samples
+                .front()
+                .is_some_and(|&(sk, _)| self.s - sk > horizon)
+        {
+            self.samples.pop_front();
+        }
+        cap
+    }
+}
+
+/// The speed at which the curvature may change by `step` over `distance` mm of path, the
+/// controller smoothing the change within the tolerance `tol` (see the module docs).
+/// Caps at or above `bound` are not computed (they would not bind).
+fn ramp_cap(step: Vec3, distance: f64, tol: f64, machine: &Machine, bound: f64) -> f64 {
+    let dk2 = step.dot(step);
+    if dk2 <= 1e-24 {
+        return f64::INFINITY;
+    }
+    // The cap is at least ∛(η_j·J_min·D/|Δκ|): skip it when that is above the bound
+    // (compared as cubes, without roots).
+    let jmin = machine
+        .axes
+        .iter()
+        .map(|a| a.max_jerk)
+        .fold(f64::INFINITY, f64::min);
+    if (machine.curvature_jerk_share * jmin * distance).powi(2) >= bound.powi(6) * dk2 {
+        return f64::INFINITY;
+    }
+    // Farther apart than the smoothing length (`D² > 24ε/|Δκ|`, checked without roots):
+    // the step between them was already met (and smoothed) by the samples in between.
+    if tol > 0.0 && (distance * distance).powi(2) * dk2 > (24.0 * tol).powi(2) {
+        return f64::INFINITY;
+    }
+    let dk = dk2.sqrt();
+    let smoothing = if tol > 0.0 {
+        (24.0 * tol / dk).sqrt()
+    } else {
+        0.0
+    };
+    let avail = distance.max(smoothing);
+    let (_, j) = weakest(step, machine);
+    if !j.is_finite() {
+        return f64::INFINITY;
+    }
+    if avail > 0.0 {
+        (machine.curvature_jerk_share * j * avail / dk).cbrt()
+    } else {
+        // Within one interpolation cycle (the generic rule).
+        (j * machine.ipo_cycle / dk).sqrt()
+    }
+}
+
+/// The smallest acceleration and jerk of the axes `v` has a component along: the rules take
+/// the vector's length against them, so that they do not change when the path is rotated on
+/// a machine whose axes are alike (a per-axis bound would: `|vᵢ| ≤ |v|`, the verifier's
+/// per-axis check is met either way).
+fn weakest(v: Vec3, machine: &Machine) -> (f64, f64) {
+    let n = v.length();
+    let mut a = f64::INFINITY;
+    let mut j = f64::INFINITY;
+    for (c, ax) in v.to_array().iter().zip(&machine.axes) {
+        if c.abs() > 1e-9 * n {
+            a = a.min(ax.max_acceleration);
+            j = j.min(ax.max_jerk);
+        }
+    }
+    (a, j)
+}
