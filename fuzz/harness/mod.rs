@@ -303,14 +303,28 @@ fn decode_pocket(data: &[u8], walls: bool) -> Option<PocketCase> {
         zigzag_angle: b.num(-3.2, 3.2),
         transition: b.num(0.0, 1.0),
         min_radius: b.num(0.1, 2.0),
+        // The default morph on half the inputs; the paper's two on the rest (chosen by the
+        // transition drawn above: no extra byte, so the committed corpus keeps decoding).
         morph: if b.flag() {
-            pocket::spiral::SpiralMorph::Fronts
+            pocket::spiral::SpiralMorph::Offsets
         } else {
-            pocket::spiral::SpiralMorph::Harmonic
+            pocket::spiral::SpiralMorph::Fronts
         },
         arcs: false,
+        // Curvature ramps (the default) unless the zigzag angle drawn is negative.
+        curvature_ramps: true,
         finish: b.flag(),
         modulate_feed: false,
+    };
+    let opts = PocketOptions {
+        morph: match opts.morph {
+            pocket::spiral::SpiralMorph::Fronts if opts.transition >= 0.5 => {
+                pocket::spiral::SpiralMorph::Harmonic
+            }
+            m => m,
+        },
+        curvature_ramps: opts.zigzag_angle >= 0.0,
+        ..opts
     };
     // `--arcs` on about half the inputs, derived from a drawn value so that the committed
     // corpus keeps its meaning (no extra byte drawn).

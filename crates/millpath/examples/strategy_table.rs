@@ -2,7 +2,9 @@
 //! path length, mean engagement, share above nominal, verification, and the cycle time on
 //! `hsm` and on the `linuxcnc-time` machine (LinuxCNC's limits: 500 mm/s, 2000 mm/s², jerk
 //! unlimited, 1 ms; planned with `G64 P0.01`, the tolerance the programs state), one 5 mm
-//! level at 600 in/min, with and without feed modulation. Prints tab-separated rows; with a
+//! level at 600 in/min, with and without feed modulation; each program made for the machine
+//! it is timed on (the spiral's curvature ramps for `hsm`'s jerk limit, none for LinuxCNC's
+//! trapezoidal planner, as `--machine` does). Prints tab-separated rows; with a
 //! directory argument each program is also written there for
 //! `../shared/tools/linuxcnc-time` (`tools/strategy_table.sh` runs both and prints the
 //! table of BENCHMARKS.md).
@@ -73,15 +75,24 @@ fn main() {
                 StrategyKind::Offset,
                 StrategyKind::Zigzag,
             ] {
-                let r = match pocket::generate(kind, &p.shape, &tool, &opts, &sim) {
-                    Ok(r) => r,
-                    Err(e) => {
+                let for_lc = PocketOptions {
+                    curvature_ramps: false,
+                    ..opts.clone()
+                };
+                let (r, r_lc) = match (
+                    pocket::generate(kind, &p.shape, &tool, &opts, &sim),
+                    pocket::generate(kind, &p.shape, &tool, &for_lc, &sim),
+                ) {
+                    (Ok(r), Ok(r_lc)) => (r, r_lc),
+                    (Err(e), _) | (_, Err(e)) => {
                         println!("{}\t{}\t{modulate}\terror: {e}", p.name, kind.name());
                         continue;
                     }
                 };
                 let t_hsm = plan_toolpath(&r.toolpath, &hsm).expect("plan").total_time();
-                let t_lc = plan_toolpath(&r.toolpath, &lc).expect("plan").total_time();
+                let t_lc = plan_toolpath(&r_lc.toolpath, &lc)
+                    .expect("plan")
+                    .total_time();
                 let v = &r.verification;
                 println!(
                     "{}\t{}\t{}\t{:.1}\t{:.1}\t{:.1}\t{:.2}\t{:.2}\t{:.2}\t{}",
@@ -102,7 +113,7 @@ fn main() {
                         ..WriterOptions::default()
                     };
                     let mut buf = Vec::new();
-                    write_program(&r.toolpath, &wopts, &mut buf).expect("write");
+                    write_program(&r_lc.toolpath, &wopts, &mut buf).expect("write");
                     let name = format!(
                         "{dir}/{}_{}_{}.ngc",
                         p.name.replace([' ', ':'], "_"),

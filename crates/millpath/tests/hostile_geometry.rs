@@ -182,6 +182,7 @@ fn pocket_toolpaths_survive_arbitrary_polygons_and_options() {
             min_radius: mostly_sane(&mut r, 0.1, 2.0, 0.05),
             morph: Default::default(),
             arcs: false,
+            curvature_ramps: true,
             finish: r.random_bool(0.3),
             modulate_feed: false,
         };

@@ -114,6 +114,7 @@ fn pocket_ramp_on_a_sliver_cut_is_bounded() {
         min_radius: 0.8251498205924716,
         morph: Default::default(),
         arcs: false,
+        curvature_ramps: true,
         finish: false,
         modulate_feed: false,
     };

@@ -79,10 +79,13 @@ fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
     };
     let mut jobs = Vec::new();
     for modulate in [true, false] {
+        // Made for this machine, as `--machine` does: LinuxCNC is trapezoidal, no curvature
+        // ramps.
         let opts = PocketOptions {
             depth: 5.0,
             step_down: 5.0,
             modulate_feed: modulate,
+            curvature_ramps: false,
             ..PocketOptions::default()
         };
         for kind in [

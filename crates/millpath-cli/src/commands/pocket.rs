@@ -191,7 +191,7 @@ impl CommonArgs {
             }
         };
         let feed = parse_feed(&self.feed)?;
-        let opts = PocketOptions {
+        let mut opts = PocketOptions {
             stepover: Stepover::parse(&self.stepover)?,
             depth: self.depth,
             step_down: self.step_down,
@@ -213,11 +213,14 @@ impl CommonArgs {
             min_radius: self.min_radius,
             morph: self.morph()?,
             arcs: self.arcs,
+            curvature_ramps: true,
             finish: self.finish,
             modulate_feed: !self.no_feed_modulation,
         };
+        // Shaped for the machine: curvature ramps for a jerk-limited controller.
+        let machine = super::load_machine(&self.machine)?;
+        opts.curvature_ramps = machine.axes.iter().any(|a| a.max_jerk.is_finite());
         opts.validate(&tool)?;
-        super::load_machine(&self.machine)?;
         if !(self.cell.is_finite() && self.cell > 0.0) {
             return Err(InputError::new("cell", self.cell)
                 .at("--cell")

@@ -157,6 +157,12 @@ pub struct PocketOptions {
     /// `spiral::ARC_TOLERANCE`) instead of G1 chords (`--arcs`). The other strategies'
     /// paths are lines and exact arcs already.
     pub arcs: bool,
+    /// The spiral's interior smoothed into curvature ramps (`spiral::smooth`): for
+    /// jerk-limited controllers, which must slow where the curvature steps. A trapezoidal
+    /// controller (LinuxCNC) accelerates at half its rate along curved chord runs, so there the
+    /// rounded loops' straight stretches are faster left straight: the command line sets this
+    /// from the machine (`--machine`: on when an axis has a jerk limit).
+    pub curvature_ramps: bool,
     /// A finishing pass along the walls at the last level (no wall stock).
     pub finish: bool,
     /// Modulate the feed with the engagement measured by the stock simulation.
@@ -186,6 +192,7 @@ impl Default for PocketOptions {
             min_radius: 1.0,
             morph: SpiralMorph::default(),
             arcs: false,
+            curvature_ramps: true,
             finish: false,
             modulate_feed: true,
         }

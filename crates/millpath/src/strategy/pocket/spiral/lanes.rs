@@ -169,7 +169,31 @@ pub enum Outermost {
 /// The spiral through `rings` (innermost first, all in the cutting direction), entered at the
 /// point of the first ring nearest to `enter`. Returns the path (its first point is that
 /// entry point).
-pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOptions) -> Vec<Seg> {
+pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOptions) -> ChainPath {
+    let mut until = None;
+    let segs = chain_segs(rings, enter, outer, opts, &mut until);
+    let interior = until.unwrap_or(segs.len());
+    ChainPath { segs, interior }
+}
+
+/// A chain's path.
+#[derive(Debug, Clone)]
+pub struct ChainPath {
+    /// The moves, in order.
+    pub segs: Vec<Seg>,
+    /// `segs[..interior]` runs inside the pocket; from there on the last change onto a wall's
+    /// loop and the loop itself (which must stay as they are).
+    pub interior: usize,
+}
+
+/// [`chain_path`]'s moves; `until` is set where the change onto a wall's loop starts.
+fn chain_segs(
+    rings: &[Ring],
+    enter: Point,
+    outer: Outermost,
+    opts: &LaneOptions,
+    until: &mut Option<usize>,
+) -> Vec<Seg> {
     let (last_is_wall, wall_inset) = match outer {
         Outermost::Interior => (false, 0.0),
         Outermost::Wall { inset } => (true, inset),
@@ -187,6 +211,9 @@ pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOpt
         }
     };
     let (s_in, _) = first.project(enter);
+    if rings.len() == 1 && last_is_wall {
+        *until = Some(0);
+    }
     let mut path = stretch(0, s_in, first.len());
     if rings.len() == 1 {
         return path;
@@ -280,12 +307,16 @@ pub fn chain_path(rings: &[Ring], enter: Point, outer: Outermost, opts: &LaneOpt
         }
     }
     let Some((changes, _, past)) = best else {
+        *until = last_is_wall.then_some(path.len());
         return path;
     };
     // The rest of the first loop up to the first window.
     path.extend(stretch(0, s_in, past));
     for (i, (p, change)) in changes.iter().enumerate() {
         let (from, to) = (&rings[i], &rings[i + 1]);
+        if onto_wall(i) {
+            *until = Some(path.len());
+        }
         // Where the path is on `to` after the change, and how much of `to` is still to run
         // before the next change (or, on the outermost loop, to close it).
         let land = match change {

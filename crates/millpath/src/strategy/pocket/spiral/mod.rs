@@ -51,6 +51,7 @@ pub mod laps;
 pub mod offsets;
 pub mod ring;
 pub mod rounding;
+pub mod smooth;
 
 use super::levels::LevelPlan;
 use super::options::PocketOptions;

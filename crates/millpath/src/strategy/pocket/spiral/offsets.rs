@@ -30,6 +30,7 @@ use super::common::{ARC_TOLERANCE, LAST_LOOP_MARGIN, last_loop};
 use super::lanes::{LaneOptions, Outermost, chain_path, chorded};
 use super::ring::Ring;
 use super::rounding::{RoundOptions, round};
+use super::smooth::{SmoothOptions, smooth};
 use crate::error::InputError;
 use crate::geom::Point;
 use crate::toolpath::Tool;
@@ -48,6 +49,18 @@ const MAX_RADIUS: f64 = 12.0;
 const MIN_CLEARANCE: f64 = 0.25;
 /// Lane change length, in steps.
 const WINDOW: f64 = 6.0;
+/// Largest smoothing window, in steps ([`super::smooth`]).
+const SMOOTH_WINDOW: f64 = 3.0;
+/// Largest displacement of the interior path by the smoothing, in steps.
+const SMOOTH_SHIFT: f64 = 0.03;
+/// Sample spacing of the smoothing, mm.
+const SMOOTH_SPACING: f64 = 0.1;
+/// Deflection (rad) of a junction the smoothing keeps as a kink (a step, an unrounded corner).
+const SMOOTH_KINK: f64 = 0.1;
+/// Largest distance between the smoothed interior and its chords, mm (the interior laps are a
+/// step from the walls; longer chords plan faster, measured: 0.002 → 0.01 mm took the
+/// aerospace level from 14.84 to 14.58 s on `hsm`).
+const SMOOTH_CHORD_TOLERANCE: f64 = 0.01;
 /// Sagitta of the chords that replace interior loops' arcs, mm.
 const CHORD_TOLERANCE: f64 = 0.002;
 /// Longest chord on interior loops' arcs, mm.
@@ -116,8 +129,17 @@ pub fn plan(
             arcs: opts.arcs,
             arc_tolerance: ARC_TOLERANCE,
             wall_chord: LANE_CHORD.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
-            chords: (!opts.arcs).then_some((CHORD_TOLERANCE, MAX_CHORD)),
+            // Exact arcs to smooth or with --arcs, else the arcs as chords.
+            chords: (!opts.arcs && !opts.curvature_ramps).then_some((CHORD_TOLERANCE, MAX_CHORD)),
         },
+        // The interior smoothed to curvature ramps, as chords (not with --arcs).
+        smooth: (!opts.arcs && opts.curvature_ramps).then_some(SmoothOptions {
+            max_window: SMOOTH_WINDOW * h,
+            max_shift: SMOOTH_SHIFT * h,
+            spacing: SMOOTH_SPACING,
+            chord_tolerance: SMOOTH_CHORD_TOLERANCE,
+            kink: SMOOTH_KINK,
+        }),
         cuts: Vec::new(),
         here: None,
     };
@@ -179,6 +201,7 @@ struct Emitter<'a> {
     s: f64,
     ccw: bool,
     lanes: LaneOptions,
+    smooth: Option<SmoothOptions>,
     cuts: Vec<Cut>,
     here: Option<Point>,
 }
@@ -364,7 +387,11 @@ impl Emitter<'_> {
                 }
             }
         };
-        let mut path: Vec<Seg> = chain_path(&rings, enter, outer, &self.lanes);
+        let cp = chain_path(&rings, enter, outer, &self.lanes);
+        let mut path: Vec<Seg> = match &self.smooth {
+            Some(o) => smooth(&cp.segs, cp.interior, o),
+            None => cp.segs,
+        };
         if let CutEntry::Helix { center, radius } = entry {
             path = self.helix_lead(center, radius, path);
         }
