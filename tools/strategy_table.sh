@@ -32,7 +32,12 @@ for (pocket, strategy), m in seen.items():
     if not on or not off or on.get("path_mm") is None:
         print(f"| {pocket} | {strategy} | error | | | | | | |")
         continue
-    f = lambda mod: lc.get(f"{pocket.replace(' ', '_').replace(':', '_')}_{strategy}_{mod}.ngc", "?")
+    def f(mod):
+        t = lc.get(f"{pocket.replace(' ', '_').replace(':', '_')}_{strategy}_{mod}.ngc", "?")
+        try:
+            return f"{float(t):.2f}"
+        except ValueError:
+            return "error"
     print(f"| {pocket} | {strategy} | {float(on['path_mm']):.0f} | {float(on['mean_engagement_deg']):.1f} | "
           f"{float(on['above_nominal_pct']):.1f} | {on['hsm_s']} / {off['hsm_s']} | "
           f"{on['linuxcnc_model_s']} / {off['linuxcnc_model_s']} | {f('on')} / {f('off')} | {on['uncut_mm2']} |")
