@@ -64,3 +64,65 @@ fn auto_writes_the_fastest_verified_strategy() {
         }
     }
 }
+
+/// `--arcs` keeps the faster of the arcs and the chords on each machine, checked against both
+/// forms generated and timed again by the planner directly: on `hsm` (jerk-limited, the chords
+/// with curvature ramps) the chords win and the note gives both times; on the LinuxCNC model
+/// (trapezoidal) the arcs win and are kept without a note.
+#[test]
+fn arcs_request_keeps_the_faster_form_on_each_machine() {
+    let shape = samples::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap();
+    let sim = SimOptions {
+        cell: 0.1,
+        step: 0.2,
+        ..SimOptions::default()
+    };
+    let arcs_in = |tp: &Toolpath| {
+        tp.moves
+            .iter()
+            .filter(|m| matches!(m.kind, millpath::toolpath::MoveKind::Arc { .. }))
+            .count()
+    };
+    for (name, ramps) in [("hsm", true), ("linuxcnc-time", false)] {
+        let m = Machine::preset(name).unwrap();
+        let time = |tp: &Toolpath| pocket::cycle_time_on(tp, &m);
+        let opts = PocketOptions {
+            depth: 5.0,
+            step_down: 5.0,
+            arcs: true,
+            curvature_ramps: ramps,
+            ..PocketOptions::default()
+        };
+        let (r, t) =
+            auto::arcs_or_chords(StrategyKind::Spiral, &shape, &tool, &opts, &sim, &time).unwrap();
+        let t = t.unwrap();
+        assert!(r.verification.problems().is_empty(), "{name}");
+        let a = pocket::generate(StrategyKind::Spiral, &shape, &tool, &opts, &sim).unwrap();
+        let chord_opts = PocketOptions {
+            arcs: false,
+            ..opts.clone()
+        };
+        let c = pocket::generate(StrategyKind::Spiral, &shape, &tool, &chord_opts, &sim).unwrap();
+        let ta = plan_toolpath(&a.toolpath, &m).unwrap().total_time();
+        let tc = plan_toolpath(&c.toolpath, &m).unwrap().total_time();
+        assert!(
+            (t - ta.min(tc)).abs() < 1e-9,
+            "{name}: kept {t}, arcs {ta}, chords {tc}"
+        );
+        let kept_chords = tc < ta;
+        assert_eq!(kept_chords, name == "hsm", "{name}: arcs {ta}, chords {tc}");
+        if kept_chords {
+            assert_eq!(r.toolpath, c.toolpath);
+            assert!(
+                r.notes.iter().any(|n| n.contains("written as G1 chords")),
+                "{:?}",
+                r.notes
+            );
+        } else {
+            assert_eq!(r.toolpath, a.toolpath);
+            assert!(arcs_in(&r.toolpath) > arcs_in(&c.toolpath), "{name}");
+            assert!(r.notes.is_empty(), "{:?}", r.notes);
+        }
+    }
+}

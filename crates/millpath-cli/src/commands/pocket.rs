@@ -465,6 +465,13 @@ pub fn run(args: &Args) -> Result<(), Error> {
         args.common
             .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;
     let (kind, r, auto) = match choice {
+        Choice::One(kind) if opts.arcs => {
+            let m = super::load_machine(&args.common.machine)?;
+            let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
+            let sim = args.common.sim();
+            let (r, _) = pocket::auto::arcs_or_chords(kind, &shape, &tool, &opts, &sim, &time)?;
+            (kind, r, None)
+        }
         Choice::One(kind) => (
             kind,
             pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?,

@@ -10,6 +10,13 @@
 //! the strategy layer does not plan motion itself). [`choose`] keeps the fastest verified
 //! candidate (ties: the first in [`ORDER`]); a candidate that fails verification, or that the
 //! strategy cannot plan, is never chosen.
+//!
+//! `--arcs` is a request for the faster form, not a promise of G2/G3: [`arcs_or_chords`]
+//! plans the path with arcs and with G1 chords, verifies and times both, and keeps the arcs
+//! unless the chords are verified and faster on the machine (then with a note). A
+//! jerk-limited machine pays for the jump in curvature where an exact arc meets a line, which
+//! the chords' curvature ramps ([`super::spiral`]) avoid; a trapezoidal planner such as
+//! LinuxCNC's does not, and there the arcs' fewer, longer moves win.
 
 use super::{PocketOptions, PocketResult, PocketShape, StrategyKind, generate};
 use crate::error::{Error, Result};
@@ -107,7 +114,12 @@ pub fn plan_all(
     ORDER
         .par_iter()
         .map(|&kind| {
-            let outcome = match generate(kind, shape, tool, opts, sim) {
+            let planned = if opts.arcs {
+                arcs_or_chords(kind, shape, tool, opts, sim, time).map(|(r, _)| r)
+            } else {
+                generate(kind, shape, tool, opts, sim)
+            };
+            let outcome = match planned {
                 Err(e) => Outcome::Failed(e),
                 Ok(result) => {
                     let timed = time(&result.toolpath).map_err(|e| {
@@ -138,6 +150,58 @@ pub fn plan_all(
             Candidate { kind, outcome }
         })
         .collect()
+}
+
+/// With `opts.arcs`: the path planned with arcs and with G1 chords (`arcs: false`), each
+/// verified by [`generate`] and timed with `time`; the chords are kept, with a note giving
+/// both times, when they are verified and faster (or when only they are verified), else the
+/// arcs. Returns the kept path and its time (`None` when it could not be timed). Without
+/// `opts.arcs` it is [`generate`] and `time`.
+pub fn arcs_or_chords(
+    kind: StrategyKind,
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+    sim: &SimOptions,
+    time: &(dyn Fn(&Toolpath) -> Result<f64> + Sync),
+) -> Result<(PocketResult, Option<f64>)> {
+    let timed = |r: PocketResult| {
+        let t = time(&r.toolpath).ok();
+        (r, t)
+    };
+    let (arcs, t_arcs) = timed(generate(kind, shape, tool, opts, sim)?);
+    if !opts.arcs {
+        return Ok((arcs, t_arcs));
+    }
+    let chord_opts = PocketOptions {
+        arcs: false,
+        ..opts.clone()
+    };
+    let Ok(chords) = generate(kind, shape, tool, &chord_opts, sim) else {
+        return Ok((arcs, t_arcs));
+    };
+    let (mut chords, t_chords) = timed(chords);
+    let ok = |r: &PocketResult, t: Option<f64>| r.verification.problems().is_empty() && t.is_some();
+    let arcs_ok = ok(&arcs, t_arcs);
+    let chords_ok = ok(&chords, t_chords);
+    let chords_faster = match (t_chords, t_arcs) {
+        (Some(c), Some(a)) => c < a,
+        (Some(_), None) => true,
+        _ => false,
+    };
+    if chords_ok && (!arcs_ok || chords_faster) {
+        let why = match (t_chords, t_arcs) {
+            (Some(c), Some(a)) if arcs_ok => {
+                format!("faster on this machine: {c:.2} s against {a:.2} s with arcs")
+            }
+            _ => "the path with arcs did not pass the verification".to_owned(),
+        };
+        chords
+            .notes
+            .push(format!("`--arcs`: written as G1 chords, {why}"));
+        return Ok((chords, t_chords));
+    }
+    Ok((arcs, t_arcs))
 }
 
 /// The index of the fastest verified candidate (the first of equal ones), `None` when none
