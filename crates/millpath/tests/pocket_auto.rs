@@ -10,15 +10,19 @@ use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, auto, samples};
 use millpath::toolpath::{Tool, Toolpath};
 
-#[test]
-fn auto_writes_the_fastest_verified_strategy() {
-    let shape = samples::aerospace_pocket();
-    let tool = Tool::flat(12.7).unwrap();
+/// The aerospace pocket, its 12.7 mm tool and a 0.1 mm simulation raster.
+fn aerospace() -> (pocket::PocketShape, Tool, SimOptions) {
     let sim = SimOptions {
         cell: 0.1,
         step: 0.2,
         ..SimOptions::default()
     };
+    (samples::aerospace_pocket(), Tool::flat(12.7).unwrap(), sim)
+}
+
+#[test]
+fn auto_writes_the_fastest_verified_strategy() {
+    let (shape, tool, sim) = aerospace();
     let hsm = Machine::preset("hsm").unwrap();
     let time = |tp: &Toolpath| pocket::cycle_time_on(tp, &hsm);
     for finish in [false, true] {
@@ -71,13 +75,7 @@ fn auto_writes_the_fastest_verified_strategy() {
 /// (trapezoidal) the arcs win and are kept without a note.
 #[test]
 fn arcs_request_keeps_the_faster_form_on_each_machine() {
-    let shape = samples::aerospace_pocket();
-    let tool = Tool::flat(12.7).unwrap();
-    let sim = SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    };
+    let (shape, tool, sim) = aerospace();
     let arcs_in = |tp: &Toolpath| {
         tp.moves
             .iter()
