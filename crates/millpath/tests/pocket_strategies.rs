@@ -71,7 +71,12 @@ fn spiral_spacing_and_engagement_share() {
             ..base.clone()
         };
         let (_, stats) = pocket::spiral::plan_with_stats(&shape, &tool, &opts).unwrap();
-        assert_eq!(stats.fronts, morph == Morph::Fronts, "{stats:?}");
+        let made_by = if morph == Morph::Fronts {
+            pocket::spiral::Construction::Fronts
+        } else {
+            pocket::spiral::Construction::Harmonic
+        };
+        assert_eq!(stats.construction, made_by, "{stats:?}");
         assert!(
             stats.max_loop_distance <= bound + 1e-9,
             "{morph:?}: {stats:?}"

@@ -7,7 +7,8 @@
 //! its laps, chords and arcs inside its walls' loops itself ([`super::spiral`]), so these are
 //! a safety net: no input of the fuzz corpora needed one (fuzz/README.md, 2026-11-23).
 
-use super::{PocketOptions, PocketResult, StrategyKind, spiral};
+use super::options::SpiralMorph;
+use super::{PocketOptions, PocketResult, StrategyKind};
 use crate::error::Result;
 use crate::stock::Verification;
 
@@ -54,9 +55,9 @@ pub fn first_clear(
 /// then the same without `--arcs` (any morph).
 fn fallbacks(kind: StrategyKind, opts: &PocketOptions) -> Vec<PocketOptions> {
     let mut out = Vec::new();
-    if kind == StrategyKind::Spiral && opts.morph == spiral::SpiralMorph::Fronts {
+    if kind == StrategyKind::Spiral && opts.morph == SpiralMorph::Fronts {
         out.push(PocketOptions {
-            morph: spiral::SpiralMorph::Harmonic,
+            morph: SpiralMorph::Harmonic,
             ..opts.clone()
         });
     }
@@ -107,7 +108,7 @@ mod tests {
     ) -> (Attempts, Vec<PocketOptions>) {
         let outline = samples::rounded_rectangle(0.0, 0.0, 40.0, 30.0, 5.0);
         let opts = &PocketOptions {
-            morph: spiral::SpiralMorph::Fronts,
+            morph: SpiralMorph::Fronts,
             ..opts.clone()
         };
         let shape = crate::strategy::pocket::PocketShape::simple(outline);
@@ -148,8 +149,8 @@ mod tests {
         };
         // The harmonic morph with arcs first, then the fronts as chords.
         assert_eq!(tried.len(), 3);
-        assert!(tried[1].arcs && tried[1].morph == spiral::SpiralMorph::Harmonic);
-        assert!(!tried[2].arcs && tried[2].morph == spiral::SpiralMorph::Fronts);
+        assert!(tried[1].arcs && tried[1].morph == SpiralMorph::Harmonic);
+        assert!(!tried[2].arcs && tried[2].morph == SpiralMorph::Fronts);
         assert_eq!(r.notes.len(), 1, "{:?}", r.notes);
         assert!(
             r.notes[0].contains("G1 chords instead of arcs")
@@ -162,7 +163,7 @@ mod tests {
 
     #[test]
     fn a_gouging_fronts_morph_falls_back_to_the_harmonic_one() {
-        let fronts = |o: &PocketOptions| o.morph == spiral::SpiralMorph::Fronts;
+        let fronts = |o: &PocketOptions| o.morph == SpiralMorph::Fronts;
         let (out, tried) = run(&PocketOptions::default(), fronts);
         let Attempts::Clears(r) = out else {
             panic!("{out:?}")
@@ -177,10 +178,10 @@ mod tests {
             arcs: true,
             ..PocketOptions::default()
         };
-        assert_eq!(opts.morph, spiral::SpiralMorph::Offsets);
+        assert_eq!(opts.morph, SpiralMorph::Offsets);
         let f = fallbacks(StrategyKind::Spiral, &opts);
         assert_eq!(f.len(), 1);
-        assert!(!f[0].arcs && f[0].morph == spiral::SpiralMorph::Offsets);
+        assert!(!f[0].arcs && f[0].morph == SpiralMorph::Offsets);
         assert!(fallbacks(StrategyKind::Spiral, &PocketOptions::default()).is_empty());
     }
 

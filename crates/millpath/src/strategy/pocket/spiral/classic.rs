@@ -42,8 +42,8 @@ use super::super::shape::{
     IndexedLoop, PocketShape, closed_chain, inscribed_centre, restart_near, reversed, v2,
 };
 use super::common::{
-    LAST_LOOP_MARGIN, LoopWalker, SpiralStats, blend_lap, closed_pline, fractions, last_loop,
-    resample, sample_loop,
+    Construction, LAST_LOOP_MARGIN, LoopWalker, SpiralStats, blend_lap, closed_pline, fractions,
+    last_loop, resample, sample_loop,
 };
 use super::harmonic::Harmonic;
 use super::{fronts, inside, laps};
@@ -379,7 +379,11 @@ fn plan_in_frame(
         if let Some(m) = ctx.run(&make, lap0.clone()) {
             stats.morph_laps = m.laps;
             stats.max_loop_distance = m.max_distance;
-            stats.distance_field = attempt == 1;
+            stats.construction = if attempt == 1 {
+                Construction::DistanceField
+            } else {
+                Construction::Harmonic
+            };
             pts.extend(m.points);
             let mut path = inside::lap_path(&pts, &b_eps, ds_last, opts.arcs);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));

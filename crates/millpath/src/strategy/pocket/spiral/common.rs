@@ -13,6 +13,20 @@ pub const LAST_LOOP_MARGIN: f64 = 0.005;
 /// inside the boundary offset where the lap runs onto it.
 pub const ARC_TOLERANCE: f64 = 0.004;
 
+/// The construction a spiral's laps came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Construction {
+    /// The contour-parallel loops joined by lane changes (`--morph offsets`).
+    #[default]
+    Offsets,
+    /// The paper's central spiral grown into the walls along offset fronts (`--morph fronts`).
+    Fronts,
+    /// The paper's central spiral morphed harmonically into the walls (`--morph harmonic`).
+    Harmonic,
+    /// The harmonic morph stalled and the laps follow the walls' distance field instead.
+    DistanceField,
+}
+
 /// What the spiral planner measured.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SpiralStats {
@@ -24,10 +38,8 @@ pub struct SpiralStats {
     pub max_loop_distance: f64,
     /// Radius of the central spiral, mm.
     pub r0: f64,
-    /// The harmonic morph stalled and the distance-field morph was used.
-    pub distance_field: bool,
-    /// The fronts morph was used (else the harmonic one).
-    pub fronts: bool,
+    /// Which construction made the laps.
+    pub construction: Construction,
     /// Length of the ridge cut as a slot by the fronts' first lap, mm (0: none).
     pub ridge_slot: f64,
     /// Length of the ridge segment the central spiral's capsules are drawn about, mm (0: a

@@ -20,7 +20,9 @@
 use super::super::chain::segs_from_vertices;
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::shape::{closed_chain, restart_near, reversed};
-use super::common::{LoopWalker, SpiralStats, blend_lap, fractions, resample, sample_loop};
+use super::common::{
+    Construction, LoopWalker, SpiralStats, blend_lap, fractions, resample, sample_loop,
+};
 use super::fronts::{FrontOptions, capsule, circle, fronts};
 use crate::geom::{Point, Vec2};
 use cavalier_contours::polyline::{PlineSource, Polyline};
@@ -80,7 +82,7 @@ impl FrontSpiral<'_> {
         let mut stats = SpiralStats {
             r0: self.r0,
             max_loop_distance: f.max_distance,
-            fronts: true,
+            construction: Construction::Fronts,
             ridge_slot: f.ridge_slot,
             ..SpiralStats::default()
         };

@@ -60,7 +60,7 @@ use crate::error::InputError;
 use crate::toolpath::Tool;
 
 pub use super::options::SpiralMorph;
-pub use common::{ARC_TOLERANCE, LAST_LOOP_MARGIN, SpiralStats};
+pub use common::{ARC_TOLERANCE, Construction, LAST_LOOP_MARGIN, SpiralStats};
 
 /// The spiral strategy's plan for one level.
 pub fn plan(
