@@ -110,6 +110,10 @@ pub fn load_outline(name: &str, import: &ImportArgs) -> Result<Loops, Error> {
                 .into());
         }
     };
-    super::eprint(&format!("note: {name}: {}", drawing.summary()));
-    Ok(drawing.into_loops(name, import.join_tolerance)?)
+    // The note only for a drawing that reads: a refusal's message already holds it, on
+    // its one line.
+    let summary = drawing.summary();
+    let loops = drawing.into_loops(name, import.join_tolerance)?;
+    super::eprint(&format!("note: {name}: {summary}"));
+    Ok(loops)
 }

@@ -188,7 +188,7 @@ impl<'a> Reader<'a> {
     pub fn entities(&mut self, recs: &[Record], ctx: &Ctx) -> Result<(), InputError> {
         let mut i = 0;
         while i < recs.len() {
-            let rec = &recs[i];
+            let (rec, index) = (&recs[i], i);
             i += 1;
             self.expanded += 1;
             if self.expanded > MAX_EXPANDED {
@@ -229,7 +229,16 @@ impl<'a> Reader<'a> {
                     continue;
                 }
             }
-            let at = format!("{}, {} on layer {layer}", self.origin, rec.kind);
+            let at = match ctx.depth {
+                0 => format!(
+                    "{}, entity {index} ({} on layer {layer})",
+                    self.origin, rec.kind
+                ),
+                d => format!(
+                    "{}, block entity {index} ({} on layer {layer}, insert depth {d})",
+                    self.origin, rec.kind
+                ),
+            };
             let outcome = self.entity(rec, tail, ctx, &layer, &at)?;
             match outcome {
                 Ok(()) => self.drawing.count(&rec.kind),

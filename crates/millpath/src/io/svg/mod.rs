@@ -471,3 +471,78 @@ pub fn parse(text: &str, origin: &str, tolerance: f64) -> Result<Loops, InputErr
 pub fn parse_with(text: &str, origin: &str, opts: &ReadOptions) -> Result<Loops, InputError> {
     read_loops(text, origin, opts)?.into_loops(origin, opts.join_tolerance)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Page in mm with a viewBox of the same size: 1 mm per user unit, y = 100 − y.
+    fn mm_page(body: &str) -> String {
+        format!(r#"<svg width="100mm" height="100mm" viewBox="0 0 100 100">{body}</svg>"#)
+    }
+
+    #[test]
+    fn rounded_square_keeps_exact_arcs_and_islands() {
+        let svg = mm_page(
+            r#"<path d="M 0 0 H 10 A 5 5 0 0 1 10 10 H 0 Z"/><circle cx="4" cy="5" r="1"/>"#,
+        );
+        let l = parse(&svg, "t.svg", 0.001).unwrap();
+        let area = 100.0 + std::f64::consts::PI * 12.5;
+        assert!(
+            (l.outer.signed_area() - area).abs() < 1e-9,
+            "{}",
+            l.outer.signed_area()
+        );
+        assert_eq!(l.islands.len(), 1);
+        // Exact arcs: 2 vertices for the circle, 4 for the rounded square.
+        assert_eq!((l.outer.len(), l.islands[0].len()), (4, 2));
+    }
+
+    /// The `outline_importers` fuzzer's abort (7.5 GB): an elliptical half turn of radius
+    /// 1e55 mm. Refused by its radius and sweep before kurbo subdivides it; a legitimate
+    /// elliptical arc, and a nearly straight one of a huge ellipse, still read.
+    #[test]
+    fn huge_elliptical_arcs_are_refused_before_subdivision() {
+        let e = parse(
+            &mm_page(r#"<path d="M 0 0 A 1e55 1e11 10 1 1 1000 0 Z"/>"#),
+            "huge.svg",
+            1e-6,
+        )
+        .unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("SVG arc") && msg.contains("1e55") && msg.contains("huge.svg"),
+            "{msg}"
+        );
+        let ok = parse(
+            &mm_page(r#"<path d="M 0 0 A 20 10 0 0 0 40 0 L 40 -10 L 0 -10 Z"/>"#),
+            "ellipse.svg",
+            0.001,
+        )
+        .unwrap();
+        assert!(ok.outer.signed_area().abs() > 400.0);
+        let flat = parse(
+            &mm_page(r#"<path d="M 0 0 A 1e9 5e8 0 0 1 10 0 L 10 -10 L 0 -10 Z"/>"#),
+            "flat.svg",
+            0.001,
+        )
+        .unwrap();
+        assert!((flat.outer.signed_area().abs() - 100.0).abs() < 1e-3);
+    }
+
+    /// A mirror in a transform (scale(1, −1)) flips arcs: the rounded square's area is kept.
+    #[test]
+    fn mirroring_transforms_keep_arcs_exact() {
+        let svg = mm_page(
+            r#"<g transform="translate(0 50) scale(1 -1)"><path d="M 0 0 H 10 A 5 5 0 0 1 10 10 H 0 Z"/></g>"#,
+        );
+        let l = parse(&svg, "m.svg", 0.001).unwrap();
+        let area = 100.0 + std::f64::consts::PI * 12.5;
+        assert!((l.outer.signed_area() - area).abs() < 1e-9);
+        let b = l.outer.bounds();
+        assert!(
+            (b.max.x - 15.0).abs() < 1e-9 && (b.min.y - 50.0).abs() < 1e-9,
+            "{b:?}"
+        );
+    }
+}
