@@ -65,6 +65,8 @@ pub struct Joined {
     pub open: Vec<OpenChain>,
     /// Pieces with no segment longer than the join tolerance.
     pub degenerate: usize,
+    /// The open chains themselves, in the order of `open`.
+    pub open_pieces: Vec<Piece>,
 }
 
 /// Drops segments shorter than `tol` (keeping the piece's two ends where they were).
@@ -208,6 +210,7 @@ pub fn join(pieces: Vec<Piece>, tol: f64) -> Joined {
                 pieces: count,
                 length: chord_length(&cur),
             });
+            out.open_pieces.push(cur);
         }
     }
     out

@@ -29,6 +29,7 @@ use crate::error::InputError;
 use crate::geom::Point;
 use crate::io::affine::{Affine, Piece, transform_piece};
 use crate::io::drawing::{Drawing, ReadOptions};
+use crate::io::join::join;
 use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
 
@@ -396,8 +397,18 @@ impl<'a> Reader<'a> {
                 let Some(t) = ocs(rec) else {
                     return Ok(Err("not in the XY plane"));
                 };
-                for p in super::hatch::boundary_paths(rec, local_tol, at)? {
-                    self.push(p, &t);
+                for path in super::hatch::boundary_paths(rec, local_tol, at)? {
+                    let mm: Vec<Piece> = path
+                        .into_iter()
+                        .map(|p| transform_piece(p, &t, self.opts.tolerance))
+                        .collect();
+                    let joined = join(mm, self.opts.join_tolerance);
+                    for mut lp in joined.closed {
+                        let first = lp[0].0;
+                        lp.push((first, 0.0));
+                        self.pieces.push(lp);
+                    }
+                    self.pieces.extend(joined.open_pieces);
                 }
             }
             "INSERT" => return self.insert(rec, ctx, layer, at),

@@ -9,7 +9,8 @@
 //! 94, rational 73, periodic 74, knot count 95, control count 96, knots 40, control points
 //! 10/20, weights 42, fit count 97, fit points 11/21). A clockwise arc (73 = 0) stores its
 //! angles mirrored: it runs clockwise from `−start` to `−end`. Each edge becomes one piece;
-//! the joiner chains them.
+//! each path's pieces are joined on their own (paths often share vertices), the chains
+//! that do not close left to the drawing's joiner.
 
 use super::codes::Group;
 use super::entities::Record;
@@ -53,8 +54,9 @@ impl Cursor<'_> {
     }
 }
 
-/// The boundary paths of a HATCH, each edge a piece, in the hatch's own coordinates.
-pub fn boundary_paths(rec: &Record, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
+/// The boundary paths of a HATCH, each a list of pieces (one per edge), in the hatch's own
+/// coordinates.
+pub fn boundary_paths(rec: &Record, tol: f64, at: &str) -> Result<Vec<Vec<Piece>>, InputError> {
     let bad = |what: &str| {
         InputError::new("HATCH boundary", what.to_owned())
             .at(at.to_owned())
@@ -68,7 +70,8 @@ pub fn boundary_paths(rec: &Record, tol: f64, at: &str) -> Result<Vec<Piece>, In
         i: start,
     };
     let paths = c.next().map_or(0, Group::int).clamp(0, 100_000);
-    let mut out = Vec::new();
+    let mut paths_out: Vec<Vec<Piece>> = Vec::new();
+    let out = &mut paths_out;
     for _ in 0..paths {
         // Skip to the path's type flags.
         while c.g.get(c.i).is_some_and(|g| g.code != 92) {
@@ -77,6 +80,8 @@ pub fn boundary_paths(rec: &Record, tol: f64, at: &str) -> Result<Vec<Piece>, In
         let Some(flags) = c.next().map(Group::int) else {
             return Err(bad("fewer paths than its count (91)"));
         };
+        out.push(Vec::new());
+        let Some(out) = out.last_mut() else { break };
         if flags & 2 != 0 {
             let bulges = c.int(72) != 0;
             let closed = c.int(73) != 0;
@@ -177,7 +182,7 @@ pub fn boundary_paths(rec: &Record, tol: f64, at: &str) -> Result<Vec<Piece>, In
             }
         }
     }
-    Ok(out)
+    Ok(paths_out)
 }
 
 /// The start angle and signed sweep of a hatch edge arc stored with angles `s`, `e`.
