@@ -1,17 +1,15 @@
 //! `millpath pocket`: 2.5D pocket roughing with zigzag, contour-offset or the adaptive spiral.
 
 use millpath::gcode::{WriterOptions, write_program};
-use millpath::io::outline_json::Loops;
 use millpath::machine::Machine;
 use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{
-    self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind,
-    Walls, samples,
+    self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind, Walls,
 };
 use millpath::toolpath::Tool;
 use millpath::{Error, InputError};
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
@@ -41,6 +39,9 @@ pub struct Args {
 /// Options shared by `pocket` and `sweep`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct CommonArgs {
+    /// How a DXF or SVG drawing is read.
+    #[command(flatten)]
+    pub import: super::outline_input::ImportArgs,
     /// Strategy: spiral, offset, zigzag, or auto (plan all three, verify and time each on
     /// --machine, write the fastest verified one).
     #[arg(long, default_value = "spiral")]
@@ -258,7 +259,7 @@ impl CommonArgs {
             return Ok(shape.with_walls(Walls::Draft(deg.to_radians()), "--draft")?);
         }
         if let Some(path) = &self.bottom_outline {
-            let b = load_outline(path)?;
+            let b = load_outline(path, &self.import)?;
             return Ok(shape.with_walls(
                 Walls::Bottom {
                     outer: b.outer,
@@ -284,48 +285,7 @@ impl CommonArgs {
 /// from 0.2 to 0.7; 0.5 is their middle).
 pub const DEFAULT_TRANSITION: f64 = 0.5;
 
-/// Reads an outline file (by extension) or a built-in sample.
-pub fn load_outline(name: &str) -> Result<Loops, Error> {
-    if name == "sample:aerospace" {
-        let s = samples::aerospace_pocket();
-        return Ok(Loops {
-            outer: s.outer,
-            islands: s.islands,
-        });
-    }
-    let path = Path::new(name);
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("json") => Ok(millpath::io::outline_json::parse(
-            &super::read_text(path)?,
-            name,
-        )?),
-        Some("svg") => Ok(millpath::io::svg::parse(
-            &super::read_text(path)?,
-            name,
-            0.001,
-        )?),
-        Some("dxf") => {
-            let bytes = std::fs::read(path).map_err(|e| {
-                Error::Input(
-                    InputError::new("input file", name)
-                        .expected(format!("a readable DXF file ({e})")),
-                )
-            })?;
-            Ok(millpath::io::dxf::parse(
-                &bytes,
-                name,
-                &millpath::io::dxf::DxfOptions::default(),
-            )?)
-        }
-        _ => Err(InputError::new("outline file", name)
-            .expected("a .json, .dxf or .svg file, or sample:aerospace")
-            .into()),
-    }
-}
+pub use super::outline_input::load_outline;
 
 /// The report written by `--report`.
 #[derive(Debug, Serialize)]
@@ -460,7 +420,7 @@ pub fn program_options(kind: StrategyKind, machine: &Machine) -> WriterOptions {
 pub fn run(args: &Args) -> Result<(), Error> {
     let choice = parse_choice(&args.common.strategy)?;
     let (tool, opts) = args.common.options()?;
-    let loops = load_outline(&args.outline)?;
+    let loops = load_outline(&args.outline, &args.common.import)?;
     let shape =
         args.common
             .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;

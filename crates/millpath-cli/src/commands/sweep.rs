@@ -214,7 +214,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         |f| f.is_finite() && f > 0.0,
         "finite feeds > 0 in/min",
     )?;
-    let loops = load_outline(&args.outline)?;
+    let loops = load_outline(&args.outline, &args.common.import)?;
     // `--draft` / `--bottom-outline` give each level its own section, as in `pocket`.
     let shape =
         args.common

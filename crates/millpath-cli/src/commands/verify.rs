@@ -18,6 +18,9 @@ pub struct Args {
     /// The pocket outline (.json, .dxf, .svg or sample:aerospace).
     #[arg(long)]
     pub outline: String,
+    /// How a DXF or SVG drawing is read.
+    #[command(flatten)]
+    pub import: super::outline_input::ImportArgs,
     /// Tool diameter, mm.
     #[arg(long)]
     pub tool_diameter: f64,
@@ -61,7 +64,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
             .into());
     }
     let s = Stepover::parse(&args.stepover)?.distance(tool.diameter);
-    let loops = super::pocket::load_outline(&args.outline)?;
+    let loops = super::pocket::load_outline(&args.outline, &args.import)?;
     let text = super::read_text(&args.program)?;
     let ropts = ReaderOptions {
         origin: args.program.display().to_string(),

@@ -1,9 +1,16 @@
-//! Importers (point lists, DXF, SVG) and atomic file output.
+//! Importers (point lists, DXF, SVG, JSON outlines) and atomic file output.
+//!
+//! The DXF and SVG readers share [`drawing`] (options, what was read and skipped),
+//! [`affine`] (block and `transform` maps) and [`join`] (open pieces chained into outlines).
 
+pub mod affine;
 mod atomic;
+pub mod drawing;
+pub mod join;
 pub mod points;
 
 pub use atomic::{write_atomic, write_atomic_with};
+pub use drawing::{Drawing, ReadOptions};
 pub mod dxf;
 pub mod outline_json;
 pub mod svg;

@@ -1,118 +1,27 @@
-//! Pocket outlines from SVG: `<path d="…">` and `<circle>` elements.
+//! SVG path data (`d`) to pieces with bulges, in user units.
 //!
-//! Path data is read with `svgtypes`; every closed subpath (`Z`, or ending on its start) is a
-//! loop. Lines stay lines; circular arcs (`A` with `rx = ry`, radius scaled up per the SVG
-//! rules when too small for the chord) stay exact arcs: with chord `c` and radius `R`, the
-//! smaller sweep is `θ = 2·asin(c/2R)`, the larger `2π − θ`, and the bulge is `±tan(θ/4)`,
-//! positive for SVG's sweep flag 1 (the angle-increasing direction). Elliptical arcs and
-//! Bézier curves are flattened within `tolerance` (kurbo). SVG's y axis points down, so the
-//! result is mirrored (`y → −y`, bulges negated) to show the drawing the right way up; the
-//! importer then normalises the windings. `transform` attributes are refused rather than
-//! silently ignored.
+//! Path data is read with `svgtypes`. Lines stay lines; circular arcs (`A` with `rx = ry`,
+//! radius scaled up per the SVG rules when too small for the chord) stay exact arcs: with
+//! chord `c` and radius `R`, the smaller sweep is `θ = 2·asin(c/2R)`, the larger `2π − θ`,
+//! and the bulge is `±tan(θ/4)`, positive for SVG's sweep flag 1 (the angle-increasing
+//! direction). Elliptical arcs and Bézier curves are flattened within `tolerance` (kurbo).
+//! Every curve's points are checked against [`MAX_COORDINATE_MM`] before flattening (kurbo's
+//! subdivision count overflows on control points near 1e308).
 
-use super::outline_json::{Loops, classify};
 use crate::error::InputError;
-use crate::geom::{MAX_COORDINATE_MM, Outline, Point};
+use crate::geom::{MAX_COORDINATE_MM, Point};
+use crate::io::affine::Piece;
 use kurbo::{BezPath, PathEl, Shape as _};
 use svgtypes::{PathParser, PathSegment};
-
-/// Reads the loops of an SVG document; `tolerance` bounds the flattening of curves, mm.
-pub fn parse(text: &str, origin: &str, tolerance: f64) -> Result<Loops, InputError> {
-    if !(tolerance.is_finite() && tolerance >= MIN_TOLERANCE_MM) {
-        return Err(InputError::new("SVG flattening tolerance", tolerance)
-            .at(origin)
-            .expected(format!("a finite number ≥ {MIN_TOLERANCE_MM} mm")));
-    }
-    let mut loops: Vec<Outline> = Vec::new();
-    for (n, tag) in tags(text).enumerate() {
-        let at = format!("{origin}, element {n} <{}>", tag.0);
-        if attr(tag.1, "transform").is_some() {
-            return Err(InputError::new(
-                "SVG transform",
-                attr(tag.1, "transform").unwrap_or_default(),
-            )
-            .at(at)
-            .expected("outlines without transforms (apply them in the drawing program)"));
-        }
-        match tag.0 {
-            "path" => {
-                let Some(d) = attr(tag.1, "d") else { continue };
-                for (k, v) in path_loops(&d, tolerance, &at)?.into_iter().enumerate() {
-                    let flipped: Vec<(Point, f64)> =
-                        v.iter().map(|(p, b)| (Point::new(p.x, -p.y), -b)).collect();
-                    loops.push(Outline::new(&flipped, &format!("{at}, subpath {k}"))?);
-                }
-            }
-            "circle" => {
-                let num = |name: &str| -> Result<f64, InputError> {
-                    attr(tag.1, name)
-                        .and_then(|v| v.trim().trim_end_matches("px").parse::<f64>().ok())
-                        .ok_or_else(|| {
-                            InputError::new(format!("circle {name}"), "missing")
-                                .at(at.clone())
-                                .expected("a number")
-                        })
-                };
-                let (cx, cy, r) = (
-                    num("cx").unwrap_or(0.0),
-                    num("cy").unwrap_or(0.0),
-                    num("r")?,
-                );
-                loops.push(Outline::new(
-                    &[
-                        (Point::new(cx - r, -cy), 1.0),
-                        (Point::new(cx + r, -cy), 1.0),
-                    ],
-                    &at,
-                )?);
-            }
-            _ => {}
-        }
-    }
-    classify(loops, origin)
-}
-
-/// `(name, attributes)` of the `<path` and `<circle` start tags.
-fn tags(text: &str) -> impl Iterator<Item = (&'static str, &str)> {
-    text.split('<').filter_map(|t| {
-        let end = t.find('>').unwrap_or(t.len());
-        let body = &t[..end];
-        if let Some(rest) = body.strip_prefix("path") {
-            Some(("path", rest))
-        } else {
-            body.strip_prefix("circle").map(|rest| ("circle", rest))
-        }
-    })
-}
-
-/// The value of attribute `name` in a start tag's attribute text.
-fn attr(attrs: &str, name: &str) -> Option<String> {
-    let mut rest = attrs;
-    while let Some(i) = rest.find(name) {
-        let before_ok = i == 0 || rest[..i].ends_with(|c: char| c.is_whitespace());
-        let after = rest[i + name.len()..].trim_start();
-        if before_ok && let Some(v) = after.strip_prefix('=') {
-            let v = v.trim_start();
-            let q = v.chars().next()?;
-            if q == '"' || q == '\'' {
-                let inner = &v[1..];
-                return inner.find(q).map(|e| inner[..e].to_owned());
-            }
-        }
-        rest = &rest[i + name.len()..];
-    }
-    None
-}
-
-type Piece = Vec<(Point, f64)>;
 
 /// The smallest flattening tolerance, mm: with coordinates within
 /// [`MAX_COORDINATE_MM`] it bounds the points a curve flattens to
 /// (kurbo's subdivision count grows like `sqrt(size / tolerance)`) to about a million.
 pub const MIN_TOLERANCE_MM: f64 = 1e-6;
 
-/// The closed subpaths of path data `d`, in SVG coordinates.
-fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
+/// The subpaths of path data `d`, in user units: a closed one (`Z`, or ending on its start)
+/// with its first vertex repeated at the end, an open one as it is.
+pub fn subpaths(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
     let mut out = Vec::new();
     let mut cur: Piece = Vec::new();
     let mut pos = Point::ORIGIN;
@@ -125,11 +34,6 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
     };
     let close = |cur: &mut Piece, out: &mut Vec<Piece>| {
         if cur.len() > 1 {
-            if let (Some(f), Some(l)) = (cur.first(), cur.last())
-                && f.0.distance(l.0) < 1e-9
-            {
-                cur.pop();
-            }
             out.push(std::mem::take(cur));
         } else {
             cur.clear();
@@ -168,14 +72,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
         let mut ctrl_next = None;
         match seg {
             PathSegment::MoveTo { abs, x, y } => {
-                if cur.len() > 1 {
-                    return Err(InputError::new(
-                        "outline",
-                        format!("open subpath ending at ({:.4}, {:.4})", pos.x, -pos.y),
-                    )
-                    .at(at.to_owned())
-                    .expected("closed subpaths (end with Z)"));
-                }
+                close(&mut cur, &mut out);
                 pos = rel(abs, x, y);
                 start = pos;
                 cur = vec![(pos, 0.0)];
@@ -318,8 +215,11 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
                 pos = e;
             }
             PathSegment::ClosePath { .. } => {
-                if pos.distance(start) > 1e-9 {
-                    cur.push((start, 0.0));
+                // The closing segment (or, on the start already, the last vertex moved
+                // exactly onto it).
+                match cur.last_mut() {
+                    Some(l) if l.0.distance(start) <= 1e-9 => l.0 = start,
+                    _ => cur.push((start, 0.0)),
                 }
                 pos = start;
                 close(&mut cur, &mut out);
@@ -328,21 +228,7 @@ fn path_loops(d: &str, tol: f64, at: &str) -> Result<Vec<Piece>, InputError> {
         }
         last_ctrl = ctrl_next;
     }
-    if cur.len() > 1 {
-        let closed = cur
-            .first()
-            .zip(cur.last())
-            .is_some_and(|(f, l)| f.0.distance(l.0) < 1e-9);
-        if !closed {
-            return Err(InputError::new(
-                "outline",
-                format!("open subpath ending at ({:.4}, {:.4})", pos.x, -pos.y),
-            )
-            .at(at.to_owned())
-            .expected("closed subpaths (end with Z)"));
-        }
-        close(&mut cur, &mut out);
-    }
+    close(&mut cur, &mut out);
     Ok(out)
 }
 
@@ -353,63 +239,5 @@ fn el_points(el: &PathEl) -> Vec<kurbo::Point> {
         PathEl::QuadTo(a, b) => vec![a, b],
         PathEl::CurveTo(a, b, c) => vec![a, b, c],
         PathEl::ClosePath => Vec::new(),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn rounded_square_keeps_arcs_and_islands() {
-        let svg = r#"<svg><path d="M 0 0 H 10 A 5 5 0 0 1 10 10 H 0 Z"/>
-                     <circle cx="4" cy="5" r="1"/></svg>"#;
-        let l = parse(svg, "t.svg", 0.001).unwrap();
-        let area = 100.0 + std::f64::consts::PI * 12.5;
-        assert!(
-            (l.outer.signed_area() - area).abs() < 1e-9,
-            "{}",
-            l.outer.signed_area()
-        );
-        assert_eq!(l.islands.len(), 1);
-    }
-
-    #[test]
-    fn open_path_is_an_error() {
-        let e = parse(r#"<path d="M 0 0 L 10 0 L 10 10"/>"#, "o.svg", 0.01).unwrap_err();
-        assert!(e.to_string().contains("open"), "{e}");
-    }
-
-    /// The `outline_importers` fuzzer's abort (7.5 GB): an elliptical half turn of radius
-    /// 1e55 mm. Refused by its radius and sweep before kurbo subdivides it; a legitimate
-    /// elliptical arc, and a nearly straight one of a huge ellipse, still read.
-    #[test]
-    fn huge_elliptical_arcs_are_refused_before_subdivision() {
-        let e = parse(
-            r#"<path d="M 0 0 A 1e55 1e11 10 1 1 1000 0 Z"/>"#,
-            "huge.svg",
-            1e-6,
-        )
-        .unwrap_err();
-        let msg = e.to_string();
-        assert!(
-            msg.contains("SVG arc") && msg.contains("1e55") && msg.contains("huge.svg"),
-            "{msg}"
-        );
-        let ok = parse(
-            r#"<path d="M 0 0 A 20 10 0 0 0 40 0 L 40 -10 L 0 -10 Z"/>"#,
-            "ellipse.svg",
-            0.001,
-        )
-        .unwrap();
-        assert!(ok.outer.signed_area().abs() > 400.0);
-        // A 10 mm chord of an ellipse with a 1e9 mm radius: a straight line, in bounds.
-        let flat = parse(
-            r#"<path d="M 0 0 A 1e9 5e8 0 0 1 10 0 L 10 -10 L 0 -10 Z"/>"#,
-            "flat.svg",
-            0.001,
-        )
-        .unwrap();
-        assert!((flat.outer.signed_area().abs() - 100.0).abs() < 1e-3);
     }
 }
