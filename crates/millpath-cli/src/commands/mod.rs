@@ -7,6 +7,7 @@ pub mod estimate;
 pub mod five_axis;
 pub mod html;
 pub mod machines;
+pub mod output;
 pub mod pocket;
 pub mod sweep;
 pub mod verify;

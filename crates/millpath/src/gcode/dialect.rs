@@ -147,6 +147,34 @@ pub enum Coolant {
     Mist,
 }
 
+impl Coolant {
+    /// The name used on the command line: `off`, `flood`, `mist`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Coolant::Off => "off",
+            Coolant::Flood => "flood",
+            Coolant::Mist => "mist",
+        }
+    }
+}
+
+impl fmt::Display for Coolant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Coolant {
+    type Err = InputError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [Coolant::Off, Coolant::Flood, Coolant::Mist]
+            .into_iter()
+            .find(|c| c.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| InputError::new("coolant", s).expected("off, flood or mist"))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -164,5 +192,9 @@ mod tests {
         assert_eq!(serde_json::to_string(&Units::Inch).unwrap(), "\"in\"");
         let e = "haas".parse::<Dialect>().unwrap_err().to_string();
         assert!(e.contains("haas") && e.contains("linuxcnc"), "{e}");
+        for c in [Coolant::Off, Coolant::Flood, Coolant::Mist] {
+            assert_eq!(c.to_string().parse::<Coolant>(), Ok(c));
+        }
+        assert!("oil".parse::<Coolant>().is_err());
     }
 }
