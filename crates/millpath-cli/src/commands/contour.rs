@@ -38,6 +38,7 @@ pub enum SideArg {
     millpath contour points.csv --tool-diameter 10 --tolerance 0.01 --side inside --depth 20 \\\n    \
     --step-down 2.5 --finish-allowance 0.2 -o cavity.ngc --report cavity.json\n  \
     millpath contour --sample -o die.ngc --report die.json     # the paper's die cavity\n  \
+    millpath contour --sample --dialect sinumerik --units in --tool-number 2 -o die.mpf\n  \
     millpath contour --sample --machine my_mill.toml --json --svg die.svg --per-level\n\n\
 POINTS: CSV `x,y` per line (mm); a blank line or a third `group` column separates the 4-point\n\
 groups; or JSON {\"groups\": [[[x,y],...],...]} or {\"points\": [[x,y],...]}.\n\
