@@ -134,7 +134,9 @@ fn what_a_dialect_cannot_express_is_refused_without_a_file() {
         dir.path(),
     );
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains("--decimals") && stderr(&o).contains("at least 5"));
+    assert!(
+        stderr(&o).contains("--decimals") && stderr(&o).contains("at least 5 decimals in inches")
+    );
     assert!(!dir.path().join("p.nc").exists());
     let o = millpath(
         &[

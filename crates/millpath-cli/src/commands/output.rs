@@ -96,9 +96,12 @@ impl OutputArgs {
             Some(d) if d < least => Err(InputError::new("decimals", d)
                 .at("--decimals")
                 .expected(format!(
-                    "at least {least} in {}: {d} decimals round a point by up to {:.3e} mm, \
+                    "at least {least} decimals in {}: {d} round a point by up to {:.3e} mm, \
                      more than {why} ({max_rounding_mm:.3e} mm)",
-                    self.units,
+                    match self.units {
+                        Units::Mm => "millimetres",
+                        Units::Inch => "inches",
+                    },
                     rounding_error_mm(d, self.units)
                 ))
                 .into()),

@@ -40,8 +40,8 @@
 //! * inverse time (`G93`, the usual choice for simultaneous five-axis moves): `F = 1/Δt` with
 //!   `Δt` in minutes, printed to nine significant digits, so every block takes its planned
 //!   `Δt` on any control (relative error ≤ 5e-10) and the program's time is the plan's.
-//! * units per minute (`G94`): RS274NGC (LinuxCNC; Fanuc and Sinumerik likewise for their
-//!   path axes) apply `F` to the XYZ chord of a block
+//! * units per minute (`G94`): RS274NGC (LinuxCNC; Sinumerik likewise with its default
+//!   `FGROUP`, the geometry axes) apply `F` to the XYZ chord of a block
 //!   that moves a linear axis, and to the chord of the rotary words, in degrees, of a block that
 //!   moves only rotary axes. `F = chord / Δt` under that rule, with the chord of the words as
 //!   printed (rounded to 4 decimals), gives every block its planned `Δt` too — exact on such
@@ -49,6 +49,9 @@
 //!   tip's path instead). Earlier versions took the largest rotary
 //!   step instead of the rotary chord for rotary-only blocks, which made those blocks faster
 //!   than planned by up to √2. A block moving no axis is a `G4` dwell of `Δt`.
+//!   Fanuc applies `F` to the chord of *all* the words, degrees counted as length units
+//!   (`√(ΔX² + ΔY² + ΔZ² + ΔA² + ΔC²)`, its feedrate rule for simultaneous linear and rotary
+//!   axes), so its `G94` programs get `F` from that chord.
 
 use super::dialect::Dialect;
 use super::format::{MAX_DECIMALS, round_to};
@@ -258,6 +261,9 @@ pub fn write_five_axis(
             let rot = ((q[3] - prev[3]).powi(2) + (q[4] - prev[4]).powi(2)).sqrt();
             let f = match opts.feed_mode {
                 FeedMode::InverseTime => Some(1.0 / minutes),
+                FeedMode::UnitsPerMinute if dialect == Dialect::Fanuc && lin.hypot(rot) > 0.0 => {
+                    Some(lin.hypot(rot) / minutes)
+                }
                 FeedMode::UnitsPerMinute if lin > 0.0 => Some(lin / minutes),
                 FeedMode::UnitsPerMinute if rot > 0.0 => Some(rot / minutes),
                 FeedMode::UnitsPerMinute => None,

@@ -5,7 +5,7 @@
 //! one reads a table-table joint program: `G0`/`G1` with `X Y Z` and two rotary words, `G93`
 //! (`F` in 1/min on every feed block, the block takes `1/F` minutes) or `G94` (the RS274NGC
 //! rule: `F` in units per minute along the XYZ chord, or along the rotary chord in degrees
-//! when only rotary axes move), dwells (`G4 P` s, Fanuc `G04 X` s, Sinumerik `G4 F` s), the
+//! when only rotary axes move; Fanuc's: along the chord of all five words), dwells (`G4 P` s, Fanuc `G04 X` s, Sinumerik `G4 F` s), the
 //! units words (`G20`/`G21`, Sinumerik `G700`/`G710`) and the header's words (tool change,
 //! spindle, coolant, work offset, framing). Anything else — incremental `G91`, a word it does
 //! not know, a `G93` feed block without `F` — is refused with the line and the word, so that
@@ -166,7 +166,12 @@ pub fn read_five_axis(
                         ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2))
                             .sqrt();
                     let rot = ((q[3] - p[3]).powi(2) + (q[4] - p[4]).powi(2)).sqrt();
-                    60.0 * if lin > 0.0 { lin } else { rot } / fv
+                    let chord = match dialect {
+                        Dialect::Fanuc => lin.hypot(rot),
+                        _ if lin > 0.0 => lin,
+                        _ => rot,
+                    };
+                    60.0 * chord / fv
                 }
             }
         };
