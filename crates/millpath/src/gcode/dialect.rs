@@ -75,11 +75,12 @@ impl Dialect {
     /// The dialect of a program, from its first lines `head` (a few KiB are plenty), by the
     /// words that only one dialect's programs carry, as the writer writes them: a `%` line or
     /// an `O` number → Fanuc; `G700`/`G710`, `CYCLE832(` or a `TURN=` → Sinumerik; `;`
-    /// comments otherwise → Grbl; anything else → LinuxCNC. A program that carries none of
+    /// comments without any word Grbl lacks (`G64`, `G61.1`, `G43`, `M6`: LinuxCNC programs
+    /// may use `;` comments too) → Grbl; anything else → LinuxCNC. A program that carries none of
     /// these reads the same in LinuxCNC's dialect as in any other (the dialects differ in
     /// those words, in `G64`/`G61` and in the dwell words), so the fallback is safe.
     pub fn detect(head: &str) -> Dialect {
-        let mut semicolons = false;
+        let (mut semicolons, mut not_grbl) = (false, false);
         for line in head.lines().take(200) {
             let t = line.trim().to_ascii_uppercase();
             let code = t.split(';').next().unwrap_or("");
@@ -94,8 +95,11 @@ impl Dialect {
                 return Dialect::Sinumerik;
             }
             semicolons |= t.starts_with(';');
+            not_grbl |= words
+                .iter()
+                .any(|w| matches!(*w, "G64" | "G61.1" | "G43" | "M6" | "M06"));
         }
-        if semicolons {
+        if semicolons && !not_grbl {
             Dialect::Grbl
         } else {
             Dialect::LinuxCnc
@@ -238,6 +242,10 @@ mod tests {
         assert_eq!(Dialect::detect("%\nO0001 (X)\nG0 X1\n"), Dialect::Fanuc);
         assert_eq!(Dialect::detect("; a\nG17 G710 G90\n"), Dialect::Sinumerik);
         assert_eq!(Dialect::detect("; a\nG17 G21 G90\n"), Dialect::Grbl);
+        assert_eq!(
+            Dialect::detect("; a\nG21 G90\nG64 P0.01\n"),
+            Dialect::LinuxCnc
+        );
         assert_eq!(
             Dialect::detect("(a)\nG17 G21 G90\nG64 P0.01\n"),
             Dialect::LinuxCnc
