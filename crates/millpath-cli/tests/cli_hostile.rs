@@ -201,6 +201,18 @@ fn cases() -> Vec<Case> {
             outputs: &["keep.ngc"],
         },
         Case {
+            what: "fewer decimals than the pocket's resolution in inches",
+            args: &["pocket", "sample:aerospace", "--units", "in", "--decimals", "4", "-o", "keep.nc"],
+            files: &[("keep.nc", KEEP)],
+            outputs: &["keep.nc"],
+        },
+        Case {
+            what: "five-axis G-code for grbl (no rotary axes)",
+            args: &["five-axis", "--case", "paper", "--machine", "xyzac-trt", "--gcode", "out.nc", "--dialect", "grbl"],
+            files: &[],
+            outputs: &["out.nc"],
+        },
+        Case {
             what: "safe height of 1e300 mm (the fuzzer's helix of 1e300 turns)",
             args: &["pocket", "sample:aerospace", "--safe-height", "1e300", "-o", "out.ngc"],
             files: &[],

@@ -4,7 +4,7 @@
 //! tolerance → layers → G-code (any dialect) and a JSON report.
 
 use millpath::curve::{self, CurveKind};
-use millpath::gcode::{self, Dialect, Units, WriterOptions};
+use millpath::gcode::{self, WriterOptions};
 use millpath::machine::Machine;
 use millpath::strategy::contour::{self, ContourOptions, Side};
 use millpath::{Error, InputError, Tool};
@@ -38,6 +38,7 @@ pub enum SideArg {
     millpath contour points.csv --tool-diameter 10 --tolerance 0.01 --side inside --depth 20 \\\n    \
     --step-down 2.5 --finish-allowance 0.2 -o cavity.ngc --report cavity.json\n  \
     millpath contour --sample -o die.ngc --report die.json     # the paper's die cavity\n  \
+    millpath contour --sample --dialect sinumerik --units in --tool-number 2 -o die.mpf\n  \
     millpath contour --sample --machine my_mill.toml --json --svg die.svg --per-level\n\n\
 POINTS: CSV `x,y` per line (mm); a blank line or a third `group` column separates the 4-point\n\
 groups; or JSON {\"groups\": [[[x,y],...],...]} or {\"points\": [[x,y],...]}.\n\
@@ -75,24 +76,14 @@ pub struct Args {
     /// Emit biarcs (G2/G3) instead of lines.
     #[arg(long)]
     pub arcs: bool,
-    /// G-code dialect: linuxcnc, fanuc, sinumerik, grbl.
-    #[arg(long, default_value = "linuxcnc")]
-    pub dialect: Dialect,
-    /// Program units: mm or in.
-    #[arg(long, default_value = "mm")]
-    pub units: Units,
-    /// Decimals of coordinates (default: enough for the tolerance, at least the dialect's).
-    #[arg(long)]
-    pub decimals: Option<u32>,
+    #[command(flatten)]
+    pub program: super::output::OutputArgs,
     /// Cutting feed in mm/min.
     #[arg(long, default_value_t = 1000.0)]
     pub feed: f64,
     /// Plunge feed in mm/min.
     #[arg(long, default_value_t = 300.0)]
     pub plunge_feed: f64,
-    /// Spindle speed in rev/min.
-    #[arg(long, default_value_t = 10000.0)]
-    pub spindle: f64,
     /// Safe height above the top for rapids, mm.
     #[arg(long, default_value_t = 10.0)]
     pub safe_height: f64,
@@ -102,9 +93,6 @@ pub struct Args {
     /// Lead-in/lead-out arc radius, mm (0: none).
     #[arg(long, default_value_t = 2.0)]
     pub lead_radius: f64,
-    /// Write N line numbers.
-    #[arg(long)]
-    pub line_numbers: bool,
     /// Output G-code file.
     #[arg(short = 'o', long)]
     pub output: Option<PathBuf>,
@@ -260,9 +248,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
     opt.clearance_height = args.clearance_height;
     opt.lead_radius = args.lead_radius;
     // Tolerance budget: rounding of the written coordinates + chord deviation <= T.
-    let decimals = match args.decimals {
+    let decimals = match args.program.decimals {
         Some(d) => {
-            let rho = gcode::rounding_error_mm(d, args.units);
+            let rho = gcode::rounding_error_mm(d, args.program.units);
             if opt.tolerance <= 2.0 * rho {
                 return Err(input(
                     "decimals",
@@ -271,16 +259,16 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     &format!(
                         "enough decimals to hold --tolerance {} mm: {d} decimals round by up to {rho:.3e} mm; use at least {}",
                         opt.tolerance,
-                        gcode::required_decimals(opt.tolerance, args.units)
+                        gcode::required_decimals(opt.tolerance, args.program.units)
                     ),
                 ));
             }
             d
         }
-        None => gcode::required_decimals(opt.tolerance, args.units)
-            .max(args.dialect.default_decimals(args.units)),
+        None => gcode::required_decimals(opt.tolerance, args.program.units)
+            .max(args.program.dialect.default_decimals(args.program.units)),
     };
-    opt.rounding = gcode::rounding_error_mm(decimals, args.units);
+    opt.rounding = gcode::rounding_error_mm(decimals, args.program.units);
     if opt.tolerance <= 2.0 * opt.rounding {
         return Err(input(
             "tolerance",
@@ -296,13 +284,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let machine = program_machine(&machine, opt.tolerance);
     let path_tolerance = machine.path_tolerance;
     let wopt = WriterOptions {
-        dialect: args.dialect,
-        units: args.units,
-        decimals: Some(decimals),
-        line_numbers: args.line_numbers,
-        spindle_rpm: args.spindle,
         path_tolerance: Some(path_tolerance),
-        program_name: Some(format!("millpath contour {name}")),
         header_notes: vec![format!(
             "tolerance {} mm = chord {:.3e} + rounding {:.3e}; {} segments per pass",
             opt.tolerance,
@@ -310,11 +292,12 @@ pub fn run(args: &Args) -> Result<(), Error> {
             opt.rounding,
             result.report.segments
         )],
-        ..WriterOptions::default()
+        // The options carry the user's --decimals, --spindle and --tool-number: refused as
+        // input there; what the writer refuses after that is in the toolpath the engine made.
+        ..args
+            .program
+            .writer_options(decimals, format!("millpath contour {name}"))?
     };
-    // The options carry the user's --decimals and --spindle: refused as input; what the
-    // writer refuses after that is in the toolpath the engine made.
-    wopt.validate()?;
     let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)
         .map_err(|e| e.engine_made("writing the contour program"))?;
     let mut report = result.report.clone();

@@ -1,7 +1,7 @@
 //! `millpath estimate`: the cycle time of a G-code program on a machine.
 
 use super::print;
-use millpath::gcode::{Reader, ReaderOptions};
+use millpath::gcode::{Dialect, Reader, ReaderOptions};
 use millpath::motion::table2;
 use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves};
@@ -28,10 +28,13 @@ impl<R: Read> Read for Counting<R> {
 /// Files larger than this get a progress bar on a terminal.
 const PROGRESS_BYTES: u64 = 4 << 20;
 
+/// Bytes of a program read to find its dialect (`--dialect auto`).
+const DETECT_BYTES: usize = 8192;
+
 /// Arguments of `millpath estimate`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath estimate part.ngc --machine hsm\n  millpath estimate part.ngc --svg part.svg --per-level   # part.svg, part.level1.svg, ...\n  millpath estimate part.ngc --machine my_mill.toml --json --samples traj.csv --rate 2000\n  millpath estimate --table2"
+    after_help = "Examples:\n  millpath estimate part.ngc --machine hsm\n  millpath estimate part.nc --dialect fanuc --machine hsm\n  millpath estimate part.ngc --svg part.svg --per-level   # part.svg, part.level1.svg, ...\n  millpath estimate part.ngc --machine my_mill.toml --json --samples traj.csv --rate 2000\n  millpath estimate --table2"
 )]
 pub struct Args {
     /// The G-code program.
@@ -55,6 +58,11 @@ pub struct Args {
     /// Skip the limit verifier (faster on huge programs; `violations` is then null).
     #[arg(long)]
     pub no_verify: bool,
+    /// Dialect of the program: linuxcnc, fanuc, sinumerik, grbl, or auto (the default: found
+    /// from the program's first lines: `%`/`O` number → fanuc, `G710`/`G700`/`CYCLE832` →
+    /// sinumerik, `;` comments → grbl, else linuxcnc).
+    #[arg(long, default_value = "auto")]
+    pub dialect: String,
     /// Skip unsupported G-code words with a warning instead of refusing them.
     #[arg(long)]
     pub lenient: bool,
@@ -111,7 +119,30 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .expected(format!("a readable G-code file ({e})")),
         )
     })?;
+    let dialect = match args.dialect.as_str() {
+        "auto" => {
+            let mut head = Vec::with_capacity(DETECT_BYTES);
+            Read::by_ref(&mut &file)
+                .take(DETECT_BYTES as u64)
+                .read_to_end(&mut head)
+                .map_err(|e| {
+                    Error::Input(
+                        InputError::new("input file", path.display())
+                            .expected(format!("a readable G-code file ({e})")),
+                    )
+                })?;
+            std::io::Seek::rewind(&mut &file).map_err(|e| {
+                Error::Input(
+                    InputError::new("input file", path.display())
+                        .expected(format!("a seekable G-code file ({e})")),
+                )
+            })?;
+            Dialect::detect(&String::from_utf8_lossy(&head))
+        }
+        d => d.parse::<Dialect>().map_err(|e| e.at("--dialect"))?,
+    };
     let opts = ReaderOptions {
+        dialect,
         lenient: args.lenient,
         origin: path.display().to_string(),
         // LinuxCNC stops where its task waits for motion (spindle, coolant, tool commands).

@@ -2,7 +2,9 @@
 //! compared with the paper's GA baseline, optionally replanned around a deflection.
 
 use super::{print, read_text};
-use millpath::gcode::five_axis::{FeedMode, FiveAxisGcodeOptions, write_five_axis};
+use millpath::gcode::five_axis::{
+    FeedMode, FiveAxisGcodeOptions, check_five_axis, write_five_axis,
+};
 use millpath::geom::Point3;
 use millpath::machine::kinematics::{HeadHead, Kinematics, PaperAb, TableTable, TrtKind};
 use millpath::motion::five_axis::case::LimitsFile;
@@ -14,7 +16,7 @@ use std::path::PathBuf;
 /// Arguments of `millpath five-axis`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath five-axis --case paper --json\n  millpath five-axis --case paper --machine xyzac-trt --csv traj.csv --gcode traj.ngc --g93\n  millpath five-axis path.csv --limits limits.toml --feed 25 --no-baseline\n\nPath file: a line `# unit: mm` (or `m`), the header `x,y,z,i,j,k`, then one pose per line\n(tool tip, tool axis from the tip towards the spindle, any non-zero length).\nLimits file (TOML, mm, s, rad; every key optional): feed, linear_velocity,\nlinear_acceleration, linear_jerk, rotary_velocity, rotary_acceleration, rotary_jerk,\ntool_length, z1, z2. Flags override the file; the file overrides the paper's limits."
+    after_help = "Examples:\n  millpath five-axis --case paper --json\n  millpath five-axis --case paper --machine xyzac-trt --csv traj.csv --gcode traj.ngc --g93\n  millpath five-axis --case paper --machine xyzbc-trt --gcode traj.mpf --dialect sinumerik --units in\n  millpath five-axis path.csv --limits limits.toml --feed 25 --no-baseline\n\nPath file: a line `# unit: mm` (or `m`), the header `x,y,z,i,j,k`, then one pose per line\n(tool tip, tool axis from the tip towards the spindle, any non-zero length).\nLimits file (TOML, mm, s, rad; every key optional): feed, linear_velocity,\nlinear_acceleration, linear_jerk, rotary_velocity, rotary_acceleration, rotary_jerk,\ntool_length, z1, z2. Flags override the file; the file overrides the paper's limits."
 )]
 pub struct Args {
     /// Built-in case: `paper` (the paper's quarter circle and deflection).
@@ -83,9 +85,12 @@ pub struct Args {
     /// Sample step of the CSV, s.
     #[arg(long, default_value_t = 0.005)]
     pub dt: f64,
-    /// Write 5-axis G-code (table-table machines only) to this file.
+    /// Write 5-axis G-code (table-table machines only) to this file, in the dialect of
+    /// `--dialect` (linuxcnc, fanuc, sinumerik; grbl has no rotary axes).
     #[arg(long)]
     pub gcode: Option<PathBuf>,
+    #[command(flatten)]
+    pub program: super::output::OutputArgs,
     /// G-code feeds in inverse time (G93, the default): every block takes its planned time on
     /// any control.
     #[arg(long, conflicts_with = "g94")]
@@ -183,6 +188,30 @@ pub fn run(args: &Args) -> Result<(), Error> {
             )
             .into());
     }
+    // The G-code options are checked before planning: a dialect without rotary axes, bad
+    // --decimals or --spindle exit 2 at once.
+    let gcode_opts = match &args.gcode {
+        Some(_) => {
+            let decimals = args
+                .program
+                .decimals
+                .unwrap_or_else(|| args.program.dialect.default_decimals(args.program.units) + 1);
+            let go = FiveAxisGcodeOptions {
+                feed_mode: if args.g94 {
+                    FeedMode::UnitsPerMinute
+                } else {
+                    FeedMode::InverseTime
+                },
+                program: args
+                    .program
+                    .writer_options(decimals, format!("millpath five-axis {}", kin.name()))?,
+                ..FiveAxisGcodeOptions::default()
+            };
+            check_five_axis(kin.as_ref(), &go)?;
+            Some(go)
+        }
+        None => None,
+    };
     let (poses, default_deflection) = match (&args.case, &args.path) {
         (Some(c), _) if c == "paper" => (case::paper_path(), Some(case::paper_deflection())),
         (Some(c), _) => {
@@ -236,17 +265,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .map_err(|e| Error::internal(format!("CSV: {e}")))
         })?;
     }
-    if let Some(path) = &args.gcode {
-        let go = FiveAxisGcodeOptions {
-            feed_mode: if args.g94 {
-                FeedMode::UnitsPerMinute
-            } else {
-                FeedMode::InverseTime
-            },
-            ..FiveAxisGcodeOptions::default()
-        };
+    if let (Some(path), Some(go)) = (&args.gcode, &gcode_opts) {
         let segs = out.segments.clone();
-        millpath::io::write_atomic_with(path, |w| write_five_axis(w, &segs, kin.as_ref(), &go))?;
+        millpath::io::write_atomic_with(path, |w| write_five_axis(w, &segs, kin.as_ref(), go))?;
     }
     let r = &out.result;
     if let Some(path) = &args.html {

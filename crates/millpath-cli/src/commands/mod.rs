@@ -8,6 +8,7 @@ pub mod five_axis;
 pub mod html;
 pub mod machines;
 pub mod outline_input;
+pub mod output;
 pub mod pocket;
 pub mod sweep;
 pub mod verify;

@@ -14,16 +14,18 @@ use std::path::PathBuf;
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4"
+    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket sample:aerospace --depth 5 --step-down 5 --dialect fanuc --units in --tool-number 3 -o pocket.nc\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4"
 )]
 pub struct Args {
     /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`.
     pub outline: String,
     #[command(flatten)]
     pub common: CommonArgs,
-    /// G-code output (LinuxCNC dialect, mm).
+    /// G-code output (the dialect and units of `--dialect`, `--units`).
     #[arg(short = 'o', long)]
     pub output: Option<PathBuf>,
+    #[command(flatten)]
+    pub program: super::output::OutputArgs,
     /// JSON report output.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -405,20 +407,40 @@ pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Rep
     })
 }
 
-/// How the pocket program is written: LinuxCNC, mm, stating the machine's path tolerance
-/// (`G64 P t`), the tolerance its cycle time was planned with and the one `millpath estimate`
-/// reads back.
-pub fn program_options(kind: StrategyKind, machine: &Machine) -> WriterOptions {
-    WriterOptions {
-        program_name: Some(format!("millpath pocket {}", kind.name())),
-        ..WriterOptions::default()
+/// How the pocket program is written: the dialect, units, tool, spindle and coolant of
+/// `out`, stating the machine's path tolerance (`G64 P t`, `CYCLE832(t,_FINISH,1)`, Fanuc's
+/// `G05.1 Q1` with t in a comment, a comment on Grbl), the tolerance its cycle time was
+/// planned with and the one `millpath estimate` reads back. The decimals keep the rounding
+/// within the pocket's own resolution (arcs flatter than
+/// [`pocket::chain::ARC_AS_LINE_SAGITTA`], 0.0007 mm, are lines in the toolpath: 3 decimals
+/// in mm, 5 in inches) and within 10 % of the path tolerance; fewer `--decimals` are refused.
+pub fn program_options(
+    kind: StrategyKind,
+    machine: &Machine,
+    out: &super::output::OutputArgs,
+) -> Result<WriterOptions, Error> {
+    let t = machine.path_tolerance;
+    let mut max_rounding = pocket::chain::ARC_AS_LINE_SAGITTA;
+    let mut why = "the pocket's resolution".to_owned();
+    if t > 0.0 && millpath::gcode::format::ROUNDING_SHARE * t < max_rounding {
+        max_rounding = millpath::gcode::format::ROUNDING_SHARE * t;
+        why = format!("10 % of the machine's path tolerance {t} mm");
     }
-    .with_path_tolerance(machine.path_tolerance)
+    let decimals = out.decimals_within(max_rounding, &why)?;
+    Ok(out
+        .writer_options(decimals, format!("millpath pocket {}", kind.name()))?
+        .with_path_tolerance(t))
 }
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
     let choice = parse_choice(&args.common.strategy)?;
+    // The output flags are checked before the pocket is planned (exit 2 at once).
+    let wopts = program_options(
+        StrategyKind::Spiral,
+        &super::load_machine(&args.common.machine)?,
+        &args.program,
+    )?;
     let (tool, opts) = args.common.options()?;
     let loops = load_outline(&args.outline, &args.common.import)?;
     let shape =
@@ -455,8 +477,10 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let mut rep = report(kind, &r, &args.common.machine)?;
     rep.auto = auto;
     if let Some(out) = &args.output {
-        let m = super::load_machine(&args.common.machine)?;
-        let wopts = program_options(kind, &m);
+        let wopts = WriterOptions {
+            program_name: Some(format!("millpath pocket {}", kind.name())),
+            ..wopts
+        };
         let mut buf = Vec::new();
         write_program(&r.toolpath, &wopts, &mut buf)
             .map_err(|e| e.engine_made("writing the pocket program"))?;

@@ -71,6 +71,49 @@ impl Dialect {
     }
 }
 
+impl Dialect {
+    /// The dialect of a program, from its first lines `head` (a few KiB are plenty), by the
+    /// words that only one dialect's programs carry, as the writer writes them: a `%` line or
+    /// an `O` number → Fanuc; `G700`/`G710`, `CYCLE832(` or a `TURN=` → Sinumerik; `;`
+    /// comments without any word Grbl lacks (`G64`, `G61.1`, `G43`, `M6`: LinuxCNC programs
+    /// may use `;` comments too) → Grbl; anything else → LinuxCNC. A program that carries none of
+    /// these reads the same in LinuxCNC's dialect as in any other (the dialects differ in
+    /// those words, in `G64`/`G61` and in the dwell words), so the fallback is safe.
+    pub fn detect(head: &str) -> Dialect {
+        let (mut semicolons, mut not_grbl) = (false, false);
+        for line in head.lines().take(200) {
+            let t = line.trim().to_ascii_uppercase();
+            let code = t.split(';').next().unwrap_or("");
+            if t.starts_with('%') || is_program_number(code) {
+                return Dialect::Fanuc;
+            }
+            let words: Vec<&str> = code.split_whitespace().collect();
+            if words.iter().any(|w| matches!(*w, "G700" | "G710"))
+                || code.contains("CYCLE832(")
+                || code.contains("TURN=")
+            {
+                return Dialect::Sinumerik;
+            }
+            semicolons |= t.starts_with(';');
+            not_grbl |= words
+                .iter()
+                .any(|w| matches!(*w, "G64" | "G61.1" | "G43" | "M6" | "M06"));
+        }
+        if semicolons && !not_grbl {
+            Dialect::Grbl
+        } else {
+            Dialect::LinuxCnc
+        }
+    }
+}
+
+/// `O1234` (with an optional comment): a Fanuc program number line.
+fn is_program_number(code: &str) -> bool {
+    let code = code.split('(').next().unwrap_or("").trim();
+    code.strip_prefix('O')
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+}
+
 impl fmt::Display for Dialect {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -147,6 +190,34 @@ pub enum Coolant {
     Mist,
 }
 
+impl Coolant {
+    /// The name used on the command line: `off`, `flood`, `mist`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Coolant::Off => "off",
+            Coolant::Flood => "flood",
+            Coolant::Mist => "mist",
+        }
+    }
+}
+
+impl fmt::Display for Coolant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Coolant {
+    type Err = InputError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [Coolant::Off, Coolant::Flood, Coolant::Mist]
+            .into_iter()
+            .find(|c| c.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| InputError::new("coolant", s).expected("off, flood or mist"))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -164,5 +235,20 @@ mod tests {
         assert_eq!(serde_json::to_string(&Units::Inch).unwrap(), "\"in\"");
         let e = "haas".parse::<Dialect>().unwrap_err().to_string();
         assert!(e.contains("haas") && e.contains("linuxcnc"), "{e}");
+        for c in [Coolant::Off, Coolant::Flood, Coolant::Mist] {
+            assert_eq!(c.to_string().parse::<Coolant>(), Ok(c));
+        }
+        assert!("oil".parse::<Coolant>().is_err());
+        assert_eq!(Dialect::detect("%\nO0001 (X)\nG0 X1\n"), Dialect::Fanuc);
+        assert_eq!(Dialect::detect("; a\nG17 G710 G90\n"), Dialect::Sinumerik);
+        assert_eq!(Dialect::detect("; a\nG17 G21 G90\n"), Dialect::Grbl);
+        assert_eq!(
+            Dialect::detect("; a\nG21 G90\nG64 P0.01\n"),
+            Dialect::LinuxCnc
+        );
+        assert_eq!(
+            Dialect::detect("(a)\nG17 G21 G90\nG64 P0.01\n"),
+            Dialect::LinuxCnc
+        );
     }
 }

@@ -45,6 +45,8 @@
 //! | exact stop / exact path | `G61.1` / `G61` | `G61` / `G61` (no exact-path mode) | `G60` / `G64` (continuous path without rounding) | – (grbl has only its planner) |
 //! | blend / machine | `G64 P`t / `G64 P`path or `G64` | `G64` / `G64` | `CYCLE832(t,_FINISH,1)` / CYCLE832 with the path tolerance, or `G642` | – |
 //! | multi-turn arcs | `P`turns+1 | split into full turns | `TURN=`n | split into full turns |
+//! | arc radii (rounded start and end) | LinuxCNC's rule ([`arc`]) | LinuxCNC's rule | LinuxCNC's rule | and Grbl 1.1's: 0.005 mm, or 0.1 % and 0.5 mm |
+//! | five-axis ([`five_axis`]) | `G93`, `A`/`B` `C` words | the same, decimal points | the same | refused: no rotary axes |
 //! | end | `M2` | `M30` | `M30` | `M2` |
 //!
 //! **The program's path tolerance** ([`WriterOptions::path_tolerance`],
@@ -82,7 +84,8 @@
 //! Numbers in a program are limited to ±1e9 (program units) and must be plain decimals (no
 //! exponent, no parameters or expressions); lines to 64 KiB. The reader's position is the
 //! machine position: work offsets and tool length offsets are zero unless given in
-//! [`ReaderOptions::work_offsets`]. Rotary axes (A/B/C), cutter compensation (G41/G42),
+//! [`ReaderOptions::work_offsets`]. Rotary axes (A/B/C; five-axis joint programs are read by
+//! [`five_axis::read_five_axis`]), cutter compensation (G41/G42),
 //! canned cycles, subprograms and parameters are refused (or skipped when lenient).
 //!
 //! # The reader's modal rules

@@ -10,7 +10,7 @@ use super::dialect::{Coolant, Dialect, Units};
 use super::format::{MAX_DECIMALS, push_number};
 use crate::error::{Error, InputError};
 use crate::geom::Point3;
-use crate::toolpath::{Corner, Move, MoveKind, Plane, Toolpath};
+use crate::toolpath::{Corner, Move, MoveKind, Plane, Tool, Toolpath};
 
 use std::io::{BufWriter, Write};
 
@@ -64,6 +64,9 @@ pub struct WriterOptions {
     pub header_notes: Vec<String>,
     /// Write the tool change (`T.. M6`, a comment for Grbl) and tool length compensation.
     pub tool_change: bool,
+    /// The tool number written (`T`, Fanuc's `H`), in place of the toolpath's own
+    /// ([`crate::toolpath::Tool::number`]); `None` keeps the toolpath's.
+    pub tool_number: Option<u32>,
 }
 
 impl Default for WriterOptions {
@@ -84,6 +87,7 @@ impl Default for WriterOptions {
             comments: true,
             header_notes: Vec::new(),
             tool_change: true,
+            tool_number: None,
         }
     }
 }
@@ -183,7 +187,7 @@ pub fn write_program(
 ) -> Result<WriteSummary, Error> {
     opts.validate()?;
     let mut w = Emitter::new(opts, out);
-    w.header(tp)?;
+    w.header(Some(&tp.tool))?;
     let mut from = tp.start;
     for (i, m) in tp.moves.iter().enumerate() {
         check_move(i, m, from)?;
@@ -258,7 +262,9 @@ enum Motion {
     G3,
 }
 
-struct Emitter<'a> {
+/// The writer's state; shared with the five-axis writer ([`super::five_axis`]), which
+/// writes its header, blocks and footer through it.
+pub(super) struct Emitter<'a> {
     out: BufWriter<&'a mut dyn Write>,
     opts: &'a WriterOptions,
     line: String,
@@ -280,7 +286,7 @@ struct Emitter<'a> {
 }
 
 impl<'a> Emitter<'a> {
-    fn new(opts: &'a WriterOptions, out: &'a mut dyn Write) -> Self {
+    pub(super) fn new(opts: &'a WriterOptions, out: &'a mut dyn Write) -> Self {
         let decimals = opts.effective_decimals();
         Emitter {
             out: BufWriter::new(out),
@@ -311,7 +317,7 @@ impl<'a> Emitter<'a> {
     }
 
     /// Starts a block (with its N number when numbering).
-    fn begin(&mut self) {
+    pub(super) fn begin(&mut self) {
         self.line.clear();
         if self.opts.line_numbers {
             self.n += u64::from(self.opts.line_number_step.max(1));
@@ -323,14 +329,14 @@ impl<'a> Emitter<'a> {
         }
     }
 
-    fn raw(&mut self, s: &str) {
+    pub(super) fn raw(&mut self, s: &str) {
         if !self.line.is_empty() {
             self.line.push(' ');
         }
         self.line.push_str(s);
     }
 
-    fn word(&mut self, letter: &str, value: f64, decimals: u32) {
+    pub(super) fn word(&mut self, letter: &str, value: f64, decimals: u32) {
         if !self.line.is_empty() {
             self.line.push(' ');
         }
@@ -338,7 +344,7 @@ impl<'a> Emitter<'a> {
         push_number(&mut self.line, value, decimals, self.keep_point);
     }
 
-    fn end(&mut self) -> Result<(), Error> {
+    pub(super) fn end(&mut self) -> Result<(), Error> {
         self.line.push('\n');
         let r = self.out.write_all(self.line.as_bytes());
         self.line.clear();
@@ -353,13 +359,13 @@ impl<'a> Emitter<'a> {
         self.end()
     }
 
-    fn block(&mut self, s: &str) -> Result<(), Error> {
+    pub(super) fn block(&mut self, s: &str) -> Result<(), Error> {
         self.begin();
         self.raw(s);
         self.end()
     }
 
-    fn comment(&mut self, text: &str) -> Result<(), Error> {
+    pub(super) fn comment(&mut self, text: &str) -> Result<(), Error> {
         if !self.opts.comments {
             return Ok(());
         }
@@ -371,10 +377,13 @@ impl<'a> Emitter<'a> {
         }
     }
 
-    fn header(&mut self, tp: &Toolpath) -> Result<(), Error> {
+    /// The program's header: framing, name and notes, units and safety block, work offset,
+    /// path tolerance, tool change, spindle and coolant.
+    /// `tool` is described in a comment when given (the five-axis writer has only a number).
+    pub(super) fn header(&mut self, tool: Option<&Tool>) -> Result<(), Error> {
         let d = self.dialect();
         let o = self.opts;
-        self.tool = tp.tool.number;
+        self.tool = o.tool_number.or(tool.map(|t| t.number)).unwrap_or(0);
         if d == Dialect::Fanuc {
             self.bare("%")?;
             let mut l = format!("O{:04}", o.program_number);
@@ -393,10 +402,12 @@ impl<'a> Emitter<'a> {
             o.units,
             self.decimals
         ))?;
-        self.comment(&format!(
-            "tool T{}: flat end mill D{} mm, {} flutes",
-            tp.tool.number, tp.tool.diameter, tp.tool.flutes
-        ))?;
+        if let Some(tool) = tool {
+            self.comment(&format!(
+                "tool T{}: flat end mill D{} mm, {} flutes",
+                self.tool, tool.diameter, tool.flutes
+            ))?;
+        }
         for note in &o.header_notes {
             self.comment(note)?;
         }
@@ -434,14 +445,14 @@ impl<'a> Emitter<'a> {
             // Moves with `Corner::Machine` run in the mode just set.
             self.corner = Corner::Machine;
         }
-        if o.tool_change && tp.tool.number > 0 {
+        if o.tool_change && self.tool > 0 {
             if d == Dialect::Grbl {
                 self.comment(&format!(
                     "tool change: load T{} by hand, grbl has no tool-change command",
-                    tp.tool.number
+                    self.tool
                 ))?;
             } else {
-                self.block(&format!("T{} M6", tp.tool.number))?;
+                self.block(&format!("T{} M6", self.tool))?;
             }
         }
         if o.spindle_rpm > 0.0 {
@@ -457,7 +468,7 @@ impl<'a> Emitter<'a> {
         }
     }
 
-    fn footer(&mut self) -> Result<(), Error> {
+    pub(super) fn footer(&mut self) -> Result<(), Error> {
         let d = self.dialect();
         if self.opts.coolant != Coolant::Off {
             self.block("M9")?;
@@ -483,7 +494,7 @@ impl<'a> Emitter<'a> {
         Ok(())
     }
 
-    fn finish(mut self) -> Result<WriteSummary, Error> {
+    pub(super) fn finish(mut self) -> Result<WriteSummary, Error> {
         self.out.flush().map_err(io_error)?;
         Ok(self.summary)
     }
@@ -585,7 +596,7 @@ impl<'a> Emitter<'a> {
     }
 
     /// Tool length compensation on the first motion block.
-    fn first_motion_words(&mut self, tool: u32) {
+    pub(super) fn first_motion_words(&mut self, tool: u32) {
         if !self.first_motion {
             return;
         }
@@ -686,11 +697,16 @@ impl<'a> Emitter<'a> {
         self.end()
     }
 
+    /// Counts a motion or dwell block the caller wrote.
+    pub(super) fn count_block(&mut self) {
+        self.summary.blocks += 1;
+    }
+
     fn tool_number(&self) -> u32 {
         self.tool
     }
 
-    fn dwell(&mut self, seconds: f64) -> Result<(), Error> {
+    pub(super) fn dwell(&mut self, seconds: f64) -> Result<(), Error> {
         let dec = self.decimals.max(3);
         self.begin();
         match self.dialect() {

@@ -15,6 +15,8 @@
 //! a line to the end. An arc as the first motion of a program (the machine position unknown)
 //! is preceded by a rapid to the toolpath's start. Dialects without a turn count get the full turns as separate circles,
 //! each advancing the helix axis by `h·2π/S` (axial travel `h`, total sweep `S`).
+//! Grbl programs are also held to Grbl 1.1's own radius rule ([`grbl_accepts`]), and get no
+//! turn word at all (Grbl has no `P` on G2/G3).
 
 use super::{Dialect, Emitter, MIN_ARC_RADIUS_MM, Motion, round};
 use crate::error::{Error, InputError};
@@ -24,6 +26,14 @@ use crate::gcode::interp::plane_axes;
 use crate::geom::Point3;
 use crate::toolpath::{Move, MoveKind, Plane};
 use std::f64::consts::{PI, TAU};
+
+/// Grbl 1.1's arc-radius rule (`gcode.c`, centre format, radii in mm whatever the program's
+/// units): with `r` the radius to the start and `Δ = |r_end − r|`, the block is refused when
+/// `Δ > 0.005 mm` and (`Δ > 0.5 mm` or `Δ > 0.001·r`). Stricter than LinuxCNC's 0.0283 mm.
+pub(super) fn grbl_accepts(r_start_mm: f64, r_end_mm: f64) -> bool {
+    let delta = (r_end_mm - r_start_mm).abs();
+    !(delta > 0.005 && (delta > 0.5 || delta > 0.001 * r_start_mm))
+}
 
 fn get(a: &[f64; 3], k: usize) -> f64 {
     a.get(k).copied().unwrap_or(0.0)
@@ -84,6 +94,19 @@ impl Emitter<'_> {
                     self.decimals
                 ))
                 .into());
+        }
+        if self.dialect() == Dialect::Grbl && !grbl_accepts(r1, r2) {
+            return Err(InputError::new(
+                "arc",
+                format!("radius to start {r1:.6} mm, to end {r2:.6} mm"),
+            )
+            .at(format!("move {i}"))
+            .expected(format!(
+                "an arc grbl accepts after rounding to {} decimals (radii within 0.005 mm, or \
+                 within 0.1 % and 0.5 mm): raise the decimals",
+                self.decimals
+            ))
+            .into());
         }
         let axial_mm = get(&[m.to.x, m.to.y, m.to.z], na) - get(&[from.x, from.y, from.z], na);
         let near_full_flipped = single > PI && single - read_sweep > PI;

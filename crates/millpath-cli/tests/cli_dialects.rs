@@ -1,0 +1,186 @@
+//! The shared G-code output flags on `contour`, `pocket` and `five-axis`: the same names on
+//! every command, every dialect written, `millpath estimate` reading each back (its dialect
+//! found from the program) with the cycle time `pocket` planned, and what a dialect cannot
+//! express refused with exit 2 and no file.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn millpath(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the millpath binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The number after `cycle time ` in a line of output.
+fn cycle_time(o: &Output) -> f64 {
+    let out = String::from_utf8_lossy(&o.stdout);
+    let at = out.find("cycle time ").expect("a cycle time") + "cycle time ".len();
+    out[at..]
+        .split_whitespace()
+        .next()
+        .and_then(|s| s.parse().ok())
+        .expect("a number")
+}
+
+const OUTPUT_FLAGS: [&str; 7] = [
+    "--dialect",
+    "--units",
+    "--decimals",
+    "--tool-number",
+    "--spindle",
+    "--coolant",
+    "--line-numbers",
+];
+
+#[test]
+fn every_program_command_takes_the_same_output_flags_and_shows_a_dialect_example() {
+    let dir = tempfile::tempdir().unwrap();
+    for cmd in ["contour", "pocket", "five-axis"] {
+        let o = millpath(&[cmd, "--help"], dir.path());
+        assert_eq!(o.status.code(), Some(0));
+        let help = String::from_utf8_lossy(&o.stdout);
+        for flag in OUTPUT_FLAGS {
+            assert!(help.contains(flag), "{cmd} --help lacks {flag}");
+        }
+        let examples = help.split("Examples:").nth(1).unwrap_or("");
+        assert!(
+            examples.contains("--dialect "),
+            "{cmd} --help has no example with --dialect"
+        );
+    }
+}
+
+#[test]
+fn pocket_writes_every_dialect_and_estimate_reads_each_back_at_the_planned_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let common = [
+        "pocket",
+        "sample:aerospace",
+        "--depth",
+        "5",
+        "--step-down",
+        "5",
+        "--cell",
+        "0.2",
+    ];
+    for (dialect, file, tolerance_word) in [
+        ("linuxcnc", "p.ngc", "G64 P0.01"),
+        ("fanuc", "p.nc", "G05.1 Q1"),
+        ("sinumerik", "p.mpf", "CYCLE832(0.01,_FINISH,1)"),
+        ("grbl", "p.gcode", "; path tolerance 0.01 mm"),
+    ] {
+        let mut args = common.to_vec();
+        args.extend(["--dialect", dialect, "--tool-number", "7", "-o", file]);
+        let o = millpath(&args, dir.path());
+        assert_eq!(o.status.code(), Some(0), "{dialect}: {}", stderr(&o));
+        let planned = cycle_time(&o);
+        let text = std::fs::read_to_string(dir.path().join(file)).unwrap();
+        assert!(text.contains(tolerance_word), "{dialect}: {tolerance_word}");
+        assert!(text.contains("T7"), "{dialect}: tool number");
+        let e = millpath(&["estimate", file], dir.path());
+        assert_eq!(e.status.code(), Some(0), "{dialect}: {}", stderr(&e));
+        let read = cycle_time(&e);
+        assert!(
+            (read / planned - 1.0).abs() <= 0.005,
+            "{dialect}: pocket planned {planned} s, estimate read {read} s"
+        );
+    }
+}
+
+#[test]
+fn what_a_dialect_cannot_express_is_refused_without_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = millpath(
+        &[
+            "five-axis",
+            "--case",
+            "paper",
+            "--machine",
+            "xyzac-trt",
+            "--no-baseline",
+            "--gcode",
+            "f.nc",
+            "--dialect",
+            "grbl",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("grbl") && stderr(&o).contains("rotary"));
+    assert!(!dir.path().join("f.nc").exists());
+    // Too few decimals for the pocket's resolution, named with the least that would do.
+    let o = millpath(
+        &[
+            "pocket",
+            "sample:aerospace",
+            "--depth",
+            "5",
+            "--step-down",
+            "5",
+            "--units",
+            "in",
+            "--decimals",
+            "4",
+            "-o",
+            "p.nc",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--decimals") && stderr(&o).contains("at least 5 decimals in inches")
+    );
+    assert!(!dir.path().join("p.nc").exists());
+    let o = millpath(
+        &[
+            "pocket",
+            "sample:aerospace",
+            "--coolant",
+            "oil",
+            "-o",
+            "p.nc",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("oil"));
+}
+
+#[test]
+fn five_axis_writes_fanuc_and_sinumerik_programs() {
+    let dir = tempfile::tempdir().unwrap();
+    for (dialect, units, word) in [
+        ("fanuc", "mm", "O0001"),
+        ("sinumerik", "in", "G700"),
+        ("linuxcnc", "in", "G20"),
+    ] {
+        let o = millpath(
+            &[
+                "five-axis",
+                "--case",
+                "paper",
+                "--machine",
+                "xyzbc-trt",
+                "--no-baseline",
+                "--no-deflection",
+                "--gcode",
+                "f.nc",
+                "--dialect",
+                dialect,
+                "--units",
+                units,
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{dialect}: {}", stderr(&o));
+        let text = std::fs::read_to_string(dir.path().join("f.nc")).unwrap();
+        assert!(text.contains(word) && text.contains("G93") && text.contains(" B"));
+    }
+}
