@@ -4,9 +4,9 @@ use millpath::gcode::{WriterOptions, write_program};
 use millpath::io::outline_json::Loops;
 use millpath::machine::Machine;
 use millpath::stock::SimOptions;
+use millpath::strategy::pocket::part::{PartPocket, PartResult, PartStrategy, generate_part};
 use millpath::strategy::pocket::{
-    self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind,
-    Walls, samples,
+    self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind, Walls, samples,
 };
 use millpath::toolpath::Tool;
 use millpath::{Error, InputError};
@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4"
+    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4\n  millpath pocket sheet.dxf --list                       # the drawing's pockets, by index\n  millpath pocket sheet.dxf --select 1,3 --tool-diameter 6 --depth 3 --step-down 3 -o two.ngc"
 )]
 pub struct Args {
     /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`.
@@ -36,6 +36,13 @@ pub struct Args {
     /// the summary line.
     #[arg(long)]
     pub json: bool,
+    /// Cut only these pockets of the drawing, by their index in `--list` and the report
+    /// (1-based): `1,3`, `2-4`.
+    #[arg(long)]
+    pub select: Option<String>,
+    /// List the drawing's pockets (index, area, islands, bounds) and exit.
+    #[arg(long)]
+    pub list: bool,
 }
 
 /// Options shared by `pocket` and `sweep`.
@@ -288,10 +295,7 @@ pub const DEFAULT_TRANSITION: f64 = 0.5;
 pub fn load_outline(name: &str) -> Result<Loops, Error> {
     if name == "sample:aerospace" {
         let s = samples::aerospace_pocket();
-        return Ok(Loops {
-            outer: s.outer,
-            islands: s.islands,
-        });
+        return Ok(Loops::single(s.outer, s.islands));
     }
     let path = Path::new(name);
     let ext = path
@@ -362,7 +366,33 @@ pub struct Report {
     pub problems: Vec<String>,
     /// What was changed from the options asked for, and why (a fallback after a gouge).
     pub notes: Vec<String>,
-    /// With `--strategy auto`: every strategy tried, in `pocket::auto::ORDER`.
+    /// With `--strategy auto`: every strategy tried, in `pocket::auto::ORDER` (on a
+    /// drawing of one pocket; each pocket's list is in `pockets`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub auto: Option<Vec<AutoEntry>>,
+    /// Every pocket asked for, in cutting order (those left out last).
+    pub pockets: Vec<PocketEntry>,
+}
+
+/// One pocket of the drawing in the report.
+#[derive(Debug, Serialize)]
+pub struct PocketEntry {
+    /// Its index in the drawing (1-based, as `--list` and `--select` number them).
+    pub index: usize,
+    /// Area of material, mm².
+    pub area_mm2: f64,
+    /// The strategy that cut it.
+    pub strategy: String,
+    /// Its cycle time alone, s (`null` when left out).
+    pub cycle_time_s: Option<f64>,
+    /// Cutting path length, mm.
+    pub path_length_mm: f64,
+    /// The whole program's verification of this pocket found no problem.
+    pub verified: bool,
+    /// Why it was left out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub skipped: Option<String>,
+    /// With `--strategy auto`: every strategy tried on it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub auto: Option<Vec<AutoEntry>>,
 }
@@ -400,6 +430,29 @@ pub fn auto_entries(candidates: &[pocket::auto::Candidate], chosen: usize) -> Ve
         .collect()
 }
 
+/// One line per pocket of a part.
+fn pocket_line(p: &PocketEntry) -> String {
+    match (&p.skipped, p.cycle_time_s) {
+        (Some(why), _) => format!(
+            "pocket {}: area {:.1} mm², left out: {why}",
+            p.index, p.area_mm2
+        ),
+        (None, t) => format!(
+            "pocket {}: area {:.1} mm², {}, cycle time {:.2} s alone, path {:.1} mm, {}",
+            p.index,
+            p.area_mm2,
+            p.strategy,
+            t.unwrap_or(0.0),
+            p.path_length_mm,
+            if p.verified {
+                "verified"
+            } else {
+                "NOT verified"
+            }
+        ),
+    }
+}
+
 /// One line per strategy `auto` tried.
 fn auto_line(e: &AutoEntry) -> String {
     let mut line = format!("auto: {}:", e.strategy);
@@ -420,79 +473,213 @@ fn auto_line(e: &AutoEntry) -> String {
     line
 }
 
-/// Builds the report of a generated pocket.
-pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Report, Error> {
-    let m = super::load_machine(machine)?;
-    Ok(Report {
-        strategy: kind.name().to_owned(),
-        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)
-            .map_err(|e| e.engine_made("timing the pocket toolpath"))?,
-        cycle_time_model: pocket::CYCLE_TIME_MODEL.to_owned(),
-        path_length_mm: r.toolpath.cut_length(),
-        rapid_length_mm: r.toolpath.rapid_length(),
-        max_engagement_deg: r.verification.max_engagement_deg,
-        mean_engagement_deg: r.verification.mean_engagement_deg,
-        nominal_engagement_deg: r.nominal_engagement_deg,
-        share_above_nominal: r.verification.share_above_nominal,
-        stepover_mm: r.stepover_mm,
-        max_stepover_mm: r.verification.max_radial_depth_mm,
-        levels: r.toolpath.levels.len(),
-        moves: r.toolpath.moves.len(),
-        verification: r.verification.clone(),
-        problems: r.verification.problems(),
-        notes: r.notes.clone(),
+/// How the report's cycle time is computed.
+pub const REPORT_TIME_MODEL: &str =
+    "millpath estimate on the written program (G-code reader, jerk-limited look-ahead planner)";
+
+/// Builds the report of a generated part; `cycle_time_s` is the written program's
+/// ([`super::estimate::program_time`]).
+pub fn report(part: &PartResult, cycle_time_s: f64) -> Report {
+    let tp = &part.toolpath;
+    let v = &part.verification;
+    let cut: Vec<&PartPocket> = part.pockets.iter().filter(|p| p.result.is_some()).collect();
+    let several = part.pockets.len() > 1;
+    let name = match cut.first() {
+        Some(first) if cut.iter().all(|p| p.kind == first.kind) => first.kind.name().to_owned(),
+        _ => "mixed".to_owned(),
+    };
+    let first = cut.first().and_then(|p| p.result.as_ref());
+    let mut notes = Vec::new();
+    for p in &part.pockets {
+        for n in p.result.iter().flat_map(|r| r.notes.iter()) {
+            notes.push(if several {
+                format!("pocket {}: {n}", p.index)
+            } else {
+                n.clone()
+            });
+        }
+        if let Some(why) = &p.skipped {
+            notes.push(format!("pocket {} left out: {why}", p.index));
+        }
+    }
+    let resolution = millpath::stock::GOUGE_RESOLUTION;
+    let mut k = 0;
+    let pockets = part
+        .pockets
+        .iter()
+        .map(|p| {
+            let verified = if p.result.is_some() {
+                k += 1;
+                v.pockets
+                    .get(k - 1)
+                    .is_some_and(|pv| pv.problems_within(resolution).is_empty())
+            } else {
+                false
+            };
+            PocketEntry {
+                index: p.index,
+                area_mm2: p.area_mm2,
+                strategy: p.kind.name().to_owned(),
+                cycle_time_s: p.cycle_time_s,
+                path_length_mm: p.result.as_ref().map_or(0.0, |r| r.toolpath.cut_length()),
+                verified,
+                skipped: p.skipped.clone(),
+                auto: p
+                    .auto
+                    .as_ref()
+                    .and_then(|c| pocket::auto::choose(c).map(|i| auto_entries(c, i))),
+            }
+        })
+        .collect();
+    Report {
+        strategy: name,
+        cycle_time_s,
+        cycle_time_model: REPORT_TIME_MODEL.to_owned(),
+        path_length_mm: tp.cut_length(),
+        rapid_length_mm: tp.rapid_length(),
+        max_engagement_deg: v.total.max_engagement_deg,
+        mean_engagement_deg: v.total.mean_engagement_deg,
+        nominal_engagement_deg: first.map_or(0.0, |r| r.nominal_engagement_deg),
+        share_above_nominal: v.total.share_above_nominal,
+        stepover_mm: first.map_or(0.0, |r| r.stepover_mm),
+        max_stepover_mm: v.total.max_radial_depth_mm,
+        levels: tp.levels.len(),
+        moves: tp.moves.len(),
+        verification: v.total.clone(),
+        problems: v.problems(),
+        notes,
         auto: None,
-    })
+        pockets,
+    }
 }
 
 /// How the pocket program is written: LinuxCNC, mm, stating the machine's path tolerance
 /// (`G64 P t`), the tolerance its cycle time was planned with and the one `millpath estimate`
-/// reads back.
-pub fn program_options(kind: StrategyKind, machine: &Machine) -> WriterOptions {
+/// reads back; `name` is the strategy's (or `mixed`).
+pub fn program_options(name: &str, machine: &Machine) -> WriterOptions {
     WriterOptions {
-        program_name: Some(format!("millpath pocket {}", kind.name())),
+        program_name: Some(format!("millpath pocket {name}")),
         ..WriterOptions::default()
     }
     .with_path_tolerance(machine.path_tolerance)
 }
 
+/// The indices `--select` asks for (1-based, sorted, each once) among `n` pockets; all when
+/// not given.
+pub fn parse_select(text: Option<&str>, n: usize) -> Result<Vec<usize>, InputError> {
+    let Some(text) = text else {
+        return Ok((1..=n).collect());
+    };
+    let bad = || {
+        InputError::new("pocket selection", text)
+            .at("--select")
+            .expected(format!(
+                "pocket indices from 1 to {n} (as `--list` shows them), separated by commas, \
+                 or ranges: 1,3 or 2-4"
+            ))
+    };
+    let mut out = Vec::new();
+    for item in text.split(',') {
+        let item = item.trim();
+        let (a, b) = match item.split_once('-') {
+            Some((a, b)) => (a.trim(), b.trim()),
+            None => (item, item),
+        };
+        let (Ok(a), Ok(b)) = (a.parse::<usize>(), b.parse::<usize>()) else {
+            return Err(bad());
+        };
+        if a == 0 || b < a || b > n {
+            return Err(bad());
+        }
+        out.extend(a..=b);
+    }
+    out.sort_unstable();
+    out.dedup();
+    Ok(out)
+}
+
+/// One line per pocket of the drawing, for `--list`.
+fn list_lines(loops: &Loops) -> Vec<String> {
+    loops
+        .pockets()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let b = p.outer.bounds();
+            format!(
+                "pocket {}: area {:.3} mm², {} islands, bounds ({:.3}, {:.3}) to ({:.3}, {:.3})",
+                i + 1,
+                p.area(),
+                p.islands.len(),
+                b.min.x,
+                b.min.y,
+                b.max.x,
+                b.max.y
+            )
+        })
+        .collect()
+}
+
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
     let choice = parse_choice(&args.common.strategy)?;
-    let (tool, opts) = args.common.options()?;
     let loops = load_outline(&args.outline)?;
-    let shape =
-        args.common
-            .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;
-    let (kind, r, auto) = match choice {
-        Choice::One(kind) => (
-            kind,
-            pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?,
-            None,
-        ),
-        Choice::Auto => {
-            let m = super::load_machine(&args.common.machine)?;
-            let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
-            let cands = pocket::auto::plan_all(&shape, &tool, &opts, &args.common.sim(), &time);
-            let Some(i) = pocket::auto::choose(&cands) else {
-                return Err(pocket::auto::none_verified(&cands));
-            };
-            let Some(r) = cands.get(i).and_then(|c| c.result()).cloned() else {
-                return Err(Error::internal(
-                    "--strategy auto: the chosen path is missing",
-                ));
-            };
-            (cands[i].kind, r, Some(auto_entries(&cands, i)))
+    if args.list {
+        for line in list_lines(&loops) {
+            super::print(&line);
         }
+        return Ok(());
+    }
+    let (tool, opts) = args.common.options()?;
+    let selected = parse_select(args.select.as_deref(), loops.len())?;
+    if selected.len() > 1 && (args.common.draft.is_some() || args.common.bottom_outline.is_some()) {
+        return Err(InputError::new("pockets", selected.len())
+            .at(format!("{} with --draft or --bottom-outline", args.outline))
+            .expected("one pocket with inclined walls: --select one of them")
+            .into());
+    }
+    let all = loops.pockets();
+    let mut shapes = Vec::with_capacity(selected.len());
+    for &i in &selected {
+        let p = &all[i - 1];
+        let origin = if all.len() > 1 {
+            format!("{}, pocket {i}", args.outline)
+        } else {
+            args.outline.clone()
+        };
+        let shape = PocketShape::new(p.outer.clone(), p.islands.clone(), &origin)?;
+        shapes.push((i, args.common.with_walls(shape)?));
+    }
+    let m = super::load_machine(&args.common.machine)?;
+    let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
+    let strategy = match choice {
+        Choice::One(kind) => PartStrategy::One(kind),
+        Choice::Auto => PartStrategy::Auto,
     };
-    let mut rep = report(kind, &r, &args.common.machine)?;
-    rep.auto = auto;
+    let part = generate_part(&shapes, strategy, &tool, &opts, &args.common.sim(), &time)?;
+    let name = match part.pockets.iter().find(|p| p.result.is_some()) {
+        Some(f)
+            if part
+                .pockets
+                .iter()
+                .filter(|p| p.result.is_some())
+                .all(|p| p.kind == f.kind) =>
+        {
+            f.kind.name().to_owned()
+        }
+        _ => "mixed".to_owned(),
+    };
+    let wopts = program_options(&name, &m);
+    let mut buf = Vec::new();
+    write_program(&part.toolpath, &wopts, &mut buf)
+        .map_err(|e| e.engine_made("writing the pocket program"))?;
+    let t = super::estimate::program_time(&buf, "the written pocket program", &m)
+        .map_err(|e| e.engine_made("timing the written pocket program"))?;
+    let mut rep = report(&part, t);
+    if part.pockets.len() == 1 {
+        rep.auto = rep.pockets.first_mut().and_then(|p| p.auto.take());
+    }
     if let Some(out) = &args.output {
-        let m = super::load_machine(&args.common.machine)?;
-        let wopts = program_options(kind, &m);
-        let mut buf = Vec::new();
-        write_program(&r.toolpath, &wopts, &mut buf)
-            .map_err(|e| e.engine_made("writing the pocket program"))?;
         millpath::io::write_atomic(out, &buf)?;
     }
     if let Some(path) = &args.report {
@@ -502,11 +689,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(path) = &args.html {
         let m = super::load_machine(&args.common.machine)?;
-        let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)
+        let plan = millpath::motion::plan_toolpath(&part.toolpath, &m)
             .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
         let mut summary = vec![
             super::html::machine_row(&m),
-            ("strategy".to_owned(), kind.name().to_owned()),
+            ("strategy".to_owned(), name.clone()),
             (
                 "cycle time".to_owned(),
                 format!("{:.2} s", rep.cycle_time_s),
@@ -551,12 +738,14 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .flatten()
                 .map(|e| ("--strategy auto".to_owned(), auto_line(e))),
         );
-        let mut outlines = vec![shape.outer.clone()];
-        outlines.extend(shape.islands.iter().cloned());
+        let outlines: Vec<_> = shapes
+            .iter()
+            .flat_map(|(_, s)| std::iter::once(s.outer.clone()).chain(s.islands.iter().cloned()))
+            .collect();
         let html = super::html::toolpath_report(
-            &format!("millpath pocket {} {}", args.outline, kind.name()),
+            &format!("millpath pocket {} {}", args.outline, name),
             summary,
-            &r.toolpath,
+            &part.toolpath,
             &outlines,
             &plan,
         )?;
@@ -570,6 +759,13 @@ pub fn run(args: &Args) -> Result<(), Error> {
             super::print(&auto_line(e));
         }
     }
+    if !args.json && rep.pockets.len() > 1 {
+        for p in &rep.pockets {
+            for e in p.auto.iter().flatten() {
+                super::print(&format!("pocket {}: {}", p.index, auto_line(e)));
+            }
+        }
+    }
     if args.json {
         super::print_json(&rep)?;
         for p in &rep.problems {
@@ -577,10 +773,23 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
         return Ok(());
     }
+    if rep.pockets.len() > 1 {
+        for p in &rep.pockets {
+            super::print(&pocket_line(p));
+        }
+    }
     super::print(&format!(
-        "{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
+        "{}{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
          {:.1}% above nominal, min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm²",
-        kind.name(),
+        if rep.pockets.len() > 1 {
+            format!(
+                "total of {} pockets, ",
+                rep.pockets.iter().filter(|p| p.skipped.is_none()).count()
+            )
+        } else {
+            String::new()
+        },
+        rep.strategy,
         rep.cycle_time_s,
         rep.cycle_time_model,
         rep.path_length_mm,
