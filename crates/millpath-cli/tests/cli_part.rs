@@ -45,7 +45,9 @@ fn json(path: &Path) -> serde_json::Value {
 fn cut_and_check(dir: &Path, outline: &str, tag: &str, extra: &[&str]) -> serde_json::Value {
     let ngc = format!("{tag}.ngc");
     let rep = format!("{tag}.json");
-    let mut a = vec!["pocket", outline, "-o", &ngc, "--report", &rep, "--cell", "0.1"];
+    let mut a = vec![
+        "pocket", outline, "-o", &ngc, "--report", &rep, "--cell", "0.1",
+    ];
     a.extend(extra);
     ok(&millpath(&a, dir));
     let r = json(&dir.join(&rep));
@@ -81,8 +83,7 @@ fn cut_and_check(dir: &Path, outline: &str, tag: &str, extra: &[&str]) -> serde_
         v.extend(["--select", w[1]]);
     }
     let out = millpath(&v, dir);
-    let vj: serde_json::Value =
-        serde_json::from_slice(&out.stdout).expect("verify JSON");
+    let vj: serde_json::Value = serde_json::from_slice(&out.stdout).expect("verify JSON");
     let passed = vj["passed"].as_bool().expect("passed");
     let problems = r["problems"].as_array().expect("problems").len();
     // verify agrees with pocket's own verdict, and pocket's verdict on these is a pass.
@@ -120,7 +121,10 @@ fn a_drawing_of_three_pockets_in_one_program_for_every_strategy() {
             .sum();
         // The whole program is each pocket's plus the rapids between them.
         let total = r["cycle_time_s"].as_f64().unwrap();
-        assert!(total >= 0.97 * sum && total <= 1.2 * sum, "{s}: {total} against {sum}");
+        assert!(
+            total >= 0.97 * sum && total <= 1.2 * sum,
+            "{s}: {total} against {sum}"
+        );
         assert!(pockets.iter().all(|p| p["verified"] == true), "{s}");
     }
     // --select: two of them.
@@ -138,7 +142,16 @@ fn a_drawing_of_three_pockets_in_one_program_for_every_strategy() {
     assert_eq!(sorted, [1, 3]);
     // The program of two pockets fails against all three: the third is uncut.
     let out = millpath(
-        &["verify", "select.ngc", "--outline", "part.dxf", "--tool-diameter", "6", "--cell", "0.1"],
+        &[
+            "verify",
+            "select.ngc",
+            "--outline",
+            "part.dxf",
+            "--tool-diameter",
+            "6",
+            "--cell",
+            "0.1",
+        ],
         dir.path(),
     );
     assert_eq!(out.status.code(), Some(2));
@@ -158,7 +171,16 @@ fn real_drawings_of_several_parts_are_cut_whole() {
         dir.path(),
         latch.to_str().unwrap(),
         "latch",
-        &["--tool-diameter", "6", "--depth", "3", "--step-down", "3", "--strategy", "auto"],
+        &[
+            "--tool-diameter",
+            "6",
+            "--depth",
+            "3",
+            "--step-down",
+            "3",
+            "--strategy",
+            "auto",
+        ],
     );
     assert!(r["pockets"].as_array().unwrap().len() >= 2);
     let parts = real("ez_insert_bricscad_level_1.dxf");
@@ -166,7 +188,16 @@ fn real_drawings_of_several_parts_are_cut_whole() {
         dir.path(),
         parts.to_str().unwrap(),
         "parts",
-        &["--tool-diameter", "1", "--depth", "1", "--step-down", "1", "--strategy", "zigzag"],
+        &[
+            "--tool-diameter",
+            "1",
+            "--depth",
+            "1",
+            "--step-down",
+            "1",
+            "--strategy",
+            "zigzag",
+        ],
     );
     assert!(r["pockets"].as_array().unwrap().len() >= 6);
 }
@@ -188,7 +219,16 @@ fn verify_accepts_what_pocket_writes_on_single_pockets() {
             dir.path(),
             plate.to_str().unwrap(),
             &format!("plate_{s}"),
-            &["--tool-diameter", "3", "--depth", "2", "--step-down", "2", "--strategy", s],
+            &[
+                "--tool-diameter",
+                "3",
+                "--depth",
+                "2",
+                "--step-down",
+                "2",
+                "--strategy",
+                s,
+            ],
         );
     }
 }

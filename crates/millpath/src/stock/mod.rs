@@ -27,6 +27,7 @@
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
 
 pub mod gouge;
+pub mod nearest;
 pub mod part;
 pub mod raster;
 pub mod simulate;
