@@ -574,7 +574,7 @@ pub fn parse_select(text: Option<&str>, n: usize) -> Result<Vec<usize>, InputErr
         InputError::new("pocket selection", text)
             .at("--select")
             .expected(format!(
-                "pocket indices from 1 to {n} (as `--list` shows them), separated by commas, \
+                "pocket indices from 1 to {n} (as pocket --list shows them), separated by commas, \
                  or ranges: 1,3 or 2-4"
             ))
     };

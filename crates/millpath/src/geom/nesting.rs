@@ -116,7 +116,13 @@ pub fn nest(loops: Vec<Outline>, origin: &str) -> Result<Vec<Pocket>, InputError
             }
             if let Some(p) = touch_point(&loops[i], &loops[j]) {
                 let (a, b) = (i.min(j), i.max(j));
+                // `+ 0.0` writes −0 as 0.
                 let (va, vb) = (first_vertex(&loops[a]), first_vertex(&loops[b]));
+                let (va, vb) = (
+                    Point::new(va.x + 0.0, va.y + 0.0),
+                    Point::new(vb.x + 0.0, vb.y + 0.0),
+                );
+                let p = Point::new(p.x + 0.0, p.y + 0.0);
                 return Err(InputError::new(
                     "closed outlines",
                     format!(
