@@ -271,3 +271,39 @@ fn programs_pocket_writes_pass_verification_at_their_rounding() {
     }
     assert!(checked >= 8, "{checked} programs checked");
 }
+
+#[test]
+fn a_vertical_retract_from_a_cut_along_the_wall_is_no_rapid_through_material() {
+    // A 20 × 20 pocket cut by hand with a 6 mm tool: one slot down the middle, then a pass
+    // along the walls, then G0 straight up from the wall (tool touching it).
+    let outer = Outline::from_points(
+        &[
+            Point::new(0.0, 0.0),
+            Point::new(20.0, 0.0),
+            Point::new(20.0, 20.0),
+            Point::new(0.0, 20.0),
+        ],
+        "square",
+    )
+    .expect("square");
+    let text = "G21 G90 G17\nG0 X10 Y10 Z5\nG1 Z-1 F300\nG1 X3 Y3\nG1 X17 Y3\nG1 X17 Y17\n\
+                G1 X3 Y17\nG1 X3 Y3\nG1 X10 Y3\nG1 X10 Y17\nG1 X3 Y10\nG1 X17 Y10\nG1 X3 Y3\nG0 Z5\nM2\n";
+    let (mut tp, _) = read_str(text, ReaderOptions::default()).expect("reads");
+    tp.tool = Tool::flat(6.0).expect("tool");
+    stock::infer_levels(&mut tp);
+    let spec = StockSpec {
+        outer: &outer,
+        islands: &[],
+        wall_stock: 0.0,
+    };
+    let v = stock::verify(&tp, spec, 90.0, &sim());
+    assert_eq!(v.rapids_through_material, 0, "{v:?}");
+    assert!((v.min_clearance_mm - 3.0).abs() < 1e-9);
+    // A vertical rapid down into the material is one.
+    let down = "G21 G90 G17\nG0 X10 Y10 Z5\nG0 Z-1\nG1 X3 Y3 F300\nG0 Z5\nM2\n";
+    let (mut tp2, _) = read_str(down, ReaderOptions::default()).expect("reads");
+    tp2.tool = tp.tool;
+    stock::infer_levels(&mut tp2);
+    let v2 = stock::verify(&tp2, spec, 90.0, &sim());
+    assert_eq!(v2.rapids_through_material, 1, "{v2:?}");
+}

@@ -13,7 +13,8 @@
 //!   chord geometry of a one-sided cut, `φ = arccos(1 − a_e/r)` (0 at `a_e = 0`, 90° at
 //!   `a_e = r`, 180° at slotting, `a_e = 2r`). With [`SimOptions::record_samples`] it keeps
 //!   the engagement at every tool position ([`EngagementSample`]), which the pockets' feed
-//!   profile is made from. It also finds rapid moves through material,
+//!   profile is made from. It also finds rapid moves through material (a vertical retract
+//!   from where the tool stands is never one: it sweeps the column the tool occupies),
 //!   plunges (feed moves steeper than 45° ending in material), and the material left.
 //! * Coverage: a material cell left after a slab is *uncut* when the tool could have reached
 //!   it: its centre lies within `r − 2c` of the region the tool centre may visit (the pocket

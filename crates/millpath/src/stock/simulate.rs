@@ -237,7 +237,10 @@ pub fn simulate_levels(
             MoveKind::Dwell { .. } => {}
             MoveKind::Rapid => {
                 window.clear();
-                if start.z.min(m.to.z) < top - 1e-9 {
+                // A vertical retract sweeps only the column above where the tool stands: air
+                // (the tool is a cylinder), never material.
+                let retract = m.to.z >= start.z && start.xy().distance(m.to.xy()) <= 1e-9;
+                if !retract && start.z.min(m.to.z) < top - 1e-9 {
                     let hit = samples(start, m, opts.step)
                         .iter()
                         .any(|p| p.z < top - 1e-9 && ras.count_disc(p.xy(), r) > 0);
