@@ -8,6 +8,7 @@ pub mod five_axis;
 pub mod html;
 pub mod machines;
 pub mod pocket;
+pub mod pocket_report;
 pub mod sweep;
 pub mod verify;
 
