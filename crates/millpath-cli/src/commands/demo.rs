@@ -507,7 +507,24 @@ fn pockets(
 ) -> Result<Vec<Row>, Error> {
     use millpath::stock::SimOptions;
     use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
-    let part = samples::structural_part();
+    // The sample part as a drawing: its pockets written as a DXF (LWPOLYLINEs with bulges)
+    // and read back through the DXF reader, the path any drawing takes.
+    let drawn = samples::structural_part();
+    let dxf_path = out.join("sample_part.dxf");
+    let dxf = millpath::io::dxf_out::write_outlines(drawn.iter().map(|(_, s)| &s.outer), "POCKETS");
+    millpath::io::write_atomic(&dxf_path, dxf.as_bytes())?;
+    let origin = dxf_path.display().to_string();
+    let loops = millpath::io::dxf::parse(
+        dxf.as_bytes(),
+        &origin,
+        &millpath::io::dxf::DxfOptions::default(),
+    )?;
+    let mut part = Vec::new();
+    for (i, p) in loops.pockets().into_iter().enumerate() {
+        let shape =
+            pocket::PocketShape::new(p.outer, p.islands, &format!("{origin}, pocket {}", i + 1))?;
+        part.push((format!("pocket {}", i + 1), shape));
+    }
     let tool = Tool::flat(12.7)?;
     // 12.7 mm end mill, 40 % stepover, 600 in/min, two levels of 6.35 mm.
     let opts = PocketOptions {
@@ -521,6 +538,12 @@ fn pockets(
         ..SimOptions::default()
     };
     let outlines: Vec<Outline> = part.iter().map(|(_, s)| s.outer.clone()).collect();
+    let shapes: Vec<(usize, pocket::PocketShape)> = part
+        .iter()
+        .enumerate()
+        .map(|(i, (_, s))| (i + 1, s.clone()))
+        .collect();
+    let time = |tp: &Toolpath| pocket::cycle_time_on(tp, machine);
     let mut rows = Vec::new();
     for (kind, name) in [
         (StrategyKind::Zigzag, "zigzag"),
@@ -531,23 +554,22 @@ fn pockets(
             "pockets: {name} on {} pockets, stock simulation",
             part.len()
         ));
-        let mut program: Option<Toolpath> = None;
-        let mut problems = Vec::new();
-        let mut max_eng = 0.0_f64;
-        for (pname, shape) in &part {
-            let r = pocket::generate(kind, shape, &tool, &opts, &sim)?;
-            for p in r.verification.problems() {
-                problems.push(format!("{pname}: {p}"));
+        let whole = pocket::part::generate_part(
+            &shapes,
+            pocket::part::PartStrategy::One(kind),
+            &tool,
+            &opts,
+            &sim,
+            &time,
+        )?;
+        let problems = whole.verification.problems();
+        let max_eng = whole.verification.total.max_engagement_deg;
+        for p in &whole.pockets {
+            for n in p.result.iter().flat_map(|r| r.notes.iter()) {
+                pb.println(format!("note: pocket {}, {name}: {n}", p.index));
             }
-            for n in &r.notes {
-                pb.println(format!("note: {pname}, {name}: {n}"));
-            }
-            max_eng = max_eng.max(r.verification.max_engagement_deg);
-            program = Some(match program {
-                None => r.toolpath,
-                Some(acc) => append(acc, &r.toolpath),
-            });
         }
+        let program = Some(whole.toolpath);
         let Some(tp) = program else { continue };
         let wopt = WriterOptions {
             program_name: Some(format!("sample part, {name} roughing")),
@@ -623,26 +645,4 @@ fn pockets(
         });
     }
     Ok(rows)
-}
-
-/// `b` appended to `a`: a rapid to `b`'s start, then `b`'s moves and levels.
-fn append(mut a: Toolpath, b: &Toolpath) -> Toolpath {
-    let safe = a.end().z.max(b.start.z);
-    let end = a.end();
-    a.push(millpath::Move::rapid(millpath::Point3::new(
-        end.x, end.y, safe,
-    )));
-    a.push(millpath::Move::rapid(millpath::Point3::new(
-        b.start.x, b.start.y, safe,
-    )));
-    a.push(millpath::Move::rapid(b.start));
-    let offset = a.moves.len();
-    a.moves.extend_from_slice(&b.moves);
-    a.levels
-        .extend(b.levels.iter().map(|l| millpath::toolpath::Level {
-            start: l.start + offset,
-            end: l.end + offset,
-            ..l.clone()
-        }));
-    a
 }

@@ -10,6 +10,7 @@ pub mod machines;
 pub mod outline_input;
 pub mod output;
 pub mod pocket;
+pub mod pocket_report;
 pub mod sweep;
 pub mod verify;
 

@@ -69,10 +69,7 @@ impl ImportArgs {
 pub fn load_outline(name: &str, import: &ImportArgs) -> Result<Loops, Error> {
     if name == "sample:aerospace" {
         let s = samples::aerospace_pocket();
-        return Ok(Loops {
-            outer: s.outer,
-            islands: s.islands,
-        });
+        return Ok(Loops::single(s.outer, s.islands));
     }
     let path = Path::new(name);
     let ext = path

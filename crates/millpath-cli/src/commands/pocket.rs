@@ -3,18 +3,19 @@
 use millpath::gcode::{WriterOptions, write_program};
 use millpath::machine::Machine;
 use millpath::stock::SimOptions;
+use millpath::strategy::pocket::part::{PartStrategy, generate_part};
 use millpath::strategy::pocket::{
-    self, Direction, Entry, PocketOptions, PocketResult, PocketShape, Stepover, StrategyKind, Walls,
+    self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind, Walls,
 };
 use millpath::toolpath::Tool;
 use millpath::{Error, InputError};
-use serde::Serialize;
+use millpath::io::outline_json::Loops;
 use std::path::PathBuf;
 
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket sample:aerospace --depth 5 --step-down 5 --dialect fanuc --units in --tool-number 3 -o pocket.nc\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4"
+    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket sample:aerospace --depth 5 --step-down 5 --dialect fanuc --units in --tool-number 3 -o pocket.nc\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4\n  millpath pocket sheet.dxf --list                       # the drawing's pockets, by index\n  millpath pocket sheet.dxf --select 1,3 --tool-diameter 6 --depth 3 --step-down 3 -o two.ngc"
 )]
 pub struct Args {
     /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`.
@@ -36,6 +37,13 @@ pub struct Args {
     /// the summary line.
     #[arg(long)]
     pub json: bool,
+    /// Cut only these pockets of the drawing, by their index in `--list` and the report
+    /// (1-based): `1,3`, `2-4`.
+    #[arg(long)]
+    pub select: Option<String>,
+    /// List the drawing's pockets (index, area, islands, bounds) and exit.
+    #[arg(long)]
+    pub list: bool,
 }
 
 /// Options shared by `pocket` and `sweep`.
@@ -289,133 +297,16 @@ pub const DEFAULT_TRANSITION: f64 = 0.5;
 
 pub use super::outline_input::load_outline;
 
-/// The report written by `--report`.
-#[derive(Debug, Serialize)]
-pub struct Report {
-    /// Strategy name.
-    pub strategy: String,
-    /// Cycle time, s.
-    pub cycle_time_s: f64,
-    /// How the cycle time was computed.
-    pub cycle_time_model: String,
-    /// Cutting path length, mm.
-    pub path_length_mm: f64,
-    /// Rapid length, mm.
-    pub rapid_length_mm: f64,
-    /// Largest engagement, degrees.
-    pub max_engagement_deg: f64,
-    /// Mean engagement, degrees.
-    pub mean_engagement_deg: f64,
-    /// Nominal engagement, degrees.
-    pub nominal_engagement_deg: f64,
-    /// Share of the cutting length above the nominal engagement.
-    pub share_above_nominal: f64,
-    /// The stepover asked for, mm.
-    pub stepover_mm: f64,
-    /// Largest radial depth of cut measured (slotting included), mm.
-    pub max_stepover_mm: f64,
-    /// Levels.
-    pub levels: usize,
-    /// Moves.
-    pub moves: usize,
-    /// The verifier's findings.
-    pub verification: millpath::stock::Verification,
-    /// Problems found (empty when the path passes).
-    pub problems: Vec<String>,
-    /// What was changed from the options asked for, and why (a fallback after a gouge).
-    pub notes: Vec<String>,
-    /// With `--strategy auto`: every strategy tried, in `pocket::auto::ORDER`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub auto: Option<Vec<AutoEntry>>,
-}
-
-/// One strategy tried by `--strategy auto`.
-#[derive(Debug, Serialize)]
-pub struct AutoEntry {
-    /// Strategy name.
-    pub strategy: String,
-    /// Cycle time on the machine, s (`null` when not planned or not timed).
-    pub cycle_time_s: Option<f64>,
-    /// Cutting path length, mm (`null` when not planned).
-    pub path_length_mm: Option<f64>,
-    /// The verifier found no problem.
-    pub verified: bool,
-    /// Why it was not verified, or why it could not be planned.
-    pub why_not: Option<String>,
-    /// This one was written: the fastest verified.
-    pub chosen: bool,
-}
-
-/// The report's entries of `auto`'s candidates; `chosen` is the index written.
-pub fn auto_entries(candidates: &[pocket::auto::Candidate], chosen: usize) -> Vec<AutoEntry> {
-    candidates
-        .iter()
-        .enumerate()
-        .map(|(i, c)| AutoEntry {
-            strategy: c.kind.name().to_owned(),
-            cycle_time_s: c.cycle_time_s(),
-            path_length_mm: c.path_length_mm(),
-            verified: c.verified(),
-            why_not: c.why_not(),
-            chosen: i == chosen,
-        })
-        .collect()
-}
-
-/// One line per strategy `auto` tried.
-fn auto_line(e: &AutoEntry) -> String {
-    let mut line = format!("auto: {}:", e.strategy);
-    if let Some(t) = e.cycle_time_s {
-        line.push_str(&format!(" cycle time {t:.2} s,"));
-    }
-    if let Some(l) = e.path_length_mm {
-        line.push_str(&format!(" path {l:.1} mm,"));
-    }
-    match (&e.why_not, e.path_length_mm) {
-        (None, _) => line.push_str(" verified"),
-        (Some(w), Some(_)) => line.push_str(&format!(" not verified: {w}")),
-        (Some(w), None) => line.push_str(&format!(" not planned: {w}")),
-    }
-    if e.chosen {
-        line.push_str(" (fastest verified: written)");
-    }
-    line
-}
-
-/// Builds the report of a generated pocket.
-pub fn report(kind: StrategyKind, r: &PocketResult, machine: &str) -> Result<Report, Error> {
-    let m = super::load_machine(machine)?;
-    Ok(Report {
-        strategy: kind.name().to_owned(),
-        cycle_time_s: pocket::cycle_time_on(&r.toolpath, &m)
-            .map_err(|e| e.engine_made("timing the pocket toolpath"))?,
-        cycle_time_model: pocket::CYCLE_TIME_MODEL.to_owned(),
-        path_length_mm: r.toolpath.cut_length(),
-        rapid_length_mm: r.toolpath.rapid_length(),
-        max_engagement_deg: r.verification.max_engagement_deg,
-        mean_engagement_deg: r.verification.mean_engagement_deg,
-        nominal_engagement_deg: r.nominal_engagement_deg,
-        share_above_nominal: r.verification.share_above_nominal,
-        stepover_mm: r.stepover_mm,
-        max_stepover_mm: r.verification.max_radial_depth_mm,
-        levels: r.toolpath.levels.len(),
-        moves: r.toolpath.moves.len(),
-        verification: r.verification.clone(),
-        problems: r.verification.problems(),
-        notes: r.notes.clone(),
-        auto: None,
-    })
-}
-
 /// How the pocket program is written: the dialect, units, tool, spindle and coolant of
 /// `out`, stating the machine's path tolerance (`G64 P t`, `CYCLE832(t,_FINISH,1)`, Fanuc's
 /// `G05.1 Q1` with t in a comment, a comment on Grbl), the tolerance its cycle time was
-/// planned with and the one `millpath estimate` reads back. The decimals keep the rounding
-/// within the pocket's own resolution (arcs flatter than
-/// [`pocket::chain::ARC_AS_LINE_SAGITTA`], 0.0007 mm, are lines in the toolpath: 3 decimals
-/// in mm, 5 in inches) and within 10 % of the path tolerance; fewer `--decimals` are refused.
+/// planned with and the one `millpath estimate` reads back; `name` is the strategy's (or
+/// `mixed`). The decimals keep the rounding within the pocket's own resolution (arcs flatter
+/// than [`pocket::chain::ARC_AS_LINE_SAGITTA`], 0.0007 mm, are lines in the toolpath: 3
+/// decimals in mm, 5 in inches) and within 10 % of the path tolerance; fewer `--decimals`
+/// are refused.
 pub fn program_options(
-    kind: StrategyKind,
+    name: &str,
     machine: &Machine,
     out: &super::output::OutputArgs,
 ) -> Result<WriterOptions, Error> {
@@ -428,62 +319,130 @@ pub fn program_options(
     }
     let decimals = out.decimals_within(max_rounding, &why)?;
     Ok(out
-        .writer_options(decimals, format!("millpath pocket {}", kind.name()))?
+        .writer_options(decimals, format!("millpath pocket {name}"))?
         .with_path_tolerance(t))
 }
+
+/// The indices `--select` asks for (1-based, sorted, each once) among `n` pockets; all when
+/// not given.
+pub fn parse_select(text: Option<&str>, n: usize) -> Result<Vec<usize>, InputError> {
+    let Some(text) = text else {
+        return Ok((1..=n).collect());
+    };
+    let bad = || {
+        InputError::new("pocket selection", text)
+            .at("--select")
+            .expected(format!(
+                "pocket indices from 1 to {n} (as pocket --list shows them), separated by commas, \
+                 or ranges: 1,3 or 2-4"
+            ))
+    };
+    let mut out = Vec::new();
+    for item in text.split(',') {
+        let item = item.trim();
+        let (a, b) = match item.split_once('-') {
+            Some((a, b)) => (a.trim(), b.trim()),
+            None => (item, item),
+        };
+        let (Ok(a), Ok(b)) = (a.parse::<usize>(), b.parse::<usize>()) else {
+            return Err(bad());
+        };
+        if a == 0 || b < a || b > n {
+            return Err(bad());
+        }
+        out.extend(a..=b);
+    }
+    out.sort_unstable();
+    out.dedup();
+    Ok(out)
+}
+
+/// One line per pocket of the drawing, for `--list`.
+fn list_lines(loops: &Loops) -> Vec<String> {
+    loops
+        .pockets()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let b = p.outer.bounds();
+            format!(
+                "pocket {}: area {:.3} mm², {} islands, bounds ({:.3}, {:.3}) to ({:.3}, {:.3})",
+                i + 1,
+                p.area(),
+                p.islands.len(),
+                b.min.x,
+                b.min.y,
+                b.max.x,
+                b.max.y
+            )
+        })
+        .collect()
+}
+
+use super::pocket_report::{auto_line, pocket_line, report};
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
     let choice = parse_choice(&args.common.strategy)?;
     // The output flags are checked before the pocket is planned (exit 2 at once).
-    let wopts = program_options(
-        StrategyKind::Spiral,
-        &super::load_machine(&args.common.machine)?,
-        &args.program,
-    )?;
-    let (tool, opts) = args.common.options()?;
+    program_options("spiral", &super::load_machine(&args.common.machine)?, &args.program)?;
     let loops = load_outline(&args.outline, &args.common.import)?;
-    let shape =
-        args.common
-            .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;
-    let (kind, r, auto) = match choice {
-        Choice::One(kind) if opts.arcs => {
-            let m = super::load_machine(&args.common.machine)?;
-            let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
-            let sim = args.common.sim();
-            let (r, _) = pocket::auto::arcs_or_chords(kind, &shape, &tool, &opts, &sim, &time)?;
-            (kind, r, None)
+    if args.list {
+        for line in list_lines(&loops) {
+            super::print(&line);
         }
-        Choice::One(kind) => (
-            kind,
-            pocket::generate(kind, &shape, &tool, &opts, &args.common.sim())?,
-            None,
-        ),
-        Choice::Auto => {
-            let m = super::load_machine(&args.common.machine)?;
-            let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
-            let cands = pocket::auto::plan_all(&shape, &tool, &opts, &args.common.sim(), &time);
-            let Some(i) = pocket::auto::choose(&cands) else {
-                return Err(pocket::auto::none_verified(&cands));
-            };
-            let Some(r) = cands.get(i).and_then(|c| c.result()).cloned() else {
-                return Err(Error::internal(
-                    "--strategy auto: the chosen path is missing",
-                ));
-            };
-            (cands[i].kind, r, Some(auto_entries(&cands, i)))
-        }
-    };
-    let mut rep = report(kind, &r, &args.common.machine)?;
-    rep.auto = auto;
-    if let Some(out) = &args.output {
-        let wopts = WriterOptions {
-            program_name: Some(format!("millpath pocket {}", kind.name())),
-            ..wopts
+        return Ok(());
+    }
+    let (tool, opts) = args.common.options()?;
+    let selected = parse_select(args.select.as_deref(), loops.len())?;
+    if selected.len() > 1 && (args.common.draft.is_some() || args.common.bottom_outline.is_some()) {
+        return Err(InputError::new("pockets", selected.len())
+            .at(format!("{} with --draft or --bottom-outline", args.outline))
+            .expected("one pocket with inclined walls: --select one of them")
+            .into());
+    }
+    let all = loops.pockets();
+    let mut shapes = Vec::with_capacity(selected.len());
+    for &i in &selected {
+        let p = &all[i - 1];
+        let origin = if all.len() > 1 {
+            format!("{}, pocket {i}", args.outline)
+        } else {
+            args.outline.clone()
         };
-        let mut buf = Vec::new();
-        write_program(&r.toolpath, &wopts, &mut buf)
-            .map_err(|e| e.engine_made("writing the pocket program"))?;
+        let shape = PocketShape::new(p.outer.clone(), p.islands.clone(), &origin)?;
+        shapes.push((i, args.common.with_walls(shape)?));
+    }
+    let m = super::load_machine(&args.common.machine)?;
+    let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
+    let strategy = match choice {
+        Choice::One(kind) => PartStrategy::One(kind),
+        Choice::Auto => PartStrategy::Auto,
+    };
+    let part = generate_part(&shapes, strategy, &tool, &opts, &args.common.sim(), &time)?;
+    let name = match part.pockets.iter().find(|p| p.result.is_some()) {
+        Some(f)
+            if part
+                .pockets
+                .iter()
+                .filter(|p| p.result.is_some())
+                .all(|p| p.kind == f.kind) =>
+        {
+            f.kind.name().to_owned()
+        }
+        _ => "mixed".to_owned(),
+    };
+    let wopts = program_options(&name, &m, &args.program)?;
+    let mut buf = Vec::new();
+    write_program(&part.toolpath, &wopts, &mut buf)
+        .map_err(|e| e.engine_made("writing the pocket program"))?;
+    let t = super::estimate::program_time(&buf, wopts.dialect, "the written pocket program", &m)
+        .map_err(|e| e.engine_made("timing the written pocket program"))?;
+    let mut rep = report(&part, t);
+    if part.pockets.len() == 1 {
+        rep.auto = rep.pockets.first_mut().and_then(|p| p.auto.take());
+    }
+    if let Some(out) = &args.output {
         millpath::io::write_atomic(out, &buf)?;
     }
     if let Some(path) = &args.report {
@@ -493,11 +452,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
     }
     if let Some(path) = &args.html {
         let m = super::load_machine(&args.common.machine)?;
-        let plan = millpath::motion::plan_toolpath(&r.toolpath, &m)
+        let plan = millpath::motion::plan_toolpath(&part.toolpath, &m)
             .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
         let mut summary = vec![
             super::html::machine_row(&m),
-            ("strategy".to_owned(), kind.name().to_owned()),
+            ("strategy".to_owned(), name.clone()),
             (
                 "cycle time".to_owned(),
                 format!("{:.2} s", rep.cycle_time_s),
@@ -542,12 +501,14 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 .flatten()
                 .map(|e| ("--strategy auto".to_owned(), auto_line(e))),
         );
-        let mut outlines = vec![shape.outer.clone()];
-        outlines.extend(shape.islands.iter().cloned());
+        let outlines: Vec<_> = shapes
+            .iter()
+            .flat_map(|(_, s)| std::iter::once(s.outer.clone()).chain(s.islands.iter().cloned()))
+            .collect();
         let html = super::html::toolpath_report(
-            &format!("millpath pocket {} {}", args.outline, kind.name()),
+            &format!("millpath pocket {} {}", args.outline, name),
             summary,
-            &r.toolpath,
+            &part.toolpath,
             &outlines,
             &plan,
         )?;
@@ -561,6 +522,13 @@ pub fn run(args: &Args) -> Result<(), Error> {
             super::print(&auto_line(e));
         }
     }
+    if !args.json && rep.pockets.len() > 1 {
+        for p in &rep.pockets {
+            for e in p.auto.iter().flatten() {
+                super::print(&format!("pocket {}: {}", p.index, auto_line(e)));
+            }
+        }
+    }
     if args.json {
         super::print_json(&rep)?;
         for p in &rep.problems {
@@ -568,10 +536,23 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
         return Ok(());
     }
+    if rep.pockets.len() > 1 {
+        for p in &rep.pockets {
+            super::print(&pocket_line(p));
+        }
+    }
     super::print(&format!(
-        "{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
+        "{}{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
          {:.1}% above nominal, min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm²",
-        kind.name(),
+        if rep.pockets.len() > 1 {
+            format!(
+                "total of {} pockets, ",
+                rep.pockets.iter().filter(|p| p.skipped.is_none()).count()
+            )
+        } else {
+            String::new()
+        },
+        rep.strategy,
         rep.cycle_time_s,
         rep.cycle_time_model,
         rep.path_length_mm,

@@ -215,6 +215,12 @@ pub fn run(args: &Args) -> Result<(), Error> {
         "finite feeds > 0 in/min",
     )?;
     let loops = load_outline(&args.outline, &args.common.import)?;
+    if loops.len() > 1 {
+        return Err(millpath::InputError::new("pockets", loops.len())
+            .at(args.outline.clone())
+            .expected("a drawing of one pocket for the sweep (`pocket --list` shows them)")
+            .into());
+    }
     // `--draft` / `--bottom-outline` give each level its own section, as in `pocket`.
     let shape =
         args.common

@@ -46,6 +46,46 @@ pub struct Args {
     /// With --svg: also one picture per level, `NAME.level1.svg`, ...
     #[arg(long, requires = "svg")]
     pub per_level: bool,
+    /// Decimals the program was written with (the gouge test allows for its rounding,
+    /// 2·½·10^−d·√2 mm); default: the most found in the program's X, Y, Z, I, J, R words.
+    #[arg(long)]
+    pub decimals: Option<u32>,
+    /// Check only these pockets of the drawing (as `pocket --select` cut them): `1,3`.
+    #[arg(long)]
+    pub select: Option<String>,
+}
+
+/// The most decimals written in the program's coordinate words (X, Y, Z, I, J, K, R), 3 when
+/// none has any.
+pub fn program_decimals(text: &str) -> u32 {
+    let mut best = 0u32;
+    for line in text.lines() {
+        let code = line.split([';', '(']).next().unwrap_or("");
+        let b = code.as_bytes();
+        for (i, &c) in b.iter().enumerate() {
+            if !matches!(
+                c.to_ascii_uppercase(),
+                b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R'
+            ) {
+                continue;
+            }
+            let rest = &b[i + 1..];
+            let num: Vec<u8> = rest
+                .iter()
+                .copied()
+                .take_while(|d| d.is_ascii_digit() || matches!(d, b'.' | b'-' | b'+' | b' '))
+                .filter(|d| *d != b' ')
+                .collect();
+            if let Some(dot) = num.iter().position(|&d| d == b'.') {
+                let digits = num[dot + 1..]
+                    .iter()
+                    .take_while(|d| d.is_ascii_digit())
+                    .count();
+                best = best.max(digits as u32);
+            }
+        }
+    }
+    if best == 0 { 3 } else { best }
 }
 
 /// Runs the command.
@@ -73,31 +113,42 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let (mut tp, _warnings) = read_str(&text, ropts)?;
     tp.tool = tool;
     stock::infer_levels(&mut tp);
-    let spec = StockSpec {
-        outer: &loops.outer,
-        islands: &loops.islands,
-        wall_stock: args.wall_stock,
-    };
+    let decimals = args.decimals.unwrap_or_else(|| program_decimals(&text));
+    let resolution = stock::gouge_resolution(decimals);
+    let selected = super::pocket::parse_select(args.select.as_deref(), loops.len())?;
+    let pockets = loops.pockets();
+    let chosen: Vec<_> = selected.iter().map(|&i| &pockets[i - 1]).collect();
+    let specs: Vec<StockSpec<'_>> = chosen
+        .iter()
+        .map(|p| StockSpec {
+            outer: &p.outer,
+            islands: &p.islands,
+            wall_stock: args.wall_stock,
+        })
+        .collect();
     let sim = stock::SimOptions {
         cell: args.cell,
         step: (2.0 * args.cell).max(0.1),
         ..stock::SimOptions::default()
     };
-    let v = stock::verify(
+    let pv = stock::verify_part(
         &tp,
-        spec,
+        &specs,
         nominal_engagement(s, tool.radius()).to_degrees(),
         &sim,
     );
+    let v = pv.total.clone();
     if let Some(path) = &args.report {
-        let text = serde_json::to_string_pretty(&v)
+        let text = serde_json::to_string_pretty(&pv)
             .map_err(|e| Error::internal(format!("report: {e}")))?;
         millpath::io::write_atomic(path, text.as_bytes())?;
     }
     let mut pictures = Vec::new();
     if let Some(out) = &args.svg {
-        let mut outlines = vec![loops.outer.clone()];
-        outlines.extend(loops.islands.iter().cloned());
+        let outlines: Vec<_> = chosen
+            .iter()
+            .flat_map(|p| std::iter::once(p.outer.clone()).chain(p.islands.iter().cloned()))
+            .collect();
         pictures = super::write_previews(
             out,
             &tp,
@@ -109,13 +160,17 @@ pub fn run(args: &Args) -> Result<(), Error> {
             args.per_level,
         )?;
     }
-    let problems = v.problems();
+    let problems = pv.problems_within(resolution);
     if args.json {
         super::print_json(&serde_json::json!({
             "passed": problems.is_empty(),
             "problems": problems,
             "levels": tp.levels.len(),
             "verification": v,
+            "pockets": pv.pockets,
+            "cuts_outside": pv.cuts_outside,
+            "decimals": decimals,
+            "gouge_resolution_mm": resolution,
             "pictures": pictures,
         }))?;
     } else {

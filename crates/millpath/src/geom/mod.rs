@@ -4,6 +4,7 @@
 //! `Point - Point = Vec2`, `Point + Vec2 = Point`, and there is no `Point + Point`.
 
 mod aabb;
+pub mod nesting;
 mod outline;
 mod point;
 pub mod region;

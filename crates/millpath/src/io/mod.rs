@@ -12,5 +12,6 @@ pub mod points;
 pub use atomic::{write_atomic, write_atomic_with};
 pub use drawing::{Drawing, ReadOptions};
 pub mod dxf;
+pub mod dxf_out;
 pub mod outline_json;
 pub mod svg;

@@ -1,4 +1,6 @@
-//! Pocket outlines as JSON, and the loop classification every importer shares.
+//! Pocket outlines as JSON, and the loop classification every importer shares
+//! ([`classify`]: every closed outline of a drawing nested into pockets and islands by
+//! [`crate::geom::nesting`]).
 //!
 //! Schema (lengths in mm unless `"units": "in"`; a vertex is `[x, y]` or `[x, y, bulge]`, the
 //! bulge being `tan(θ/4)` of the arc of sweep θ that leaves the vertex, positive
@@ -15,16 +17,51 @@
 //! clockwise.
 
 use crate::error::InputError;
+use crate::geom::nesting::{self, Pocket};
 use crate::geom::{Outline, Point};
 use serde::Deserialize;
 
-/// An outer outline and its islands, windings normalised.
+/// The pockets of a drawing, windings normalised: the first (largest) in `outer` and
+/// `islands`, the others in `others` (by decreasing area, see [`crate::geom::nesting`]).
 #[derive(Debug, Clone)]
 pub struct Loops {
-    /// The outer outline, counter-clockwise.
+    /// The first pocket's boundary, counter-clockwise.
     pub outer: Outline,
-    /// Islands, clockwise.
+    /// The first pocket's islands, clockwise.
     pub islands: Vec<Outline>,
+    /// The drawing's other pockets (empty for one pocket).
+    pub others: Vec<Pocket>,
+}
+
+impl Loops {
+    /// One pocket.
+    pub fn single(outer: Outline, islands: Vec<Outline>) -> Self {
+        Loops {
+            outer,
+            islands,
+            others: Vec::new(),
+        }
+    }
+
+    /// Every pocket, in the listed order (1-based indices in reports and `--select`).
+    pub fn pockets(&self) -> Vec<Pocket> {
+        std::iter::once(Pocket {
+            outer: self.outer.clone(),
+            islands: self.islands.clone(),
+        })
+        .chain(self.others.iter().cloned())
+        .collect()
+    }
+
+    /// The number of pockets.
+    pub fn len(&self) -> usize {
+        1 + self.others.len()
+    }
+
+    /// Never true: a drawing read has at least one pocket.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
 }
 
 #[derive(Deserialize)]
@@ -86,19 +123,24 @@ pub fn check_islands(
     origin: &str,
 ) -> Result<Loops, InputError> {
     let (outer, islands) = crate::geom::region::validate_islands(outer, islands, origin)?;
-    Ok(Loops { outer, islands })
+    Ok(Loops::single(outer, islands))
 }
 
-/// From a set of closed loops: the one of largest area is the outline, the others islands.
-pub fn classify(mut loops: Vec<Outline>, origin: &str) -> Result<Loops, InputError> {
-    if loops.is_empty() {
+/// From a set of closed loops: every pocket and its islands, nested by containment
+/// ([`nesting::nest`]: even depth a pocket boundary, odd depth an island; touching or
+/// crossing loops refused, naming both and where they meet).
+pub fn classify(loops: Vec<Outline>, origin: &str) -> Result<Loops, InputError> {
+    let mut pockets = nesting::nest(loops, origin)?.into_iter();
+    let Some(first) = pockets.next() else {
         return Err(InputError::new("closed outlines", 0)
             .at(origin)
             .expected("at least one closed outline"));
-    }
-    loops.sort_by(|a, b| b.signed_area().abs().total_cmp(&a.signed_area().abs()));
-    let outer = loops.remove(0);
-    check_islands(outer, loops, origin)
+    };
+    Ok(Loops {
+        outer: first.outer,
+        islands: first.islands,
+        others: pockets.collect(),
+    })
 }
 
 #[cfg(test)]

@@ -4,15 +4,16 @@
 //! centre's XY path to the outline and the islands is minimised: `f(t) = dist(P(t), walls)`
 //! along the move's arc length `t` is 1-Lipschitz, so sampling it every `h` mm bounds the true
 //! minimum from below by `min − h/2`; every sample within `h/2` of the running minimum is then
-//! refined by golden-section search on `[t − h, t + h]` to 1e-10 mm (distances to the walls
-//! are exact: cavalier_contours' closest point on lines and arcs). The check is against the
+//! refined by golden-section search on `[t − h, t + h]` to 1e-9 mm (distances to the walls
+//! are exact: cavalier_contours' closest point on lines and arcs, through a spatial index of
+//! the walls, [`super::nearest`]). A straight move is measured whole, exactly
+//! ([`super::nearest::IndexedWall::distance_to_segment`]). The check is against the
 //! geometry, not the raster.
 
 use super::StockSpec;
+use super::nearest::IndexedWall;
 use crate::geom::{Point, Point3};
 use crate::toolpath::{MoveKind, Toolpath};
-use cavalier_contours::core::math::Vector2;
-use cavalier_contours::polyline::PlineSource;
 
 /// The smallest clearance and where it happens.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,33 +52,41 @@ pub fn min_clearance_levels(tp: &Toolpath, specs: &[StockSpec<'_>]) -> Clearance
             *slot = Some(li);
         }
     }
-    let walls_of = |k: usize| -> Vec<StockSpec<'_>> {
-        let mut v: Vec<StockSpec<'_>> = match level_of_move.get(k).copied().flatten() {
+    // Every spec's loops indexed once (the distance queries dominate the verifier's time).
+    let indexed: Vec<Vec<IndexedWall<'_>>> = specs
+        .iter()
+        .map(|spec| {
+            std::iter::once(spec.outer)
+                .chain(spec.islands.iter())
+                .map(|o| IndexedWall::new(o.polyline()))
+                .collect()
+        })
+        .collect();
+    let walls_of = |k: usize| -> Vec<usize> {
+        if specs.is_empty() {
+            return Vec::new();
+        }
+        let last = specs.len().saturating_sub(1);
+        let mut v: Vec<usize> = match level_of_move.get(k).copied().flatten() {
             Some(li) => {
-                let own = specs.get(li).or(specs.last()).copied();
-                let above = li
-                    .checked_sub(1)
-                    .and_then(|a| specs.get(a).or(specs.last()).copied());
-                own.into_iter().chain(above).collect()
+                let own = li.min(last);
+                let above = li.checked_sub(1).map(|a| a.min(last));
+                std::iter::once(own).chain(above).collect()
             }
-            None => specs.to_vec(),
+            None => (0..specs.len()).collect(),
         };
-        v.dedup_by(|a, b| super::simulate::same_spec(*a, *b));
+        v.dedup_by(|a, b| super::simulate::same_spec(specs[*a], specs[*b]));
         v
     };
-    let dist_to = |walls: &[StockSpec<'_>], p: Point| {
+    let dist_to = |walls: &[usize], p: Point| {
         walls
             .iter()
-            .map(|spec| {
-                std::iter::once(spec.outer)
-                    .chain(spec.islands.iter())
-                    .map(|o| {
-                        o.polyline()
-                            .closest_point(Vector2::new(p.x, p.y), 1e-12)
-                            .map_or(f64::INFINITY, |c| c.distance)
-                    })
+            .map(|&i| {
+                indexed[i]
+                    .iter()
+                    .map(|w| w.distance(p))
                     .fold(f64::INFINITY, f64::min)
-                    - (spec.wall_stock - final_stock)
+                    - (specs[i].wall_stock - final_stock)
             })
             .fold(f64::INFINITY, f64::min)
     };
@@ -91,6 +100,26 @@ pub fn min_clearance_levels(tp: &Toolpath, specs: &[StockSpec<'_>]) -> Clearance
             continue;
         }
         let walls = walls_of(k);
+        if matches!(m.kind, MoveKind::Line | MoveKind::Rapid) {
+            // A straight move: measured whole, exactly (nearest::IndexedWall).
+            let (a, b) = (from.xy(), m.to.xy());
+            for &i in &walls {
+                for w in &indexed[i] {
+                    let (d, p) = w.distance_to_segment(a, b);
+                    let d = d - (specs[i].wall_stock - final_stock);
+                    if d < best.distance {
+                        let len = a.distance(b);
+                        let f = if len > 0.0 { a.distance(p) / len } else { 1.0 };
+                        best = Clearance {
+                            distance: d,
+                            at: from.lerp(m.to, f.clamp(0.0, 1.0)),
+                            move_index: k,
+                        };
+                    }
+                }
+            }
+            continue;
+        }
         let dist = |p: Point| dist_to(&walls, p);
         let len = m.length_from(from).max(0.0);
         let pos = |t: f64| -> Point3 {
@@ -123,17 +152,23 @@ pub fn min_clearance_levels(tp: &Toolpath, specs: &[StockSpec<'_>]) -> Clearance
                 continue;
             }
             let (mut a, mut b) = ((h * i as f64 - h).max(0.0), (h * i as f64 + h).min(len));
+            // Golden section, one new distance per step (to 1e-9 mm of arc length: the
+            // distance is 1-Lipschitz, so within 1e-9 mm of the minimum's value).
             let g = 0.5 * (5f64.sqrt() - 1.0);
+            let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+            let (mut fc, mut fd) = (dist(pos(c).xy()), dist(pos(d).xy()));
             for _ in 0..80 {
-                if b - a < 1e-10 {
+                if b - a < 1e-9 {
                     break;
                 }
-                let c = b - g * (b - a);
-                let d = a + g * (b - a);
-                if dist(pos(c).xy()) < dist(pos(d).xy()) {
-                    b = d;
+                if fc < fd {
+                    (b, d, fd) = (d, c, fc);
+                    c = b - g * (b - a);
+                    fc = dist(pos(c).xy());
                 } else {
-                    a = c;
+                    (a, c, fc) = (c, d, fd);
+                    d = a + g * (b - a);
+                    fd = dist(pos(d).xy());
                 }
             }
             for t in [a, 0.5 * (a + b), h * i as f64] {

@@ -13,7 +13,8 @@
 //!   chord geometry of a one-sided cut, `φ = arccos(1 − a_e/r)` (0 at `a_e = 0`, 90° at
 //!   `a_e = r`, 180° at slotting, `a_e = 2r`). With [`SimOptions::record_samples`] it keeps
 //!   the engagement at every tool position ([`EngagementSample`]), which the pockets' feed
-//!   profile is made from. It also finds rapid moves through material,
+//!   profile is made from. It also finds rapid moves through material (a vertical retract
+//!   from where the tool stands is never one: it sweeps the column the tool occupies),
 //!   plunges (feed moves steeper than 45° ending in material), and the material left.
 //! * Coverage: a material cell left after a slab is *uncut* when the tool could have reached
 //!   it: its centre lies within `r − 2c` of the region the tool centre may visit (the pocket
@@ -27,10 +28,13 @@
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
 
 pub mod gouge;
+pub mod nearest;
+pub mod part;
 pub mod raster;
 pub mod simulate;
 
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
+pub use part::{PartVerification, verify_part};
 pub use simulate::{
     EngagementSample, MoveEngagement, SimOptions, Simulation, simulate, simulate_levels,
 };
@@ -83,15 +87,28 @@ pub struct Verification {
 /// written; a plan is held to the same.
 pub const GOUGE_RESOLUTION: f64 = 2.0 * 0.5e-3 * std::f64::consts::SQRT_2;
 
+/// [`GOUGE_RESOLUTION`] for a program written to `decimals` decimals (in mm):
+/// `2·½·10^−decimals·√2`, the coordinates' rounding and an arc written as its chord.
+pub fn gouge_resolution(decimals: u32) -> f64 {
+    2.0 * 0.5 * 10f64.powi(-(decimals.min(12) as i32)) * std::f64::consts::SQRT_2
+}
+
 /// How far uncut material may add up, mm², before coverage fails (a few cells along a
 /// boundary where the raster's rounding leaves single cells).
 pub const UNCUT_AREA_TOLERANCE: f64 = 0.05;
 
 impl Verification {
-    /// The problems found, in words; empty when the path passes.
+    /// The problems found, in words; empty when the path passes ([`GOUGE_RESOLUTION`]: a
+    /// program written to 3 decimals).
     pub fn problems(&self) -> Vec<String> {
+        self.problems_within(GOUGE_RESOLUTION)
+    }
+
+    /// The problems found, a gouge being a clearance more than `resolution` (mm, the
+    /// program's rounding, [`gouge_resolution`]) short of the required one.
+    pub fn problems_within(&self, resolution: f64) -> Vec<String> {
         let mut out = Vec::new();
-        if self.min_clearance_mm < self.required_clearance_mm - GOUGE_RESOLUTION {
+        if self.min_clearance_mm < self.required_clearance_mm - resolution {
             out.push(format!(
                 "gouge: the tool centre comes within {:.6} mm of a wall (needs {:.6})",
                 self.min_clearance_mm, self.required_clearance_mm

@@ -237,7 +237,10 @@ pub fn simulate_levels(
             MoveKind::Dwell { .. } => {}
             MoveKind::Rapid => {
                 window.clear();
-                if start.z.min(m.to.z) < top - 1e-9 {
+                // A vertical retract sweeps only the column above where the tool stands: air
+                // (the tool is a cylinder), never material.
+                let retract = m.to.z >= start.z && start.xy().distance(m.to.xy()) <= 1e-9;
+                if !retract && start.z.min(m.to.z) < top - 1e-9 {
                     let hit = samples(start, m, opts.step)
                         .iter()
                         .any(|p| p.z < top - 1e-9 && ras.count_disc(p.xy(), r) > 0);
@@ -356,16 +359,17 @@ fn reach_region(spec: StockSpec<'_>, r: f64) -> Reach {
 fn count_uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> usize {
     let (outers, islands) = reach;
     let limit = r - 2.0 * c;
+    let walls: Vec<super::nearest::IndexedWall<'_>> = outers
+        .iter()
+        .chain(islands.iter())
+        .map(super::nearest::IndexedWall::new)
+        .collect();
     ras.material_cells()
         .filter(|&p| {
             let v = cavalier_contours::core::math::Vector2::new(p.x, p.y);
             let inside = outers.iter().any(|o| o.winding_number(v) != 0)
                 && islands.iter().all(|i| i.winding_number(v) == 0);
-            inside
-                || outers.iter().chain(islands.iter()).any(|l| {
-                    l.closest_point(v, 1e-12)
-                        .is_some_and(|cp| cp.distance <= limit)
-                })
+            inside || walls.iter().any(|w| w.distance(p) <= limit)
         })
         .count()
 }

@@ -43,6 +43,7 @@ pub mod levels;
 pub mod loops;
 pub mod offset;
 pub mod options;
+pub mod part;
 pub mod samples;
 pub mod shape;
 pub mod spiral;

@@ -1,0 +1,238 @@
+//! The pockets of a whole drawing: closed outlines nested by containment.
+//!
+//! A drawing holds closed outlines in any order and winding. [`nest`] sorts them by area
+//! (largest first) and gives each its **parent**, the smallest outline that contains it;
+//! its **depth** is the number of outlines around it. Even depth is a pocket boundary, odd
+//! depth an island of its parent's pocket, and an outline inside an island (depth 2) is a
+//! pocket again:
+//!
+//! ```text
+//!  ┌──────────────── depth 0: pocket 1 ───────────────┐   ┌─ depth 0: pocket 2 ─┐
+//!  │   ┌──── depth 1: island ────┐                    │   │                     │
+//!  │   │  ┌ depth 2: pocket 3 ┐  │                    │   └─────────────────────┘
+//!  │   │  └───────────────────┘  │                    │
+//!  │   └─────────────────────────┘                    │
+//!  └──────────────────────────────────────────────────┘
+//! ```
+//!
+//! Windings are normalised (pocket boundaries counter-clockwise, islands clockwise).
+//!
+//! **Containment.** Outlines that neither touch nor cross are either nested or apart, so one
+//! point of an outline decides whether another contains it (its first vertex, by winding
+//! number). Two outlines that touch, cross or overlap (cavalier_contours' intersections, or a
+//! vertex of either within [`region::TOUCH_EPS`] of the other) are refused with an input
+//! error naming both (their index in the order read and a vertex of each) and the point where
+//! they meet: a wall of zero thickness cannot be machined, and the drawing is ambiguous there.
+//!
+//! **Order.** Pockets are listed by decreasing area (a tie by the lower-left corner of their
+//! bounds), which does not depend on the order the CAD program wrote the entities in, nor on
+//! the drawing's scale or position; the pocket command's `--select` uses this order (1-based).
+//!
+//! **Cost.** Pairs are tested only when their bounds overlap: `O(n²)` bound tests, and one
+//! intersection test per overlapping pair (`O(m log m)` in their vertex counts).
+
+use super::region::TOUCH_EPS;
+use super::{Outline, Point, Winding};
+use crate::error::InputError;
+use cavalier_contours::polyline::PlineSource;
+
+/// One pocket of a drawing: its boundary and its islands.
+#[derive(Debug, Clone)]
+pub struct Pocket {
+    /// The boundary, counter-clockwise.
+    pub outer: Outline,
+    /// Islands, clockwise.
+    pub islands: Vec<Outline>,
+}
+
+impl Pocket {
+    /// Area of material to remove: the boundary's area less the islands', mm².
+    pub fn area(&self) -> f64 {
+        self.outer.signed_area().abs()
+            - self
+                .islands
+                .iter()
+                .map(|i| i.signed_area().abs())
+                .sum::<f64>()
+    }
+
+    /// True when `p` lies inside the boundary and outside every island.
+    pub fn contains(&self, p: Point) -> bool {
+        self.outer.contains(p) && !self.islands.iter().any(|i| i.contains(p))
+    }
+}
+
+/// Where two closed loops meet: an intersection point, or a vertex of one within
+/// [`TOUCH_EPS`] of the other; `None` when they are apart.
+pub fn touch_point(a: &Outline, b: &Outline) -> Option<Point> {
+    let (pa, pb) = (a.polyline(), b.polyline());
+    let hits = pa.find_intersects(pb);
+    if let Some(h) = hits.basic_intersects.first() {
+        return Some(Point::new(h.point.x, h.point.y));
+    }
+    if let Some(h) = hits.overlapping_intersects.first() {
+        return Some(Point::new(h.point1.x, h.point1.y));
+    }
+    let near = |p: &Outline, q: &Outline| {
+        p.vertices()
+            .map(|v| v.0)
+            .find(|&v| q.distance_to(v) <= TOUCH_EPS)
+    };
+    near(a, b).or_else(|| near(b, a))
+}
+
+fn first_vertex(o: &Outline) -> Point {
+    o.vertices().next().map_or(Point::ORIGIN, |v| v.0)
+}
+
+/// Nests closed outlines by containment into pockets (see the module docs); `origin` names
+/// the drawing. At least one outline is needed.
+pub fn nest(loops: Vec<Outline>, origin: &str) -> Result<Vec<Pocket>, InputError> {
+    if loops.is_empty() {
+        return Err(InputError::new("closed outlines", 0)
+            .at(origin)
+            .expected("at least one closed outline"));
+    }
+    let bounds: Vec<_> = loops.iter().map(|o| o.bounds()).collect();
+    let mut order: Vec<usize> = (0..loops.len()).collect();
+    let area = |i: usize| loops[i].signed_area().abs();
+    order.sort_by(|&a, &b| {
+        area(b)
+            .total_cmp(&area(a))
+            .then(bounds[a].min.x.total_cmp(&bounds[b].min.x))
+            .then(bounds[a].min.y.total_cmp(&bounds[b].min.y))
+    });
+    // Touching, crossing or overlapping pairs.
+    for (x, &i) in order.iter().enumerate() {
+        let bi = bounds[i].inflate(TOUCH_EPS);
+        for &j in &order[x + 1..] {
+            let bj = bounds[j];
+            let overlap = bi.min.x <= bj.max.x
+                && bj.min.x <= bi.max.x
+                && bi.min.y <= bj.max.y
+                && bj.min.y <= bi.max.y;
+            if !overlap {
+                continue;
+            }
+            if let Some(p) = touch_point(&loops[i], &loops[j]) {
+                let (a, b) = (i.min(j), i.max(j));
+                // `+ 0.0` writes −0 as 0.
+                let (va, vb) = (first_vertex(&loops[a]), first_vertex(&loops[b]));
+                let (va, vb) = (
+                    Point::new(va.x + 0.0, va.y + 0.0),
+                    Point::new(vb.x + 0.0, vb.y + 0.0),
+                );
+                let p = Point::new(p.x + 0.0, p.y + 0.0);
+                return Err(InputError::new(
+                    "closed outlines",
+                    format!(
+                        "{} (from ({:.3}, {:.3})) and {} (from ({:.3}, {:.3}))",
+                        a + 1,
+                        va.x,
+                        va.y,
+                        b + 1,
+                        vb.x,
+                        vb.y
+                    ),
+                )
+                .at(format!(
+                    "{origin}, where they meet near ({:.3}, {:.3})",
+                    p.x, p.y
+                ))
+                .expected(
+                    "closed outlines that do not touch, cross or overlap (each a pocket wall \
+                     or an island inside one)",
+                ));
+            }
+        }
+    }
+    // Parent: the smallest earlier (larger) outline containing the first vertex.
+    let mut depth = vec![0usize; loops.len()];
+    let mut parent: Vec<Option<usize>> = vec![None; loops.len()];
+    for (x, &j) in order.iter().enumerate() {
+        let p = first_vertex(&loops[j]);
+        if let Some(&i) = order[..x]
+            .iter()
+            .rev()
+            .find(|&&i| bounds[i].contains(p) && loops[i].contains(p))
+        {
+            parent[j] = Some(i);
+            depth[j] = depth[i] + 1;
+        }
+    }
+    let mut slots: Vec<Option<Outline>> = loops.into_iter().map(Some).collect();
+    let mut pocket_of = vec![usize::MAX; slots.len()];
+    let mut pockets: Vec<Pocket> = Vec::new();
+    for &j in &order {
+        let Some(o) = slots[j].take() else { continue };
+        if depth[j] % 2 == 0 {
+            pocket_of[j] = pockets.len();
+            pockets.push(Pocket {
+                outer: o.with_winding(Winding::CounterClockwise),
+                islands: Vec::new(),
+            });
+        } else if let Some(k) = parent[j].map(|i| pocket_of[i]) {
+            if let Some(pk) = pockets.get_mut(k) {
+                pk.islands.push(o.with_winding(Winding::Clockwise));
+            }
+        }
+    }
+    // Pockets by decreasing area of material (islands taken off).
+    pockets.sort_by(|a, b| {
+        b.area()
+            .total_cmp(&a.area())
+            .then(a.outer.bounds().min.x.total_cmp(&b.outer.bounds().min.x))
+            .then(a.outer.bounds().min.y.total_cmp(&b.outer.bounds().min.y))
+    });
+    Ok(pockets)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: f64, y: f64, s: f64, ccw: bool) -> Outline {
+        let mut p = vec![
+            Point::new(x, y),
+            Point::new(x + s, y),
+            Point::new(x + s, y + s),
+            Point::new(x, y + s),
+        ];
+        if !ccw {
+            p.reverse();
+        }
+        Outline::from_points(&p, "test").expect("square")
+    }
+
+    #[test]
+    fn nests_pockets_islands_and_pockets_in_islands() {
+        // Two parts side by side; the first has an island with a pocket inside it.
+        let loops = vec![
+            square(20.0, 20.0, 10.0, true), // pocket inside the island
+            square(0.0, 0.0, 100.0, false), // part 1 (given clockwise)
+            square(150.0, 0.0, 40.0, true), // part 2
+            square(10.0, 10.0, 30.0, true), // island of part 1 (given counter-clockwise)
+        ];
+        let p = nest(loops, "t").expect("nests");
+        assert_eq!(p.len(), 3);
+        assert!((p[0].area() - (10_000.0 - 900.0)).abs() < 1e-9);
+        assert_eq!(p[0].islands.len(), 1);
+        assert_eq!(p[0].outer.winding(), Winding::CounterClockwise);
+        assert_eq!(p[0].islands[0].winding(), Winding::Clockwise);
+        assert!((p[1].area() - 1600.0).abs() < 1e-9);
+        assert!((p[2].area() - 100.0).abs() < 1e-9);
+        assert!(p[2].contains(Point::new(25.0, 25.0)));
+        assert!(!p[0].contains(Point::new(25.0, 25.0)));
+    }
+
+    #[test]
+    fn refuses_touching_outlines_naming_both_and_where() {
+        let loops = vec![square(0.0, 0.0, 10.0, true), square(10.0, 2.0, 5.0, true)];
+        let e = nest(loops, "d.dxf").unwrap_err().to_string();
+        assert!(e.contains("1 (from (0.000, 0.000)) and 2"), "{e}");
+        assert!(e.contains("d.dxf, where they meet near (10.000"), "{e}");
+        let crossing = vec![square(0.0, 0.0, 10.0, true), square(5.0, 5.0, 10.0, true)];
+        assert!(nest(crossing, "c").is_err());
+        assert!(nest(Vec::new(), "e").is_err());
+    }
+}

@@ -1,0 +1,275 @@
+//! Distance from a point to a pocket's walls through a spatial index of their segments.
+//!
+//! The verifier asks for the distance from the tool centre to the walls at every sample of
+//! every move (and for every material cell left); a scan of every segment costs `O(n)` per
+//! query, which on a dense outline (a 780-segment gear) was 95 % of `verify`'s time. Here
+//! each loop's segment boxes are indexed once (cavalier_contours' packed Hilbert R-tree,
+//! `create_aabb_index`) and a query visits boxes nearest first, stopping once a box is
+//! farther than the best distance found: the same exact distance (closest point on lines and
+//! arcs), about `O(log n)` per query.
+//!
+//! A straight move is measured whole ([`IndexedWall::distance_to_segment`]): the segments
+//! that can be nearer than the move's start are those whose boxes meet the move's box grown
+//! by that distance, and against each the exact distance between a segment and a line or an
+//! arc is a minimum over few candidates: 0 where they cross; else an end of either (an end of
+//! the move to the wall piece, an end of the wall piece to the move); and for an arc, the
+//! point of the move nearest the arc's centre, when the circle's point in that direction
+//! lies on the arc (the only interior critical point of the distance from a line to a
+//! circle outside it).
+
+use crate::geom::Point;
+use cavalier_contours::core::math::Vector2;
+use cavalier_contours::polyline::{PlineSource, Polyline, seg_closest_point};
+use cavalier_contours::static_aabb2d_index::{Control, NeighborPriorityQueue, StaticAABB2DIndex};
+use std::cell::RefCell;
+
+/// Loops of at most this many segments are scanned segment by segment.
+const SCAN_SEGMENTS: usize = 32;
+
+/// One loop and the index of its segments.
+#[derive(Debug)]
+pub struct IndexedWall<'a> {
+    pl: &'a Polyline<f64>,
+    index: Option<StaticAABB2DIndex<f64>>,
+    queue: RefCell<NeighborPriorityQueue<f64>>,
+}
+
+impl<'a> IndexedWall<'a> {
+    /// Indexes the segments of the closed loop `pl`.
+    pub fn new(pl: &'a Polyline<f64>) -> Self {
+        let index = (pl.vertex_count() > SCAN_SEGMENTS).then(|| pl.create_aabb_index());
+        IndexedWall {
+            pl,
+            index,
+            queue: RefCell::new(NeighborPriorityQueue::new()),
+        }
+    }
+
+    /// Exact distance from `p` to the loop (infinite for a loop without segments).
+    pub fn distance(&self, p: Point) -> f64 {
+        let n = self.pl.vertex_count();
+        let q = Vector2::new(p.x, p.y);
+        let mut best = f64::INFINITY;
+        if n < 2 {
+            return best;
+        }
+        let seg = |i: usize| {
+            let c = seg_closest_point(self.pl.at(i), self.pl.at((i + 1) % n), q, 1e-12);
+            (c - q).length()
+        };
+        match &self.index {
+            None => (0..n).map(seg).fold(best, f64::min),
+            Some(index) => {
+                let mut visit = |i: usize, box_d2: f64| -> Control<()> {
+                    if box_d2 > best * best {
+                        return Control::Break(());
+                    }
+                    best = best.min(seg(i));
+                    Control::Continue
+                };
+                let mut queue = self.queue.borrow_mut();
+                index.visit_neighbors_with_queue(p.x, p.y, &mut visit, &mut queue);
+                best
+            }
+        }
+    }
+}
+
+impl IndexedWall<'_> {
+    /// Exact distance from the segment `a`–`b` to the loop, and the point of the segment
+    /// where it is reached (see the module docs).
+    pub fn distance_to_segment(&self, a: Point, b: Point) -> (f64, Point) {
+        let start = self.distance(a);
+        let n = self.pl.vertex_count();
+        if n < 2 || !start.is_finite() {
+            return (start, a);
+        }
+        let mut best = (start, a);
+        let grow = start;
+        let (lo_x, hi_x) = (a.x.min(b.x) - grow, a.x.max(b.x) + grow);
+        let (lo_y, hi_y) = (a.y.min(b.y) - grow, a.y.max(b.y) + grow);
+        let candidates: Vec<usize> = match &self.index {
+            Some(index) => index.query(lo_x, lo_y, hi_x, hi_y),
+            None => (0..n).collect(),
+        };
+        for i in candidates {
+            let (v1, v2) = (self.pl.at(i), self.pl.at((i + 1) % n));
+            let d = seg_to_piece(a, b, v1, v2);
+            if d.0 < best.0 {
+                best = d;
+            }
+        }
+        best
+    }
+}
+
+fn v(p: Point) -> Vector2<f64> {
+    Vector2::new(p.x, p.y)
+}
+
+fn pt(q: Vector2<f64>) -> Point {
+    Point::new(q.x, q.y)
+}
+
+/// The point of segment `a`–`b` nearest `q`.
+fn foot(a: Point, b: Point, q: Point) -> Point {
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let l2 = dx * dx + dy * dy;
+    if l2 <= 0.0 {
+        return a;
+    }
+    let t = (((q.x - a.x) * dx + (q.y - a.y) * dy) / l2).clamp(0.0, 1.0);
+    Point::new(a.x + t * dx, a.y + t * dy)
+}
+
+/// Distance from `q` to the wall piece `v1`–`v2` (line or arc), exact.
+fn to_piece(
+    v1: cavalier_contours::polyline::PlineVertex<f64>,
+    v2: cavalier_contours::polyline::PlineVertex<f64>,
+    q: Point,
+) -> f64 {
+    (seg_closest_point(v1, v2, v(q), 1e-12) - v(q)).length()
+}
+
+/// Exact distance between the segment `a`–`b` and the wall piece `v1`–`v2`, and where on
+/// the segment it is reached.
+fn seg_to_piece(
+    a: Point,
+    b: Point,
+    v1: cavalier_contours::polyline::PlineVertex<f64>,
+    v2: cavalier_contours::polyline::PlineVertex<f64>,
+) -> (f64, Point) {
+    let mut best = (to_piece(v1, v2, a), a);
+    let mut consider = |d: f64, p: Point| {
+        if d < best.0 {
+            best = (d, p);
+        }
+    };
+    consider(to_piece(v1, v2, b), b);
+    for w in [pt(v1.pos()), pt(v2.pos())] {
+        let f = foot(a, b, w);
+        consider(f.distance(w), f);
+    }
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    if v1.bulge_is_zero() {
+        // Proper crossing of two segments: distance 0 at the crossing.
+        let (ex, ey) = (v2.x - v1.x, v2.y - v1.y);
+        let den = dx * ey - dy * ex;
+        if den.abs() > 1e-300 {
+            let t = ((v1.x - a.x) * ey - (v1.y - a.y) * ex) / den;
+            let u = ((v1.x - a.x) * dy - (v1.y - a.y) * dx) / den;
+            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+                consider(0.0, Point::new(a.x + t * dx, a.y + t * dy));
+            }
+        }
+        return best;
+    }
+    let (r, c) = cavalier_contours::polyline::seg_arc_radius_and_center(v1, v2);
+    let c = pt(c);
+    let on_arc = |p: Point| to_piece(v1, v2, p) <= 1e-9 * r.max(1.0);
+    // The move's point nearest the centre.
+    let f = foot(a, b, c);
+    let dc = f.distance(c);
+    if dc > r && dc > 0.0 {
+        let on_circle = Point::new(c.x + (f.x - c.x) * r / dc, c.y + (f.y - c.y) * r / dc);
+        if on_arc(on_circle) {
+            consider(dc - r, f);
+        }
+    }
+    // Crossings of the move's line with the circle, on both.
+    let l2 = dx * dx + dy * dy;
+    if l2 > 0.0 {
+        let (fx, fy) = (a.x - c.x, a.y - c.y);
+        let bq = 2.0 * (fx * dx + fy * dy);
+        let cq = fx * fx + fy * fy - r * r;
+        let disc = bq * bq - 4.0 * l2 * cq;
+        if disc >= 0.0 {
+            let sq = disc.sqrt();
+            for t in [(-bq - sq) / (2.0 * l2), (-bq + sq) / (2.0 * l2)] {
+                if (0.0..=1.0).contains(&t) {
+                    let p = Point::new(a.x + t * dx, a.y + t * dy);
+                    if on_arc(p) {
+                        consider(0.0, p);
+                    }
+                }
+            }
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Outline;
+
+    #[test]
+    fn indexed_distance_equals_the_scan() {
+        // A 200-gon with wobbly radius and an arc: the index against every segment.
+        let pts: Vec<(Point, f64)> = (0..200)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 200.0;
+                let r = 20.0 + 3.0 * (7.0 * a).sin();
+                (
+                    Point::new(r * a.cos(), r * a.sin()),
+                    if k == 5 { 0.3 } else { 0.0 },
+                )
+            })
+            .collect();
+        let o = Outline::new(&pts, "t").expect("outline");
+        let w = IndexedWall::new(o.polyline());
+        for k in 0..500 {
+            let p = Point::new(
+                (k as f64 * 0.37).sin() * 30.0,
+                (k as f64 * 0.61).cos() * 30.0,
+            );
+            let scan = o.distance_to(p);
+            assert!((w.distance(p) - scan).abs() < 1e-12, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn segment_distance_equals_dense_sampling() {
+        let pts: Vec<(Point, f64)> = (0..120)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 120.0;
+                let r = 20.0 + 3.0 * (5.0 * a).sin();
+                (
+                    Point::new(r * a.cos(), r * a.sin()),
+                    if k % 7 == 0 {
+                        -0.2
+                    } else {
+                        0.1 * (k % 3) as f64
+                    },
+                )
+            })
+            .collect();
+        let o = Outline::new(&pts, "t").expect("outline");
+        let w = IndexedWall::new(o.polyline());
+        for k in 0..300 {
+            let a = Point::new(
+                (k as f64 * 0.37).sin() * 25.0,
+                (k as f64 * 0.61).cos() * 25.0,
+            );
+            let b = Point::new(
+                a.x + (k as f64 * 1.3).cos() * 6.0,
+                a.y + (k as f64 * 0.7).sin() * 6.0,
+            );
+            let (d, at) = w.distance_to_segment(a, b);
+            // Dense sampling bounds the true minimum from above (to within the spacing).
+            let n = 20_000;
+            let sampled = (0..=n)
+                .map(|i| o.distance_to(a.lerp(b, i as f64 / n as f64)))
+                .fold(f64::INFINITY, f64::min);
+            assert!(d <= sampled + 1e-9, "{k}: {d} > sampled {sampled}");
+            assert!(
+                d >= sampled - 6.0 / n as f64 - 1e-9,
+                "{k}: {d} < sampled {sampled}"
+            );
+            assert!(
+                (o.distance_to(at) - d).abs() < 1e-7,
+                "{k}: reached at {at:?}"
+            );
+        }
+    }
+}

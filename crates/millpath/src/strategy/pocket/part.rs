@@ -1,0 +1,300 @@
+//! A whole part: every pocket of a drawing cut in one program.
+//!
+//! [`generate_part`] plans each pocket on its own ([`super::generate`], or [`super::auto`]
+//! per pocket: each pocket gets the fastest verified strategy), with its own entry, levels
+//! and feed profile, orders the pockets to keep the rapids between them short
+//! ([`order_pockets`]) and joins their toolpaths: the tool leaves a pocket at the clearance
+//! height (every pocket's toolpath ends with a retract there and starts there), and a rapid at
+//! that height takes it to the next pocket's start. The joined program is verified as a whole
+//! by [`crate::stock::verify_part`], which finds from the geometry alone which moves cut
+//! which pocket (a single pocket's program is its toolpath, verified by `generate` already).
+//!
+//! A pocket a strategy refuses as bad input (narrower than the tool, say) is left out with
+//! a [`PartPocket::skipped`] reason, so the rest of the part is still cut; when every
+//! pocket is refused the first pocket's error is returned.
+//!
+//! **Order.** The cost of going from pocket `i` to pocket `j` is the rapid from the end of
+//! `i`'s toolpath to the start of `j`'s (`d(e_i, s_j)`, not symmetric). The tour starts at
+//! the pocket whose start is nearest the origin (where the program starts) and goes each time
+//! to the nearest pocket not yet cut (nearest neighbour); then 2-opt: a stretch of the tour is
+//! reversed when the whole tour gets shorter (the costs being asymmetric, each candidate is
+//! costed over the whole tour, `O(n)`), until no reversal helps (2-opt runs up to
+//! [`TWO_OPT_MAX`] pockets; beyond that the nearest-neighbour tour is kept).
+
+use super::auto;
+use super::{PocketOptions, PocketResult, PocketShape, StrategyKind};
+use crate::error::{Error, Result};
+use crate::geom::{Point, Point3};
+use crate::stock::{self, PartVerification, SimOptions, StockSpec};
+use crate::toolpath::{Level, Move, Tool, Toolpath};
+
+/// Most pockets 2-opt improves the order of (`O(n³)` per pass).
+pub const TWO_OPT_MAX: usize = 200;
+
+/// One pocket of a part.
+#[derive(Debug, Clone)]
+pub struct PartPocket {
+    /// Its index in the drawing's list (1-based, as `--select` takes it).
+    pub index: usize,
+    /// Area of material, mm².
+    pub area_mm2: f64,
+    /// The strategy that cut it.
+    pub kind: StrategyKind,
+    /// Its toolpath and verification (`None` when skipped).
+    pub result: Option<PocketResult>,
+    /// Its cycle time alone, s (`None` when skipped).
+    pub cycle_time_s: Option<f64>,
+    /// Why it was left out (`None` when cut).
+    pub skipped: Option<String>,
+    /// With `auto`: every strategy tried on it.
+    pub auto: Option<Vec<auto::Candidate>>,
+}
+
+/// A whole part's program.
+#[derive(Debug, Clone)]
+pub struct PartResult {
+    /// The pockets, in cutting order (skipped ones last).
+    pub pockets: Vec<PartPocket>,
+    /// The joined toolpath.
+    pub toolpath: Toolpath,
+    /// The whole program's verification, against the pockets cut.
+    pub verification: PartVerification,
+}
+
+/// What to cut each pocket with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PartStrategy {
+    /// One strategy for every pocket.
+    One(StrategyKind),
+    /// The fastest verified of the three, per pocket ([`auto`]).
+    Auto,
+}
+
+/// Plans, orders, joins and verifies every pocket of `shapes` (each with its 1-based index in
+/// the drawing); `time` gives a toolpath's cycle time on the machine (the strategy layer does
+/// not plan motion).
+pub fn generate_part(
+    shapes: &[(usize, PocketShape)],
+    strategy: PartStrategy,
+    tool: &Tool,
+    opts: &PocketOptions,
+    sim: &SimOptions,
+    time: &(dyn Fn(&Toolpath) -> Result<f64> + Sync),
+) -> Result<PartResult> {
+    let mut cut: Vec<PartPocket> = Vec::new();
+    let mut skipped: Vec<PartPocket> = Vec::new();
+    let mut first_error: Option<Error> = None;
+    for (index, shape) in shapes {
+        let area = shape.outer.signed_area().abs()
+            - shape
+                .islands
+                .iter()
+                .map(|i| i.signed_area().abs())
+                .sum::<f64>();
+        let planned: Result<(StrategyKind, PocketResult, Option<Vec<auto::Candidate>>)> =
+            match strategy {
+                PartStrategy::One(kind) => {
+                    auto::arcs_or_chords(kind, shape, tool, opts, sim, time)
+                        .map(|(r, _)| (kind, r, None))
+                }
+                PartStrategy::Auto => {
+                    let cands = auto::plan_all(shape, tool, opts, sim, time);
+                    match auto::choose(&cands).and_then(|i| {
+                        cands
+                            .get(i)
+                            .and_then(|c| c.result().cloned().map(|r| (c.kind, r)))
+                    }) {
+                        Some((kind, r)) => Ok((kind, r, Some(cands))),
+                        None => Err(auto::none_verified(&cands)),
+                    }
+                }
+            };
+        match planned {
+            Ok((kind, r, cands)) => {
+                let t = time(&r.toolpath)
+                    .map_err(|e| e.engine_made(&format!("timing pocket {index}")))?;
+                cut.push(PartPocket {
+                    index: *index,
+                    area_mm2: area,
+                    kind,
+                    result: Some(r),
+                    cycle_time_s: Some(t),
+                    skipped: None,
+                    auto: cands,
+                });
+            }
+            Err(Error::Input(e)) if shapes.len() > 1 => {
+                skipped.push(PartPocket {
+                    index: *index,
+                    area_mm2: area,
+                    kind: match strategy {
+                        PartStrategy::One(k) => k,
+                        PartStrategy::Auto => StrategyKind::Offset,
+                    },
+                    result: None,
+                    cycle_time_s: None,
+                    skipped: Some(e.to_string()),
+                    auto: None,
+                });
+                first_error.get_or_insert(Error::Input(e));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    if cut.is_empty() {
+        return Err(first_error
+            .unwrap_or_else(|| Error::internal("a part without pockets reached the planner")));
+    }
+    let ends: Vec<(Point, Point)> = cut
+        .iter()
+        .filter_map(|p| p.result.as_ref())
+        .map(|r| (r.toolpath.start.xy(), r.toolpath.end().xy()))
+        .collect();
+    let order = order_pockets(&ends, Point::ORIGIN);
+    let mut slots: Vec<Option<PartPocket>> = cut.into_iter().map(Some).collect();
+    let mut ordered: Vec<PartPocket> = order.iter().filter_map(|&i| slots[i].take()).collect();
+    let toolpath = join(
+        ordered
+            .iter()
+            .filter_map(|p| p.result.as_ref().map(|r| &r.toolpath)),
+        *tool,
+        opts.clearance_height,
+    );
+    let shapes_cut: Vec<&PocketShape> = ordered
+        .iter()
+        .filter_map(|p| shapes.iter().find(|(i, _)| *i == p.index).map(|(_, s)| s))
+        .collect();
+    let last_stock = if opts.finish { 0.0 } else { opts.wall_stock };
+    let specs: Vec<StockSpec<'_>> = shapes_cut
+        .iter()
+        .map(|s| StockSpec {
+            outer: &s.outer,
+            islands: &s.islands,
+            wall_stock: last_stock,
+        })
+        .collect();
+    let nominal = super::nominal_engagement(opts.stepover_mm(tool), tool.radius()).to_degrees();
+    // One pocket: the program is its toolpath, which `generate` verified already (level by
+    // level against its sections, inclined walls included).
+    let single = match ordered.as_slice() {
+        [only] => only.result.as_ref().map(|r| r.verification.clone()),
+        _ => None,
+    };
+    let verification = match single {
+        Some(v) => PartVerification {
+            total: v.clone(),
+            pockets: vec![v],
+            cuts_outside: 0,
+        },
+        None => stock::verify_part(&toolpath, &specs, nominal, sim),
+    };
+    ordered.extend(skipped);
+    Ok(PartResult {
+        pockets: ordered,
+        toolpath,
+        verification,
+    })
+}
+
+/// Joins toolpaths that each start and end at the clearance height `clear`: a rapid at that
+/// height from the end of one to the start of the next; levels kept, renumbered.
+pub fn join<'a>(paths: impl IntoIterator<Item = &'a Toolpath>, tool: Tool, clear: f64) -> Toolpath {
+    let mut out: Option<Toolpath> = None;
+    for tp in paths {
+        let joined = out.get_or_insert_with(|| Toolpath::new(tool, tp.start));
+        let end = joined.end();
+        if end != tp.start {
+            // Up first where the last path did not end at the clearance height.
+            if end.z < clear {
+                joined.push(Move::rapid(Point3::new(end.x, end.y, clear)));
+            }
+            joined.push(Move::rapid(Point3::from_xy(
+                tp.start.xy(),
+                clear.max(tp.start.z),
+            )));
+            if tp.start.z < clear {
+                joined.push(Move::rapid(tp.start));
+            }
+        }
+        let base = joined.moves.len();
+        joined.moves.extend_from_slice(&tp.moves);
+        joined.levels.extend(tp.levels.iter().map(|l| Level {
+            start: l.start + base,
+            end: l.end + base,
+            ..*l
+        }));
+    }
+    out.unwrap_or_else(|| Toolpath::new(tool, Point3::new(0.0, 0.0, clear)))
+}
+
+/// The order to cut pockets in, given each one's (start, end) in the plane and where the
+/// tool starts (see the module docs: nearest neighbour, then 2-opt).
+pub fn order_pockets(ends: &[(Point, Point)], home: Point) -> Vec<usize> {
+    let n = ends.len();
+    let mut tour: Vec<usize> = Vec::with_capacity(n);
+    let mut left: Vec<usize> = (0..n).collect();
+    let mut at = home;
+    while !left.is_empty() {
+        let (k, _) = left
+            .iter()
+            .enumerate()
+            .map(|(k, &i)| (k, at.distance(ends[i].0)))
+            .fold((0, f64::INFINITY), |b, c| if c.1 < b.1 { c } else { b });
+        let i = left.remove(k);
+        at = ends[i].1;
+        tour.push(i);
+    }
+    if n <= TWO_OPT_MAX {
+        let cost = |t: &[usize]| tour_length(ends, home, t);
+        let mut best = cost(&tour);
+        let mut improved = true;
+        while improved {
+            improved = false;
+            for i in 0..n {
+                for j in i + 1..n {
+                    tour[i..=j].reverse();
+                    let c = cost(&tour);
+                    if c < best - 1e-9 {
+                        best = c;
+                        improved = true;
+                    } else {
+                        tour[i..=j].reverse();
+                    }
+                }
+            }
+        }
+    }
+    tour
+}
+
+/// Length of the rapids of a tour: from `home` to the first start, then end to start.
+pub fn tour_length(ends: &[(Point, Point)], home: Point, tour: &[usize]) -> f64 {
+    let mut at = home;
+    let mut sum = 0.0;
+    for &i in tour {
+        sum += at.distance(ends[i].0);
+        at = ends[i].1;
+    }
+    sum
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_opt_untangles_a_crossed_tour() {
+        // Pockets on a line, each starting and ending at its own point: the best tour visits
+        // them in order from the origin.
+        let xs = [0.0, 40.0, 10.0, 30.0, 20.0];
+        let ends: Vec<(Point, Point)> = xs
+            .iter()
+            .map(|&x| (Point::new(x, 5.0), Point::new(x, 5.0)))
+            .collect();
+        let t = order_pockets(&ends, Point::ORIGIN);
+        let visited: Vec<f64> = t.iter().map(|&i| xs[i]).collect();
+        assert_eq!(visited, vec![0.0, 10.0, 20.0, 30.0, 40.0]);
+        let worst = tour_length(&ends, Point::ORIGIN, &[0, 1, 2, 3, 4]);
+        assert!(tour_length(&ends, Point::ORIGIN, &t) < worst);
+    }
+}
