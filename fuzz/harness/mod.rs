@@ -171,8 +171,67 @@ pub fn gcode_reader(data: &[u8]) {
     for rm in rd.by_ref().take(100_000).flatten() {
         assert!(!rm.mv.to.x.is_nan(), "reader produced a NaN target");
     }
-    if let Ok(text) = std::str::from_utf8(body) {
-        let _ = read_str(text, opts);
+    if let Ok(text) = std::str::from_utf8(body)
+        && let Ok((tp, _)) = read_str(text, opts)
+        && strict_verify()
+    {
+        round_trip(&tp, text);
+    }
+}
+
+/// Writes what the reader read (LinuxCNC, 10 decimals) and reads it back: the same moves,
+/// ends within 1e-9 of their magnitude (a rapid to the start first when the program's first
+/// motion is an arc, as the writer writes it). A program the writer refuses (an input error:
+/// an arc below its smallest radius, a coordinate it cannot write) is not checked.
+pub fn round_trip(tp: &Toolpath, text: &str) {
+    use millpath::gcode::{WriterOptions, write_to_string};
+    if tp.moves.is_empty() {
+        return;
+    }
+    let wopts = WriterOptions {
+        dialect: Dialect::LinuxCnc,
+        decimals: Some(10),
+        ..WriterOptions::default()
+    };
+    let written = match write_to_string(tp, &wopts) {
+        Ok((w, _)) => w,
+        Err(millpath::Error::Input(_)) => return,
+        Err(e) => panic!("the writer failed: {e}\n{text}"),
+    };
+    let ropts = ReaderOptions {
+        dialect: Dialect::LinuxCnc,
+        start: tp.start,
+        ..ReaderOptions::default()
+    };
+    let (back, _) = read_str(&written, ropts)
+        .unwrap_or_else(|e| panic!("the written program does not read: {e}\n{written}"));
+    let first_arc = tp
+        .moves
+        .iter()
+        .find(|m| !matches!(m.kind, MoveKind::Dwell { .. }))
+        .is_some_and(|m| matches!(m.kind, MoveKind::Arc { .. }));
+    let skip = usize::from(first_arc);
+    ROUND_TRIPS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    assert_eq!(
+        tp.moves.len() + skip,
+        back.moves.len(),
+        "round trip: move count\n{text}\n--- written:\n{written}"
+    );
+    for (i, (a, b)) in tp
+        .moves
+        .iter()
+        .zip(back.moves.iter().skip(skip))
+        .enumerate()
+    {
+        let scale = 1.0 + a.to.x.abs().max(a.to.y.abs()).max(a.to.z.abs());
+        let d = (a.to.x - b.to.x)
+            .abs()
+            .max((a.to.y - b.to.y).abs())
+            .max((a.to.z - b.to.z).abs());
+        assert!(
+            d <= 1e-9 * scale || (a.to.x.is_nan() && b.to.x.is_nan()),
+            "round trip: move {i} {a:?} read back as {b:?}\n{text}\n--- written:\n{written}"
+        );
     }
 }
 
@@ -675,15 +734,20 @@ pub fn planner(data: &[u8]) {
     }
 }
 
-/// Whether the `planner` target fails on limit violations the verifier finds, and the `pocket`
-/// target on a gouge (`FUZZ_STRICT_VERIFY` set, or [`STRICT_VERIFY`] from a test). The corpus
-/// replay in `hostile_corpus.rs` is strict; fuzz runs should set `FUZZ_STRICT_VERIFY=1`
-/// (the `planner` runs of 2026-11-22 did). Off without it so that a run can look for panics
-/// alone.
+/// Whether the targets verify what succeeds (`FUZZ_STRICT_VERIFY` set, or [`STRICT_VERIFY`]
+/// from a test): `planner` fails on limit violations the verifier finds, `pocket` on a gouge,
+/// uncut material or an internal error, `contour` on a pass farther than `r + T` from the
+/// exact curve, `gcode_reader` on a program that does not read back as it was written. The
+/// corpus replay in `hostile_corpus.rs` is strict; fuzz runs should set
+/// `FUZZ_STRICT_VERIFY=1` (the `planner` runs of 2026-11-22 did). Off without it so that a
+/// run can look for panics alone.
 pub fn strict_verify() -> bool {
     STRICT_VERIFY.load(std::sync::atomic::Ordering::Relaxed)
         || std::env::var_os("FUZZ_STRICT_VERIFY").is_some()
 }
+
+/// How many programs [`round_trip`] has checked (the corpus replay asserts a minimum).
+pub static ROUND_TRIPS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
 /// Turns the strict check of [`strict_verify`] on from code (tests).
 pub static STRICT_VERIFY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);

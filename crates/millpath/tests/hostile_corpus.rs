@@ -72,10 +72,21 @@ const CONTOUR_KNOWN_DEVIATING: [&str; 2] = [
     "d19e6c6172dc629bfd1fbce396445c5c0b37df3e",
 ];
 
+/// Strict: what reads is written back and read again to the same moves.
 #[test]
 fn corpus_gcode_reader() {
+    harness::STRICT_VERIFY.store(true, std::sync::atomic::Ordering::Relaxed);
     replay("gcode_reader", 100, harness::gcode_reader);
+    let n = harness::ROUND_TRIPS.load(std::sync::atomic::Ordering::Relaxed);
+    assert!(
+        n >= MIN_ROUND_TRIPS,
+        "only {n} corpus programs written and read back"
+    );
 }
+
+/// Fewest corpus programs the `gcode_reader` replay must write and read back (7 of its files
+/// read as programs with moves and are written on 2026-11-25; the rest are refused or empty).
+const MIN_ROUND_TRIPS: usize = 5;
 
 #[test]
 fn corpus_outline_importers() {
