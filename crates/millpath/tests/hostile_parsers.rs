@@ -3,12 +3,15 @@
 //!
 //! Each pass is seeded (ChaCha8) and bounded so the whole of it stays well under a few seconds
 //! at the test profile; every call must return `Ok` or `Err`, and a panic fails the test with
-//! the input that caused it (see `hostile_common`).
+//! the input that caused it (see `hostile_common`). What the G-code reader accepts is
+//! also written back (LinuxCNC, 10 decimals) and read again: the same moves, or the test
+//! fails with the program.
 
+mod gcode_common;
 mod hostile_common;
 
 use hostile_common::{Harness, hostile_number_text, random_bytes, rng};
-use millpath::gcode::{Dialect, Reader, ReaderOptions, read_str};
+use millpath::gcode::{Dialect, Reader, ReaderOptions, WriterOptions, read_str, write_to_string};
 use millpath::io::{dxf, outline_json, points, svg};
 use millpath::machine::Machine;
 use rand::RngExt;
@@ -76,9 +79,12 @@ fn gcode_opts(rng: &mut ChaCha8Rng) -> ReaderOptions {
 fn gcode_reader_survives_word_soup_and_random_bytes() {
     let mut h = Harness::new("gcode reader");
     let mut r = rng(0x6c0de);
+    let mut round_tripped = 0;
     for case in 0..1500 {
         let text: String = if case % 3 == 0 {
             String::from_utf8_lossy(&random_bytes(&mut r, 200)).into_owned()
+        } else if case % 3 == 1 && r.random_bool(0.5) {
+            plausible_program(&mut r)
         } else {
             let start = if r.random_bool(0.5) {
                 "G21 G90 G17\n"
@@ -91,9 +97,9 @@ fn gcode_reader_survives_word_soup_and_random_bytes() {
             format!("{start}{}", body.join("\n"))
         };
         let opts = gcode_opts(&mut r);
-        h.run(&text, || {
-            let _ = read_str(&text, opts.clone());
-        });
+        if h.run(&text, || round_trips(&text, &opts)) == Some(true) {
+            round_tripped += 1;
+        }
         // The streaming reader over the raw bytes (invalid UTF-8 included), read to the end.
         let bytes = if case % 3 == 0 {
             random_bytes(&mut r, 200)
@@ -108,7 +114,132 @@ fn gcode_reader_survives_word_soup_and_random_bytes() {
             let _ = (rd.position(), rd.warnings().len(), rd.lines_read());
         });
     }
+    assert!(
+        round_tripped >= 150,
+        "only {round_tripped} programs read, written and read back"
+    );
     h.finish(3000);
+}
+
+/// A program that reads: rapids, lines, arcs (the end on the start's circle, centre by
+/// `I J`, in any plane) and dwells with ordinary numbers, in mm or inches, absolute or
+/// incremental: what the round trip is checked on (word soup rarely reads).
+fn plausible_program(r: &mut ChaCha8Rng) -> String {
+    let mut out = vec![format!(
+        "{} {} G17 F{:.3}",
+        pick(r, &["G21", "G20"]),
+        pick(r, &["G90", "G91"]),
+        r.random_range(10.0..3000.0)
+    )];
+    let incremental = out[0].contains("G91");
+    let (mut x, mut y) = (0.0f64, 0.0f64);
+    for _ in 0..r.random_range(1..20) {
+        match r.random_range(0..6) {
+            0 => {
+                let (nx, ny) = (r.random_range(-50.0..50.0), r.random_range(-50.0..50.0));
+                out.push(coords(
+                    "G0",
+                    nx,
+                    ny,
+                    r.random_range(-5.0..5.0),
+                    x,
+                    y,
+                    incremental,
+                ));
+                (x, y) = (nx, ny);
+            }
+            1 | 2 => {
+                let (nx, ny) = (r.random_range(-50.0..50.0), r.random_range(-50.0..50.0));
+                out.push(coords(
+                    "G1",
+                    nx,
+                    ny,
+                    r.random_range(-5.0..5.0),
+                    x,
+                    y,
+                    incremental,
+                ));
+                (x, y) = (nx, ny);
+            }
+            3 | 4 => {
+                // A centre 1..20 away, the end turned about it: exactly on the circle.
+                let (i, j) = (r.random_range(-20.0..20.0), r.random_range(-20.0..20.0));
+                if f64::hypot(i, j) < 1.0 {
+                    continue;
+                }
+                let a = r.random_range(-3.0..3.0f64);
+                let (cx, cy) = (x + i, y + j);
+                let (nx, ny) = (
+                    cx - i * a.cos() + j * a.sin(),
+                    cy - i * a.sin() - j * a.cos(),
+                );
+                let g = pick(r, &["G2", "G3"]);
+                let head = coords(g, nx, ny, 0.0, x, y, incremental);
+                out.push(format!("{head} I{i:.6} J{j:.6}"));
+                (x, y) = (nx, ny);
+            }
+            _ => out.push(format!("G4 P{:.3}", r.random_range(0.0..2.0))),
+        }
+    }
+    out.push("M2".to_owned());
+    out.join("\n")
+}
+
+/// `G X Y Z` to `(x, y)` from `(fx, fy)`, absolute or incremental (z absolute: it is drawn
+/// fresh each move, so incremental z is the drawn value as a step).
+fn coords(g: &str, x: f64, y: f64, z: f64, fx: f64, fy: f64, incremental: bool) -> String {
+    let (x, y) = if incremental {
+        (x - fx, y - fy)
+    } else {
+        (x, y)
+    };
+    format!("{g} X{x:.6} Y{y:.6} Z{z:.6}")
+}
+
+/// Reads `text`; when it reads (with a move), writes the moves back (LinuxCNC, 10 decimals)
+/// and reads that again: it must give the same moves (within 1e-9 of each number's
+/// magnitude), else this panics with both programs. `true` when it round-tripped.
+fn round_trips(text: &str, opts: &ReaderOptions) -> bool {
+    let Ok((tp, _)) = read_str(text, opts.clone()) else {
+        return false;
+    };
+    if tp.moves.is_empty() {
+        return false;
+    }
+    let wopts = WriterOptions {
+        dialect: Dialect::LinuxCnc,
+        decimals: Some(10),
+        ..WriterOptions::default()
+    };
+    // The writer may refuse what the reader took (an arc below its smallest radius, a
+    // coordinate it cannot write): an input error, never a panic.
+    let written = match write_to_string(&tp, &wopts) {
+        Ok((w, _)) => w,
+        Err(millpath::Error::Input(_)) => return false,
+        Err(e) => panic!("the writer failed: {e}\n{text}"),
+    };
+    let ropts = ReaderOptions {
+        dialect: Dialect::LinuxCnc,
+        start: tp.start,
+        ..ReaderOptions::default()
+    };
+    let (back, _) = read_str(&written, ropts)
+        .unwrap_or_else(|e| panic!("the written program does not read: {e}\n{written}"));
+    let want = gcode_common::with_start_rapid(&tp);
+    assert_eq!(
+        want.moves.len(),
+        back.moves.len(),
+        "move count\n{text}\n--- written:\n{written}"
+    );
+    for (i, (a, b)) in want.moves.iter().zip(&back.moves).enumerate() {
+        let scale = 1.0 + a.to.x.abs().max(a.to.y.abs()).max(a.to.z.abs()) + a.feed.abs();
+        let diff = gcode_common::move_difference(a, b);
+        assert!(
+            diff <= 1e-9 * scale,
+            "move {i}: {a:?} read back as {b:?}\n{text}\n--- written:\n{written}"
+        );
+    }
+    true
 }
 
 #[test]

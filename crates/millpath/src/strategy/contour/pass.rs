@@ -5,7 +5,7 @@ use super::offset::{self, OffsetCurve, OffsetVertex};
 use super::{ContourOptions, Side};
 use crate::curve::biarc::{self, ArcSeg};
 use crate::curve::flatten::{self, FlattenOptions};
-use crate::curve::{CompositeCurve, PlanarCurve};
+use crate::curve::{CompositeCurve, Lobe, PlanarCurve};
 use crate::error::{Error, InputError};
 use crate::geom::{Point, Point3, Vec2};
 use crate::toolpath::Move;
@@ -85,11 +85,18 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
     let n = curve.len();
     if d == 0.0 {
         let f = flatten::flatten(curve, t)?;
-        let lp: Vec<OffsetVertex> = f.params[..f.params.len() - 1]
-            .iter()
-            .zip(&f.points)
-            .map(|(s, p)| OffsetVertex { p: *p, s: *s })
-            .collect();
+        let mut lp: Vec<OffsetVertex> = Vec::with_capacity(f.points.len());
+        for (s, p) in f.params[..f.params.len() - 1].iter().zip(&f.points) {
+            lp.push(OffsetVertex { p: *p, s: *s });
+            // The curve as drawn runs out to the corner point and back where a fish-tail
+            // lobe was cut off there: on the outline, the tool traces it too.
+            if s.fract() == 0.0 {
+                let k = (*s as usize) % n;
+                for lobe in curve.lobes().iter().filter(|l| l.corner == k) {
+                    lp.extend(lobe_vertices(lobe, t, *s)?);
+                }
+            }
+        }
         let mut pass = Pass {
             distance: 0.0,
             loops: vec![lp],
@@ -192,6 +199,32 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
     Ok(pass)
 }
 
+/// The vertices of a fish-tail lobe within `t` (the crossing itself excluded at the start,
+/// included at the end), all at the corner's parameter `s`: out to the drawn corner point
+/// and back.
+fn lobe_vertices(lobe: &Lobe, t: f64, s: f64) -> Result<Vec<OffsetVertex>, Error> {
+    let mut out = Vec::new();
+    for c in [lobe.to_tip, lobe.from_tip] {
+        let f = flatten::flatten_opt(&c, t, &FlattenOptions::default())?;
+        out.extend(f.points.iter().skip(1).map(|&p| OffsetVertex { p, s }));
+    }
+    Ok(out)
+}
+
+/// The distance from `q` to the curve as drawn: the outline and the lobes cut off it.
+fn drawn_distance(curve: &CompositeCurve, q: Point, hint: f64) -> f64 {
+    use kurbo::ParamCurveNearest;
+    let lobes = curve.lobes().iter().flat_map(|l| [l.to_tip, l.from_tip]);
+    lobes
+        .map(|c| {
+            c.to_kurbo()
+                .nearest(kurbo::Point::new(q.x, q.y), 1e-12)
+                .distance_sq
+                .sqrt()
+        })
+        .fold(offset::distance_to(curve, q, hint), f64::min)
+}
+
 /// Replaces the chords of a loop by biarcs on every smooth stretch: consecutive vertices
 /// that lie on the offset curve at their own parameter, with the parameter increasing by at
 /// most one piece and no corner in between. Other links (trim cuts, corner joins) stay lines.
@@ -289,12 +322,20 @@ fn smooth_start(mut lp: Vec<OffsetVertex>) -> Vec<OffsetVertex> {
 
 fn measure(curve: &CompositeCurve, pass: &Pass) -> f64 {
     let d = pass.distance.abs();
+    // On the outline the pass includes the lobes of the curve as drawn.
+    let distance_to = |c: &CompositeCurve, q: Point, s: f64| {
+        if d == 0.0 {
+            drawn_distance(c, q, s)
+        } else {
+            offset::distance_to(c, q, s)
+        }
+    };
     let mut worst = 0.0_f64;
     if !pass.arcs.is_empty() {
         for a in pass.arcs.iter().flatten() {
             for j in 0..16 {
                 let q = a.at(f64::from(j) / 16.0);
-                worst = worst.max((offset::distance_to(curve, q, a.s_end) - d).abs());
+                worst = worst.max((distance_to(curve, q, a.s_end) - d).abs());
             }
         }
         return worst;
@@ -305,7 +346,7 @@ fn measure(curve: &CompositeCurve, pass: &Pass) -> f64 {
             let (a, b) = (lp[i], lp[(i + 1) % m]);
             for j in 0..16 {
                 let q = a.p.lerp(b.p, f64::from(j) / 16.0);
-                worst = worst.max((offset::distance_to(curve, q, a.s) - d).abs());
+                worst = worst.max((distance_to(curve, q, a.s) - d).abs());
             }
         }
     }

@@ -278,6 +278,7 @@ mod tests {
                 min_clearance_mm: 5.0,
                 required_clearance_mm: 5.0,
                 uncut_area_mm2: uncut,
+                uncut_at: None,
                 rapids_through_material: 0,
                 plunges: 0,
                 max_engagement_deg: 90.0,

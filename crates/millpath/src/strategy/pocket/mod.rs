@@ -28,6 +28,12 @@
 //! [`spiral::LAST_LOOP_MARGIN`] inside the boundary offset, its arcs within
 //! [`spiral::ARC_TOLERANCE`] of the lap) and below any machining tolerance.
 //!
+//! **Coverage guard.** Likewise [`generate`] refuses, as an internal error naming the area and
+//! where most of it lies, a toolpath that leaves more than [`stock::UNCUT_AREA_TOLERANCE`]
+//! (0.05 mm²) of material the tool could have reached: the stock simulation's uncut cells,
+//! the corner cusps and wall stock the tool radius implies aside. Every pocket of the fuzz
+//! corpus is held to both in the test command (`tests/hostile_corpus.rs`, `corpus_pocket`).
+//!
 //! * [`zigzag`]: parallel passes at an angle plus a boundary clean-up pass;
 //! * [`offset`]: contour-parallel offsets from the inside out;
 //! * [`spiral`]: the adaptive spiral, a central spiral morphing harmonically into the
@@ -186,7 +192,9 @@ pub use fallback::GOUGE_TOLERANCE;
 /// 0.011 mm, fuzz/README.md, 2026-11-22; the spiral now keeps its laps and arcs inside itself,
 /// and no input of the fuzz corpora needs a fallback), and [`PocketResult::notes`] says which
 /// fallback was taken and how deep the path asked for cut; what still gouges is an internal
-/// error naming the depth, the move and the point.
+/// error naming the depth, the move and the point. A toolpath that leaves uncut material
+/// the tool could have reached (beyond [`stock::UNCUT_AREA_TOLERANCE`]) is an internal error
+/// naming the area and where most of it lies.
 pub fn generate(
     kind: StrategyKind,
     shape: &PocketShape,
@@ -196,7 +204,7 @@ pub fn generate(
 ) -> Result<PocketResult> {
     let attempt = |o: &PocketOptions| generate_unchecked(kind, shape, tool, o, sim);
     let r = match fallback::first_clear(kind, opts, attempt)? {
-        fallback::Attempts::Clears(r) => return Ok(r),
+        fallback::Attempts::Clears(r) => return refuse_uncut(kind, r),
         fallback::Attempts::Gouges(r) => r,
     };
     let (_, sections) = toolpath_and_sections(kind, shape, tool, opts)?;
@@ -221,6 +229,22 @@ pub fn generate(
         c.at.y,
         c.at.z,
         c.move_index
+    )))
+}
+
+/// `r`, unless it leaves material the tool could have reached (more than
+/// [`stock::UNCUT_AREA_TOLERANCE`] beyond the corner cusps and wall stock the tool radius
+/// implies): then an internal error naming the area and where most of it lies, as for a
+/// gouge. A strategy that leaves such material is a bug in the strategy.
+fn refuse_uncut(kind: StrategyKind, r: PocketResult) -> Result<PocketResult> {
+    if r.verification.uncut_area_mm2 <= stock::UNCUT_AREA_TOLERANCE {
+        return Ok(r);
+    }
+    Err(crate::Error::internal(format!(
+        "the {} toolpath leaves material the tool could reach: {}; nothing written. Another \
+         strategy may clear it; please report the outline",
+        kind.name(),
+        r.verification.uncut_text()
     )))
 }
 
