@@ -1,6 +1,7 @@
 //! `millpath pocket`: 2.5D pocket roughing with zigzag, contour-offset or the adaptive spiral.
 
 use millpath::gcode::{WriterOptions, write_program};
+use millpath::io::outline_json::Loops;
 use millpath::machine::Machine;
 use millpath::stock::SimOptions;
 use millpath::strategy::pocket::part::{PartStrategy, generate_part};
@@ -9,7 +10,6 @@ use millpath::strategy::pocket::{
 };
 use millpath::toolpath::Tool;
 use millpath::{Error, InputError};
-use millpath::io::outline_json::Loops;
 use std::path::PathBuf;
 
 /// Arguments of `millpath pocket`.
@@ -385,7 +385,11 @@ use super::pocket_report::{auto_line, pocket_line, report};
 pub fn run(args: &Args) -> Result<(), Error> {
     let choice = parse_choice(&args.common.strategy)?;
     // The output flags are checked before the pocket is planned (exit 2 at once).
-    program_options("spiral", &super::load_machine(&args.common.machine)?, &args.program)?;
+    program_options(
+        "spiral",
+        &super::load_machine(&args.common.machine)?,
+        &args.program,
+    )?;
     let loops = load_outline(&args.outline, &args.common.import)?;
     if args.list {
         for line in list_lines(&loops) {

@@ -141,6 +141,8 @@ pub fn verify_part(
                     min_clearance_mm: f64::INFINITY,
                     required_clearance_mm: tp.tool.radius() + spec.wall_stock,
                     uncut_area_mm2: area,
+                    // The whole pocket is uncut: the pocket's index says where.
+                    uncut_at: None,
                     rapids_through_material: 0,
                     plunges: 0,
                     max_engagement_deg: 0.0,
@@ -179,6 +181,11 @@ fn combine_all(per: &[Verification], lengths: &[f64], r: f64) -> Verification {
             .map(|v| v.required_clearance_mm)
             .fold(r, f64::max),
         uncut_area_mm2: per.iter().map(|v| v.uncut_area_mm2).sum(),
+        uncut_at: per
+            .iter()
+            .filter(|v| v.uncut_at.is_some())
+            .max_by(|a, b| a.uncut_area_mm2.total_cmp(&b.uncut_area_mm2))
+            .and_then(|v| v.uncut_at),
         rapids_through_material: per.iter().map(|v| v.rapids_through_material).sum(),
         plunges: per.iter().map(|v| v.plunges).sum(),
         max_engagement_deg: per.iter().map(|v| v.max_engagement_deg).fold(0.0, f64::max),

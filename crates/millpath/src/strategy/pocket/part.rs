@@ -93,10 +93,8 @@ pub fn generate_part(
                 .sum::<f64>();
         let planned: Result<(StrategyKind, PocketResult, Option<Vec<auto::Candidate>>)> =
             match strategy {
-                PartStrategy::One(kind) => {
-                    auto::arcs_or_chords(kind, shape, tool, opts, sim, time)
-                        .map(|(r, _)| (kind, r, None))
-                }
+                PartStrategy::One(kind) => auto::arcs_or_chords(kind, shape, tool, opts, sim, time)
+                    .map(|(r, _)| (kind, r, None)),
                 PartStrategy::Auto => {
                     let cands = auto::plan_all(shape, tool, opts, sim, time);
                     match auto::choose(&cands).and_then(|i| {
