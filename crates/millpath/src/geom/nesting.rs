@@ -20,7 +20,7 @@
 //! **Containment.** Outlines that neither touch nor cross are either nested or apart, so one
 //! point of an outline decides whether another contains it (its first vertex, by winding
 //! number). Two outlines that touch, cross or overlap (cavalier_contours' intersections, or a
-//! vertex of either within [`region::TOUCH_EPS`] of the other) are refused with an input
+//! vertex of either within [`super::region::TOUCH_EPS`] of the other) are refused with an input
 //! error naming both (their index in the order read and a vertex of each) and the point where
 //! they meet: a wall of zero thickness cannot be machined, and the drawing is ambiguous there.
 //!
