@@ -164,8 +164,8 @@ fn a_drawing_of_three_pockets_in_one_program_for_every_strategy() {
 #[test]
 fn real_drawings_of_several_parts_are_cut_whole() {
     let dir = tempfile::tempdir().unwrap();
-    // A laser-cut latch (two parts, one inside the other's opening) and six small parts of
-    // an INSERT-ed block drawing; auto picks per pocket.
+    // A laser-cut latch (two parts, one inside the other's opening; auto picks per pocket)
+    // and the six shapes of an SVG drawing (rect, circle, ellipse, polygon, paths).
     let latch = real("pb_latch_test.dxf");
     let r = cut_and_check(
         dir.path(),
@@ -183,7 +183,7 @@ fn real_drawings_of_several_parts_are_cut_whole() {
         ],
     );
     assert!(r["pockets"].as_array().unwrap().len() >= 2);
-    let parts = real("ez_insert_bricscad_level_1.dxf");
+    let parts = real("s2g_shapes.svg");
     let r = cut_and_check(
         dir.path(),
         parts.to_str().unwrap(),

@@ -120,3 +120,29 @@ fn tool_too_large_and_bad_stepovers_are_refused() {
         assert!(input_error(pocket::generate(kind, &shape, &tool, &o, &sim)).contains("depth"));
     }
 }
+
+/// A pocket metres wide cut with a millimetre tool (a drawing in metres read as millimetres,
+/// or the wrong tool) is refused before planning, for every strategy, with the path it would
+/// need; the same pocket a thousand times smaller plans.
+#[test]
+fn absurd_path_lengths_are_refused_before_planning() {
+    let tool = Tool::flat(1.0).unwrap();
+    let opts = PocketOptions {
+        depth: 1.0,
+        step_down: 1.0,
+        ..PocketOptions::default()
+    };
+    let sim = SimOptions::default();
+    let big = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 6000.0, 4000.0, 10.0));
+    for kind in [
+        StrategyKind::Spiral,
+        StrategyKind::Offset,
+        StrategyKind::Zigzag,
+    ] {
+        let e = input_error(pocket::generate(kind, &big, &tool, &opts, &sim));
+        assert!(e.contains("check the drawing's units"), "{e}");
+        assert!(e.contains("needs about 60 km"), "{e}");
+    }
+    let small = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 6.0, 4.0, 1.0));
+    assert!(pocket::generate(StrategyKind::Zigzag, &small, &tool, &opts, &sim).is_ok());
+}

@@ -202,6 +202,7 @@ pub fn generate(
     opts: &PocketOptions,
     sim: &SimOptions,
 ) -> Result<PocketResult> {
+    check_path_size(shape, tool, opts)?;
     let attempt = |o: &PocketOptions| generate_unchecked(kind, shape, tool, o, sim);
     let r = match fallback::first_clear(kind, opts, attempt)? {
         fallback::Attempts::Clears(r) => return refuse_uncut(kind, r),
@@ -230,6 +231,50 @@ pub fn generate(
         c.at.z,
         c.move_index
     )))
+}
+
+/// The longest cutting path [`generate`] plans, mm (50 km): the pocket's area over the
+/// stepover, times the levels. A metre-sized drawing read as millimetres, or a tool far too
+/// small for the pocket, would otherwise take gigabytes and hours; no real pocket comes near.
+pub const MAX_PATH_MM: f64 = 5.0e7;
+
+/// Refuses a pocket whose path would be longer than [`MAX_PATH_MM`] (area / stepover × levels,
+/// what every strategy cuts within a small factor), naming the pocket, the estimate and what
+/// to check.
+fn check_path_size(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<()> {
+    let area = shape.outer.signed_area().abs()
+        - shape
+            .islands
+            .iter()
+            .map(|i| i.signed_area().abs())
+            .sum::<f64>();
+    let step = opts.stepover_mm(tool);
+    let levels = if opts.step_down > 0.0 {
+        (opts.depth / opts.step_down).ceil().max(1.0)
+    } else {
+        1.0
+    };
+    let length = area / step.max(f64::MIN_POSITIVE) * levels;
+    if length.is_finite() && length <= MAX_PATH_MM {
+        return Ok(());
+    }
+    let b = shape.outer.bounds();
+    Err(
+        crate::InputError::new("pocket area", format!("{area:.0} mm²"))
+            .at(format!(
+                "the pocket from ({:.3}, {:.3}) to ({:.3}, {:.3}) mm",
+                b.min.x, b.min.y, b.max.x, b.max.y
+            ))
+            .expected(format!(
+                "a path of at most {:.0} km; this pocket needs about {:.0} km ({} levels at a \
+             stepover of {:.3} mm): check the drawing's units (--drawing-units) or the tool",
+                MAX_PATH_MM / 1.0e6,
+                length / 1.0e6,
+                levels,
+                step
+            ))
+            .into(),
+    )
 }
 
 /// `r`, unless it leaves material the tool could have reached (more than
