@@ -11,7 +11,7 @@ pub mod region;
 mod vec3;
 
 pub use aabb::Aabb;
-pub use outline::{MAX_BULGE, MAX_COORDINATE_MM, Outline, Winding};
+pub use outline::{MAX_BULGE, MAX_COORDINATE_MM, Outline, Winding, area_less_islands};
 pub use point::{Point, Vec2};
 pub use vec3::{Point3, Vec3};
 

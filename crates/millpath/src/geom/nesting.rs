@@ -48,12 +48,7 @@ pub struct Pocket {
 impl Pocket {
     /// Area of material to remove: the boundary's area less the islands', mm².
     pub fn area(&self) -> f64 {
-        self.outer.signed_area().abs()
-            - self
-                .islands
-                .iter()
-                .map(|i| i.signed_area().abs())
-                .sum::<f64>()
+        super::outline::area_less_islands(&self.outer, &self.islands)
     }
 
     /// True when `p` lies inside the boundary and outside every island.

@@ -295,6 +295,12 @@ fn first_crossing(pline: &Polyline<f64>) -> Option<(usize, usize, Point)> {
     found
 }
 
+/// Area of the material inside `outer` and outside `islands`, mm² (islands inside `outer`,
+/// not overlapping).
+pub fn area_less_islands(outer: &Outline, islands: &[Outline]) -> f64 {
+    outer.signed_area().abs() - islands.iter().map(|i| i.signed_area().abs()).sum::<f64>()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -131,12 +131,7 @@ pub fn verify_part(
             }
             None => {
                 lengths.push(0.0);
-                let area = spec.outer.signed_area().abs()
-                    - spec
-                        .islands
-                        .iter()
-                        .map(|i| i.signed_area().abs())
-                        .sum::<f64>();
+                let area = crate::geom::area_less_islands(spec.outer, spec.islands);
                 per.push(Verification {
                     min_clearance_mm: f64::INFINITY,
                     required_clearance_mm: tp.tool.radius() + spec.wall_stock,

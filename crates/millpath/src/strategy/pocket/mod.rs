@@ -242,12 +242,7 @@ pub const MAX_PATH_MM: f64 = 5.0e7;
 /// what every strategy cuts within a small factor), naming the pocket, the estimate and what
 /// to check.
 fn check_path_size(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<()> {
-    let area = shape.outer.signed_area().abs()
-        - shape
-            .islands
-            .iter()
-            .map(|i| i.signed_area().abs())
-            .sum::<f64>();
+    let area = crate::geom::area_less_islands(&shape.outer, &shape.islands);
     let step = opts.stepover_mm(tool);
     let levels = if opts.step_down > 0.0 {
         (opts.depth / opts.step_down).ceil().max(1.0)

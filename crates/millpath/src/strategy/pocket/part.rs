@@ -85,12 +85,7 @@ pub fn generate_part(
     let mut skipped: Vec<PartPocket> = Vec::new();
     let mut first_error: Option<Error> = None;
     for (index, shape) in shapes {
-        let area = shape.outer.signed_area().abs()
-            - shape
-                .islands
-                .iter()
-                .map(|i| i.signed_area().abs())
-                .sum::<f64>();
+        let area = crate::geom::area_less_islands(&shape.outer, &shape.islands);
         let planned: Result<(StrategyKind, PocketResult, Option<Vec<auto::Candidate>>)> =
             match strategy {
                 PartStrategy::One(kind) => auto::arcs_or_chords(kind, shape, tool, opts, sim, time)
