@@ -9,6 +9,7 @@
 //! here (reals written with Rust's shortest round-trip form, so nothing is lost).
 
 use crate::error::InputError;
+use crate::geom::Point;
 
 /// One group: code and value.
 #[derive(Debug, Clone, PartialEq)]
@@ -178,6 +179,48 @@ fn binary(b: &[u8], origin: &str) -> Result<Vec<Group>, InputError> {
         }
     }
     Ok(out)
+}
+
+/// One entity: its type name and its groups (the leading `0` group excluded).
+#[derive(Debug, Clone)]
+pub struct Record {
+    /// The entity type (`LINE`, `ARC`, …).
+    pub kind: String,
+    /// Its groups.
+    pub groups: Vec<Group>,
+}
+
+impl Record {
+    pub(super) fn first(&self, code: i32) -> Option<&Group> {
+        self.groups.iter().find(|g| g.code == code)
+    }
+    pub(super) fn real(&self, code: i32, default: f64) -> f64 {
+        self.first(code).map_or(default, Group::real)
+    }
+    pub(super) fn int(&self, code: i32, default: i64) -> i64 {
+        self.first(code).map_or(default, Group::int)
+    }
+    pub(super) fn text(&self, code: i32) -> &str {
+        self.first(code).map_or("", |g| g.value.as_str())
+    }
+    pub(super) fn point(&self, xc: i32) -> Point {
+        Point::new(self.real(xc, 0.0), self.real(xc + 10, 0.0))
+    }
+    /// `Some(mirror)` for a plan-view extrusion (mirror when it points down), `None` for a
+    /// tilted one.
+    pub(super) fn extrusion(&self) -> Option<bool> {
+        let (x, y, z) = (
+            self.real(210, 0.0),
+            self.real(220, 0.0),
+            self.real(230, 1.0),
+        );
+        let n = (x * x + y * y + z * z).sqrt();
+        if n == 0.0 || (x.abs() + y.abs()) > 1e-9 * n {
+            None
+        } else {
+            Some(z < 0.0)
+        }
+    }
 }
 
 #[cfg(test)]

@@ -23,7 +23,7 @@
 //!
 //! Everything else (TEXT, MTEXT, DIMENSION, POINT, 3DFACE, …) is counted and skipped.
 
-use super::codes::Group;
+use super::codes::Record;
 use super::spline::{self, SplineData};
 use crate::error::InputError;
 use crate::geom::Point;
@@ -32,48 +32,6 @@ use crate::io::drawing::{Drawing, ReadOptions};
 use crate::io::join::join;
 use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
-
-/// One entity: its type name and its groups (the leading `0` group excluded).
-#[derive(Debug, Clone)]
-pub struct Record {
-    /// The entity type (`LINE`, `ARC`, …).
-    pub kind: String,
-    /// Its groups.
-    pub groups: Vec<Group>,
-}
-
-impl Record {
-    fn first(&self, code: i32) -> Option<&Group> {
-        self.groups.iter().find(|g| g.code == code)
-    }
-    fn real(&self, code: i32, default: f64) -> f64 {
-        self.first(code).map_or(default, Group::real)
-    }
-    fn int(&self, code: i32, default: i64) -> i64 {
-        self.first(code).map_or(default, Group::int)
-    }
-    fn text(&self, code: i32) -> &str {
-        self.first(code).map_or("", |g| g.value.as_str())
-    }
-    fn point(&self, xc: i32) -> Point {
-        Point::new(self.real(xc, 0.0), self.real(xc + 10, 0.0))
-    }
-    /// `Some(mirror)` for a plan-view extrusion (mirror when it points down), `None` for a
-    /// tilted one.
-    fn extrusion(&self) -> Option<bool> {
-        let (x, y, z) = (
-            self.real(210, 0.0),
-            self.real(220, 0.0),
-            self.real(230, 1.0),
-        );
-        let n = (x * x + y * y + z * z).sqrt();
-        if n == 0.0 || (x.abs() + y.abs()) > 1e-9 * n {
-            None
-        } else {
-            Some(z < 0.0)
-        }
-    }
-}
 
 /// A block definition.
 #[derive(Debug, Clone, Default)]

@@ -12,8 +12,7 @@
 //! each path's pieces are joined on their own (paths often share vertices), the chains
 //! that do not close left to the drawing's joiner.
 
-use super::codes::Group;
-use super::entities::Record;
+use super::codes::{Group, Record};
 use super::spline::{self, SplineData};
 use crate::error::InputError;
 use crate::geom::Point;

@@ -32,7 +32,8 @@ use super::outline_json::Loops;
 use crate::error::InputError;
 use crate::geom::Point;
 use codes::Group;
-use entities::{Block, Ctx, Reader, Record};
+use codes::Record;
+use entities::{Block, Ctx, Reader};
 use std::collections::HashMap;
 
 /// The DXF importer's options (the importers share one options type).
