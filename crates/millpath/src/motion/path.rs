@@ -1,7 +1,8 @@
 //! Block geometry as the planner sees it: lines and helical arcs (arcs are helices with zero
 //! pitch), parametrised by arc length, with the derivatives the planner needs.
 
-use crate::geom::{Point3, Vec3};
+use crate::error::Error;
+use crate::geom::{MAX_COORDINATE_MM, Point3, Vec3};
 use crate::toolpath::{Move, MoveKind, Plane};
 
 /// The geometry of one block.
@@ -298,6 +299,93 @@ impl Geom {
 
 fn unit(v: Vec3) -> Vec3 {
     v.normalize().unwrap_or(Vec3::ZERO)
+}
+
+/// The slowest feed a feed move may have, mm/s (0.00006 mm/min): below it the time of a
+/// block overflows long before it means anything.
+pub const MIN_FEED: f64 = 1e-6;
+
+/// The longest dwell, s (11.6 days): keeps the total time of any program finite.
+pub const MAX_DWELL: f64 = 1e6;
+
+/// Checks move `i` (from `from`) and returns its geometry (`None` for dwells and zero-length
+/// moves): coordinates within range, arcs circular within LinuxCNC's tolerance, a feed on
+/// every feed move, dwells within [`MAX_DWELL`].
+pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<Geom>, Error> {
+    // Coordinates beyond ±1e6 mm overflow lengths and times (a target at 1e300 gave an
+    // infinite cycle time; found by the `planner` fuzzer).
+    let far = |p: Point3| {
+        !(p.x.abs() <= MAX_COORDINATE_MM
+            && p.y.abs() <= MAX_COORDINATE_MM
+            && p.z.abs() <= MAX_COORDINATE_MM)
+    };
+    let centre = match m.kind {
+        MoveKind::Arc { center, .. } => Some(center),
+        _ => None,
+    };
+    for (what, p) in [
+        ("start point", Some(from)),
+        ("end point", Some(m.to)),
+        ("arc centre", centre),
+    ] {
+        if let Some(p) = p
+            && far(p)
+        {
+            return Err(
+                crate::InputError::new(what, format!("({}, {}, {})", p.x, p.y, p.z))
+                    .at(format!("move {}", i + 1))
+                    .expected(format!("finite coordinates within ±{MAX_COORDINATE_MM} mm"))
+                    .into(),
+            );
+        }
+    }
+    let g = Geom::of(from, m);
+    if g.is_none()
+        && matches!(m.kind, MoveKind::Arc { .. })
+        && (from.distance(m.to) > 1e-12 || m.length_from(from) > 1e-12)
+    {
+        // An arc whose start is its centre has no circle to follow; skipping it as a
+        // zero-length move teleported the tool to its end (a 32 mm jump found by the
+        // `planner` fuzzer).
+        let r0 = m.sweep_from(from).map_or(0.0, |(r, _)| r);
+        return Err(crate::InputError::new("arc start radius", r0)
+            .at(format!("move {}", i + 1))
+            .expected("a start point more than 1e-12 mm from the arc's centre")
+            .into());
+    }
+    if let Some(Geom::Helix { r0, r1, .. }) = g {
+        // The block limits take the arc as circular (a spiral's radial terms are not
+        // modelled): arcs whose end radius differs from the start radius beyond what
+        // LinuxCNC accepts (and the G-code reader with it) are refused, not mistimed.
+        let tau = crate::gcode::arc::center_arc_radius_tolerance_mm(crate::gcode::Units::Mm);
+        let delta = (r1 - r0).abs();
+        if delta > 100.0 * tau
+            || (delta / r0.max(r1) > crate::gcode::arc::SPIRAL_RELATIVE_TOLERANCE && delta > tau)
+        {
+            return Err(crate::InputError::new("arc end radius", r1)
+                .at(format!("move {}", i + 1))
+                .expected(format!(
+                    "within {tau:.4} mm or 0.1 % of the start radius {r0} mm (a circular arc)"
+                ))
+                .into());
+        }
+    }
+    let length = g.as_ref().map_or(0.0, Geom::length);
+    if m.is_feed() && !(m.feed.is_finite() && m.feed >= MIN_FEED) && length > 0.0 {
+        return Err(crate::InputError::new("feed", m.feed)
+            .at(format!("move {}", i + 1))
+            .expected(format!("a finite feed >= {MIN_FEED} mm/s on a feed move"))
+            .into());
+    }
+    if let MoveKind::Dwell { seconds } = m.kind
+        && !(seconds.is_finite() && (0.0..=MAX_DWELL).contains(&seconds))
+    {
+        return Err(crate::InputError::new("dwell", seconds)
+            .at(format!("move {}", i + 1))
+            .expected(format!("a number of seconds in [0, {MAX_DWELL}]"))
+            .into());
+    }
+    Ok(g)
 }
 
 #[cfg(test)]

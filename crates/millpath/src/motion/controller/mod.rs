@@ -26,7 +26,7 @@ pub mod sinumerik;
 
 use super::limits::{JunctionMode, block_limits, junction_cap, junction_mode};
 use super::path::Geom;
-use super::plan::check_move;
+use super::path::check_move;
 use super::profile::Limits1;
 use crate::error::Error;
 use crate::geom::Point3;

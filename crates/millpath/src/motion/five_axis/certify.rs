@@ -58,8 +58,8 @@
 //! (a longer interval can overshoot), which is why the march, and not a monotonicity
 //! argument, carries the proof.
 
-use super::min_time::{KnotState, Limits, Segment};
 use super::quintic::{End, Quintic, poly_eval, real_roots_in};
+use super::segment::{KnotState, Limits, Segment};
 use crate::machine::kinematics::{Joints, Kinematics};
 use serde::{Deserialize, Serialize};
 

@@ -33,6 +33,7 @@ pub mod deflection;
 pub mod knots;
 pub mod min_time;
 pub mod quintic;
+pub mod segment;
 pub mod verify;
 
 pub use baseline_ga::BaselineOptions;
