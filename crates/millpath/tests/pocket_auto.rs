@@ -24,7 +24,7 @@ fn aerospace() -> (pocket::PocketShape, Tool, SimOptions) {
 fn auto_writes_the_fastest_verified_strategy() {
     let (shape, tool, sim) = aerospace();
     let hsm = Machine::preset("hsm").unwrap();
-    let time = |tp: &Toolpath| pocket::cycle_time_on(tp, &hsm);
+    let time = |tp: &Toolpath| millpath::motion::cycle_time(tp, &hsm);
     for finish in [false, true] {
         let opts = PocketOptions {
             depth: 5.0,
@@ -84,7 +84,7 @@ fn arcs_request_keeps_the_faster_form_on_each_machine() {
     };
     for (name, ramps) in [("hsm", true), ("linuxcnc-time", false)] {
         let m = Machine::preset(name).unwrap();
-        let time = |tp: &Toolpath| pocket::cycle_time_on(tp, &m);
+        let time = |tp: &Toolpath| millpath::motion::cycle_time(tp, &m);
         let opts = PocketOptions {
             depth: 5.0,
             step_down: 5.0,

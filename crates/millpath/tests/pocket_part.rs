@@ -102,7 +102,7 @@ fn written(tp: &Toolpath) -> Toolpath {
 }
 
 fn time_hsm(tp: &Toolpath) -> millpath::Result<f64> {
-    pocket::cycle_time(tp)
+    millpath::motion::cycle_time(tp, &millpath::machine::Machine::preset("hsm")?)
 }
 
 #[test]

@@ -29,7 +29,7 @@ fn aerospace_pocket_all_strategies_verify() {
     ] {
         let r = pocket::generate(kind, &shape, &tool, &opts, &coarse()).unwrap();
         let v = &r.verification;
-        let t = pocket::cycle_time(&r.toolpath).unwrap();
+        let t = hsm_time(&r.toolpath);
         eprintln!(
             "{:?}: len {:.1} time {:.2} moves {} {:?}",
             kind,
@@ -93,10 +93,7 @@ fn spiral_spacing_and_engagement_share() {
             sp.verification.share_above_nominal,
             off.verification.share_above_nominal
         );
-        times.push((
-            sp.toolpath.cut_length(),
-            pocket::cycle_time(&sp.toolpath).unwrap(),
-        ));
+        times.push((sp.toolpath.cut_length(), hsm_time(&sp.toolpath)));
     }
     assert!(times[1].0 < 0.85 * times[0].0, "{times:?}");
     assert!(times[1].1 < times[0].1, "{times:?}");
@@ -119,7 +116,7 @@ fn spiral_spacing_and_engagement_share() {
     let on = |m: &millpath::machine::Machine| -> Vec<f64> {
         paths
             .iter()
-            .map(|tp| pocket::cycle_time_on(tp, m).unwrap())
+            .map(|tp| millpath::motion::cycle_time(tp, m).unwrap())
             .collect()
     };
     let h = on(&millpath::machine::Machine::preset("hsm").unwrap());
@@ -244,7 +241,7 @@ fn spiral_invariance_under_reversal_rotation_translation() {
     let run = |v: &[(Point, f64)]| {
         let shape = pocket::PocketShape::simple(Outline::new(v, "moved").unwrap());
         let tp = pocket::toolpath(StrategyKind::Spiral, &shape, &tool, &opts).unwrap();
-        (tp.cut_length(), pocket::cycle_time(&tp).unwrap())
+        (tp.cut_length(), hsm_time(&tp))
     };
     let (l0, t0) = run(&verts);
     let turned = |a: f64, d: (f64, f64)| -> Vec<(Point, f64)> {
@@ -393,4 +390,10 @@ fn every_strategy_verifies_with_a_finishing_pass() {
             v.min_clearance_mm
         );
     }
+}
+
+/// Cycle time on the `hsm` preset, s.
+fn hsm_time(tp: &millpath::toolpath::Toolpath) -> f64 {
+    let hsm = millpath::machine::Machine::preset("hsm").unwrap();
+    millpath::motion::cycle_time(tp, &hsm).unwrap()
 }

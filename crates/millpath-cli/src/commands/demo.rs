@@ -543,7 +543,7 @@ fn pockets(
         .enumerate()
         .map(|(i, (_, s))| (i + 1, s.clone()))
         .collect();
-    let time = |tp: &Toolpath| pocket::cycle_time_on(tp, machine);
+    let time = |tp: &Toolpath| millpath::motion::cycle_time(tp, machine);
     let mut rows = Vec::new();
     for (kind, name) in [
         (StrategyKind::Zigzag, "zigzag"),

@@ -418,7 +418,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         shapes.push((i, args.common.with_walls(shape)?));
     }
     let m = super::load_machine(&args.common.machine)?;
-    let time = |tp: &millpath::toolpath::Toolpath| pocket::cycle_time_on(tp, &m);
+    let time = |tp: &millpath::toolpath::Toolpath| millpath::motion::cycle_time(tp, &m);
     let strategy = match choice {
         Choice::One(kind) => PartStrategy::One(kind),
         Choice::Auto => PartStrategy::Auto,

@@ -128,7 +128,7 @@ pub fn sweep(
             ..base.clone()
         };
         let tp = pocket::toolpath(kind, shape, tool, &o)?;
-        let t = pocket::cycle_time_on(&tp, machine)
+        let t = millpath::motion::cycle_time(&tp, machine)
             .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
         done += 1;
         progress(done, total);
@@ -153,7 +153,7 @@ pub fn sweep(
         feeds_ipm: feeds_ipm.to_vec(),
         zigzag_s,
         spiral_s,
-        cycle_time_model: pocket::CYCLE_TIME_MODEL.to_owned(),
+        cycle_time_model: millpath::motion::CYCLE_TIME_MODEL.to_owned(),
     })
 }
 

@@ -35,20 +35,15 @@
 //! centre format).
 
 use super::Units;
+use crate::toolpath::arc_rule::{CENTER_ARC_RADIUS_TOLERANCE_MM, radii_mismatch};
+pub use crate::toolpath::arc_rule::{RADIUS_TOLERANCE_MM, SPIRAL_RELATIVE_TOLERANCE};
 use std::f64::consts::{SQRT_2, TAU};
-
-/// LinuxCNC's `SPIRAL_RELATIVE_TOLERANCE`.
-pub const SPIRAL_RELATIVE_TOLERANCE: f64 = 0.001;
-
-/// LinuxCNC's `RADIUS_TOLERANCE_MM` (0.00005 in): smallest arc radius, and how far an `R`
-/// may fall short of half the chord.
-pub const RADIUS_TOLERANCE_MM: f64 = 0.00005 * 25.4;
 
 /// LinuxCNC's `CENTER_ARC_RADIUS_TOLERANCE` in mm for a program in `units`: `2·0.01·√2` mm
 /// (G21) or `2·0.001·√2` in (G20).
 pub fn center_arc_radius_tolerance_mm(units: Units) -> f64 {
     match units {
-        Units::Mm => 2.0 * 0.01 * SQRT_2,
+        Units::Mm => CENTER_ARC_RADIUS_TOLERANCE_MM,
         Units::Inch => 2.0 * 0.001 * SQRT_2 * 25.4,
     }
 }
@@ -102,10 +97,7 @@ pub fn check_radii(r1: f64, r2: f64, units: Units) -> Result<(), ArcProblem> {
     if !(r1 >= RADIUS_TOLERANCE_MM && r2 >= RADIUS_TOLERANCE_MM) {
         return Err(ArcProblem::ZeroRadius);
     }
-    let tau = center_arc_radius_tolerance_mm(units);
-    let abs_err = (r1 - r2).abs();
-    let rel_err = abs_err / r1.max(r2);
-    if abs_err > 100.0 * tau || (rel_err > SPIRAL_RELATIVE_TOLERANCE && abs_err > tau) {
+    if radii_mismatch(r1, r2, center_arc_radius_tolerance_mm(units)) {
         return Err(ArcProblem::RadiusMismatch { start: r1, end: r2 });
     }
     Ok(())

@@ -151,7 +151,7 @@ impl Units {
     pub fn mm_per_unit(self) -> f64 {
         match self {
             Units::Mm => 1.0,
-            Units::Inch => super::format::MM_PER_INCH,
+            Units::Inch => crate::geom::MM_PER_INCH,
         }
     }
 }

@@ -31,8 +31,7 @@ pub const ROUNDING_SHARE: f64 = 0.1;
 /// cannot hold the value of a metre-sized part exactly.
 pub const MAX_DECIMALS: u32 = 12;
 
-/// Millimetres per inch.
-pub const MM_PER_INCH: f64 = 25.4;
+pub use crate::geom::MM_PER_INCH;
 
 /// Worst-case XY displacement in mm of a point whose coordinates are rounded to `decimals` in
 /// `units`: `√2 · ½ · 10^(−decimals)` program units.

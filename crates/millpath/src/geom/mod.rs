@@ -19,3 +19,6 @@ pub use vec3::{Point3, Vec3};
 /// topology (coincident points, closed outlines). It is far below any machining tolerance
 /// (the smallest the engine accepts is 1e-5 mm) and far above f64 rounding at part sizes.
 pub const LENGTH_EPS: f64 = 1e-9;
+
+/// Millimetres per inch (exact, by definition).
+pub const MM_PER_INCH: f64 = 25.4;

@@ -75,8 +75,7 @@ pub mod kinematics;
 use crate::error::InputError;
 use serde::{Deserialize, Serialize};
 
-/// Millimetres per inch.
-pub const MM_PER_INCH: f64 = 25.4;
+pub use crate::geom::MM_PER_INCH;
 
 /// The limits of one axis.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

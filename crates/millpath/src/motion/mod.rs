@@ -79,3 +79,15 @@ pub mod verify;
 
 pub use plan::{BlockPlan, Plan, PlanOptions, Span, plan_moves, plan_toolpath, plan_toolpath_opt};
 pub use sample::Sample;
+
+use crate::error::Result;
+use crate::machine::Machine;
+use crate::toolpath::Toolpath;
+
+/// What [`cycle_time`] computes, for reports.
+pub const CYCLE_TIME_MODEL: &str = "jerk-limited look-ahead planner (motion::plan_toolpath)";
+
+/// Cycle time of a toolpath on `machine`, s: the planner's total time ([`plan_toolpath`]).
+pub fn cycle_time(tp: &Toolpath, machine: &Machine) -> Result<f64> {
+    Ok(plan_toolpath(tp, machine)?.total_time())
+}

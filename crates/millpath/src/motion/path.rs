@@ -357,11 +357,8 @@ pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<Geom
         // The block limits take the arc as circular (a spiral's radial terms are not
         // modelled): arcs whose end radius differs from the start radius beyond what
         // LinuxCNC accepts (and the G-code reader with it) are refused, not mistimed.
-        let tau = crate::gcode::arc::center_arc_radius_tolerance_mm(crate::gcode::Units::Mm);
-        let delta = (r1 - r0).abs();
-        if delta > 100.0 * tau
-            || (delta / r0.max(r1) > crate::gcode::arc::SPIRAL_RELATIVE_TOLERANCE && delta > tau)
-        {
+        let tau = crate::toolpath::arc_rule::CENTER_ARC_RADIUS_TOLERANCE_MM;
+        if crate::toolpath::arc_rule::radii_mismatch(r0, r1, tau) {
             return Err(crate::InputError::new("arc end radius", r1)
                 .at(format!("move {}", i + 1))
                 .expected(format!(

@@ -492,7 +492,7 @@ mod tests {
                 let plane = [Plane::Xy, Plane::Zx, Plane::Yz][plane];
                 let r0 = 10f64.powf(lr).max(1e-6) * 10.0;
                 // Keep the end radius within the planner's acceptance (LinuxCNC's rule).
-                let tau = crate::gcode::arc::center_arc_radius_tolerance_mm(crate::gcode::Units::Mm);
+                let tau = crate::toolpath::arc_rule::CENTER_ARC_RADIUS_TOLERANCE_MM;
                 let lim = (0.9 * tau).max(0.9e-3 * r0);
                 let r1 = r0 + (r0 * ratio - r0).clamp(-lim, lim);
                 let c = at - plane.join(r0 * a0.cos(), r0 * a0.sin(), 0.0);

@@ -380,16 +380,3 @@ fn finishing_plan(
     }
     Ok(levels::LevelPlan { cuts })
 }
-
-/// What [`cycle_time`] computes, for reports.
-pub const CYCLE_TIME_MODEL: &str = "jerk-limited look-ahead planner (motion::plan_toolpath)";
-
-/// Cycle time of a toolpath on `machine`, s: the motion planner's total time.
-pub fn cycle_time_on(tp: &Toolpath, machine: &crate::machine::Machine) -> Result<f64> {
-    Ok(crate::motion::plan_toolpath(tp, machine)?.total_time())
-}
-
-/// Cycle time of a toolpath on the `hsm` preset, s.
-pub fn cycle_time(tp: &Toolpath) -> Result<f64> {
-    cycle_time_on(tp, &crate::machine::Machine::preset("hsm")?)
-}
