@@ -375,6 +375,13 @@ pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
         && a.islands.iter().zip(b.islands).all(|(x, y)| eq(x, y))
 }
 
+/// True when some tool position of radius `r` fits in the pocket: its outline offset inward
+/// (islands outward) by `r + wall stock` leaves a region ([`reach_region`]). A pocket
+/// narrower than the tool leaves none, and no program can cut it.
+pub fn reachable(spec: StockSpec<'_>, r: f64) -> bool {
+    !reach_region(spec, r).0.is_empty()
+}
+
 /// The loops bounding where the tool centre may go: outline offset inward and islands
 /// outward by `r + stock`.
 fn reach_region(spec: StockSpec<'_>, r: f64) -> Reach {
