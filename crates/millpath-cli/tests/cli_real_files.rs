@@ -16,6 +16,8 @@
 //! `cargo test --release -p millpath-cli --test cli_real_files -- --ignored`.
 //! The table of what each run gave is printed (`--nocapture`).
 
+#![allow(clippy::print_stderr)] // the per-run table
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::Mutex;

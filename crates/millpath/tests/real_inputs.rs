@@ -281,7 +281,10 @@ fn layers_select_outlines() {
 fn text_path_guides_are_skipped_with_a_note() {
     let d = read("pb_4_spoke_gear.svg", &ReadOptions::default()).expect("reads");
     let s = d.summary();
-    assert!(s.contains("skipped 2 circle (the path a text follows (textPath))"), "{s}");
+    assert!(
+        s.contains("skipped 2 circle (the path a text follows (textPath))"),
+        "{s}"
+    );
     let loops = d.into_loops("pb_4_spoke_gear.svg", 0.01).expect("nests");
     assert_eq!(loops.pockets().len(), 2);
     assert!(loops.notes.is_empty(), "{:?}", loops.notes);

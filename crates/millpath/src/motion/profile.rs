@@ -123,7 +123,9 @@ pub fn reachable_velocity(va: f64, dist: f64, a: f64, j: f64) -> f64 {
         if vb <= va || change_distance(va, vb, a, j) <= dist {
             break;
         }
-        vb = vb.next_down();
+        // The next f64 below `vb` (> va ≥ 0, so positive and finite); `f64::next_down` is
+        // newer than the MSRV.
+        vb = f64::from_bits(vb.to_bits() - 1);
     }
     vb.max(va)
 }
