@@ -247,13 +247,16 @@ pub fn resolve(loops: Vec<Outline>, origin: &str) -> Result<Resolved, InputError
 
 /// A union can swallow the crossings of a third outline with one of its members (outline 6
 /// crossed 4, and lies inside 4 ∪ 5): an outline left nested without touching in one whose
-/// members it touched as drawn is part of that union, and is dropped.
+/// members it touched as drawn is part of that union, and is dropped. A hole of a union (two
+/// C shapes closing a ring) has the union's own members and stays: an island.
 fn absorb(items: &mut Vec<Tracked>, touching: &[(usize, usize)], notes: &mut Vec<String>) {
+    // Pieces of one boolean share their members (a union's hole is no absorbed outline).
     let touched = |a: &Tracked, b: &Tracked| {
-        touching.iter().any(|&(x, y)| {
-            (a.members.contains(&x) && b.members.contains(&y))
-                || (a.members.contains(&y) && b.members.contains(&x))
-        })
+        a.members.iter().all(|m| !b.members.contains(m))
+            && touching.iter().any(|&(x, y)| {
+                (a.members.contains(&x) && b.members.contains(&y))
+                    || (a.members.contains(&y) && b.members.contains(&x))
+            })
     };
     while let Some((outer, inner)) = (0..items.len())
         .flat_map(|i| (0..items.len()).map(move |j| (i, j)))
@@ -344,6 +347,26 @@ mod tests {
             "{}",
             r.notes[0]
         );
+    }
+
+    #[test]
+    fn a_ring_of_overlapping_outlines_keeps_its_hole() {
+        // Four 10-wide bars around a 20 × 20 hole, each overlapping the next at a corner.
+        let r = resolve(
+            vec![
+                rect(0.0, 0.0, 40.0, 10.0),
+                rect(30.0, 0.0, 40.0, 40.0),
+                rect(0.0, 30.0, 40.0, 40.0),
+                rect(0.0, 0.0, 10.0, 40.0),
+            ],
+            "d",
+        )
+        .expect("resolves");
+        assert_eq!(areas(&r), vec![400.0, 1600.0]);
+        let p = crate::geom::nesting::nest(r.outlines, "d").expect("nests");
+        assert_eq!(p.len(), 1);
+        assert_eq!(p[0].islands.len(), 1);
+        assert!((p[0].area() - 1200.0).abs() < 1e-9);
     }
 
     #[test]
