@@ -311,11 +311,11 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
-            what: "SVG of two outlines that cross",
-            args: &["pocket", "cross.svg", "--tool-diameter", "6", "-o", "out.ngc"],
+            what: "SVG of two outlines that touch at a corner",
+            args: &["pocket", "corner.svg", "--tool-diameter", "6", "-o", "out.ngc"],
             files: &[(
-                "cross.svg",
-                br#"<svg><path d="M 0 0 L 40 0 L 40 40 L 0 40 Z"/><path d="M 30 10 L 60 10 L 60 30 L 30 30 Z"/></svg>"#,
+                "corner.svg",
+                br#"<svg><path d="M 0 0 L 40 0 L 40 40 L 0 40 Z"/><path d="M 40 40 L 80 40 L 80 80 L 40 80 Z"/></svg>"#,
             )],
             outputs: &["out.ngc"],
         },

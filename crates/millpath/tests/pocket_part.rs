@@ -307,3 +307,55 @@ fn a_vertical_retract_from_a_cut_along_the_wall_is_no_rapid_through_material() {
     let v2 = stock::verify(&tp2, spec, 90.0, &sim());
     assert_eq!(v2.rapids_through_material, 1, "{v2:?}");
 }
+
+fn alone(o: &Outline) -> StockSpec<'_> {
+    StockSpec {
+        outer: o,
+        islands: &[],
+        wall_stock: 0.0,
+    }
+}
+
+/// A pocket no tool position fits in (a 4 mm slot for a 6 mm tool) is not reachable with
+/// this tool: the verifier finds it so by offsetting the outline itself, lists it, and does
+/// not count it as uncut material (`pocket` skips it with a note, and `verify` failed the
+/// program for `pb_screw_plate` and `s2g_smooth_curves`); a reachable pocket left uncut still
+/// fails.
+#[test]
+fn a_pocket_narrower_than_the_tool_is_unreachable_not_uncut() {
+    let s = shapes();
+    let tool = Tool::flat(6.0).expect("tool");
+    let part = generate_part(
+        &s,
+        PartStrategy::One(StrategyKind::Offset),
+        &tool,
+        &opts(),
+        &sim(),
+        &time_hsm,
+    )
+    .expect("plans");
+    let slot = square(300.0, 0.0, 40.0, 4.0);
+    let wide = square(300.0, 50.0, 40.0, 20.0);
+    let mut specs: Vec<StockSpec<'_>> = s
+        .iter()
+        .map(|(_, p)| StockSpec {
+            outer: &p.outer,
+            islands: &p.islands,
+            wall_stock: 0.0,
+        })
+        .collect();
+    specs.push(alone(&slot));
+    let back = written(&part.toolpath);
+    let v = stock::verify_part(&back, &specs, 78.5, &sim());
+    assert_eq!(v.unreachable, vec![s.len()]);
+    assert!(v.problems().is_empty(), "{:?}", v.problems());
+    specs.push(alone(&wide));
+    let v = stock::verify_part(&back, &specs, 78.5, &sim());
+    assert_eq!(v.unreachable, vec![s.len()]);
+    let p = v.problems();
+    assert!(
+        p.iter()
+            .any(|x| x.contains(&format!("pocket {}: uncut", s.len() + 2))),
+        "{p:?}"
+    );
+}

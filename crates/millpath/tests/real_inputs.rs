@@ -97,8 +97,9 @@ fn table() -> Vec<(&'static str, Want)> {
         ("wro_Plate_2.DXF", Closed(16, [-48.0, -80.0, 48.0, 12.0])),
         ("wro_Plate_3.DXF", Closed(29, [-48.0, -96.0, 48.0, 12.0])),
         // width 6.9804072in, viewBox width 628.23662: 0.282222 mm per user unit (Inkscape
-        // 0.91's 90 dpi); two gears side by side within the 177.3 × 88.9 mm page.
-        ("pb_4_spoke_gear.svg", Closed(14, [0.0136, 0.0128, 177.2888, 88.8873])),
+        // 0.91's 90 dpi); two gears side by side within the 177.3 × 88.9 mm page. Each gear's
+        // lettering follows a circle (a textPath's guide, skipped): 6 outlines a gear.
+        ("pb_4_spoke_gear.svg", Closed(12, [0.0136, 0.0128, 177.2888, 88.8873])),
         // width 380.17383mm = viewBox: 1 mm per user unit; the same 370.0198 × 126.3296 mm
         // as its DXF export.
         ("pb_latch_test.svg", Closed(3, [5.0642, 5.0899, 375.0839, 131.4192])),
@@ -271,4 +272,20 @@ fn layers_select_outlines() {
         "{:?}",
         r12.layers
     );
+}
+
+/// The circle a gear's lettering follows (an SVG `textPath`'s guide) is no outline: with it,
+/// each gear of `pb_4_spoke_gear.svg` had a 85 mm circle crossing its teeth 52 times, and the
+/// drawing was refused as crossing outlines; its DXF export has no such circle.
+#[test]
+fn text_path_guides_are_skipped_with_a_note() {
+    let d = read("pb_4_spoke_gear.svg", &ReadOptions::default()).expect("reads");
+    let s = d.summary();
+    assert!(
+        s.contains("skipped 2 circle (the path a text follows (textPath))"),
+        "{s}"
+    );
+    let loops = d.into_loops("pb_4_spoke_gear.svg", 0.01).expect("nests");
+    assert_eq!(loops.pockets().len(), 2);
+    assert!(loops.notes.is_empty(), "{:?}", loops.notes);
 }

@@ -100,3 +100,56 @@ fn a_coarse_step_does_not_invent_uncut_material() {
     );
     assert!((coarse.uncut_area_mm2 - fine.uncut_area_mm2).abs() <= 0.05);
 }
+
+/// Feeding straight down where an earlier cut ended is no plunge, even when the program's
+/// rounding put that end a little off the arc the verifier swept: G-code stores an arc's
+/// centre to 3 decimals, so its end point lies up to ~1 µm off the circle through its start,
+/// and the last disc swept is that far from where the next entry lands. `pocket`'s zigzag on
+/// `ma_Part.dxf` (tool 10 mm) enters a row directly at the end of an earlier arc
+/// (167.219, 15.833), and `verify` counted it as a plunge into material: one cell on the
+/// landing disc's rim. Feeding down onto fresh material is a plunge.
+#[test]
+fn feeding_down_where_a_cut_ended_is_no_plunge() {
+    let p = Point::new;
+    let pocket = Outline::from_points(
+        &[p(0.0, 0.0), p(100.0, 0.0), p(100.0, 100.0), p(0.0, 100.0)],
+        "square",
+    )
+    .expect("a square");
+    let tool = Tool::flat(10.0).expect("a tool");
+    let mut tp = Toolpath::new(tool, Point3::new(0.0, 0.0, 5.0));
+    let start = tp.moves.len();
+    let mut fresh = 0;
+    for k in 0..25 {
+        let c = p(
+            14.0 + 17.3 * f64::from(k % 5) + 0.013 * f64::from(k),
+            14.0 + 17.1 * f64::from(k / 5) + 0.007 * f64::from(k),
+        );
+        // A quarter arc of radius 3 whose end lies 0.7 µm outside the circle through its start.
+        let a = Point3::new(c.x + 3.0, c.y, -3.0);
+        let angle = 1.3 + 0.01 * f64::from(k);
+        let rr = 3.0 + 0.000_7 * if k % 2 == 0 { 1.0 } else { -1.0 };
+        let b = Point3::new(c.x + rr * angle.cos(), c.y + rr * angle.sin(), -3.0);
+        tp.push(Move::rapid(Point3::new(a.x, a.y, 1.0)));
+        tp.push(Move::line(a, 5.0));
+        fresh += 1;
+        tp.push(Move::arc_xy(b, Point3::new(c.x, c.y, -3.0), true, 20.0));
+        tp.push(Move::rapid(Point3::new(b.x, b.y, 1.0)));
+        tp.push(Move::line(b, 5.0));
+        tp.push(Move::rapid(Point3::new(b.x, b.y, 1.0)));
+    }
+    let end = tp.moves.len();
+    tp.levels.push(Level {
+        z: -3.0,
+        kind: LevelKind::Roughing,
+        start,
+        end,
+    });
+    let spec = StockSpec {
+        outer: &pocket,
+        islands: &[],
+        wall_stock: 0.0,
+    };
+    let v = stock::verify(&tp, spec, 90.0, &SimOptions::default());
+    assert_eq!(v.plunges, fresh, "{v:?}");
+}

@@ -112,5 +112,8 @@ pub fn load_outline(name: &str, import: &ImportArgs) -> Result<Loops, Error> {
     let summary = drawing.summary();
     let loops = drawing.into_loops(name, import.join_tolerance)?;
     super::eprint(&format!("note: {name}: {summary}"));
+    for n in &loops.notes {
+        super::eprint(&format!("note: {name}: {n}"));
+    }
     Ok(loops)
 }

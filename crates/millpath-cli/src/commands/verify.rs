@@ -169,12 +169,20 @@ pub fn run(args: &Args) -> Result<(), Error> {
             "verification": v,
             "pockets": pv.pockets,
             "cuts_outside": pv.cuts_outside,
+            "unreachable_pockets": pv.unreachable.iter().map(|k| k + 1).collect::<Vec<_>>(),
             "decimals": decimals,
             "gouge_resolution_mm": resolution,
             "pictures": pictures,
         }))?;
     } else {
         print_text(&tp, &v);
+        for k in &pv.unreachable {
+            super::print(&format!(
+                "pocket {}: not reachable with this tool (no position of a {} mm tool fits                  inside it), left uncut",
+                k + 1,
+                tool.diameter
+            ));
+        }
     }
     if problems.is_empty() {
         if !args.json {

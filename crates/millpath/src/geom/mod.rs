@@ -6,6 +6,7 @@
 mod aabb;
 pub mod nesting;
 mod outline;
+pub mod overlap;
 mod point;
 pub mod region;
 mod vec3;

@@ -17,12 +17,11 @@
 //!
 //! Windings are normalised (pocket boundaries counter-clockwise, islands clockwise).
 //!
-//! **Containment.** Outlines that neither touch nor cross are either nested or apart, so one
-//! point of an outline decides whether another contains it (its first vertex, by winding
-//! number). Two outlines that touch, cross or overlap (cavalier_contours' intersections, or a
-//! vertex of either within [`super::region::TOUCH_EPS`] of the other) are refused with an input
-//! error naming both (their index in the order read and a vertex of each) and the point where
-//! they meet: a wall of zero thickness cannot be machined, and the drawing is ambiguous there.
+//! **Containment.** Outlines that touch, cross, overlap or repeat are first resolved as the
+//! drawing means them ([`super::overlap`]: a union, a notch, a repeat dropped; a point contact
+//! refused, naming both outlines and where they meet). Outlines that neither touch nor cross
+//! are either nested or apart, so one point of an outline decides whether another contains
+//! it (its first vertex, by winding number).
 //!
 //! **Order.** Pockets are listed by decreasing area (a tie by the lower-left corner of their
 //! bounds), which does not depend on the order the CAD program wrote the entities in, nor on
@@ -83,11 +82,21 @@ fn first_vertex(o: &Outline) -> Point {
 /// Nests closed outlines by containment into pockets (see the module docs); `origin` names
 /// the drawing. At least one outline is needed.
 pub fn nest(loops: Vec<Outline>, origin: &str) -> Result<Vec<Pocket>, InputError> {
+    nest_noted(loops, origin).map(|(p, _)| p)
+}
+
+/// [`nest`], with the notes of what [`super::overlap::resolve`] merged, cut or dropped.
+pub fn nest_noted(
+    loops: Vec<Outline>,
+    origin: &str,
+) -> Result<(Vec<Pocket>, Vec<String>), InputError> {
     if loops.is_empty() {
         return Err(InputError::new("closed outlines", 0)
             .at(origin)
             .expected("at least one closed outline"));
     }
+    let resolved = super::overlap::resolve(loops, origin)?;
+    let loops = resolved.outlines;
     let bounds: Vec<_> = loops.iter().map(|o| o.bounds()).collect();
     let mut order: Vec<usize> = (0..loops.len()).collect();
     let area = |i: usize| loops[i].signed_area().abs();
@@ -97,50 +106,6 @@ pub fn nest(loops: Vec<Outline>, origin: &str) -> Result<Vec<Pocket>, InputError
             .then(bounds[a].min.x.total_cmp(&bounds[b].min.x))
             .then(bounds[a].min.y.total_cmp(&bounds[b].min.y))
     });
-    // Touching, crossing or overlapping pairs.
-    for (x, &i) in order.iter().enumerate() {
-        let bi = bounds[i].inflate(TOUCH_EPS);
-        for &j in &order[x + 1..] {
-            let bj = bounds[j];
-            let overlap = bi.min.x <= bj.max.x
-                && bj.min.x <= bi.max.x
-                && bi.min.y <= bj.max.y
-                && bj.min.y <= bi.max.y;
-            if !overlap {
-                continue;
-            }
-            if let Some(p) = touch_point(&loops[i], &loops[j]) {
-                let (a, b) = (i.min(j), i.max(j));
-                // `+ 0.0` writes −0 as 0.
-                let (va, vb) = (first_vertex(&loops[a]), first_vertex(&loops[b]));
-                let (va, vb) = (
-                    Point::new(va.x + 0.0, va.y + 0.0),
-                    Point::new(vb.x + 0.0, vb.y + 0.0),
-                );
-                let p = Point::new(p.x + 0.0, p.y + 0.0);
-                return Err(InputError::new(
-                    "closed outlines",
-                    format!(
-                        "{} (from ({:.3}, {:.3})) and {} (from ({:.3}, {:.3}))",
-                        a + 1,
-                        va.x,
-                        va.y,
-                        b + 1,
-                        vb.x,
-                        vb.y
-                    ),
-                )
-                .at(format!(
-                    "{origin}, where they meet near ({:.3}, {:.3})",
-                    p.x, p.y
-                ))
-                .expected(
-                    "closed outlines that do not touch, cross or overlap (each a pocket wall \
-                     or an island inside one)",
-                ));
-            }
-        }
-    }
     // Parent: the smallest earlier (larger) outline containing the first vertex.
     let mut depth = vec![0usize; loops.len()];
     let mut parent: Vec<Option<usize>> = vec![None; loops.len()];
@@ -179,7 +144,7 @@ pub fn nest(loops: Vec<Outline>, origin: &str) -> Result<Vec<Pocket>, InputError
             .then(a.outer.bounds().min.x.total_cmp(&b.outer.bounds().min.x))
             .then(a.outer.bounds().min.y.total_cmp(&b.outer.bounds().min.y))
     });
-    Ok(pockets)
+    Ok((pockets, resolved.notes))
 }
 
 #[cfg(test)]
@@ -221,13 +186,20 @@ mod tests {
     }
 
     #[test]
-    fn refuses_touching_outlines_naming_both_and_where() {
+    fn overlapping_outlines_nest_as_their_union_and_point_contacts_are_refused() {
+        // Side by side, sharing part of an edge: one pocket, their union.
         let loops = vec![square(0.0, 0.0, 10.0, true), square(10.0, 2.0, 5.0, true)];
-        let e = nest(loops, "d.dxf").unwrap_err().to_string();
+        let (p, notes) = nest_noted(loops, "d.dxf").expect("resolves");
+        assert_eq!(p.len(), 1);
+        assert!((p[0].area() - 125.0).abs() < 1e-9);
+        assert!(notes[0].contains("outlines 1 and 2 overlap"), "{notes:?}");
+        let corner = vec![square(0.0, 0.0, 10.0, true), square(10.0, 10.0, 5.0, true)];
+        let e = nest(corner, "d.dxf").unwrap_err().to_string();
         assert!(e.contains("1 (from (0.000, 0.000)) and 2"), "{e}");
-        assert!(e.contains("d.dxf, where they meet near (10.000"), "{e}");
-        let crossing = vec![square(0.0, 0.0, 10.0, true), square(5.0, 5.0, 10.0, true)];
-        assert!(nest(crossing, "c").is_err());
+        assert!(
+            e.contains("d.dxf, where they meet near (10.000, 10.000)"),
+            "{e}"
+        );
         assert!(nest(Vec::new(), "e").is_err());
     }
 }

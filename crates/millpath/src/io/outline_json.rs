@@ -31,6 +31,9 @@ pub struct Loops {
     pub islands: Vec<Outline>,
     /// The drawing's other pockets (empty for one pocket).
     pub others: Vec<Pocket>,
+    /// What reading the drawing resolved: outlines merged, notched or dropped
+    /// ([`crate::geom::overlap`]), one sentence each.
+    pub notes: Vec<String>,
 }
 
 impl Loops {
@@ -40,6 +43,7 @@ impl Loops {
             outer,
             islands,
             others: Vec::new(),
+            notes: Vec::new(),
         }
     }
 
@@ -130,7 +134,8 @@ pub fn check_islands(
 /// ([`nesting::nest`]: even depth a pocket boundary, odd depth an island; touching or
 /// crossing loops refused, naming both and where they meet).
 pub fn classify(loops: Vec<Outline>, origin: &str) -> Result<Loops, InputError> {
-    let mut pockets = nesting::nest(loops, origin)?.into_iter();
+    let (pockets, notes) = nesting::nest_noted(loops, origin)?;
+    let mut pockets = pockets.into_iter();
     let Some(first) = pockets.next() else {
         return Err(InputError::new("closed outlines", 0)
             .at(origin)
@@ -140,6 +145,7 @@ pub fn classify(loops: Vec<Outline>, origin: &str) -> Result<Loops, InputError> 
         outer: first.outer,
         islands: first.islands,
         others: pockets.collect(),
+        notes,
     })
 }
 

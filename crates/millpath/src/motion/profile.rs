@@ -114,7 +114,20 @@ pub fn reachable_velocity(va: f64, dist: f64, a: f64, j: f64) -> f64 {
             x = xn;
         }
     }
-    va + x
+    // The caller keeps `vb`, and a profile recomputes the change as `vb − va`, known only to
+    // an ulp of `vb`: at 118 mm/s over 0.2 µm the change is 1.5e-7 mm/s, and the rounded `vb`
+    // may need 2e-8 more distance than `dist` (a span the look-ahead then hands to
+    // `SpanProfile::new` as infeasible). Step `vb` down by ulps until its change fits.
+    let mut vb = va + x;
+    for _ in 0..64 {
+        if vb <= va || change_distance(va, vb, a, j) <= dist {
+            break;
+        }
+        // The next f64 below `vb` (> va ≥ 0, so positive and finite); `f64::next_down` is
+        // newer than the MSRV.
+        vb = f64::from_bits(vb.to_bits() - 1);
+    }
+    vb.max(va)
 }
 
 /// One phase: duration, acceleration at its start, constant jerk.
@@ -225,47 +238,28 @@ impl SpanProfile {
             // `d` grows like `√(vp − vlo)`, so a peak a rounding error above `vlo` would
             // overshoot the span by ~`vlo·√(ε/J)`.)
             vlo
-        } else if (v0 - v1).abs() <= 0.0 {
-            reachable_velocity(v0, 0.5 * length, a, j).min(lim.v)
         } else {
-            // Bracketed Newton on D(vp) = length over [vlo, V].
-            let (mut lo, mut hi) = (vlo, lim.v);
-            let mut x = 0.5 * (lo + hi);
-            for _ in 0..200 {
-                let f = d(x) - length;
-                if f.abs() <= 1e-15 * length {
-                    break;
-                }
-                if f > 0.0 {
-                    hi = x;
-                } else {
-                    lo = x;
-                }
-                let h = 1e-7 * x.max(1e-12);
-                let fp = (d(x + h) - d(x - h).max(0.0)) / (2.0 * h);
-                let xn = x - f / fp;
-                x = if fp > 0.0 && xn >= lo && xn <= hi {
-                    xn
-                } else {
-                    0.5 * (lo + hi)
-                };
-                if hi - lo <= 4.0 * f64::EPSILON * hi {
-                    break;
-                }
-            }
-            // If the last iterate overshoots by rounding (D grows like √(vp − vlo) near vlo,
-            // beyond what f64 resolves), step down geometrically until D ≤ L (`lo` always
-            // qualifies) and let a cruise of a few ulps take up the rest.
+            let x = if (v0 - v1).abs() <= 0.0 {
+                reachable_velocity(v0, 0.5 * length, a, j).min(lim.v)
+            } else {
+                peak_by_newton(&d, length, vlo, lim.v)
+            };
+            // The peak is stored as a velocity, so the change `vp − v0` it implies is only
+            // known to an ulp of `vp`; when that change is tiny against `vp` (a short span at
+            // speed: 0.5 µm at 139 mm/s changes the velocity by 2e-7 mm/s) `D(vp)` moves in
+            // steps of ~1e-7 relative and the closest representable peak may overshoot the
+            // span. Step down geometrically until `D ≤ L` (`vlo` always qualifies) and let a
+            // cruise at the peak take up the rest, so the profile ends exactly at `L`.
             let mut y = x.clamp(vlo, lim.v);
             let mut step = 4.0 * f64::EPSILON * y;
             for _ in 0..60 {
                 if d(y) <= length {
                     break;
                 }
-                y = (y - step).max(lo);
+                y = (y - step).max(vlo);
                 step *= 4.0;
             }
-            if d(y) > length { lo } else { y }
+            if d(y) > length { vlo } else { y }
         };
         let mut phases = [Phase::default(); 7];
         change_phases(v0, vp, a, j, &mut phases[0..3]);
@@ -406,6 +400,36 @@ impl SpanProfile {
     }
 }
 
+/// The peak `vp ∈ [lo, hi]` with `D(vp) = length`, by bracketed Newton iteration (bisection
+/// fallback) to machine precision; the caller corrects a rounding overshoot.
+fn peak_by_newton(d: &dyn Fn(f64) -> f64, length: f64, lo: f64, hi: f64) -> f64 {
+    let (mut lo, mut hi) = (lo, hi);
+    let mut x = 0.5 * (lo + hi);
+    for _ in 0..200 {
+        let f = d(x) - length;
+        if f.abs() <= 1e-15 * length {
+            break;
+        }
+        if f > 0.0 {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let h = 1e-7 * x.max(1e-12);
+        let fp = (d(x + h) - d(x - h).max(0.0)) / (2.0 * h);
+        let xn = x - f / fp;
+        x = if fp > 0.0 && xn >= lo && xn <= hi {
+            xn
+        } else {
+            0.5 * (lo + hi)
+        };
+        if hi - lo <= 4.0 * f64::EPSILON * hi {
+            break;
+        }
+    }
+    x
+}
+
 fn advance(st: State1, ph: &Phase, tau: f64) -> State1 {
     let (a0, j) = (ph.a0, ph.jerk);
     State1 {
@@ -489,6 +513,77 @@ mod tests {
             }
             let r = reachable_velocity(v0, l, a, j);
             proptest::prop_assert!((change_distance(v0, r, a, j) - l).abs() <= 1e-9 * l.max(1.0));
+        }
+    }
+
+    /// A 0.5 µm span between two equal speeds of 139 mm/s (the spiral of
+    /// `pb_latch_test.svg`, tool 8.28 mm): the peak 2e-7 mm/s above the end speeds was
+    /// rounded to an ulp of 139 mm/s, the profile covered 2.2e-8 more than the span, and
+    /// `check` refused it ("span profile misses its end").
+    #[test]
+    fn tiny_span_at_speed_ends_exactly() {
+        for &(v, l, a, j) in &[
+            (
+                139.2558260320198,
+                0.000512289189829801,
+                6273.140682464093,
+                243955.47098471472,
+            ),
+            (
+                139.22701079276607,
+                0.00011985702212771335,
+                4500.000000000893,
+                175000.00000003472,
+            ),
+        ] {
+            let lim = Limits1 {
+                v: 253.99999999999997,
+                a,
+                j,
+            };
+            let p = SpanProfile::new(v, v, l, lim).unwrap();
+            p.check(lim).unwrap();
+            let end = p.state(p.duration);
+            assert!((end.s - l).abs() <= 1e-12 * l, "{} vs {l}", end.s);
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
+        /// Short spans between equal (and nearly equal) speeds, down to 1e-7 mm: the velocity
+        /// change is far below the speed's resolution, yet the profile ends at its length.
+        #[test]
+        fn short_spans_at_speed_end_exactly(
+            v in 1.0f64..250.0, dv in 0.0f64..1e-9, ll in -7.0f64..-1.0,
+            a in 100.0f64..1e4, lj in 4.0f64..7.0, equal in proptest::bool::ANY,
+        ) {
+            let lim = Limits1 { v: 254.0, a, j: 10f64.powf(lj) };
+            let v1 = if equal { v } else { v + dv * v };
+            let l = 10f64.powf(ll) + change_distance(v, v1, a, lim.j);
+            let p = SpanProfile::new(v, v1, l, lim).unwrap();
+            proptest::prop_assert!(p.check(lim).is_ok(), "{:?}", p.check(lim));
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(1024))]
+        /// The look-ahead's knots: `v1 = reachable_velocity(v0, L)` (and the same going
+        /// down) always gives a feasible span that ends exactly, even when the change is far
+        /// below the speed's resolution (`pb_latch_test.svg`, offset: 0.2 µm at 118 mm/s was
+        /// "span profile infeasible").
+        #[test]
+        fn reachable_knots_give_feasible_spans(
+            v in 1.0f64..250.0, ll in -7.0f64..-1.0,
+            a in 100.0f64..1e4, lj in 4.0f64..7.0, down in proptest::bool::ANY,
+        ) {
+            let lim = Limits1 { v: 254.0, a, j: 10f64.powf(lj) };
+            let l = 10f64.powf(ll);
+            let w = reachable_velocity(v, l, a, lim.j).min(lim.v);
+            let (v0, v1) = if down { (w, v) } else { (v, w) };
+            let p = SpanProfile::new(v0, v1, l, lim);
+            proptest::prop_assert!(p.is_ok(), "{:?}", p);
+            let p = p.expect("feasible");
+            proptest::prop_assert!(p.check(lim).is_ok(), "{:?}", p.check(lim));
         }
     }
 

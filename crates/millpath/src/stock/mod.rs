@@ -15,7 +15,8 @@
 //!   the engagement at every tool position ([`EngagementSample`]), which the pockets' feed
 //!   profile is made from. It also finds rapid moves through material (a vertical retract
 //!   from where the tool stands is never one: it sweeps the column the tool occupies),
-//!   plunges (feed moves steeper than 45° ending in material), and the material left.
+//!   plunges (feed moves steeper than 45° ending on material inside the rim the raster cannot
+//!   resolve, `simulate::plunge_rim`), and the material left.
 //! * Coverage: a material cell left after a slab is *uncut* when the tool could have reached
 //!   it: its centre lies within `r − 2c` of the region the tool centre may visit (the pocket
 //!   offset inward by `r + wall stock`). Cells farther away are the corner cusps and the wall

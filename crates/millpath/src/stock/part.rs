@@ -13,7 +13,10 @@
 //! that pocket alone with [`super::verify`]: gouges (a chunk that wanders into another pocket
 //! crosses its own pocket's wall, at clearance 0), uncut material, rapids through material and
 //! plunges. The moves between chunks all lie at or above the stock top, so no rapid between
-//! pockets can pass through material. A pocket no chunk cuts is uncut: its whole area counts.
+//! pockets can pass through material. A pocket no chunk cuts is uncut, its whole area
+//! counting — unless no tool position fits in it (its outline offset inward by the tool
+//! radius and wall stock is empty, [`super::simulate::reachable`], the verifier's own offset
+//! of the outline): then it is **not reachable with this tool**, listed, and no failure.
 //!
 //! The whole program's figures add up (uncut area, rapids, plunges), take the worst
 //! (clearance, largest engagement) or weigh by cutting length (mean engagement, share above
@@ -33,6 +36,9 @@ pub struct PartVerification {
     pub pockets: Vec<Verification>,
     /// Chunks of the program that cut below the stock top outside every pocket.
     pub cuts_outside: usize,
+    /// Pockets (0-based, in the order given) no tool position of this diameter can enter,
+    /// which the program leaves alone: not uncut material, not a failure.
+    pub unreachable: Vec<usize>,
 }
 
 impl PartVerification {
@@ -121,6 +127,7 @@ pub fn verify_part(
     }
     flush(chunk_start, tp.moves.len(), chunk_from, owner.take());
     let mut per = Vec::with_capacity(pockets.len());
+    let mut unreachable = Vec::new();
     let mut lengths = Vec::with_capacity(pockets.len());
     for (spec, sub) in pockets.iter().zip(subs) {
         match sub {
@@ -131,7 +138,12 @@ pub fn verify_part(
             }
             None => {
                 lengths.push(0.0);
-                let area = crate::geom::area_less_islands(spec.outer, spec.islands);
+                let area = if super::simulate::reachable(*spec, tp.tool.radius()) {
+                    crate::geom::area_less_islands(spec.outer, spec.islands)
+                } else {
+                    unreachable.push(per.len());
+                    0.0
+                };
                 per.push(Verification {
                     min_clearance_mm: f64::INFINITY,
                     required_clearance_mm: tp.tool.radius() + spec.wall_stock,
@@ -153,6 +165,7 @@ pub fn verify_part(
         total: combine_all(&per, &lengths, tp.tool.radius()),
         pockets: per,
         cuts_outside,
+        unreachable,
     }
 }
 

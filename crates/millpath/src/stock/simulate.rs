@@ -130,6 +130,20 @@ fn samples(from: Point3, m: &Move, step: f64) -> Vec<Point3> {
     }
 }
 
+/// The rim of the tool's end face that a feed straight down may find material under without
+/// it being a plunge, mm: what the raster cannot tell from a cleared column. A cell stands
+/// for its centre (half a diagonal, `c/√2`); two swept discs `step` apart leave a scallop
+/// `r − √(r² − step²/4)` deep between them; and the landing point and the cut that cleared it
+/// are read from G-code rounded to 3 decimals ([`super::GOUGE_RESOLUTION`]: an arc's end lies
+/// up to ~1 µm off the circle through its start). Fresh material fills the whole disc, so a
+/// real plunge is found whatever this rim; 0.037 mm at the default 0.05 mm cell.
+fn plunge_rim(cell: f64, step: f64, r: f64) -> f64 {
+    let half = 0.5 * step.min(r);
+    cell * std::f64::consts::FRAC_1_SQRT_2
+        + (r - (r * r - half * half).sqrt())
+        + super::GOUGE_RESOLUTION
+}
+
 /// Sweeps the tool through each slab; `nominal_deg` is the engagement the stepover implies.
 /// Every level has the same pocket, `spec`.
 pub fn simulate(
@@ -201,6 +215,7 @@ pub fn simulate_levels(
     let cell_area = cell * cell;
     let step = opts.step.min(MAX_STEP_RADII * r).max(1e-3);
     let opts = &SimOptions { step, ..*opts };
+    let rim = plunge_rim(cell, step, r);
     let window_n = ((opts.window / opts.step).ceil() as usize).max(1);
     let (mut sum_angle, mut cut_len, mut above_len) = (0.0, 0.0, 0.0);
     let nominal = nominal_deg.to_radians() + 2f64.to_radians();
@@ -271,7 +286,7 @@ pub fn simulate_levels(
                 let xy = (m.length_from(start).powi(2) - dz * dz).max(0.0).sqrt();
                 if m.to.z < start.z && m.to.z < top - 1e-9 && (start.z - m.to.z) > xy {
                     // Steeper than 45°: a plunge if it lands in material.
-                    if ras.count_disc(m.to.xy(), r) > 0 {
+                    if ras.count_disc(m.to.xy(), r - rim) > 0 {
                         out.plunges += 1;
                     }
                 }
@@ -358,6 +373,13 @@ pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
         && eq(a.outer, b.outer)
         && a.islands.len() == b.islands.len()
         && a.islands.iter().zip(b.islands).all(|(x, y)| eq(x, y))
+}
+
+/// True when some tool position of radius `r` fits in the pocket: its outline offset inward
+/// (islands outward) by `r + wall stock` leaves a region ([`reach_region`]). A pocket
+/// narrower than the tool leaves none, and no program can cut it.
+pub fn reachable(spec: StockSpec<'_>, r: f64) -> bool {
+    !reach_region(spec, r).0.is_empty()
 }
 
 /// The loops bounding where the tool centre may go: outline offset inward and islands

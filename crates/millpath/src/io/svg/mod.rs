@@ -38,7 +38,7 @@ use super::join::join;
 use super::outline_json::Loops;
 use crate::error::InputError;
 use roxmltree::{Document, Node};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 pub use path::MIN_TOLERANCE_MM;
 
@@ -181,6 +181,8 @@ struct Walker<'a, 'input> {
     opts: &'a ReadOptions,
     origin: &'a str,
     ids: HashMap<&'a str, Node<'a, 'input>>,
+    /// Ids a `textPath` follows: construction geometry for the text, not outlines.
+    text_guides: HashSet<&'a str>,
     drawing: Drawing,
     pieces: Vec<Piece>,
     visited: usize,
@@ -214,6 +216,13 @@ impl<'a, 'input> Walker<'a, 'input> {
                 .is_some_and(|s| s.replace(' ', "").contains("display:none"))
         {
             self.drawing.skip(name, "hidden (display: none)");
+            return Ok(());
+        }
+        if n.attribute("id")
+            .is_some_and(|id| self.text_guides.contains(id))
+        {
+            self.drawing
+                .skip(name, "the path a text follows (textPath)");
             return Ok(());
         }
         let mut ctm = ctm;
@@ -417,10 +426,20 @@ pub fn read_loops(text: &str, origin: &str, opts: &ReadOptions) -> Result<Drawin
         .descendants()
         .filter_map(|n| n.attribute("id").map(|id| (id, n)))
         .collect();
+    let text_guides = doc
+        .descendants()
+        .filter(|n| n.tag_name().name() == "textPath")
+        .filter_map(|n| {
+            n.attribute((XLINK_NS, "href"))
+                .or_else(|| n.attribute("href"))
+        })
+        .filter_map(|h| h.strip_prefix('#'))
+        .collect();
     let mut w = Walker {
         opts,
         origin,
         ids,
+        text_guides,
         drawing: Drawing {
             units,
             mm_per_unit: map.max_stretch(),

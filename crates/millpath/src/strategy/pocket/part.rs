@@ -178,6 +178,7 @@ pub fn generate_part(
             total: v.clone(),
             pockets: vec![v],
             cuts_outside: 0,
+            unreachable: Vec::new(),
         },
         None => stock::verify_part(&toolpath, &specs, nominal, sim),
     };
