@@ -8,8 +8,6 @@ use millpath::strategy::pocket::PocketShape;
 use millpath::toolpath::Tool;
 use std::path::PathBuf;
 
-pub use millpath::job::pocket::parse_select;
-
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
 #[command(

@@ -5,9 +5,12 @@
 //!
 //! This is the top layer: it may use every other module, and none uses it.
 
+pub mod contour;
+pub mod five_axis;
 pub mod pocket;
 pub mod pocket_report;
 pub mod program;
+pub mod verify;
 
 use crate::Error;
 use crate::io::ImportSettings;
