@@ -314,8 +314,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use millpath::gcode;
     use clap::Parser;
+    use millpath::gcode;
 
     #[derive(Debug, Parser)]
     struct Cli {
