@@ -226,3 +226,18 @@ def test_threads_plan_in_parallel_with_the_same_results():
     for t in ts:
         t.join()
     assert [out["offset"], out["zigzag"]] == serial
+
+
+def test_readme_example_runs(tmp_path):
+    """The README's example (examples/python/compare_strategies.py) runs, prints the three
+    cycle times millpath.pocket gives, and writes its plot."""
+    import sys
+
+    plot = tmp_path / "feed.png"
+    r = subprocess.run([sys.executable, str(ROOT / "examples" / "python" / "compare_strategies.py"),
+                        str(T_PART), str(plot)], capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 0, r.stderr
+    for s in ("spiral", "offset", "zigzag"):
+        t = millpath.pocket(T_PART, strategy=s, tool_diameter=4, depth=2, step_down=2).cycle_time_s
+        assert f"{s:7s} cycle time {t:6.2f} s" in r.stdout
+    assert plot.stat().st_size > 10_000 and plot.read_bytes()[:4] == b"\x89PNG"
