@@ -36,6 +36,19 @@ pub fn path_text(obj: &Bound<'_, PyAny>) -> PyResult<Option<String>> {
     Ok(None)
 }
 
+/// Whether a one-line text names a file rather than being a program or points itself: it
+/// ends in a file extension the readers take or holds a path separator.
+pub fn looks_like_path(text: &str) -> bool {
+    const EXTENSIONS: &[&str] = &[
+        ".ngc", ".nc", ".tap", ".mpf", ".gcode", ".csv", ".json", ".txt",
+    ];
+    !text.contains('\n')
+        && (text.contains('/')
+            || EXTENSIONS
+                .iter()
+                .any(|e| text.to_ascii_lowercase().ends_with(e)))
+}
+
 /// One outline from an N × 2 (x, y) or N × 3 (x, y, bulge) array, mm.
 fn outline_from_array(a: &Bound<'_, PyAny>, origin: &str) -> PyResult<Outline> {
     let np = a.py().import("numpy")?;

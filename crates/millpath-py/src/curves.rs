@@ -18,6 +18,7 @@ fn text_or_path(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Option<(String, 
     };
     if !obj.is_instance_of::<PyString>()
         || (!p.contains('\n') && std::path::Path::new(&p).is_file())
+        || crate::convert::looks_like_path(&p)
     {
         let t = millpath::io::read_text(std::path::Path::new(&p)).map_err(err)?;
         return Ok(Some((t, p)));

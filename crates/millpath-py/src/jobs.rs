@@ -147,6 +147,11 @@ pub fn estimate(
                 millpath::InputError::new("input file", p).expected("a readable G-code file"),
             ));
         }
+        Some(t) if crate::convert::looks_like_path(&t) => {
+            // A path to a file that is not there: read it, for the reader's message.
+            let t = millpath::io::read_text(std::path::Path::new(&t)).map_err(err)?;
+            (t, "program (text)".to_owned())
+        }
         Some(t) => (t, "program (text)".to_owned()),
         None => {
             return Err(pyo3::exceptions::PyTypeError::new_err(

@@ -241,3 +241,12 @@ def test_readme_example_runs(tmp_path):
         t = millpath.pocket(T_PART, strategy=s, tool_diameter=4, depth=2, step_down=2).cycle_time_s
         assert f"{s:7s} cycle time {t:6.2f} s" in r.stdout
     assert plot.stat().st_size > 10_000 and plot.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_missing_files_are_named():
+    for call in (lambda: millpath.estimate("no/such/part.ngc"),
+                 lambda: millpath.verify("missing.ngc", "sample:aerospace"),
+                 lambda: millpath.contour("missing.csv"),
+                 lambda: millpath.pocket("missing.dxf")):
+        with pytest.raises(millpath.InputError, match="missing|no/such"):
+            call()
