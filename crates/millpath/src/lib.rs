@@ -32,6 +32,7 @@ pub mod error;
 pub mod gcode;
 pub mod geom;
 pub mod io;
+pub mod job;
 pub mod machine;
 pub mod motion;
 pub mod report;

@@ -23,6 +23,7 @@ const LAYERS: &[&str] = &[
     "gcode",
     "calibrate",
     "report",
+    "job",
 ];
 
 fn source_files(dir: &Path, out: &mut Vec<PathBuf>) {

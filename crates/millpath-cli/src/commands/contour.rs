@@ -4,10 +4,9 @@
 //! tolerance → layers → G-code (any dialect) and a JSON report.
 
 use millpath::curve::{self, CurveKind};
-use millpath::gcode::{self, WriterOptions};
-use millpath::machine::Machine;
-use millpath::strategy::contour::{self, ContourOptions, Side};
-use millpath::{Error, InputError, Tool};
+use millpath::job::contour::{ContourSettings, ContourSource};
+use millpath::strategy::contour::Side;
+use millpath::{Error, InputError};
 use std::path::PathBuf;
 
 /// Curve through the points.
@@ -122,43 +121,24 @@ fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> E
     InputError::new(what, v).at(flag).expected(expected).into()
 }
 
-/// Runs the contour pipeline.
-/// The machine a contour program is timed on: `machine` with the path tolerance the
-/// program states, the machine's or the contour's tolerance `t` where that is tighter (a
-/// controller blending corners by more than `t` would cut outside the contour's budget, and
-/// LinuxCNC's `G64 P` also merges short segments within it).
-pub fn program_machine(machine: &Machine, t: f64) -> Machine {
-    Machine {
-        path_tolerance: t.min(machine.path_tolerance),
-        ..machine.clone()
-    }
-}
+pub use millpath::job::contour::program_machine;
 
+/// Runs the contour pipeline.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let machine = super::load_machine(&args.machine)?;
-    let (curve, mut opt, name) = match (&args.points, args.sample) {
+    // The machine is checked before the points are read (as the job does).
+    super::load_machine(&args.machine)?;
+    let text;
+    let name;
+    let source = match (&args.points, args.sample) {
         (Some(path), false) => {
-            let name = path.display().to_string();
-            let text = super::read_text(path)?;
-            let mut groups = millpath::io::points::parse(&text, &name)?;
-            let kind = match args.curve {
-                CurveArg::FourPoint => CurveKind::FourPoint,
-                CurveArg::CatmullRom => CurveKind::CatmullRom,
-                CurveArg::Spline => CurveKind::Spline,
-            };
-            if kind == CurveKind::FourPoint {
-                groups = millpath::io::points::regroup_for_four_point(groups);
+            name = path.display().to_string();
+            text = super::read_text(path)?;
+            ContourSource::Points {
+                text: &text,
+                name: &name,
             }
-            (
-                curve::build(&groups, kind, &name)?,
-                ContourOptions::default(),
-                name,
-            )
         }
-        (None, true) => {
-            let (c, o) = contour::sample()?;
-            (c, o, "paper sample".to_owned())
-        }
+        (None, true) => ContourSource::Sample,
         (Some(_), true) => {
             return Err(input(
                 "POINTS",
@@ -176,135 +156,36 @@ pub fn run(args: &Args) -> Result<(), Error> {
             ));
         }
     };
-    if let Some(d) = args.tool_diameter {
-        if !(d.is_finite() && d > 0.0) {
-            return Err(input(
-                "tool diameter",
-                d,
-                "--tool-diameter",
-                "a finite number > 0 mm",
-            ));
-        }
-        opt.tool = Tool {
-            diameter: d,
-            flute_length: opt.tool.flute_length.max(3.0 * d),
-            ..opt.tool
-        };
-    }
-    if let Some(t) = args.tolerance {
-        if !(t.is_finite() && t > 0.0) {
-            return Err(input(
-                "tolerance",
-                t,
-                "--tolerance",
-                "a finite number > 0 mm",
-            ));
-        }
-        opt.tolerance = t;
-    }
-    // Checked here so the error names the flag (ContourOptions::validate can only say
-    // "contour options").
-    let max = millpath::geom::MAX_COORDINATE_MM;
-    if let Some(d) = args.depth {
-        if !(d.is_finite() && d > 0.0 && d <= max) {
-            return Err(input(
-                "depth",
-                d,
-                "--depth",
-                &format!("a finite number > 0 mm and at most {max} mm"),
-            ));
-        }
-        opt.depth = d;
-    }
-    if let Some(s) = args.step_down {
-        if !(s.is_finite() && s > 0.0) {
-            return Err(input(
-                "step-down",
-                s,
-                "--step-down",
-                "a finite number > 0 mm",
-            ));
-        }
-        opt.step_down = s;
-    }
-    opt.side = match args.side {
-        SideArg::Inside => Side::Inside,
-        SideArg::Outside => Side::Outside,
-        SideArg::On => Side::On,
+    let settings = ContourSettings {
+        tool_diameter: args.tool_diameter,
+        tolerance: args.tolerance,
+        side: match args.side {
+            SideArg::Inside => Side::Inside,
+            SideArg::Outside => Side::Outside,
+            SideArg::On => Side::On,
+        },
+        depth: args.depth,
+        step_down: args.step_down,
+        finish_allowance: args.finish_allowance,
+        curve: match args.curve {
+            CurveArg::FourPoint => CurveKind::FourPoint,
+            CurveArg::CatmullRom => CurveKind::CatmullRom,
+            CurveArg::Spline => CurveKind::Spline,
+        },
+        arcs: args.arcs,
+        feed: args.feed,
+        plunge_feed: args.plunge_feed,
+        safe_height: args.safe_height,
+        clearance_height: args.clearance_height,
+        lead_radius: args.lead_radius,
+        machine: args.machine.clone(),
     };
-    opt.finish_allowance = args.finish_allowance;
-    opt.arcs = args.arcs;
-    for (what, v, flag) in [
-        ("feed", args.feed, "--feed"),
-        ("plunge feed", args.plunge_feed, "--plunge-feed"),
-    ] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(input(what, v, flag, "a finite number > 0 mm/min"));
-        }
-    }
-    opt.feed = args.feed / 60.0;
-    opt.plunge_feed = args.plunge_feed / 60.0;
-    opt.safe_height = args.safe_height;
-    opt.clearance_height = args.clearance_height;
-    opt.lead_radius = args.lead_radius;
-    // Tolerance budget: rounding of the written coordinates + chord deviation <= T.
-    let decimals = match args.program.decimals {
-        Some(d) => {
-            let rho = gcode::rounding_error_mm(d, args.program.units);
-            if opt.tolerance <= 2.0 * rho {
-                return Err(input(
-                    "decimals",
-                    d,
-                    "--decimals",
-                    &format!(
-                        "enough decimals to hold --tolerance {} mm: {d} decimals round by up to {rho:.3e} mm; use at least {}",
-                        opt.tolerance,
-                        gcode::required_decimals(opt.tolerance, args.program.units)
-                    ),
-                ));
-            }
-            d
-        }
-        None => gcode::required_decimals(opt.tolerance, args.program.units)
-            .max(args.program.dialect.default_decimals(args.program.units)),
-    };
-    opt.rounding = gcode::rounding_error_mm(decimals, args.program.units);
-    if opt.tolerance <= 2.0 * opt.rounding {
-        return Err(input(
-            "tolerance",
-            opt.tolerance,
-            "--tolerance",
-            &format!(
-                "a tolerance the G-code can hold: even {decimals} decimals round by {:.3e} mm",
-                opt.rounding
-            ),
-        ));
-    }
-    let result = contour::contour(&curve, &opt)?;
-    let machine = program_machine(&machine, opt.tolerance);
-    let path_tolerance = machine.path_tolerance;
-    let wopt = WriterOptions {
-        path_tolerance: Some(path_tolerance),
-        header_notes: vec![format!(
-            "tolerance {} mm = chord {:.3e} + rounding {:.3e}; {} segments per pass",
-            opt.tolerance,
-            opt.chord_tolerance(1.0),
-            opt.rounding,
-            result.report.segments
-        )],
-        // The options carry the user's --decimals, --spindle and --tool-number: refused as
-        // input there; what the writer refuses after that is in the toolpath the engine made.
-        ..args
-            .program
-            .writer_options(decimals, format!("millpath contour {name}"))?
-    };
-    let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)
-        .map_err(|e| e.engine_made("writing the contour program"))?;
-    let mut report = result.report.clone();
-    report.blocks = summary.blocks;
-    report.lines = summary.lines;
-    report.decimals = summary.decimals;
-    let json = serde_json::to_string_pretty(&report)
+    let job = millpath::job::contour::run(source, &settings, &args.program.settings())?;
+    let (text, report, opt, curve, name) =
+        (&job.gcode, &job.report, &job.options, &job.curve, &job.name);
+    let machine = &job.machine;
+    let result_toolpath = &job.toolpath;
+    let json = serde_json::to_string_pretty(report)
         .map_err(|e| Error::internal(format!("report: {e}")))?;
     if let Some(out) = &args.output {
         millpath::io::write_atomic_with(out, |w| {
@@ -315,16 +196,16 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if let Some(rp) = &args.report {
         millpath::io::write_atomic(rp, json.as_bytes())?;
     }
-    let m = &machine;
-    let plan = millpath::motion::plan_toolpath(&result.toolpath, m)
+    let m = machine;
+    let plan = millpath::motion::plan_toolpath(result_toolpath, m)
         .map_err(|e| e.engine_made("timing the contour toolpath"))?;
-    let flat = curve::flatten::flatten_curve(&curve, opt.tolerance.max(1e-3))?;
-    let outline = millpath::geom::Outline::from_points(&flat.points, &name)?;
+    let flat = curve::flatten::flatten_curve(curve, opt.tolerance.max(1e-3))?;
+    let outline = millpath::geom::Outline::from_points(&flat.points, name)?;
     let mut pictures = Vec::new();
     if let Some(path) = &args.svg {
         pictures = super::write_previews(
             path,
-            &result.toolpath,
+            result_toolpath,
             std::slice::from_ref(&outline),
             &millpath::report::PreviewOptions {
                 title: Some(format!(
@@ -333,7 +214,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
                     plan.total_time(),
                     m.name
                 )),
-                achieved_feed: Some(plan.peak_feed_by_move(result.toolpath.moves.len())),
+                achieved_feed: Some(plan.peak_feed_by_move(result_toolpath.moves.len())),
                 ..millpath::report::PreviewOptions::default()
             },
             args.per_level,
@@ -375,15 +256,14 @@ pub fn run(args: &Args) -> Result<(), Error> {
             ),
         ];
         summary.extend(
-            result
-                .warnings
+            job.warnings
                 .iter()
                 .map(|w| ("warning".to_owned(), w.clone())),
         );
         let mut html = super::html::toolpath_report(
             &format!("millpath contour {name}"),
             summary,
-            &result.toolpath,
+            result_toolpath,
             std::slice::from_ref(&outline),
             &plan,
         )?;
@@ -391,7 +271,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
             .params
             .windows(2)
             .zip(flat.points.windows(2))
-            .map(|(p, q)| curve::verify::chordal_deviation(&curve, p, q, 200))
+            .map(|(p, q)| curve::verify::chordal_deviation(curve, p, q, 200))
             .collect();
         html.plot(
             "Chordal deviation of each segment of the curve flattened at the tolerance (dense sampling, 200 points per segment)",
@@ -402,12 +282,12 @@ pub fn run(args: &Args) -> Result<(), Error> {
         )?;
         super::html::write(path, &html)?;
     }
-    for w in &result.warnings {
+    for w in &job.warnings {
         super::eprint(&format!("warning: {w}"));
     }
     if args.json {
         let mut v =
-            serde_json::to_value(&report).map_err(|e| Error::internal(format!("report: {e}")))?;
+            serde_json::to_value(report).map_err(|e| Error::internal(format!("report: {e}")))?;
         v["cycle_time_s"] = serde_json::json!(plan.total_time());
         v["machine"] = serde_json::json!(m.name);
         v["pictures"] = serde_json::json!(pictures);
@@ -435,6 +315,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
 mod tests {
     use super::*;
     use clap::Parser;
+    use millpath::gcode;
 
     #[derive(Debug, Parser)]
     struct Cli {

@@ -412,35 +412,3 @@ fn write_samples(
     }
     millpath::io::write_atomic(out, text.as_bytes())
 }
-
-/// The cycle time `millpath estimate` gives a written program (`bytes`, named `origin`) on
-/// `machine`: the same reader options and the same streaming planner, so that `pocket`'s
-/// report states the time of the program it wrote.
-pub fn program_time(
-    bytes: &[u8],
-    dialect: Dialect,
-    origin: &str,
-    machine: &millpath::machine::Machine,
-) -> Result<f64, Error> {
-    use millpath::motion::stream::{StreamOptions, plan_stream};
-    let opts = ReaderOptions {
-        dialect,
-        origin: origin.to_owned(),
-        sync_points: (machine.controller == millpath::machine::Controller::LinuxCnc)
-            .then_some(machine.sync_wait),
-        ..ReaderOptions::default()
-    };
-    let mut at = opts.start;
-    let mut reader = Reader::new(BufReader::new(bytes), opts);
-    let tracked = std::iter::from_fn(|| {
-        reader.next().map(|item| {
-            item.map(|rm| {
-                let f = at;
-                at = rm.mv.to;
-                (f, rm.mv)
-            })
-        })
-    });
-    let sum = plan_stream(tracked, machine, &StreamOptions::default(), |_| Ok(()))?;
-    Ok(sum.total_time)
-}

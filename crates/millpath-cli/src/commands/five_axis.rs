@@ -6,9 +6,8 @@ use millpath::gcode::five_axis::{
     FeedMode, FiveAxisGcodeOptions, check_five_axis, write_five_axis,
 };
 use millpath::geom::Point3;
-use millpath::machine::kinematics::{HeadHead, Kinematics, PaperAb, TableTable, TrtKind};
 use millpath::motion::five_axis::case::LimitsFile;
-use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, RefCurve, case};
+use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, RefCurve};
 use millpath::report::five_axis_plots::deflection_charts;
 use millpath::{Error, InputError};
 use std::path::PathBuf;
@@ -105,53 +104,6 @@ pub struct Args {
     pub html: Option<PathBuf>,
 }
 
-/// The machine named `name` with the given structural overrides.
-fn machine(name: &str, over: &LimitsFile) -> Result<Box<dyn Kinematics>, Error> {
-    let only_paper = |key: &str, v: Option<f64>| -> Result<(), Error> {
-        match v {
-            Some(v) => Err(InputError::new(key, v)
-                .at(format!("--machine {name}"))
-                .expected(format!("{key} only with --machine paper"))
-                .into()),
-            None => Ok(()),
-        }
-    };
-    Ok(match name {
-        "paper" | "paper-ab" => {
-            let mut m = PaperAb::paper();
-            m.tool_length = over.tool_length.unwrap_or(m.tool_length);
-            m.z1 = over.z1.unwrap_or(m.z1);
-            m.z2 = over.z2.unwrap_or(m.z2);
-            Box::new(m)
-        }
-        "xyzac-trt" | "ac-trt" | "xyzbc-trt" | "bc-trt" => {
-            only_paper("z1", over.z1)?;
-            only_paper("z2", over.z2)?;
-            let kind = if name.contains("ac") {
-                TrtKind::Ac
-            } else {
-                TrtKind::Bc
-            };
-            let mut m = TableTable::typical(kind);
-            m.tool_offset = over.tool_length.unwrap_or(m.tool_offset);
-            Box::new(m)
-        }
-        "head-head" => {
-            only_paper("z1", over.z1)?;
-            only_paper("z2", over.z2)?;
-            let mut m = HeadHead::typical();
-            m.length = over.tool_length.unwrap_or(m.length);
-            Box::new(m)
-        }
-        other => {
-            return Err(InputError::new("machine", other)
-                .at("--machine")
-                .expected("paper, xyzac-trt, xyzbc-trt or head-head")
-                .into());
-        }
-    })
-}
-
 /// The limits and structural overrides: the paper's limits, then the file, then the flags.
 fn overrides(args: &Args) -> Result<LimitsFile, Error> {
     let file = match &args.limits {
@@ -179,7 +131,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let over = overrides(args)?;
     let limits = over.apply(&Limits::paper());
     limits.validate("limits")?;
-    let kin = machine(&args.machine, &over)?;
+    let kin = millpath::job::five_axis::kinematics(&args.machine, &over)?;
     if args.gcode.is_some() && !matches!(kin.name(), "ac-trt" | "bc-trt") {
         return Err(InputError::new("--machine", kin.name())
             .at("--gcode")
@@ -212,30 +164,15 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
         None => None,
     };
-    let (poses, default_deflection) = match (&args.case, &args.path) {
-        (Some(c), _) if c == "paper" => (case::paper_path(), Some(case::paper_deflection())),
-        (Some(c), _) => {
-            return Err(InputError::new("case", c)
-                .at("--case")
-                .expected("paper")
-                .into());
-        }
-        (None, Some(p)) => {
-            let name = p.display().to_string();
-            let lines = case::parse_path_csv_lines(&read_text(p)?, &name)?;
-            // Every pose must be reachable: name its line.
-            for (line, pose) in &lines {
-                kin.inverse(pose)
-                    .map_err(|e| e.at(format!("{name}:{line}")))?;
-            }
-            (lines.into_iter().map(|(_, p)| p).collect(), None)
-        }
-        (None, None) => {
-            return Err(InputError::new("input", "none")
-                .expected("--case paper or a path file")
-                .into());
-        }
+    let text = match &args.path {
+        Some(p) if args.case.is_none() => Some((read_text(p)?, p.display().to_string())),
+        _ => None,
     };
+    let (poses, default_deflection) = millpath::job::five_axis::poses(
+        args.case.as_deref(),
+        text.as_ref().map(|(t, n)| (t.as_str(), n.as_str())),
+        kin.as_ref(),
+    )?;
     let deflection = match &args.deflection {
         Some(v) => {
             let [x, y, z] = v.as_slice() else {

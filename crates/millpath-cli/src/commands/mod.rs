@@ -10,12 +10,11 @@ pub mod machines;
 pub mod outline_input;
 pub mod output;
 pub mod pocket;
-pub mod pocket_report;
 pub mod sweep;
 pub mod verify;
 
+use millpath::Error;
 use millpath::machine::Machine;
-use millpath::{Error, InputError};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -30,26 +29,14 @@ pub fn eprint(line: &str) {
 }
 
 /// Reads a whole text file, turning an I/O failure into an input error naming the file.
-#[allow(dead_code)] // used by the input-reading commands as they land
 pub fn read_text(path: &Path) -> Result<String, Error> {
-    std::fs::read_to_string(path).map_err(|e| {
-        Error::Input(
-            InputError::new("input file", path.display())
-                .expected(format!("a readable text file ({e})")),
-        )
-    })
+    millpath::io::read_text(path)
 }
 
-/// The machine named by `--machine`: a preset name (see `millpath machines`) or the path of a
-/// TOML machine profile (anything ending in `.toml`, or an existing file). Every command that
-/// gives a cycle time takes its machine through this one function.
+/// The machine named by `--machine` ([`millpath::job::load_machine`]): a preset name (see
+/// `millpath machines`) or the path of a TOML machine profile.
 pub fn load_machine(spec: &str) -> Result<Machine, Error> {
-    if spec.ends_with(".toml") || Path::new(spec).is_file() {
-        let text = read_text(Path::new(spec))?;
-        Ok(Machine::from_toml_str(&text, spec)?)
-    } else {
-        Ok(Machine::preset(spec).map_err(|e| e.at("--machine"))?)
-    }
+    millpath::job::load_machine(spec)
 }
 
 /// Prints `value` as one line of JSON on stdout (the `--json` output of every command).

@@ -9,13 +9,9 @@
 //! millpath five-axis --case paper --machine xyzac-trt --gcode traj.nc --dialect fanuc
 //! ```
 
-use millpath::gcode::format::MAX_DECIMALS;
-use millpath::gcode::{Coolant, Dialect, Units, WriterOptions, rounding_error_mm};
-use millpath::{Error, InputError};
-
-/// Largest tool number accepted: four digits (Fanuc's `T` word; LinuxCNC and Sinumerik take
-/// more, Grbl only names it in a comment).
-pub const MAX_TOOL_NUMBER: u32 = 9999;
+use millpath::Error;
+use millpath::gcode::{Coolant, Dialect, Units, WriterOptions};
+use millpath::job::ProgramSettings;
 
 /// G-code output flags.
 #[derive(Debug, Clone, clap::Args)]
@@ -47,66 +43,21 @@ pub struct OutputArgs {
 }
 
 impl OutputArgs {
-    /// The writer's options for these flags, each checked with its flag named: the dialect,
-    /// units, `decimals` (as the command settled them), tool, spindle, coolant, numbering and
-    /// the program's name.
-    pub fn writer_options(&self, decimals: u32, name: String) -> Result<WriterOptions, Error> {
-        if decimals > MAX_DECIMALS {
-            return Err(InputError::new("decimals", decimals)
-                .at("--decimals")
-                .expected(format!("0 to {MAX_DECIMALS}"))
-                .into());
-        }
-        if self.tool_number > MAX_TOOL_NUMBER {
-            return Err(InputError::new("tool number", self.tool_number)
-                .at("--tool-number")
-                .expected(format!("0 to {MAX_TOOL_NUMBER} (0: no tool change)"))
-                .into());
-        }
-        if !(self.spindle.is_finite() && self.spindle >= 0.0) {
-            return Err(InputError::new("spindle speed", self.spindle)
-                .at("--spindle")
-                .expected("a finite number >= 0 rev/min (0: spindle left alone)")
-                .into());
-        }
-        let w = WriterOptions {
+    /// The engine's program settings these flags give.
+    pub fn settings(&self) -> ProgramSettings {
+        ProgramSettings {
             dialect: self.dialect,
             units: self.units,
-            decimals: Some(decimals),
-            line_numbers: self.line_numbers,
-            spindle_rpm: self.spindle,
+            decimals: self.decimals,
+            tool_number: self.tool_number,
+            spindle: self.spindle,
             coolant: self.coolant,
-            program_name: Some(name),
-            tool_change: self.tool_number > 0,
-            tool_number: Some(self.tool_number),
-            ..WriterOptions::default()
-        };
-        w.validate()?;
-        Ok(w)
+            line_numbers: self.line_numbers,
+        }
     }
 
-    /// The decimals to write: `--decimals` when given and fine enough that coordinates round
-    /// by at most `max_rounding_mm` (else exit 2, naming `why` and the least that would do),
-    /// else the dialect's default raised to that.
-    pub fn decimals_within(&self, max_rounding_mm: f64, why: &str) -> Result<u32, Error> {
-        let least = (0..=MAX_DECIMALS)
-            .find(|&d| rounding_error_mm(d, self.units) <= max_rounding_mm * (1.0 + 1e-9))
-            .unwrap_or(MAX_DECIMALS);
-        match self.decimals {
-            Some(d) if d < least => Err(InputError::new("decimals", d)
-                .at("--decimals")
-                .expected(format!(
-                    "at least {least} decimals in {}: {d} round a point by up to {:.3e} mm, \
-                     more than {why} ({max_rounding_mm:.3e} mm)",
-                    match self.units {
-                        Units::Mm => "millimetres",
-                        Units::Inch => "inches",
-                    },
-                    rounding_error_mm(d, self.units)
-                ))
-                .into()),
-            Some(d) => Ok(d),
-            None => Ok(self.dialect.default_decimals(self.units).max(least)),
-        }
+    /// The writer's options for these flags ([`ProgramSettings::writer_options`]).
+    pub fn writer_options(&self, decimals: u32, name: String) -> Result<WriterOptions, Error> {
+        self.settings().writer_options(decimals, name)
     }
 }

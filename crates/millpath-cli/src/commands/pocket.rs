@@ -1,15 +1,11 @@
-//! `millpath pocket`: 2.5D pocket roughing with zigzag, contour-offset or the adaptive spiral.
+//! `millpath pocket`: 2.5D pocket roughing with zigzag, contour-offset or the adaptive spiral
+//! (the flags; the job itself is [`millpath::job::pocket`]).
 
-use millpath::gcode::{WriterOptions, write_program};
+use millpath::Error;
 use millpath::io::outline_json::Loops;
-use millpath::machine::Machine;
-use millpath::stock::SimOptions;
-use millpath::strategy::pocket::part::{PartStrategy, generate_part};
-use millpath::strategy::pocket::{
-    self, Direction, Entry, PocketOptions, PocketShape, Stepover, StrategyKind, Walls,
-};
+use millpath::job::PocketSettings;
+use millpath::strategy::pocket::PocketShape;
 use millpath::toolpath::Tool;
-use millpath::{Error, InputError};
 use std::path::PathBuf;
 
 /// Arguments of `millpath pocket`.
@@ -139,223 +135,53 @@ pub struct CommonArgs {
     pub bottom_outline: Option<String>,
 }
 
-/// Parses a feed: `600ipm` / `600in/min` in inches per minute, else mm/min; returns mm/s.
-pub fn parse_feed(text: &str) -> Result<f64, InputError> {
-    let t = text.trim();
-    let (num, scale) = if let Some(n) = t.strip_suffix("ipm").or_else(|| t.strip_suffix("in/min")) {
-        (n, 25.4 / 60.0)
-    } else if let Some(n) = t.strip_suffix("mm/min") {
-        (n, 1.0 / 60.0)
-    } else {
-        (t, 1.0 / 60.0)
-    };
-    num.trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite() && *v > 0.0)
-        .map(|v| v * scale)
-        .ok_or_else(|| {
-            InputError::new("feed", text)
-                .at("--feed")
-                .expected("a feed > 0 in mm/min (1500) or in/min (600ipm)")
-        })
-}
-
-/// What `--strategy` asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Choice {
-    /// One strategy.
-    One(StrategyKind),
-    /// All three, the fastest verified one written (`pocket::auto`).
-    Auto,
-}
-
-/// `--strategy` of `pocket`: a strategy or `auto`.
-pub fn parse_choice(s: &str) -> Result<Choice, InputError> {
-    match s {
-        "spiral" => Ok(Choice::One(StrategyKind::Spiral)),
-        "offset" => Ok(Choice::One(StrategyKind::Offset)),
-        "zigzag" => Ok(Choice::One(StrategyKind::Zigzag)),
-        "auto" => Ok(Choice::Auto),
-        _ => Err(InputError::new("strategy", s)
-            .at("--strategy")
-            .expected("spiral, offset, zigzag or auto")),
-    }
-}
-
 impl CommonArgs {
-    /// The tool and the pocketing options.
-    pub fn options(&self) -> Result<(Tool, PocketOptions), Error> {
-        let tool = Tool::flat(self.tool_diameter).map_err(|e| e.at("--tool-diameter"))?;
-        let ramp = self.ramp_angle.to_radians();
-        let entry = match self.entry.as_str() {
-            "helix" => Entry::Helix {
-                radius: self.helix_radius,
-                ramp_angle: ramp,
-            },
-            "ramp" => Entry::Ramp { ramp_angle: ramp },
-            e => {
-                return Err(InputError::new("entry", e)
-                    .at("--entry")
-                    .expected("helix or ramp")
-                    .into());
-            }
-        };
-        let feed = parse_feed(&self.feed)?;
-        let mut opts = PocketOptions {
-            stepover: Stepover::parse(&self.stepover)?,
+    /// The engine's pocket settings these flags give.
+    pub fn settings(&self) -> PocketSettings {
+        PocketSettings {
+            import: self.import.settings(),
+            strategy: self.strategy.clone(),
+            tool_diameter: self.tool_diameter,
+            stepover: self.stepover.clone(),
             depth: self.depth,
             step_down: self.step_down,
             wall_stock: self.wall_stock,
             floor_stock: self.floor_stock,
-            direction: if self.conventional {
-                Direction::Conventional
-            } else {
-                Direction::Climb
-            },
-            entry,
+            conventional: self.conventional,
+            entry: self.entry.clone(),
+            helix_radius: self.helix_radius,
+            ramp_angle: self.ramp_angle,
             safe_height: self.safe_height,
             clearance_height: self.clearance_height,
-            feed,
-            plunge_feed: feed / 3.0,
+            feed: self.feed.clone(),
             slowdown: self.slowdown,
-            zigzag_angle: self.angle.to_radians(),
-            transition: self.transition.unwrap_or(DEFAULT_TRANSITION),
+            angle: self.angle,
+            transition: self.transition,
             min_radius: self.min_radius,
-            morph: self.morph()?,
+            morph: self.morph.clone(),
             arcs: self.arcs,
-            curvature_ramps: true,
             finish: self.finish,
-            modulate_feed: !self.no_feed_modulation,
-        };
-        // Shaped for the machine: curvature ramps for a jerk-limited controller.
-        let machine = super::load_machine(&self.machine)?;
-        opts.curvature_ramps = machine.axes.iter().any(|a| a.max_jerk.is_finite());
-        opts.validate(&tool)?;
-        if !(self.cell.is_finite() && self.cell > 0.0) {
-            return Err(InputError::new("cell", self.cell)
-                .at("--cell")
-                .expected("a cell > 0 mm")
-                .into());
-        }
-        Ok((tool, opts))
-    }
-
-    /// The spiral's morph: `--morph`, else `fronts` when `--transition` is given (the
-    /// paper's central spiral is the fronts' and harmonic morphs'), else `offsets`.
-    fn morph(&self) -> Result<pocket::spiral::SpiralMorph, Error> {
-        use pocket::spiral::SpiralMorph;
-        match (self.morph.as_deref(), self.transition) {
-            (None | Some("offsets"), None) => Ok(SpiralMorph::Offsets),
-            (None | Some("fronts"), _) => Ok(SpiralMorph::Fronts),
-            (Some("harmonic"), _) => Ok(SpiralMorph::Harmonic),
-            (Some("offsets"), Some(c)) => Err(InputError::new("transition", c)
-                .at("--transition with --morph offsets")
-                .expected(
-                    "no --transition with the offsets morph (its spiral has no central circle); \
-                     --morph fronts or harmonic for the paper's transition C",
-                )
-                .into()),
-            (Some(other), _) => Err(InputError::new("morph", other)
-                .at("--morph")
-                .expected("offsets, fronts or harmonic")
-                .into()),
-        }
-    }
-
-    /// The pocket with the walls asked for (`--draft`, `--bottom-outline`).
-    pub fn with_walls(&self, shape: PocketShape) -> Result<PocketShape, Error> {
-        if let Some(deg) = self.draft {
-            return Ok(shape.with_walls(Walls::Draft(deg.to_radians()), "--draft")?);
-        }
-        if let Some(path) = &self.bottom_outline {
-            let b = load_outline(path, &self.import)?;
-            return Ok(shape.with_walls(
-                Walls::Bottom {
-                    outer: b.outer,
-                    islands: b.islands,
-                },
-                &format!("--bottom-outline {path}"),
-            )?);
-        }
-        Ok(shape)
-    }
-
-    /// Simulation options.
-    pub fn sim(&self) -> SimOptions {
-        SimOptions {
+            no_feed_modulation: self.no_feed_modulation,
+            machine: self.machine.clone(),
             cell: self.cell,
-            step: (2.0 * self.cell).max(0.1),
-            ..SimOptions::default()
+            draft: self.draft,
+            bottom_outline: self.bottom_outline.clone(),
         }
+    }
+
+    /// The tool and the pocketing options ([`PocketSettings::options`]).
+    pub fn options(&self) -> Result<(Tool, millpath::strategy::pocket::PocketOptions), Error> {
+        self.settings().options()
+    }
+
+    /// The pocket with the walls asked for ([`PocketSettings::with_walls`]).
+    pub fn with_walls(&self, shape: PocketShape) -> Result<PocketShape, Error> {
+        self.settings()
+            .with_walls(shape, &mut |n| super::eprint(&format!("note: {n}")))
     }
 }
-
-/// The paper's transition C when `--transition` is not given (its Table 1 and Figure 10 go
-/// from 0.2 to 0.7; 0.5 is their middle).
-pub const DEFAULT_TRANSITION: f64 = 0.5;
 
 pub use super::outline_input::load_outline;
-
-/// How the pocket program is written: the dialect, units, tool, spindle and coolant of
-/// `out`, stating the machine's path tolerance (`G64 P t`, `CYCLE832(t,_FINISH,1)`, Fanuc's
-/// `G05.1 Q1` with t in a comment, a comment on Grbl), the tolerance its cycle time was
-/// planned with and the one `millpath estimate` reads back; `name` is the strategy's (or
-/// `mixed`). The decimals keep the rounding within the pocket's own resolution (arcs flatter
-/// than [`pocket::chain::ARC_AS_LINE_SAGITTA`], 0.0007 mm, are lines in the toolpath: 3
-/// decimals in mm, 5 in inches) and within 10 % of the path tolerance; fewer `--decimals`
-/// are refused.
-pub fn program_options(
-    name: &str,
-    machine: &Machine,
-    out: &super::output::OutputArgs,
-) -> Result<WriterOptions, Error> {
-    let t = machine.path_tolerance;
-    let mut max_rounding = pocket::chain::ARC_AS_LINE_SAGITTA;
-    let mut why = "the pocket's resolution".to_owned();
-    if t > 0.0 && millpath::gcode::format::ROUNDING_SHARE * t < max_rounding {
-        max_rounding = millpath::gcode::format::ROUNDING_SHARE * t;
-        why = format!("10 % of the machine's path tolerance {t} mm");
-    }
-    let decimals = out.decimals_within(max_rounding, &why)?;
-    Ok(out
-        .writer_options(decimals, format!("millpath pocket {name}"))?
-        .with_path_tolerance(t))
-}
-
-/// The indices `--select` asks for (1-based, sorted, each once) among `n` pockets; all when
-/// not given.
-pub fn parse_select(text: Option<&str>, n: usize) -> Result<Vec<usize>, InputError> {
-    let Some(text) = text else {
-        return Ok((1..=n).collect());
-    };
-    let bad = || {
-        InputError::new("pocket selection", text)
-            .at("--select")
-            .expected(format!(
-                "pocket indices from 1 to {n} (as pocket --list shows them), separated by commas, \
-                 or ranges: 1,3 or 2-4"
-            ))
-    };
-    let mut out = Vec::new();
-    for item in text.split(',') {
-        let item = item.trim();
-        let (a, b) = match item.split_once('-') {
-            Some((a, b)) => (a.trim(), b.trim()),
-            None => (item, item),
-        };
-        let (Ok(a), Ok(b)) = (a.parse::<usize>(), b.parse::<usize>()) else {
-            return Err(bad());
-        };
-        if a == 0 || b < a || b > n {
-            return Err(bad());
-        }
-        out.extend(a..=b);
-    }
-    out.sort_unstable();
-    out.dedup();
-    Ok(out)
-}
 
 /// One line per pocket of the drawing, for `--list`.
 fn list_lines(loops: &Loops) -> Vec<String> {
@@ -379,17 +205,14 @@ fn list_lines(loops: &Loops) -> Vec<String> {
         .collect()
 }
 
-use super::pocket_report::{auto_line, pocket_line, report};
+use millpath::job::pocket_report::{auto_line, pocket_line};
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let choice = parse_choice(&args.common.strategy)?;
+    let settings = args.common.settings();
+    let program = args.program.settings();
     // The output flags are checked before the pocket is planned (exit 2 at once).
-    program_options(
-        "spiral",
-        &super::load_machine(&args.common.machine)?,
-        &args.program,
-    )?;
+    settings.check_before_loading(&program)?;
     let loops = load_outline(&args.outline, &args.common.import)?;
     if args.list {
         for line in list_lines(&loops) {
@@ -397,69 +220,29 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
         return Ok(());
     }
-    let (tool, opts) = args.common.options()?;
-    let selected = parse_select(args.select.as_deref(), loops.len())?;
-    if selected.len() > 1 && (args.common.draft.is_some() || args.common.bottom_outline.is_some()) {
-        return Err(InputError::new("pockets", selected.len())
-            .at(format!("{} with --draft or --bottom-outline", args.outline))
-            .expected("one pocket with inclined walls: --select one of them")
-            .into());
-    }
-    let all = loops.pockets();
-    let mut shapes = Vec::with_capacity(selected.len());
-    for &i in &selected {
-        let p = &all[i - 1];
-        let origin = if all.len() > 1 {
-            format!("{}, pocket {i}", args.outline)
-        } else {
-            args.outline.clone()
-        };
-        let shape = PocketShape::new(p.outer.clone(), p.islands.clone(), &origin)?;
-        shapes.push((i, args.common.with_walls(shape)?));
-    }
-    let m = super::load_machine(&args.common.machine)?;
-    let time = |tp: &millpath::toolpath::Toolpath| millpath::motion::cycle_time(tp, &m);
-    let strategy = match choice {
-        Choice::One(kind) => PartStrategy::One(kind),
-        Choice::Auto => PartStrategy::Auto,
-    };
-    let part = generate_part(&shapes, strategy, &tool, &opts, &args.common.sim(), &time)?;
-    let name = match part.pockets.iter().find(|p| p.result.is_some()) {
-        Some(f)
-            if part
-                .pockets
-                .iter()
-                .filter(|p| p.result.is_some())
-                .all(|p| p.kind == f.kind) =>
-        {
-            f.kind.name().to_owned()
-        }
-        _ => "mixed".to_owned(),
-    };
-    let wopts = program_options(&name, &m, &args.program)?;
-    let mut buf = Vec::new();
-    write_program(&part.toolpath, &wopts, &mut buf)
-        .map_err(|e| e.engine_made("writing the pocket program"))?;
-    let t = super::estimate::program_time(&buf, wopts.dialect, "the written pocket program", &m)
-        .map_err(|e| e.engine_made("timing the written pocket program"))?;
-    let mut rep = report(&part, t);
-    if part.pockets.len() == 1 {
-        rep.auto = rep.pockets.first_mut().and_then(|p| p.auto.take());
-    }
+    let job = millpath::job::pocket::run(
+        &loops,
+        &args.outline,
+        &settings,
+        &program,
+        args.select.as_deref(),
+        &mut |n| super::eprint(&format!("note: {n}")),
+    )?;
+    let (rep, name, m, part, shapes) =
+        (&job.report, &job.name, &job.machine, &job.part, &job.shapes);
     if let Some(out) = &args.output {
-        millpath::io::write_atomic(out, &buf)?;
+        millpath::io::write_atomic(out, &job.gcode)?;
     }
     if let Some(path) = &args.report {
-        let text = serde_json::to_string_pretty(&rep)
+        let text = serde_json::to_string_pretty(rep)
             .map_err(|e| Error::internal(format!("report serialisation: {e}")))?;
         millpath::io::write_atomic(path, text.as_bytes())?;
     }
     if let Some(path) = &args.html {
-        let m = super::load_machine(&args.common.machine)?;
-        let plan = millpath::motion::plan_toolpath(&part.toolpath, &m)
+        let plan = millpath::motion::plan_toolpath(&part.toolpath, m)
             .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
         let mut summary = vec![
-            super::html::machine_row(&m),
+            super::html::machine_row(m),
             ("strategy".to_owned(), name.clone()),
             (
                 "cycle time".to_owned(),
@@ -534,7 +317,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
     }
     if args.json {
-        super::print_json(&rep)?;
+        super::print_json(rep)?;
         for p in &rep.problems {
             super::eprint(&format!("verification: {p}"));
         }

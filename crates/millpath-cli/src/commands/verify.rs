@@ -1,9 +1,7 @@
 //! `millpath verify`: checks a G-code program against a pocket outline.
 
-use millpath::gcode::{ReaderOptions, read_str};
-use millpath::stock::{self, StockSpec};
-use millpath::strategy::pocket::{Stepover, nominal_engagement};
-use millpath::toolpath::Tool;
+use millpath::job::verify::VerifySettings;
+use millpath::stock;
 use millpath::{Error, InputError};
 use std::path::PathBuf;
 
@@ -55,89 +53,29 @@ pub struct Args {
     pub select: Option<String>,
 }
 
-/// The most decimals written in the program's coordinate words (X, Y, Z, I, J, K, R), 3 when
-/// none has any.
-pub fn program_decimals(text: &str) -> u32 {
-    let mut best = 0u32;
-    for line in text.lines() {
-        let code = line.split([';', '(']).next().unwrap_or("");
-        let b = code.as_bytes();
-        for (i, &c) in b.iter().enumerate() {
-            if !matches!(
-                c.to_ascii_uppercase(),
-                b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R'
-            ) {
-                continue;
-            }
-            let rest = &b[i + 1..];
-            let num: Vec<u8> = rest
-                .iter()
-                .copied()
-                .take_while(|d| d.is_ascii_digit() || matches!(d, b'.' | b'-' | b'+' | b' '))
-                .filter(|d| *d != b' ')
-                .collect();
-            if let Some(dot) = num.iter().position(|&d| d == b'.') {
-                let digits = num[dot + 1..]
-                    .iter()
-                    .take_while(|d| d.is_ascii_digit())
-                    .count();
-                best = best.max(digits as u32);
-            }
-        }
-    }
-    if best == 0 { 3 } else { best }
-}
-
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let tool = Tool::flat(args.tool_diameter).map_err(|e| e.at("--tool-diameter"))?;
-    if !(args.wall_stock.is_finite() && args.wall_stock >= 0.0) {
-        return Err(InputError::new("wall stock", args.wall_stock)
-            .at("--wall-stock")
-            .expected("a stock >= 0 mm")
-            .into());
-    }
-    if !(args.cell.is_finite() && args.cell > 0.0) {
-        return Err(InputError::new("cell", args.cell)
-            .at("--cell")
-            .expected("a cell > 0 mm")
-            .into());
-    }
-    let s = Stepover::parse(&args.stepover)?.distance(tool.diameter);
+    let settings = VerifySettings {
+        tool_diameter: args.tool_diameter,
+        wall_stock: args.wall_stock,
+        stepover: args.stepover.clone(),
+        cell: args.cell,
+        decimals: args.decimals,
+        select: args.select.clone(),
+    };
+    settings.check()?;
     let loops = super::pocket::load_outline(&args.outline, &args.import)?;
     let text = super::read_text(&args.program)?;
-    let ropts = ReaderOptions {
-        origin: args.program.display().to_string(),
-        ..ReaderOptions::default()
-    };
-    let (mut tp, _warnings) = read_str(&text, ropts)?;
-    tp.tool = tool;
-    stock::infer_levels(&mut tp);
-    let decimals = args.decimals.unwrap_or_else(|| program_decimals(&text));
-    let resolution = stock::gouge_resolution(decimals);
-    let selected = super::pocket::parse_select(args.select.as_deref(), loops.len())?;
-    let pockets = loops.pockets();
-    let chosen: Vec<_> = selected.iter().map(|&i| &pockets[i - 1]).collect();
-    let specs: Vec<StockSpec<'_>> = chosen
-        .iter()
-        .map(|p| StockSpec {
-            outer: &p.outer,
-            islands: &p.islands,
-            wall_stock: args.wall_stock,
-        })
-        .collect();
-    let sim = stock::SimOptions {
-        cell: args.cell,
-        step: (2.0 * args.cell).max(0.1),
-        ..stock::SimOptions::default()
-    };
-    let pv = stock::verify_part(
-        &tp,
-        &specs,
-        nominal_engagement(s, tool.radius()).to_degrees(),
-        &sim,
-    );
+    let job = millpath::job::verify::run(
+        &loops,
+        &text,
+        &args.program.display().to_string(),
+        &settings,
+    )?;
+    let (tp, pv, problems) = (&job.toolpath, &job.part, &job.problems);
     let v = pv.total.clone();
+    let pockets = loops.pockets();
+    let chosen: Vec<_> = job.selected.iter().map(|&i| &pockets[i - 1]).collect();
     if let Some(path) = &args.report {
         let text = serde_json::to_string_pretty(&pv)
             .map_err(|e| Error::internal(format!("report: {e}")))?;
@@ -151,7 +89,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
             .collect();
         pictures = super::write_previews(
             out,
-            &tp,
+            tp,
             &outlines,
             &millpath::report::PreviewOptions {
                 title: Some(format!("{} over {}", args.program.display(), args.outline)),
@@ -160,27 +98,18 @@ pub fn run(args: &Args) -> Result<(), Error> {
             args.per_level,
         )?;
     }
-    let problems = pv.problems_within(resolution);
     if args.json {
-        super::print_json(&serde_json::json!({
-            "passed": problems.is_empty(),
-            "problems": problems,
-            "levels": tp.levels.len(),
-            "verification": v,
-            "pockets": pv.pockets,
-            "cuts_outside": pv.cuts_outside,
-            "unreachable_pockets": pv.unreachable.iter().map(|k| k + 1).collect::<Vec<_>>(),
-            "decimals": decimals,
-            "gouge_resolution_mm": resolution,
-            "pictures": pictures,
-        }))?;
+        let mut j = job.json();
+        j["pictures"] = serde_json::json!(pictures);
+        super::print_json(&j)?;
     } else {
-        print_text(&tp, &v);
+        print_text(tp, &v);
         for k in &pv.unreachable {
             super::print(&format!(
-                "pocket {}: not reachable with this tool (no position of a {} mm tool fits                  inside it), left uncut",
+                "pocket {}: not reachable with this tool (no position of a {} mm tool fits \
+                 inside it), left uncut",
                 k + 1,
-                tool.diameter
+                settings.tool_diameter
             ));
         }
     }

@@ -30,10 +30,8 @@
 //! **Cost.** Pairs are tested only when their bounds overlap: `O(n²)` bound tests, and one
 //! intersection test per overlapping pair (`O(m log m)` in their vertex counts).
 
-use super::region::TOUCH_EPS;
 use super::{Outline, Point, Winding};
 use crate::error::InputError;
-use cavalier_contours::polyline::PlineSource;
 
 /// One pocket of a drawing: its boundary and its islands.
 #[derive(Debug, Clone)]
@@ -54,25 +52,6 @@ impl Pocket {
     pub fn contains(&self, p: Point) -> bool {
         self.outer.contains(p) && !self.islands.iter().any(|i| i.contains(p))
     }
-}
-
-/// Where two closed loops meet: an intersection point, or a vertex of one within
-/// [`TOUCH_EPS`] of the other; `None` when they are apart.
-pub fn touch_point(a: &Outline, b: &Outline) -> Option<Point> {
-    let (pa, pb) = (a.polyline(), b.polyline());
-    let hits = pa.find_intersects(pb);
-    if let Some(h) = hits.basic_intersects.first() {
-        return Some(Point::new(h.point.x, h.point.y));
-    }
-    if let Some(h) = hits.overlapping_intersects.first() {
-        return Some(Point::new(h.point1.x, h.point1.y));
-    }
-    let near = |p: &Outline, q: &Outline| {
-        p.vertices()
-            .map(|v| v.0)
-            .find(|&v| q.distance_to(v) <= TOUCH_EPS)
-    };
-    near(a, b).or_else(|| near(b, a))
 }
 
 fn first_vertex(o: &Outline) -> Point {

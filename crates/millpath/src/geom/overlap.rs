@@ -36,7 +36,6 @@
 //! **Cost.** One intersection test per pair with overlapping bounds (as nesting's), and one
 //! boolean per touching pair; a drawing with nothing touching pays only the test.
 
-use super::nesting::touch_point;
 use super::region::TOUCH_EPS;
 use super::{Aabb, Outline, Point};
 use crate::error::InputError;
@@ -311,6 +310,25 @@ fn ambiguous(a: &Tracked, b: &Tracked, at: Point, origin: &str, why: &str) -> In
          thickness at one point cannot be machined): draw them apart, or read one layer \
          with --layer",
     )
+}
+
+/// Where two closed loops meet: an intersection point, or a vertex of one within
+/// [`TOUCH_EPS`] of the other; `None` when they are apart.
+pub fn touch_point(a: &Outline, b: &Outline) -> Option<Point> {
+    let (pa, pb) = (a.polyline(), b.polyline());
+    let hits = pa.find_intersects(pb);
+    if let Some(h) = hits.basic_intersects.first() {
+        return Some(Point::new(h.point.x, h.point.y));
+    }
+    if let Some(h) = hits.overlapping_intersects.first() {
+        return Some(Point::new(h.point1.x, h.point1.y));
+    }
+    let near = |p: &Outline, q: &Outline| {
+        p.vertices()
+            .map(|v| v.0)
+            .find(|&v| q.distance_to(v) <= TOUCH_EPS)
+    };
+    near(a, b).or_else(|| near(b, a))
 }
 
 #[cfg(test)]

@@ -1,11 +1,11 @@
-//! The report of `millpath pocket`: the JSON written by `--report` and the text lines, for
-//! one pocket or a whole part (each pocket and the totals).
+//! The report of a pocket job (`millpath pocket`): the JSON written by `--report` and the
+//! text lines, for one pocket or a whole part (each pocket and the totals).
 
-use millpath::strategy::pocket::{self, part::PartPocket, part::PartResult};
+use crate::strategy::pocket::{self, part::PartPocket, part::PartResult};
 use serde::Serialize;
 
 /// The report written by `--report`.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct Report {
     /// Strategy name.
     pub strategy: String,
@@ -34,7 +34,7 @@ pub struct Report {
     /// Moves.
     pub moves: usize,
     /// The verifier's findings.
-    pub verification: millpath::stock::Verification,
+    pub verification: crate::stock::Verification,
     /// Problems found (empty when the path passes).
     pub problems: Vec<String>,
     /// What was changed from the options asked for, and why (a fallback after a gouge).
@@ -48,7 +48,7 @@ pub struct Report {
 }
 
 /// One pocket of the drawing in the report.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct PocketEntry {
     /// Its index in the drawing (1-based, as `--list` and `--select` number them).
     pub index: usize,
@@ -71,7 +71,7 @@ pub struct PocketEntry {
 }
 
 /// One strategy tried by `--strategy auto`.
-#[derive(Debug, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct AutoEntry {
     /// Strategy name.
     pub strategy: String,
@@ -151,7 +151,7 @@ pub const REPORT_TIME_MODEL: &str =
     "millpath estimate on the written program (G-code reader, jerk-limited look-ahead planner)";
 
 /// Builds the report of a generated part; `cycle_time_s` is the written program's
-/// ([`super::estimate::program_time`]).
+/// ([`super::program::program_time`]).
 pub fn report(part: &PartResult, cycle_time_s: f64) -> Report {
     let tp = &part.toolpath;
     let v = &part.verification;
@@ -175,7 +175,7 @@ pub fn report(part: &PartResult, cycle_time_s: f64) -> Report {
             notes.push(format!("pocket {} left out: {why}", p.index));
         }
     }
-    let resolution = millpath::stock::GOUGE_RESOLUTION;
+    let resolution = crate::stock::GOUGE_RESOLUTION;
     let mut k = 0;
     let pockets = part
         .pockets

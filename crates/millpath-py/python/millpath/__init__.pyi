@@ -1,0 +1,200 @@
+"""Type stubs of millpath (the functions are the `millpath` CLI's commands; keyword
+arguments are the commands' flags with `_` for `-`)."""
+
+import os
+from typing import Any, Dict, List, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+PathLike = Union[str, "os.PathLike[str]"]
+Points = npt.ArrayLike
+Outline = Union[PathLike, Points, Sequence[Points]]
+
+class InputError(ValueError):
+    """Bad input: the message names the value, where it came from and what is expected."""
+
+class InternalError(RuntimeError):
+    """An internal fault of the engine: a bug to report."""
+
+class Toolpath:
+    """A planned toolpath, mm and mm/s."""
+    @property
+    def points(self) -> npt.NDArray[np.float64]:
+        """(N + 1) x 3: the start, then the end of each move."""
+    @property
+    def feeds(self) -> npt.NDArray[np.float64]:
+        """N programmed feeds, mm/s (NaN for rapids)."""
+    @property
+    def rapid(self) -> npt.NDArray[np.bool_]:
+        """N flags: the move is a rapid."""
+    @property
+    def cut_length_mm(self) -> float: ...
+    @property
+    def rapid_length_mm(self) -> float: ...
+    @property
+    def levels(self) -> int: ...
+    def trajectory(self, machine: str = "hsm", dt: float = 0.01) -> Dict[str, npt.NDArray[np.float64]]:
+        """Planned on `machine`, sampled every `dt` s: t, s, feed (N); position, velocity,
+        acceleration, jerk (N x 3)."""
+    def __len__(self) -> int: ...
+
+class PocketResult:
+    gcode: str
+    """Byte for byte the file `millpath pocket ... -o FILE` writes."""
+    cycle_time_s: float
+    strategy: str
+    report: Dict[str, Any]
+    """The `--report` JSON."""
+    toolpath: Toolpath
+    note: Optional[str]
+
+class ContourResult:
+    gcode: str
+    cycle_time_s: float
+    report: Dict[str, Any]
+    toolpath: Toolpath
+    warnings: List[str]
+
+class VerifyResult:
+    passed: bool
+    problems: List[str]
+    report: Dict[str, Any]
+    toolpath: Toolpath
+
+class Estimate:
+    cycle_time_s: float
+    machine: str
+    toolpath: Toolpath
+
+class Pocket:
+    index: int
+    outer: npt.NDArray[np.float64]
+    """N x 3: x, y, bulge of the span leaving each vertex."""
+    islands: List[npt.NDArray[np.float64]]
+    area_mm2: float
+
+def pocket(
+    outline: Outline,
+    *,
+    strategy: str = "spiral",
+    tool_diameter: float = 12.7,
+    stepover: Union[str, float] = "0.4",
+    depth: float = 25.0,
+    step_down: float = 6.35,
+    wall_stock: float = 0.0,
+    floor_stock: float = 0.0,
+    conventional: bool = False,
+    entry: str = "helix",
+    helix_radius: float = 2.5,
+    ramp_angle: float = 3.0,
+    safe_height: float = 1.0,
+    clearance_height: float = 5.0,
+    feed: Union[str, float] = "600ipm",
+    slowdown: float = 0.75,
+    angle: float = 0.0,
+    transition: Optional[float] = None,
+    min_radius: float = 1.0,
+    morph: Optional[str] = None,
+    arcs: bool = False,
+    finish: bool = False,
+    no_feed_modulation: bool = False,
+    machine: str = "hsm",
+    cell: float = 0.05,
+    draft: Optional[float] = None,
+    bottom_outline: Optional[PathLike] = None,
+    select: Union[None, str, int, Sequence[int]] = None,
+    layer: Optional[str] = None,
+    join_tolerance: float = 0.01,
+    drawing_units: Optional[str] = None,
+    dialect: str = "linuxcnc",
+    units: str = "mm",
+    decimals: Optional[int] = None,
+    tool_number: int = 1,
+    spindle: float = 10000.0,
+    coolant: str = "flood",
+    line_numbers: bool = False,
+) -> PocketResult:
+    """Rough a pocket (an outline file, `"sample:aerospace"`, an N x 2 array or a list of
+    arrays: boundary and islands) as `millpath pocket` does."""
+
+def contour(
+    points: Union[PathLike, Points, None] = None,
+    *,
+    sample: bool = False,
+    tool_diameter: Optional[float] = None,
+    tolerance: Optional[float] = None,
+    side: str = "inside",
+    depth: Optional[float] = None,
+    step_down: Optional[float] = None,
+    finish_allowance: float = 0.2,
+    curve: str = "four-point",
+    arcs: bool = False,
+    feed: float = 1000.0,
+    plunge_feed: float = 300.0,
+    safe_height: float = 10.0,
+    clearance_height: float = 2.0,
+    lead_radius: float = 2.0,
+    machine: str = "hsm",
+    dialect: str = "linuxcnc",
+    units: str = "mm",
+    decimals: Optional[int] = None,
+    tool_number: int = 1,
+    spindle: float = 10000.0,
+    coolant: str = "flood",
+    line_numbers: bool = False,
+) -> ContourResult:
+    """A free-form contour through points, as `millpath contour` makes it."""
+
+def estimate(program: PathLike, machine: str = "hsm", dialect: str = "auto") -> Estimate:
+    """Cycle time of a G-code program (a path or its text) on a machine."""
+
+def verify(
+    program: PathLike,
+    outline: Outline,
+    *,
+    tool_diameter: float = 12.7,
+    wall_stock: float = 0.0,
+    stepover: Union[str, float] = "0.4",
+    cell: float = 0.05,
+    decimals: Optional[int] = None,
+    select: Optional[str] = None,
+    layer: Optional[str] = None,
+    join_tolerance: float = 0.01,
+    drawing_units: Optional[str] = None,
+) -> VerifyResult:
+    """Check a program against a pocket outline by material-removal simulation."""
+
+def five_axis(
+    case: Optional[str] = None,
+    *,
+    path: Optional[PathLike] = None,
+    machine: str = "paper",
+    feed: Optional[float] = None,
+    linear_velocity: Optional[float] = None,
+    linear_acceleration: Optional[float] = None,
+    linear_jerk: Optional[float] = None,
+    rotary_velocity: Optional[float] = None,
+    rotary_acceleration: Optional[float] = None,
+    rotary_jerk: Optional[float] = None,
+    tool_length: Optional[float] = None,
+    z1: Optional[float] = None,
+    z2: Optional[float] = None,
+    no_baseline: bool = False,
+    no_deflection: bool = False,
+    dt: float = 0.001,
+) -> Dict[str, Any]:
+    """Five-axis minimum-time trajectory: report dict, axes, and sampled arrays t, feed
+    (N), q, v, a, j (N x 5)."""
+
+def read_outline(
+    path: Outline,
+    *,
+    layer: Optional[str] = None,
+    join_tolerance: float = 0.01,
+    drawing_units: Optional[str] = None,
+) -> List[Pocket]:
+    """The pockets of an outline file or sample, as `millpath pocket FILE --list` numbers them."""
+
+def machines() -> List[Dict[str, Any]]:
+    """The built-in machine presets (as `millpath machines --json`)."""

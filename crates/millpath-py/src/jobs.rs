@@ -1,0 +1,198 @@
+//! The module's functions, each a thin call of the engine's job of the same name.
+
+use crate::convert::{Kwargs, err, input_err, outline_arg, path_text, to_py};
+use crate::objects::{Estimate, Pocket, PocketResult, Toolpath};
+use millpath::gcode::{Dialect, ReaderOptions};
+use millpath::job::{self, PocketSettings};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+
+/// A selection: text (`"1,3"`, `"2-4"`) or a sequence of 1-based indices.
+fn selection(v: Option<Bound<'_, PyAny>>) -> PyResult<Option<String>> {
+    let Some(v) = v else { return Ok(None) };
+    if v.is_none() {
+        return Ok(None);
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        let items: Vec<i64> = v.extract()?;
+        return Ok(Some(
+            items
+                .iter()
+                .map(i64::to_string)
+                .collect::<Vec<_>>()
+                .join(","),
+        ));
+    }
+    if let Ok(i) = v.extract::<i64>() {
+        return Ok(Some(i.to_string()));
+    }
+    Ok(Some(v.extract()?))
+}
+
+/// Rough a pocket: `millpath pocket OUTLINE --flags` as a function (see the stub for every
+/// keyword).
+#[pyfunction]
+#[pyo3(signature = (outline, **kwargs))]
+pub fn pocket(
+    py: Python<'_>,
+    outline: &Bound<'_, PyAny>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PocketResult> {
+    let select = selection(kwargs.map(|k| k.get_item("select")).transpose()?.flatten())?;
+    if let Some(k) = kwargs
+        && k.contains("select")?
+    {
+        k.del_item("select")?;
+    }
+    let mut k = Kwargs::new(kwargs, "pocket")?;
+    let mut s = PocketSettings {
+        import: k.import()?,
+        ..PocketSettings::default()
+    };
+    k.text("strategy", &mut s.strategy)?;
+    k.f64("tool_diameter", &mut s.tool_diameter)?;
+    k.text("stepover", &mut s.stepover)?;
+    k.f64("depth", &mut s.depth)?;
+    k.f64("step_down", &mut s.step_down)?;
+    k.f64("wall_stock", &mut s.wall_stock)?;
+    k.f64("floor_stock", &mut s.floor_stock)?;
+    k.bool("conventional", &mut s.conventional)?;
+    k.text("entry", &mut s.entry)?;
+    k.f64("helix_radius", &mut s.helix_radius)?;
+    k.f64("ramp_angle", &mut s.ramp_angle)?;
+    k.f64("safe_height", &mut s.safe_height)?;
+    k.f64("clearance_height", &mut s.clearance_height)?;
+    k.text("feed", &mut s.feed)?;
+    k.f64("slowdown", &mut s.slowdown)?;
+    k.f64("angle", &mut s.angle)?;
+    k.opt_f64("transition", &mut s.transition)?;
+    k.f64("min_radius", &mut s.min_radius)?;
+    k.opt_text("morph", &mut s.morph)?;
+    k.bool("arcs", &mut s.arcs)?;
+    k.bool("finish", &mut s.finish)?;
+    k.bool("no_feed_modulation", &mut s.no_feed_modulation)?;
+    k.text("machine", &mut s.machine)?;
+    k.f64("cell", &mut s.cell)?;
+    k.opt_f64("draft", &mut s.draft)?;
+    k.opt_text("bottom_outline", &mut s.bottom_outline)?;
+    let program = k.program()?;
+    k.finish()?;
+    s.check_before_loading(&program).map_err(err)?;
+    let (loops, name, note) = outline_arg(py, outline, "outline", &s.import)?;
+    let mut notes: Vec<String> = note.into_iter().collect();
+    let run = py
+        .allow_threads(|| {
+            job::pocket::run(&loops, &name, &s, &program, select.as_deref(), &mut |n| {
+                notes.push(n);
+            })
+        })
+        .map_err(err)?;
+    let gcode = String::from_utf8(run.gcode).map_err(|e| {
+        crate::InternalError::new_err(format!("the pocket program is not UTF-8: {e}"))
+    })?;
+    Ok(PocketResult {
+        gcode,
+        cycle_time_s: run.report.cycle_time_s,
+        strategy: run.name,
+        report: to_py(py, &run.report)?,
+        toolpath: Py::new(
+            py,
+            Toolpath {
+                tp: run.part.toolpath,
+            },
+        )?,
+        note: (!notes.is_empty()).then(|| notes.join("\n")),
+    })
+}
+
+/// The pockets of an outline file (`.json`, `.dxf`, `.svg`) or a sample, nested into
+/// boundaries and islands, as `millpath pocket FILE --list` numbers them.
+#[pyfunction]
+#[pyo3(signature = (path, **kwargs))]
+pub fn read_outline(
+    py: Python<'_>,
+    path: &Bound<'_, PyAny>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Vec<Pocket>> {
+    let mut k = Kwargs::new(kwargs, "read_outline")?;
+    let import = k.import()?;
+    k.finish()?;
+    let (loops, _, _) = outline_arg(py, path, "path", &import)?;
+    Ok(loops
+        .pockets()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| Pocket::new(py, i + 1, p))
+        .collect())
+}
+
+/// The cycle time of a G-code program on a machine, as `millpath estimate FILE --machine M`
+/// gives it: `program` is a path (`str` naming an existing file, or `os.PathLike`) or the
+/// program's text.
+#[pyfunction]
+#[pyo3(signature = (program, machine = "hsm", dialect = "auto"))]
+pub fn estimate(
+    py: Python<'_>,
+    program: &Bound<'_, PyAny>,
+    machine: &str,
+    dialect: &str,
+) -> PyResult<Estimate> {
+    let (text, origin) = match path_text(program)? {
+        Some(p) if !p.contains('\n') && std::path::Path::new(&p).is_file() => {
+            let t = millpath::io::read_text(std::path::Path::new(&p)).map_err(err)?;
+            (t, p)
+        }
+        Some(p) if !program.is_instance_of::<pyo3::types::PyString>() => {
+            return Err(input_err(
+                millpath::InputError::new("input file", p).expected("a readable G-code file"),
+            ));
+        }
+        Some(t) if crate::convert::looks_like_path(&t) => {
+            // A path to a file that is not there: read it, for the reader's message.
+            let t = millpath::io::read_text(std::path::Path::new(&t)).map_err(err)?;
+            (t, "program (text)".to_owned())
+        }
+        Some(t) => (t, "program (text)".to_owned()),
+        None => {
+            return Err(pyo3::exceptions::PyTypeError::new_err(
+                "estimate() takes the program as a path or its text (str)",
+            ));
+        }
+    };
+    let (t, tp, name) = py
+        .allow_threads(|| -> Result<_, millpath::Error> {
+            let m = job::load_machine(machine)?;
+            let d = match dialect {
+                "auto" => {
+                    // The CLI's look at the program's head: its first 8 KiB.
+                    let mut end = text.len().min(8192);
+                    while !text.is_char_boundary(end) {
+                        end -= 1;
+                    }
+                    Dialect::detect(&text[..end])
+                }
+                d => d.parse::<Dialect>().map_err(|e| e.at("--dialect"))?,
+            };
+            let t = job::program_time(text.as_bytes(), d, &origin, &m)?;
+            let ropts = ReaderOptions {
+                dialect: d,
+                origin: origin.clone(),
+                ..ReaderOptions::default()
+            };
+            let (mut tp, _) = millpath::gcode::read_str(&text, ropts)?;
+            millpath::stock::infer_levels(&mut tp);
+            Ok((t, tp, m.name))
+        })
+        .map_err(err)?;
+    Ok(Estimate {
+        cycle_time_s: t,
+        machine: name,
+        toolpath: Py::new(py, Toolpath { tp })?,
+    })
+}
+
+/// The built-in machine presets, as `millpath machines --json` lists them (a list of dicts).
+#[pyfunction]
+pub fn machines(py: Python<'_>) -> PyResult<PyObject> {
+    to_py(py, &millpath::machine::Machine::presets())
+}

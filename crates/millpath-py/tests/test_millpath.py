@@ -1,0 +1,252 @@
+"""millpath's Python package against the `millpath` CLI (same G-code bytes, same reports)
+and against the engine's own verifier.
+
+The CLI is `$MILLPATH_CLI`, else `target/debug/millpath` (built by `cargo test --workspace`,
+which `scripts/test` runs first). The real drawings are in ../shared/real-inputs/files beside
+the clone; a missing CLI or folder fails the tests, it does not skip them.
+"""
+
+import json
+import os
+import subprocess
+import threading
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import millpath
+
+ROOT = Path(__file__).resolve().parents[3]
+CLI = Path(os.environ.get("MILLPATH_CLI", ROOT / "target" / "debug" / "millpath"))
+REAL = ROOT.parent / "shared" / "real-inputs" / "files"
+T_PART = REAL / "lc_t-part.dxf"
+POCKET_ARGS = dict(depth=5, step_down=5)
+
+
+def cli(*args, check=True):
+    assert CLI.is_file(), f"the millpath CLI is missing at {CLI} (run cargo build first)"
+    r = subprocess.run([str(CLI), *map(str, args)], capture_output=True, text=True)
+    if check:
+        assert r.returncode == 0, r.stderr
+    return r
+
+
+def flags(kwargs):
+    out = []
+    for k, v in kwargs.items():
+        flag = "--" + k.replace("_", "-")
+        if v is True:
+            out.append(flag)
+        elif v is not False and v is not None:
+            out += [flag, str(v)]
+    return out
+
+
+def cli_pocket(tmp_path, outline, **kwargs):
+    ngc, rep = tmp_path / "cli.ngc", tmp_path / "cli.json"
+    cli("pocket", outline, *flags(kwargs), "-o", ngc, "--report", rep)
+    return ngc.read_bytes(), json.loads(rep.read_text())
+
+
+@pytest.mark.parametrize("strategy", ["spiral", "offset", "zigzag"])
+def test_pocket_equals_cli(tmp_path, strategy):
+    r = millpath.pocket("sample:aerospace", strategy=strategy, **POCKET_ARGS)
+    gcode, report = cli_pocket(tmp_path, "sample:aerospace", strategy=strategy, **POCKET_ARGS)
+    assert r.gcode.encode() == gcode
+    assert r.report == report
+    assert r.cycle_time_s == report["cycle_time_s"] > 0
+    assert r.strategy == strategy
+
+
+def test_pocket_real_drawing_other_dialect_equals_cli(tmp_path):
+    assert REAL.is_dir(), f"real inputs missing: {REAL}"
+    kw = dict(strategy="auto", tool_diameter=4, depth=2, step_down=2, dialect="fanuc",
+              units="in", tool_number=3)
+    r = millpath.pocket(T_PART, **kw)
+    gcode, report = cli_pocket(tmp_path, T_PART, **kw)
+    assert r.gcode.encode() == gcode
+    assert r.report == report
+    assert r.note and "lc_t-part.dxf" in r.note
+    tried = r.report.get("auto") or r.report["pockets"][0]["auto"]
+    assert [e["strategy"] for e in tried] == ["spiral", "offset", "zigzag"]
+
+
+def test_toolpath_arrays_and_trajectory():
+    r = millpath.pocket("sample:aerospace", **POCKET_ARGS)
+    tp = r.toolpath
+    pts = tp.points
+    assert pts.dtype == np.float64 and pts.shape == (len(tp) + 1, 3)
+    assert tp.feeds.shape == tp.rapid.shape == (len(tp),)
+    assert np.isnan(tp.feeds[tp.rapid]).all() and (tp.feeds[~tp.rapid] > 0).all()
+    # The cutting length from the array's chords can only be <= the arcs' true length.
+    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    assert seg[~tp.rapid].sum() <= tp.cut_length_mm * (1 + 1e-9)
+    assert pts[:, 2].min() == pytest.approx(-5.0, abs=1e-9)
+    tr = tp.trajectory(machine="hsm", dt=0.01)
+    n = len(tr["t"])
+    assert tr["position"].shape == tr["velocity"].shape == (n, 3)
+    assert np.all(np.diff(tr["t"]) > 0) and np.all(tr["s"] >= 0)
+    # The planner's time and the time the trajectory spans agree (it is sampled to the end).
+    assert tr["t"][-1] == pytest.approx(r.cycle_time_s, rel=0.05)
+    np.testing.assert_allclose(tr["position"][-1], pts[-1], atol=1e-6)
+    # Never faster than the fastest programmed feed on a cut, or a rapid.
+    assert tr["feed"].max() > 0
+
+
+def test_pocket_from_arrays_passes_the_verifier():
+    outer = np.array([[0, 0], [60, 0], [60, 40], [0, 40]], float)
+    island = np.array([[25, 15], [25, 25], [35, 25], [35, 15]], float)
+    r = millpath.pocket([outer, island], tool_diameter=6, depth=3, step_down=3)
+    v = millpath.verify(r.gcode, [outer, island], tool_diameter=6)
+    assert v.passed, v.problems
+    assert v.report["verification"]["uncut_area_mm2"] < 1.0
+    # The same program cut with a bigger tool than planned gouges the walls.
+    bad = millpath.verify(r.gcode, [outer, island], tool_diameter=10)
+    assert not bad.passed and bad.problems
+
+
+def test_input_errors_carry_the_cli_message():
+    cases = [
+        dict(tool_diameter=-1),
+        dict(strategy="trochoidal"),
+        dict(feed="fast"),
+        dict(dialect="heidenhain"),
+        dict(select="9"),
+    ]
+    for kw in cases:
+        with pytest.raises(millpath.InputError) as e:
+            millpath.pocket("sample:aerospace", **kw)
+        assert isinstance(e.value, ValueError)
+        r = cli("pocket", "sample:aerospace", *flags(kw), check=False)
+        if kw.get("dialect") is None:  # clap words the dialect's refusal itself
+            assert r.returncode == 2
+            assert r.stderr.strip().splitlines()[-1] == f"error: {e.value}", kw
+    with pytest.raises(millpath.InputError, match="outline file"):
+        millpath.pocket("part.step")
+    with pytest.raises(TypeError, match="tool_diam"):
+        millpath.pocket("sample:aerospace", tool_diam=3)
+    assert not issubclass(millpath.InternalError, ValueError)
+    assert issubclass(millpath.InternalError, RuntimeError)
+
+
+def test_contour_equals_cli(tmp_path):
+    r = millpath.contour(sample=True, tolerance=0.01, arcs=True)
+    ngc, rep = tmp_path / "c.ngc", tmp_path / "c.json"
+    cli("contour", "--sample", "--tolerance", "0.01", "--arcs", "-o", ngc, "--report", rep)
+    assert r.gcode.encode() == ngc.read_bytes()
+    assert r.report == json.loads(rep.read_text())
+    assert r.report["max_deviation_mm"] <= 0.01
+    js = json.loads(cli("contour", "--sample", "--tolerance", "0.01", "--arcs", "--json").stdout)
+    assert r.cycle_time_s == js["cycle_time_s"]
+    # Points as an array read as the same CSV file does.
+    pts = np.array([[60, 345, 1], [100, 325, 1], [140, 295, 1], [180, 245, 1],
+                    [340, 205, 2], [260, 385, 2], [140, 375, 2], [60, 345, 2]], float)
+    csv = tmp_path / "pts.csv"
+    csv.write_text("x,y,group\n" + "".join(f"{x:g},{y:g},{g:g}\n" for x, y, g in pts))
+    a = millpath.contour(csv, tool_diameter=6, tolerance=0.01)
+    cli("contour", csv, "--tool-diameter", "6", "--tolerance", "0.01", "-o", ngc)
+    assert a.gcode.encode() == ngc.read_bytes()
+    b = millpath.contour(pts, tool_diameter=6, tolerance=0.01)
+    # The same program but for its title line, which names the input.
+    assert b.gcode.splitlines()[1:] == a.gcode.splitlines()[1:]
+    assert "points" in b.gcode.splitlines()[0]
+    with pytest.raises(millpath.InputError, match="decimals"):
+        millpath.contour(sample=True, tolerance=0.0001, decimals=3)
+
+
+def test_estimate_equals_cli(tmp_path):
+    r = millpath.pocket("sample:aerospace", **POCKET_ARGS)
+    f = tmp_path / "p.ngc"
+    f.write_text(r.gcode)
+    js = json.loads(cli("estimate", f, "--machine", "hsm", "--json").stdout)
+    for program in (r.gcode, f, str(f)):
+        e = millpath.estimate(program, machine="hsm")
+        assert e.cycle_time_s == js["cycle_time_s"]
+    # The pocket's own report times the written program the same way.
+    assert e.cycle_time_s == r.cycle_time_s
+    np.testing.assert_allclose(e.toolpath.points[-1], r.toolpath.points[-1], atol=1e-3)
+    with pytest.raises(millpath.InputError, match="machine"):
+        millpath.estimate(r.gcode, machine="no-such-mill")
+
+
+def test_read_outline_equals_list():
+    pockets = millpath.read_outline(T_PART)
+    lines = cli("pocket", T_PART, "--list").stdout.strip().splitlines()
+    assert len(pockets) == len(lines) >= 1
+    for p, line in zip(pockets, lines):
+        assert line.startswith(f"pocket {p.index}: area {p.area_mm2:.3f} mm², {len(p.islands)} islands")
+        assert p.outer.shape[1] == 3
+        assert p.outer[:, 0].min() == pytest.approx(float(line.split("bounds (")[1].split(",")[0]), abs=1e-3)
+    # Reading the vertices back (with their bulges) gives the same pocket.
+    again = millpath.read_outline([pockets[0].outer, *pockets[0].islands])
+    assert again[0].area_mm2 == pytest.approx(pockets[0].area_mm2, rel=1e-9)
+    with pytest.raises(millpath.InputError, match="drawing units"):
+        millpath.read_outline(T_PART, drawing_units="furlong")
+
+
+def test_verify_equals_cli(tmp_path):
+    r = millpath.pocket("sample:aerospace", **POCKET_ARGS)
+    f = tmp_path / "p.ngc"
+    f.write_text(r.gcode)
+    v = millpath.verify(f, "sample:aerospace", tool_diameter=12.7)
+    js = json.loads(cli("verify", f, "--outline", "sample:aerospace", "--tool-diameter", "12.7",
+                        "--json").stdout)
+    js.pop("pictures")
+    assert v.report == js and v.passed
+
+
+def test_five_axis_equals_cli():
+    d = millpath.five_axis("paper", no_baseline=True, dt=0.01)
+    js = json.loads(cli("five-axis", "--case", "paper", "--no-baseline", "--json").stdout)
+    assert d["report"]["total_time_s"] == js["total_time_s"]
+    assert d["report"]["violations"] == js["violations"] == []
+    n = len(d["t"])
+    assert d["q"].shape == d["v"].shape == d["a"].shape == d["j"].shape == (n, 5)
+    assert d["axes"] == js["axis_names"]
+    assert d["t"][-1] == pytest.approx(js["total_time_s"], rel=1e-9)
+    assert d["feed"].max() <= 30.0 * (1 + 1e-6)  # the paper's feed limit, mm/s
+
+
+def test_machines_equal_cli():
+    assert millpath.machines() == json.loads(cli("machines", "--json").stdout)
+
+
+def test_threads_plan_in_parallel_with_the_same_results():
+    serial = [millpath.pocket("sample:aerospace", strategy=s, **POCKET_ARGS).gcode
+              for s in ("offset", "zigzag")]
+    out = {}
+
+    def work(s):
+        out[s] = millpath.pocket("sample:aerospace", strategy=s, **POCKET_ARGS).gcode
+
+    ts = [threading.Thread(target=work, args=(s,)) for s in ("offset", "zigzag")]
+    for t in ts:
+        t.start()
+    for t in ts:
+        t.join()
+    assert [out["offset"], out["zigzag"]] == serial
+
+
+def test_readme_example_runs(tmp_path):
+    """The README's example (examples/python/compare_strategies.py) runs, prints the three
+    cycle times millpath.pocket gives, and writes its plot."""
+    import sys
+
+    plot = tmp_path / "feed.png"
+    r = subprocess.run([sys.executable, str(ROOT / "examples" / "python" / "compare_strategies.py"),
+                        str(T_PART), str(plot)], capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 0, r.stderr
+    for s in ("spiral", "offset", "zigzag"):
+        t = millpath.pocket(T_PART, strategy=s, tool_diameter=4, depth=2, step_down=2).cycle_time_s
+        assert f"{s:7s} cycle time {t:6.2f} s" in r.stdout
+    assert plot.stat().st_size > 10_000 and plot.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_missing_files_are_named():
+    for call in (lambda: millpath.estimate("no/such/part.ngc"),
+                 lambda: millpath.verify("missing.ngc", "sample:aerospace"),
+                 lambda: millpath.contour("missing.csv"),
+                 lambda: millpath.pocket("missing.dxf")):
+        with pytest.raises(millpath.InputError, match="missing|no/such"):
+            call()

@@ -1,0 +1,125 @@
+//! Reading a pocket outline file by its extension: a JSON outline, a DXF or an SVG drawing,
+//! with the drawing options (layer, join tolerance, the drawing's unit). What a drawing held
+//! (units, extents, skipped entities) comes back as a note for the caller to show, so that a
+//! wrong scale shows before anything is cut; the engine never prints it. The built-in samples
+//! (`sample:aerospace`) are strategy-layer shapes: `job::load_outline` takes those and files.
+//!
+//! ```text
+//! read_outline_file("part.dxf", &ImportSettings::default()) → (Loops, Some("part.dxf: …"))
+//! ```
+
+use super::outline_json::{self, Loops};
+use super::{ReadOptions, dxf, svg};
+use crate::{Error, InputError};
+use std::path::Path;
+
+/// How a DXF or SVG drawing is read (the CLI's `--layer`, `--join-tolerance`,
+/// `--drawing-units`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImportSettings {
+    /// Only the outlines on this layer (DXF layer; SVG `<g>` with this inkscape:label or id).
+    pub layer: Option<String>,
+    /// Largest gap between piece ends joined into one outline, mm.
+    pub join_tolerance: f64,
+    /// The drawing's unit, overriding the file's: mm, cm, m, in, ft, pt or px.
+    pub drawing_units: Option<String>,
+}
+
+impl Default for ImportSettings {
+    fn default() -> Self {
+        ImportSettings {
+            layer: None,
+            join_tolerance: super::drawing::DEFAULT_JOIN_TOLERANCE_MM,
+            drawing_units: None,
+        }
+    }
+}
+
+/// Millimetres per unit of a unit name (`mm`, `cm`, `m`, `in`, `ft`, `pt`, `px`).
+pub fn mm_per_unit(name: &str) -> Option<f64> {
+    Some(match name {
+        "mm" => 1.0,
+        "cm" => 10.0,
+        "m" => 1000.0,
+        "in" => 25.4,
+        "ft" => 304.8,
+        "pt" => 25.4 / 72.0,
+        "px" => 25.4 / 96.0,
+        _ => return None,
+    })
+}
+
+impl ImportSettings {
+    /// The reader options these settings give.
+    pub fn options(&self) -> Result<ReadOptions, InputError> {
+        let mm_per_unit = match self.drawing_units.as_deref() {
+            None => None,
+            Some(u) => Some(mm_per_unit(u).ok_or_else(|| {
+                InputError::new("drawing units", u)
+                    .at("--drawing-units")
+                    .expected("mm, cm, m, in, ft, pt or px")
+            })?),
+        };
+        let opts = ReadOptions {
+            join_tolerance: self.join_tolerance,
+            layer: self.layer.clone(),
+            mm_per_unit,
+            ..ReadOptions::default()
+        };
+        opts.validate("--join-tolerance / --drawing-units")?;
+        Ok(opts)
+    }
+}
+
+/// Reads a whole text file, turning an I/O failure into an input error naming the file.
+pub fn read_text(path: &Path) -> Result<String, Error> {
+    std::fs::read_to_string(path).map_err(|e| {
+        Error::Input(
+            InputError::new("input file", path.display())
+                .expected(format!("a readable text file ({e})")),
+        )
+    })
+}
+
+/// Reads an outline file (by extension); returns the loops and, for a drawing, the note of
+/// what it held (`NAME: summary`).
+pub fn read_outline_file(
+    name: &str,
+    import: &ImportSettings,
+) -> Result<(Loops, Option<String>), Error> {
+    let path = Path::new(name);
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let drawing = match ext.as_deref() {
+        Some("json") => {
+            if import.layer.is_some() {
+                return Err(InputError::new("--layer", name)
+                    .expected("a .dxf or .svg drawing (the flag does not apply to this input)")
+                    .into());
+            }
+            return Ok((outline_json::parse(&read_text(path)?, name)?, None));
+        }
+        Some("svg") => svg::read_loops(&read_text(path)?, name, &import.options()?)?,
+        Some("dxf") => {
+            let bytes = std::fs::read(path).map_err(|e| {
+                Error::Input(
+                    InputError::new("input file", name)
+                        .expected(format!("a readable DXF file ({e})")),
+                )
+            })?;
+            dxf::read_loops(&bytes, name, &import.options()?)?
+        }
+        _ => {
+            return Err(InputError::new("outline file", name)
+                .expected("a .json, .dxf or .svg file, or sample:aerospace")
+                .into());
+        }
+    };
+    // The note only for a drawing that reads: a refusal's message already holds it, on
+    // its one line.
+    let summary = drawing.summary();
+    let loops = drawing.into_loops(name, import.join_tolerance)?;
+    Ok((loops, Some(format!("{name}: {summary}"))))
+}

@@ -1,0 +1,50 @@
+//! Jobs: a whole command's pipeline from its settings to the program text and the report,
+//! for every front end alike (the `millpath` CLI, the Python package). A job checks its
+//! settings with the names of the CLI's flags (`--tool-diameter`), reads its inputs, plans,
+//! writes the program and reads it back for the cycle time; it never prints or writes files.
+//!
+//! This is the top layer: it may use every other module, and none uses it.
+
+pub mod contour;
+pub mod five_axis;
+pub mod pocket;
+pub mod pocket_report;
+pub mod program;
+pub mod verify;
+
+use crate::Error;
+use crate::io::ImportSettings;
+use crate::io::outline_json::Loops;
+use crate::machine::Machine;
+use crate::strategy::pocket::samples;
+use std::path::Path;
+
+pub use pocket::{PocketRun, PocketSettings};
+pub use pocket_report::Report as PocketReport;
+pub use program::{ProgramSettings, program_time};
+
+/// The built-in outline names `load_outline` takes.
+pub const SAMPLE_OUTLINES: &[&str] = &["sample:aerospace"];
+
+/// Reads an outline by name: a built-in sample (`sample:aerospace`) or a JSON, DXF or SVG
+/// file ([`crate::io::read_outline_file`]); returns the loops and, for a drawing, the note of
+/// what it held.
+pub fn load_outline(name: &str, import: &ImportSettings) -> Result<(Loops, Option<String>), Error> {
+    if name == "sample:aerospace" {
+        let s = samples::aerospace_pocket();
+        return Ok((Loops::single(s.outer, s.islands), None));
+    }
+    crate::io::read_outline_file(name, import)
+}
+
+/// The machine named by `spec`: a preset name (see `Machine::presets`) or the path of a
+/// TOML machine profile (anything ending in `.toml`, or an existing file). Every job that
+/// gives a cycle time takes its machine through this one function.
+pub fn load_machine(spec: &str) -> Result<Machine, Error> {
+    if spec.ends_with(".toml") || Path::new(spec).is_file() {
+        let text = crate::io::read_text(Path::new(spec))?;
+        Ok(Machine::from_toml_str(&text, spec)?)
+    } else {
+        Ok(Machine::preset(spec).map_err(|e| e.at("--machine"))?)
+    }
+}

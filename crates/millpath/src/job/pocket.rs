@@ -1,0 +1,445 @@
+//! The pocket job behind `millpath pocket`: settings as the command's flags give them →
+//! checked pocketing options → every selected pocket planned, verified and joined
+//! (`strategy::pocket::part`) → the program text → its cycle time read back from that text →
+//! the report. Each refusal names the flag it came from (`--tool-diameter`, `--feed`, …), so
+//! a caller binding the same names (the Python package) shows the same message.
+//!
+//! ```text
+//! let (loops, _) = job::load_outline("sample:aerospace", &ImportSettings::default())?;
+//! let run = job::pocket::run(&loops, "sample:aerospace", &PocketSettings::default(),
+//!                            &ProgramSettings::default(), None, &mut |_| {})?;
+//! run.gcode        // the bytes `millpath pocket … -o` writes
+//! run.report       // the JSON of `--report`
+//! ```
+
+use super::pocket_report::{Report, report};
+use super::program::{ProgramSettings, program_time};
+use crate::gcode::{WriterOptions, write_program};
+use crate::io::ImportSettings;
+use crate::io::outline_json::Loops;
+use crate::machine::Machine;
+use crate::stock::SimOptions;
+use crate::strategy::pocket::part::{PartResult, PartStrategy, generate_part};
+use crate::strategy::pocket::{
+    self, Direction, Entry, PocketOptions, PocketShape, SpiralMorph, Stepover, StrategyKind, Walls,
+};
+use crate::toolpath::Tool;
+use crate::{Error, InputError};
+
+/// The paper's transition C when none is given (its Table 1 and Figure 10 go from 0.2 to
+/// 0.7; 0.5 is their middle).
+pub const DEFAULT_TRANSITION: f64 = 0.5;
+
+/// A pocket job's settings, named and defaulted as `millpath pocket`'s flags.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PocketSettings {
+    /// How a DXF or SVG drawing is read (also the bottom outline).
+    pub import: ImportSettings,
+    /// Strategy: spiral, offset, zigzag, or auto.
+    pub strategy: String,
+    /// Tool diameter, mm.
+    pub tool_diameter: f64,
+    /// Stepover: a fraction of the diameter (`0.4`) or a distance (`5mm`).
+    pub stepover: String,
+    /// Pocket depth, mm.
+    pub depth: f64,
+    /// Step-down per level, mm.
+    pub step_down: f64,
+    /// Wall stock, mm.
+    pub wall_stock: f64,
+    /// Floor stock, mm.
+    pub floor_stock: f64,
+    /// Conventional milling instead of climb.
+    pub conventional: bool,
+    /// Entry: helix or ramp.
+    pub entry: String,
+    /// Helix radius, mm.
+    pub helix_radius: f64,
+    /// Ramp angle, degrees.
+    pub ramp_angle: f64,
+    /// Safe height above the level's top, mm.
+    pub safe_height: f64,
+    /// Clearance height above the stock, mm.
+    pub clearance_height: f64,
+    /// Feed: mm/min (`1500`) or in/min (`600ipm`).
+    pub feed: String,
+    /// Fraction of the feed at full slotting.
+    pub slowdown: f64,
+    /// Zigzag angle, degrees, from the pocket's principal axis.
+    pub angle: f64,
+    /// Spiral transition ratio C in [0, 1] (selects the `fronts` morph unless `morph` is given).
+    pub transition: Option<f64>,
+    /// Smallest curvature radius wanted on the spiral's interior loops, mm.
+    pub min_radius: f64,
+    /// Spiral morph: offsets, fronts or harmonic.
+    pub morph: Option<String>,
+    /// Spiral laps as G2/G3 biarcs instead of G1 chords.
+    pub arcs: bool,
+    /// Finishing pass along the walls.
+    pub finish: bool,
+    /// Keep the programmed feed (no engagement-based modulation).
+    pub no_feed_modulation: bool,
+    /// Machine for the cycle time: a preset name or a TOML machine profile.
+    pub machine: String,
+    /// Raster cell of the stock simulation, mm.
+    pub cell: f64,
+    /// Draft angle of the walls, degrees.
+    pub draft: Option<f64>,
+    /// Outline of the pocket's bottom (same vertex count and islands as the top).
+    pub bottom_outline: Option<String>,
+}
+
+impl Default for PocketSettings {
+    fn default() -> Self {
+        PocketSettings {
+            import: ImportSettings::default(),
+            strategy: "spiral".into(),
+            tool_diameter: 12.7,
+            stepover: "0.4".into(),
+            depth: 25.0,
+            step_down: 6.35,
+            wall_stock: 0.0,
+            floor_stock: 0.0,
+            conventional: false,
+            entry: "helix".into(),
+            helix_radius: 2.5,
+            ramp_angle: 3.0,
+            safe_height: 1.0,
+            clearance_height: 5.0,
+            feed: "600ipm".into(),
+            slowdown: 0.75,
+            angle: 0.0,
+            transition: None,
+            min_radius: 1.0,
+            morph: None,
+            arcs: false,
+            finish: false,
+            no_feed_modulation: false,
+            machine: "hsm".into(),
+            cell: 0.05,
+            draft: None,
+            bottom_outline: None,
+        }
+    }
+}
+
+/// Parses a feed: `600ipm` / `600in/min` in inches per minute, else mm/min; returns mm/s.
+pub fn parse_feed(text: &str) -> Result<f64, InputError> {
+    let t = text.trim();
+    let (num, scale) = if let Some(n) = t.strip_suffix("ipm").or_else(|| t.strip_suffix("in/min")) {
+        (n, 25.4 / 60.0)
+    } else if let Some(n) = t.strip_suffix("mm/min") {
+        (n, 1.0 / 60.0)
+    } else {
+        (t, 1.0 / 60.0)
+    };
+    num.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .map(|v| v * scale)
+        .ok_or_else(|| {
+            InputError::new("feed", text)
+                .at("--feed")
+                .expected("a feed > 0 in mm/min (1500) or in/min (600ipm)")
+        })
+}
+
+/// What the strategy setting asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Choice {
+    /// One strategy.
+    One(StrategyKind),
+    /// All three, the fastest verified one written (`pocket::auto`).
+    Auto,
+}
+
+/// The strategy setting: a strategy or `auto`.
+pub fn parse_choice(s: &str) -> Result<Choice, InputError> {
+    match s {
+        "spiral" => Ok(Choice::One(StrategyKind::Spiral)),
+        "offset" => Ok(Choice::One(StrategyKind::Offset)),
+        "zigzag" => Ok(Choice::One(StrategyKind::Zigzag)),
+        "auto" => Ok(Choice::Auto),
+        _ => Err(InputError::new("strategy", s)
+            .at("--strategy")
+            .expected("spiral, offset, zigzag or auto")),
+    }
+}
+
+impl PocketSettings {
+    /// The tool and the pocketing options.
+    pub fn options(&self) -> Result<(Tool, PocketOptions), Error> {
+        let tool = Tool::flat(self.tool_diameter).map_err(|e| e.at("--tool-diameter"))?;
+        let ramp = self.ramp_angle.to_radians();
+        let entry = match self.entry.as_str() {
+            "helix" => Entry::Helix {
+                radius: self.helix_radius,
+                ramp_angle: ramp,
+            },
+            "ramp" => Entry::Ramp { ramp_angle: ramp },
+            e => {
+                return Err(InputError::new("entry", e)
+                    .at("--entry")
+                    .expected("helix or ramp")
+                    .into());
+            }
+        };
+        let feed = parse_feed(&self.feed)?;
+        let mut opts = PocketOptions {
+            stepover: Stepover::parse(&self.stepover)?,
+            depth: self.depth,
+            step_down: self.step_down,
+            wall_stock: self.wall_stock,
+            floor_stock: self.floor_stock,
+            direction: if self.conventional {
+                Direction::Conventional
+            } else {
+                Direction::Climb
+            },
+            entry,
+            safe_height: self.safe_height,
+            clearance_height: self.clearance_height,
+            feed,
+            plunge_feed: feed / 3.0,
+            slowdown: self.slowdown,
+            zigzag_angle: self.angle.to_radians(),
+            transition: self.transition.unwrap_or(DEFAULT_TRANSITION),
+            min_radius: self.min_radius,
+            morph: self.morph()?,
+            arcs: self.arcs,
+            curvature_ramps: true,
+            finish: self.finish,
+            modulate_feed: !self.no_feed_modulation,
+        };
+        // Shaped for the machine: curvature ramps for a jerk-limited controller.
+        let machine = super::load_machine(&self.machine)?;
+        opts.curvature_ramps = machine.axes.iter().any(|a| a.max_jerk.is_finite());
+        opts.validate(&tool)?;
+        if !(self.cell.is_finite() && self.cell > 0.0) {
+            return Err(InputError::new("cell", self.cell)
+                .at("--cell")
+                .expected("a cell > 0 mm")
+                .into());
+        }
+        Ok((tool, opts))
+    }
+
+    /// The spiral's morph: `morph`, else `fronts` when a transition is given (the paper's
+    /// central spiral is the fronts' and harmonic morphs'), else `offsets`.
+    fn morph(&self) -> Result<SpiralMorph, Error> {
+        match (self.morph.as_deref(), self.transition) {
+            (None | Some("offsets"), None) => Ok(SpiralMorph::Offsets),
+            (None | Some("fronts"), _) => Ok(SpiralMorph::Fronts),
+            (Some("harmonic"), _) => Ok(SpiralMorph::Harmonic),
+            (Some("offsets"), Some(c)) => Err(InputError::new("transition", c)
+                .at("--transition with --morph offsets")
+                .expected(
+                    "no --transition with the offsets morph (its spiral has no central circle); \
+                     --morph fronts or harmonic for the paper's transition C",
+                )
+                .into()),
+            (Some(other), _) => Err(InputError::new("morph", other)
+                .at("--morph")
+                .expected("offsets, fronts or harmonic")
+                .into()),
+        }
+    }
+
+    /// The pocket with the walls asked for (`draft`, `bottom_outline`); the bottom outline's
+    /// drawing note goes to `note`.
+    pub fn with_walls(
+        &self,
+        shape: PocketShape,
+        note: &mut dyn FnMut(String),
+    ) -> Result<PocketShape, Error> {
+        if let Some(deg) = self.draft {
+            return Ok(shape.with_walls(Walls::Draft(deg.to_radians()), "--draft")?);
+        }
+        if let Some(path) = &self.bottom_outline {
+            let (b, n) = super::load_outline(path, &self.import)?;
+            if let Some(n) = n {
+                note(n);
+            }
+            return Ok(shape.with_walls(
+                Walls::Bottom {
+                    outer: b.outer,
+                    islands: b.islands,
+                },
+                &format!("--bottom-outline {path}"),
+            )?);
+        }
+        Ok(shape)
+    }
+
+    /// Simulation options.
+    pub fn sim(&self) -> SimOptions {
+        SimOptions {
+            cell: self.cell,
+            step: (2.0 * self.cell).max(0.1),
+            ..SimOptions::default()
+        }
+    }
+
+    /// The checks made before the outline is read (an error at once, before a drawing is
+    /// parsed): the strategy, the machine and the output settings.
+    pub fn check_before_loading(&self, program: &ProgramSettings) -> Result<(), Error> {
+        parse_choice(&self.strategy)?;
+        program_options("spiral", &super::load_machine(&self.machine)?, program)?;
+        Ok(())
+    }
+}
+
+/// How the pocket program is written: the dialect, units, tool, spindle and coolant of
+/// `out`, stating the machine's path tolerance (`G64 P t`, `CYCLE832(t,_FINISH,1)`, Fanuc's
+/// `G05.1 Q1` with t in a comment, a comment on Grbl), the tolerance its cycle time was
+/// planned with and the one `millpath estimate` reads back; `name` is the strategy's (or
+/// `mixed`). The decimals keep the rounding within the pocket's own resolution (arcs flatter
+/// than [`pocket::chain::ARC_AS_LINE_SAGITTA`], 0.0007 mm, are lines in the toolpath: 3
+/// decimals in mm, 5 in inches) and within 10 % of the path tolerance; fewer decimals are
+/// refused.
+pub fn program_options(
+    name: &str,
+    machine: &Machine,
+    out: &ProgramSettings,
+) -> Result<WriterOptions, Error> {
+    let t = machine.path_tolerance;
+    let mut max_rounding = pocket::chain::ARC_AS_LINE_SAGITTA;
+    let mut why = "the pocket's resolution".to_owned();
+    if t > 0.0 && crate::gcode::format::ROUNDING_SHARE * t < max_rounding {
+        max_rounding = crate::gcode::format::ROUNDING_SHARE * t;
+        why = format!("10 % of the machine's path tolerance {t} mm");
+    }
+    let decimals = out.decimals_within(max_rounding, &why)?;
+    Ok(out
+        .writer_options(decimals, format!("millpath pocket {name}"))?
+        .with_path_tolerance(t))
+}
+
+/// The indices a selection asks for (1-based, sorted, each once) among `n` pockets; all
+/// when not given.
+pub fn parse_select(text: Option<&str>, n: usize) -> Result<Vec<usize>, InputError> {
+    let Some(text) = text else {
+        return Ok((1..=n).collect());
+    };
+    let bad = || {
+        InputError::new("pocket selection", text)
+            .at("--select")
+            .expected(format!(
+                "pocket indices from 1 to {n} (as pocket --list shows them), separated by commas, \
+                 or ranges: 1,3 or 2-4"
+            ))
+    };
+    let mut out = Vec::new();
+    for item in text.split(',') {
+        let item = item.trim();
+        let (a, b) = match item.split_once('-') {
+            Some((a, b)) => (a.trim(), b.trim()),
+            None => (item, item),
+        };
+        let (Ok(a), Ok(b)) = (a.parse::<usize>(), b.parse::<usize>()) else {
+            return Err(bad());
+        };
+        if a == 0 || b < a || b > n {
+            return Err(bad());
+        }
+        out.extend(a..=b);
+    }
+    out.sort_unstable();
+    out.dedup();
+    Ok(out)
+}
+
+/// What a pocket job made.
+#[derive(Debug)]
+pub struct PocketRun {
+    /// The program text, as written to the `-o` file.
+    pub gcode: Vec<u8>,
+    /// The report (`--report`), with the cycle time of the written program.
+    pub report: Report,
+    /// The planned part: its toolpath, each pocket's result and the verification.
+    pub part: PartResult,
+    /// The pockets cut: their index in the drawing and their shape.
+    pub shapes: Vec<(usize, PocketShape)>,
+    /// The strategy's name, or `mixed`.
+    pub name: String,
+    /// The machine the cycle time is for.
+    pub machine: Machine,
+}
+
+/// Plans the pockets of `loops` (named `outline` in messages) selected by `select` (`1,3`,
+/// `2-4`; all when `None`), writes the program and reports it; a drawing note of the bottom
+/// outline goes to `note`.
+pub fn run(
+    loops: &Loops,
+    outline: &str,
+    settings: &PocketSettings,
+    program: &ProgramSettings,
+    select: Option<&str>,
+    note: &mut dyn FnMut(String),
+) -> Result<PocketRun, Error> {
+    let choice = parse_choice(&settings.strategy)?;
+    let machine = super::load_machine(&settings.machine)?;
+    program_options("spiral", &machine, program)?;
+    let (tool, opts) = settings.options()?;
+    let selected = parse_select(select, loops.len())?;
+    if selected.len() > 1 && (settings.draft.is_some() || settings.bottom_outline.is_some()) {
+        return Err(InputError::new("pockets", selected.len())
+            .at(format!("{outline} with --draft or --bottom-outline"))
+            .expected("one pocket with inclined walls: --select one of them")
+            .into());
+    }
+    let all = loops.pockets();
+    let mut shapes = Vec::with_capacity(selected.len());
+    for &i in &selected {
+        let p = &all[i - 1];
+        let origin = if all.len() > 1 {
+            format!("{outline}, pocket {i}")
+        } else {
+            outline.to_owned()
+        };
+        let shape = PocketShape::new(p.outer.clone(), p.islands.clone(), &origin)?;
+        shapes.push((i, settings.with_walls(shape, note)?));
+    }
+    let time = |tp: &crate::toolpath::Toolpath| crate::motion::cycle_time(tp, &machine);
+    let strategy = match choice {
+        Choice::One(kind) => PartStrategy::One(kind),
+        Choice::Auto => PartStrategy::Auto,
+    };
+    let part = generate_part(&shapes, strategy, &tool, &opts, &settings.sim(), &time)?;
+    let name = match part.pockets.iter().find(|p| p.result.is_some()) {
+        Some(f)
+            if part
+                .pockets
+                .iter()
+                .filter(|p| p.result.is_some())
+                .all(|p| p.kind == f.kind) =>
+        {
+            f.kind.name().to_owned()
+        }
+        _ => "mixed".to_owned(),
+    };
+    let wopts = program_options(&name, &machine, program)?;
+    let mut gcode = Vec::new();
+    write_program(&part.toolpath, &wopts, &mut gcode)
+        .map_err(|e| e.engine_made("writing the pocket program"))?;
+    let t = program_time(
+        &gcode,
+        wopts.dialect,
+        "the written pocket program",
+        &machine,
+    )
+    .map_err(|e| e.engine_made("timing the written pocket program"))?;
+    let mut rep = report(&part, t);
+    if part.pockets.len() == 1 {
+        rep.auto = rep.pockets.first_mut().and_then(|p| p.auto.take());
+    }
+    Ok(PocketRun {
+        gcode,
+        report: rep,
+        part,
+        shapes,
+        name,
+        machine,
+    })
+}

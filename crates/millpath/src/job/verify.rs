@@ -1,0 +1,179 @@
+//! The verify job behind `millpath verify`: a G-code program read back and checked against
+//! pocket outlines by the material-removal simulation (`stock::verify_part`: gouge, uncut
+//! material, rapids through material, engagement), with the gouge test allowing for the
+//! program's own rounding (2·½·10^−d·√2 mm at d decimals).
+
+use crate::gcode::{ReaderOptions, read_str};
+use crate::io::outline_json::Loops;
+use crate::stock::{self, PartVerification, StockSpec};
+use crate::strategy::pocket::{Stepover, nominal_engagement};
+use crate::toolpath::{Tool, Toolpath};
+use crate::{Error, InputError};
+
+/// A verify job's settings, named and defaulted as `millpath verify`'s flags.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VerifySettings {
+    /// Tool diameter, mm.
+    pub tool_diameter: f64,
+    /// Wall stock the program must leave, mm.
+    pub wall_stock: f64,
+    /// The nominal stepover, for the share above the nominal engagement.
+    pub stepover: String,
+    /// Raster cell, mm.
+    pub cell: f64,
+    /// Decimals the program was written with (`None`: the most found in it).
+    pub decimals: Option<u32>,
+    /// Check only these pockets of the drawing: `1,3`, `2-4` (all when `None`).
+    pub select: Option<String>,
+}
+
+impl Default for VerifySettings {
+    fn default() -> Self {
+        VerifySettings {
+            tool_diameter: 12.7,
+            wall_stock: 0.0,
+            stepover: "0.4".into(),
+            cell: 0.05,
+            decimals: None,
+            select: None,
+        }
+    }
+}
+
+/// What the verify job found.
+#[derive(Debug)]
+pub struct VerifyRun {
+    /// The program read back, levels inferred.
+    pub toolpath: Toolpath,
+    /// The whole part's findings, each pocket's and the cuts outside every pocket.
+    pub part: PartVerification,
+    /// Problems beyond the gouge resolution (empty: the program passes).
+    pub problems: Vec<String>,
+    /// Decimals the gouge test allowed for.
+    pub decimals: u32,
+    /// The gouge resolution at those decimals, mm.
+    pub gouge_resolution_mm: f64,
+    /// The pockets checked (indices in the drawing, 1-based).
+    pub selected: Vec<usize>,
+}
+
+impl VerifyRun {
+    /// The JSON `millpath verify --json` prints (without its `pictures`).
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "passed": self.problems.is_empty(),
+            "problems": self.problems,
+            "levels": self.toolpath.levels.len(),
+            "verification": self.part.total,
+            "pockets": self.part.pockets,
+            "cuts_outside": self.part.cuts_outside,
+            "unreachable_pockets": self.part.unreachable.iter().map(|k| k + 1).collect::<Vec<_>>(),
+            "decimals": self.decimals,
+            "gouge_resolution_mm": self.gouge_resolution_mm,
+        })
+    }
+}
+
+/// Checks the program `text` (named `origin`) against the pockets of `loops`.
+pub fn run(
+    loops: &Loops,
+    text: &str,
+    origin: &str,
+    settings: &VerifySettings,
+) -> Result<VerifyRun, Error> {
+    let (tool, s) = settings.check()?;
+    let ropts = ReaderOptions {
+        origin: origin.to_owned(),
+        ..ReaderOptions::default()
+    };
+    let (mut tp, _warnings) = read_str(text, ropts)?;
+    tp.tool = tool;
+    stock::infer_levels(&mut tp);
+    let decimals = settings.decimals.unwrap_or_else(|| program_decimals(text));
+    let resolution = stock::gouge_resolution(decimals);
+    let selected = super::pocket::parse_select(settings.select.as_deref(), loops.len())?;
+    let pockets = loops.pockets();
+    let specs: Vec<StockSpec<'_>> = selected
+        .iter()
+        .map(|&i| StockSpec {
+            outer: &pockets[i - 1].outer,
+            islands: &pockets[i - 1].islands,
+            wall_stock: settings.wall_stock,
+        })
+        .collect();
+    let sim = stock::SimOptions {
+        cell: settings.cell,
+        step: (2.0 * settings.cell).max(0.1),
+        ..stock::SimOptions::default()
+    };
+    let part = stock::verify_part(
+        &tp,
+        &specs,
+        nominal_engagement(s, tool.radius()).to_degrees(),
+        &sim,
+    );
+    let problems = part.problems_within(resolution);
+    Ok(VerifyRun {
+        toolpath: tp,
+        part,
+        problems,
+        decimals,
+        gouge_resolution_mm: resolution,
+        selected,
+    })
+}
+
+impl VerifySettings {
+    /// Checks the settings before anything is read: the tool, the wall stock, the cell and
+    /// the stepover; returns the tool and the stepover in mm.
+    pub fn check(&self) -> Result<(Tool, f64), Error> {
+        let tool = Tool::flat(self.tool_diameter).map_err(|e| e.at("--tool-diameter"))?;
+        if !(self.wall_stock.is_finite() && self.wall_stock >= 0.0) {
+            return Err(InputError::new("wall stock", self.wall_stock)
+                .at("--wall-stock")
+                .expected("a stock >= 0 mm")
+                .into());
+        }
+        if !(self.cell.is_finite() && self.cell > 0.0) {
+            return Err(InputError::new("cell", self.cell)
+                .at("--cell")
+                .expected("a cell > 0 mm")
+                .into());
+        }
+        let s = Stepover::parse(&self.stepover)?.distance(tool.diameter);
+        Ok((tool, s))
+    }
+}
+
+/// The most decimals written in the program's coordinate words (X, Y, Z, I, J, K, R), 3 when
+/// none has any.
+pub fn program_decimals(text: &str) -> u32 {
+    let mut best = 0u32;
+    for line in text.lines() {
+        let code = line.split([';', '(']).next().unwrap_or("");
+        let b = code.as_bytes();
+        for (i, &c) in b.iter().enumerate() {
+            if !matches!(
+                c.to_ascii_uppercase(),
+                b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R'
+            ) {
+                continue;
+            }
+            let rest = &b[i + 1..];
+            let num: Vec<u8> = rest
+                .iter()
+                .copied()
+                .take_while(|d| d.is_ascii_digit() || matches!(d, b'.' | b'-' | b'+' | b' '))
+                .filter(|d| *d != b' ')
+                .collect();
+            if let Some(dot) = num.iter().position(|&d| d == b'.') {
+                let digits = num[dot + 1..]
+                    .iter()
+                    .take_while(|d| d.is_ascii_digit())
+                    .count();
+                best = best.max(digits as u32);
+            }
+        }
+    }
+    if best == 0 { 3 } else { best }
+}
