@@ -43,6 +43,7 @@
 use super::arc::ArcProblem;
 use super::dialect::{Dialect, Units};
 use super::lexer::Token;
+use super::tools::ToolTable;
 use crate::error::InputError;
 use crate::geom::{Point3, Vec3};
 use crate::toolpath::{Corner, Move, Plane};
@@ -69,6 +70,9 @@ pub struct ReaderOptions {
     /// [`crate::machine::Machine::sync_wait`]) when timing for a LinuxCNC controller; other
     /// controllers output such functions without stopping the path.
     pub sync_points: Option<f64>,
+    /// The tool table (LinuxCNC `tool.tbl`): G43 applies its length offsets, and a T word
+    /// must name one of its tools. Without one, tool length offsets are zero.
+    pub tool_table: Option<std::sync::Arc<ToolTable>>,
 }
 
 impl Default for ReaderOptions {
@@ -81,6 +85,7 @@ impl Default for ReaderOptions {
             block_delete: false,
             origin: "G-code".to_string(),
             sync_points: None,
+            tool_table: None,
         }
     }
 }
@@ -137,6 +142,9 @@ pub(crate) struct State {
     offset: usize,
     spindle_set: f64,
     pending_tool: u32,
+    /// The active tool length offset (G43), mm.
+    pub(crate) tool_offset: Vec3,
+    tool_table: Option<std::sync::Arc<ToolTable>>,
     /// A motion has been emitted (sync points before the first one do nothing).
     moved: bool,
     pub(crate) ended: bool,
@@ -377,6 +385,8 @@ impl State {
             offset: 0,
             spindle_set: 0.0,
             pending_tool: 0,
+            tool_offset: Vec3::ZERO,
+            tool_table: opts.tool_table.clone(),
             moved: false,
             ended: false,
             notes: Vec::new(),
@@ -463,6 +473,15 @@ impl State {
                     "tool",
                     format!("T{t}"),
                     "a tool number >= 0",
+                ));
+            }
+            if let Some(table) = &self.tool_table
+                && table.get(t as u32).is_none()
+            {
+                return Err(BlockError::new(
+                    "tool",
+                    format!("T{t}"),
+                    format!("a tool of the tool table ({} tools)", table.len()),
                 ));
             }
             self.pending_tool = t as u32;
@@ -607,8 +626,33 @@ impl State {
                 901 => self.arc_absolute = true,
                 911 => self.arc_absolute = false,
                 430 => {
-                    b.take(b'H');
+                    // G43 H n: tool n's offsets; G43: the tool in the spindle's (LinuxCNC's
+                    // convert_tool_length_offset).
+                    let h = b.take(b'H');
+                    let n = match h {
+                        Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => {
+                            h as u32
+                        }
+                        Some(h) => {
+                            return Err(BlockError::new("G43 H", h, "a tool number >= 0"));
+                        }
+                        None => self.modal.tool,
+                    };
+                    self.tool_offset = match &self.tool_table {
+                        None => Vec3::ZERO,
+                        Some(t) => match t.get(n) {
+                            Some(e) => e.offset,
+                            None => {
+                                return Err(BlockError::new(
+                                    "G43 tool",
+                                    n,
+                                    format!("a tool of the tool table ({} tools)", t.len()),
+                                ));
+                            }
+                        },
+                    };
                 }
+                490 => self.tool_offset = Vec3::ZERO,
                 51 => {
                     b.take(b'Q');
                 }

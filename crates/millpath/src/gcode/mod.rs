@@ -104,12 +104,14 @@ pub mod format;
 pub mod interp;
 mod lexer;
 mod reader;
+mod tools;
 mod writer;
 
 pub use dialect::{Coolant, Dialect, Units};
 pub use format::{required_decimals, rounding_error_mm};
 pub use interp::{FeedMode, Modal, ReadMove, ReaderOptions};
 pub use reader::{MAX_LINE_BYTES, MAX_WARNINGS, Reader, Warning, read_str, read_toolpath};
+pub use tools::{ToolEntry, ToolTable};
 pub use writer::{MIN_ARC_RADIUS_MM, WriteSummary, WriterOptions, write_program};
 
 /// Writes `tp` into a `String` (convenience for tests and small programs).
