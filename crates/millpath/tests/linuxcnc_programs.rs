@@ -34,9 +34,9 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[(
 const LIMIT: Duration = Duration::from_secs(20);
 
 /// Programs millpath must read (of 416).
-const MIN_READ: usize = 139;
+const MIN_READ: usize = 281;
 /// Programs both read whose motions must be compared and equal (all of them must be equal).
-const MIN_COMPARED: usize = 137;
+const MIN_COMPARED: usize = 238;
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/linuxcnc-nc")
@@ -86,6 +86,9 @@ fn options(path: &Path) -> ReaderOptions {
         dialect: Dialect::LinuxCnc,
         origin: path.display().to_string(),
         tool_table: Some(tool_table()),
+        subroutine_path: std::iter::once(path.parent().unwrap().to_path_buf())
+            .chain(SUBROUTINE_DIRS.iter().map(|d| data().join(d)))
+            .collect(),
         ..ReaderOptions::default()
     }
 }

@@ -43,6 +43,7 @@
 use super::arc::ArcProblem;
 use super::dialect::{Dialect, Units};
 use super::lexer::Token;
+use super::params::{ParamFile, Store};
 use super::tools::ToolTable;
 use crate::error::InputError;
 use crate::geom::{Point3, Vec3};
@@ -73,7 +74,18 @@ pub struct ReaderOptions {
     /// The tool table (LinuxCNC `tool.tbl`): G43 applies its length offsets, and a T word
     /// must name one of its tools. Without one, tool length offsets are zero.
     pub tool_table: Option<std::sync::Arc<ToolTable>>,
+    /// Folders searched for a subroutine file `NAME.ngc` (after the program's own folder,
+    /// which the caller puts first when it has one).
+    pub subroutine_path: Vec<std::path::PathBuf>,
+    /// Parameters from a LinuxCNC `.var` file (the persistent range: work offsets, G92, …),
+    /// in mm. Without one, G54..G59 take [`ReaderOptions::work_offsets`].
+    pub parameters: Option<std::sync::Arc<ParamFile>>,
+    /// Lines run inside loops and subroutines before the program is refused as endless.
+    pub step_budget: u64,
 }
+
+/// The default [`ReaderOptions::step_budget`]: ten million lines (a few seconds).
+pub const DEFAULT_STEP_BUDGET: u64 = 10_000_000;
 
 impl Default for ReaderOptions {
     fn default() -> Self {
@@ -86,6 +98,9 @@ impl Default for ReaderOptions {
             origin: "G-code".to_string(),
             sync_points: None,
             tool_table: None,
+            subroutine_path: Vec::new(),
+            parameters: None,
+            step_budget: DEFAULT_STEP_BUDGET,
         }
     }
 }
@@ -139,7 +154,12 @@ pub(crate) struct State {
     /// Feed in mm/s (G94) or the last F number (G93); `None` when unset.
     feed: Option<f64>,
     arc_absolute: bool,
-    offset: usize,
+    /// The active work coordinate system, 0..9 for G54..G59.3.
+    system: usize,
+    /// Its origin (mm).
+    origin: Vec3,
+    /// The G92 offset (mm).
+    g92: Vec3,
     spindle_set: f64,
     pending_tool: u32,
     /// The active tool length offset (G43), mm.
@@ -199,7 +219,7 @@ impl BlockError {
 /// enough that squares of it (arc geometry) stay finite.
 pub const MAX_WORD_VALUE: f64 = 1e9;
 
-const LETTERS_OK: &[u8] = b"DFHIJKNOPQRSTXYZ";
+const LETTERS_OK: &[u8] = b"DFHIJKLNOPQRSTXYZ";
 
 fn letter_index(l: u8) -> usize {
     usize::from(l.saturating_sub(b'A')).min(25)
@@ -364,7 +384,10 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
     );
     common
         || match dialect {
-            Dialect::LinuxCnc => matches!(code, 200 | 210 | 611 | 901 | 911),
+            Dialect::LinuxCnc => matches!(
+                code,
+                200 | 210 | 611 | 901 | 911 | 100 | 920 | 921 | 922 | 923 | 591 | 592 | 593
+            ),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
             Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
             Dialect::Sinumerik => matches!(code, 90 | 600 | 6420 | 700 | 710 | 7000 | 7100),
@@ -382,7 +405,9 @@ impl State {
             motion: None,
             feed: None,
             arc_absolute: false,
-            offset: 0,
+            system: 0,
+            origin: Vec3::ZERO,
+            g92: Vec3::ZERO,
             spindle_set: 0.0,
             pending_tool: 0,
             tool_offset: Vec3::ZERO,
@@ -398,6 +423,30 @@ impl State {
         self.pos
     }
 
+    /// The parameter store a program starts with: the `.var` file's values, or else the
+    /// work offsets of `opts` in G54..G59.
+    pub(crate) fn initial_params(opts: &ReaderOptions) -> Store {
+        let mut store = Store::new(opts.parameters.as_deref());
+        if opts.parameters.is_none() {
+            for (k, o) in opts.work_offsets.iter().enumerate() {
+                let b = 5221 + 20 * k;
+                store.set(b, o.x);
+                store.set(b + 1, o.y);
+                store.set(b + 2, o.z);
+            }
+        }
+        store
+    }
+
+    /// The feed as an F number in program units (0 when unset).
+    pub(crate) fn feed_number(&self) -> f64 {
+        match (self.modal.feed_mode, self.feed) {
+            (FeedMode::PerMinute, Some(f)) => f * 60.0 / self.unit(),
+            (FeedMode::InverseTime, Some(f)) => f,
+            (_, None) => 0.0,
+        }
+    }
+
     fn unit(&self) -> f64 {
         self.modal.units.mm_per_unit()
     }
@@ -408,6 +457,7 @@ impl State {
         b: &mut Block,
         line: usize,
         opts: &ReaderOptions,
+        store: &mut Store,
         out: &mut Vec<ReadMove>,
     ) -> Result<(), BlockError> {
         let dialect = opts.dialect;
@@ -504,7 +554,13 @@ impl State {
                 modal: self.modal,
             });
         }
-        self.modal_groups(b, dialect)?;
+        self.modal_groups(b, dialect, store)?;
+        if b.has_g(100) {
+            self.g10(b, store)?;
+        }
+        if let Some(&(g, _)) = b.g.iter().find(|(g, _)| (920..=923).contains(g)) {
+            self.g92(g, b, store)?;
+        }
         let before = out.len();
         let from = self.pos;
         self.motion(b, block_f, line, opts, out)?;
@@ -568,9 +624,14 @@ impl State {
         Ok(seconds)
     }
 
-    fn modal_groups(&mut self, b: &mut Block, dialect: Dialect) -> Result<(), BlockError> {
+    fn modal_groups(
+        &mut self,
+        b: &mut Block,
+        dialect: Dialect,
+        store: &Store,
+    ) -> Result<(), BlockError> {
         let gs = std::mem::take(&mut b.g);
-        let r = self.modal_codes(&gs, b, dialect);
+        let r = self.modal_codes(&gs, b, dialect, store);
         b.g = gs;
         r?;
         if let Some(args) = b.cycle832.take() {
@@ -584,6 +645,7 @@ impl State {
         gs: &[(u16, usize)],
         b: &mut Block,
         dialect: Dialect,
+        store: &Store,
     ) -> Result<(), BlockError> {
         for &(g, _) in gs {
             match g {
@@ -592,7 +654,13 @@ impl State {
                 190 => self.modal.plane = Plane::Yz,
                 200 | 700 | 7000 => self.modal.units = Units::Inch,
                 210 | 710 | 7100 => self.modal.units = Units::Mm,
-                540..=590 => self.offset = usize::from((g - 540) / 10),
+                540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => {
+                    self.system = match g {
+                        591..=593 => usize::from(g - 591) + 6,
+                        _ => usize::from((g - 540) / 10),
+                    };
+                    self.load_origin(store);
+                }
                 611 | 600 => self.modal.corner = Corner::ExactStop,
                 610 if dialect == Dialect::Fanuc => self.modal.corner = Corner::ExactStop,
                 610 => self.modal.corner = Corner::ExactPath,
@@ -681,6 +749,8 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
 }
 
 mod motion;
+mod offsets;
+pub(crate) use offsets::Scope;
 
 /// The axis indices `(u, v, normal)` of a plane (0 = X), in [`Plane::split`] order.
 pub(crate) fn plane_axes(plane: Plane) -> (usize, usize, usize) {

@@ -99,17 +99,22 @@
 
 pub mod arc;
 mod dialect;
+mod expr;
 pub mod five_axis;
 pub mod format;
 pub mod interp;
 mod lexer;
+mod ngc;
+mod oword;
+mod params;
 mod reader;
 mod tools;
 mod writer;
 
 pub use dialect::{Coolant, Dialect, Units};
 pub use format::{required_decimals, rounding_error_mm};
-pub use interp::{FeedMode, Modal, ReadMove, ReaderOptions};
+pub use interp::{DEFAULT_STEP_BUDGET, FeedMode, Modal, ReadMove, ReaderOptions};
+pub use params::ParamFile;
 pub use reader::{MAX_LINE_BYTES, MAX_WARNINGS, Reader, Warning, read_str, read_toolpath};
 pub use tools::{ToolEntry, ToolTable};
 pub use writer::{MIN_ARC_RADIUS_MM, WriteSummary, WriterOptions, write_program};

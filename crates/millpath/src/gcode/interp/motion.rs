@@ -97,12 +97,7 @@ impl State {
             return Err(BlockError::new("G53", "in G91", "G53 with G90"));
         }
         let unit = self.unit();
-        let offset = opts
-            .work_offsets
-            .get(self.offset)
-            .copied()
-            .unwrap_or_default()
-            + self.tool_offset;
+        let offset = self.origin + self.g92 + self.tool_offset;
         let off = [offset.x, offset.y, offset.z];
         let cur = [self.pos.x, self.pos.y, self.pos.z];
         let mut target = cur;
