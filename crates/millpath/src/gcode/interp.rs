@@ -153,6 +153,8 @@ pub(crate) struct State {
     motion: Option<u16>,
     /// Feed in mm/s (G94) or the last F number (G93); `None` when unset.
     feed: Option<f64>,
+    /// The last F number as written (LinuxCNC's `#<_feed>`: not converted by G20/G21).
+    f_word: f64,
     arc_absolute: bool,
     /// The active work coordinate system, 0..9 for G54..G59.3.
     system: usize,
@@ -404,6 +406,7 @@ impl State {
             pos: opts.start,
             motion: None,
             feed: None,
+            f_word: 0.0,
             arc_absolute: false,
             system: 0,
             origin: Vec3::ZERO,
@@ -438,13 +441,9 @@ impl State {
         store
     }
 
-    /// The feed as an F number in program units (0 when unset).
+    /// The last F number as written (0 before any).
     pub(crate) fn feed_number(&self) -> f64 {
-        match (self.modal.feed_mode, self.feed) {
-            (FeedMode::PerMinute, Some(f)) => f * 60.0 / self.unit(),
-            (FeedMode::InverseTime, Some(f)) => f,
-            (_, None) => 0.0,
-        }
+        self.f_word
     }
 
     fn unit(&self) -> f64 {
@@ -493,6 +492,7 @@ impl State {
             if f < 0.0 {
                 return Err(BlockError::new("feed", format!("F{f}"), "F >= 0"));
             }
+            self.f_word = f;
             match self.modal.feed_mode {
                 FeedMode::PerMinute => self.feed = Some(f * self.unit() / 60.0),
                 FeedMode::InverseTime => block_f = Some(f),

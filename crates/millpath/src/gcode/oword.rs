@@ -7,16 +7,16 @@
 //!
 //! * `o<n> sub … o<n> endsub` defines a subroutine where it is met (its lines are kept;
 //!   execution continues after `endsub`). `o<n> call [a] [b] …` runs it with `#1..#30` set to
-//!   the arguments; a subroutine not yet defined is searched, in this order, as the file
-//!   `n.ngc` in the program's folder and on the search path
-//!   ([`ReaderOptions::subroutine_path`](super::ReaderOptions::subroutine_path)), then
-//!   further down the main program (LinuxCNC's forward search; the lines read ahead are kept
-//!   and run after the call returns). `return [v]`/`endsub [v]` set `#<_value>` and
+//!   the arguments; a subroutine not yet defined is searched as the file `n.ngc` in the
+//!   folders of [`ReaderOptions::subroutine_path`](super::ReaderOptions::subroutine_path)
+//!   (the program's own folder first). A call before the definition in the same file is
+//!   refused, as LinuxCNC 2.9's rs274 refuses it ("sub found in illegal location").
+//!   `return [v]`/`endsub [v]` set `#<_value>` and
 //!   `#<_value_returned>`.
 //! * `if [c]`/`elseif [c]`/`else`/`endif`; `while [c]`/`endwhile`; `do`/`while [c]`;
 //!   `repeat [n]`/`endrepeat`; `break`; `continue`.
 //! * Memory: the main program is streamed; only from the start of an open loop on are its
-//!   lines kept, until the loop ends (and the lines read ahead by a forward search).
+//!   lines kept, until the loop ends.
 //! * Every line run inside a loop or a subroutine counts against the step budget
 //!   ([`ReaderOptions::step_budget`](super::ReaderOptions::step_budget)): a program that
 //!   loops for ever is refused with the loop's line, never hangs. Calls nest at most
@@ -543,10 +543,13 @@ impl<R: BufRead> Program<R> {
         }
         let body = match self.subs.get(&o.name) {
             Some(b) => Rc::clone(b),
-            None => match self.in_file(&o.name)? {
-                Some(b) => b,
-                None => self.forward(&o.name)?,
-            },
+            None => self.in_file(&o.name)?.ok_or_else(|| {
+                format!(
+                    "subroutine o<{0}>: not defined before the call, and no file {0}.ngc in the \
+                     program's folder or on the subroutine path",
+                    o.name
+                )
+            })?,
         };
         params.call(&o.args);
         self.frames.push(Frame {
@@ -591,48 +594,5 @@ impl<R: BufRead> Program<R> {
             "{}: no o<{name}> sub … o<{name}> endsub in it",
             path.display()
         ))
-    }
-
-    /// Searches the rest of the main program for `o<name> sub` (LinuxCNC's forward search);
-    /// the lines read are kept to run after the call.
-    fn forward(&mut self, name: &str) -> R2<Rc<Body>> {
-        let missing = || {
-            format!(
-                "subroutine o<{name}>: not defined, no file {name}.ngc in the program's folder \
-                 or on the subroutine path, and not further down the program"
-            )
-        };
-        if self.frames.len() > 1 {
-            return Err(missing());
-        }
-        let mut i = self.main.first + self.main.kept.len().max(self.top().pc - self.main.first);
-        i = i.max(self.top().pc);
-        let mut buf = Vec::new();
-        let mut inside: Option<Vec<(usize, String)>> = None;
-        loop {
-            if !self.main.get(i, &mut buf, true, self.max_line)? {
-                return Err(missing());
-            }
-            let h = o_header(&buf);
-            match &mut inside {
-                None => {
-                    if matches!(&h, Some((n, Kw::Sub)) if n == name) {
-                        inside = Some(Vec::new());
-                    }
-                }
-                Some(lines) => {
-                    lines.push((i + 1, String::from_utf8_lossy(&buf).to_string()));
-                    if matches!(&h, Some((n, Kw::Endsub)) if n == name) {
-                        let b = Rc::new(Body {
-                            lines: std::mem::take(lines),
-                            origin: Rc::from(""),
-                        });
-                        self.subs.insert(name.to_string(), Rc::clone(&b));
-                        return Ok(b);
-                    }
-                }
-            }
-            i += 1;
-        }
     }
 }

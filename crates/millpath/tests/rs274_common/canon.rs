@@ -7,8 +7,9 @@
 //! units in force when it was printed. This is rs274's own interpretation, independent of
 //! millpath's reader.
 
+use millpath::gcode::ReadMove;
 use millpath::geom::Point3;
-use millpath::toolpath::Plane;
+use millpath::toolpath::{MoveKind, Plane};
 
 /// One motion of the canonical output.
 #[derive(Debug, Clone, PartialEq)]
@@ -173,4 +174,103 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
         }
     }
     Ok(out)
+}
+
+/// The first difference between our moves and rs274's, if any.
+pub fn compare(
+    ours: &[ReadMove],
+    theirs: &[Canon],
+    start: Point3,
+) -> Option<String> {
+    if ours.len() != theirs.len() {
+        let n = ours.len().min(theirs.len());
+        let first = ours
+            .iter()
+            .zip(theirs)
+            .position(|(o, t)| differs(o, t, start).is_some())
+            .unwrap_or(n);
+        return Some(format!(
+            "{} moves here, {} from rs274 (first difference at move {first}: ours {:?} rs274 {:?})",
+            ours.len(),
+            theirs.len(),
+            ours.get(first).map(|m| (m.line, m.mv)),
+            theirs.get(first)
+        ));
+    }
+    let mut from = start;
+    for (i, (o, t)) in ours.iter().zip(theirs).enumerate() {
+        if let Some(d) = differs(o, t, from) {
+            return Some(format!("move {i} (line {}): {d}", o.line));
+        }
+        from = o.mv.to;
+    }
+    None
+}
+
+fn differs(o: &ReadMove, t: &Canon, from: Point3) -> Option<String> {
+    let m = &o.mv;
+    let near = |a: Point3, b: Point3| {
+        (a.x - b.x)
+            .abs()
+            .max((a.y - b.y).abs())
+            .max((a.z - b.z).abs())
+    };
+    let tol = t.position_tol + 1e-6;
+    let feed_number = |feed: f64| {
+        if t.inverse_time {
+            feed * 60.0 / m.length_from(from).max(1e-9)
+        } else {
+            feed * 60.0
+        }
+    };
+    let feed_ok = |theirs: f64| (feed_number(m.feed) - theirs).abs() <= t.feed_tol + 1e-6;
+    let bad = |what: &str| Some(format!("{what}: ours {m:?}, rs274 {t:?}"));
+    match (&m.kind, &t.mv) {
+        (MoveKind::Rapid, CanonMove::Rapid(p)) => {
+            (near(m.to, *p) > tol).then(|| bad("end")).flatten()
+        }
+        (MoveKind::Line, CanonMove::Feed(p, f)) => {
+            if near(m.to, *p) > tol {
+                bad("end")
+            } else if !feed_ok(*f) {
+                bad(&format!("feed {} vs {f}", feed_number(m.feed)))
+            } else {
+                None
+            }
+        }
+        (
+            MoveKind::Arc {
+                center,
+                plane,
+                ccw,
+                turns,
+            },
+            CanonMove::Arc {
+                end,
+                centre,
+                rotation,
+                plane: p2,
+                feed,
+            },
+        ) => {
+            let (u, v, _) = plane.split(*center - Point3::ORIGIN);
+            let rot = (*turns as i32 + 1) * if *ccw { 1 } else { -1 };
+            if plane != p2 || rot != *rotation {
+                bad("plane or rotation")
+            } else if near(m.to, *end) > tol {
+                bad("end")
+            } else if (u - centre.0).abs().max((v - centre.1).abs()) > tol {
+                bad("centre")
+            } else if !feed_ok(*feed) {
+                bad(&format!("feed {} vs {feed}", feed_number(m.feed)))
+            } else {
+                None
+            }
+        }
+        (MoveKind::Dwell { seconds }, CanonMove::Dwell(s)) => ((seconds - s).abs()
+            > t.feed_tol + 1e-6)
+            .then(|| bad("dwell"))
+            .flatten(),
+        _ => bad("kind"),
+    }
 }
