@@ -15,6 +15,9 @@ use std::path::PathBuf;
 pub struct Args {
     /// The G-code program (LinuxCNC dialect).
     pub program: PathBuf,
+    /// Subroutine folders and tool table.
+    #[command(flatten)]
+    pub files: super::ProgramFiles,
     /// The pocket outline (.json, .dxf, .svg or sample:aerospace).
     #[arg(long)]
     pub outline: String,
@@ -109,7 +112,12 @@ pub fn run(args: &Args) -> Result<(), Error> {
     let ropts = ReaderOptions {
         origin: args.program.display().to_string(),
         ..ReaderOptions::default()
-    };
+    }
+    .with_program_files(
+        &args.program,
+        &args.files.subroutine_path,
+        args.files.tool_table.as_deref(),
+    )?;
     let (mut tp, _warnings) = read_str(&text, ropts)?;
     tp.tool = tool;
     stock::infer_levels(&mut tp);

@@ -333,6 +333,46 @@ impl<R: BufRead> Iterator for Reader<R> {
     }
 }
 
+impl ReaderOptions {
+    /// The files a program may need: subroutine folders (the program's own folder first, then
+    /// `subroutine_path`, LinuxCNC's `SUBROUTINE_PATH`) and a LinuxCNC tool table (in mm).
+    /// Errors name the folder or file and the flag it came from.
+    pub fn with_program_files(
+        mut self,
+        program: &std::path::Path,
+        subroutine_path: &[std::path::PathBuf],
+        tool_table: Option<&std::path::Path>,
+    ) -> Result<Self, Error> {
+        for d in subroutine_path {
+            if !d.is_dir() {
+                return Err(InputError::new("subroutine folder", d.display())
+                    .at("--subroutine-path")
+                    .expected("existing folders, separated by ':'")
+                    .into());
+            }
+        }
+        self.subroutine_path = program
+            .parent()
+            .map(|d| {
+                if d.as_os_str().is_empty() {
+                    std::path::Path::new(".")
+                } else {
+                    d
+                }
+            })
+            .map(std::path::Path::to_path_buf)
+            .into_iter()
+            .chain(subroutine_path.iter().cloned())
+            .collect();
+        if let Some(t) = tool_table {
+            let table = super::tools::ToolTable::read(t, super::dialect::Units::Mm)
+                .map_err(|e| e.at(format!("--tool-table {}", t.display())))?;
+            self.tool_table = Some(std::sync::Arc::new(table));
+        }
+        Ok(self)
+    }
+}
+
 /// Reads a whole program into a [`Toolpath`] (with `tool` and the reader's start), plus the
 /// warnings. For tests and small programs; the estimator streams with [`Reader`].
 pub fn read_toolpath<R: BufRead>(

@@ -177,11 +177,7 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
 }
 
 /// The first difference between our moves and rs274's, if any.
-pub fn compare(
-    ours: &[ReadMove],
-    theirs: &[Canon],
-    start: Point3,
-) -> Option<String> {
+pub fn compare(ours: &[ReadMove], theirs: &[Canon], start: Point3) -> Option<String> {
     if ours.len() != theirs.len() {
         let n = ours.len().min(theirs.len());
         let first = ours
