@@ -18,9 +18,11 @@
 //!   60/F s) and the move's feed becomes `length · F / 60` mm/s. Switching G93/G94 forgets F,
 //!   so the next feed move needs a new F. A feed move without F, or with F ≤ 0, is an error
 //!   naming the line.
-//! * Work offsets G54–G59 and tool length compensation (G43 H) are zero unless offsets are
-//!   given in [`ReaderOptions::work_offsets`]; positions are machine positions, program
-//!   position plus the active offset. G53 moves the block in machine coordinates (G90 only).
+//! * Work offsets G54–G59.3 come from the parameters (a `.var` file,
+//!   [`ReaderOptions::parameters`], or [`ReaderOptions::work_offsets`]) and G10 L2/L20; G92
+//!   adds its offset; G43 (H) the tool table's length offset (module `offsets`). Positions
+//!   are machine positions: program position plus the active offsets. G53 moves the block in
+//!   machine coordinates (G90 only).
 //! * Corner modes: G61.1 → exact stop, G61 → exact path (Fanuc: exact stop, its G61 is the
 //!   exact stop check mode), `G64 P t` → blend within t (LinuxCNC; `G64 P t Q q` with q ≠ t →
 //!   [`Corner::BlendMerge`]: q is the merge tolerance of LinuxCNC's naive-CAM detector, which
@@ -36,7 +38,7 @@
 //!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
-//!   G40, G49, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
+//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
 //!   [`ReaderOptions::block_delete`] is on). Anything else is refused with its line and word,
 //!   or skipped with a warning when [`ReaderOptions::lenient`].
 

@@ -72,7 +72,8 @@ pub(crate) struct NgcLine {
     pub(crate) messages: Vec<String>,
 }
 
-/// Whether `line` needs this parser rather than the plain lexer.
+/// Whether `line` needs this parser rather than the plain lexer. No allocation: every line
+/// of a plain program passes here.
 pub(crate) fn needed(line: &[u8]) -> bool {
     if line.iter().any(|&c| matches!(c, b'#' | b'[')) {
         return true;
@@ -80,20 +81,46 @@ pub(crate) fn needed(line: &[u8]) -> bool {
     if line.contains(&b'(') && message_comment(line) {
         return true;
     }
-    o_header(line).is_some()
+    starts_with_o(line) && o_header(line).is_some()
 }
 
+/// Whether the first word (after `/` and an N word) is an O word.
+fn starts_with_o(line: &[u8]) -> bool {
+    let mut it = line
+        .iter()
+        .copied()
+        .filter(|c| !c.is_ascii_whitespace())
+        .peekable();
+    if it.peek() == Some(&b'/') {
+        it.next();
+    }
+    if matches!(it.peek(), Some(b'n' | b'N')) {
+        it.next();
+        while it.peek().is_some_and(u8::is_ascii_digit) {
+            it.next();
+        }
+    }
+    matches!(it.peek(), Some(b'o' | b'O'))
+}
+
+/// Whether a comment starts with MSG, DEBUG or PRINT (any case, spaces allowed).
 fn message_comment(line: &[u8]) -> bool {
-    line.windows(6).any(|w| {
-        w.first() == Some(&b'(') && {
-            let rest: Vec<u8> = w
-                .iter()
-                .skip(1)
-                .copied()
-                .filter(|c| !c.is_ascii_whitespace())
-                .map(|c| c.to_ascii_lowercase())
-                .collect();
-            rest.starts_with(b"msg") || rest.starts_with(b"debu") || rest.starts_with(b"prin")
+    line.iter().enumerate().any(|(i, &c)| {
+        c == b'(' && {
+            let mut head = [0u8; 5];
+            let mut n = 0;
+            for &d in line.iter().skip(i + 1) {
+                if n == head.len() || d == b')' {
+                    break;
+                }
+                if !d.is_ascii_whitespace()
+                    && let Some(h) = head.get_mut(n)
+                {
+                    *h = d.to_ascii_lowercase();
+                    n += 1;
+                }
+            }
+            head.starts_with(b"msg,") || head.starts_with(b"debug") || head.starts_with(b"print")
         }
     })
 }
