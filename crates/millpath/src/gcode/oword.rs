@@ -109,6 +109,13 @@ type R2<T> = Result<T, String>;
 impl<R: BufRead> Main<R> {
     /// Line `i` into `buf`; `false` past the end. `keep`: keep it for going back.
     fn get(&mut self, i: usize, buf: &mut Vec<u8>, keep: bool, max: u64) -> R2<bool> {
+        if i < self.first {
+            // A bug, not the program's fault: never run a later line in its place.
+            return Err(format!(
+                "internal error: line {} is no longer kept (please report)",
+                i + 1
+            ));
+        }
         while self.first + self.kept.len() < i {
             // Lines between (a forward read) are always kept.
             let mut b = Vec::new();
