@@ -70,8 +70,12 @@ fn errors_name_the_file_line_and_word() {
     assert!(e.contains(":2"), "{e}");
     let e = error(&format!("G21\nG1 X1{} F100\n", "0".repeat(30)));
     assert!(e.contains(":2") && e.contains("magnitude"), "{e}");
-    let e = error("G21\nG1 X#1 F100\n");
-    assert!(e.contains("part.ngc:2") && e.contains("#1"), "{e}");
+    // Parameters are read (#1 is 0 until set); a named one must be set before it is read.
+    let e = error("G21\nG1 X#<nope> F100\n");
+    assert!(
+        e.contains("part.ngc:2") && e.contains("#<nope>") && e.contains("not defined"),
+        "{e}"
+    );
     let e = error("G21\nG38.2 Z-5 F100\n");
     assert!(
         e.contains("part.ngc:2") && e.contains("G38.2"),

@@ -79,6 +79,9 @@ pub struct Args {
     /// Print the adaptive-spiral paper's Table 2 (square vs circle) against this machine.
     #[arg(long)]
     pub table2: bool,
+    /// Subroutine folders and tool table.
+    #[command(flatten)]
+    pub files: super::ProgramFiles,
 }
 
 /// Runs the command.
@@ -149,7 +152,12 @@ pub fn run(args: &Args) -> Result<(), Error> {
         sync_points: (machine.controller == millpath::machine::Controller::LinuxCnc)
             .then_some(machine.sync_wait),
         ..ReaderOptions::default()
-    };
+    }
+    .with_program_files(
+        path,
+        &args.files.subroutine_path,
+        args.files.tool_table.as_deref(),
+    )?;
     let start = opts.start;
     let size = file.metadata().map_or(0, |m| m.len());
     let count = Rc::new(Cell::new(0));

@@ -33,6 +33,19 @@ pub fn read_text(path: &Path) -> Result<String, Error> {
     millpath::io::read_text(path)
 }
 
+/// Files a G-code program may need (RS274/NGC subroutines, a tool table).
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct ProgramFiles {
+    /// Folders searched for subroutine files `NAME.ngc` (after the program's folder),
+    /// separated by ':' (LinuxCNC's SUBROUTINE_PATH).
+    #[arg(long, value_delimiter = ':')]
+    pub subroutine_path: Vec<PathBuf>,
+    /// A LinuxCNC tool table (tool.tbl, mm): G43 takes its length offsets, T words must name
+    /// its tools.
+    #[arg(long)]
+    pub tool_table: Option<PathBuf>,
+}
+
 /// The machine named by `--machine` ([`millpath::job::load_machine`]): a preset name (see
 /// `millpath machines`) or the path of a TOML machine profile.
 pub fn load_machine(spec: &str) -> Result<Machine, Error> {

@@ -13,6 +13,9 @@ use std::path::PathBuf;
 pub struct Args {
     /// The G-code program (LinuxCNC dialect).
     pub program: PathBuf,
+    /// Subroutine folders and tool table.
+    #[command(flatten)]
+    pub files: super::ProgramFiles,
     /// The pocket outline (.json, .dxf, .svg or sample:aerospace).
     #[arg(long)]
     pub outline: String,
@@ -62,6 +65,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
         cell: args.cell,
         decimals: args.decimals,
         select: args.select.clone(),
+        subroutine_path: args.files.subroutine_path.clone(),
+        tool_table: args.files.tool_table.clone(),
     };
     settings.check()?;
     let loops = super::pocket::load_outline(&args.outline, &args.import)?;

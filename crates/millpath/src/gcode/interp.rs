@@ -18,9 +18,11 @@
 //!   60/F s) and the move's feed becomes `length · F / 60` mm/s. Switching G93/G94 forgets F,
 //!   so the next feed move needs a new F. A feed move without F, or with F ≤ 0, is an error
 //!   naming the line.
-//! * Work offsets G54–G59 and tool length compensation (G43 H) are zero unless offsets are
-//!   given in [`ReaderOptions::work_offsets`]; positions are machine positions, program
-//!   position plus the active offset. G53 moves the block in machine coordinates (G90 only).
+//! * Work offsets G54–G59.3 come from the parameters (a `.var` file,
+//!   [`ReaderOptions::parameters`], or [`ReaderOptions::work_offsets`]) and G10 L2/L20; G92
+//!   adds its offset; G43 (H) the tool table's length offset (module `offsets`). Positions
+//!   are machine positions: program position plus the active offsets. G53 moves the block in
+//!   machine coordinates (G90 only).
 //! * Corner modes: G61.1 → exact stop, G61 → exact path (Fanuc: exact stop, its G61 is the
 //!   exact stop check mode), `G64 P t` → blend within t (LinuxCNC; `G64 P t Q q` with q ≠ t →
 //!   [`Corner::BlendMerge`]: q is the merge tolerance of LinuxCNC's naive-CAM detector, which
@@ -36,13 +38,15 @@
 //!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
-//!   G40, G49, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
+//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
 //!   [`ReaderOptions::block_delete`] is on). Anything else is refused with its line and word,
 //!   or skipped with a warning when [`ReaderOptions::lenient`].
 
 use super::arc::ArcProblem;
 use super::dialect::{Dialect, Units};
 use super::lexer::Token;
+use super::params::{ParamFile, Store};
+use super::tools::ToolTable;
 use crate::error::InputError;
 use crate::geom::{Point3, Vec3};
 use crate::toolpath::{Corner, Move, Plane};
@@ -69,7 +73,21 @@ pub struct ReaderOptions {
     /// [`crate::machine::Machine::sync_wait`]) when timing for a LinuxCNC controller; other
     /// controllers output such functions without stopping the path.
     pub sync_points: Option<f64>,
+    /// The tool table (LinuxCNC `tool.tbl`): G43 applies its length offsets, and a T word
+    /// must name one of its tools. Without one, tool length offsets are zero.
+    pub tool_table: Option<std::sync::Arc<ToolTable>>,
+    /// Folders searched for a subroutine file `NAME.ngc` (after the program's own folder,
+    /// which the caller puts first when it has one).
+    pub subroutine_path: Vec<std::path::PathBuf>,
+    /// Parameters from a LinuxCNC `.var` file (the persistent range: work offsets, G92, …),
+    /// in mm. Without one, G54..G59 take [`ReaderOptions::work_offsets`].
+    pub parameters: Option<std::sync::Arc<ParamFile>>,
+    /// Lines run inside loops and subroutines before the program is refused as endless.
+    pub step_budget: u64,
 }
+
+/// The default [`ReaderOptions::step_budget`]: ten million lines (a few seconds).
+pub const DEFAULT_STEP_BUDGET: u64 = 10_000_000;
 
 impl Default for ReaderOptions {
     fn default() -> Self {
@@ -81,6 +99,10 @@ impl Default for ReaderOptions {
             block_delete: false,
             origin: "G-code".to_string(),
             sync_points: None,
+            tool_table: None,
+            subroutine_path: Vec::new(),
+            parameters: None,
+            step_budget: DEFAULT_STEP_BUDGET,
         }
     }
 }
@@ -133,10 +155,20 @@ pub(crate) struct State {
     motion: Option<u16>,
     /// Feed in mm/s (G94) or the last F number (G93); `None` when unset.
     feed: Option<f64>,
+    /// The last F number as written (LinuxCNC's `#<_feed>`: not converted by G20/G21).
+    f_word: f64,
     arc_absolute: bool,
-    offset: usize,
+    /// The active work coordinate system, 0..9 for G54..G59.3.
+    system: usize,
+    /// Its origin (mm).
+    origin: Vec3,
+    /// The G92 offset (mm).
+    g92: Vec3,
     spindle_set: f64,
     pending_tool: u32,
+    /// The active tool length offset (G43), mm.
+    pub(crate) tool_offset: Vec3,
+    tool_table: Option<std::sync::Arc<ToolTable>>,
     /// A motion has been emitted (sync points before the first one do nothing).
     moved: bool,
     pub(crate) ended: bool,
@@ -191,7 +223,7 @@ impl BlockError {
 /// enough that squares of it (arc geometry) stay finite.
 pub const MAX_WORD_VALUE: f64 = 1e9;
 
-const LETTERS_OK: &[u8] = b"DFHIJKNOPQRSTXYZ";
+const LETTERS_OK: &[u8] = b"DFHIJKLNOPQRSTXYZ";
 
 fn letter_index(l: u8) -> usize {
     usize::from(l.saturating_sub(b'A')).min(25)
@@ -356,7 +388,10 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
     );
     common
         || match dialect {
-            Dialect::LinuxCnc => matches!(code, 200 | 210 | 611 | 901 | 911),
+            Dialect::LinuxCnc => matches!(
+                code,
+                200 | 210 | 611 | 901 | 911 | 100 | 920 | 921 | 922 | 923 | 591 | 592 | 593
+            ),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
             Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
             Dialect::Sinumerik => matches!(code, 90 | 600 | 6420 | 700 | 710 | 7000 | 7100),
@@ -373,10 +408,15 @@ impl State {
             pos: opts.start,
             motion: None,
             feed: None,
+            f_word: 0.0,
             arc_absolute: false,
-            offset: 0,
+            system: 0,
+            origin: Vec3::ZERO,
+            g92: Vec3::ZERO,
             spindle_set: 0.0,
             pending_tool: 0,
+            tool_offset: Vec3::ZERO,
+            tool_table: opts.tool_table.clone(),
             moved: false,
             ended: false,
             notes: Vec::new(),
@@ -386,6 +426,26 @@ impl State {
     /// The current position (machine coordinates, mm).
     pub(crate) fn position(&self) -> Point3 {
         self.pos
+    }
+
+    /// The parameter store a program starts with: the `.var` file's values, or else the
+    /// work offsets of `opts` in G54..G59.
+    pub(crate) fn initial_params(opts: &ReaderOptions) -> Store {
+        let mut store = Store::new(opts.parameters.as_deref());
+        if opts.parameters.is_none() {
+            for (k, o) in opts.work_offsets.iter().enumerate() {
+                let b = 5221 + 20 * k;
+                store.set(b, o.x);
+                store.set(b + 1, o.y);
+                store.set(b + 2, o.z);
+            }
+        }
+        store
+    }
+
+    /// The last F number as written (0 before any).
+    pub(crate) fn feed_number(&self) -> f64 {
+        self.f_word
     }
 
     fn unit(&self) -> f64 {
@@ -398,6 +458,7 @@ impl State {
         b: &mut Block,
         line: usize,
         opts: &ReaderOptions,
+        store: &mut Store,
         out: &mut Vec<ReadMove>,
     ) -> Result<(), BlockError> {
         let dialect = opts.dialect;
@@ -433,6 +494,7 @@ impl State {
             if f < 0.0 {
                 return Err(BlockError::new("feed", format!("F{f}"), "F >= 0"));
             }
+            self.f_word = f;
             match self.modal.feed_mode {
                 FeedMode::PerMinute => self.feed = Some(f * self.unit() / 60.0),
                 FeedMode::InverseTime => block_f = Some(f),
@@ -465,6 +527,15 @@ impl State {
                     "a tool number >= 0",
                 ));
             }
+            if let Some(table) = &self.tool_table
+                && table.get(t as u32).is_none()
+            {
+                return Err(BlockError::new(
+                    "tool",
+                    format!("T{t}"),
+                    format!("a tool of the tool table ({} tools)", table.len()),
+                ));
+            }
             self.pending_tool = t as u32;
         }
         b.take(b'D');
@@ -485,7 +556,13 @@ impl State {
                 modal: self.modal,
             });
         }
-        self.modal_groups(b, dialect)?;
+        self.modal_groups(b, dialect, store)?;
+        if b.has_g(100) {
+            self.g10(b, store)?;
+        }
+        if let Some(&(g, _)) = b.g.iter().find(|(g, _)| (920..=923).contains(g)) {
+            self.g92(g, b, store)?;
+        }
         let before = out.len();
         let from = self.pos;
         self.motion(b, block_f, line, opts, out)?;
@@ -549,9 +626,14 @@ impl State {
         Ok(seconds)
     }
 
-    fn modal_groups(&mut self, b: &mut Block, dialect: Dialect) -> Result<(), BlockError> {
+    fn modal_groups(
+        &mut self,
+        b: &mut Block,
+        dialect: Dialect,
+        store: &Store,
+    ) -> Result<(), BlockError> {
         let gs = std::mem::take(&mut b.g);
-        let r = self.modal_codes(&gs, b, dialect);
+        let r = self.modal_codes(&gs, b, dialect, store);
         b.g = gs;
         r?;
         if let Some(args) = b.cycle832.take() {
@@ -565,6 +647,7 @@ impl State {
         gs: &[(u16, usize)],
         b: &mut Block,
         dialect: Dialect,
+        store: &Store,
     ) -> Result<(), BlockError> {
         for &(g, _) in gs {
             match g {
@@ -573,7 +656,13 @@ impl State {
                 190 => self.modal.plane = Plane::Yz,
                 200 | 700 | 7000 => self.modal.units = Units::Inch,
                 210 | 710 | 7100 => self.modal.units = Units::Mm,
-                540..=590 => self.offset = usize::from((g - 540) / 10),
+                540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => {
+                    self.system = match g {
+                        591..=593 => usize::from(g - 591) + 6,
+                        _ => usize::from((g - 540) / 10),
+                    };
+                    self.load_origin(store);
+                }
                 611 | 600 => self.modal.corner = Corner::ExactStop,
                 610 if dialect == Dialect::Fanuc => self.modal.corner = Corner::ExactStop,
                 610 => self.modal.corner = Corner::ExactPath,
@@ -607,8 +696,33 @@ impl State {
                 901 => self.arc_absolute = true,
                 911 => self.arc_absolute = false,
                 430 => {
-                    b.take(b'H');
+                    // G43 H n: tool n's offsets; G43: the tool in the spindle's (LinuxCNC's
+                    // convert_tool_length_offset).
+                    let h = b.take(b'H');
+                    let n = match h {
+                        Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => {
+                            h as u32
+                        }
+                        Some(h) => {
+                            return Err(BlockError::new("G43 H", h, "a tool number >= 0"));
+                        }
+                        None => self.modal.tool,
+                    };
+                    self.tool_offset = match &self.tool_table {
+                        None => Vec3::ZERO,
+                        Some(t) => match t.get(n) {
+                            Some(e) => e.offset,
+                            None => {
+                                return Err(BlockError::new(
+                                    "G43 tool",
+                                    n,
+                                    format!("a tool of the tool table ({} tools)", t.len()),
+                                ));
+                            }
+                        },
+                    };
                 }
+                490 => self.tool_offset = Vec3::ZERO,
                 51 => {
                     b.take(b'Q');
                 }
@@ -637,6 +751,8 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
 }
 
 mod motion;
+mod offsets;
+pub(crate) use offsets::Scope;
 
 /// The axis indices `(u, v, normal)` of a plane (0 = X), in [`Plane::split`] order.
 pub(crate) fn plane_axes(plane: Plane) -> (usize, usize, usize) {

@@ -1,14 +1,26 @@
 //! The streaming reader: lines of a [`BufRead`] → [`ReadMove`]s, one block at a time.
 //!
-//! Memory is bounded: one line (at most [`MAX_LINE_BYTES`]), its tokens, the modal state, at
-//! most two pending moves and at most [`MAX_WARNINGS`] stored warnings (all are counted).
+//! Memory is bounded for a program without loops: one line (at most [`MAX_LINE_BYTES`]), its
+//! tokens, the modal state, the parameters, at most two pending moves and at most
+//! [`MAX_WARNINGS`] stored warnings and messages (all are counted). Subroutines and the lines
+//! of an open loop are kept while they may run again (module `oword`).
+//!
+//! In the LinuxCNC dialect a line with parameters, expressions, an O word or a message
+//! comment goes through the RS274/NGC parser (module `ngc`); every other line, and every
+//! line of the other dialects, through the plain lexer.
 
-use super::interp::{Block, ReadMove, ReaderOptions, State};
+use super::dialect::Dialect;
+use super::expr::ParamRef;
+use super::interp::{Block, ReadMove, ReaderOptions, Scope, State};
 use super::lexer::{LineKind, Token, lex};
+use super::ngc::{self, NgcLine};
+use super::oword::Program;
+use super::params::Store;
 use crate::error::{Error, InputError};
 use crate::geom::Point3;
 use crate::toolpath::{Tool, Toolpath};
-use std::io::{BufRead, Read};
+use std::io::BufRead;
+use std::rc::Rc;
 
 /// Longest line accepted, in bytes.
 pub const MAX_LINE_BYTES: u64 = 64 * 1024;
@@ -29,7 +41,12 @@ pub struct Warning {
 /// yields nothing more.
 #[derive(Debug)]
 pub struct Reader<R> {
-    src: R,
+    program: Program<R>,
+    params: Store,
+    ngc: NgcLine,
+    /// The file of the line being run when it is not the main program's.
+    file: Option<Rc<str>>,
+    messages: Vec<Warning>,
     opts: ReaderOptions,
     state: State,
     bytes: Vec<u8>,
@@ -46,9 +63,20 @@ pub struct Reader<R> {
 impl<R: BufRead> Reader<R> {
     /// A reader over `src`.
     pub fn new(src: R, opts: ReaderOptions) -> Self {
-        let state = State::new(&opts);
+        let mut state = State::new(&opts);
+        let params = State::initial_params(&opts);
+        state.load_origin(&params);
         Reader {
-            src,
+            program: Program::new(
+                src,
+                opts.subroutine_path.clone(),
+                opts.step_budget,
+                MAX_LINE_BYTES,
+            ),
+            params,
+            ngc: NgcLine::default(),
+            file: None,
+            messages: Vec::new(),
             opts,
             state,
             bytes: Vec::with_capacity(128),
@@ -66,6 +94,12 @@ impl<R: BufRead> Reader<R> {
     /// Warnings so far (at most [`MAX_WARNINGS`]).
     pub fn warnings(&self) -> &[Warning] {
         &self.warnings
+    }
+
+    /// The program's messages so far (`(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)`, with parameters
+    /// replaced by their values), at most [`MAX_WARNINGS`].
+    pub fn messages(&self) -> &[Warning] {
+        &self.messages
     }
 
     /// Number of warnings so far, including those not stored.
@@ -100,7 +134,10 @@ impl<R: BufRead> Reader<R> {
     }
 
     fn origin(&self) -> String {
-        format!("{}:{}", self.opts.origin, self.line_no)
+        match &self.file {
+            Some(f) if !f.is_empty() => format!("{f}:{}", self.line_no),
+            _ => format!("{}:{}", self.opts.origin, self.line_no),
+        }
     }
 
     fn warn(&mut self, message: String) {
@@ -113,32 +150,21 @@ impl<R: BufRead> Reader<R> {
         }
     }
 
-    /// Reads the next line into `self.bytes`; `false` at the end of the input.
+    /// Gets the next line to run into `self.bytes`; `false` at the end of the program.
     fn read_line(&mut self) -> Result<bool, Error> {
-        self.bytes.clear();
-        let n = (&mut self.src)
-            .take(MAX_LINE_BYTES + 1)
-            .read_until(b'\n', &mut self.bytes)
-            .map_err(|e| {
-                InputError::new("G-code input", e)
-                    .at(self.origin())
-                    .expected("a readable file")
-            })?;
-        if n == 0 {
-            return Ok(false);
+        match self.program.next_line(&mut self.bytes) {
+            Ok(Some(at)) => {
+                self.line_no = at.line;
+                self.bytes_read += self.bytes.len() as u64;
+                self.file = at.origin;
+                Ok(true)
+            }
+            Ok(None) => Ok(false),
+            Err(m) => Err(InputError::new("G-code program", m)
+                .at(self.origin())
+                .expected("a program LinuxCNC runs (see millpath::gcode::oword)")
+                .into()),
         }
-        self.line_no += 1;
-        self.bytes_read += n as u64;
-        if n as u64 > MAX_LINE_BYTES && self.bytes.last() != Some(&b'\n') {
-            return Err(InputError::new(
-                "G-code line",
-                format!("longer than {MAX_LINE_BYTES} bytes"),
-            )
-            .at(self.origin())
-            .expected("lines of ordinary length")
-            .into());
-        }
-        Ok(true)
     }
 
     /// Reads and executes lines until one produces moves or the program ends.
@@ -147,6 +173,10 @@ impl<R: BufRead> Reader<R> {
             if !self.read_line()? {
                 self.done = true;
                 return Ok(());
+            }
+            if self.opts.dialect == Dialect::LinuxCnc && ngc::needed(&self.bytes) {
+                self.run_ngc_line()?;
+                continue;
             }
             let text = match std::str::from_utf8(&self.bytes) {
                 Ok(t) => t,
@@ -162,7 +192,7 @@ impl<R: BufRead> Reader<R> {
                     "G-code text",
                     format!("'{}' at column {}", e.text, e.column + 1),
                 )
-                .at(format!("{}:{}", self.opts.origin, self.line_no))
+                .at(self.origin())
                 .expected(e.expected)
             })?;
             match kind {
@@ -172,33 +202,110 @@ impl<R: BufRead> Reader<R> {
                 }
                 LineKind::Block { .. } => {}
             }
-            let mut skipped = Vec::new();
-            let gathered = self.block.gather(
-                &self.tokens,
-                text,
-                self.opts.dialect,
-                |e| skipped.push(format!("skipped {} ({})", e.value, e.expected)),
-                self.opts.lenient,
-            );
-            if let Err(e) = gathered {
-                return Err(e.into_input(self.origin()).into());
-            }
-            for s in skipped {
-                self.warn(s);
-            }
-            let r =
-                self.state
-                    .execute(&mut self.block, self.line_no, &self.opts, &mut self.pending);
+            let tokens = std::mem::take(&mut self.tokens);
+            let r = self.run_block(&tokens, None);
+            self.tokens = tokens;
+            r?;
+        }
+        Ok(())
+    }
+
+    /// A line through the RS274/NGC parser: messages, then an O word or the block and its
+    /// parameter settings.
+    fn run_ngc_line(&mut self) -> Result<(), Error> {
+        let text = String::from_utf8_lossy(&self.bytes).to_string();
+        let scope = Scope {
+            store: &self.params,
+            state: &self.state,
+            call_level: self.params.call_level(),
+        };
+        let parsed = ngc::parse(&text, &scope, &mut self.ngc);
+        for m in std::mem::take(&mut self.ngc.messages) {
+            self.message(m);
+        }
+        if let Err(m) = parsed {
+            return Err(InputError::new("G-code line", text.trim())
+                .at(self.origin())
+                .expected(format!("RS274/NGC as LinuxCNC reads it: {m}"))
+                .into());
+        }
+        if self.ngc.block_delete && self.opts.block_delete {
+            return Ok(());
+        }
+        if let Some(o) = self.ngc.oword.take() {
+            let origin = self.origin();
+            let file = self.file.as_deref().unwrap_or("").to_string();
+            return self
+                .program
+                .run(&o, &self.bytes, self.line_no, &file, &mut self.params)
+                .map_err(|m| {
+                    InputError::new("O word", m)
+                        .at(origin)
+                        .expected("O-word control flow as LinuxCNC runs it")
+                        .into()
+                });
+        }
+        // Settings take effect after the line is read, before it runs.
+        for (r, v) in std::mem::take(&mut self.ngc.assigns) {
             match r {
-                Err(e) if e.unsupported && self.opts.lenient => {
-                    self.warn(format!("skipped {} ({})", e.value, e.expected));
-                }
-                Err(e) => return Err(e.into_input(self.origin()).into()),
-                Ok(()) => {}
+                ParamRef::Numbered(n) => self.params.set(n, v),
+                ParamRef::Named(name) => self.params.set_named(&name, v),
             }
-            for note in std::mem::take(&mut self.state.notes) {
-                self.warn(note);
+        }
+        let tokens = std::mem::take(&mut self.ngc.tokens);
+        let line = std::mem::take(&mut self.ngc.text);
+        let r = self.run_block(&tokens, Some(&line));
+        self.ngc.tokens = tokens;
+        self.ngc.text = line;
+        r
+    }
+
+    fn message(&mut self, text: String) {
+        if self.messages.len() < MAX_WARNINGS {
+            self.messages.push(Warning {
+                line: self.line_no,
+                message: text,
+            });
+        }
+    }
+
+    /// Gathers and executes one block's tokens; `line` is their text when it is not
+    /// `self.bytes`.
+    fn run_block(&mut self, tokens: &[Token], line: Option<&str>) -> Result<(), Error> {
+        let text = match line {
+            Some(l) => l,
+            None => std::str::from_utf8(&self.bytes).unwrap_or(""),
+        };
+        let mut skipped = Vec::new();
+        let gathered = self.block.gather(
+            tokens,
+            text,
+            self.opts.dialect,
+            |e| skipped.push(format!("skipped {} ({})", e.value, e.expected)),
+            self.opts.lenient,
+        );
+        if let Err(e) = gathered {
+            return Err(e.into_input(self.origin()).into());
+        }
+        for s in skipped {
+            self.warn(s);
+        }
+        let r = self.state.execute(
+            &mut self.block,
+            self.line_no,
+            &self.opts,
+            &mut self.params,
+            &mut self.pending,
+        );
+        match r {
+            Err(e) if e.unsupported && self.opts.lenient => {
+                self.warn(format!("skipped {} ({})", e.value, e.expected));
             }
+            Err(e) => return Err(e.into_input(self.origin()).into()),
+            Ok(()) => {}
+        }
+        for note in std::mem::take(&mut self.state.notes) {
+            self.warn(note);
         }
         Ok(())
     }
@@ -223,6 +330,46 @@ impl<R: BufRead> Iterator for Reader<R> {
             return None;
         }
         Some(Ok(self.pending.remove(0)))
+    }
+}
+
+impl ReaderOptions {
+    /// The files a program may need: subroutine folders (the program's own folder first, then
+    /// `subroutine_path`, LinuxCNC's `SUBROUTINE_PATH`) and a LinuxCNC tool table (in mm).
+    /// Errors name the folder or file and the flag it came from.
+    pub fn with_program_files(
+        mut self,
+        program: &std::path::Path,
+        subroutine_path: &[std::path::PathBuf],
+        tool_table: Option<&std::path::Path>,
+    ) -> Result<Self, Error> {
+        for d in subroutine_path {
+            if !d.is_dir() {
+                return Err(InputError::new("subroutine folder", d.display())
+                    .at("--subroutine-path")
+                    .expected("existing folders, separated by ':'")
+                    .into());
+            }
+        }
+        self.subroutine_path = program
+            .parent()
+            .map(|d| {
+                if d.as_os_str().is_empty() {
+                    std::path::Path::new(".")
+                } else {
+                    d
+                }
+            })
+            .map(std::path::Path::to_path_buf)
+            .into_iter()
+            .chain(subroutine_path.iter().cloned())
+            .collect();
+        if let Some(t) = tool_table {
+            let table = super::tools::ToolTable::read(t, super::dialect::Units::Mm)
+                .map_err(|e| e.at(format!("--tool-table {}", t.display())))?;
+            self.tool_table = Some(std::sync::Arc::new(table));
+        }
+        Ok(self)
     }
 }
 

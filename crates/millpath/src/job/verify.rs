@@ -25,6 +25,10 @@ pub struct VerifySettings {
     pub decimals: Option<u32>,
     /// Check only these pockets of the drawing: `1,3`, `2-4` (all when `None`).
     pub select: Option<String>,
+    /// Folders searched for RS274/NGC subroutine files, after the program's own folder.
+    pub subroutine_path: Vec<std::path::PathBuf>,
+    /// A LinuxCNC tool table for G43 and T words.
+    pub tool_table: Option<std::path::PathBuf>,
 }
 
 impl Default for VerifySettings {
@@ -36,6 +40,8 @@ impl Default for VerifySettings {
             cell: 0.05,
             decimals: None,
             select: None,
+            subroutine_path: Vec::new(),
+            tool_table: None,
         }
     }
 }
@@ -85,7 +91,12 @@ pub fn run(
     let ropts = ReaderOptions {
         origin: origin.to_owned(),
         ..ReaderOptions::default()
-    };
+    }
+    .with_program_files(
+        std::path::Path::new(origin),
+        &settings.subroutine_path,
+        settings.tool_table.as_deref(),
+    )?;
     let (mut tp, _warnings) = read_str(text, ropts)?;
     tp.tool = tool;
     stock::infer_levels(&mut tp);

@@ -56,7 +56,12 @@ impl State {
             self.notes.push(format!("skipped {word} ({expected})"));
             b.take(l);
         }
-        let moves = has_axes || (is_arc && code.is_some() && arc_words);
+        // LinuxCNC moves on a G0 or G1 without axis words too: to where the tool is
+        // (`convert_straight`; rs274 prints the zero-length STRAIGHT_TRAVERSE/FEED).
+        let in_place = opts.dialect == crate::gcode::Dialect::LinuxCnc
+            && matches!(code, Some(0 | 10))
+            && !arc_words;
+        let moves = has_axes || in_place || (is_arc && code.is_some() && arc_words);
         if !moves {
             if arc_words && is_arc {
                 return Err(BlockError::new(
@@ -92,11 +97,7 @@ impl State {
             return Err(BlockError::new("G53", "in G91", "G53 with G90"));
         }
         let unit = self.unit();
-        let offset = opts
-            .work_offsets
-            .get(self.offset)
-            .copied()
-            .unwrap_or_default();
+        let offset = self.origin + self.g92 + self.tool_offset;
         let off = [offset.x, offset.y, offset.z];
         let cur = [self.pos.x, self.pos.y, self.pos.z];
         let mut target = cur;
