@@ -50,30 +50,30 @@ fn replay_except(target: &'static str, min_files: usize, f: fn(&[u8]), known: &[
 
 /// Pocket inputs whose spiral `generate` refuses (an internal error, nothing written): open
 /// defects found on 2026-11-25 once the loops of the offsets went as deep as the pocket
-/// (`PocketShape::offset`). Four leave 0.09–1.1 mm² (`0e2b2de6…`, `51e5f8bd…`, `bc4af3dc…`,
-/// `c3df108e…`). Three more gouged 0.14–0.25 mm (`250d691f…`, `57cf7b3e…`, `c2ebea30…`):
-/// the shape offset's loops ran into the walls (its default fuzzy epsilons on outlines with
-/// micrometre features); `PocketShape::offset` now checks its loops' distance to the walls
-/// and computes a failed offset again ([`offsets_are_checked_against_the_walls`]). What the
-/// strict replay holds the rest to is the guarantee that such a program is never written.
-const POCKET_KNOWN_REFUSED: [&str; 4] = [
-    "0e2b2de663265032f559833ede4fafa560d01857",
-    "51e5f8bde544a3cd51d1f55a81e9ead7cfacf6d9",
-    "bc4af3dc85eebec6136b1d42157a0c9d0cff290b",
-    "c3df108ee370bae6ee73f0aba6ec17652b1625f1",
-];
+/// (`PocketShape::offset`). `51e5f8bd…` (`--morph fronts`) leaves 0.40 mm². Six more were
+/// refused until the offsets were checked ([`offsets_are_checked_against_the_walls`]). What
+/// the strict replay holds the rest to is the guarantee that such a program is never written.
+const POCKET_KNOWN_REFUSED: [&str; 1] = ["51e5f8bde544a3cd51d1f55a81e9ead7cfacf6d9"];
 
-/// The three corpus pockets whose offset loops (cavalier_contours' shape offset with its
-/// default epsilons) ran 0.16–0.66 mm into the walls, so that their spirals gouged and were
-/// refused: every loop of `PocketShape::offset` at the distances the spiral and its finishing
-/// pass use now lies at that distance from the walls (dense samples, within 1e-4 mm), and the
-/// programs are written without a gouge or uncut material.
+/// Six corpus pockets whose spirals were refused because cavalier_contours' offsets were
+/// wrong (found on 2026-11-25): with its default fuzzy epsilons (1e-4 mm) on outlines with
+/// micrometre features, the shape offset ran loops 0.16–0.66 mm into the walls (`250d691f…`,
+/// `57cf7b3e…`, `c2ebea30…`: gouges) or dropped a loop (`c3df108e…`: no finishing loop at the
+/// tool radius; `bc4af3dc…`: a level without loops between two with loops), and the
+/// single-polyline offset of the fronts' ridge search returned nothing at 8.7–14.7 mm on
+/// `0e2b2de6…`, where the region's offset has up to 619 mm² (uncut 0.09–1.1 mm²). Every loop
+/// of `PocketShape::offset` at the distances the spiral and its finishing pass use must lie
+/// at that distance from the walls (dense samples, within 1e-4 mm), no level may be empty
+/// between two that are not, and the programs are written without a gouge or uncut material.
 #[test]
 fn offsets_are_checked_against_the_walls() {
     for name in [
         "250d691fe17ccc4290ce474e5850faf3f694e6cd",
         "57cf7b3ed747979999cee1f7e3641566756092fa",
         "c2ebea30be4c1b22ea44a427c5670eb2bc61ed11",
+        "0e2b2de663265032f559833ede4fafa560d01857",
+        "bc4af3dc85eebec6136b1d42157a0c9d0cff290b",
+        "c3df108ee370bae6ee73f0aba6ec17652b1625f1",
     ] {
         let data = corpus("pocket")
             .into_iter()
@@ -87,8 +87,17 @@ fn offsets_are_checked_against_the_walls() {
             let ds = [r, r + opts.wall_stock]
                 .into_iter()
                 .chain((1..40).map(|k| r + opts.wall_stock + k as f64 * h));
+            let mut emptied = None;
             for d in ds {
                 let reg = sh.offset(d);
+                match emptied {
+                    Some(e) => assert!(
+                        reg.is_empty(),
+                        "{name}: loops at {d:.4} mm, none at {e:.4} mm"
+                    ),
+                    None if reg.is_empty() => emptied = Some(d),
+                    None => {}
+                }
                 for l in reg.loops() {
                     for p in millpath::geom::region::sample_loop(l, 400) {
                         let w = sh.distance_to(p);
