@@ -2,10 +2,10 @@
 
 use super::StockSpec;
 use super::raster::Raster;
+use super::reach::ReachMap;
 use crate::geom::Point3;
 use crate::toolpath::{Move, MoveKind, Toolpath};
-use cavalier_contours::polyline::{PlineSource, Polyline};
-use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
+use cavalier_contours::polyline::Polyline;
 use std::collections::VecDeque;
 
 /// Simulation resolution.
@@ -189,7 +189,10 @@ pub fn simulate_levels(
         {
             return rr.clone();
         }
-        let rr = reach_region(spec, r);
+        let walls: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
+            .chain(spec.islands.iter().map(|i| i.polyline()))
+            .collect();
+        let rr = std::rc::Rc::new(ReachMap::new(&fresh(spec), &walls, r + spec.wall_stock));
         reach_cache.push((li, rr.clone()));
         rr
     };
@@ -346,8 +349,9 @@ pub fn simulate_levels(
     out
 }
 
-/// Outer and island loops of a reach region.
-type Reach = (Vec<Polyline<f64>>, Vec<Polyline<f64>>);
+/// Where the tool centre may go, on the raster ([`super::reach`]).
+/// Shared between the levels of one section.
+type Reach = std::rc::Rc<ReachMap>;
 
 /// True when two specs describe the same pocket (the same outlines, by address or by value).
 pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
@@ -358,21 +362,6 @@ pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
         && eq(a.outer, b.outer)
         && a.islands.len() == b.islands.len()
         && a.islands.iter().zip(b.islands).all(|(x, y)| eq(x, y))
-}
-
-/// The loops bounding where the tool centre may go: outline offset inward and islands
-/// outward by `r + stock`.
-fn reach_region(spec: StockSpec<'_>, r: f64) -> Reach {
-    let d = r + spec.wall_stock;
-    let shape = Shape::from_plines(
-        std::iter::once(spec.outer.polyline().clone())
-            .chain(spec.islands.iter().map(|i| i.polyline().clone())),
-    );
-    let off = shape.parallel_offset(d, &ShapeOffsetOptions::default());
-    (
-        off.ccw_plines.into_iter().map(|p| p.polyline).collect(),
-        off.cw_plines.into_iter().map(|p| p.polyline).collect(),
-    )
 }
 
 /// The densest cluster of uncut cells seen so far, over the slabs.
@@ -408,19 +397,8 @@ impl Densest {
 
 /// Material cells within `r − 2c` of the reachable region: material the tool could have cut.
 fn uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> Vec<crate::geom::Point> {
-    let (outers, islands) = reach;
     let limit = r - 2.0 * c;
-    let walls: Vec<super::nearest::IndexedWall<'_>> = outers
-        .iter()
-        .chain(islands.iter())
-        .map(super::nearest::IndexedWall::new)
-        .collect();
     ras.material_cells()
-        .filter(|&p| {
-            let v = cavalier_contours::core::math::Vector2::new(p.x, p.y);
-            let inside = outers.iter().any(|o| o.winding_number(v) != 0)
-                && islands.iter().all(|i| i.winding_number(v) == 0);
-            inside || walls.iter().any(|w| w.distance(p) <= limit)
-        })
+        .filter(|&p| reach.distance(p) <= limit)
         .collect()
 }
