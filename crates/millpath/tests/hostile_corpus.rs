@@ -396,6 +396,39 @@ fn zigzag_links_stay_inside_a_pinched_region() {
     }
 }
 
+/// Found by the strict `pocket` run of 2026-11-25 (fuzz/README.md), 400 s into it: a 0.33 mm
+/// tool with 0.48 mm of wall stock and a finishing pass. The finishing pass was one loop at
+/// `r`: its disc reaches `r` out from it and the roughing's last loop's `r` in from
+/// `r + stock`, so a ridge `stock − 2r` wide stood between them, 4.05 mm² (`generate`
+/// refused it). The finishing pass now steps through the stock in loops a step apart.
+#[test]
+fn finishing_clears_stock_wider_than_the_tool() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-uncut");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).expect("regressions dir") {
+        let f = e.expect("entry").path();
+        let data = std::fs::read(&f).expect("file");
+        let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+        assert!(
+            opts.finish && opts.wall_stock > tool.diameter,
+            "{}",
+            f.display()
+        );
+        let v = pocket::generate(kind, &shape, &tool, &opts, &sim)
+            .unwrap_or_else(|e| panic!("{}: {e}", f.display()))
+            .verification;
+        assert!(
+            v.uncut_area_mm2 <= millpath::stock::UNCUT_AREA_TOLERANCE,
+            "{}: {}",
+            f.display(),
+            v.uncut_text()
+        );
+        assert!(v.min_clearance_mm >= v.required_clearance_mm - 1e-6);
+        n += 1;
+    }
+    assert!(n >= 1);
+}
+
 fn gouge_cases() -> Vec<(String, millpath::Result<millpath::stock::Verification>)> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-gouge");
     let mut names: Vec<_> = std::fs::read_dir(&dir)

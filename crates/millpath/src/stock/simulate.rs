@@ -395,10 +395,15 @@ impl Densest {
     }
 }
 
-/// Material cells within `r − 2c` of the reachable region: material the tool could have cut.
+/// Material cells within `r − 2c` of the reachable region, or in it: material the tool could
+/// have cut. (A cell whose centre the tool centre may visit counts however coarse the cells:
+/// with `c > r/2` the limit is negative, found by the `pocket` fuzzer on 2026-11-25.)
 fn uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> Vec<crate::geom::Point> {
     let limit = r - 2.0 * c;
     ras.material_cells()
-        .filter(|&p| reach.distance(p) <= limit)
+        .filter(|&p| {
+            let d = reach.distance(p);
+            d == 0.0 || d <= limit
+        })
         .collect()
 }
