@@ -184,14 +184,23 @@ pub fn checked_offset(walls: &[&Polyline<f64>], d: f64) -> OffsetRegion {
 pub const OFFSET_TOLERANCE: f64 = 1e-4;
 
 /// cavalier_contours' shape offset of the loops `plines` by `d` (inwards for counter-clockwise
-/// loops, outwards for clockwise ones).
+/// loops, outwards for clockwise ones). With the finer epsilons the offset can panic inside
+/// cavalier_contours ("expect non-empty polyline" when a slice it stitched is empty: found by
+/// the strict `pocket` fuzz run of 2026-11-25): such a result counts as none (empty, and not
+/// faithful to a region that has loops).
 fn shape_offset(
     plines: impl Iterator<Item = Polyline<f64>>,
     d: f64,
     opts: &ShapeOffsetOptions<f64>,
 ) -> OffsetRegion {
-    let shape = Shape::from_plines(plines);
-    let off = shape.parallel_offset(d, opts);
+    let plines: Vec<Polyline<f64>> = plines.collect();
+    let run = std::panic::AssertUnwindSafe(|| {
+        let shape = Shape::from_plines(plines.iter().cloned());
+        shape.parallel_offset(d, opts)
+    });
+    let Ok(off) = std::panic::catch_unwind(run) else {
+        return OffsetRegion::default();
+    };
     OffsetRegion {
         outers: off
             .ccw_plines
