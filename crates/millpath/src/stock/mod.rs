@@ -18,9 +18,10 @@
 //!   plunges (feed moves steeper than 45° ending on material inside the rim the raster cannot
 //!   resolve, `simulate::plunge_rim`), and the material left.
 //! * Coverage: a material cell left after a slab is *uncut* when the tool could have reached
-//!   it: its centre lies within `r − 2c` of the region the tool centre may visit (the pocket
-//!   offset inward by `r + wall stock`). Cells farther away are the corner cusps and the wall
-//!   stock the tool radius implies.
+//!   it: its centre lies within `r − 2c` of the region the tool centre may visit (the points
+//!   of the pocket at least `r + wall stock` from the walls), found on the raster from
+//!   distances alone ([`reach`]), not from the curve offsets the strategies use. Cells
+//!   farther away are the corner cusps and the wall stock the tool radius implies.
 //! * [`gouge`]: the exact clearance between every move below the stock top and the outline
 //!   and islands, against `r + stock −` [`GOUGE_RESOLUTION`] (the resolution a program is
 //!   written at: closer than that is rounding, not a gouge).
@@ -32,6 +33,7 @@ pub mod gouge;
 pub mod nearest;
 pub mod part;
 pub mod raster;
+pub mod reach;
 pub mod simulate;
 
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};

@@ -138,7 +138,7 @@ pub fn verify_part(
             }
             None => {
                 lengths.push(0.0);
-                let area = if super::simulate::reachable(*spec, tp.tool.radius()) {
+                let area = if super::simulate::reachable(*spec, tp.tool.radius(), sim.cell) {
                     crate::geom::area_less_islands(spec.outer, spec.islands)
                 } else {
                     unreachable.push(per.len());

@@ -42,6 +42,16 @@ impl Raster {
         self.cell
     }
 
+    /// Cells along x and along y.
+    pub fn dims(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
+    /// True when cell `(i, j)` holds material.
+    pub fn get(&self, i: usize, j: usize) -> bool {
+        self.bits[j * self.words + i / 64] >> (i % 64) & 1 == 1
+    }
+
     /// Centre of cell `(i, j)`.
     pub fn centre(&self, i: usize, j: usize) -> Point {
         Point::new(

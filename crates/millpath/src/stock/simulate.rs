@@ -2,10 +2,10 @@
 
 use super::StockSpec;
 use super::raster::Raster;
+use super::reach::ReachMap;
 use crate::geom::Point3;
 use crate::toolpath::{Move, MoveKind, Toolpath};
-use cavalier_contours::polyline::{PlineSource, Polyline};
-use cavalier_contours::shape_algorithms::{Shape, ShapeOffsetOptions};
+use cavalier_contours::polyline::Polyline;
 use std::collections::VecDeque;
 
 /// Simulation resolution.
@@ -203,7 +203,10 @@ pub fn simulate_levels(
         {
             return rr.clone();
         }
-        let rr = reach_region(spec, r);
+        let walls: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
+            .chain(spec.islands.iter().map(|i| i.polyline()))
+            .collect();
+        let rr = std::rc::Rc::new(ReachMap::new(&fresh(spec), &walls, r + spec.wall_stock));
         reach_cache.push((li, rr.clone()));
         rr
     };
@@ -361,8 +364,9 @@ pub fn simulate_levels(
     out
 }
 
-/// Outer and island loops of a reach region.
-type Reach = (Vec<Polyline<f64>>, Vec<Polyline<f64>>);
+/// Where the tool centre may go, on the raster ([`super::reach`]).
+/// Shared between the levels of one section.
+type Reach = std::rc::Rc<ReachMap>;
 
 /// True when two specs describe the same pocket (the same outlines, by address or by value).
 pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
@@ -375,26 +379,26 @@ pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
         && a.islands.iter().zip(b.islands).all(|(x, y)| eq(x, y))
 }
 
-/// True when some tool position of radius `r` fits in the pocket: its outline offset inward
-/// (islands outward) by `r + wall stock` leaves a region ([`reach_region`]). A pocket
-/// narrower than the tool leaves none, and no program can cut it.
-pub fn reachable(spec: StockSpec<'_>, r: f64) -> bool {
-    !reach_region(spec, r).0.is_empty()
-}
-
-/// The loops bounding where the tool centre may go: outline offset inward and islands
-/// outward by `r + stock`.
-fn reach_region(spec: StockSpec<'_>, r: f64) -> Reach {
-    let d = r + spec.wall_stock;
-    let shape = Shape::from_plines(
-        std::iter::once(spec.outer.polyline().clone())
-            .chain(spec.islands.iter().map(|i| i.polyline().clone())),
+/// False only when no tool position of radius `r` can fit in the pocket: the largest
+/// distance from a point of the pocket to its walls is below `r + wall stock`, by the reach
+/// map's own distance transform on a raster of `cell` ([`ReachMap::max_wall_distance`], an
+/// upper bound). A pocket narrower than the tool leaves no such position, and no program can
+/// cut it; one within a cell of fitting counts as reachable.
+pub fn reachable(spec: StockSpec<'_>, r: f64, cell: f64) -> bool {
+    let loops: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
+        .chain(spec.islands.iter().map(|i| i.polyline()))
+        .collect();
+    let cell = cell.max(
+        spec.outer
+            .bounds()
+            .width()
+            .max(spec.outer.bounds().height())
+            / 2000.0,
     );
-    let off = shape.parallel_offset(d, &ShapeOffsetOptions::default());
-    (
-        off.ccw_plines.into_iter().map(|p| p.polyline).collect(),
-        off.cw_plines.into_iter().map(|p| p.polyline).collect(),
-    )
+    let mut ras = Raster::new(spec.outer.bounds().inflate(cell), cell);
+    ras.fill(&loops);
+    let d = r + spec.wall_stock;
+    ReachMap::new(&ras, &loops, d).max_wall_distance() >= d
 }
 
 /// The densest cluster of uncut cells seen so far, over the slabs.
@@ -428,21 +432,15 @@ impl Densest {
     }
 }
 
-/// Material cells within `r − 2c` of the reachable region: material the tool could have cut.
+/// Material cells within `r − 2c` of the reachable region, or in it: material the tool could
+/// have cut. (A cell whose centre the tool centre may visit counts however coarse the cells:
+/// with `c > r/2` the limit is negative, found by the `pocket` fuzzer on 2026-11-25.)
 fn uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> Vec<crate::geom::Point> {
-    let (outers, islands) = reach;
     let limit = r - 2.0 * c;
-    let walls: Vec<super::nearest::IndexedWall<'_>> = outers
-        .iter()
-        .chain(islands.iter())
-        .map(super::nearest::IndexedWall::new)
-        .collect();
     ras.material_cells()
         .filter(|&p| {
-            let v = cavalier_contours::core::math::Vector2::new(p.x, p.y);
-            let inside = outers.iter().any(|o| o.winding_number(v) != 0)
-                && islands.iter().all(|i| i.winding_number(v) == 0);
-            inside || walls.iter().any(|w| w.distance(p) <= limit)
+            let d = reach.distance(p);
+            d == 0.0 || d <= limit
         })
         .collect()
 }

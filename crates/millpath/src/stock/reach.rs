@@ -1,0 +1,264 @@
+//! Where the tool can reach, on the verifier's grid, without offsetting a curve.
+//!
+//! The coverage check needs the region the tool centre may visit, `R = {x in the pocket :
+//! dist(x, walls) ≥ d}` (`d = r + wall stock`), and, for each material cell left, whether its
+//! centre lies within `r − 2c` of `R` (`c` the cell side). The strategies build their loops
+//! from cavalier_contours' shape offset; were `R` built the same way, an offset that drops a
+//! loop would hide the material it leaves from the very check meant to catch it. So `R` is
+//! computed here from distances alone, on the raster of the slab:
+//!
+//! 1. **Distance to the walls** at every cell centre: a Euclidean distance transform
+//!    (Felzenszwalb & Huttenlocher's lower envelope of parabolas, two 1-D passes, exact on
+//!    the grid) from the seed cells: every cell outside the pocket and every cell holding a
+//!    point of the walls sampled every `c/2`. A seed cell's centre lies within `c/√2` of the
+//!    walls, and every wall point within `c/4` of a sample, so the transform `D̃` is within
+//!    `c` of the exact distance `D` wherever the pocket is a cell wide.
+//! 2. **Reach cells**: the cells inside the pocket with `D ≥ d` at their centre: those with
+//!    `D̃ ≥ d + c` outright, those with `|D̃ − d| < c` (a band along `R`'s edge, a few cells
+//!    wide) after the exact distance to the walls ([`super::nearest::IndexedWall`]).
+//! 3. **Reachable material**: a second transform from the reach cells gives every cell's
+//!    distance to the nearest reach cell centre; a material cell is reachable when that is at
+//!    most `r − 2c`.
+//!
+//! Reach cells lie in `R`, so a cell flagged here is within `r − 2c` of `R` (no false
+//! alarm); a part of `R` thinner than a cell may hold no cell centre and go unseen, and the
+//! material within a cell of `R`'s edge counts from the cell centres inside it.
+//!
+//! Cost: two transforms over the raster, `O(cells)` each (`f32` distances: 4 bytes a cell),
+//! and an exact distance query per cell of the band.
+
+use super::nearest::IndexedWall;
+use super::raster::Raster;
+use crate::geom::Point;
+use cavalier_contours::polyline::{PlineSource, Polyline};
+
+/// Distance from every cell of a raster to the nearest cell whose centre the tool centre may
+/// reach.
+#[derive(Debug, Clone)]
+pub struct ReachMap {
+    origin: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    /// Squared distance to the nearest reach cell, in cells².
+    d2: Vec<f32>,
+    /// An upper bound on the largest distance from a point of the pocket to its walls, mm.
+    max_wall: f64,
+}
+
+impl ReachMap {
+    /// The reach map of the pocket whose material `pristine` holds (every cell inside the
+    /// pocket set) and whose walls are `walls`, for tool-centre distance `d` from them.
+    pub fn new(pristine: &Raster, walls: &[&Polyline<f64>], d: f64) -> Self {
+        let (nx, ny) = pristine.dims();
+        let c = pristine.cell();
+        let origin = pristine.centre(0, 0);
+        let mut seeds: Vec<bool> = (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| !pristine.get(i, j))
+            .collect();
+        for pl in walls {
+            let n = ((pl.path_length() / (0.5 * c)).ceil() as usize).max(8);
+            for p in crate::geom::region::sample_loop(pl, n) {
+                if let Some((i, j)) = cell_of(origin, c, nx, ny, p) {
+                    seeds[j * nx + i] = true;
+                }
+            }
+        }
+        let wall_d2 = edt(&seeds, nx, ny);
+        let indexed: Vec<IndexedWall<'_>> = walls.iter().map(|p| IndexedWall::new(p)).collect();
+        let reach: Vec<bool> = (0..nx * ny)
+            .map(|k| {
+                let (i, j) = (k % nx, k / nx);
+                if !pristine.get(i, j) {
+                    return false;
+                }
+                let approx = f64::from(wall_d2[k]).sqrt() * c;
+                if approx >= d + c {
+                    true
+                } else if approx > d - c {
+                    let p = pristine.centre(i, j);
+                    let exact = indexed
+                        .iter()
+                        .map(|w| w.distance(p))
+                        .fold(f64::INFINITY, f64::min);
+                    exact >= d
+                } else {
+                    false
+                }
+            })
+            .collect();
+        // The transform is within c of the exact distance at a cell centre, and a point of
+        // the pocket lies within c/√2 of one: 2c over the largest value bounds every point.
+        let max_wall = (0..nx * ny)
+            .filter(|&k| pristine.get(k % nx, k / nx))
+            .map(|k| f64::from(wall_d2[k]).sqrt() * c)
+            .fold(0.0, f64::max)
+            + 2.0 * c;
+        drop(wall_d2);
+        ReachMap {
+            origin,
+            cell: c,
+            nx,
+            ny,
+            d2: edt(&reach, nx, ny),
+            max_wall,
+        }
+    }
+
+    /// An upper bound on the largest distance from a point of the pocket to its walls, mm: a
+    /// tool centre `d` from every wall fits somewhere only if this is at least `d`.
+    pub fn max_wall_distance(&self) -> f64 {
+        self.max_wall
+    }
+
+    /// Distance from `p` (a cell centre of the raster) to the nearest reach cell centre, mm;
+    /// infinite off the raster or with no reach cell at all.
+    pub fn distance(&self, p: Point) -> f64 {
+        match cell_of(self.origin, self.cell, self.nx, self.ny, p) {
+            Some((i, j)) => f64::from(self.d2[j * self.nx + i]).sqrt() * self.cell,
+            None => f64::INFINITY,
+        }
+    }
+}
+
+/// The cell whose centre is nearest to `p`, if on the grid (`origin`: centre of cell 0, 0).
+fn cell_of(origin: Point, c: f64, nx: usize, ny: usize, p: Point) -> Option<(usize, usize)> {
+    let i = ((p.x - origin.x) / c).round();
+    let j = ((p.y - origin.y) / c).round();
+    (i >= 0.0 && j >= 0.0 && (i as usize) < nx && (j as usize) < ny)
+        .then_some((i as usize, j as usize))
+}
+
+/// Squared Euclidean distance, in cells², from every cell of an `nx × ny` grid to the nearest
+/// seed (`f32::INFINITY` without seeds): columns, then rows, each by the lower envelope of
+/// parabolas (Felzenszwalb & Huttenlocher 2012), exact on the grid.
+fn edt(seeds: &[bool], nx: usize, ny: usize) -> Vec<f32> {
+    const FAR: f64 = 1e20;
+    let mut g: Vec<f32> = seeds
+        .iter()
+        .map(|&s| if s { 0.0 } else { FAR as f32 })
+        .collect();
+    let mut f = vec![0.0; nx.max(ny)];
+    let mut out = vec![0.0; nx.max(ny)];
+    let mut v = vec![0usize; nx.max(ny)];
+    let mut z = vec![0.0; nx.max(ny) + 1];
+    for i in 0..nx {
+        for j in 0..ny {
+            f[j] = f64::from(g[j * nx + i]);
+        }
+        envelope(&f[..ny], &mut out[..ny], &mut v, &mut z);
+        for j in 0..ny {
+            g[j * nx + i] = out[j] as f32;
+        }
+    }
+    for j in 0..ny {
+        for i in 0..nx {
+            f[i] = f64::from(g[j * nx + i]);
+        }
+        envelope(&f[..nx], &mut out[..nx], &mut v, &mut z);
+        for i in 0..nx {
+            g[j * nx + i] = if out[i] >= 0.5 * FAR {
+                f32::INFINITY
+            } else {
+                out[i] as f32
+            };
+        }
+    }
+    g
+}
+
+/// The 1-D squared distance transform of the sampled function `f`: `out[q] = min_p (q − p)² +
+/// f[p]`.
+fn envelope(f: &[f64], out: &mut [f64], v: &mut [usize], z: &mut [f64]) {
+    let n = f.len();
+    if n == 0 {
+        return;
+    }
+    let mut k = 0usize;
+    v[0] = 0;
+    z[0] = f64::NEG_INFINITY;
+    z[1] = f64::INFINITY;
+    for q in 1..n {
+        let fq = f[q] + (q * q) as f64;
+        let cross = |p: usize| (fq - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
+        let mut s = cross(v[k]);
+        // z[0] = −∞ ends the loop at k = 0.
+        while s <= z[k] {
+            k -= 1;
+            s = cross(v[k]);
+        }
+        k += 1;
+        v[k] = q;
+        z[k] = s;
+        z[k + 1] = f64::INFINITY;
+    }
+    let mut k = 0usize;
+    for (q, o) in out.iter_mut().enumerate() {
+        while z[k + 1] < q as f64 {
+            k += 1;
+        }
+        let p = v[k];
+        let dq = q as f64 - p as f64;
+        *o = dq * dq + f[p];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The transform against brute force on a random grid.
+    #[test]
+    fn edt_matches_brute_force() {
+        let (nx, ny) = (23, 17);
+        let mut state = 12345u64;
+        let seeds: Vec<bool> = (0..nx * ny)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (state >> 33) % 29 == 0
+            })
+            .collect();
+        let got = edt(&seeds, nx, ny);
+        for (k, &g) in got.iter().enumerate() {
+            let (i, j) = ((k % nx) as f64, (k / nx) as f64);
+            let want = (0..nx * ny)
+                .filter(|&s| seeds[s])
+                .map(|s| {
+                    let (a, b) = ((s % nx) as f64, (s / nx) as f64);
+                    (a - i).powi(2) + (b - j).powi(2)
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                (f64::from(g) - want).abs() < 1e-3 || (g.is_infinite() && want.is_infinite()),
+                "cell {k}: {g} vs {want}"
+            );
+        }
+    }
+
+    /// A 20 × 10 rectangle at d = 2: the reach region is the 16 × 6 rectangle inside; a cell
+    /// centre 1 mm outside it is at distance 1, one inside it at 0.
+    #[test]
+    fn rectangle_reach() {
+        let pts = [(0.0, 0.0), (20.0, 0.0), (20.0, 10.0), (0.0, 10.0)];
+        let v: Vec<(Point, f64)> = pts.iter().map(|&(x, y)| (Point::new(x, y), 0.0)).collect();
+        let o = crate::geom::Outline::new(&v, "rect").expect("outline");
+        let mut ras = Raster::new(o.bounds(), 0.05);
+        ras.fill(&[o.polyline()]);
+        let map = ReachMap::new(&ras, &[o.polyline()], 2.0);
+        let near = |x: f64, y: f64| {
+            let (i, j) = cell_of(map.origin, map.cell, map.nx, map.ny, Point::new(x, y))
+                .expect("on the grid");
+            map.distance(ras.centre(i, j))
+        };
+        assert!(near(10.0, 5.0) < 1e-9);
+        assert!((near(1.0, 5.0) - 1.0).abs() < 0.06, "{}", near(1.0, 5.0));
+        assert!(
+            (near(0.5, 0.5) - 1.5 * 2f64.sqrt()).abs() < 0.08,
+            "{}",
+            near(0.5, 0.5)
+        );
+    }
+}
