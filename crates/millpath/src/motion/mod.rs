@@ -1,7 +1,7 @@
 //! Motion planning: jerk-limited profiles, look-ahead planner, sampling and limit verification.
 //!
-//! The planner turns a [`Toolpath`](crate::toolpath::Toolpath) (or any stream of moves, e.g.
-//! the G-code reader's) and a [`Machine`](crate::machine::Machine) into a timed [`Plan`]:
+//! The planner turns a [`Toolpath`] (or any stream of moves, e.g.
+//! the G-code reader's) and a [`Machine`] into a timed [`Plan`]:
 //! the cycle time every strategy in millpath is judged by.
 //!
 //! ```
