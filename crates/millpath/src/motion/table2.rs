@@ -9,7 +9,7 @@
 //! measured times (in s) are in [`MEASURED`].
 //!
 //! # The fit (`hsm`, the `sinumerik` controller model)
-//! Four parameters were fitted on a grid (2026-11-25) by planning the 30 programs with
+//! Four parameters were fitted on a grid by planning the 30 programs with
 //! `millpath estimate --table2 --machine PROFILE.toml`: axis acceleration
 //! A ∈ {4, 4.5, 5, 6, 8} m/s², axis jerk J ∈ {50, 65, 80, 100, 120, 150, 175, 200, 250, 300}
 //! m/s³, the share of acceleration the curvature takes on arcs η_a ∈ {0.7 … 0.9} (η_j = 0.75

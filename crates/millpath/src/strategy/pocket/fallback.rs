@@ -5,7 +5,7 @@
 //! The fallbacks, in order: for the spiral's fronts morph, the harmonic morph instead; then G1
 //! chords instead of arcs (with the morph asked for, then the harmonic one). The spiral keeps
 //! its laps, chords and arcs inside its walls' loops itself ([`super::spiral`]), so these are
-//! a safety net: no input of the fuzz corpora needed one (fuzz/README.md, 2026-11-23).
+//! a safety net.
 
 use super::options::SpiralMorph;
 use super::{PocketOptions, PocketResult, StrategyKind};

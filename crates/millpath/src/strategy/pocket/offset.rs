@@ -19,8 +19,7 @@
 //!
 //! **Sharp corners kept.** Rounding the interior loops' convex corners (a morphological
 //! opening by `ρ = (0.95·r − h)/(√2 − 1)`, the most the coverage margin allows at right
-//! angles) was tried: on the built-in pocket (one 6.35 mm level) it made the `hsm` cycle
-//! time longer, 18.97 s → 19.30 s, with the path 12 mm shorter: the planner already blends
+//! angles) makes the cycle time longer although the path is shorter: the planner already blends
 //! the corners within the path tolerance, and the rounded loops move the engagement peak
 //! onto longer moves, whose feed the modulation then lowers. So the loops stay exact offsets.
 //!

@@ -3,21 +3,18 @@
 //! A lap blends the previous loop into the next one point by point; where the next one is
 //! `B` (or near it) and `B` has a concave arc (round a corner of the wall pointing into the
 //! pocket), the blend of two points on either side of the dent cuts across it: the tool
-//! centre inside the wall's clearance, a gouge. The pocket fuzzer found such laps 0.2 mm deep
-//! on a 4.7 mm tool (fuzz/README.md, 2026-11-22). [`keep_inside`] moves such samples onto
+//! centre inside the wall's clearance, a gouge. [`keep_inside`] moves such samples onto
 //! `B_ε`; [`lap_path`] then writes the samples as moves.
 //!
 //! Samples inside `B_ε` are not enough: a chord between two of them can still cross a
 //! concave arc of `B_ε` (its sagitta `L²/8ρ` for a chord `L` on an arc of radius `ρ`), and a
 //! moved stretch is where that happens, since projecting the samples of a chord that cuts
-//! deep across a dent onto the arc round it spreads them far apart (0.69 mm chords, 0.023 mm
-//! deep on a 4.3 mm tool, found by the fuzzer on 2026-11-22). So every chord is checked
+//! deep across a dent onto the arc round it spreads them far apart. So every chord is checked
 //! against `T`, `B_ε` moved outward by ¾ of [`LAST_LOOP_MARGIN`] (so ¼ of it inside `B`),
 //! with a segment index; a chord that crosses it is split at its midpoint (moved onto `B_ε`
 //! if it lies outside), again until none does. Where that does not settle within
 //! [`SPLIT_BUDGET`] splits (a chord across a thin wall spike: each midpoint lands on the side
-//! of the spike nearer it, so the splits only creep towards the tip, 0.3 mm a split, found by
-//! the fuzzer on 2026-11-22 with a 22 mm chord through the wall), the chord is replaced by the
+//! of the spike nearer it, so the splits only creep towards the tip), the chord is replaced by the
 //! way along `B_ε`: from its start's nearest point round to its end's, the shorter way.
 //! With `--arcs`, each biarc fitted through the samples is checked against `T` in the same
 //! way, and one that crosses it is written as the chords it spans.
