@@ -2,16 +2,10 @@
 //! checked by running the three strategies one by one and timing each program with
 //! `millpath estimate`, independently of `auto`'s own timing. The report lists all three.
 
-use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
+mod common;
+use common::millpath;
 
 fn ok(o: &Output) -> String {
     assert_eq!(

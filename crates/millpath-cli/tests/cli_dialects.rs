@@ -3,20 +3,10 @@
 //! found from the program) with the cycle time `pocket` planned, and what a dialect cannot
 //! express refused with exit 2 and no file.
 
-use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{millpath, stderr};
 
 /// The number after `cycle time ` in a line of output.
 fn cycle_time(o: &Output) -> f64 {

@@ -1,20 +1,8 @@
 //! The binary's contract: exit 0 on success, 2 on bad input with a message naming the value
 //! and where it came from, and no output file after an error.
 
-use std::path::Path;
-use std::process::{Command, Output};
-
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{millpath, stderr};
 
 #[test]
 fn machines_json_lists_the_presets() {

@@ -2,20 +2,10 @@
 //! calling a subroutine file times exactly as the same program with the subroutine written
 //! out by hand; what cannot be found is bad input (exit 2) naming it.
 
-use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{millpath, stderr};
 
 fn time(o: &Output) -> f64 {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(o));

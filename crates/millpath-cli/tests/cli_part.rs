@@ -5,15 +5,10 @@
 //! the assertions are on the verifier's findings and counts, not on coordinates.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
+mod common;
+use common::millpath;
 
 fn ok(o: &Output) -> String {
     assert_eq!(

@@ -8,16 +8,10 @@ mod rs274_common;
 
 use millpath::gcode::{ReaderOptions, read_str};
 use millpath::toolpath::Corner;
-use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
+mod common;
+use common::millpath;
 
 fn ok(o: &Output) -> serde_json::Value {
     assert_eq!(

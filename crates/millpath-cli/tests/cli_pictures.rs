@@ -2,20 +2,10 @@
 //! (per level too), `--json` on the commands that print results, and the one `--machine`
 //! loader (a preset or a TOML profile) on every command with a cycle time.
 
-use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{millpath, stderr};
 
 fn json(o: &Output) -> serde_json::Value {
     serde_json::from_slice(&o.stdout).unwrap_or_else(|e| {

@@ -1,16 +1,8 @@
 //! `millpath pocket` on bad input: a clear message naming the value, exit code 2, and no
 //! output file (G-code or report) left behind.
 
-use std::path::Path;
-use std::process::{Command, Output};
-
-fn millpath(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the millpath binary runs")
-}
+mod common;
+use common::millpath;
 
 /// Runs `pocket` on `outline` (written to `file`) with `extra` options and checks the refusal:
 /// exit code 2, `needle` in the message, no output written.
