@@ -17,12 +17,11 @@
 //!   paper's Figure 10).
 //!
 //! ## Text and fonts
-//! Labels are laid out with plotters' `ttf` feature, which finds a system font through
-//! fontconfig (`sans-serif`). On a headless machine with no font at all plotters cannot measure
-//! text and [`render_svg`]/[`render_png`] return an [`Error::Internal`] naming the cause;
-//! `.ci/run` relies on Debian's `fonts-dejavu-core` (pulled in by `chromium`), which the
-//! tests here need anyway. Non-finite values are dropped from series before drawing; an empty
-//! chart is drawn with unit axes rather than failing.
+//! Labels are measured and drawn with DejaVu Sans compiled into the library (the `dejavu`
+//! crate, through plotters' `ab_glyph` text backend), registered once per process as
+//! `sans-serif`: no system font, fontconfig or pkg-config is needed to build or to draw, and a
+//! chart's pictures are the same on every machine. Non-finite values are dropped from series
+//! before drawing; an empty chart is drawn with unit axes rather than failing.
 
 use crate::error::Error;
 use crate::motion::table2::Row;
@@ -181,10 +180,23 @@ fn tick_label(v: f64, span: f64) -> String {
 }
 
 fn plot_err(e: impl std::fmt::Display) -> Error {
-    Error::internal(format!(
-        "plot rendering failed: {e} (text needs a system font through fontconfig, \
-         e.g. Debian's fonts-dejavu-core)"
-    ))
+    Error::internal(format!("plot rendering failed: {e}"))
+}
+
+/// Registers the embedded DejaVu Sans as plotters' `sans-serif`, once per process.
+fn register_font() -> Result<(), Error> {
+    static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+            .is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::internal(
+            "plot rendering failed: the embedded DejaVu Sans font did not parse",
+        ))
+    }
 }
 
 fn draw<DB: DrawingBackend>(
@@ -194,6 +206,7 @@ fn draw<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
+    register_font()?;
     root.fill(&WHITE).map_err(plot_err)?;
     let (x0, x1, y0, y1) = chart.ranges();
     let mut cc = ChartBuilder::on(root)
@@ -687,5 +700,37 @@ mod tests {
             svg
         );
         assert!(dir.path().join("both.png").is_file());
+    }
+
+    /// Dark pixels in rows `rows` of an RGB raster `width` pixels wide.
+    fn dark_pixels(rgb: &[u8], width: usize, rows: std::ops::Range<usize>) -> usize {
+        rows.flat_map(|y| (0..width).map(move |x| (y * width + x) * 3))
+            .filter(|&i| rgb[i..i + 3].iter().all(|&c| c < 128))
+            .count()
+    }
+
+    #[test]
+    fn text_is_drawn_with_the_embedded_font() {
+        // The caption band of a raster with a title has the glyphs' pixels; without one, none.
+        // Fails when no font is available to draw (the caption would be blank) or when text is
+        // measured but not drawn.
+        let (w, h) = (400_usize, 200_usize);
+        let raster = |title: &str| {
+            let mut buf = vec![255_u8; w * h * 3];
+            {
+                let root =
+                    BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32)).into_drawing_area();
+                let c = Chart {
+                    title: title.into(),
+                    ..Chart::default()
+                };
+                draw(&root, &c).unwrap();
+            }
+            buf
+        };
+        let with = dark_pixels(&raster("Feed along the path"), w, 0..24);
+        let without = dark_pixels(&raster(""), w, 0..24);
+        assert_eq!(without, 0);
+        assert!(with > 100, "{with} dark pixels in the caption band");
     }
 }
