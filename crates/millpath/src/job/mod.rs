@@ -6,6 +6,7 @@
 //! This is the top layer: it may use every other module, and none uses it.
 
 pub mod contour;
+pub mod estimate;
 pub mod five_axis;
 pub mod pocket;
 pub mod pocket_report;
