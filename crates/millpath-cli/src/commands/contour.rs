@@ -154,38 +154,34 @@ impl Args {
     }
 }
 
+/// The points file's text and name, or `None` for `--sample`.
+fn points(args: &Args) -> Result<Option<(String, String)>, Error> {
+    match (&args.points, args.sample) {
+        (Some(path), false) => Ok(Some((super::read_text(path)?, path.display().to_string()))),
+        (None, true) => Ok(None),
+        (Some(_), true) => Err(input(
+            "POINTS",
+            "given with --sample",
+            "command line",
+            "either a points file or --sample",
+        )),
+        (None, false) => Err(input(
+            "POINTS",
+            "missing",
+            "command line",
+            "a points file (CSV or JSON) or --sample",
+        )),
+    }
+}
+
 /// Runs the contour pipeline.
 pub fn run(args: &Args) -> Result<(), Error> {
     // The machine is checked before the points are read (as the job does).
     super::load_machine(&args.machine)?;
-    let text;
-    let name;
-    let source = match (&args.points, args.sample) {
-        (Some(path), false) => {
-            name = path.display().to_string();
-            text = super::read_text(path)?;
-            ContourSource::Points {
-                text: &text,
-                name: &name,
-            }
-        }
-        (None, true) => ContourSource::Sample,
-        (Some(_), true) => {
-            return Err(input(
-                "POINTS",
-                "given with --sample",
-                "command line",
-                "either a points file or --sample",
-            ));
-        }
-        (None, false) => {
-            return Err(input(
-                "POINTS",
-                "missing",
-                "command line",
-                "a points file (CSV or JSON) or --sample",
-            ));
-        }
+    let points = points(args)?;
+    let source = match &points {
+        Some((text, name)) => ContourSource::Points { text, name },
+        None => ContourSource::Sample,
     };
     let job = millpath::job::contour::run(source, &args.settings(), &args.program.settings())?;
     let report = &job.report;

@@ -430,7 +430,9 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
         .map_err(|e| Error::internal(format!("CSV: {e}")))
     })?;
     let names = millpath::machine::kinematics::Kinematics::axis_names(&kin);
-    for (file, caption, chart) in super::html::five_axis_charts(&samples, names, &Limits::paper()) {
+    for (file, caption, chart) in
+        millpath::report::five_axis_plots::axis_charts(&samples, names, &Limits::paper())
+    {
         add_plot(out, html, file, &caption, &chart)?;
     }
     if let Some(d) = &r.deflection {
