@@ -336,7 +336,7 @@ fn transition_sweep(
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     pb.set_message("transition sweep: spiral and zigzag toolpaths, planned");
-    let table = super::sweep::sweep(
+    let table = millpath::job::sweep::sweep(
         &shape,
         &tool,
         &base,

@@ -11,6 +11,7 @@ pub mod five_axis;
 pub mod pocket;
 pub mod pocket_report;
 pub mod program;
+pub mod sweep;
 pub mod verify;
 
 use crate::Error;
