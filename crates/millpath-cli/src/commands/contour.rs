@@ -121,8 +121,6 @@ fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> E
     InputError::new(what, v).at(flag).expected(expected).into()
 }
 
-pub use millpath::job::contour::program_machine;
-
 impl Args {
     /// The contour job's settings these flags give.
     fn settings(&self) -> ContourSettings {

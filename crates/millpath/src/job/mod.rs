@@ -12,6 +12,7 @@ pub mod pocket;
 pub mod pocket_report;
 pub mod program;
 pub mod sweep;
+pub mod timing;
 pub mod verify;
 
 use crate::Error;
