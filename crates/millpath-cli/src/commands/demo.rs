@@ -476,25 +476,11 @@ fn pockets(
     print: Say<'_>,
 ) -> Result<Vec<Row>, Error> {
     use millpath::stock::SimOptions;
-    use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
-    // The sample part as a drawing: its pockets written as a DXF (LWPOLYLINEs with bulges)
-    // and read back through the DXF reader, the path any drawing takes.
-    let drawn = samples::structural_part();
+    use millpath::strategy::pocket::{self, PocketOptions, StrategyKind};
+    // The sample part as a drawing, read back through the DXF reader.
     let dxf_path = out.join("sample_part.dxf");
-    let dxf = millpath::io::dxf_out::write_outlines(drawn.iter().map(|(_, s)| &s.outer), "POCKETS");
+    let (dxf, part) = millpath::job::sample_part_drawing(&dxf_path.display().to_string())?;
     millpath::io::write_atomic(&dxf_path, dxf.as_bytes())?;
-    let origin = dxf_path.display().to_string();
-    let loops = millpath::io::dxf::parse(
-        dxf.as_bytes(),
-        &origin,
-        &millpath::io::dxf::DxfOptions::default(),
-    )?;
-    let mut part = Vec::new();
-    for (i, p) in loops.pockets().into_iter().enumerate() {
-        let shape =
-            pocket::PocketShape::new(p.outer, p.islands, &format!("{origin}, pocket {}", i + 1))?;
-        part.push((format!("pocket {}", i + 1), shape));
-    }
     let tool = Tool::flat(12.7)?;
     // 12.7 mm end mill, 40 % stepover, 600 in/min, two levels of 6.35 mm.
     let opts = PocketOptions {
