@@ -253,9 +253,7 @@ fn die_cavity(
         .level(result.toolpath.levels.len().saturating_sub(1));
     let plan = plan_toolpath(&finishing, machine)
         .map_err(|e| e.engine_made("timing the die cavity's finishing pass"))?;
-    let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
-    let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
-    let mut chart = plots::feed_along_path(&achieved, Some(&programmed));
+    let mut chart = series::feed_chart(&plan)?;
     chart.title = format!(
         "Die cavity, finishing pass: feed along the path ({})",
         machine.name
@@ -565,9 +563,7 @@ fn pockets(
                 let first = bay_tp.level(0);
                 let plan = plan_toolpath(&first, machine)
                     .map_err(|e| e.engine_made("timing the spiral's first level"))?;
-                let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
-                let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
-                let mut chart = plots::feed_along_path(&achieved, Some(&programmed));
+                let mut chart = series::feed_chart(&plan)?;
                 chart.title = format!(
                     "Spiral, {bay}, first level: feed along the path ({})",
                     machine.name

@@ -21,14 +21,9 @@ pub fn toolpath_report(
     let mut html = HtmlReport::new(title);
     html.section("summary", summary);
     html.toolpath_viewer(title, tp, outlines, plan)?;
-    let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
-    let (achieved, programmed) = series::feed_along_cut(plan, &samples);
     html.plot(
         "Feed along the cutting path (rapids left out): achieved by the planner against programmed",
-        &plots::render_svg(
-            &plots::feed_along_path(&achieved, Some(&programmed)),
-            &plots::PlotOptions::default(),
-        )?,
+        &plots::render_svg(&series::feed_chart(plan)?, &plots::PlotOptions::default())?,
     )?;
     Ok(html)
 }
