@@ -4,7 +4,7 @@
 //! tolerance → layers → G-code (any dialect) and a JSON report.
 
 use millpath::curve::{self, CurveKind};
-use millpath::job::contour::{ContourSettings, ContourSource};
+use millpath::job::contour::{ContourRun, ContourSettings, ContourSource};
 use millpath::strategy::contour::Side;
 use millpath::{Error, InputError};
 use std::path::PathBuf;
@@ -121,166 +121,104 @@ fn input(what: &str, v: impl std::fmt::Display, flag: &str, expected: &str) -> E
     InputError::new(what, v).at(flag).expected(expected).into()
 }
 
-pub use millpath::job::contour::program_machine;
+impl Args {
+    /// The contour job's settings these flags give.
+    fn settings(&self) -> ContourSettings {
+        let args = self;
+        ContourSettings {
+            tool_diameter: args.tool_diameter,
+            tolerance: args.tolerance,
+            side: match args.side {
+                SideArg::Inside => Side::Inside,
+                SideArg::Outside => Side::Outside,
+                SideArg::On => Side::On,
+            },
+            depth: args.depth,
+            step_down: args.step_down,
+            finish_allowance: args.finish_allowance,
+            curve: match args.curve {
+                CurveArg::FourPoint => CurveKind::FourPoint,
+                CurveArg::CatmullRom => CurveKind::CatmullRom,
+                CurveArg::Spline => CurveKind::Spline,
+            },
+            arcs: args.arcs,
+            feed: args.feed,
+            plunge_feed: args.plunge_feed,
+            safe_height: args.safe_height,
+            clearance_height: args.clearance_height,
+            lead_radius: args.lead_radius,
+            machine: args.machine.clone(),
+        }
+    }
+}
+
+/// The points file's text and name, or `None` for `--sample`.
+fn points(args: &Args) -> Result<Option<(String, String)>, Error> {
+    match (&args.points, args.sample) {
+        (Some(path), false) => Ok(Some((super::read_text(path)?, path.display().to_string()))),
+        (None, true) => Ok(None),
+        (Some(_), true) => Err(input(
+            "POINTS",
+            "given with --sample",
+            "command line",
+            "either a points file or --sample",
+        )),
+        (None, false) => Err(input(
+            "POINTS",
+            "missing",
+            "command line",
+            "a points file (CSV or JSON) or --sample",
+        )),
+    }
+}
 
 /// Runs the contour pipeline.
 pub fn run(args: &Args) -> Result<(), Error> {
     // The machine is checked before the points are read (as the job does).
     super::load_machine(&args.machine)?;
-    let text;
-    let name;
-    let source = match (&args.points, args.sample) {
-        (Some(path), false) => {
-            name = path.display().to_string();
-            text = super::read_text(path)?;
-            ContourSource::Points {
-                text: &text,
-                name: &name,
-            }
-        }
-        (None, true) => ContourSource::Sample,
-        (Some(_), true) => {
-            return Err(input(
-                "POINTS",
-                "given with --sample",
-                "command line",
-                "either a points file or --sample",
-            ));
-        }
-        (None, false) => {
-            return Err(input(
-                "POINTS",
-                "missing",
-                "command line",
-                "a points file (CSV or JSON) or --sample",
-            ));
-        }
+    let points = points(args)?;
+    let source = match &points {
+        Some((text, name)) => ContourSource::Points { text, name },
+        None => ContourSource::Sample,
     };
-    let settings = ContourSettings {
-        tool_diameter: args.tool_diameter,
-        tolerance: args.tolerance,
-        side: match args.side {
-            SideArg::Inside => Side::Inside,
-            SideArg::Outside => Side::Outside,
-            SideArg::On => Side::On,
-        },
-        depth: args.depth,
-        step_down: args.step_down,
-        finish_allowance: args.finish_allowance,
-        curve: match args.curve {
-            CurveArg::FourPoint => CurveKind::FourPoint,
-            CurveArg::CatmullRom => CurveKind::CatmullRom,
-            CurveArg::Spline => CurveKind::Spline,
-        },
-        arcs: args.arcs,
-        feed: args.feed,
-        plunge_feed: args.plunge_feed,
-        safe_height: args.safe_height,
-        clearance_height: args.clearance_height,
-        lead_radius: args.lead_radius,
-        machine: args.machine.clone(),
-    };
-    let job = millpath::job::contour::run(source, &settings, &args.program.settings())?;
-    let (text, report, opt, curve, name) =
-        (&job.gcode, &job.report, &job.options, &job.curve, &job.name);
-    let machine = &job.machine;
-    let result_toolpath = &job.toolpath;
+    let job = millpath::job::contour::run(source, &args.settings(), &args.program.settings())?;
+    let report = &job.report;
     let json = serde_json::to_string_pretty(report)
         .map_err(|e| Error::internal(format!("report: {e}")))?;
     if let Some(out) = &args.output {
         millpath::io::write_atomic_with(out, |w| {
-            w.write_all(text.as_bytes())
+            w.write_all(job.gcode.as_bytes())
                 .map_err(|e| Error::internal(format!("writing {}: {e}", out.display())))
         })?;
     }
     if let Some(rp) = &args.report {
         millpath::io::write_atomic(rp, json.as_bytes())?;
     }
-    let m = machine;
-    let plan = millpath::motion::plan_toolpath(result_toolpath, m)
-        .map_err(|e| e.engine_made("timing the contour toolpath"))?;
-    let flat = curve::flatten::flatten_curve(curve, opt.tolerance.max(1e-3))?;
-    let outline = millpath::geom::Outline::from_points(&flat.points, name)?;
+    let plan = job.plan()?;
+    let (flat, outline) = job.outline()?;
+    let (m, name, tol) = (&job.machine, &job.name, job.options.tolerance);
     let mut pictures = Vec::new();
     if let Some(path) = &args.svg {
+        let title = format!(
+            "contour {name}: {} segments per pass, {:.1} s on {}",
+            report.segments,
+            plan.total_time(),
+            m.name
+        );
         pictures = super::write_previews(
             path,
-            result_toolpath,
+            &job.toolpath,
             std::slice::from_ref(&outline),
             &millpath::report::PreviewOptions {
-                title: Some(format!(
-                    "contour {name}: {} segments per pass, {:.1} s on {}",
-                    report.segments,
-                    plan.total_time(),
-                    m.name
-                )),
-                achieved_feed: Some(plan.peak_feed_by_move(result_toolpath.moves.len())),
+                title: Some(title),
+                achieved_feed: Some(plan.peak_feed_by_move(job.toolpath.moves.len())),
                 ..millpath::report::PreviewOptions::default()
             },
             args.per_level,
         )?;
     }
     if let Some(path) = &args.html {
-        let mut summary = vec![
-            super::html::machine_row(m),
-            ("input".to_owned(), name.clone()),
-            (
-                "segments per pass".to_owned(),
-                format!(
-                    "{} (outline alone {}, kurbo {}, asymptotic {:.1})",
-                    report.segments,
-                    report.curve.segments,
-                    report.curve.kurbo_segments,
-                    report.curve.asymptotic_segments
-                ),
-            ),
-            (
-                "max chordal deviation".to_owned(),
-                format!(
-                    "{:.3e} mm (tolerance {} mm)",
-                    report.max_deviation_mm, opt.tolerance
-                ),
-            ),
-            (
-                "levels, blocks".to_owned(),
-                format!("{}, {}", report.layers.len(), report.blocks),
-            ),
-            (
-                "cycle time".to_owned(),
-                format!(
-                    "{:.2} s planned on {}, {:.2} s at programmed feed",
-                    plan.total_time(),
-                    m.name,
-                    report.time_at_programmed_feed_s
-                ),
-            ),
-        ];
-        summary.extend(
-            job.warnings
-                .iter()
-                .map(|w| ("warning".to_owned(), w.clone())),
-        );
-        let mut html = super::html::toolpath_report(
-            &format!("millpath contour {name}"),
-            summary,
-            result_toolpath,
-            std::slice::from_ref(&outline),
-            &plan,
-        )?;
-        let per_segment: Vec<f64> = flat
-            .params
-            .windows(2)
-            .zip(flat.points.windows(2))
-            .map(|(p, q)| curve::verify::chordal_deviation(curve, p, q, 200))
-            .collect();
-        html.plot(
-            "Chordal deviation of each segment of the curve flattened at the tolerance (dense sampling, 200 points per segment)",
-            &millpath::report::plots::render_svg(
-                &millpath::report::plots::chordal_deviation(&per_segment, opt.tolerance.max(1e-3)),
-                &millpath::report::plots::PlotOptions::default(),
-            )?,
-        )?;
-        super::html::write(path, &html)?;
+        write_html(path, &job, &plan, &flat, outline)?;
     }
     for w in &job.warnings {
         super::eprint(&format!("warning: {w}"));
@@ -300,7 +238,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         report.curve.kurbo_segments,
         report.curve.asymptotic_segments,
         report.max_deviation_mm,
-        opt.tolerance,
+        tol,
         report.layers.len(),
         report.blocks,
         report.lines,
@@ -309,6 +247,67 @@ pub fn run(args: &Args) -> Result<(), Error> {
         m.name
     ));
     Ok(())
+}
+
+/// Writes the `--html` report: summary, viewer, feed plot and the chordal deviation of each
+/// segment of the curve flattened at the tolerance.
+fn write_html(
+    path: &std::path::Path,
+    job: &ContourRun,
+    plan: &millpath::motion::Plan,
+    flat: &curve::Flattening,
+    outline: millpath::geom::Outline,
+) -> Result<(), Error> {
+    let (report, m, name) = (&job.report, &job.machine, &job.name);
+    let tol = job.options.tolerance;
+    let mut summary = vec![
+        super::html::machine_row(m),
+        ("input".to_owned(), name.clone()),
+        (
+            "segments per pass".to_owned(),
+            format!(
+                "{} (outline alone {}, kurbo {}, asymptotic {:.1})",
+                report.segments,
+                report.curve.segments,
+                report.curve.kurbo_segments,
+                report.curve.asymptotic_segments
+            ),
+        ),
+        (
+            "max chordal deviation".to_owned(),
+            format!("{:.3e} mm (tolerance {tol} mm)", report.max_deviation_mm),
+        ),
+        (
+            "levels, blocks".to_owned(),
+            format!("{}, {}", report.layers.len(), report.blocks),
+        ),
+        (
+            "cycle time".to_owned(),
+            format!(
+                "{:.2} s planned on {}, {:.2} s at programmed feed",
+                plan.total_time(),
+                m.name,
+                report.time_at_programmed_feed_s
+            ),
+        ),
+    ];
+    summary.extend(
+        job.warnings
+            .iter()
+            .map(|w| ("warning".to_owned(), w.clone())),
+    );
+    let title = format!("millpath contour {name}");
+    let outlines = [outline];
+    let mut html = super::html::toolpath_report(&title, summary, &job.toolpath, &outlines, plan)?;
+    let per_segment = curve::verify::segment_deviations(&job.curve, flat, 200);
+    html.plot(
+        "Chordal deviation of each segment of the curve flattened at the tolerance (dense sampling, 200 points per segment)",
+        &millpath::report::plots::render_svg(
+            &millpath::report::plots::chordal_deviation(&per_segment, tol.max(1e-3)),
+            &millpath::report::plots::PlotOptions::default(),
+        )?,
+    )?;
+    super::html::write(path, &html)
 }
 
 #[cfg(test)]

@@ -21,7 +21,6 @@ use indicatif::{ProgressBar, ProgressStyle};
 use millpath::gcode::{Dialect, WriterOptions, write_program};
 use millpath::geom::Outline;
 use millpath::machine::Machine;
-use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{plan_toolpath, table2};
 use millpath::report::html::HtmlReport;
 use millpath::report::{PreviewOptions, plots, series};
@@ -177,23 +176,18 @@ pub(crate) fn write_gcode(
     Ok(blocks)
 }
 
-/// Plans `tp` on `machine` and checks the plan with the independent 1 kHz verifier.
-/// Returns (plan, verifier summary).
+/// Plans `tp` on `machine` and checks the plan with the independent 1 kHz verifier
+/// ([`millpath::job::timing::time_and_verify`]). Returns (plan, verifier summary).
 pub(crate) fn time_and_verify(
     tp: &Toolpath,
     machine: &Machine,
 ) -> Result<(millpath::motion::Plan, String), Error> {
-    let plan = plan_toolpath(tp, machine).map_err(|e| e.engine_made("timing a demo toolpath"))?;
-    if plan.reshaped {
+    let (plan, v) = millpath::job::timing::time_and_verify(tp, machine)?;
+    let check = match v {
         // The linuxcnc model is checked against LinuxCNC, not the limit verifier.
-        return Ok((plan, "not verified (linuxcnc model)".to_string()));
-    }
-    let moves: Vec<_> = tp.segments().map(|(from, m)| (from, *m)).collect();
-    let v = verify_plan(&plan, &moves, machine, &VerifyOptions::default())?;
-    let check = if v.violations == 0 {
-        format!("limits ok ({} samples)", v.samples)
-    } else {
-        format!("{} LIMIT VIOLATIONS", v.violations)
+        None => "not verified (linuxcnc model)".to_string(),
+        Some(v) if v.violations == 0 => format!("limits ok ({} samples)", v.samples),
+        Some(v) => format!("{} LIMIT VIOLATIONS", v.violations),
     };
     Ok((plan, check))
 }
@@ -209,7 +203,7 @@ fn die_cavity(
     let result = contour::contour(&curve, &opt)?;
     // Stated in the program and timed with: the machine's path tolerance, or the contour's
     // where that is tighter (see `contour::program_machine`).
-    let machine = &super::contour::program_machine(machine, opt.tolerance);
+    let machine = &millpath::job::contour::program_machine(machine, opt.tolerance);
     let wopt = WriterOptions {
         dialect: Dialect::LinuxCnc,
         decimals: Some(6),
@@ -245,12 +239,7 @@ fn die_cavity(
     // Chordal deviation of every segment of one pass at the sample's tolerance (the paper's
     // Figure 10), measured by dense sampling (200 points per segment), not by the flattener.
     let pass = millpath::curve::flatten::flatten_curve(&curve, opt.tolerance)?;
-    let per_segment: Vec<f64> = pass
-        .params
-        .windows(2)
-        .zip(pass.points.windows(2))
-        .map(|(p, q)| millpath::curve::verify::chordal_deviation(&curve, p, q, 200))
-        .collect();
+    let per_segment = millpath::curve::verify::segment_deviations(&curve, &pass, 200);
     add_plot(
         out,
         html,
@@ -259,15 +248,12 @@ fn die_cavity(
         &plots::chordal_deviation(&per_segment, opt.tolerance),
     )?;
     // Feed along the path of the finishing level: the planned (achieved) feed.
-    let finishing = level_toolpath(
-        &result.toolpath,
-        result.toolpath.levels.len().saturating_sub(1),
-    );
+    let finishing = result
+        .toolpath
+        .level(result.toolpath.levels.len().saturating_sub(1));
     let plan = plan_toolpath(&finishing, machine)
         .map_err(|e| e.engine_made("timing the die cavity's finishing pass"))?;
-    let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
-    let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
-    let mut chart = plots::feed_along_path(&achieved, Some(&programmed));
+    let mut chart = series::feed_chart(&plan)?;
     chart.title = format!(
         "Die cavity, finishing pass: feed along the path ({})",
         machine.name
@@ -336,7 +322,7 @@ fn transition_sweep(
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     pb.set_message("transition sweep: spiral and zigzag toolpaths, planned");
-    let table = super::sweep::sweep(
+    let table = millpath::job::sweep::sweep(
         &shape,
         &tool,
         &base,
@@ -430,7 +416,9 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
         .map_err(|e| Error::internal(format!("CSV: {e}")))
     })?;
     let names = millpath::machine::kinematics::Kinematics::axis_names(&kin);
-    for (file, caption, chart) in super::html::five_axis_charts(&samples, names, &Limits::paper()) {
+    for (file, caption, chart) in
+        millpath::report::five_axis_plots::axis_charts(&samples, names, &Limits::paper())
+    {
         add_plot(out, html, file, &caption, &chart)?;
     }
     if let Some(d) = &r.deflection {
@@ -471,26 +459,6 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
     })
 }
 
-/// The moves of one level as a toolpath of their own (starting where the level starts).
-fn level_toolpath(tp: &Toolpath, level: usize) -> Toolpath {
-    let Some(l) = tp.levels.get(level) else {
-        return tp.clone();
-    };
-    let start = if l.start == 0 {
-        tp.start
-    } else {
-        tp.moves.get(l.start - 1).map_or(tp.start, |m| m.to)
-    };
-    let mut out = Toolpath::new(tp.tool, start);
-    out.moves = tp.moves.get(l.start..l.end).unwrap_or_default().to_vec();
-    out.levels = vec![millpath::toolpath::Level {
-        start: 0,
-        end: out.moves.len(),
-        ..l.clone()
-    }];
-    out
-}
-
 /// The curve as an outline for drawing (flattened coarsely: the picture only).
 fn outline_for_viewer(curve: &millpath::curve::CompositeCurve) -> Result<Outline, Error> {
     let flat = millpath::curve::flatten::flatten_curve(curve, 0.01)?;
@@ -506,25 +474,11 @@ fn pockets(
     print: Say<'_>,
 ) -> Result<Vec<Row>, Error> {
     use millpath::stock::SimOptions;
-    use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
-    // The sample part as a drawing: its pockets written as a DXF (LWPOLYLINEs with bulges)
-    // and read back through the DXF reader, the path any drawing takes.
-    let drawn = samples::structural_part();
+    use millpath::strategy::pocket::{self, PocketOptions, StrategyKind};
+    // The sample part as a drawing, read back through the DXF reader.
     let dxf_path = out.join("sample_part.dxf");
-    let dxf = millpath::io::dxf_out::write_outlines(drawn.iter().map(|(_, s)| &s.outer), "POCKETS");
+    let (dxf, part) = millpath::job::sample_part_drawing(&dxf_path.display().to_string())?;
     millpath::io::write_atomic(&dxf_path, dxf.as_bytes())?;
-    let origin = dxf_path.display().to_string();
-    let loops = millpath::io::dxf::parse(
-        dxf.as_bytes(),
-        &origin,
-        &millpath::io::dxf::DxfOptions::default(),
-    )?;
-    let mut part = Vec::new();
-    for (i, p) in loops.pockets().into_iter().enumerate() {
-        let shape =
-            pocket::PocketShape::new(p.outer, p.islands, &format!("{origin}, pocket {}", i + 1))?;
-        part.push((format!("pocket {}", i + 1), shape));
-    }
     let tool = Tool::flat(12.7)?;
     // 12.7 mm end mill, 40 % stepover, 600 in/min, two levels of 6.35 mm.
     let opts = PocketOptions {
@@ -606,12 +560,10 @@ fn pockets(
             // here bay 1 (120 × 80 mm), its first level.
             if let Some((bay, shape)) = part.first() {
                 let bay_tp = pocket::toolpath(kind, shape, &tool, &opts)?;
-                let first = level_toolpath(&bay_tp, 0);
+                let first = bay_tp.level(0);
                 let plan = plan_toolpath(&first, machine)
                     .map_err(|e| e.engine_made("timing the spiral's first level"))?;
-                let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
-                let (achieved, programmed) = series::feed_along_cut(&plan, &samples);
-                let mut chart = plots::feed_along_path(&achieved, Some(&programmed));
+                let mut chart = series::feed_chart(&plan)?;
                 chart.title = format!(
                     "Spiral, {bay}, first level: feed along the path ({})",
                     machine.name

@@ -1,15 +1,10 @@
 //! `millpath five-axis`: minimum-time five-axis trajectory on the paper's case or a path file,
 //! compared with the paper's GA baseline, optionally replanned around a deflection.
 
-use super::{print, read_text};
-use millpath::gcode::five_axis::{
-    FeedMode, FiveAxisGcodeOptions, check_five_axis, write_five_axis,
-};
-use millpath::geom::Point3;
-use millpath::motion::five_axis::case::LimitsFile;
-use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, RefCurve};
-use millpath::report::five_axis_plots::deflection_charts;
-use millpath::{Error, InputError};
+use super::print;
+use millpath::Error;
+use millpath::job::five_axis::{FiveAxisRun, FiveAxisSettings};
+use millpath::motion::five_axis::{self, case::LimitsFile};
 use std::path::PathBuf;
 
 /// Arguments of `millpath five-axis`.
@@ -104,150 +99,55 @@ pub struct Args {
     pub html: Option<PathBuf>,
 }
 
-/// The limits and structural overrides: the paper's limits, then the file, then the flags.
-fn overrides(args: &Args) -> Result<LimitsFile, Error> {
-    let file = match &args.limits {
-        Some(p) => LimitsFile::parse(&read_text(p)?, &p.display().to_string())?,
-        None => LimitsFile::default(),
-    };
-    let flags = LimitsFile {
-        feed: args.feed,
-        linear_velocity: args.linear_velocity,
-        linear_acceleration: args.linear_acceleration,
-        linear_jerk: args.linear_jerk,
-        rotary_velocity: args.rotary_velocity,
-        rotary_acceleration: args.rotary_acceleration,
-        rotary_jerk: args.rotary_jerk,
-        tool_length: args.tool_length,
-        z1: args.z1,
-        z2: args.z2,
-    };
-    flags.validate("command-line flags")?;
-    Ok(file.overridden_by(&flags))
+impl Args {
+    /// The five-axis job's settings these flags give.
+    fn settings(&self) -> FiveAxisSettings {
+        FiveAxisSettings {
+            case: self.case.clone(),
+            path: self.path.clone(),
+            machine: self.machine.clone(),
+            limits: self.limits.clone(),
+            flags: LimitsFile {
+                feed: self.feed,
+                linear_velocity: self.linear_velocity,
+                linear_acceleration: self.linear_acceleration,
+                linear_jerk: self.linear_jerk,
+                rotary_velocity: self.rotary_velocity,
+                rotary_acceleration: self.rotary_acceleration,
+                rotary_jerk: self.rotary_jerk,
+                tool_length: self.tool_length,
+                z1: self.z1,
+                z2: self.z2,
+            },
+            deflection: self.deflection.clone(),
+            no_deflection: self.no_deflection,
+            no_baseline: self.no_baseline,
+            dt: self.dt,
+            gcode: self
+                .gcode
+                .as_ref()
+                .map(|_| (self.program.settings(), self.g94)),
+        }
+    }
 }
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let over = overrides(args)?;
-    let limits = over.apply(&Limits::paper());
-    limits.validate("limits")?;
-    let kin = millpath::job::five_axis::kinematics(&args.machine, &over)?;
-    if args.gcode.is_some() && !matches!(kin.name(), "ac-trt" | "bc-trt") {
-        return Err(InputError::new("--machine", kin.name())
-            .at("--gcode")
-            .expected(
-                "xyzac-trt or xyzbc-trt: five-axis G-code is written for table-table machines",
-            )
-            .into());
-    }
-    // The G-code options are checked before planning: a dialect without rotary axes, bad
-    // --decimals or --spindle exit 2 at once.
-    let gcode_opts = match &args.gcode {
-        Some(_) => {
-            let decimals = args
-                .program
-                .decimals
-                .unwrap_or_else(|| args.program.dialect.default_decimals(args.program.units) + 1);
-            let go = FiveAxisGcodeOptions {
-                feed_mode: if args.g94 {
-                    FeedMode::UnitsPerMinute
-                } else {
-                    FeedMode::InverseTime
-                },
-                program: args
-                    .program
-                    .writer_options(decimals, format!("millpath five-axis {}", kin.name()))?,
-                ..FiveAxisGcodeOptions::default()
-            };
-            check_five_axis(kin.as_ref(), &go)?;
-            Some(go)
-        }
-        None => None,
-    };
-    let text = match &args.path {
-        Some(p) if args.case.is_none() => Some((read_text(p)?, p.display().to_string())),
-        _ => None,
-    };
-    let (poses, default_deflection) = millpath::job::five_axis::poses(
-        args.case.as_deref(),
-        text.as_ref().map(|(t, n)| (t.as_str(), n.as_str())),
-        kin.as_ref(),
-    )?;
-    let deflection = match &args.deflection {
-        Some(v) => {
-            let [x, y, z] = v.as_slice() else {
-                return Err(InputError::new("--deflection", format!("{v:?}"))
-                    .expected("x,y,z")
-                    .into());
-            };
-            Some(Point3::new(*x, *y, *z))
-        }
-        None if args.no_deflection => None,
-        None => default_deflection,
-    };
-    if !(args.dt.is_finite() && args.dt > 0.0) {
-        return Err(InputError::new("--dt", args.dt)
-            .expected("a finite number > 0 s")
-            .into());
-    }
-    let mut opts = FiveAxisOptions::default();
-    if args.no_baseline {
-        opts.baseline = None;
-    }
-    let out = five_axis::plan(kin.as_ref(), &poses, &limits, &opts, deflection)?;
+    let job = millpath::job::five_axis::run(&args.settings())?;
+    let kin = job.kinematics.as_ref();
     if let Some(path) = &args.csv {
-        let s = five_axis::sample(&out.segments, kin.as_ref(), args.dt);
+        let s = job.samples(args.dt);
         millpath::io::write_atomic_with(path, |w| {
             five_axis::write_csv(w, &s, kin.axis_names())
                 .map_err(|e| Error::internal(format!("CSV: {e}")))
         })?;
     }
-    if let (Some(path), Some(go)) = (&args.gcode, &gcode_opts) {
-        let segs = out.segments.clone();
-        millpath::io::write_atomic_with(path, |w| write_five_axis(w, &segs, kin.as_ref(), go))?;
+    if let (Some(path), Some(text)) = (&args.gcode, &job.gcode) {
+        millpath::io::write_atomic(path, text)?;
     }
-    let r = &out.result;
+    let r = &job.outcome.result;
     if let Some(path) = &args.html {
-        let s = five_axis::sample(&out.segments, kin.as_ref(), 1e-3);
-        let mut html = millpath::report::html::HtmlReport::new("millpath five-axis");
-        html.section(
-            "summary",
-            vec![
-                ("machine".to_owned(), r.machine.clone()),
-                ("intervals".to_owned(), r.intervals.to_string()),
-                ("total time".to_owned(), format!("{:.6} s", r.total_time_s)),
-                (
-                    "the paper's method (baseline)".to_owned(),
-                    r.baseline_time_s
-                        .map_or("not run".to_owned(), |b| format!("{b:.6} s")),
-                ),
-                (
-                    "limit violations".to_owned(),
-                    r.violations.len().to_string(),
-                ),
-            ],
-        );
-        let mut charts = super::html::five_axis_charts(&s, kin.axis_names(), &limits);
-        if let Some(d) = &r.deflection {
-            let curve = RefCurve::through(&out.poses.iter().map(|p| p.tip).collect::<Vec<_>>());
-            charts.extend(deflection_charts(
-                kin.as_ref(),
-                &curve,
-                &out.segments,
-                d,
-                &limits,
-            ));
-        }
-        for (_, caption, chart) in charts {
-            html.plot(
-                caption,
-                &millpath::report::plots::render_svg(
-                    &chart,
-                    &millpath::report::plots::PlotOptions::default(),
-                )?,
-            )?;
-        }
-        super::html::write(path, &html)?;
+        write_html(path, &job)?;
     }
     if args.json {
         print(&serde_json::to_string_pretty(r).map_err(|e| Error::internal(e.to_string()))?);
@@ -309,6 +209,36 @@ pub fn run(args: &Args) -> Result<(), Error> {
         )));
     }
     Ok(())
+}
+
+/// Writes the `--html` report: summary, the feed and axis plots, the deflection plots.
+fn write_html(path: &std::path::Path, job: &FiveAxisRun) -> Result<(), Error> {
+    let r = &job.outcome.result;
+    let mut html = millpath::report::html::HtmlReport::new("millpath five-axis");
+    let baseline = r
+        .baseline_time_s
+        .map_or("not run".to_owned(), |b| format!("{b:.6} s"));
+    html.section(
+        "summary",
+        vec![
+            ("machine".to_owned(), r.machine.clone()),
+            ("intervals".to_owned(), r.intervals.to_string()),
+            ("total time".to_owned(), format!("{:.6} s", r.total_time_s)),
+            ("the paper's method (baseline)".to_owned(), baseline),
+            (
+                "limit violations".to_owned(),
+                r.violations.len().to_string(),
+            ),
+        ],
+    );
+    let opts = millpath::report::plots::PlotOptions::default();
+    for (_, caption, chart) in job.charts() {
+        html.plot(
+            caption,
+            &millpath::report::plots::render_svg(&chart, &opts)?,
+        )?;
+    }
+    super::html::write(path, &html)
 }
 
 #[cfg(test)]

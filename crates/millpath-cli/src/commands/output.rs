@@ -9,8 +9,7 @@
 //! millpath five-axis --case paper --machine xyzac-trt --gcode traj.nc --dialect fanuc
 //! ```
 
-use millpath::Error;
-use millpath::gcode::{Coolant, Dialect, Units, WriterOptions};
+use millpath::gcode::{Coolant, Dialect, Units};
 use millpath::job::ProgramSettings;
 
 /// G-code output flags.
@@ -54,10 +53,5 @@ impl OutputArgs {
             coolant: self.coolant,
             line_numbers: self.line_numbers,
         }
-    }
-
-    /// The writer's options for these flags ([`ProgramSettings::writer_options`]).
-    pub fn writer_options(&self, decimals: u32, name: String) -> Result<WriterOptions, Error> {
-        self.settings().writer_options(decimals, name)
     }
 }

@@ -228,8 +228,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         args.select.as_deref(),
         &mut |n| super::eprint(&format!("note: {n}")),
     )?;
-    let (rep, name, m, part, shapes) =
-        (&job.report, &job.name, &job.machine, &job.part, &job.shapes);
+    let rep = &job.report;
     if let Some(out) = &args.output {
         millpath::io::write_atomic(out, &job.gcode)?;
     }
@@ -239,67 +238,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         millpath::io::write_atomic(path, text.as_bytes())?;
     }
     if let Some(path) = &args.html {
-        let plan = millpath::motion::plan_toolpath(&part.toolpath, m)
-            .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
-        let mut summary = vec![
-            super::html::machine_row(m),
-            ("strategy".to_owned(), name.clone()),
-            (
-                "cycle time".to_owned(),
-                format!("{:.2} s", rep.cycle_time_s),
-            ),
-            (
-                "path length".to_owned(),
-                format!("{:.1} mm", rep.path_length_mm),
-            ),
-            (
-                "levels, moves".to_owned(),
-                format!("{}, {}", rep.levels, rep.moves),
-            ),
-            (
-                "engagement".to_owned(),
-                format!(
-                    "max {:.1}°, mean {:.1}°, nominal {:.1}°, {:.1}% of the path above nominal",
-                    rep.max_engagement_deg,
-                    rep.mean_engagement_deg,
-                    rep.nominal_engagement_deg,
-                    100.0 * rep.share_above_nominal
-                ),
-            ),
-            (
-                "verifier".to_owned(),
-                format!(
-                    "min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm², rapids through material {}",
-                    rep.verification.min_clearance_mm,
-                    rep.verification.required_clearance_mm,
-                    rep.verification.uncut_area_mm2,
-                    rep.verification.rapids_through_material
-                ),
-            ),
-        ];
-        summary.extend(
-            rep.problems
-                .iter()
-                .map(|p| ("problem".to_owned(), p.clone())),
-        );
-        summary.extend(
-            rep.auto
-                .iter()
-                .flatten()
-                .map(|e| ("--strategy auto".to_owned(), auto_line(e))),
-        );
-        let outlines: Vec<_> = shapes
-            .iter()
-            .flat_map(|(_, s)| std::iter::once(s.outer.clone()).chain(s.islands.iter().cloned()))
-            .collect();
-        let html = super::html::toolpath_report(
-            &format!("millpath pocket {} {}", args.outline, name),
-            summary,
-            &part.toolpath,
-            &outlines,
-            &plan,
-        )?;
-        super::html::write(path, &html)?;
+        write_html(path, &args.outline, &job)?;
     }
     for n in &rep.notes {
         super::eprint(&format!("note: {n}"));
@@ -328,9 +267,18 @@ pub fn run(args: &Args) -> Result<(), Error> {
             super::print(&pocket_line(p));
         }
     }
-    super::print(&format!(
+    super::print(&summary_line(rep));
+    for p in &rep.problems {
+        super::eprint(&format!("verification: {p}"));
+    }
+    Ok(())
+}
+
+/// The summary line printed without `--json`.
+fn summary_line(rep: &millpath::job::PocketReport) -> String {
+    format!(
         "{}{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
-         {:.1}% above nominal, min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm²",
+     {:.1}% above nominal, min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm²",
         if rep.pockets.len() > 1 {
             format!(
                 "total of {} pockets, ",
@@ -350,9 +298,71 @@ pub fn run(args: &Args) -> Result<(), Error> {
         rep.verification.min_clearance_mm,
         rep.verification.required_clearance_mm,
         rep.verification.uncut_area_mm2,
-    ));
-    for p in &rep.problems {
-        super::eprint(&format!("verification: {p}"));
-    }
-    Ok(())
+    )
+}
+
+/// Writes the `--html` report: summary, viewer with playback on the machine, feed plot.
+fn write_html(
+    path: &std::path::Path,
+    outline: &str,
+    job: &millpath::job::PocketRun,
+) -> Result<(), Error> {
+    let (rep, name, m) = (&job.report, &job.name, &job.machine);
+    let plan = job.plan()?;
+    let mut summary = vec![
+        super::html::machine_row(m),
+        ("strategy".to_owned(), name.clone()),
+        (
+            "cycle time".to_owned(),
+            format!("{:.2} s", rep.cycle_time_s),
+        ),
+        (
+            "path length".to_owned(),
+            format!("{:.1} mm", rep.path_length_mm),
+        ),
+        (
+            "levels, moves".to_owned(),
+            format!("{}, {}", rep.levels, rep.moves),
+        ),
+        (
+            "engagement".to_owned(),
+            format!(
+                "max {:.1}°, mean {:.1}°, nominal {:.1}°, {:.1}% of the path above nominal",
+                rep.max_engagement_deg,
+                rep.mean_engagement_deg,
+                rep.nominal_engagement_deg,
+                100.0 * rep.share_above_nominal
+            ),
+        ),
+        (
+            "verifier".to_owned(),
+            format!(
+                "min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm², rapids through material {}",
+                rep.verification.min_clearance_mm,
+                rep.verification.required_clearance_mm,
+                rep.verification.uncut_area_mm2,
+                rep.verification.rapids_through_material
+            ),
+        ),
+    ];
+    summary.extend(
+        rep.problems
+            .iter()
+            .map(|p| ("problem".to_owned(), p.clone())),
+    );
+    summary.extend(
+        rep.auto
+            .iter()
+            .flatten()
+            .map(|e| ("--strategy auto".to_owned(), auto_line(e))),
+    );
+    let outlines = job.outlines();
+    let html = super::html::toolpath_report(
+        &format!("millpath pocket {outline} {name}"),
+        summary,
+        &job.part.toolpath,
+        &outlines,
+        &plan,
+    )?;
+    super::html::write(path, &html)
 }

@@ -1,15 +1,12 @@
 //! `millpath sweep`: cycle time of the spiral against zigzag over transition ratios and
 //! feeds (the adaptive-spiral paper's Table 1 and Figure 10).
 //!
-//! [`sweep`] is shared with `millpath demo`, which draws the paper's Figure 10 from it.
+//! The sweep itself is [`millpath::job::sweep`], shared with `millpath demo`.
 
 use super::pocket::{CommonArgs, load_outline};
 use millpath::Error;
-use millpath::machine::Machine;
 use millpath::report::plots;
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, SpiralMorph, StrategyKind};
-use millpath::toolpath::Tool;
-use serde::Serialize;
+use millpath::strategy::pocket::PocketShape;
 use std::path::PathBuf;
 
 /// Arguments of `millpath sweep`.
@@ -38,123 +35,6 @@ pub struct Args {
     /// Print the table as one JSON object on stdout.
     #[arg(long)]
     pub json: bool,
-}
-
-/// The result of a sweep: zigzag's time per feed and the spiral's per (C, feed).
-#[derive(Debug, Clone, Serialize)]
-pub struct Sweep {
-    /// Machine whose planner timed every toolpath.
-    pub machine: String,
-    /// Transition ratios C.
-    pub ratios: Vec<f64>,
-    /// Feeds, in/min.
-    pub feeds_ipm: Vec<f64>,
-    /// Zigzag cycle time per feed, s.
-    pub zigzag_s: Vec<f64>,
-    /// Spiral cycle time, `spiral_s[c][f]` for `ratios[c]` and `feeds_ipm[f]`, s.
-    pub spiral_s: Vec<Vec<f64>>,
-    /// How the times were computed.
-    pub cycle_time_model: String,
-}
-
-impl Sweep {
-    /// Gain of the spiral over zigzag in %, positive when the spiral is faster.
-    pub fn gain(&self, c: usize, f: usize) -> f64 {
-        match (
-            self.spiral_s.get(c).and_then(|r| r.get(f)),
-            self.zigzag_s.get(f),
-        ) {
-            (Some(t), Some(z)) if *z > 0.0 => 100.0 * (z - t) / z,
-            _ => f64::NAN,
-        }
-    }
-
-    /// The paper's Figure 10: one curve per feed, zigzag dashed in the same colour.
-    pub fn chart(&self) -> plots::Chart {
-        let curves: Vec<(String, Vec<(f64, f64)>)> = self
-            .feeds_ipm
-            .iter()
-            .enumerate()
-            .map(|(f, feed)| {
-                (
-                    format!("{feed:.0} in/min"),
-                    self.ratios
-                        .iter()
-                        .enumerate()
-                        .filter_map(|(c, r)| Some((*r, *self.spiral_s.get(c)?.get(f)?)))
-                        .collect(),
-                )
-            })
-            .collect();
-        let refs: Vec<(String, f64)> = self
-            .feeds_ipm
-            .iter()
-            .zip(&self.zigzag_s)
-            .map(|(_, t)| (String::new(), *t))
-            .collect();
-        let mut chart = plots::cycle_time_vs_transition_with(&curves, &refs);
-        chart.title = format!(
-            "Cycle time against C on {}: spiral solid, zigzag dashed",
-            self.machine
-        );
-        chart
-    }
-}
-
-/// Times zigzag at every feed and the spiral at every (C, feed) on `machine`; `base` gives
-/// everything else. `progress` is called after each toolpath with (done, total).
-pub fn sweep(
-    shape: &PocketShape,
-    tool: &Tool,
-    base: &PocketOptions,
-    machine: &Machine,
-    ratios: &[f64],
-    feeds_ipm: &[f64],
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<Sweep, Error> {
-    let total = feeds_ipm.len() * (1 + ratios.len());
-    let mut done = 0;
-    // The transition C is the paper's central spiral's, which the fronts and harmonic morphs
-    // draw; the default (offsets) morph has none.
-    let morph = match base.morph {
-        SpiralMorph::Offsets => SpiralMorph::Fronts,
-        m => m,
-    };
-    let mut time = |kind: StrategyKind, feed: f64, c: f64| -> Result<f64, Error> {
-        let o = PocketOptions {
-            feed: feed * 25.4 / 60.0,
-            transition: c,
-            morph,
-            ..base.clone()
-        };
-        let tp = pocket::toolpath(kind, shape, tool, &o)?;
-        let t = millpath::motion::cycle_time(&tp, machine)
-            .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
-        done += 1;
-        progress(done, total);
-        Ok(t)
-    };
-    let zigzag_s = feeds_ipm
-        .iter()
-        .map(|f| time(StrategyKind::Zigzag, *f, base.transition))
-        .collect::<Result<Vec<_>, _>>()?;
-    let spiral_s = ratios
-        .iter()
-        .map(|c| {
-            feeds_ipm
-                .iter()
-                .map(|f| time(StrategyKind::Spiral, *f, *c))
-                .collect::<Result<Vec<_>, _>>()
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Sweep {
-        machine: machine.name.clone(),
-        ratios: ratios.to_vec(),
-        feeds_ipm: feeds_ipm.to_vec(),
-        zigzag_s,
-        spiral_s,
-        cycle_time_model: millpath::motion::CYCLE_TIME_MODEL.to_owned(),
-    })
 }
 
 /// Parses the comma-separated list given to `flag`; an entry that is not a number accepted by
@@ -226,7 +106,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         args.common
             .with_walls(PocketShape::new(loops.outer, loops.islands, &args.outline)?)?;
     let machine = super::load_machine(&args.common.machine)?;
-    let table = sweep(
+    let table = millpath::job::sweep::sweep(
         &shape,
         &tool,
         &base,
@@ -235,21 +115,8 @@ pub fn run(args: &Args) -> Result<(), Error> {
         &feeds,
         &mut |_, _| {},
     )?;
-    let mut rows = vec!["feed_ipm,strategy,C,cycle_time_s,gain_pct".to_owned()];
-    for (f, t) in feeds.iter().zip(&table.zigzag_s) {
-        rows.push(format!("{f},zigzag,,{t:.3},"));
-    }
-    for (c, ratio) in ratios.iter().enumerate() {
-        for (f, feed) in feeds.iter().enumerate() {
-            let t = table.spiral_s[c][f];
-            rows.push(format!(
-                "{feed},spiral,{ratio},{t:.3},{:.2}",
-                table.gain(c, f)
-            ));
-        }
-    }
     if let Some(path) = &args.csv {
-        millpath::io::write_atomic(path, (rows.join("\n") + "\n").as_bytes())?;
+        millpath::io::write_atomic(path, table.csv().as_bytes())?;
     }
     if let Some(path) = &args.plot {
         write_chart(&table.chart(), path)?;

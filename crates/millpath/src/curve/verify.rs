@@ -96,3 +96,18 @@ pub fn polyline_min_distance(c: &CompositeCurve, poly: &[Point], per_segment: us
     }
     worst
 }
+
+/// The chordal deviation of each segment of a flattening of `c` on its own
+/// ([`chordal_deviation`] segment by segment, `samples` points per segment): the
+/// per-segment figure the reports plot against the tolerance.
+pub fn segment_deviations(
+    c: &CompositeCurve,
+    flat: &super::Flattening,
+    samples: usize,
+) -> Vec<f64> {
+    flat.params
+        .windows(2)
+        .zip(flat.points.windows(2))
+        .map(|(p, q)| chordal_deviation(c, p, q, samples))
+        .collect()
+}

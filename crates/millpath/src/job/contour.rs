@@ -5,9 +5,13 @@
 //! (T > 2ρ), and the program timed on the machine with the path tolerance the program states.
 
 use super::program::ProgramSettings;
+use crate::curve::Flattening;
+use crate::curve::flatten::flatten_curve;
 use crate::curve::{self, CompositeCurve, CurveKind};
 use crate::gcode::{self, WriterOptions};
+use crate::geom::Outline;
 use crate::machine::Machine;
+use crate::motion::{Plan, plan_toolpath};
 use crate::strategy::contour::{self, ContourOptions, ContourReport, Side};
 use crate::{Error, InputError, Tool, Toolpath};
 
@@ -99,6 +103,23 @@ pub struct ContourRun {
     pub name: String,
     /// Warnings of the contour strategy.
     pub warnings: Vec<String>,
+}
+
+impl ContourRun {
+    /// The program's plan on the machine it states ([`ContourRun::machine`]).
+    pub fn plan(&self) -> Result<Plan, Error> {
+        plan_toolpath(&self.toolpath, &self.machine)
+            .map_err(|e| e.engine_made("timing the contour toolpath"))
+    }
+
+    /// The curve flattened at the tolerance, at least 0.001 mm (what a picture or a plot of
+    /// the per-segment deviation needs), and that flattening as an outline named after the
+    /// input.
+    pub fn outline(&self) -> Result<(Flattening, Outline), Error> {
+        let flat = flatten_curve(&self.curve, self.options.tolerance.max(1e-3))?;
+        let outline = Outline::from_points(&flat.points, &self.name)?;
+        Ok((flat, outline))
+    }
 }
 
 /// The machine a contour program is timed on: `machine` with the path tolerance the
@@ -302,5 +323,72 @@ pub fn parse_curve(s: &str) -> Result<CurveKind, InputError> {
         _ => Err(InputError::new("curve", s)
             .at("--curve")
             .expected("four-point, catmull-rom or spline")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::verify::{chordal_deviation, segment_deviations};
+    use crate::motion::verify::{VerifyOptions, verify_plan};
+
+    const PAPER: &str = "x,y,group\n60,345,1\n100,325,1\n140,295,1\n180,245,1\n340,205,2\n260,385,2\n140,375,2\n60,345,2\n";
+
+    fn paper_run(tolerance: f64, program: &ProgramSettings) -> Result<ContourRun, Error> {
+        let settings = ContourSettings {
+            tolerance: Some(tolerance),
+            ..ContourSettings::default()
+        };
+        let source = ContourSource::Points {
+            text: PAPER,
+            name: "paper.csv",
+        };
+        run(source, &settings, program)
+    }
+
+    #[test]
+    fn program_reads_back_and_its_plan_passes_the_verifier() {
+        let job = paper_run(0.01, &ProgramSettings::default()).unwrap();
+        let (tp, _) = gcode::read_str(&job.gcode, gcode::ReaderOptions::default()).unwrap();
+        assert_eq!(tp.moves.len(), job.report.blocks);
+        // The budget: rounding of the decimals written plus the chord within the tolerance.
+        let rho = gcode::rounding_error_mm(job.report.decimals, gcode::Units::Mm);
+        assert!(
+            job.report.max_deviation_mm + rho <= 0.01,
+            "{:?}",
+            job.report
+        );
+        assert!(job.machine.path_tolerance <= 0.01);
+        let plan = job.plan().unwrap();
+        let moves: Vec<_> = job.toolpath.segments().map(|(f, m)| (f, *m)).collect();
+        let v = verify_plan(&plan, &moves, &job.machine, &VerifyOptions::default()).unwrap();
+        assert_eq!(v.violations, 0);
+        assert!(plan.total_time() >= job.report.time_at_programmed_feed_s);
+    }
+
+    #[test]
+    fn outline_segments_stay_within_the_tolerance() {
+        let job = paper_run(0.01, &ProgramSettings::default()).unwrap();
+        let (flat, outline) = job.outline().unwrap();
+        let per = segment_deviations(&job.curve, &flat, 200);
+        assert_eq!(per.len(), flat.points.len() - 1);
+        let worst = per.iter().copied().fold(0.0, f64::max);
+        assert!(worst <= 0.01 && worst > 0.0, "{worst}");
+        let whole = chordal_deviation(&job.curve, &flat.params, &flat.points, 200);
+        assert!((worst - whole).abs() <= 1e-12, "{worst} vs {whole}");
+        assert!(outline.signed_area().abs() > 1000.0);
+    }
+
+    #[test]
+    fn too_few_decimals_for_the_tolerance_name_the_flag() {
+        let program = ProgramSettings {
+            decimals: Some(3),
+            ..ProgramSettings::default()
+        };
+        let e = paper_run(0.0001, &program).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().contains("--decimals"), "{e}");
+        let e = paper_run(-1.0, &ProgramSettings::default()).unwrap_err();
+        assert!(e.to_string().contains("--tolerance"), "{e}");
     }
 }

@@ -1,12 +1,201 @@
-//! The five-axis job behind `millpath five-axis`: the machine's kinematics by name (with the
-//! structural overrides of a limits file: tool length, the paper machine's z1 and z2) and the
-//! poses of the paper's case or of a path file, each pose checked reachable; planning itself
-//! is [`crate::motion::five_axis::plan`].
+//! The five-axis job behind `millpath five-axis`: the limits (the paper's, overridden by a
+//! limits file, overridden by the flags), the machine's kinematics by name (with the
+//! structural overrides: tool length, the paper machine's z1 and z2), the poses of the
+//! paper's case or of a path file, each pose checked reachable, the plan
+//! ([`crate::motion::five_axis::plan`], verified by dense sampling and the quintics' analytic
+//! extrema) and, for table-table machines, the joint program (G93 inverse time or G94).
+//! Every setting is checked before planning.
 
+use super::program::ProgramSettings;
+use crate::gcode::five_axis::{FeedMode, FiveAxisGcodeOptions, check_five_axis, write_five_axis};
 use crate::geom::Point3;
 use crate::machine::kinematics::{HeadHead, Kinematics, PaperAb, Pose, TableTable, TrtKind};
 use crate::motion::five_axis::case::{self, LimitsFile};
+use crate::motion::five_axis::{self as planner, FiveAxisOptions, FiveAxisOutcome, Limits};
 use crate::{Error, InputError};
+use std::path::PathBuf;
+
+/// A five-axis job's settings, named as `millpath five-axis`'s flags.
+#[derive(Debug, Clone)]
+pub struct FiveAxisSettings {
+    /// Built-in case (`paper`).
+    pub case: Option<String>,
+    /// Path file (`# unit: mm|m`, header `x,y,z,i,j,k`).
+    pub path: Option<PathBuf>,
+    /// Machine kinematics by name ([`MACHINES`] and their aliases).
+    pub machine: String,
+    /// Limits file (TOML).
+    pub limits: Option<PathBuf>,
+    /// Limits and structural overrides given as flags (over the file's).
+    pub flags: LimitsFile,
+    /// Deflected tool position `x,y,z`, mm (three values).
+    pub deflection: Option<Vec<f64>>,
+    /// Skip the case's own deflection.
+    pub no_deflection: bool,
+    /// Skip the paper's GA baseline.
+    pub no_baseline: bool,
+    /// Sample step of [`FiveAxisRun::samples`], s.
+    pub dt: f64,
+    /// Write a joint program with these settings; `g94` for feeds in mm/min instead of G93.
+    pub gcode: Option<(ProgramSettings, bool)>,
+}
+
+impl Default for FiveAxisSettings {
+    fn default() -> Self {
+        FiveAxisSettings {
+            case: None,
+            path: None,
+            machine: "paper".into(),
+            limits: None,
+            flags: LimitsFile::default(),
+            deflection: None,
+            no_deflection: false,
+            no_baseline: false,
+            dt: 0.005,
+            gcode: None,
+        }
+    }
+}
+
+/// What a five-axis job made.
+pub struct FiveAxisRun {
+    /// The machine.
+    pub kinematics: Box<dyn Kinematics>,
+    /// The limits planned with.
+    pub limits: Limits,
+    /// The plan, its verification and the baseline.
+    pub outcome: FiveAxisOutcome,
+    /// The joint program, when asked for.
+    pub gcode: Option<Vec<u8>>,
+}
+
+impl std::fmt::Debug for FiveAxisRun {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FiveAxisRun")
+            .field("kinematics", &self.kinematics.name())
+            .field("limits", &self.limits)
+            .field("result", &self.outcome.result)
+            .field("gcode_bytes", &self.gcode.as_ref().map(Vec::len))
+            .finish_non_exhaustive()
+    }
+}
+
+impl FiveAxisRun {
+    /// The plan sampled every `dt` s.
+    pub fn samples(&self, dt: f64) -> planner::Samples {
+        planner::sample(&self.outcome.segments, self.kinematics.as_ref(), dt)
+    }
+
+    /// The feed and per-axis charts, then (with a deflection) the replanning's:
+    /// `(file stem, caption, chart)`, the axes sampled every millisecond.
+    pub fn charts(&self) -> Vec<(&'static str, String, crate::report::plots::Chart)> {
+        use crate::report::five_axis_plots::{axis_charts, deflection_charts};
+        let kin = self.kinematics.as_ref();
+        let mut charts = axis_charts(&self.samples(1e-3), kin.axis_names(), &self.limits);
+        if let Some(d) = &self.outcome.result.deflection {
+            let tips: Vec<_> = self.outcome.poses.iter().map(|p| p.tip).collect();
+            let curve = planner::RefCurve::through(&tips);
+            let segs = &self.outcome.segments;
+            charts.extend(deflection_charts(kin, &curve, segs, d, &self.limits));
+        }
+        charts
+    }
+}
+
+/// The limits and structural overrides: the paper's limits, then the file, then the flags.
+fn overrides(s: &FiveAxisSettings) -> Result<LimitsFile, Error> {
+    let file = match &s.limits {
+        Some(p) => LimitsFile::parse(&crate::io::read_text(p)?, &p.display().to_string())?,
+        None => LimitsFile::default(),
+    };
+    s.flags.validate("command-line flags")?;
+    Ok(file.overridden_by(&s.flags))
+}
+
+/// The G-code options, checked before planning: a dialect without rotary axes, bad
+/// decimals or spindle are refused at once.
+fn gcode_options(
+    kin: &dyn Kinematics,
+    program: &ProgramSettings,
+    g94: bool,
+) -> Result<FiveAxisGcodeOptions, Error> {
+    if !matches!(kin.name(), "ac-trt" | "bc-trt") {
+        return Err(InputError::new("--machine", kin.name())
+            .at("--gcode")
+            .expected(
+                "xyzac-trt or xyzbc-trt: five-axis G-code is written for table-table machines",
+            )
+            .into());
+    }
+    let decimals = program
+        .decimals
+        .unwrap_or_else(|| program.dialect.default_decimals(program.units) + 1);
+    let go = FiveAxisGcodeOptions {
+        feed_mode: if g94 {
+            FeedMode::UnitsPerMinute
+        } else {
+            FeedMode::InverseTime
+        },
+        program: program.writer_options(decimals, format!("millpath five-axis {}", kin.name()))?,
+        ..FiveAxisGcodeOptions::default()
+    };
+    check_five_axis(kin, &go)?;
+    Ok(go)
+}
+
+/// Runs the five-axis job: settings checked, poses read, planned, the program written.
+pub fn run(s: &FiveAxisSettings) -> Result<FiveAxisRun, Error> {
+    let over = overrides(s)?;
+    let limits = over.apply(&Limits::paper());
+    limits.validate("limits")?;
+    let kin = kinematics(&s.machine, &over)?;
+    let gcode = match &s.gcode {
+        Some((program, g94)) => Some(gcode_options(kin.as_ref(), program, *g94)?),
+        None => None,
+    };
+    let text = match &s.path {
+        Some(p) if s.case.is_none() => Some((crate::io::read_text(p)?, p.display().to_string())),
+        _ => None,
+    };
+    let path = text.as_ref().map(|(t, n)| (t.as_str(), n.as_str()));
+    let (poses, default_deflection) = poses(s.case.as_deref(), path, kin.as_ref())?;
+    let deflection = match &s.deflection {
+        Some(v) => {
+            let [x, y, z] = v.as_slice() else {
+                return Err(InputError::new("--deflection", format!("{v:?}"))
+                    .expected("x,y,z")
+                    .into());
+            };
+            Some(Point3::new(*x, *y, *z))
+        }
+        None if s.no_deflection => None,
+        None => default_deflection,
+    };
+    if !(s.dt.is_finite() && s.dt > 0.0) {
+        return Err(InputError::new("--dt", s.dt)
+            .expected("a finite number > 0 s")
+            .into());
+    }
+    let mut opts = FiveAxisOptions::default();
+    if s.no_baseline {
+        opts.baseline = None;
+    }
+    let outcome = planner::plan(kin.as_ref(), &poses, &limits, &opts, deflection)?;
+    let gcode = match gcode {
+        Some(go) => {
+            let mut buf = Vec::new();
+            write_five_axis(&mut buf, &outcome.segments, kin.as_ref(), &go)?;
+            Some(buf)
+        }
+        None => None,
+    };
+    Ok(FiveAxisRun {
+        kinematics: kin,
+        limits,
+        outcome,
+        gcode,
+    })
+}
 
 /// The machines [`kinematics`] takes.
 pub const MACHINES: &[&str] = &["paper", "xyzac-trt", "xyzbc-trt", "head-head"];
@@ -83,5 +272,107 @@ pub fn poses(
         (None, None) => Err(InputError::new("input", "none")
             .expected("--case paper or a path file")
             .into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gcode::five_axis::read_five_axis;
+
+    fn settings(machine: &str) -> FiveAxisSettings {
+        FiveAxisSettings {
+            case: Some("paper".into()),
+            machine: machine.into(),
+            no_baseline: true,
+            ..FiveAxisSettings::default()
+        }
+    }
+
+    /// The paper's case on a table-table machine: the verifier finds no violation, and the
+    /// G93 program read back takes the plan's time block by block.
+    #[test]
+    fn paper_case_program_takes_the_planned_time() {
+        let s = FiveAxisSettings {
+            gcode: Some((ProgramSettings::default(), false)),
+            no_deflection: true,
+            ..settings("xyzac-trt")
+        };
+        let job = run(&s).unwrap();
+        let r = &job.outcome.result;
+        assert!(r.violations.is_empty(), "{:?}", r.violations);
+        assert!(r.baseline_time_s.is_none() && r.deflection.is_none());
+        let text = String::from_utf8(job.gcode.clone().unwrap()).unwrap();
+        let names = job.kinematics.axis_names();
+        let blocks = read_five_axis(&text, crate::gcode::Dialect::LinuxCnc, names, "t").unwrap();
+        let secs: f64 = blocks.iter().filter(|b| !b.rapid).map(|b| b.seconds).sum();
+        assert!(
+            (secs - r.total_time_s).abs() < 1e-3 * r.total_time_s,
+            "{secs} vs {}",
+            r.total_time_s
+        );
+        let samples = job.samples(0.01);
+        assert!((samples.t.last().unwrap() - r.total_time_s).abs() < 1e-9);
+        assert_eq!(job.charts().len(), 4);
+    }
+
+    /// The paper machine with its deflection: the replanning's charts follow the axis
+    /// charts, and the replanned intervals pass the verifier too.
+    #[test]
+    fn paper_case_with_its_deflection() {
+        let job = run(&settings("paper")).unwrap();
+        let r = &job.outcome.result;
+        assert!(r.violations.is_empty() && r.deflection_violations.is_empty());
+        assert!(r.deflection.is_some());
+        assert_eq!(job.charts().len(), 4 + 5);
+    }
+
+    #[test]
+    fn bad_settings_name_their_flag_before_planning() {
+        let cases: [(FiveAxisSettings, &str); 5] = [
+            (
+                FiveAxisSettings {
+                    gcode: Some((ProgramSettings::default(), false)),
+                    ..settings("paper")
+                },
+                "--gcode",
+            ),
+            (
+                FiveAxisSettings {
+                    dt: 0.0,
+                    ..settings("paper")
+                },
+                "--dt",
+            ),
+            (
+                FiveAxisSettings {
+                    deflection: Some(vec![1.0, 2.0]),
+                    ..settings("paper")
+                },
+                "--deflection",
+            ),
+            (
+                FiveAxisSettings {
+                    flags: LimitsFile {
+                        feed: Some(0.0),
+                        ..LimitsFile::default()
+                    },
+                    ..settings("paper")
+                },
+                "feed = 0",
+            ),
+            (
+                FiveAxisSettings {
+                    case: Some("other".into()),
+                    ..settings("paper")
+                },
+                "--case",
+            ),
+        ];
+        for (s, needle) in cases {
+            let e = run(&s).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{e}");
+            assert!(e.to_string().contains(needle), "{needle}: {e}");
+        }
     }
 }

@@ -6,10 +6,13 @@
 //! This is the top layer: it may use every other module, and none uses it.
 
 pub mod contour;
+pub mod estimate;
 pub mod five_axis;
 pub mod pocket;
 pub mod pocket_report;
 pub mod program;
+pub mod sweep;
+pub mod timing;
 pub mod verify;
 
 use crate::Error;
@@ -37,6 +40,32 @@ pub fn load_outline(name: &str, import: &ImportSettings) -> Result<(Loops, Optio
     crate::io::read_outline_file(name, import)
 }
 
+/// The built-in sample part (after the adaptive-spiral paper's Figure 17) as a drawing: its
+/// pockets written as a DXF (LWPOLYLINEs with bulges) and read back through the DXF reader,
+/// the path any drawing takes. Returns the DXF text and the pockets read back, named
+/// `pocket 1`, `pocket 2`, ... (`origin` names the drawing in messages).
+pub fn sample_part_drawing(
+    origin: &str,
+) -> Result<(String, Vec<(String, crate::strategy::pocket::PocketShape)>), Error> {
+    let drawn = samples::structural_part();
+    let dxf = crate::io::dxf_out::write_outlines(drawn.iter().map(|(_, s)| &s.outer), "POCKETS");
+    let loops = crate::io::dxf::parse(
+        dxf.as_bytes(),
+        origin,
+        &crate::io::dxf::DxfOptions::default(),
+    )?;
+    let mut part = Vec::new();
+    for (i, p) in loops.pockets().into_iter().enumerate() {
+        let shape = crate::strategy::pocket::PocketShape::new(
+            p.outer,
+            p.islands,
+            &format!("{origin}, pocket {}", i + 1),
+        )?;
+        part.push((format!("pocket {}", i + 1), shape));
+    }
+    Ok((dxf, part))
+}
+
 /// The machine named by `spec`: a preset name (see `Machine::presets`) or the path of a
 /// TOML machine profile (anything ending in `.toml`, or an existing file). Every job that
 /// gives a cycle time takes its machine through this one function.
@@ -46,5 +75,28 @@ pub fn load_machine(spec: &str) -> Result<Machine, Error> {
         Ok(Machine::from_toml_str(&text, spec)?)
     } else {
         Ok(Machine::preset(spec).map_err(|e| e.at("--machine"))?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sample part read back from its DXF has the drawn pockets' areas.
+    #[test]
+    fn sample_part_survives_the_dxf_round_trip() {
+        let (dxf, part) = sample_part_drawing("part.dxf").unwrap();
+        assert!(dxf.contains("LWPOLYLINE"));
+        let drawn = samples::structural_part();
+        assert_eq!(part.len(), drawn.len());
+        let area = |o: &crate::geom::Outline| o.signed_area().abs();
+        let mut read: Vec<f64> = part.iter().map(|(_, s)| area(&s.outer)).collect();
+        let mut want: Vec<f64> = drawn.iter().map(|(_, s)| area(&s.outer)).collect();
+        read.sort_by(f64::total_cmp);
+        want.sort_by(f64::total_cmp);
+        for (r, w) in read.iter().zip(&want) {
+            assert!((r - w).abs() < 1e-6 * w, "{r} vs {w}");
+        }
+        assert_eq!(part[0].0, "pocket 1");
     }
 }

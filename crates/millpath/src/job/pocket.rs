@@ -367,6 +367,22 @@ pub struct PocketRun {
     pub machine: Machine,
 }
 
+impl PocketRun {
+    /// The part's toolpath planned on [`PocketRun::machine`] (for playback and the feed plot).
+    pub fn plan(&self) -> Result<crate::motion::Plan, Error> {
+        crate::motion::plan_toolpath(&self.part.toolpath, &self.machine)
+            .map_err(|e| e.engine_made("timing the pocket toolpath"))
+    }
+
+    /// Every outline of the pockets cut: each outer outline followed by its islands.
+    pub fn outlines(&self) -> Vec<crate::geom::Outline> {
+        self.shapes
+            .iter()
+            .flat_map(|(_, s)| std::iter::once(s.outer.clone()).chain(s.islands.iter().cloned()))
+            .collect()
+    }
+}
+
 /// Plans the pockets of `loops` (named `outline` in messages) selected by `select` (`1,3`,
 /// `2-4`; all when `None`), writes the program and reports it; a drawing note of the bottom
 /// outline goes to `note`.
@@ -442,4 +458,55 @@ pub fn run(
         name,
         machine,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Outline, Point};
+    use crate::motion::verify::{VerifyOptions, verify_plan};
+
+    fn square(x0: f64, y0: f64, side: f64, name: &str) -> Outline {
+        let pts = [(0.0, 0.0), (side, 0.0), (side, side), (0.0, side)]
+            .map(|(x, y)| Point::new(x0 + x, y0 + y));
+        Outline::from_points(&pts, name).unwrap()
+    }
+
+    /// A 60 mm square pocket round a 12 mm island: the part's plan passes the limit
+    /// verifier and takes the time the written program is read back with (within the
+    /// rounding of its coordinates); the outlines are the pocket's and its island's.
+    #[test]
+    fn plan_and_outlines_of_a_pocket_with_an_island() {
+        let loops = Loops::single(
+            square(0.0, 0.0, 60.0, "outer"),
+            vec![square(24.0, 24.0, 12.0, "island")],
+        );
+        let settings = PocketSettings {
+            strategy: "offset".into(),
+            tool_diameter: 6.0,
+            depth: 3.0,
+            step_down: 3.0,
+            ..PocketSettings::default()
+        };
+        let run = run(
+            &loops,
+            "square",
+            &settings,
+            &ProgramSettings::default(),
+            None,
+            &mut |_| {},
+        )
+        .unwrap();
+        assert!(run.report.problems.is_empty(), "{:?}", run.report.problems);
+        let plan = run.plan().unwrap();
+        let moves: Vec<_> = run.part.toolpath.segments().map(|(f, m)| (f, *m)).collect();
+        let v = verify_plan(&plan, &moves, &run.machine, &VerifyOptions::default()).unwrap();
+        assert_eq!(v.violations, 0);
+        let (t, r) = (plan.total_time(), run.report.cycle_time_s);
+        assert!((t - r).abs() < 0.01 * r, "{t} vs {r}");
+        let outlines = run.outlines();
+        assert_eq!(outlines.len(), 2);
+        let areas: Vec<f64> = outlines.iter().map(|o| o.signed_area().abs()).collect();
+        assert!((areas[0] - 3600.0).abs() < 1e-9 && (areas[1] - 144.0).abs() < 1e-9);
+    }
 }

@@ -1,4 +1,5 @@
-//! Five-axis deflection plots, in the style of the five-axis paper's Figures 9 and 10.
+//! Five-axis plots, in the style of the five-axis paper's Figures 6-7 (feed and axes) and 9-10
+//! (deflection).
 //!
 //! * [`deflection_path`] (Figure 9): the tool tip near the deflected point, drawn in the plane
 //!   that holds the reference curve's tangent at the projection and the offset of the
@@ -11,13 +12,16 @@
 //!   rotary axes), then velocity, acceleration and jerk as a share of each axis's limit, with
 //!   the ±limit lines (a share keeps mm and rad axes on one chart).
 //!
+//! * [`axis_charts`] (Figures 6-7): the tool tip's feed against its limit, then each motor's
+//!   velocity, acceleration and jerk as a share of its own limit.
+//!
 //! The builders take the library's plain results and return [`Chart`]s; render them with
 //! [`super::plots::render_svg`].
 
-use super::plots::{AxisSeries, Chart, Quantity, Series, SeriesStyle, axis_kinematics};
+use super::plots::{AxisSeries, Chart, HLine, Quantity, Series, SeriesStyle, axis_kinematics};
 use crate::geom::{Point3, Vec3};
 use crate::machine::kinematics::Kinematics;
-use crate::motion::five_axis::{Limits, RefCurve, Replan, Segment, sample};
+use crate::motion::five_axis::{Limits, RefCurve, Replan, Samples, Segment, sample};
 
 /// The local frame of [`deflection_path`]: origin, tangent, normal.
 fn frame(curve: &RefCurve, r: &Replan) -> (Point3, Vec3, Vec3) {
@@ -232,6 +236,117 @@ pub fn deflection_charts(
     out
 }
 
+/// The five-axis plots (the paper's Figures 6-7 style): the tool tip's feed against its limit,
+/// then each motor's velocity, acceleration and jerk as a share of its own limit (linear axes
+/// in mm and rotary axes in rad differ by three orders of magnitude). Returns
+/// `(file stem, caption, chart)`.
+pub fn axis_charts(
+    samples: &Samples,
+    names: [&str; 5],
+    limits: &Limits,
+) -> Vec<(&'static str, String, Chart)> {
+    let mut out = vec![(
+        "five_axis_feed",
+        "Five-axis: feed rate of the tool tip against time with its limit (cf. the five-axis paper's Figure 6)"
+            .to_owned(),
+        Chart {
+            title: "Feed rate of the tool tip".to_owned(),
+            x_label: "time (s)".to_owned(),
+            y_label: "feed (mm/s)".to_owned(),
+            series: vec![Series {
+                label: "feed".to_owned(),
+                points: samples.t.iter().copied().zip(samples.feed.iter().copied()).collect(),
+                style: SeriesStyle::Line,
+                colour: 0,
+            }],
+            hlines: vec![HLine {
+                label: format!("feed limit {} mm/s", limits.feed),
+                y: limits.feed,
+            }],
+            // Room above the limit line for the legend.
+            y_range: (limits.feed.is_finite() && limits.feed > 0.0)
+                .then_some((0.0, 1.3 * limits.feed)),
+        },
+    )];
+    for (quantity, values, lim, file) in [
+        (
+            Quantity::Velocity,
+            &samples.v,
+            limits.vel,
+            "five_axis_velocity",
+        ),
+        (
+            Quantity::Acceleration,
+            &samples.a,
+            limits.acc,
+            "five_axis_acceleration",
+        ),
+        (Quantity::Jerk, &samples.j, limits.jerk, "five_axis_jerk"),
+    ] {
+        // Linear axes first (mm), then the rotary ones (rad).
+        let unit = |k: usize| if k < 3 { "mm" } else { "rad" };
+        let per = match quantity {
+            Quantity::Velocity => "/s",
+            Quantity::Acceleration => "/s²",
+            Quantity::Jerk => "/s³",
+        };
+        let axes: Vec<AxisSeries> = (0..5)
+            .map(|k| AxisSeries {
+                name: format!("{} (limit {} {}{per})", names[k], lim[k], unit(k)),
+                unit: "limit".to_owned(),
+                values: values.iter().map(|q| q[k] / lim[k]).collect(),
+                limit: Some(1.0),
+            })
+            .collect();
+        let peak = axes
+            .iter()
+            .flat_map(|a| a.values.iter())
+            .filter(|v| v.is_finite())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let mut chart = axis_kinematics(quantity, &samples.t, &axes);
+        // The title names the quantity; a rotated label starting with "J" loses its top in
+        // plotters' bitmap text.
+        chart.y_label = "share of the axis limit".to_owned();
+        if peak < 0.5 {
+            // Head room above the curves for the legend (five rows, the upper third).
+            let (lo, hi) = axes
+                .iter()
+                .flat_map(|a| a.values.iter().copied())
+                .filter(|v| v.is_finite())
+                .fold((0.0_f64, 0.0_f64), |(l, h), v| (l.min(v), h.max(v)));
+            let span = (hi - lo).max(1e-9);
+            chart.y_range = Some((lo - 0.05 * span, hi + 0.6 * span));
+            // Far from every limit: the ±1 lines would flatten the curves to nothing.
+            chart.hlines.clear();
+            chart.title = format!(
+                "{} per axis: peak {:.0} % of its limit (limits ±1 off the chart)",
+                quantity.title(),
+                100.0 * peak
+            );
+        } else {
+            for h in &mut chart.hlines {
+                if !h.label.is_empty() {
+                    h.label = "axis limits ±1".to_owned();
+                }
+            }
+            chart.title = format!(
+                "{} per axis: peak {:.0} % of its limit",
+                quantity.title(),
+                100.0 * peak
+            );
+        }
+        out.push((
+            file,
+            format!(
+                "Five-axis: per-axis {} against time, as a share of each axis's limit (linear axes in mm, rotary in rad; cf. the five-axis paper's Figure 7)",
+                quantity.name()
+            ),
+            chart,
+        ));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,5 +407,58 @@ mod tests {
                 assert!((end - r.times_s[0] - r.times_s[1]).abs() < 1e-9);
             }
         }
+    }
+
+    /// The axis charts are the samples as shares of the limits: a verified plan stays within
+    /// ±1 on every axis, and the feed chart is the samples' feed under its limit line.
+    #[test]
+    fn axis_charts_are_shares_of_the_limits() {
+        let kin = PaperAb::paper();
+        let opts = FiveAxisOptions {
+            knots: KnotOptions {
+                iterations: 2,
+                ..KnotOptions::default()
+            },
+            baseline: None,
+            ..FiveAxisOptions::default()
+        };
+        let lim = Limits::paper();
+        let out = plan(&kin, &case::paper_path(), &lim, &opts, None).unwrap();
+        assert!(out.result.violations.is_empty());
+        let s = sample(&out.segments, &kin, 1e-3);
+        let charts = axis_charts(&s, kin.axis_names(), &lim);
+        let files: Vec<_> = charts.iter().map(|c| c.0).collect();
+        assert_eq!(
+            files,
+            [
+                "five_axis_feed",
+                "five_axis_velocity",
+                "five_axis_acceleration",
+                "five_axis_jerk"
+            ]
+        );
+        let feed = &charts[0].2;
+        assert_eq!(feed.series[0].points.len(), s.t.len());
+        assert!(
+            feed.series[0]
+                .points
+                .iter()
+                .all(|p| p.1 <= lim.feed * (1.0 + 1e-6))
+        );
+        assert!((feed.hlines[0].y - lim.feed).abs() <= 1e-12 * lim.feed);
+        for (_, _, c) in &charts[1..] {
+            assert_eq!(c.series.len(), 5);
+            for ser in &c.series {
+                assert!(
+                    ser.points.iter().all(|p| p.1.abs() <= 1.0 + 1e-6),
+                    "{}",
+                    c.title
+                );
+            }
+        }
+        // The velocity shares are the samples divided by the limits.
+        let k = s.t.len() / 2;
+        let v = &charts[1].2.series[0].points[k];
+        assert!((v.1 - s.v[k][0] / lim.vel[0]).abs() < 1e-12);
     }
 }

@@ -60,6 +60,15 @@ pub fn feed_along_cut(plan: &Plan, samples: &[Sample]) -> (FeedPoints, FeedPoint
     (achieved, programmed)
 }
 
+/// The feed-along-the-cut chart of a whole plan (achieved against programmed, rapids left
+/// out): the plan sampled 20,000 times (at most every millisecond), [`feed_along_cut`],
+/// drawn by [`super::plots::feed_along_path`].
+pub fn feed_chart(plan: &Plan) -> Result<super::plots::Chart, crate::Error> {
+    let samples = plan.sample((plan.total_time / 20_000.0).max(1e-3))?;
+    let (achieved, programmed) = feed_along_cut(plan, &samples);
+    Ok(super::plots::feed_along_path(&achieved, Some(&programmed)))
+}
+
 /// Time stamps and the X, Y, Z series of `quantity`, with the machine's axis limits.
 pub fn axis_series(
     samples: &[Sample],
@@ -136,5 +145,20 @@ mod tests {
         let (t, axes) = axis_series(&plan.sample(0.01).unwrap(), Quantity::Jerk, &m);
         assert_eq!(axes.len(), 3);
         assert!(axes.iter().all(|a| a.values.len() == t.len()));
+    }
+
+    #[test]
+    fn feed_chart_spans_the_cut() {
+        let mut tp = Toolpath::new(Tool::default(), Point3::ORIGIN);
+        tp.push(Move::rapid(Point3::new(0.0, 0.0, 10.0)));
+        tp.push(Move::line(Point3::new(40.0, 0.0, 10.0), 40.0));
+        tp.push(Move::line(Point3::new(40.0, 30.0, 10.0), 20.0));
+        let m = Machine::preset("hsm").unwrap();
+        let chart = feed_chart(&plan_toolpath(&tp, &m).unwrap()).unwrap();
+        assert_eq!(chart.series.len(), 2);
+        for s in &chart.series {
+            let end = s.points.last().unwrap().0;
+            assert!((end - 70.0).abs() < 0.1, "{}: ends at {end} mm", s.label);
+        }
     }
 }

@@ -113,10 +113,63 @@ impl Toolpath {
             .sum()
     }
 
+    /// The moves of level `index` as a toolpath of their own, starting where the level starts,
+    /// with that one level; the whole toolpath when there is no such level.
+    pub fn level(&self, index: usize) -> Toolpath {
+        let Some(l) = self.levels.get(index) else {
+            return self.clone();
+        };
+        let start = match l.start.checked_sub(1) {
+            Some(before) => self.moves.get(before).map_or(self.start, |m| m.to),
+            None => self.start,
+        };
+        let mut out = Toolpath::new(self.tool, start);
+        out.moves = self.moves.get(l.start..l.end).unwrap_or_default().to_vec();
+        out.levels = vec![Level {
+            start: 0,
+            end: out.moves.len(),
+            ..l.clone()
+        }];
+        out
+    }
+
     /// XY bounding box of the moves' end points and the start (arcs' bulges not included).
     pub fn bounds_xy(&self) -> Aabb {
         Aabb::from_points(
             std::iter::once(self.start.xy()).chain(self.moves.iter().map(|m| m.to.xy())),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_level_starts_where_it_starts_in_the_whole() {
+        let mut tp = Toolpath::new(Tool::default(), Point3::new(0.0, 0.0, 5.0));
+        let at = |x: f64, y: f64, z: f64| Point3::new(x, y, z);
+        for p in [at(0.0, 0.0, -1.0), at(10.0, 0.0, -1.0), at(10.0, 0.0, 5.0)] {
+            tp.push(Move::line(p, 10.0));
+        }
+        for p in [at(10.0, 0.0, -2.0), at(0.0, 0.0, -2.0), at(0.0, 4.0, -2.0)] {
+            tp.push(Move::line(p, 10.0));
+        }
+        let level = |z, start, end| Level {
+            z,
+            kind: LevelKind::Roughing,
+            start,
+            end,
+        };
+        tp.levels = vec![level(-1.0, 0, 3), level(-2.0, 3, 6)];
+        let second = tp.level(1);
+        assert_eq!(second.start, at(10.0, 0.0, 5.0));
+        assert_eq!(second.moves, tp.moves[3..6]);
+        assert_eq!(second.levels, [level(-2.0, 0, 3)]);
+        // The lengths add up: the two levels are the whole.
+        let sum = tp.level(0).cut_length() + second.cut_length();
+        assert!((sum - tp.cut_length()).abs() < 1e-12);
+        assert!((second.cut_length() - (7.0 + 10.0 + 4.0)).abs() < 1e-12);
+        assert_eq!(tp.level(2), tp);
     }
 }
