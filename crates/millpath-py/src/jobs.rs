@@ -2,7 +2,6 @@
 
 use crate::convert::{Kwargs, err, input_err, outline_arg, path_text, to_py};
 use crate::objects::{Estimate, Pocket, PocketResult, Toolpath};
-use millpath::gcode::{Dialect, ReaderOptions};
 use millpath::job::{self, PocketSettings};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -128,19 +127,29 @@ pub fn read_outline(
 
 /// The cycle time of a G-code program on a machine, as `millpath estimate FILE --machine M`
 /// gives it: `program` is a path (`str` naming an existing file, or `os.PathLike`) or the
-/// program's text.
+/// program's text. `subroutine_path` (folders) and `tool_table` (a LinuxCNC tool table) are
+/// the CLI's `--subroutine-path` and `--tool-table`; `verify` runs the limit verifier.
 #[pyfunction]
-#[pyo3(signature = (program, machine = "hsm", dialect = "auto"))]
+#[pyo3(signature = (program, machine = "hsm", dialect = "auto", *, subroutine_path = None,
+    tool_table = None, lenient = false, verify = true))]
+#[allow(clippy::too_many_arguments)]
 pub fn estimate(
     py: Python<'_>,
     program: &Bound<'_, PyAny>,
     machine: &str,
     dialect: &str,
+    subroutine_path: Option<Vec<std::path::PathBuf>>,
+    tool_table: Option<std::path::PathBuf>,
+    lenient: bool,
+    verify: bool,
 ) -> PyResult<Estimate> {
-    let (text, origin) = match path_text(program)? {
+    enum Source {
+        File(std::path::PathBuf),
+        Text(String),
+    }
+    let source = match path_text(program)? {
         Some(p) if !p.contains('\n') && std::path::Path::new(&p).is_file() => {
-            let t = millpath::io::read_text(std::path::Path::new(&p)).map_err(err)?;
-            (t, p)
+            Source::File(p.into())
         }
         Some(p) if !program.is_instance_of::<pyo3::types::PyString>() => {
             return Err(input_err(
@@ -149,44 +158,44 @@ pub fn estimate(
         }
         Some(t) if crate::convert::looks_like_path(&t) => {
             // A path to a file that is not there: read it, for the reader's message.
-            let t = millpath::io::read_text(std::path::Path::new(&t)).map_err(err)?;
-            (t, "program (text)".to_owned())
+            millpath::io::read_text(std::path::Path::new(&t)).map_err(err)?;
+            Source::Text(t)
         }
-        Some(t) => (t, "program (text)".to_owned()),
+        Some(t) => Source::Text(t),
         None => {
             return Err(pyo3::exceptions::PyTypeError::new_err(
                 "estimate() takes the program as a path or its text (str)",
             ));
         }
     };
-    let (t, tp, name) = py
+    let settings = job::estimate::EstimateSettings {
+        dialect: dialect.to_owned(),
+        lenient,
+        verify,
+        subroutine_path: subroutine_path.unwrap_or_default(),
+        tool_table,
+        whole: true,
+        ..job::estimate::EstimateSettings::default()
+    };
+    let run = py
         .allow_threads(|| -> Result<_, millpath::Error> {
             let m = job::load_machine(machine)?;
-            let d = match dialect {
-                "auto" => {
-                    // The CLI's look at the program's head: its first 8 KiB.
-                    let mut end = text.len().min(8192);
-                    while !text.is_char_boundary(end) {
-                        end -= 1;
-                    }
-                    Dialect::detect(&text[..end])
-                }
-                d => d.parse::<Dialect>().map_err(|e| e.at("--dialect"))?,
-            };
-            let t = job::program_time(text.as_bytes(), d, &origin, &m)?;
-            let ropts = ReaderOptions {
-                dialect: d,
-                origin: origin.clone(),
-                ..ReaderOptions::default()
-            };
-            let (mut tp, _) = millpath::gcode::read_str(&text, ropts)?;
-            millpath::stock::infer_levels(&mut tp);
-            Ok((t, tp, m.name))
+            match &source {
+                Source::File(p) => job::estimate::run(p, &m, &settings, &mut |_| {}),
+                Source::Text(t) => job::estimate::run_text(t, "program (text)", &m, &settings),
+            }
         })
         .map_err(err)?;
+    let tp = run.toolpath.ok_or_else(|| {
+        err(millpath::Error::internal(
+            "a whole estimate without its toolpath",
+        ))
+    })?;
     Ok(Estimate {
-        cycle_time_s: t,
-        machine: name,
+        cycle_time_s: run.estimate.cycle_time_s,
+        machine: run.estimate.machine,
+        blocks: run.estimate.blocks,
+        violations: run.estimate.violations,
         toolpath: Py::new(py, Toolpath { tp })?,
     })
 }

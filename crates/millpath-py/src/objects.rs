@@ -172,6 +172,11 @@ pub struct Estimate {
     pub cycle_time_s: f64,
     /// The machine's name.
     pub machine: String,
+    /// Blocks planned (moves after joining).
+    pub blocks: usize,
+    /// Samples over a limit found by the verifier; `None` when it did not run (`verify=False`,
+    /// or the `linuxcnc` controller model, judged against LinuxCNC instead).
+    pub violations: Option<usize>,
     /// The program read back.
     pub toolpath: Py<Toolpath>,
 }

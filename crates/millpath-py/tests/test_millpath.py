@@ -170,6 +170,42 @@ def test_estimate_equals_cli(tmp_path):
         millpath.estimate(r.gcode, machine="no-such-mill")
 
 
+def test_estimate_subroutines_and_tool_table_equal_cli(tmp_path):
+    """A program calling a subroutine file, with a tool table: the text and the file give the
+    CLI's time and blocks; the called squares are in the toolpath, offset by the tool's Z."""
+    (tmp_path / "lib").mkdir()
+    (tmp_path / "lib" / "square.ngc").write_text(
+        "o<square> sub\nG1 X#1 Y0\nG1 Y#1\nG1 X0\nG1 Y0\no<square> endsub\n"
+    )
+    text = (
+        "G21 G90 G64 P0.01\nT1 M6 G43\nG0 Z1\nG1 Z-1 F300\n#1=0\no1 repeat [3]\n"
+        "#1=[#1+10]\no<square> call [#1]\no1 endrepeat\nG0 Z5\nM2\n"
+    )
+    prog = tmp_path / "called.ngc"
+    prog.write_text(text)
+    table = tmp_path / "tool.tbl"
+    table.write_text("T1 P1 Z25 D6 ;6 mm end mill\n")
+    js = json.loads(
+        cli("estimate", prog, "--json", "--subroutine-path", tmp_path / "lib",
+            "--tool-table", table).stdout
+    )
+    for program in (text, prog):
+        e = millpath.estimate(program, subroutine_path=[tmp_path / "lib"], tool_table=table)
+        assert e.cycle_time_s == js["cycle_time_s"]
+        assert e.blocks == js["blocks"]
+        assert e.violations == 0
+        pts = e.toolpath.points
+        # The three squares (10, 20, 30 mm), cut at Z -1 + 25 (the tool length).
+        assert np.isclose(pts[:, 0].max(), 30.0) and np.isclose(pts[:, 1].max(), 30.0)
+        assert np.isclose(pts[1:, 2].min(), 24.0)  # row 0: the start, before any move
+    with pytest.raises(millpath.InputError, match="square"):
+        millpath.estimate(text, tool_table=table)
+    with pytest.raises(millpath.InputError, match="nowhere"):
+        millpath.estimate(text, subroutine_path=[tmp_path / "nowhere"])
+    assert millpath.estimate(prog, subroutine_path=[tmp_path / "lib"], tool_table=table,
+                             verify=False).violations is None
+
+
 def test_read_outline_equals_list():
     pockets = millpath.read_outline(T_PART)
     lines = cli("pocket", T_PART, "--list").stdout.strip().splitlines()

@@ -65,6 +65,9 @@ class VerifyResult:
 class Estimate:
     cycle_time_s: float
     machine: str
+    blocks: int
+    violations: Optional[int]
+    """Samples over a limit; None when the verifier did not run."""
     toolpath: Toolpath
 
 class Pocket:
@@ -146,8 +149,20 @@ def contour(
 ) -> ContourResult:
     """A free-form contour through points, as `millpath contour` makes it."""
 
-def estimate(program: PathLike, machine: str = "hsm", dialect: str = "auto") -> Estimate:
-    """Cycle time of a G-code program (a path or its text) on a machine."""
+def estimate(
+    program: PathLike,
+    machine: str = "hsm",
+    dialect: str = "auto",
+    *,
+    subroutine_path: Optional[Sequence[PathLike]] = None,
+    tool_table: Optional[PathLike] = None,
+    lenient: bool = False,
+    verify: bool = True,
+) -> Estimate:
+    """Cycle time of a G-code program (a path or its text) on a machine, as
+    `millpath estimate`: subroutine files searched in the program's folder then
+    `subroutine_path` (`--subroutine-path`), tool lengths from a LinuxCNC `tool_table`
+    (`--tool-table`), the limit verifier run unless `verify=False`."""
 
 def verify(
     program: PathLike,

@@ -151,19 +151,15 @@ fn verifies(settings: &EstimateSettings, machine: &Machine) -> bool {
 }
 
 /// Reads, plans and verifies the program at `path` on `machine`. `progress` is called with
-/// the bytes read so far every 65,536 moves.
+/// the bytes read so far every 65,536 moves. Subroutine files are searched in the program's
+/// folder, then in [`EstimateSettings::subroutine_path`].
 pub fn run(
     path: &Path,
     machine: &Machine,
     settings: &EstimateSettings,
     progress: &mut dyn FnMut(u64),
 ) -> Result<EstimateRun, Error> {
-    if !(settings.rate.is_finite() && settings.rate >= 1000.0) {
-        return Err(InputError::new("rate", settings.rate)
-            .at("--rate")
-            .expected("a sampling rate of at least 1000 Hz")
-            .into());
-    }
+    check_rate(settings)?;
     let mut file = std::fs::File::open(path).map_err(|e| unreadable(path, "readable", &e))?;
     let dialect = if settings.dialect == "auto" {
         let mut head = Vec::with_capacity(DETECT_BYTES);
@@ -176,23 +172,72 @@ pub fn run(
     } else {
         dialect(&settings.dialect, "")?
     };
-    let opts = ReaderOptions {
+    let opts = reader_options(dialect, path.display().to_string(), machine, settings)
+        .with_program_files(
+            path,
+            &settings.subroutine_path,
+            settings.tool_table.as_deref(),
+        )?;
+    run_source(file, opts, machine, settings, progress)
+}
+
+/// [`run`] on a program's text, named `origin` in messages. It has no folder of its own:
+/// subroutine files are searched in [`EstimateSettings::subroutine_path`] only.
+pub fn run_text(
+    text: &str,
+    origin: &str,
+    machine: &Machine,
+    settings: &EstimateSettings,
+) -> Result<EstimateRun, Error> {
+    check_rate(settings)?;
+    let d = dialect(&settings.dialect, text)?;
+    let opts = reader_options(d, origin.to_owned(), machine, settings).with_program_files(
+        Path::new(""),
+        &settings.subroutine_path,
+        settings.tool_table.as_deref(),
+    )?;
+    run_source(text.as_bytes(), opts, machine, settings, &mut |_| {})
+}
+
+fn check_rate(settings: &EstimateSettings) -> Result<(), Error> {
+    if settings.rate.is_finite() && settings.rate >= 1000.0 {
+        Ok(())
+    } else {
+        Err(InputError::new("rate", settings.rate)
+            .at("--rate")
+            .expected("a sampling rate of at least 1000 Hz")
+            .into())
+    }
+}
+
+fn reader_options(
+    dialect: Dialect,
+    origin: String,
+    machine: &Machine,
+    settings: &EstimateSettings,
+) -> ReaderOptions {
+    ReaderOptions {
         dialect,
         lenient: settings.lenient,
-        origin: path.display().to_string(),
+        origin,
         // LinuxCNC stops where its task waits for motion (spindle, coolant, tool commands).
         sync_points: (machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait),
         ..ReaderOptions::default()
     }
-    .with_program_files(
-        path,
-        &settings.subroutine_path,
-        settings.tool_table.as_deref(),
-    )?;
+}
+
+/// The estimate of the program `source` holds, read with `opts`.
+fn run_source<R: Read>(
+    source: R,
+    opts: ReaderOptions,
+    machine: &Machine,
+    settings: &EstimateSettings,
+    progress: &mut dyn FnMut(u64),
+) -> Result<EstimateRun, Error> {
     let start = opts.start;
     let count = Rc::new(Cell::new(0));
     let counting = Counting {
-        inner: file,
+        inner: source,
         count: Rc::clone(&count),
     };
     let mut reader = Reader::new(BufReader::new(counting), opts);
