@@ -138,6 +138,24 @@ fn offsets_as_rs274() {
 }
 
 #[test]
+fn machine_codes_as_rs274() {
+    for p in [
+        // G7 diameter mode halves X (absolute and incremental), G8 ends it.
+        "G21 G90\nG7 G0 X20 Z1\nG1 X10 Z-1 F100\nG91 G1 X4\nG90 G8 G1 X20\nM2\n",
+        // G80 with a motion code in one block: the motion code wins, in either order.
+        "G21 G90 G80 G0 X1 Y1\nG0 G80 X2\nG1 G80 X3 F100\nM2\n",
+        // Spindle, override and output switches do not move the tool.
+        "G21 G90\nG96 D2500 S200 M3\nG1 X5 F100\nG97 S1000\nM48\nM49\nM50 P0\nM51 P1\n\
+         M52 P1\nM53 P0\nM62 P1\nM63 P1\nM64 P0\nM65 P0\nG1 X6\nM2\n",
+        "G21 G90\nM61 Q0\nG1 X1 F100\nM2\n",
+        // M61 without Q: refused by both.
+        "G21 G90\nG1 X1 F100\nM61\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+}
+
+#[test]
 fn rotated_systems_are_refused_by_name() {
     // rs274 reads G10 L2 R (a rotated system); the reader refuses it, naming it.
     let r: Result<Vec<_>, _> = Reader::new(

@@ -38,7 +38,8 @@
 //!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
-//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
+//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (LinuxCNC also G7/G8, G96/G97,
+//!   M48–M53, M61–M65: module `machine_codes`) (skipped only when
 //!   [`ReaderOptions::block_delete`] is on). Anything else is refused with its line and word,
 //!   or skipped with a warning when [`ReaderOptions::lenient`].
 
@@ -172,6 +173,10 @@ pub(crate) struct State {
     /// A motion has been emitted (sync points before the first one do nothing).
     moved: bool,
     pub(crate) ended: bool,
+    /// G7 (diameter mode) in effect.
+    diameter: bool,
+    /// G96 in effect: its speed limit D (0 without one).
+    css: Option<f64>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -303,10 +308,12 @@ impl Block {
                     }
                     b'M' => {
                         let code = value.round();
-                        if (value - code).abs() > 1e-9 || !matches!(code as i64, 0..=9 | 30) {
+                        if (value - code).abs() > 1e-9
+                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=65)
+                        {
                             return Err(BlockError::unsupported(
                                 text,
-                                "M0, M1, M2, M3, M4, M5, M6, M7, M8, M9 or M30",
+                                "M0–M9, M30, M48–M53 or M61–M65",
                             ));
                         }
                         self.m.push(code as u16);
@@ -390,7 +397,22 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
         || match dialect {
             Dialect::LinuxCnc => matches!(
                 code,
-                200 | 210 | 611 | 901 | 911 | 100 | 920 | 921 | 922 | 923 | 591 | 592 | 593
+                200 | 210
+                    | 611
+                    | 901
+                    | 911
+                    | 100
+                    | 920
+                    | 921
+                    | 922
+                    | 923
+                    | 591
+                    | 592
+                    | 593
+                    | 70
+                    | 80
+                    | 960
+                    | 970
             ),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
             Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
@@ -419,6 +441,8 @@ impl State {
             tool_table: opts.tool_table.clone(),
             moved: false,
             ended: false,
+            diameter: false,
+            css: None,
             notes: Vec::new(),
         }
     }
@@ -464,6 +488,9 @@ impl State {
         let dialect = opts.dialect;
         b.take(b'N');
         b.take(b'O');
+        if dialect == Dialect::LinuxCnc {
+            self.diameter_mode(b);
+        }
         let dwell = b.has_g(40);
         // Feed mode, then F.
         let mode = if b.has_g(930) {
@@ -538,12 +565,15 @@ impl State {
             }
             self.pending_tool = t as u32;
         }
+        if dialect == Dialect::LinuxCnc {
+            self.machine_codes(b)?;
+        }
         b.take(b'D');
         if b.m.contains(&6) {
             self.modal.tool = self.pending_tool;
         }
         if b.m.contains(&3) || b.m.contains(&4) {
-            self.modal.spindle_rpm = self.spindle_set;
+            self.modal.spindle_rpm = self.spindle_speed(self.spindle_set);
         }
         if b.m.contains(&5) {
             self.modal.spindle_rpm = 0.0;
@@ -750,6 +780,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
     })
 }
 
+mod machine_codes;
 mod motion;
 mod offsets;
 pub(crate) use offsets::Scope;

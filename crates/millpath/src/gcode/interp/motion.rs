@@ -22,7 +22,11 @@ impl State {
         let mut code = None;
         for &(g, _) in &b.g {
             if matches!(g, 0 | 10 | 20 | 30 | 800) {
-                if code.is_some() {
+                // G80 with another motion code: the other one wins (LinuxCNC's read_g).
+                if g == 800 && code.is_some() {
+                    continue;
+                }
+                if code.is_some_and(|c| c != 800) {
                     return Err(BlockError::new(
                         "G-code block",
                         "two motion codes",
