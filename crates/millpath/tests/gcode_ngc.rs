@@ -148,6 +148,12 @@ fn machine_codes_as_rs274() {
         "G21 G90\nG96 D2500 S200 M3\nG1 X5 F100\nG97 S1000\nM48\nM49\nM50 P0\nM51 P1\n\
          M52 P1\nM53 P0\nM62 P1\nM63 P1\nM64 P0\nM65 P0\nG1 X6\nM2\n",
         "G21 G90\nM61 Q0\nG1 X1 F100\nM2\n",
+        // Polar words about the program origin: G90 @ ^, @ alone, ^ alone; G91 increments.
+        "G21 G90\nG10 L2 P1 X5 Y-3\nG0 @10 ^30\nG1 @5 F100\nG1 ^-45\nG91 G1 @2 ^10\n\
+         G1 ^90 Z-1\nG1 @-1\nG90 G2 @10 ^0 R10\nM2\n",
+        // Polar with X or Y, and an angle-less polar move at the origin: refused by both.
+        "G21 G90\nG1 X1 @2 F100\nM2\n",
+        "G21 G90\nG0 X0 Y0\nG1 @2 F100\nM2\n",
         // M61 without Q: refused by both.
         "G21 G90\nG1 X1 F100\nM61\nM2\n",
     ] {

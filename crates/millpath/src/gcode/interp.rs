@@ -189,6 +189,8 @@ pub(crate) struct Block {
     words: [Option<f64>; 26],
     turn: Option<f64>,
     cycle832: Option<String>,
+    /// LinuxCNC's polar words `@` (radius) and `^` (angle, degrees).
+    pub(crate) polar: [Option<f64>; 2],
 }
 
 /// What went wrong in a block: the word (or what) and what would be accepted.
@@ -265,6 +267,7 @@ impl Block {
         self.words = [None; 26];
         self.turn = None;
         self.cycle832 = None;
+        self.polar = [None; 2];
         for t in tokens {
             let r = self.gather_one(t, line, dialect);
             match r {
@@ -317,6 +320,20 @@ impl Block {
                             ));
                         }
                         self.m.push(code as u16);
+                    }
+                    b'@' | b'^' if dialect == Dialect::LinuxCnc => {
+                        let k = usize::from(*letter == b'^');
+                        match self.polar.get_mut(k) {
+                            Some(Some(_)) => {
+                                return Err(BlockError::new(
+                                    "G-code word",
+                                    text,
+                                    format!("one {} word per block", char::from(*letter)),
+                                ));
+                            }
+                            Some(s) => *s = Some(*value),
+                            None => {}
+                        }
                     }
                     l if LETTERS_OK.contains(l) => {
                         let slot = self.words.get_mut(letter_index(*l));

@@ -94,7 +94,8 @@
 //! (module `expr`: LinuxCNC's operators, precedence and functions), O-word subroutines and
 //! control flow (module `oword`; subroutine files on [`ReaderOptions::subroutine_path`], a
 //! step budget [`ReaderOptions::step_budget`] against endless loops), work offsets G10 L2/L20,
-//! G54–G59.3, G92/G92.1/G92.2/G92.3 (`interp::offsets`), and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
+//! G54–G59.3, G92/G92.1/G92.2/G92.3 (`interp::offsets`), polar words `@` (radius) and `^`
+//! (angle) about the program origin, lathe diameter mode G7/G8, and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
 //! passed to [`Reader::messages`]. Lines with none of these take the plain lexer: the reading
 //! speed of plain programs is unchanged. Every construct is compared with LinuxCNC's
 //! `rs274 -g` (`tests/gcode_ngc.rs`), and so are LinuxCNC's own 416 programs

@@ -40,7 +40,22 @@ impl State {
             self.motion = (c != 800).then_some(c);
         }
         let g53 = b.has_g(530);
-        let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+        let mut axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+        let polar = std::mem::take(&mut b.polar);
+        if polar.iter().any(Option::is_some) {
+            if g53 {
+                return Err(BlockError::new(
+                    "polar coordinates",
+                    "with G53",
+                    "@ and ^ without G53 (LinuxCNC's find_ends)",
+                ));
+            }
+            let (x, y) = self.polar_end(polar, &mut axes)?;
+            // The end as absolute program coordinates: taken below as G90 words.
+            axes[0] = Some(x);
+            axes[1] = Some(y);
+        }
+        let polar_absolute = polar.iter().any(Option::is_some);
         let has_axes = axes.iter().any(Option::is_some);
         let ijk = [b.take(b'I'), b.take(b'J'), b.take(b'K')];
         let r = b.take(b'R');
@@ -107,7 +122,8 @@ impl State {
         let mut target = cur;
         for (k, v) in axes.iter().enumerate() {
             if let (Some(v), Some(t)) = (v, target.get_mut(k)) {
-                *t = if !self.modal.absolute {
+                let absolute = self.modal.absolute || (polar_absolute && k < 2);
+                *t = if !absolute {
                     at(&cur, k) + v * unit
                 } else if g53 {
                     v * unit
@@ -155,6 +171,52 @@ impl State {
             modal: self.modal,
         });
         Ok(())
+    }
+
+    /// The end of a polar move in program coordinates (X, Y; program units), LinuxCNC's
+    /// `find_ends`: in G90 `@ ^` is the point at radius @ and angle ^ about the program origin,
+    /// `@` alone keeps the angle and `^` alone the radius of the present position; in G91 `@`
+    /// adds to the radius and `^` to the angle, both about the origin.
+    fn polar_end(
+        &self,
+        polar: [Option<f64>; 2],
+        axes: &mut [Option<f64>; 3],
+    ) -> Result<(f64, f64), BlockError> {
+        if axes[0].is_some() || axes[1].is_some() {
+            return Err(BlockError::new(
+                "polar coordinates",
+                "with X or Y",
+                "@ and ^ without X and Y words",
+            ));
+        }
+        let [px, py, _] = self.program_position();
+        let at_origin = px == 0.0 && py == 0.0;
+        let (r0, t0) = (px.hypot(py), py.atan2(px));
+        let indeterminate = || {
+            BlockError::new(
+                "polar coordinates",
+                "at the program origin",
+                "an angle ^ (the angle at the origin is indeterminate)",
+            )
+        };
+        let (r, t) = match (polar[0], polar[1], self.modal.absolute) {
+            (Some(r), Some(t), true) => (r, t.to_radians()),
+            (Some(r), None, true) => {
+                if at_origin {
+                    return Err(indeterminate());
+                }
+                (r, t0)
+            }
+            (None, Some(t), true) => (r0, t.to_radians()),
+            (r, t, false) => {
+                if at_origin {
+                    return Err(indeterminate());
+                }
+                (r0 + r.unwrap_or(0.0), t0 + t.unwrap_or(0.0).to_radians())
+            }
+            (None, None, true) => (r0, t0),
+        };
+        Ok((r * t.cos(), r * t.sin()))
     }
 
     fn feed_for(&self, mv: &Move, block_f: Option<f64>) -> Result<f64, BlockError> {
