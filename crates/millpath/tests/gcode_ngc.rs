@@ -162,6 +162,30 @@ fn machine_codes_as_rs274() {
 }
 
 #[test]
+fn canned_cycles_as_rs274() {
+    for p in [
+        // G81 from above R, modal repeats, G98 back to the initial level, G91 with L.
+        "G21 G17 G90 F100\nG0 Z10\nG81 X1 Y1 Z-5 R1\nX5\nY5 Z-2\nG98 X8\nG91 G81 X3 Z-2 R1 L3\n\
+         G90 G80\nG0 X0\nM2\n",
+        // Peck cycles, dwell cycles, boring out at feed, in inches and with a work offset.
+        "G20 G17 G90\nF10\nG10 L2 P1 X1 Y2 Z0.5\nG0 Z1\nG83 X0 Y0 Z-1 R0.2 Q0.3\n\
+         G73 X1 Z-1.05 R0.1 Q0.25\nG82 X2 Z-0.5 R0.1 P0.5\nG89 X3 Z-0.5 R0.1 P1\nG85 X4 Z-0.3 R0.05\n\
+         G98 G83 X5 Y5 Z-0.4 R0.3 Q0.1\nG80\nM2\n",
+        // A start below R, the XZ and YZ planes, polar positions about the origin.
+        "G21 G90 F50\nG0 Z-3\nG81 X2 Y2 Z-6 R2\nG18 G81 X3 Y-5 Z4 R1\nG19 G81 X-1 Y2 Z6 R3\n\
+         G17 G0 X10 Y0 Z5\nG91 G81 ^60 Z-3 R-4 L6\nG90 G81 @5 ^45 Z-1 R1\nG80\nM2\n",
+        // Refused by both: R below Z, no R, L0, Q0, inverse time.
+        "G21 G90 F100\nG81 X1 Z1 R0\nM2\n",
+        "G21 G90 F100\nG81 X1 Z-1\nM2\n",
+        "G21 G90 F100\nG81 X1 Z-1 R1 L0\nM2\n",
+        "G21 G90 F100\nG83 X1 Z-1 R1 Q0\nM2\n",
+        "G21 G90 G93\nG81 X1 Z-1 R1 F1\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+}
+
+#[test]
 fn rotated_systems_are_refused_by_name() {
     // rs274 reads G10 L2 R (a rotated system); the reader refuses it, naming it.
     let r: Result<Vec<_>, _> = Reader::new(

@@ -177,6 +177,8 @@ pub(crate) struct State {
     diameter: bool,
     /// G96 in effect: its speed limit D (0 without one).
     css: Option<f64>,
+    /// The canned cycles' modal numbers.
+    cyc: cycles::CycleState,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -301,6 +303,13 @@ impl Block {
                             return Err(BlockError::unsupported(text, "a supported G code"));
                         }
                         let code = code as u16;
+                        if dialect == Dialect::LinuxCnc && cycles::is_refused_cycle(code) {
+                            return Err(BlockError::unsupported(
+                                text,
+                                "a canned cycle the reader expands: G73, G81, G82, G83, G85, G89 \
+                                 (not G74/G76/G84 tapping and threading, G86/G87/G88)",
+                            ));
+                        }
                         if !g_supported(code, dialect) {
                             return Err(BlockError::unsupported(
                                 text,
@@ -430,6 +439,14 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
                     | 80
                     | 960
                     | 970
+                    | 730
+                    | 810
+                    | 820
+                    | 830
+                    | 850
+                    | 890
+                    | 980
+                    | 990
             ),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
             Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
@@ -460,6 +477,7 @@ impl State {
             ended: false,
             diameter: false,
             css: None,
+            cyc: cycles::CycleState::default(),
             notes: Vec::new(),
         }
     }
@@ -770,6 +788,8 @@ impl State {
                     };
                 }
                 490 => self.tool_offset = Vec3::ZERO,
+                980 => self.cyc.old_z = true,
+                990 => self.cyc.old_z = false,
                 51 => {
                     b.take(b'Q');
                 }
@@ -797,6 +817,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
     })
 }
 
+mod cycles;
 mod machine_codes;
 mod motion;
 mod offsets;

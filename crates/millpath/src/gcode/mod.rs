@@ -86,7 +86,7 @@
 //! position + work offset + G92 offset + tool length offset (G43, from
 //! [`ReaderOptions::tool_table`]; zero without one). Rotary axes (A/B/C; five-axis joint
 //! programs are read by [`five_axis::read_five_axis`]), cutter compensation (G41/G42),
-//! canned cycles, splines, rotated coordinate systems (`G10 L2 R`), Fanuc subprograms and
+//! canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines, rotated coordinate systems (`G10 L2 R`), Fanuc subprograms and
 //! Sinumerik parameters are refused (or skipped when lenient), naming the word and the line.
 //!
 //! # RS274/NGC (the LinuxCNC dialect)
@@ -95,7 +95,8 @@
 //! control flow (module `oword`; subroutine files on [`ReaderOptions::subroutine_path`], a
 //! step budget [`ReaderOptions::step_budget`] against endless loops), work offsets G10 L2/L20,
 //! G54–G59.3, G92/G92.1/G92.2/G92.3 (`interp::offsets`), polar words `@` (radius) and `^`
-//! (angle) about the program origin, lathe diameter mode G7/G8, and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
+//! (angle) about the program origin, lathe diameter mode G7/G8, canned cycles G73, G81–G83, G85,
+//! G89 with G98/G99 (`interp::cycles`, expanded as LinuxCNC expands them), and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
 //! passed to [`Reader::messages`]. Lines with none of these take the plain lexer: the reading
 //! speed of plain programs is unchanged. Every construct is compared with LinuxCNC's
 //! `rs274 -g` (`tests/gcode_ngc.rs`), and so are LinuxCNC's own 416 programs

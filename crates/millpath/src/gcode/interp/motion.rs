@@ -1,5 +1,6 @@
 //! The motion part of a block: G0/G1/G2/G3 and G80, targets, feeds and arc centres.
 
+use super::cycles::is_cycle;
 use super::{Block, BlockError, FeedMode, ReadMove, ReaderOptions, State, arc_error, plane_axes};
 use crate::gcode::arc;
 use crate::geom::Point3;
@@ -21,7 +22,7 @@ impl State {
     ) -> Result<(), BlockError> {
         let mut code = None;
         for &(g, _) in &b.g {
-            if matches!(g, 0 | 10 | 20 | 30 | 800) {
+            if matches!(g, 0 | 10 | 20 | 30 | 800) || is_cycle(g) {
                 // G80 with another motion code: the other one wins (LinuxCNC's read_g).
                 if g == 800 && code.is_some() {
                     continue;
@@ -36,10 +37,32 @@ impl State {
                 code = Some(g);
             }
         }
+        let previous = self.motion;
         if let Some(c) = code {
             self.motion = (c != 800).then_some(c);
         }
         let g53 = b.has_g(530);
+        if let Some(m) = self.motion
+            && is_cycle(m)
+        {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            let polar = std::mem::take(&mut b.polar);
+            let words = axes.iter().any(Option::is_some) || polar.iter().any(Option::is_some);
+            if code != Some(m) && !words {
+                return Ok(());
+            }
+            if g53 {
+                return Err(BlockError::new(
+                    "canned cycle",
+                    "with G53",
+                    "a canned cycle without G53",
+                ));
+            }
+            return self.cycle(m, previous == Some(m), b, axes, polar, line, out);
+        }
+        if code.is_some() {
+            self.cyc.end_run();
+        }
         let mut axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
         let polar = std::mem::take(&mut b.polar);
         if polar.iter().any(Option::is_some) {
