@@ -186,18 +186,45 @@ fn canned_cycles_as_rs274() {
 }
 
 #[test]
-fn rotated_systems_are_refused_by_name() {
-    // rs274 reads G10 L2 R (a rotated system); the reader refuses it, naming it.
-    let r: Result<Vec<_>, _> = Reader::new(
-        "G21 G90\nG10 L2 P1 R30\nG0 X1\nM2\n".as_bytes(),
-        ReaderOptions::default(),
-    )
-    .collect();
-    let e = r.unwrap_err().to_string();
-    assert!(
-        e.contains("G10 R30") && e.contains(":2") && e.contains("rotation"),
-        "{e}"
-    );
+fn rotated_systems_as_rs274() {
+    for p in [
+        // Absolute and incremental moves, arcs with I J and R, G90.1 centres, polar words,
+        // another system, and back to no rotation.
+        "G21 G90\nG0 X0\nG10 L2 P1 X5 Y-3 R30\nG0 X1 Y1\nG1 X4 Y2 Z-1 F100\n\
+         G91 G1 X1 Y-1\nG90 G2 X7 Y1 I1 J0\nG3 X2 Y2 R3\nG90.1 G2 X4 Y4 I3 J3\nG91.1\n\
+         G1 @5 ^20\nG10 L2 P2 X1 R-45\nG55 G0 X2 Y0\nG54 G0 X0 Y0\nG10 L2 P1 R0\nG0 X1\nM2\n",
+        "G20 G90\nG10 L2 P0 X-2 Y1 R60\nF10\nG0 X0 Y0 Z0\nG1 X1.5 Y1.5\nG1 X1.5 Y.5\nG3 X.5 Y1.5 J1\n\
+         G1 X[#<_x>+1] Y#5421\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+    // What the reader leaves to unrotated systems is refused by name.
+    for (p, word) in [
+        (
+            "G21 G90\nG10 L2 P1 R30\nG92 X1\nM2\n",
+            "G92 in a rotated system",
+        ),
+        (
+            "G21 G90\nG92 X1\nG10 L2 P1 R30 G0 X0\nM2\n",
+            "G92 offset in a rotated",
+        ),
+        (
+            "G21 G90\nG10 L2 P1 R30\nG10 L20 P1 X1\nM2\n",
+            "G10 L20 in a rotated system",
+        ),
+        (
+            "G21 G90 F100\nG10 L2 P1 R30\nG81 X1 Z-1 R1\nM2\n",
+            "canned cycle in a rotated",
+        ),
+        (
+            "G21 G90 F100\nG10 L2 P1 R30\nG18 G2 X1 Z1 R1\nM2\n",
+            "outside G17",
+        ),
+    ] {
+        let r: Result<Vec<_>, _> = Reader::new(p.as_bytes(), ReaderOptions::default()).collect();
+        let e = r.unwrap_err().to_string();
+        assert!(e.contains(word) && e.contains(":3"), "{e}");
+    }
 }
 
 #[test]

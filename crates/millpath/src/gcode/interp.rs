@@ -179,6 +179,8 @@ pub(crate) struct State {
     css: Option<f64>,
     /// The canned cycles' modal numbers.
     cyc: cycles::CycleState,
+    /// The active system's XY rotation (rad).
+    rotation: f64,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -478,6 +480,7 @@ impl State {
             diameter: false,
             css: None,
             cyc: cycles::CycleState::default(),
+            rotation: 0.0,
             notes: Vec::new(),
         }
     }
@@ -821,6 +824,7 @@ mod cycles;
 mod machine_codes;
 mod motion;
 mod offsets;
+mod rotation;
 pub(crate) use offsets::Scope;
 
 /// The axis indices `(u, v, normal)` of a plane (0 = X), in [`Plane::split`] order.

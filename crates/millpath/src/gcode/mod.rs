@@ -86,8 +86,9 @@
 //! position + work offset + G92 offset + tool length offset (G43, from
 //! [`ReaderOptions::tool_table`]; zero without one). Rotary axes (A/B/C; five-axis joint
 //! programs are read by [`five_axis::read_five_axis`]), cutter compensation (G41/G42),
-//! canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines, rotated coordinate systems (`G10 L2 R`), Fanuc subprograms and
-//! Sinumerik parameters are refused (or skipped when lenient), naming the word and the line.
+//! canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines, G92 and canned cycles in
+//! rotated systems (`G10 L2 R` itself is read: module `interp::rotation`), Fanuc subprograms
+//! and Sinumerik parameters are refused (or skipped when lenient), naming the word and the line.
 //!
 //! # RS274/NGC (the LinuxCNC dialect)
 //! Parameters (`#1`, `#<name>`, `#<_global>`, the machine-state parameters), expressions

@@ -72,6 +72,9 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
     let mut feed = 0.0;
     let mut inverse_time = false;
     let mut feed_k = 1.0;
+    // SET_XY_ROTATION (rad): machine = tool + G5x + rot(program + G92) in XY (emccanon.cc,
+    // rotate_and_offset_pos).
+    let mut xy_rotation: f64 = 0.0;
     let mut out = Vec::new();
     for (i, l) in canon.lines().enumerate() {
         let n = numbers(l);
@@ -81,10 +84,22 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
         };
         let nonzero = |v: &[f64; 3]| usize::from(v.iter().any(|x| *x != 0.0));
         let terms = 1 + nonzero(&g5x) + nonzero(&g92) + nonzero(&tool);
-        let position_tol = PRINT_HALF_ULP * k * terms as f64 + 1e-9;
+        // A rotation mixes X and Y roundings: twice the allowance.
+        let turned = if xy_rotation != 0.0 { 2.0 } else { 1.0 };
+        let position_tol = PRINT_HALF_ULP * k * terms as f64 * turned + 1e-9;
         let off = offsets(&g5x, &g92, &tool);
-        let point =
-            |x: f64, y: f64, z: f64| Point3::new(x * k + off[0], y * k + off[1], z * k + off[2]);
+        let (sin, cos) = xy_rotation.sin_cos();
+        let point = |x: f64, y: f64, z: f64| {
+            if xy_rotation == 0.0 {
+                return Point3::new(x * k + off[0], y * k + off[1], z * k + off[2]);
+            }
+            let (px, py) = (x * k + g92[0], y * k + g92[1]);
+            Point3::new(
+                px * cos - py * sin + g5x[0] + tool[0],
+                px * sin + py * cos + g5x[1] + tool[1],
+                z * k + off[2],
+            )
+        };
         let mv = if l.contains("USE_LENGTH_UNITS(CANON_UNITS_MM)") {
             k = 1.0;
             None
@@ -114,9 +129,7 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
             tool = [get(0) * k, get(1) * k, get(2) * k];
             None
         } else if l.contains("SET_XY_ROTATION(") {
-            if get(0) != 0.0 {
-                return Err(format!("XY rotation: {l}"));
-            }
+            xy_rotation = get(0).to_radians();
             None
         } else if l.contains("SET_FEED_MODE(") {
             inverse_time = (get(1) - 1.0).abs() < 0.5;

@@ -58,6 +58,12 @@ impl State {
                     "a canned cycle without G53",
                 ));
             }
+            if self.rotation() != 0.0 {
+                return Err(BlockError::unsupported(
+                    "a canned cycle in a rotated system",
+                    "canned cycles in systems without rotation (G10 L2 R0)",
+                ));
+            }
             return self.cycle(m, previous == Some(m), b, axes, polar, line, out);
         }
         if code.is_some() {
@@ -153,6 +159,49 @@ impl State {
                 } else {
                     v * unit + at(&off, k)
                 };
+            }
+        }
+        let rotated = self.rotation() != 0.0 && !g53;
+        let mut ijk = ijk;
+        if rotated && self.g92 != crate::geom::Vec3::ZERO {
+            return Err(BlockError::unsupported(
+                "a G92 offset in a rotated system",
+                "rotated systems without a G92 offset (LinuxCNC re-bases its position without \
+                 it when a system is rotated)",
+            ));
+        }
+        if rotated {
+            // In the rotated frame: the end, and the centre offsets (module `rotation`).
+            let pp = self.program_mm();
+            let mut p = pp;
+            for (k, v) in axes.iter().enumerate() {
+                if let (Some(v), Some(t), Some(c)) = (v, p.get_mut(k), pp.get(k)) {
+                    let absolute = self.modal.absolute || (polar_absolute && k < 2);
+                    *t = if absolute { v * unit } else { c + v * unit };
+                }
+            }
+            let m = self.program_to_machine(p);
+            target = [m.x, m.y, m.z];
+            if is_arc && arc_words {
+                if self.modal.plane != crate::toolpath::Plane::Xy {
+                    return Err(BlockError::unsupported(
+                        "an arc outside G17 in a rotated system",
+                        "arcs in the XY plane (G17) while the system is rotated",
+                    ));
+                }
+                let (i, j) = (ijk[0].unwrap_or(0.0), ijk[1].unwrap_or(0.0));
+                let (ri, rj) = if self.arc_absolute {
+                    // centre = rot(IJ + G92) + origin + tool; arc_kind adds origin + G92 + tool.
+                    let (gx, gy) = (self.g92.x / unit, self.g92.y / unit);
+                    let (x, y) = super::rotation::rotate(i + gx, j + gy, self.rotation());
+                    (x - gx, y - gy)
+                } else {
+                    super::rotation::rotate(i, j, self.rotation())
+                };
+                if ijk[0].is_some() || ijk[1].is_some() {
+                    ijk[0] = Some(ri);
+                    ijk[1] = Some(rj);
+                }
             }
         }
         let to = Point3::new(target[0], target[1], target[2]);
