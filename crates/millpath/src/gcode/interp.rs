@@ -181,6 +181,8 @@ pub(crate) struct State {
     cyc: cycles::CycleState,
     /// The active system's XY rotation (rad).
     rotation: f64,
+    /// A NURBS being read (G5.2).
+    nurbs: Option<nurbs::NurbsState>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -449,6 +451,8 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
                     | 890
                     | 980
                     | 990
+                    | 52
+                    | 53
             ),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
             Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
@@ -481,6 +485,7 @@ impl State {
             css: None,
             cyc: cycles::CycleState::default(),
             rotation: 0.0,
+            nurbs: None,
             notes: Vec::new(),
         }
     }
@@ -823,6 +828,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
 mod cycles;
 mod machine_codes;
 mod motion;
+mod nurbs;
 mod offsets;
 mod rotation;
 pub(crate) use offsets::Scope;

@@ -22,7 +22,7 @@ impl State {
     ) -> Result<(), BlockError> {
         let mut code = None;
         for &(g, _) in &b.g {
-            if matches!(g, 0 | 10 | 20 | 30 | 800) || is_cycle(g) {
+            if matches!(g, 0 | 10 | 20 | 30 | 800 | 52 | 53) || is_cycle(g) {
                 // G80 with another motion code: the other one wins (LinuxCNC's read_g).
                 if g == 800 && code.is_some() {
                     continue;
@@ -42,6 +42,23 @@ impl State {
             self.motion = (c != 800).then_some(c);
         }
         let g53 = b.has_g(530);
+        if self.motion == Some(53) {
+            self.motion = None;
+            return self.nurbs_end(previous, line, out);
+        }
+        if self.motion == Some(52) {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            if code.is_none() && axes.iter().all(Option::is_none) {
+                return Ok(());
+            }
+            if g53 || b.polar.iter().any(Option::is_some) {
+                return Err(BlockError::unsupported(
+                    "G53 or polar words in a NURBS block",
+                    "X, Y, P and L in a NURBS block",
+                ));
+            }
+            return self.nurbs_block(previous == Some(52), b, axes);
+        }
         if let Some(m) = self.motion
             && is_cycle(m)
         {
