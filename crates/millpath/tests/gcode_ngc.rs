@@ -162,6 +162,24 @@ fn machine_codes_as_rs274() {
 }
 
 #[test]
+fn saved_modal_states_as_rs274() {
+    for p in [
+        // M70 saves, M72 restores (and keeps), M71 forgets (and does not restore).
+        "G21 G90 G17 F200 S1000 M3\nM70\nG20 G91 G18\nF5\nG1 X1\nM72\nG1 X5\nG91 F7\n\
+         G1 X1\nM71\nG1 X6\nM2\n",
+        // M73 in a subroutine: restored at endsub and at return; F comes back as F%.1f.
+        "o<s> sub\nM73\nG20 G91\nF5.55\nG1 X1\no1 if [#1 gt 0]\no<s> return\no1 endif\n\
+         G1 Y1\no<s> endsub\nG21 G90 F123.45\no<s> call [0]\nG1 X5\no<s> call [1]\n\
+         G1 Y5\nM2\n",
+        // Restoring without a saved state: refused by both.
+        "G21 G90 F100\nM72\nG1 X1\nM2\n",
+        "G21 G90 F100\nM70\nM71\nM72\nG1 X1\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+}
+
+#[test]
 fn canned_cycles_as_rs274() {
     for p in [
         // G81 from above R, modal repeats, G98 back to the initial level, G91 with L.

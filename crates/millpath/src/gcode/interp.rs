@@ -39,7 +39,7 @@
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
 //!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (LinuxCNC also G7/G8, G96/G97,
-//!   M48–M53, M61–M65: module `machine_codes`) (skipped only when
+//!   M48–M53, M61–M65: module `machine_codes`; M70–M73: module `modal_save`) (skipped only when
 //!   [`ReaderOptions::block_delete`] is on). Anything else is refused with its line and word,
 //!   or skipped with a warning when [`ReaderOptions::lenient`].
 
@@ -183,6 +183,8 @@ pub(crate) struct State {
     rotation: f64,
     /// A NURBS being read (G5.2).
     nurbs: Option<nurbs::NurbsState>,
+    /// Modal states saved by M70/M73.
+    saved: Vec<modal_save::Saved>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -325,11 +327,11 @@ impl Block {
                     b'M' => {
                         let code = value.round();
                         if (value - code).abs() > 1e-9
-                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=65)
+                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=65 | 70..=73)
                         {
                             return Err(BlockError::unsupported(
                                 text,
-                                "M0–M9, M30, M48–M53 or M61–M65",
+                                "M0–M9, M30, M48–M53, M61–M65 or M70–M73",
                             ));
                         }
                         self.m.push(code as u16);
@@ -486,6 +488,7 @@ impl State {
             cyc: cycles::CycleState::default(),
             rotation: 0.0,
             nurbs: None,
+            saved: Vec::new(),
             notes: Vec::new(),
         }
     }
@@ -610,6 +613,13 @@ impl State {
         }
         if dialect == Dialect::LinuxCnc {
             self.machine_codes(b)?;
+            // M70–M73 (LinuxCNC runs them after the spindle, coolant and tool codes; here
+            // before them: a block with both is not expected).
+            for m in b.m.clone() {
+                if (70..=73).contains(&m) {
+                    self.modal_save(m, store.call_level(), store)?;
+                }
+            }
         }
         b.take(b'D');
         if b.m.contains(&6) {
@@ -827,6 +837,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
 
 mod cycles;
 mod machine_codes;
+mod modal_save;
 mod motion;
 mod nurbs;
 mod offsets;
