@@ -38,10 +38,13 @@
 //!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
-//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (LinuxCNC also G7/G8, G96/G97,
-//!   M48–M53, M61–M65: module `machine_codes`; M70–M73: module `modal_save`) (skipped only when
-//!   [`ReaderOptions::block_delete`] is on). Anything else is refused with its line and word,
-//!   or skipped with a warning when [`ReaderOptions::lenient`].
+//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
+//!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
+//!   M48–M53, M61–M65 (module `machine_codes`) and M70–M73 (module `modal_save`).
+//! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
+//!   `rotation`) and G5.2 NURBS (module `nurbs`) expand into ordinary moves.
+//! * Anything else is refused with its line and word, or skipped with a warning when
+//!   [`ReaderOptions::lenient`].
 
 use super::arc::ArcProblem;
 use super::dialect::{Dialect, Units};
@@ -397,65 +400,19 @@ impl Block {
 
 /// G codes (×10) the reader understands in `dialect`.
 fn g_supported(code: u16, dialect: Dialect) -> bool {
-    let common = matches!(
-        code,
-        0 | 10
-            | 20
-            | 30
-            | 40
-            | 90
-            | 170
-            | 180
-            | 190
-            | 400
-            | 430
-            | 490
-            | 530
-            | 540
-            | 550
-            | 560
-            | 570
-            | 580
-            | 590
-            | 610
-            | 640
-            | 800
-            | 900
-            | 910
-            | 930
-            | 940
-    );
-    common
+    const COMMON: &[u16] = &[
+        0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
+        610, 640, 800, 900, 910, 930, 940,
+    ];
+    // LinuxCNC: also G5.2/G5.3, G7/G8, G10, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
+    const LINUXCNC: &[u16] = &[
+        52, 53, 70, 80, 100, 200, 210, 591, 592, 593, 611, 730, 810, 820, 830, 850, 890, 901, 911,
+        920, 921, 922, 923, 960, 970, 980, 990,
+    ];
+    COMMON.contains(&code)
         || match dialect {
-            Dialect::LinuxCnc => matches!(
-                code,
-                200 | 210
-                    | 611
-                    | 901
-                    | 911
-                    | 100
-                    | 920
-                    | 921
-                    | 922
-                    | 923
-                    | 591
-                    | 592
-                    | 593
-                    | 70
-                    | 80
-                    | 960
-                    | 970
-                    | 730
-                    | 810
-                    | 820
-                    | 830
-                    | 850
-                    | 890
-                    | 980
-                    | 990
-                    | 52
-                    | 53
-            ),
+            Dialect::LinuxCnc => LINUXCNC.contains(&code),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
             Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
             Dialect::Sinumerik => matches!(code, 90 | 600 | 6420 | 700 | 710 | 7000 | 7100),
@@ -674,39 +631,6 @@ impl State {
             self.ended = true;
         }
         Ok(())
-    }
-
-    fn dwell_seconds(&self, b: &mut Block, dialect: Dialect) -> Result<f64, BlockError> {
-        let p = b.take(b'P');
-        let x = if dialect == Dialect::Fanuc {
-            b.take(b'X')
-        } else {
-            None
-        };
-        let f = if dialect == Dialect::Sinumerik {
-            b.take(b'F')
-        } else {
-            None
-        };
-        let seconds = match (p, x, f) {
-            (Some(p), None, None) if dialect == Dialect::Fanuc => p / 1000.0,
-            (Some(s), None, None) | (None, Some(s), None) | (None, None, Some(s)) => s,
-            _ => {
-                return Err(BlockError::new(
-                    "dwell",
-                    "G4",
-                    match dialect {
-                        Dialect::Fanuc => "one of G04 X (s) or G04 P (ms)",
-                        Dialect::Sinumerik => "G4 F (s)",
-                        _ => "G4 P (s)",
-                    },
-                ));
-            }
-        };
-        if seconds < 0.0 {
-            return Err(BlockError::new("dwell", seconds, "a time >= 0 s"));
-        }
-        Ok(seconds)
     }
 
     fn modal_groups(

@@ -2,6 +2,7 @@
 
 use super::cycles::is_cycle;
 use super::{Block, BlockError, FeedMode, ReadMove, ReaderOptions, State, arc_error, plane_axes};
+use crate::gcode::Dialect;
 use crate::gcode::arc;
 use crate::geom::Point3;
 use crate::toolpath::{Corner, Move, MoveKind};
@@ -123,9 +124,8 @@ impl State {
         }
         // LinuxCNC moves on a G0 or G1 without axis words too: to where the tool is
         // (`convert_straight`; rs274 prints the zero-length STRAIGHT_TRAVERSE/FEED).
-        let in_place = opts.dialect == crate::gcode::Dialect::LinuxCnc
-            && matches!(code, Some(0 | 10))
-            && !arc_words;
+        let in_place =
+            opts.dialect == Dialect::LinuxCnc && matches!(code, Some(0 | 10)) && !arc_words;
         let moves = has_axes || in_place || (is_arc && code.is_some() && arc_words);
         if !moves {
             if arc_words && is_arc {
@@ -306,6 +306,40 @@ impl State {
             (None, None, true) => (r0, t0),
         };
         Ok((r * t.cos(), r * t.sin()))
+    }
+
+    /// G4's time in seconds: `P` s (Fanuc: ms), Fanuc's `X` s, Sinumerik's `F` s.
+    pub(crate) fn dwell_seconds(&self, b: &mut Block, dialect: Dialect) -> Result<f64, BlockError> {
+        let p = b.take(b'P');
+        let x = if dialect == Dialect::Fanuc {
+            b.take(b'X')
+        } else {
+            None
+        };
+        let f = if dialect == Dialect::Sinumerik {
+            b.take(b'F')
+        } else {
+            None
+        };
+        let seconds = match (p, x, f) {
+            (Some(p), None, None) if dialect == Dialect::Fanuc => p / 1000.0,
+            (Some(s), None, None) | (None, Some(s), None) | (None, None, Some(s)) => s,
+            _ => {
+                return Err(BlockError::new(
+                    "dwell",
+                    "G4",
+                    match dialect {
+                        Dialect::Fanuc => "one of G04 X (s) or G04 P (ms)",
+                        Dialect::Sinumerik => "G4 F (s)",
+                        _ => "G4 P (s)",
+                    },
+                ));
+            }
+        };
+        if seconds < 0.0 {
+            return Err(BlockError::new("dwell", seconds, "a time >= 0 s"));
+        }
+        Ok(seconds)
     }
 
     fn feed_for(&self, mv: &Move, block_f: Option<f64>) -> Result<f64, BlockError> {
