@@ -148,6 +148,9 @@ fn machine_codes_as_rs274() {
         "G21 G90\nG96 D2500 S200 M3\nG1 X5 F100\nG97 S1000\nM48\nM49\nM50 P0\nM51 P1\n\
          M52 P1\nM53 P0\nM62 P1\nM63 P1\nM64 P0\nM65 P0\nG1 X6\nM2\n",
         "G21 G90\nM61 Q0\nG1 X1 F100\nM2\n",
+        // G28/G30: a waypoint, then home (machine 0 without a .var file) on the axes named.
+        "G21 G90\nG10 L2 P1 X5 Y6 Z7\nG0 X1 Y2 Z3\nG28\nG0 X1 Y2 Z3\nG28 Z10\nG91 G30 X1 Y1\n\
+         G90 G0 X4\nG20 G28 Y1\nM2\n",
         // Polar words about the program origin: G90 @ ^, @ alone, ^ alone; G91 increments.
         "G21 G90\nG10 L2 P1 X5 Y-3\nG0 @10 ^30\nG1 @5 F100\nG1 ^-45\nG91 G1 @2 ^10\n\
          G1 ^90 Z-1\nG1 @-1\nG90 G2 @10 ^0 R10\nM2\n",

@@ -404,11 +404,11 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
         0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
         610, 640, 800, 900, 910, 930, 940,
     ];
-    // LinuxCNC: also G5.2/G5.3, G7/G8, G10, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // LinuxCNC: also G5.2/G5.3, G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
     // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
     const LINUXCNC: &[u16] = &[
-        52, 53, 70, 80, 100, 200, 210, 591, 592, 593, 611, 730, 810, 820, 830, 850, 890, 901, 911,
-        920, 921, 922, 923, 960, 970, 980, 990,
+        52, 53, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820, 830, 850, 890,
+        901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
     ];
     COMMON.contains(&code)
         || match dialect {
@@ -605,7 +605,11 @@ impl State {
         }
         let before = out.len();
         let from = self.pos;
-        self.motion(b, block_f, line, opts, out)?;
+        if let Some(&(g, _)) = b.g.iter().find(|(g, _)| matches!(g, 280 | 300)) {
+            self.home(g, b, store, line, out)?;
+        } else {
+            self.motion(b, block_f, line, opts, out)?;
+        }
         // A move that goes somewhere (a zero-length G0 to where the tool is does not).
         self.moved |= out
             .get(before..)
@@ -760,6 +764,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
 }
 
 mod cycles;
+mod home;
 mod machine_codes;
 mod modal_save;
 mod motion;
