@@ -164,9 +164,58 @@ fn a_weighted_cubic_stays_within_the_tolerance_of_the_true_curve() {
 }
 
 #[test]
+fn a_quadratic_g5_1_is_a_parabola() {
+    // From (0, 0) over the control point (5, 10) to (10, 0): x = 10t, y = 20t(1 − t), so
+    // y = 2x − x²/5 on every vertex; a parabola is farthest from a chord at the middle x of
+    // the chord (where its slope equals the chord's), which gives each chord's exact error.
+    let moves = read("G21 G17 G90\nG0 X0 Y0\nF100\nG5.1 X10 Y0 I5 J10\nM2\n");
+    let mut from = (0.0, 0.0);
+    assert!(moves.len() > 20, "{} moves", moves.len() - 1);
+    for m in moves.iter().filter(|m| m.line == 4) {
+        let (x, y) = (m.mv.to.x, m.mv.to.y);
+        assert!(
+            (y - (2.0 * x - x * x / 5.0)).abs() < 1e-9,
+            "({x}, {y}) off the parabola"
+        );
+        let xm = 0.5 * (from.0 + x);
+        let gap = (2.0 * xm - xm * xm / 5.0) - 0.5 * (from.1 + y);
+        let slope = (y - from.1) / (x - from.0);
+        let error = gap.abs() / (1.0 + slope * slope).sqrt();
+        assert!(
+            error <= TOL + 1e-12,
+            "chord to ({x}, {y}) is {error} mm from the curve"
+        );
+        from = (x, y);
+    }
+    assert_eq!(from, (10.0, 0.0));
+}
+
+#[test]
+fn splines_end_where_rs274_ends_them() {
+    // rs274 prints each spline as one NURBS_FEED; the incremental moves after each show
+    // where it ended. The reader's ends must be rs274's.
+    let text = "G21 G17 G90\nG0 X0 Y0\nF100\nG5.1 X10 Y0 I5 J10\nG91 G1 X1\nG90\n\
+                G5 X20 Y5 I2 J2 P-2 Q3\nG91 G1 Y1\nG90\nG5 X30 Y0 I1 J1 P1 Q1\nG5 X40 Y5 P2 Q2\n\
+                G91 G1 X1 Y1\nG90 G5.2 P1\nX45 Y10 P1\nX50 Y0 P2\nX55 Y5 P1\nG5.3\nG91 G1 X1\nM2\n";
+    let moves = read(text);
+    let ends: Vec<_> = moves
+        .iter()
+        .filter(|m| m.mv.kind == MoveKind::Line && [5, 8, 12, 18].contains(&m.line))
+        .map(|m| (m.mv.to.x, m.mv.to.y))
+        .collect();
+    assert_eq!(ends, [(11.0, 0.0), (20.0, 6.0), (41.0, 6.0), (56.0, 5.0)]);
+}
+
+#[test]
 fn what_linuxcnc_refuses_or_the_reader_leaves_out_is_refused() {
     for (text, word) in [
         ("G21 G17 G90 F100\nG5.3\nM2\n", "G5.3"),
+        (
+            "G21 G17 G90 F100\nG5 X1 Y1 I1 J0 P0 Q1\nX2 Y0 P1 Q1\nM2\n",
+            "every spline block",
+        ),
+        ("G21 G17 G90 F100\nG5 X1 Y1 P0 Q1\nM2\n", "I and J"),
+        ("G21 G17 G90 F100\nG5.1 X1 Y1 I1\nM2\n", "I and J"),
         (
             "G21 G17 G90 F100\nG5.2 P1 L4\nX1 Y1 P1\nX2 Y0 P1\nG5.3\nM2\n",
             "order",

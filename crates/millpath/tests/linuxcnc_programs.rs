@@ -33,9 +33,9 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[(
 const LIMIT: Duration = Duration::from_secs(20);
 
 /// Programs millpath must read (of 416).
-const MIN_READ: usize = 306;
+const MIN_READ: usize = 307;
 /// Programs both read whose motions must be compared and equal (all of them must be equal).
-const MIN_COMPARED: usize = 263;
+const MIN_COMPARED: usize = 264;
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/linuxcnc-nc")

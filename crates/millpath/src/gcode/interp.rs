@@ -42,7 +42,7 @@
 //!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
 //!   M48–M53, M61–M65 (module `machine_codes`) and M70–M73 (module `modal_save`).
 //! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
-//!   `rotation`) and G5.2 NURBS (module `nurbs`) expand into ordinary moves.
+//!   `rotation`) and splines G5, G5.1, G5.2 (module `nurbs`) expand into ordinary moves.
 //! * Anything else is refused with its line and word, or skipped with a warning when
 //!   [`ReaderOptions::lenient`].
 
@@ -186,6 +186,8 @@ pub(crate) struct State {
     rotation: f64,
     /// A NURBS being read (G5.2).
     nurbs: Option<nurbs::NurbsState>,
+    /// The last G5's P Q.
+    spline: nurbs::SplineState,
     /// Modal states saved by M70/M73.
     saved: Vec<modal_save::Saved>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
@@ -404,11 +406,11 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
         0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
         610, 640, 800, 900, 910, 930, 940,
     ];
-    // LinuxCNC: also G5.2/G5.3, G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
     // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
     const LINUXCNC: &[u16] = &[
-        52, 53, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820, 830, 850, 890,
-        901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
+        50, 51, 52, 53, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820, 830,
+        850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
     ];
     COMMON.contains(&code)
         || match dialect {
@@ -446,6 +448,7 @@ impl State {
             rotation: 0.0,
             nurbs: None,
             saved: Vec::new(),
+            spline: nurbs::SplineState::default(),
             notes: Vec::new(),
         }
     }

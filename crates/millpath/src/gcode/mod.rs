@@ -87,7 +87,7 @@
 //! [`ReaderOptions::tool_table`]; zero without one). Rotary axes (A/B/C; five-axis joint
 //! programs are read by [`five_axis::read_five_axis`]), cutter compensation (G41/G42),
 //! canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines other than LinuxCNC's
-//! G5.2/G5.3 NURBS (module `interp::nurbs`: the true curve within 1 µm), G92 and canned cycles in
+//! G5, G5.1 and G5.2/G5.3 NURBS (module `interp::nurbs`: the true curve within 1 µm), G92 and canned cycles in
 //! rotated systems (`G10 L2 R` itself is read: module `interp::rotation`), Fanuc subprograms
 //! and Sinumerik parameters are refused (or skipped when lenient), naming the word and the line.
 //!

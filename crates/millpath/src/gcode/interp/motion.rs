@@ -23,7 +23,11 @@ impl State {
     ) -> Result<(), BlockError> {
         let mut code = None;
         for &(g, _) in &b.g {
-            if matches!(g, 0 | 10 | 20 | 30 | 800 | 52 | 53) || is_cycle(g) {
+            let linuxcnc = opts.dialect == Dialect::LinuxCnc;
+            if matches!(g, 0 | 10 | 20 | 30 | 800 | 52 | 53)
+                || (linuxcnc && matches!(g, 50 | 51))
+                || is_cycle(g)
+            {
                 // G80 with another motion code: the other one wins (LinuxCNC's read_g).
                 if g == 800 && code.is_some() {
                     continue;
@@ -46,6 +50,22 @@ impl State {
         if self.motion == Some(53) {
             self.motion = None;
             return self.nurbs_end(previous, line, out);
+        }
+        if let Some(m @ (50 | 51)) = self.motion
+            && opts.dialect == Dialect::LinuxCnc
+        {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            if code.is_none() && axes.iter().all(Option::is_none) {
+                return Ok(());
+            }
+            if code.is_none() {
+                return Err(BlockError::new(
+                    "spline block",
+                    "without G5/G5.1",
+                    "G5 or G5.1 in every spline block (LinuxCNC refuses their words alone)",
+                ));
+            }
+            return self.spline(m, previous, b, axes, line, out);
         }
         if self.motion == Some(52) {
             let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];

@@ -26,6 +26,13 @@
 //! (tests/gcode_nurbs.rs).
 //!
 //! Refused: other planes than G17, G91, Z words, inverse-time feed.
+//!
+//! # G5 and G5.1 (LinuxCNC's cubic and quadratic splines)
+//! Bézier curves, read the same way (a Bézier is the NURBS of one span, unit weights):
+//! `G5.1 X Y I J` from the start S to the end E with the control point S + (I, J) (both
+//! required); `G5 X Y I J P Q` with the control points S + (I, J) and E + (P, Q); without
+//! I J, in a run of G5, the first control point is the previous G5's second one reflected
+//! about S: S − (P, Q)ₚᵣₑᵥ. X Y are absolute or incremental as usual; XY plane only, no Z.
 
 use super::{Block, BlockError, FeedMode, ReadMove, State};
 use crate::toolpath::{Move, Plane};
@@ -38,6 +45,12 @@ pub(crate) const CHORD_TOLERANCE_MM: f64 = 0.001;
 pub(crate) struct NurbsState {
     points: Vec<(f64, f64, f64)>,
     order: usize,
+}
+
+/// The last G5's P Q (program mm), for a following G5 without I J.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SplineState {
+    pq: Option<(f64, f64)>,
 }
 
 impl State {
@@ -122,6 +135,104 @@ impl State {
                 }
             };
             curve.points.push((x * unit, y * unit, w));
+        }
+        Ok(())
+    }
+
+    /// G5 (`m` = 50) or G5.1 (51): a cubic or quadratic Bézier from here to the block's X Y.
+    pub(crate) fn spline(
+        &mut self,
+        m: u16,
+        previous: Option<u16>,
+        b: &mut Block,
+        axes: [Option<f64>; 3],
+        line: usize,
+        out: &mut Vec<ReadMove>,
+    ) -> Result<(), BlockError> {
+        let name = if m == 50 { "G5" } else { "G5.1" };
+        if self.modal.plane != Plane::Xy || axes[2].is_some() || b.polar.iter().any(Option::is_some)
+        {
+            return Err(BlockError::unsupported(
+                format!("{name} outside G17, or with Z or polar words"),
+                "G5/G5.1 in the XY plane (G17) with X Y I J (P Q)",
+            ));
+        }
+        if self.modal.feed_mode == FeedMode::InverseTime || !self.feed.is_some_and(|f| f > 0.0) {
+            return Err(BlockError::new(name, "without a feed", "an F > 0 in G94"));
+        }
+        let unit = self.unit();
+        let word = |b: &mut Block, l: u8| b.take(l).map(|v| v * unit);
+        let (i, j) = (word(b, b'I'), word(b, b'J'));
+        let (p, q) = if m == 50 {
+            (word(b, b'P'), word(b, b'Q'))
+        } else {
+            (None, None)
+        };
+        if let Some((letter, v)) = b.leftover() {
+            return Err(BlockError::unsupported(
+                format!("{}{v}", char::from(letter)),
+                "X, Y, I, J (and P, Q with G5) in a spline block",
+            ));
+        }
+        let s = self.program_mm();
+        let end = |k: usize, v: Option<f64>| match v {
+            Some(v) if self.modal.absolute => v * unit,
+            Some(v) => s.get(k).copied().unwrap_or(0.0) + v * unit,
+            None => s.get(k).copied().unwrap_or(0.0),
+        };
+        let e = (end(0, axes[0]), end(1, axes[1]));
+        let cp = if m == 51 {
+            let (Some(i), Some(j)) = (i, j) else {
+                return Err(BlockError::new(
+                    name,
+                    "without I and J",
+                    "both I and J with G5.1",
+                ));
+            };
+            vec![
+                (s[0], s[1], 1.0),
+                (s[0] + i, s[1] + j, 1.0),
+                (e.0, e.1, 1.0),
+            ]
+        } else {
+            let (Some(p), Some(q)) = (p, q) else {
+                return Err(BlockError::new(
+                    name,
+                    "without P and Q",
+                    "both P and Q with G5",
+                ));
+            };
+            let first = match (i, j, self.spline.pq) {
+                (Some(i), Some(j), _) => (s[0] + i, s[1] + j),
+                (None, None, Some((pp, pq))) if previous == Some(50) => (s[0] - pp, s[1] - pq),
+                _ => {
+                    return Err(BlockError::new(
+                        name,
+                        "without I and J",
+                        "both I and J, or neither after another G5",
+                    ));
+                }
+            };
+            self.spline.pq = Some((p, q));
+            vec![
+                (s[0], s[1], 1.0),
+                (first.0, first.1, 1.0),
+                (e.0 + p, e.1 + q, 1.0),
+                (e.0, e.1, 1.0),
+            ]
+        };
+        let feed = self.feed.unwrap_or(0.0);
+        for (x, y) in polyline(&cp, cp.len()) {
+            let to = self.program_to_machine([x, y, s[2]]);
+            out.push(ReadMove {
+                mv: Move {
+                    corner: self.modal.corner,
+                    ..Move::line(to, feed)
+                },
+                line,
+                modal: self.modal,
+            });
+            self.pos = to;
         }
         Ok(())
     }
