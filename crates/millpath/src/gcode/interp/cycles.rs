@@ -218,6 +218,12 @@ impl State {
                 }
             };
         }
+        if let Some((letter, v)) = b.leftover() {
+            return Err(BlockError::unsupported(
+                format!("{}{v}", char::from(letter)),
+                "X, Y, Z, R, L, and P (G82, G89) or Q (G73, G83) in a canned cycle",
+            ));
+        }
         let mut current_cc = prog(na);
         let mut old_cc = *self.cyc.initial.get_or_insert(current_cc);
         let (mut aa, mut bb) = (prog(ua), prog(va));
