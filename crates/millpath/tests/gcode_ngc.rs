@@ -138,18 +138,114 @@ fn offsets_as_rs274() {
 }
 
 #[test]
-fn rotated_systems_are_refused_by_name() {
-    // rs274 reads G10 L2 R (a rotated system); the reader refuses it, naming it.
-    let r: Result<Vec<_>, _> = Reader::new(
-        "G21 G90\nG10 L2 P1 R30\nG0 X1\nM2\n".as_bytes(),
-        ReaderOptions::default(),
-    )
-    .collect();
-    let e = r.unwrap_err().to_string();
-    assert!(
-        e.contains("G10 R30") && e.contains(":2") && e.contains("rotation"),
-        "{e}"
-    );
+fn machine_codes_as_rs274() {
+    for p in [
+        // G7 diameter mode halves X (absolute and incremental), G8 ends it.
+        "G21 G90\nG7 G0 X20 Z1\nG1 X10 Z-1 F100\nG91 G1 X4\nG90 G8 G1 X20\nM2\n",
+        // G80 with a motion code in one block: the motion code wins, in either order.
+        "G21 G90 G80 G0 X1 Y1\nG0 G80 X2\nG1 G80 X3 F100\nM2\n",
+        // Spindle, override and output switches do not move the tool.
+        "G21 G90\nG96 D2500 S200 M3\nG1 X5 F100\nG97 S1000\nM48\nM49\nM50 P0\nM51 P1\n\
+         M52 P1\nM53 P0\nM62 P1\nM63 P1\nM64 P0\nM65 P0\nG1 X6\nM2\n",
+        "G21 G90\nM61 Q0\nG1 X1 F100\nM2\n",
+        // G28/G30: a waypoint, then home (machine 0 without a .var file) on the axes named.
+        "G21 G90\nG10 L2 P1 X5 Y6 Z7\nG0 X1 Y2 Z3\nG28\nG0 X1 Y2 Z3\nG28 Z10\nG91 G30 X1 Y1\n\
+         G90 G0 X4\nG20 G28 Y1\nM2\n",
+        // Polar words about the program origin: G90 @ ^, @ alone, ^ alone; G91 increments.
+        "G21 G90\nG10 L2 P1 X5 Y-3\nG0 @10 ^30\nG1 @5 F100\nG1 ^-45\nG91 G1 @2 ^10\n\
+         G1 ^90 Z-1\nG1 @-1\nG90 G2 @10 ^0 R10\nM2\n",
+        // Polar with X or Y, and an angle-less polar move at the origin: refused by both.
+        "G21 G90\nG1 X1 @2 F100\nM2\n",
+        "G21 G90\nG0 X0 Y0\nG1 @2 F100\nM2\n",
+        // M61 without Q: refused by both.
+        "G21 G90\nG1 X1 F100\nM61\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+}
+
+#[test]
+fn saved_modal_states_as_rs274() {
+    for p in [
+        // M70 saves, M72 restores (and keeps), M71 forgets (and does not restore).
+        "G21 G90 G17 F200 S1000 M3\nM70\nG20 G91 G18\nF5\nG1 X1\nM72\nG1 X5\nG91 F7\n\
+         G1 X1\nM71\nG1 X6\nM2\n",
+        // M73 in a subroutine: restored at endsub and at return; F comes back as F%.1f.
+        "o<s> sub\nM73\nG20 G91\nF5.55\nG1 X1\no1 if [#1 gt 0]\no<s> return\no1 endif\n\
+         G1 Y1\no<s> endsub\nG21 G90 F123.45\no<s> call [0]\nG1 X5\no<s> call [1]\n\
+         G1 Y5\nM2\n",
+        // Restoring without a saved state: refused by both.
+        "G21 G90 F100\nM72\nG1 X1\nM2\n",
+        "G21 G90 F100\nM70\nM71\nM72\nG1 X1\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+}
+
+#[test]
+fn canned_cycles_as_rs274() {
+    for p in [
+        // G81 from above R, modal repeats, G98 back to the initial level, G91 with L.
+        "G21 G17 G90 F100\nG0 Z10\nG81 X1 Y1 Z-5 R1\nX5\nY5 Z-2\nG98 X8\nG91 G81 X3 Z-2 R1 L3\n\
+         G90 G80\nG0 X0\nM2\n",
+        // Peck cycles, dwell cycles, boring out at feed, in inches and with a work offset.
+        "G20 G17 G90\nF10\nG10 L2 P1 X1 Y2 Z0.5\nG0 Z1\nG83 X0 Y0 Z-1 R0.2 Q0.3\n\
+         G73 X1 Z-1.05 R0.1 Q0.25\nG82 X2 Z-0.5 R0.1 P0.5\nG89 X3 Z-0.5 R0.1 P1\nG85 X4 Z-0.3 R0.05\n\
+         G98 G83 X5 Y5 Z-0.4 R0.3 Q0.1\nG80\nM2\n",
+        // A start below R, the XZ and YZ planes, polar positions about the origin.
+        "G21 G90 F50\nG0 Z-3\nG81 X2 Y2 Z-6 R2\nG18 G81 X3 Y-5 Z4 R1\nG19 G81 X-1 Y2 Z6 R3\n\
+         G17 G0 X10 Y0 Z5\nG91 G81 ^60 Z-3 R-4 L6\nG90 G81 @5 ^45 Z-1 R1\nG80\nM2\n",
+        // Refused by both: R below Z, no R, L0, Q0, inverse time.
+        "G21 G90 F100\nG81 X1 Z1 R0\nM2\n",
+        "G21 G90 F100\nG81 X1 Z-1\nM2\n",
+        "G21 G90 F100\nG81 X1 Z-1 R1 L0\nM2\n",
+        "G21 G90 F100\nG83 X1 Z-1 R1 Q0\nM2\n",
+        "G21 G90 G93\nG81 X1 Z-1 R1 F1\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+}
+
+#[test]
+fn rotated_systems_as_rs274() {
+    for p in [
+        // Absolute and incremental moves, arcs with I J and R, G90.1 centres, polar words,
+        // another system, and back to no rotation.
+        "G21 G90\nG0 X0\nG10 L2 P1 X5 Y-3 R30\nG0 X1 Y1\nG1 X4 Y2 Z-1 F100\n\
+         G91 G1 X1 Y-1\nG90 G2 X7 Y1 I1 J0\nG3 X2 Y2 R3\nG90.1 G2 X4 Y4 I3 J3\nG91.1\n\
+         G1 @5 ^20\nG10 L2 P2 X1 R-45\nG55 G0 X2 Y0\nG54 G0 X0 Y0\nG10 L2 P1 R0\nG0 X1\nM2\n",
+        "G20 G90\nG10 L2 P0 X-2 Y1 R60\nF10\nG0 X0 Y0 Z0\nG1 X1.5 Y1.5\nG1 X1.5 Y.5\nG3 X.5 Y1.5 J1\n\
+         G1 X[#<_x>+1] Y#5421\nM2\n",
+    ] {
+        judge(&[("main.ngc", p)]);
+    }
+    // What the reader leaves to unrotated systems is refused by name.
+    for (p, word) in [
+        (
+            "G21 G90\nG10 L2 P1 R30\nG92 X1\nM2\n",
+            "G92 in a rotated system",
+        ),
+        (
+            "G21 G90\nG92 X1\nG10 L2 P1 R30 G0 X0\nM2\n",
+            "G92 offset in a rotated",
+        ),
+        (
+            "G21 G90\nG10 L2 P1 R30\nG10 L20 P1 X1\nM2\n",
+            "G10 L20 in a rotated system",
+        ),
+        (
+            "G21 G90 F100\nG10 L2 P1 R30\nG81 X1 Z-1 R1\nM2\n",
+            "canned cycle in a rotated",
+        ),
+        (
+            "G21 G90 F100\nG10 L2 P1 R30\nG18 G2 X1 Z1 R1\nM2\n",
+            "outside G17",
+        ),
+    ] {
+        let r: Result<Vec<_>, _> = Reader::new(p.as_bytes(), ReaderOptions::default()).collect();
+        let e = r.unwrap_err().to_string();
+        assert!(e.contains(word) && e.contains(":3"), "{e}");
+    }
 }
 
 #[test]

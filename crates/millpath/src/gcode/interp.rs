@@ -39,8 +39,12 @@
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
 //!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
-//!   [`ReaderOptions::block_delete`] is on). Anything else is refused with its line and word,
-//!   or skipped with a warning when [`ReaderOptions::lenient`].
+//!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
+//!   M48–M53, M61–M65 (module `machine_codes`) and M70–M73 (module `modal_save`).
+//! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
+//!   `rotation`) and splines G5, G5.1, G5.2 (module `nurbs`) expand into ordinary moves.
+//! * Anything else is refused with its line and word, or skipped with a warning when
+//!   [`ReaderOptions::lenient`].
 
 use super::arc::ArcProblem;
 use super::dialect::{Dialect, Units};
@@ -172,6 +176,20 @@ pub(crate) struct State {
     /// A motion has been emitted (sync points before the first one do nothing).
     moved: bool,
     pub(crate) ended: bool,
+    /// G7 (diameter mode) in effect.
+    diameter: bool,
+    /// G96 in effect: its speed limit D (0 without one).
+    css: Option<f64>,
+    /// The canned cycles' modal numbers.
+    cyc: cycles::CycleState,
+    /// The active system's XY rotation (rad).
+    rotation: f64,
+    /// A NURBS being read (G5.2).
+    nurbs: Option<nurbs::NurbsState>,
+    /// The last G5's P Q.
+    spline: nurbs::SplineState,
+    /// Modal states saved by M70/M73.
+    saved: Vec<modal_save::Saved>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -184,6 +202,8 @@ pub(crate) struct Block {
     words: [Option<f64>; 26],
     turn: Option<f64>,
     cycle832: Option<String>,
+    /// LinuxCNC's polar words `@` (radius) and `^` (angle, degrees).
+    pub(crate) polar: [Option<f64>; 2],
 }
 
 /// What went wrong in a block: the word (or what) and what would be accepted.
@@ -260,6 +280,7 @@ impl Block {
         self.words = [None; 26];
         self.turn = None;
         self.cycle832 = None;
+        self.polar = [None; 2];
         for t in tokens {
             let r = self.gather_one(t, line, dialect);
             match r {
@@ -293,6 +314,13 @@ impl Block {
                             return Err(BlockError::unsupported(text, "a supported G code"));
                         }
                         let code = code as u16;
+                        if dialect == Dialect::LinuxCnc && cycles::is_refused_cycle(code) {
+                            return Err(BlockError::unsupported(
+                                text,
+                                "a canned cycle the reader expands: G73, G81, G82, G83, G85, G89 \
+                                 (not G74/G76/G84 tapping and threading, G86/G87/G88)",
+                            ));
+                        }
                         if !g_supported(code, dialect) {
                             return Err(BlockError::unsupported(
                                 text,
@@ -303,13 +331,29 @@ impl Block {
                     }
                     b'M' => {
                         let code = value.round();
-                        if (value - code).abs() > 1e-9 || !matches!(code as i64, 0..=9 | 30) {
+                        if (value - code).abs() > 1e-9
+                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=65 | 70..=73)
+                        {
                             return Err(BlockError::unsupported(
                                 text,
-                                "M0, M1, M2, M3, M4, M5, M6, M7, M8, M9 or M30",
+                                "M0–M9, M30, M48–M53, M61–M65 or M70–M73",
                             ));
                         }
                         self.m.push(code as u16);
+                    }
+                    b'@' | b'^' if dialect == Dialect::LinuxCnc => {
+                        let k = usize::from(*letter == b'^');
+                        match self.polar.get_mut(k) {
+                            Some(Some(_)) => {
+                                return Err(BlockError::new(
+                                    "G-code word",
+                                    text,
+                                    format!("one {} word per block", char::from(*letter)),
+                                ));
+                            }
+                            Some(s) => *s = Some(*value),
+                            None => {}
+                        }
                     }
                     l if LETTERS_OK.contains(l) => {
                         let slot = self.words.get_mut(letter_index(*l));
@@ -358,40 +402,19 @@ impl Block {
 
 /// G codes (×10) the reader understands in `dialect`.
 fn g_supported(code: u16, dialect: Dialect) -> bool {
-    let common = matches!(
-        code,
-        0 | 10
-            | 20
-            | 30
-            | 40
-            | 90
-            | 170
-            | 180
-            | 190
-            | 400
-            | 430
-            | 490
-            | 530
-            | 540
-            | 550
-            | 560
-            | 570
-            | 580
-            | 590
-            | 610
-            | 640
-            | 800
-            | 900
-            | 910
-            | 930
-            | 940
-    );
-    common
+    const COMMON: &[u16] = &[
+        0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
+        610, 640, 800, 900, 910, 930, 940,
+    ];
+    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
+    const LINUXCNC: &[u16] = &[
+        50, 51, 52, 53, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820, 830,
+        850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
+    ];
+    COMMON.contains(&code)
         || match dialect {
-            Dialect::LinuxCnc => matches!(
-                code,
-                200 | 210 | 611 | 901 | 911 | 100 | 920 | 921 | 922 | 923 | 591 | 592 | 593
-            ),
+            Dialect::LinuxCnc => LINUXCNC.contains(&code),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
             Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
             Dialect::Sinumerik => matches!(code, 90 | 600 | 6420 | 700 | 710 | 7000 | 7100),
@@ -419,6 +442,13 @@ impl State {
             tool_table: opts.tool_table.clone(),
             moved: false,
             ended: false,
+            diameter: false,
+            css: None,
+            cyc: cycles::CycleState::default(),
+            rotation: 0.0,
+            nurbs: None,
+            saved: Vec::new(),
+            spline: nurbs::SplineState::default(),
             notes: Vec::new(),
         }
     }
@@ -464,6 +494,9 @@ impl State {
         let dialect = opts.dialect;
         b.take(b'N');
         b.take(b'O');
+        if dialect == Dialect::LinuxCnc {
+            self.diameter_mode(b);
+        }
         let dwell = b.has_g(40);
         // Feed mode, then F.
         let mode = if b.has_g(930) {
@@ -538,12 +571,22 @@ impl State {
             }
             self.pending_tool = t as u32;
         }
+        if dialect == Dialect::LinuxCnc {
+            self.machine_codes(b)?;
+            // M70–M73 (LinuxCNC runs them after the spindle, coolant and tool codes; here
+            // before them: a block with both is not expected).
+            for m in b.m.clone() {
+                if (70..=73).contains(&m) {
+                    self.modal_save(m, store.call_level(), store)?;
+                }
+            }
+        }
         b.take(b'D');
         if b.m.contains(&6) {
             self.modal.tool = self.pending_tool;
         }
         if b.m.contains(&3) || b.m.contains(&4) {
-            self.modal.spindle_rpm = self.spindle_set;
+            self.modal.spindle_rpm = self.spindle_speed(self.spindle_set);
         }
         if b.m.contains(&5) {
             self.modal.spindle_rpm = 0.0;
@@ -565,7 +608,11 @@ impl State {
         }
         let before = out.len();
         let from = self.pos;
-        self.motion(b, block_f, line, opts, out)?;
+        if let Some(&(g, _)) = b.g.iter().find(|(g, _)| matches!(g, 280 | 300)) {
+            self.home(g, b, store, line, out)?;
+        } else {
+            self.motion(b, block_f, line, opts, out)?;
+        }
         // A move that goes somewhere (a zero-length G0 to where the tool is does not).
         self.moved |= out
             .get(before..)
@@ -591,39 +638,6 @@ impl State {
             self.ended = true;
         }
         Ok(())
-    }
-
-    fn dwell_seconds(&self, b: &mut Block, dialect: Dialect) -> Result<f64, BlockError> {
-        let p = b.take(b'P');
-        let x = if dialect == Dialect::Fanuc {
-            b.take(b'X')
-        } else {
-            None
-        };
-        let f = if dialect == Dialect::Sinumerik {
-            b.take(b'F')
-        } else {
-            None
-        };
-        let seconds = match (p, x, f) {
-            (Some(p), None, None) if dialect == Dialect::Fanuc => p / 1000.0,
-            (Some(s), None, None) | (None, Some(s), None) | (None, None, Some(s)) => s,
-            _ => {
-                return Err(BlockError::new(
-                    "dwell",
-                    "G4",
-                    match dialect {
-                        Dialect::Fanuc => "one of G04 X (s) or G04 P (ms)",
-                        Dialect::Sinumerik => "G4 F (s)",
-                        _ => "G4 P (s)",
-                    },
-                ));
-            }
-        };
-        if seconds < 0.0 {
-            return Err(BlockError::new("dwell", seconds, "a time >= 0 s"));
-        }
-        Ok(seconds)
     }
 
     fn modal_groups(
@@ -723,6 +737,8 @@ impl State {
                     };
                 }
                 490 => self.tool_offset = Vec3::ZERO,
+                980 => self.cyc.old_z = true,
+                990 => self.cyc.old_z = false,
                 51 => {
                     b.take(b'Q');
                 }
@@ -750,8 +766,14 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
     })
 }
 
+mod cycles;
+mod home;
+mod machine_codes;
+mod modal_save;
 mod motion;
+mod nurbs;
 mod offsets;
+mod rotation;
 pub(crate) use offsets::Scope;
 
 /// The axis indices `(u, v, normal)` of a plane (0 = X), in [`Plane::split`] order.

@@ -134,6 +134,19 @@ pub fn lex(line: &str, tokens: &mut Vec<Token>) -> Result<LineKind, LexError> {
                     i = end;
                 }
             }
+            // LinuxCNC's polar words: `@` radius, `^` angle (degrees).
+            b'@' | b'^' => {
+                let start = i;
+                let (value, end) = number(line, skip_ws(b, i + 1))
+                    .ok_or_else(|| err(line, start, "a letter followed by a number"))?;
+                tokens.push(Token::Word {
+                    letter: c,
+                    value,
+                    start,
+                    end,
+                });
+                i = end;
+            }
             _ => return Err(err(line, i, "a word (letter and number), a comment or ';'")),
         }
     }

@@ -268,7 +268,7 @@ pub(crate) fn parse(line: &str, p: &dyn Params, out: &mut NgcLine) -> Result<(),
                 let v = c.value(p)?;
                 out.assigns.push((r, v));
             }
-            b'a'..=b'z' => {
+            b'a'..=b'z' | b'@' | b'^' => {
                 c.i += 1;
                 let value = c.value(p)?;
                 out.tokens.push(Token::Word {

@@ -235,15 +235,21 @@ impl<R: BufRead> Reader<R> {
         if let Some(o) = self.ngc.oword.take() {
             let origin = self.origin();
             let file = self.file.as_deref().unwrap_or("").to_string();
-            return self
-                .program
+            let level = self.params.call_level();
+            self.program
                 .run(&o, &self.bytes, self.line_no, &file, &mut self.params)
                 .map_err(|m| {
-                    InputError::new("O word", m)
-                        .at(origin)
-                        .expected("O-word control flow as LinuxCNC runs it")
-                        .into()
-                });
+                    Error::from(
+                        InputError::new("O word", m)
+                            .at(origin)
+                            .expected("O-word control flow as LinuxCNC runs it"),
+                    )
+                })?;
+            // A return: the state M73 saved at the level left is restored.
+            if self.params.call_level() < level {
+                self.state.auto_restore(level, &self.params);
+            }
+            return Ok(());
         }
         // Settings take effect after the line is read, before it runs.
         for (r, v) in std::mem::take(&mut self.ngc.assigns) {

@@ -28,6 +28,9 @@ pub enum CanonMove {
     },
     /// `DWELL` seconds.
     Dwell(f64),
+    /// `NURBS_FEED(n, ...)`: a G5.2 curve; rs274 prints none of its points. It stands for the
+    /// run of our moves of one source line (the G5.3 block's).
+    Nurbs,
 }
 
 /// A motion with what is needed to compare it: mm per program unit, inverse time or not, and
@@ -72,6 +75,9 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
     let mut feed = 0.0;
     let mut inverse_time = false;
     let mut feed_k = 1.0;
+    // SET_XY_ROTATION (rad): machine = tool + G5x + rot(program + G92) in XY (emccanon.cc,
+    // rotate_and_offset_pos).
+    let mut xy_rotation: f64 = 0.0;
     let mut out = Vec::new();
     for (i, l) in canon.lines().enumerate() {
         let n = numbers(l);
@@ -81,10 +87,22 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
         };
         let nonzero = |v: &[f64; 3]| usize::from(v.iter().any(|x| *x != 0.0));
         let terms = 1 + nonzero(&g5x) + nonzero(&g92) + nonzero(&tool);
-        let position_tol = PRINT_HALF_ULP * k * terms as f64 + 1e-9;
+        // A rotation mixes X and Y roundings: twice the allowance.
+        let turned = if xy_rotation != 0.0 { 2.0 } else { 1.0 };
+        let position_tol = PRINT_HALF_ULP * k * terms as f64 * turned + 1e-9;
         let off = offsets(&g5x, &g92, &tool);
-        let point =
-            |x: f64, y: f64, z: f64| Point3::new(x * k + off[0], y * k + off[1], z * k + off[2]);
+        let (sin, cos) = xy_rotation.sin_cos();
+        let point = |x: f64, y: f64, z: f64| {
+            if xy_rotation == 0.0 {
+                return Point3::new(x * k + off[0], y * k + off[1], z * k + off[2]);
+            }
+            let (px, py) = (x * k + g92[0], y * k + g92[1]);
+            Point3::new(
+                px * cos - py * sin + g5x[0] + tool[0],
+                px * sin + py * cos + g5x[1] + tool[1],
+                z * k + off[2],
+            )
+        };
         let mv = if l.contains("USE_LENGTH_UNITS(CANON_UNITS_MM)") {
             k = 1.0;
             None
@@ -114,9 +132,7 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
             tool = [get(0) * k, get(1) * k, get(2) * k];
             None
         } else if l.contains("SET_XY_ROTATION(") {
-            if get(0) != 0.0 {
-                return Err(format!("XY rotation: {l}"));
-            }
+            xy_rotation = get(0).to_radians();
             None
         } else if l.contains("SET_FEED_MODE(") {
             inverse_time = (get(1) - 1.0).abs() < 0.5;
@@ -149,17 +165,16 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
             })
         } else if l.contains("DWELL(") {
             Some(CanonMove::Dwell(get(0)))
-        } else if l.contains("STRAIGHT_PROBE(")
-            || l.contains("NURBS_FEED(")
-            || l.contains("RIGID_TAP(")
-        {
+        } else if l.contains("NURBS_FEED(") {
+            Some(CanonMove::Nurbs)
+        } else if l.contains("STRAIGHT_PROBE(") || l.contains("RIGID_TAP(") {
             return Err(format!("a motion the comparison does not follow: {l}"));
         } else {
             None
         };
         if let Some(mv) = mv {
             if let Some(bad) = [get(0), get(1), get(2)].iter().find(|x| !x.is_finite())
-                && !matches!(mv, CanonMove::Dwell(_))
+                && !matches!(mv, CanonMove::Dwell(_) | CanonMove::Nurbs)
             {
                 return Err(format!("unreadable numbers ({bad}) in {l}"));
             }
@@ -176,8 +191,64 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
     Ok(out)
 }
 
-/// The first difference between our moves and rs274's, if any.
+/// The first difference between our moves and rs274's, if any. A `NURBS_FEED` of rs274's
+/// stands for our run of feed lines of one source line (the curve's polyline): those are
+/// skipped, and the moves after it must agree again.
 pub fn compare(ours: &[ReadMove], theirs: &[Canon], start: Point3) -> Option<String> {
+    if theirs.iter().any(|t| t.mv == CanonMove::Nurbs) {
+        let mut kept = Vec::new();
+        let mut i = 0;
+        for t in theirs {
+            if t.mv == CanonMove::Nurbs {
+                let Some(first) = ours.get(i) else {
+                    return Some(format!(
+                        "no moves here for rs274's NURBS_FEED (line {})",
+                        t.line
+                    ));
+                };
+                let run = ours
+                    .get(i..)
+                    .unwrap_or_default()
+                    .iter()
+                    .take_while(|m| m.line == first.line && m.mv.kind == MoveKind::Line)
+                    .count();
+                if run == 0 {
+                    return Some(format!(
+                        "no feed lines here for rs274's NURBS_FEED: {first:?}"
+                    ));
+                }
+                i += run;
+            } else {
+                if let Some(m) = ours.get(i) {
+                    kept.push((i, *m));
+                }
+                i += 1;
+            }
+        }
+        if i != ours.len() {
+            return Some(format!(
+                "{} moves here, {i} matched with rs274's",
+                ours.len()
+            ));
+        }
+        let mine: Vec<ReadMove> = kept.iter().map(|(_, m)| *m).collect();
+        let rest: Vec<Canon> = theirs
+            .iter()
+            .filter(|t| t.mv != CanonMove::Nurbs)
+            .cloned()
+            .collect();
+        // The start of each kept move: the end of the move before it in our sequence.
+        let mut from = start;
+        for (k, ((idx, o), t)) in kept.iter().zip(&rest).enumerate() {
+            if let Some(prev) = idx.checked_sub(1).and_then(|p| ours.get(p)) {
+                from = prev.mv.to;
+            }
+            if let Some(d) = differs(o, t, from) {
+                return Some(format!("move {k} (line {}): {d}", o.line));
+            }
+        }
+        return (mine.len() != rest.len()).then(|| "move counts differ".to_string());
+    }
     if ours.len() != theirs.len() {
         let n = ours.len().min(theirs.len());
         let first = ours

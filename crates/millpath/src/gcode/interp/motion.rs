@@ -1,6 +1,8 @@
 //! The motion part of a block: G0/G1/G2/G3 and G80, targets, feeds and arc centres.
 
+use super::cycles::is_cycle;
 use super::{Block, BlockError, FeedMode, ReadMove, ReaderOptions, State, arc_error, plane_axes};
+use crate::gcode::Dialect;
 use crate::gcode::arc;
 use crate::geom::Point3;
 use crate::toolpath::{Corner, Move, MoveKind};
@@ -21,8 +23,16 @@ impl State {
     ) -> Result<(), BlockError> {
         let mut code = None;
         for &(g, _) in &b.g {
-            if matches!(g, 0 | 10 | 20 | 30 | 800) {
-                if code.is_some() {
+            let linuxcnc = opts.dialect == Dialect::LinuxCnc;
+            if matches!(g, 0 | 10 | 20 | 30 | 800 | 52 | 53)
+                || (linuxcnc && matches!(g, 50 | 51))
+                || is_cycle(g)
+            {
+                // G80 with another motion code: the other one wins (LinuxCNC's read_g).
+                if g == 800 && code.is_some() {
+                    continue;
+                }
+                if code.is_some_and(|c| c != 800) {
                     return Err(BlockError::new(
                         "G-code block",
                         "two motion codes",
@@ -32,11 +42,87 @@ impl State {
                 code = Some(g);
             }
         }
+        let previous = self.motion;
         if let Some(c) = code {
             self.motion = (c != 800).then_some(c);
         }
         let g53 = b.has_g(530);
-        let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+        if self.motion == Some(53) {
+            self.motion = None;
+            return self.nurbs_end(previous, line, out);
+        }
+        if let Some(m @ (50 | 51)) = self.motion
+            && opts.dialect == Dialect::LinuxCnc
+        {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            if code.is_none() && axes.iter().all(Option::is_none) {
+                return Ok(());
+            }
+            if code.is_none() {
+                return Err(BlockError::new(
+                    "spline block",
+                    "without G5/G5.1",
+                    "G5 or G5.1 in every spline block (LinuxCNC refuses their words alone)",
+                ));
+            }
+            return self.spline(m, previous, b, axes, line, out);
+        }
+        if self.motion == Some(52) {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            if code.is_none() && axes.iter().all(Option::is_none) {
+                return Ok(());
+            }
+            if g53 || b.polar.iter().any(Option::is_some) {
+                return Err(BlockError::unsupported(
+                    "G53 or polar words in a NURBS block",
+                    "X, Y, P and L in a NURBS block",
+                ));
+            }
+            return self.nurbs_block(previous == Some(52), b, axes);
+        }
+        if let Some(m) = self.motion
+            && is_cycle(m)
+        {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            let polar = std::mem::take(&mut b.polar);
+            let words = axes.iter().any(Option::is_some) || polar.iter().any(Option::is_some);
+            if code != Some(m) && !words {
+                return Ok(());
+            }
+            if g53 {
+                return Err(BlockError::new(
+                    "canned cycle",
+                    "with G53",
+                    "a canned cycle without G53",
+                ));
+            }
+            if self.rotation() != 0.0 {
+                return Err(BlockError::unsupported(
+                    "a canned cycle in a rotated system",
+                    "canned cycles in systems without rotation (G10 L2 R0)",
+                ));
+            }
+            return self.cycle(m, previous == Some(m), b, axes, polar, line, out);
+        }
+        if code.is_some() {
+            self.cyc.end_run();
+        }
+        let mut axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+        let polar = std::mem::take(&mut b.polar);
+        if polar.iter().any(Option::is_some) {
+            if g53 {
+                return Err(BlockError::new(
+                    "polar coordinates",
+                    "with G53",
+                    "@ and ^ without G53 (LinuxCNC's find_ends)",
+                ));
+            }
+            let (x, y) = self.polar_end(polar, &mut axes)?;
+            // The end as absolute program coordinates: taken below as G90 words.
+            axes[0] = Some(x);
+            axes[1] = Some(y);
+        }
+        let polar_absolute = polar.iter().any(Option::is_some);
         let has_axes = axes.iter().any(Option::is_some);
         let ijk = [b.take(b'I'), b.take(b'J'), b.take(b'K')];
         let r = b.take(b'R');
@@ -58,9 +144,8 @@ impl State {
         }
         // LinuxCNC moves on a G0 or G1 without axis words too: to where the tool is
         // (`convert_straight`; rs274 prints the zero-length STRAIGHT_TRAVERSE/FEED).
-        let in_place = opts.dialect == crate::gcode::Dialect::LinuxCnc
-            && matches!(code, Some(0 | 10))
-            && !arc_words;
+        let in_place =
+            opts.dialect == Dialect::LinuxCnc && matches!(code, Some(0 | 10)) && !arc_words;
         let moves = has_axes || in_place || (is_arc && code.is_some() && arc_words);
         if !moves {
             if arc_words && is_arc {
@@ -103,13 +188,57 @@ impl State {
         let mut target = cur;
         for (k, v) in axes.iter().enumerate() {
             if let (Some(v), Some(t)) = (v, target.get_mut(k)) {
-                *t = if !self.modal.absolute {
+                let absolute = self.modal.absolute || (polar_absolute && k < 2);
+                *t = if !absolute {
                     at(&cur, k) + v * unit
                 } else if g53 {
                     v * unit
                 } else {
                     v * unit + at(&off, k)
                 };
+            }
+        }
+        let rotated = self.rotation() != 0.0 && !g53;
+        let mut ijk = ijk;
+        if rotated && self.g92 != crate::geom::Vec3::ZERO {
+            return Err(BlockError::unsupported(
+                "a G92 offset in a rotated system",
+                "rotated systems without a G92 offset (LinuxCNC re-bases its position without \
+                 it when a system is rotated)",
+            ));
+        }
+        if rotated {
+            // In the rotated frame: the end, and the centre offsets (module `rotation`).
+            let pp = self.program_mm();
+            let mut p = pp;
+            for (k, v) in axes.iter().enumerate() {
+                if let (Some(v), Some(t), Some(c)) = (v, p.get_mut(k), pp.get(k)) {
+                    let absolute = self.modal.absolute || (polar_absolute && k < 2);
+                    *t = if absolute { v * unit } else { c + v * unit };
+                }
+            }
+            let m = self.program_to_machine(p);
+            target = [m.x, m.y, m.z];
+            if is_arc && arc_words {
+                if self.modal.plane != crate::toolpath::Plane::Xy {
+                    return Err(BlockError::unsupported(
+                        "an arc outside G17 in a rotated system",
+                        "arcs in the XY plane (G17) while the system is rotated",
+                    ));
+                }
+                let (i, j) = (ijk[0].unwrap_or(0.0), ijk[1].unwrap_or(0.0));
+                let (ri, rj) = if self.arc_absolute {
+                    // centre = rot(IJ + G92) + origin + tool; arc_kind adds origin + G92 + tool.
+                    let (gx, gy) = (self.g92.x / unit, self.g92.y / unit);
+                    let (x, y) = super::rotation::rotate(i + gx, j + gy, self.rotation());
+                    (x - gx, y - gy)
+                } else {
+                    super::rotation::rotate(i, j, self.rotation())
+                };
+                if ijk[0].is_some() || ijk[1].is_some() {
+                    ijk[0] = Some(ri);
+                    ijk[1] = Some(rj);
+                }
             }
         }
         let to = Point3::new(target[0], target[1], target[2]);
@@ -151,6 +280,86 @@ impl State {
             modal: self.modal,
         });
         Ok(())
+    }
+
+    /// The end of a polar move in program coordinates (X, Y; program units), LinuxCNC's
+    /// `find_ends`: in G90 `@ ^` is the point at radius @ and angle ^ about the program origin,
+    /// `@` alone keeps the angle and `^` alone the radius of the present position; in G91 `@`
+    /// adds to the radius and `^` to the angle, both about the origin.
+    fn polar_end(
+        &self,
+        polar: [Option<f64>; 2],
+        axes: &mut [Option<f64>; 3],
+    ) -> Result<(f64, f64), BlockError> {
+        if axes[0].is_some() || axes[1].is_some() {
+            return Err(BlockError::new(
+                "polar coordinates",
+                "with X or Y",
+                "@ and ^ without X and Y words",
+            ));
+        }
+        let [px, py, _] = self.program_position();
+        let at_origin = px == 0.0 && py == 0.0;
+        let (r0, t0) = (px.hypot(py), py.atan2(px));
+        let indeterminate = || {
+            BlockError::new(
+                "polar coordinates",
+                "at the program origin",
+                "an angle ^ (the angle at the origin is indeterminate)",
+            )
+        };
+        let (r, t) = match (polar[0], polar[1], self.modal.absolute) {
+            (Some(r), Some(t), true) => (r, t.to_radians()),
+            (Some(r), None, true) => {
+                if at_origin {
+                    return Err(indeterminate());
+                }
+                (r, t0)
+            }
+            (None, Some(t), true) => (r0, t.to_radians()),
+            (r, t, false) => {
+                if at_origin {
+                    return Err(indeterminate());
+                }
+                (r0 + r.unwrap_or(0.0), t0 + t.unwrap_or(0.0).to_radians())
+            }
+            (None, None, true) => (r0, t0),
+        };
+        Ok((r * t.cos(), r * t.sin()))
+    }
+
+    /// G4's time in seconds: `P` s (Fanuc: ms), Fanuc's `X` s, Sinumerik's `F` s.
+    pub(crate) fn dwell_seconds(&self, b: &mut Block, dialect: Dialect) -> Result<f64, BlockError> {
+        let p = b.take(b'P');
+        let x = if dialect == Dialect::Fanuc {
+            b.take(b'X')
+        } else {
+            None
+        };
+        let f = if dialect == Dialect::Sinumerik {
+            b.take(b'F')
+        } else {
+            None
+        };
+        let seconds = match (p, x, f) {
+            (Some(p), None, None) if dialect == Dialect::Fanuc => p / 1000.0,
+            (Some(s), None, None) | (None, Some(s), None) | (None, None, Some(s)) => s,
+            _ => {
+                return Err(BlockError::new(
+                    "dwell",
+                    "G4",
+                    match dialect {
+                        Dialect::Fanuc => "one of G04 X (s) or G04 P (ms)",
+                        Dialect::Sinumerik => "G4 F (s)",
+                        _ => "G4 P (s)",
+                    },
+                ));
+            }
+        };
+        if seconds < 0.0 {
+            return Err(BlockError::new("dwell", seconds, "a time >= 0 s"));
+        }
+        Ok(seconds)
     }
 
     fn feed_for(&self, mv: &Move, block_f: Option<f64>) -> Result<f64, BlockError> {

@@ -12,7 +12,7 @@
 //! * `G92 X Y Z`: an offset so that the present position reads X Y Z:
 //!   G92 = machine − origin − tool − value. `G92.1` clears it and its parameters, `G92.2`
 //!   clears it and keeps the parameters, `G92.3` applies the parameters again.
-//! * A rotation (`G10 L2 R`) is refused: the reader has no rotated systems.
+//! * `G10 L2 P p R deg` rotates system p's XY frame about its origin (module `rotation`).
 //!
 //! Parameters read from the state: `#5220`, `#5400` (tool), `#5410` (its diameter),
 //! `#5420..#5422` (position in the active system, program units), and the named
@@ -21,7 +21,7 @@
 //! `#<_units_per_rev>` (0), `#<_feed>`, `#<_rpm>`, `#<_current_tool>`, `#<_motion_mode>`,
 //! `#<_plane>`, `#<_coord_system>`, `#<_call_level>`, `#<_remap_level>` (0), `#<_task>`
 //! (0: not run by a machine), `#<_vmajor>` (2), `#<_vminor>` (9),
-//! `#<_lathe_diameter_mode>` (0), `#<_lathe_radius_mode>` (1), `#<_value>`,
+//! `#<_lathe_diameter_mode>` (1 in G7), `#<_lathe_radius_mode>`, `#<_value>`,
 //! `#<_value_returned>` (0 until a subroutine returns).
 
 use super::{Block, BlockError, FeedMode, State};
@@ -48,13 +48,14 @@ impl State {
     pub(crate) fn load_origin(&mut self, store: &Store) {
         let b = system_base(self.system + 1);
         self.origin = Vec3::new(store.get(b), store.get(b + 1), store.get(b + 2));
+        self.rotation = store.get(b + 9).to_radians();
     }
 
     /// The present position in the active system, program units.
     pub(crate) fn program_position(&self) -> [f64; 3] {
-        let p = self.pos - self.origin - self.g92 - self.tool_offset;
+        let p = self.program_mm();
         let u = self.modal.units.mm_per_unit();
-        [p.x / u, p.y / u, p.z / u]
+        [p[0] / u, p[1] / u, p[2] / u]
     }
 
     fn axes(b: &mut Block) -> [Option<f64>; 3] {
@@ -87,14 +88,24 @@ impl State {
                 ));
             }
         };
-        if r.is_some_and(|r| r != 0.0) {
-            return Err(BlockError::unsupported(
-                format!("G10 R{}", r.unwrap_or(0.0)),
-                "G10 without rotation (the reader has no rotated coordinate systems)",
-            ));
-        }
         let sys = if p == 0 { self.system + 1 } else { p };
         let base = system_base(sys);
+        if let Some(r) = r {
+            if l20 {
+                return Err(BlockError::new(
+                    "G10 L20",
+                    format!("R{r}"),
+                    "R only with G10 L2",
+                ));
+            }
+            store.set(base + 9, r);
+        }
+        if l20 && store.get(base + 9) != 0.0 {
+            return Err(BlockError::unsupported(
+                "G10 L20 in a rotated system",
+                "G10 L20 in systems without rotation (G10 L2 R0)",
+            ));
+        }
         let u = self.unit();
         let pos = [self.pos.x, self.pos.y, self.pos.z];
         let g92 = [self.g92.x, self.g92.y, self.g92.z];
@@ -124,6 +135,12 @@ impl State {
         store: &mut Store,
     ) -> Result<(), BlockError> {
         match g {
+            920 if self.rotation != 0.0 => {
+                return Err(BlockError::unsupported(
+                    "G92 in a rotated system",
+                    "G92 in systems without rotation (G10 L2 R0)",
+                ));
+            }
             920 => {
                 let axes = Self::axes(b);
                 if axes.iter().all(Option::is_none) {
@@ -216,8 +233,8 @@ impl State {
             "_remap_level" | "_task" => 0.0,
             "_vmajor" => 2.0,
             "_vminor" => 9.0,
-            "_lathe_diameter_mode" => 0.0,
-            "_lathe_radius_mode" => 1.0,
+            "_lathe_diameter_mode" => t(self.diameter),
+            "_lathe_radius_mode" => t(!self.diameter),
             _ => return None,
         })
     }
