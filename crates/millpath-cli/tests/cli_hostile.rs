@@ -311,15 +311,6 @@ fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
-            what: "SVG of two outlines that touch at a corner",
-            args: &["pocket", "corner.svg", "--tool-diameter", "6", "-o", "out.ngc"],
-            files: &[(
-                "corner.svg",
-                br#"<svg><path d="M 0 0 L 40 0 L 40 40 L 0 40 Z"/><path d="M 40 40 L 80 40 L 80 80 L 40 80 Z"/></svg>"#,
-            )],
-            outputs: &["out.ngc"],
-        },
-        Case {
             what: "pocket --select beyond the drawing's pockets",
             args: &["pocket", "two.svg", "--select", "3", "--tool-diameter", "6", "-o", "out.ngc"],
             files: &[(

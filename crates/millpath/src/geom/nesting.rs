@@ -19,7 +19,7 @@
 //!
 //! **Containment.** Outlines that touch, cross, overlap or repeat are first resolved as the
 //! drawing means them ([`super::overlap`]: a union, a notch, a repeat dropped; a point contact
-//! refused, naming both outlines and where they meet). Outlines that neither touch nor cross
+//! opened by a 0.01 mm disc of material). Outlines that neither touch nor cross
 //! are either nested or apart, so one point of an outline decides whether another contains
 //! it (its first vertex, by winding number).
 //!
@@ -165,20 +165,21 @@ mod tests {
     }
 
     #[test]
-    fn overlapping_outlines_nest_as_their_union_and_point_contacts_are_refused() {
+    fn overlapping_outlines_nest_as_their_union_and_point_contacts_are_opened() {
         // Side by side, sharing part of an edge: one pocket, their union.
         let loops = vec![square(0.0, 0.0, 10.0, true), square(10.0, 2.0, 5.0, true)];
         let (p, notes) = nest_noted(loops, "d.dxf").expect("resolves");
         assert_eq!(p.len(), 1);
         assert!((p[0].area() - 125.0).abs() < 1e-9);
         assert!(notes[0].contains("outlines 1 and 2 overlap"), "{notes:?}");
+        // Corner to corner: two pockets, opened at the corner by a 0.01 mm disc.
         let corner = vec![square(0.0, 0.0, 10.0, true), square(10.0, 10.0, 5.0, true)];
-        let e = nest(corner, "d.dxf").unwrap_err().to_string();
-        assert!(e.contains("1 (from (0.000, 0.000)) and 2"), "{e}");
-        assert!(
-            e.contains("d.dxf, where they meet near (10.000, 10.000)"),
-            "{e}"
-        );
+        let (p, notes) = nest_noted(corner, "d.dxf").expect("opened");
+        assert_eq!(p.len(), 2);
+        let quarter = std::f64::consts::PI * 1e-4 / 4.0;
+        assert!((p[0].area() - (100.0 - quarter)).abs() < 1e-9);
+        assert!((p[1].area() - (25.0 - quarter)).abs() < 1e-9);
+        assert!(notes[0].contains("(10.000, 10.000)"), "{notes:?}");
         assert!(nest(Vec::new(), "e").is_err());
     }
 }

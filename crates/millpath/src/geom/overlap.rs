@@ -25,13 +25,35 @@
 //!      └─────┴─┘            └────────┘
 //! ```
 //!
+//! **Single-point contacts.** Where the union or difference touches itself at a point (two
+//! pockets drawn corner to corner: a figure 8; an island touching its pocket's wall at one
+//! point; two HATCH paths whose union leaves an unfilled strip touching the outline at a
+//! corner, `ez_clockwise_arcs_hatch.dxf`), no outline can be a simple loop. Such a point is
+//! one where the two outlines meet and two stretches of the result's boundary pass (a vertex
+//! of its non-sliver loops within [`TOUCH_EPS`], counted twice). Each is opened by a disc of
+//! material of radius [`POINT_CONTACT_RADIUS`] (0.01 mm) taken from both outlines before the
+//! boolean is taken again: `(A − D) ∪ (B − D) = (A ∪ B) − D`, `(A − D) − (B − D) = A − B − D`.
+//! The figure 8 becomes two pockets 0.02 mm apart, the touching island a notch in the
+//! wall; what is lost is a disc no tool reaches (the point lies in a corner of every piece,
+//! where a tool of radius `r` leaves a cusp far larger than 0.01 mm), and the pocket is
+//! verified against the opened outline, the more conservative one (its walls are the drawn
+//! walls plus the disc).
+//!
+//! ```text
+//!   ┌────┐                 ┌────┐
+//!   │ A  │                 │ A  ╲          a point contact, opened by a 0.01 mm disc
+//!   └────●────┐    ──▶     └─────╮ ╭────┐
+//!        │ B  │                   ╲│ B  │
+//!        └────┘                    └────┘
+//! ```
+//!
 //! Booleans are cavalier_contours' (arcs stay exact) with positions equal within
 //! [`TOUCH_EPS`]; pieces of the result with less than [`COLLAPSED_AREA`], or thinner than
 //! [`TOUCH_EPS`] on average, are slivers of rounding and dropped, and vertices closer than
-//! [`REDUNDANT_EPS`] merged. A pair the booleans cannot separate (outlines that touch at a
-//! single point, or come within [`TOUCH_EPS`] without crossing) is refused with an input
-//! error naming both outlines (their index in the order read and a vertex of each), where
-//! they meet, and what to do: draw them apart or read one layer (`--layer`).
+//! [`REDUNDANT_EPS`] merged. A pair the booleans still cannot separate (outlines that come
+//! within [`TOUCH_EPS`] without meeting, a contact the disc does not open) is refused with
+//! an input error naming both outlines (their index in the order read and a vertex of each),
+//! where they meet, and what to do: draw them apart or read one layer (`--layer`).
 //!
 //! **Cost.** One intersection test per pair with overlapping bounds (as nesting's), and one
 //! boolean per touching pair; a drawing with nothing touching pays only the test.
@@ -47,6 +69,11 @@ pub const DUPLICATE_EPS: f64 = 0.01;
 
 /// Smallest area of a piece a boolean leaves, mm²; less is a sliver of rounding.
 pub const COLLAPSED_AREA: f64 = 1e-6;
+
+/// Radius of the disc of material a single-point contact is opened by, mm: far below any
+/// tool's radius (no tool reaches a point where two walls meet), far above [`TOUCH_EPS`]
+/// (the opened outlines are apart to the touch test), and the default join tolerance.
+pub const POINT_CONTACT_RADIUS: f64 = 0.01;
 
 /// Vertices of a boolean's result closer than this are one, mm (cavalier_contours' default
 /// position epsilon): two drawn edges 3 µm apart leave a jog that short, which the outline's
@@ -107,6 +134,14 @@ fn same_outline(a: &Outline, b: &Outline) -> bool {
         && b.vertices().all(|v| a.distance_to(v.0) <= DUPLICATE_EPS)
 }
 
+/// A piece of a boolean's result that is rounding: less than [`COLLAPSED_AREA`], or thinner
+/// than [`TOUCH_EPS`] on average (twice the area over the perimeter; an arc traced out and
+/// back at 1e5 mm has 4e-6 mm²).
+fn sliver(p: &Polyline<f64>) -> bool {
+    let a = p.area().abs();
+    a < COLLAPSED_AREA || 2.0 * a < TOUCH_EPS * p.path_length()
+}
+
 /// The pieces of a boolean result as outlines (holes included), slivers dropped; `None` when
 /// one is not a simple outline (two outlines touching at a corner unite into a figure 8).
 fn pieces(
@@ -121,12 +156,7 @@ fn pieces(
             let p = p.pline;
             p.remove_redundant(REDUNDANT_EPS).unwrap_or(p)
         })
-        // A sliver: less than COLLAPSED_AREA, or thinner than TOUCH_EPS on average (twice
-        // the area over the perimeter; an arc traced out and back at 1e5 mm has 4e-6 mm²).
-        .filter(|p| {
-            let a = p.area().abs();
-            a >= COLLAPSED_AREA && 2.0 * a >= TOUCH_EPS * p.path_length()
-        })
+        .filter(|p| !sliver(p))
         .map(|p| Outline::from_polyline(p, origin).ok())
         .collect()
 }
@@ -182,50 +212,57 @@ pub fn resolve(loops: Vec<Outline>, origin: &str) -> Result<Resolved, InputError
             items.remove(j);
             continue;
         }
-        let (pa, pb) = (a.outline.polyline(), b.outline.polyline());
-        const PINCHED: &str = "their union or difference touches itself at a point";
-        let Some(union) = pieces(pa.boolean_opt(pb, BooleanOp::Or, &opts), origin) else {
-            return Err(refuse(PINCHED));
-        };
         let (aa, ab) = (a.outline.signed_area().abs(), b.outline.signed_area().abs());
         let (big, small) = if aa >= ab { (i, j) } else { (j, i) };
-        let area_big = aa.max(ab);
-        let holds =
-            union.len() == 1 && (union[0].signed_area().abs() - area_big).abs() <= 1e-6 * area_big;
-        let (result, note) = if holds {
-            let (pg, ps) = (
-                items[big].outline.polyline(),
-                items[small].outline.polyline(),
-            );
-            let Some(less) = pieces(pg.boolean_opt(ps, BooleanOp::Not, &opts), origin) else {
-                return Err(refuse(PINCHED));
-            };
-            let note = format!(
-                "outline {} lies inside outline {} against its edge near ({:.3}, {:.3}): cut \
-                 as {} less {} (a notch in its wall)",
-                items[small].name, items[big].name, at.x, at.y, items[big].name, items[small].name
-            );
-            (less, note)
-        } else {
-            let note = format!(
+        let (pa, pb) = (a.outline.polyline(), b.outline.polyline());
+        let holds = holds_other(pa, pb, aa.max(ab), &opts, origin);
+        let (pg, ps) = if big == i { (pa, pb) } else { (pb, pa) };
+        let (result, opened) = match combine(pg, ps, holds, &opts, origin) {
+            Ok(r) => (r, Vec::new()),
+            Err(why) => {
+                // Touching at single points: opened there by a small disc, then again.
+                let at_points = pinch_points(pg, ps, holds, at, &opts);
+                let opened = open_at(pg, &at_points, &opts)
+                    .zip(open_at(ps, &at_points, &opts))
+                    .filter(|_| !at_points.is_empty());
+                let Some((g, s)) = opened else {
+                    return Err(refuse(why));
+                };
+                match combine(&g, &s, holds, &opts, origin) {
+                    Ok(r) => (r, at_points),
+                    Err(why) => return Err(refuse(why)),
+                }
+            }
+        };
+        let (nb, ns) = (&items[big].name, &items[small].name);
+        let mut note = if holds {
+            format!(
+                "outline {ns} lies inside outline {nb} against its edge near ({:.3}, {:.3}): \
+                 cut as {nb} less {ns} (a notch in its wall)",
+                at.x, at.y
+            )
+        } else if opened.is_empty() {
+            format!(
                 "outlines {} and {} overlap or share an edge near ({:.3}, {:.3}): cut as their \
                  union",
                 a.name, b.name, at.x, at.y
-            );
-            (union, note)
+            )
+        } else {
+            format!(
+                "outlines {} and {} meet near ({:.3}, {:.3}): cut as their union",
+                a.name, b.name, at.x, at.y
+            )
         };
-        if result.is_empty() {
-            return Err(refuse("nothing is left of the pair"));
-        }
-        // The pieces of one boolean must be apart, else the pair is not resolved.
-        for (x, p) in result.iter().enumerate() {
-            for q in &result[x + 1..] {
-                if bounds_overlap(p.bounds(), q.bounds()) && touch_point(p, q).is_some() {
-                    return Err(refuse(
-                        "resolving them leaves pieces that touch at a point or come within 1 µm",
-                    ));
-                }
-            }
+        if !opened.is_empty() {
+            let list: Vec<String> = opened
+                .iter()
+                .map(|p| format!("({:.3}, {:.3})", p.x + 0.0, p.y + 0.0))
+                .collect();
+            note.push_str(&format!(
+                ", which touches itself at a single point ({}): opened there by a \
+                 {POINT_CONTACT_RADIUS} mm disc of material (a point no tool reaches)",
+                list.join(", ")
+            ));
         }
         let mut members = items[i].members.clone();
         members.extend(&items[j].members);
@@ -242,6 +279,118 @@ pub fn resolve(loops: Vec<Outline>, origin: &str) -> Result<Resolved, InputError
         .expected(format!(
             "outlines whose overlaps resolve within {budget} unions and differences"
         )))
+}
+
+/// True when one of the pair's regions holds the other: their union is one outline of the
+/// larger's area (to 1e-6 of it).
+fn holds_other(
+    pa: &Polyline<f64>,
+    pb: &Polyline<f64>,
+    area_big: f64,
+    opts: &PlineBooleanOptions<'_, f64>,
+    origin: &str,
+) -> bool {
+    pieces(pa.boolean_opt(pb, BooleanOp::Or, opts), origin).is_some_and(|u| {
+        u.len() == 1 && (u[0].signed_area().abs() - area_big).abs() <= 1e-6 * area_big
+    })
+}
+
+/// The pair resolved: `big` less `small` when `holds`, else their union; the reason it
+/// cannot be when a piece touches itself or another piece.
+fn combine(
+    big: &Polyline<f64>,
+    small: &Polyline<f64>,
+    holds: bool,
+    opts: &PlineBooleanOptions<'_, f64>,
+    origin: &str,
+) -> Result<Vec<Outline>, &'static str> {
+    const PINCHED: &str = "their union or difference touches itself at a point";
+    let op = if holds { BooleanOp::Not } else { BooleanOp::Or };
+    let result = pieces(big.boolean_opt(small, op, opts), origin).ok_or(PINCHED)?;
+    if result.is_empty() {
+        return Err("nothing is left of the pair");
+    }
+    // The pieces of one boolean must be apart, else the pair is not resolved.
+    for (x, p) in result.iter().enumerate() {
+        for q in &result[x + 1..] {
+            if bounds_overlap(p.bounds(), q.bounds()) && touch_point(p, q).is_some() {
+                return Err(
+                    "resolving them leaves pieces that touch at a point or come within 1 µm",
+                );
+            }
+        }
+    }
+    Ok(result)
+}
+
+/// Where the pair's union (or difference, when `holds`) touches itself: the points where
+/// the two outlines meet (and `at`) that two stretches of the result's boundary pass through
+/// (a vertex of the result within [`TOUCH_EPS`], counted over all its loops).
+fn pinch_points(
+    big: &Polyline<f64>,
+    small: &Polyline<f64>,
+    holds: bool,
+    at: Point,
+    opts: &PlineBooleanOptions<'_, f64>,
+) -> Vec<Point> {
+    let hits = big.find_intersects(small);
+    let mut candidates: Vec<Point> = vec![at];
+    candidates.extend(
+        hits.basic_intersects
+            .iter()
+            .map(|h| Point::new(h.point.x, h.point.y)),
+    );
+    for h in &hits.overlapping_intersects {
+        candidates.push(Point::new(h.point1.x, h.point1.y));
+        candidates.push(Point::new(h.point2.x, h.point2.y));
+    }
+    let op = if holds { BooleanOp::Not } else { BooleanOp::Or };
+    let r = big.boolean_opt(small, op, opts);
+    let loops: Vec<Polyline<f64>> = r
+        .pos_plines
+        .into_iter()
+        .chain(r.neg_plines)
+        .map(|p| p.pline.remove_redundant(REDUNDANT_EPS).unwrap_or(p.pline))
+        .filter(|p| !sliver(p))
+        .collect();
+    let mut out: Vec<Point> = Vec::new();
+    for c in candidates {
+        let passes: usize = loops
+            .iter()
+            .map(|l| {
+                l.iter_vertexes()
+                    .filter(|v| Point::new(v.x, v.y).distance(c) <= TOUCH_EPS)
+                    .count()
+            })
+            .sum();
+        if passes >= 2 && out.iter().all(|q| q.distance(c) > POINT_CONTACT_RADIUS) {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// `pl` less a disc of radius [`POINT_CONTACT_RADIUS`] about each point; `None` when that
+/// is not one outline.
+fn open_at(
+    pl: &Polyline<f64>,
+    at: &[Point],
+    opts: &PlineBooleanOptions<'_, f64>,
+) -> Option<Polyline<f64>> {
+    use cavalier_contours::polyline::PlineSourceMut;
+    let mut out = pl.clone();
+    for p in at {
+        let w = POINT_CONTACT_RADIUS;
+        let mut disc = Polyline::new_closed();
+        disc.add(p.x - w, p.y, 1.0);
+        disc.add(p.x + w, p.y, 1.0);
+        let mut r = out.boolean_opt(&disc, BooleanOp::Not, opts);
+        if r.pos_plines.len() != 1 || !r.neg_plines.is_empty() {
+            return None;
+        }
+        out = r.pos_plines.pop()?.pline;
+    }
+    Some(out)
 }
 
 /// A union can swallow the crossings of a third outline with one of its members (outline 6
@@ -405,8 +554,83 @@ mod tests {
         );
     }
 
+    /// Independent of the booleans: the area of `o` sampled on a grid over `[x0, x1] ×
+    /// [y0, y1]` at `h`, by `Outline::contains`.
+    fn grid_area(o: &[Outline], x0: f64, y0: f64, x1: f64, y1: f64, h: f64) -> f64 {
+        let (nx, ny) = (((x1 - x0) / h) as usize, ((y1 - y0) / h) as usize);
+        let mut n = 0usize;
+        for i in 0..nx {
+            for j in 0..ny {
+                let p = Point::new(x0 + (i as f64 + 0.5) * h, y0 + (j as f64 + 0.5) * h);
+                if o.iter().filter(|l| l.contains(p)).count() % 2 == 1 {
+                    n += 1;
+                }
+            }
+        }
+        n as f64 * h * h
+    }
+
     #[test]
-    fn repeats_are_dropped_and_point_contacts_refused() {
+    fn corner_to_corner_outlines_become_two_pockets_apart() {
+        let r = resolve(
+            vec![rect(0.0, 0.0, 10.0, 10.0), rect(10.0, 10.0, 20.0, 20.0)],
+            "c.svg",
+        )
+        .expect("a point contact is opened");
+        assert_eq!(r.outlines.len(), 2, "{:?}", r.notes);
+        assert!(
+            r.notes[0].contains("opened there by a 0.01 mm disc")
+                && r.notes[0].contains("(10.000, 10.000)"),
+            "{}",
+            r.notes[0]
+        );
+        // Apart: no touch, and nesting makes them two pockets with no island.
+        assert!(touch_point(&r.outlines[0], &r.outlines[1]).is_none());
+        let p = crate::geom::nesting::nest(r.outlines.clone(), "c.svg").expect("nests");
+        assert_eq!(p.len(), 2);
+        assert!(p.iter().all(|q| q.islands.is_empty()));
+        // What was lost: two quarter discs of radius 0.01 mm.
+        let lost = 200.0 - areas(&r).iter().sum::<f64>();
+        let quarter = std::f64::consts::PI * 1e-4 / 4.0;
+        assert!((lost - 2.0 * quarter).abs() < 1e-9, "{lost}");
+        // The drawn squares, sampled on a grid, are the result everywhere off the disc.
+        let g = grid_area(&r.outlines, 0.0, 0.0, 20.0, 20.0, 0.1);
+        assert!((g - 200.0).abs() < 1e-9, "{g}");
+    }
+
+    #[test]
+    fn an_island_touching_its_wall_at_a_point_is_a_notch() {
+        // A diamond inside a 40 × 40 square, its bottom corner on the bottom edge.
+        let p = Point::new;
+        let diamond = Outline::from_points(
+            &[p(20.0, 0.0), p(25.0, 5.0), p(20.0, 10.0), p(15.0, 5.0)],
+            "t",
+        )
+        .expect("diamond");
+        let r = resolve(vec![rect(0.0, 0.0, 40.0, 40.0), diamond], "d").expect("opened");
+        assert_eq!(r.outlines.len(), 1, "{:?}", r.notes);
+        assert!(
+            r.notes[0].contains("lies inside outline 1"),
+            "{}",
+            r.notes[0]
+        );
+        assert!(r.notes[0].contains("(20.000, 0.000)"), "{}", r.notes[0]);
+        let o = &r.outlines[0];
+        assert!(!o.contains(p(20.0, 5.0)) && o.contains(p(5.0, 5.0)));
+        // 1600 less the diamond (50) less a half disc of 0.01 mm (the diamond's corner
+        // already holds a quarter of it).
+        let a = o.signed_area().abs();
+        let half = std::f64::consts::PI * 1e-4 / 2.0;
+        assert!(
+            (a - (1550.0 - half + std::f64::consts::PI * 1e-4 / 4.0)).abs() < 1e-6,
+            "{a}"
+        );
+        let g = grid_area(&r.outlines, 0.0, 0.0, 40.0, 40.0, 0.1);
+        assert!((g - 1550.0).abs() < 0.2, "{g}");
+    }
+
+    #[test]
+    fn repeats_are_dropped() {
         let r = resolve(
             vec![rect(0.0, 0.0, 10.0, 10.0), rect(0.0, 0.0, 10.0, 10.004)],
             "d",
@@ -418,20 +642,5 @@ mod tests {
             "{}",
             r.notes[0]
         );
-        let e = resolve(
-            vec![rect(0.0, 0.0, 10.0, 10.0), rect(10.0, 10.0, 20.0, 20.0)],
-            "c.svg",
-        )
-        .expect_err("a point contact is ambiguous")
-        .to_string();
-        assert!(
-            e.contains("1 (from (0.000, 0.000)) and 2 (from (10.000, 10.000))"),
-            "{e}"
-        );
-        assert!(
-            e.contains("c.svg, where they meet near (10.000, 10.000)"),
-            "{e}"
-        );
-        assert!(e.contains("--layer"), "{e}");
     }
 }

@@ -6,14 +6,15 @@
 //! minimum from below by `min − h/2`; every sample within `h/2` of the running minimum is then
 //! refined by golden-section search on `[t − h, t + h]` to 1e-9 mm (distances to the walls
 //! are exact: cavalier_contours' closest point on lines and arcs, through a spatial index of
-//! the walls, [`super::nearest`]). A straight move is measured whole, exactly
-//! ([`super::nearest::IndexedWall::distance_to_segment`]). The check is against the
+//! the walls, [`super::nearest`]). A straight move, and an arc in XY, is measured whole,
+//! exactly ([`super::nearest::IndexedWall::distance_to_segment`], `distance_to_arc`); the
+//! sampling is left for arcs in other planes. The check is against the
 //! geometry, not the raster.
 
 use super::StockSpec;
 use super::nearest::IndexedWall;
 use crate::geom::{Point, Point3};
-use crate::toolpath::{MoveKind, Toolpath};
+use crate::toolpath::{MoveKind, Plane, Toolpath};
 
 /// The smallest clearance and where it happens.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -113,6 +114,34 @@ pub fn min_clearance_levels(tp: &Toolpath, specs: &[StockSpec<'_>]) -> Clearance
                         best = Clearance {
                             distance: d,
                             at: from.lerp(m.to, f.clamp(0.0, 1.0)),
+                            move_index: k,
+                        };
+                    }
+                }
+            }
+            continue;
+        }
+        if let (MoveKind::Arc { center, plane, .. }, Some((r, sweep))) =
+            (m.kind, m.sweep_from(from))
+            && plane == Plane::Xy
+            && sweep != 0.0
+        {
+            // An arc in XY: measured whole, exactly (nearest::IndexedWall::distance_to_arc).
+            let a0 = (from.y - center.y).atan2(from.x - center.x);
+            for &i in &walls {
+                for w in &indexed[i] {
+                    let (d, rel) = w.distance_to_arc(center.xy(), r, a0, sweep);
+                    let d = d - (specs[i].wall_stock - final_stock);
+                    if d < best.distance {
+                        let a = a0 + rel;
+                        let f = (rel / sweep).clamp(0.0, 1.0);
+                        best = Clearance {
+                            distance: d,
+                            at: Point3::new(
+                                center.x + r * a.cos(),
+                                center.y + r * a.sin(),
+                                from.z + (m.to.z - from.z) * f,
+                            ),
                             move_index: k,
                         };
                     }

@@ -16,12 +16,25 @@
 //! point of the move nearest the arc's centre, when the circle's point in that direction
 //! lies on the arc (the only interior critical point of the distance from a line to a
 //! circle outside it).
+//!
+//! An arc move is measured whole too ([`IndexedWall::distance_to_arc`]), cut into pieces of
+//! at most a quarter turn: against each wall piece near it, 0 where they cross
+//! (cavalier_contours' segment intersection); else the least of an end of either to the
+//! other, and the interior critical points, where the line joining the two nearest points
+//! is normal to both: the arc's points on the normal of a wall line through the arc's
+//! centre, or on the line of the two centres for a wall arc. (Sampling arcs every 0.25 mm
+//! and refining each sample near the minimum took 84 % of `pocket`'s time on a 56 × 70 m
+//! drawing with a 5.6 m tool: 17 s for zigzag, over 100 s for offset; measured whole,
+//! 0.08 s and 0.04 s, the same clearance to the µm.)
 
 use crate::geom::Point;
 use cavalier_contours::core::math::Vector2;
-use cavalier_contours::polyline::{PlineSource, Polyline, seg_closest_point};
+use cavalier_contours::polyline::{
+    PlineSegIntr, PlineSource, PlineVertex, Polyline, pline_seg_intr, seg_closest_point,
+};
 use cavalier_contours::static_aabb2d_index::{Control, NeighborPriorityQueue, StaticAABB2DIndex};
 use std::cell::RefCell;
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Loops of at most this many segments are scanned segment by segment.
 const SCAN_SEGMENTS: usize = 32;
@@ -103,6 +116,105 @@ impl IndexedWall<'_> {
     }
 }
 
+impl IndexedWall<'_> {
+    /// Exact distance from the arc about `center` of radius `r` that starts at angle `a0` and
+    /// sweeps `sweep` rad (counter-clockwise when positive, any number of turns) to the loop,
+    /// and the angle (from `a0`, signed like `sweep`) where it is reached (see the module
+    /// docs).
+    pub fn distance_to_arc(&self, center: Point, r: f64, a0: f64, sweep: f64) -> (f64, f64) {
+        let at = |t: f64| Point::new(center.x + r * t.cos(), center.y + r * t.sin());
+        let start = self.distance(at(a0));
+        let n = self.pl.vertex_count();
+        if n < 2 || !start.is_finite() {
+            return (start, 0.0);
+        }
+        let mut best = (start, 0.0);
+        // Pieces of at most a quarter turn: bulge segments cavalier_contours can intersect.
+        let k = ((sweep.abs() / FRAC_PI_2).ceil() as usize).clamp(1, 4 * 64);
+        let dt = sweep / k as f64;
+        let grow = start + r;
+        let (lo_x, hi_x) = (center.x - grow, center.x + grow);
+        let (lo_y, hi_y) = (center.y - grow, center.y + grow);
+        let candidates: Vec<usize> = match &self.index {
+            Some(index) => index.query(lo_x, lo_y, hi_x, hi_y),
+            None => (0..n).collect(),
+        };
+        for piece in 0..k {
+            let t0 = a0 + dt * piece as f64;
+            let (p0, p1) = (at(t0), at(t0 + dt));
+            let bulge = (dt / 4.0).tan();
+            let u1 = PlineVertex::new(p0.x, p0.y, bulge);
+            let u2 = PlineVertex::new(p1.x, p1.y, 0.0);
+            // The angle (from a0) of a point of the circle, when it lies on this piece.
+            let on_piece = |q: Point| -> Option<f64> {
+                let rel = ((q.y - center.y).atan2(q.x - center.x) - t0) * dt.signum();
+                let rel = rel.rem_euclid(TAU);
+                (rel <= dt.abs() + 1e-12).then(|| dt * piece as f64 + rel * dt.signum())
+            };
+            for &i in &candidates {
+                let (v1, v2) = (self.pl.at(i), self.pl.at((i + 1) % n));
+                let mut consider = |d: f64, rel: f64| {
+                    if d < best.0 {
+                        best = (d, rel);
+                    }
+                };
+                match pline_seg_intr(u1, u2, v1, v2, 1e-12) {
+                    PlineSegIntr::NoIntersect => {}
+                    PlineSegIntr::TangentIntersect { point }
+                    | PlineSegIntr::OneIntersect { point } => {
+                        consider(0.0, on_piece(pt(point)).unwrap_or(dt * piece as f64));
+                    }
+                    PlineSegIntr::TwoIntersects { point1, .. }
+                    | PlineSegIntr::OverlappingLines { point1, .. }
+                    | PlineSegIntr::OverlappingArcs { point1, .. } => {
+                        consider(0.0, on_piece(pt(point1)).unwrap_or(dt * piece as f64));
+                    }
+                }
+                // The piece's ends to the wall piece.
+                consider(to_piece(v1, v2, p0), dt * piece as f64);
+                consider(to_piece(v1, v2, p1), dt * (piece + 1) as f64);
+                // The wall piece's ends to the piece: their nearest point on it.
+                let wall_points = [pt(v1.pos()), pt(v2.pos())];
+                // Points of the circle where the distance to the wall piece can be least
+                // inside both: the normal of a wall line through the centre; the line of the
+                // centres for a wall arc.
+                let dirs: Vec<Vector2<f64>> = if v1.bulge_is_zero() {
+                    let e = v2.pos() - v1.pos();
+                    let len = e.length();
+                    if len > 0.0 {
+                        vec![Vector2::new(-e.y / len, e.x / len)]
+                    } else {
+                        Vec::new()
+                    }
+                } else {
+                    let (_, cw) = cavalier_contours::polyline::seg_arc_radius_and_center(v1, v2);
+                    let d = cw - v(center);
+                    let len = d.length();
+                    if len > 0.0 {
+                        vec![Vector2::new(d.x / len, d.y / len)]
+                    } else {
+                        Vec::new()
+                    }
+                };
+                for u in dirs {
+                    for q in [v(center) + u.scale(r), v(center) - u.scale(r)] {
+                        if let Some(rel) = on_piece(pt(q)) {
+                            consider(to_piece(v1, v2, pt(q)), rel);
+                        }
+                    }
+                }
+                for w in wall_points {
+                    let c = pt(seg_closest_point(u1, u2, v(w), 1e-12));
+                    if let Some(rel) = on_piece(c) {
+                        consider(c.distance(w), rel);
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
 fn v(p: Point) -> Vector2<f64> {
     Vector2::new(p.x, p.y)
 }
@@ -123,22 +235,13 @@ fn foot(a: Point, b: Point, q: Point) -> Point {
 }
 
 /// Distance from `q` to the wall piece `v1`–`v2` (line or arc), exact.
-fn to_piece(
-    v1: cavalier_contours::polyline::PlineVertex<f64>,
-    v2: cavalier_contours::polyline::PlineVertex<f64>,
-    q: Point,
-) -> f64 {
+fn to_piece(v1: PlineVertex<f64>, v2: PlineVertex<f64>, q: Point) -> f64 {
     (seg_closest_point(v1, v2, v(q), 1e-12) - v(q)).length()
 }
 
 /// Exact distance between the segment `a`–`b` and the wall piece `v1`–`v2`, and where on
 /// the segment it is reached.
-fn seg_to_piece(
-    a: Point,
-    b: Point,
-    v1: cavalier_contours::polyline::PlineVertex<f64>,
-    v2: cavalier_contours::polyline::PlineVertex<f64>,
-) -> (f64, Point) {
+fn seg_to_piece(a: Point, b: Point, v1: PlineVertex<f64>, v2: PlineVertex<f64>) -> (f64, Point) {
     let mut best = (to_piece(v1, v2, a), a);
     let mut consider = |d: f64, p: Point| {
         if d < best.0 {
@@ -208,7 +311,7 @@ mod tests {
         // A 200-gon with wobbly radius and an arc: the index against every segment.
         let pts: Vec<(Point, f64)> = (0..200)
             .map(|k| {
-                let a = k as f64 * std::f64::consts::TAU / 200.0;
+                let a = k as f64 * TAU / 200.0;
                 let r = 20.0 + 3.0 * (7.0 * a).sin();
                 (
                     Point::new(r * a.cos(), r * a.sin()),
@@ -232,7 +335,7 @@ mod tests {
     fn segment_distance_equals_dense_sampling() {
         let pts: Vec<(Point, f64)> = (0..120)
             .map(|k| {
-                let a = k as f64 * std::f64::consts::TAU / 120.0;
+                let a = k as f64 * TAU / 120.0;
                 let r = 20.0 + 3.0 * (5.0 * a).sin();
                 (
                     Point::new(r * a.cos(), r * a.sin()),
@@ -269,6 +372,56 @@ mod tests {
             assert!(
                 (o.distance_to(at) - d).abs() < 1e-7,
                 "{k}: reached at {at:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn arc_distance_equals_dense_sampling() {
+        let pts: Vec<(Point, f64)> = (0..120)
+            .map(|k| {
+                let a = k as f64 * TAU / 120.0;
+                let r = 20.0 + 3.0 * (5.0 * a).sin();
+                (
+                    Point::new(r * a.cos(), r * a.sin()),
+                    if k % 7 == 0 {
+                        -0.2
+                    } else {
+                        0.1 * (k % 3) as f64
+                    },
+                )
+            })
+            .collect();
+        let o = Outline::new(&pts, "t").expect("outline");
+        let w = IndexedWall::new(o.polyline());
+        for k in 0..300 {
+            let c = Point::new(
+                (k as f64 * 0.37).sin() * 20.0,
+                (k as f64 * 0.61).cos() * 20.0,
+            );
+            let r = 0.5 + 8.0 * (k as f64 * 0.29).sin().abs();
+            let a0 = k as f64 * 0.83;
+            // Sweeps of either sense, up to a turn and a half.
+            let sweep = (k as f64 * 1.7).sin() * 3.0 * std::f64::consts::PI;
+            let (d, rel) = w.distance_to_arc(c, r, a0, sweep);
+            let at = |t: f64| Point::new(c.x + r * t.cos(), c.y + r * t.sin());
+            let n = 40_000;
+            let sampled = (0..=n)
+                .map(|i| o.distance_to(at(a0 + sweep * i as f64 / n as f64)))
+                .fold(f64::INFINITY, f64::min);
+            let spacing = (sweep * r).abs() / n as f64;
+            assert!(d <= sampled + 1e-9, "{k}: {d} > sampled {sampled}");
+            assert!(
+                d >= sampled - spacing - 1e-9,
+                "{k}: {d} < sampled {sampled}"
+            );
+            assert!(
+                rel * sweep >= 0.0 && rel.abs() <= sweep.abs() + 1e-9,
+                "{k}: {rel}"
+            );
+            assert!(
+                (o.distance_to(at(a0 + rel)) - d).abs() < 1e-7,
+                "{k}: at {rel}"
             );
         }
     }

@@ -41,6 +41,14 @@
 //! ([`super::levels::direct_entries`]).
 //! After the passes, the boundary offset loops are cut once: the last pass ends on a loop,
 //! which is restarted there and appended without a retract.
+//!
+//! **Short rows.** Both ends of every interval lie on loops of the boundary offset, which
+//! the clean-up pass runs along, so the tool discs at both ends are swept anyway. What a row
+//! of length `L` adds to them is the lens between its sweep (a stadium) and the two discs,
+//! at most `√(r² + L²/4) − r ≤ L²/(8r)` thick. A row with `L²/(8r) ≤` [`ROW_LEFT_CUSP`]
+//! (0.1 µm; `L ≤ 10 µm` for a 0.25 mm tool) is dropped: cutting it alone is a sliver a few
+//! µm long with nothing cleared to enter from (a row grazing a gear's spoke,
+//! `pb_4_spoke_gear.dxf` with a 0.25 mm tool: a 1.1 µm cut that could only be plunged).
 
 use super::chain::{Seg, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
@@ -53,6 +61,11 @@ use crate::geom::{Point, Vec2};
 use crate::toolpath::Tool;
 use cavalier_contours::polyline::Polyline;
 use std::f64::consts::TAU;
+
+/// The most material a row left to the clean-up pass may leave, mm: the lens between the
+/// tool's sweep along a row of length `L` and its discs at the row's ends, `L²/(8r)` thick
+/// (see the module docs). Well below the verifier's resolution (the program's rounding).
+pub const ROW_LEFT_CUSP: f64 = 1e-4;
 
 /// The zigzag strategy's plan for one level.
 pub fn plan(
@@ -91,6 +104,8 @@ pub fn plan(
     // The 1e-9 keeps an exact multiple (a 40 mm span at 4 mm) from gaining a row by rounding.
     let n = ((y1 - y0) / s - 1e-9).ceil().max(1.0) as usize;
     let h = (y1 - y0) / n as f64;
+    // Rows shorter than this are left to the clean-up pass (see the module docs).
+    let min_row = (8.0 * tool.radius() * ROW_LEFT_CUSP).sqrt().max(1e-9);
     let mut rows: Vec<Vec<(f64, f64)>> = Vec::with_capacity(n + 1);
     let mut ys = Vec::with_capacity(n + 1);
     for j in 0..=n {
@@ -104,7 +119,7 @@ pub fn plan(
         rows.push(
             xs.chunks_exact(2)
                 .map(|c| (c[0], c[1]))
-                .filter(|c| c.1 - c.0 > 1e-9)
+                .filter(|c| c.1 - c.0 > min_row)
                 .collect(),
         );
         ys.push(y);
