@@ -239,7 +239,7 @@ impl Outline {
     /// a counter-clockwise outline inward). Offsets keep exact arcs; loops that would gouge are
     /// trimmed. May return several outlines, or none when the offset vanishes.
     pub fn offset(&self, d: f64) -> Vec<Polyline<f64>> {
-        super::region::offset_loops(&self.pline, d)
+        self.pline.parallel_offset(d)
     }
 }
 
