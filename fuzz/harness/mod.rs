@@ -462,6 +462,42 @@ fn decode_pocket(data: &[u8], walls: bool) -> Option<PocketCase> {
 /// `contour`: points from the bytes grouped in fours, a curve kind, options; then
 /// `curve::build` and `contour::contour`.
 pub fn contour(data: &[u8]) {
+    let Some((c, opt)) = contour_case(data) else {
+        return;
+    };
+    let res = match contour::contour(&c, &opt) {
+        Ok(res) => res,
+        Err(millpath::Error::Internal(e)) if strict_verify() => {
+            panic!("contour: internal error: {e}")
+        }
+        Err(_) => return,
+    };
+    {
+        assert_finite(&res.toolpath, "contour");
+        if strict_verify() {
+            // The chordal deviation of the finishing pass, measured against the exact curve
+            // (kurbo's nearest point, `curve::verify`), not by the pass's own measure: no
+            // point of the pass farther than `r + T` from the curve. (How close it comes is
+            // not asserted here: on ~20 chaotic corpus curves the pass comes nearer than `r`
+            // to another part of the curve, a clearance defect left open, 2026-11-25.)
+            let rad = if opt.side == Side::On {
+                0.0
+            } else {
+                opt.tool.radius()
+            };
+            let (_, hi) = pass_distance(&c, &res.toolpath, opt.side == Side::On);
+            assert!(
+                hi <= rad + opt.tolerance + 1e-9,
+                "contour: the finishing pass lies up to {hi:.6} mm from the curve, more than \
+                 r + T = {:.6}",
+                rad + opt.tolerance
+            );
+        }
+    }
+}
+
+/// The curve and options `contour` decodes from `data` (`None`: the curve does not build).
+pub fn contour_case(data: &[u8]) -> Option<(curve::CompositeCurve, ContourOptions)> {
     let mut b = Bytes::new(data);
     let kind = match b.pick(3) {
         0 => CurveKind::FourPoint,
@@ -509,31 +545,8 @@ pub fn contour(data: &[u8]) {
         ..ContourOptions::default()
     };
     trace(&(&kind, &pts, &opt));
-    let Ok(c) = curve::build(&groups, kind, "fuzz") else {
-        return;
-    };
-    if let Ok(res) = contour::contour(&c, &opt) {
-        assert_finite(&res.toolpath, "contour");
-        if strict_verify() {
-            // The chordal deviation of the finishing pass, measured against the exact curve
-            // (kurbo's nearest point, `curve::verify`), not by the pass's own measure: no
-            // point of the pass farther than `r + T` from the curve. (How close it comes is
-            // not asserted here: on ~20 chaotic corpus curves the pass comes nearer than `r`
-            // to another part of the curve, a clearance defect left open, 2026-11-25.)
-            let rad = if opt.side == Side::On {
-                0.0
-            } else {
-                opt.tool.radius()
-            };
-            let (_, hi) = pass_distance(&c, &res.toolpath, opt.side == Side::On);
-            assert!(
-                hi <= rad + opt.tolerance + 1e-9,
-                "contour: the finishing pass lies up to {hi:.6} mm from the curve, more than \
-                 r + T = {:.6}",
-                rad + opt.tolerance
-            );
-        }
-    }
+    let c = curve::build(&groups, kind, "fuzz").ok()?;
+    Some((c, opt))
 }
 
 /// The smallest and largest distance from the finishing level's cutting moves (those tagged
@@ -541,6 +554,16 @@ pub fn contour(data: &[u8]) {
 /// move; with `drawn`, to the curve as drawn (the fish-tail lobes cut off its corners
 /// included: a pass on the outline traces them).
 pub fn pass_distance(c: &curve::CompositeCurve, tp: &Toolpath, drawn: bool) -> (f64, f64) {
+    pass_distance_dense(c, tp, drawn, 8)
+}
+
+/// [`pass_distance`] at `per_move` points a move.
+pub fn pass_distance_dense(
+    c: &curve::CompositeCurve,
+    tp: &Toolpath,
+    drawn: bool,
+    per_move: u32,
+) -> (f64, f64) {
     let Some(lv) = tp.levels.last() else {
         return (f64::INFINITY, f64::NEG_INFINITY);
     };
@@ -560,8 +583,8 @@ pub fn pass_distance(c: &curve::CompositeCurve, tp: &Toolpath, drawn: bool) -> (
         if m.tag.is_none() || !m.is_feed() {
             continue;
         }
-        for j in 0..=8 {
-            let f = f64::from(j) / 8.0;
+        for j in 0..=per_move {
+            let f = f64::from(j) / f64::from(per_move);
             let p = match (m.kind, m.sweep_from(*from)) {
                 (MoveKind::Arc { center, .. }, Some((rad, sweep))) => {
                     let a0 = (from.xy() - center.xy()).angle();

@@ -50,6 +50,10 @@ fn passes(x_end: f64) -> Toolpath {
 }
 
 fn verify(tp: &Toolpath, step: f64) -> stock::Verification {
+    verify_on(tp, step, 0.1)
+}
+
+fn verify_on(tp: &Toolpath, step: f64, cell: f64) -> stock::Verification {
     let outer = rectangle();
     let spec = StockSpec {
         outer: &outer,
@@ -57,7 +61,7 @@ fn verify(tp: &Toolpath, step: f64) -> stock::Verification {
         wall_stock: 0.0,
     };
     let sim = SimOptions {
-        cell: 0.1,
+        cell,
         step,
         ..SimOptions::default()
     };
@@ -152,4 +156,23 @@ fn feeding_down_where_a_cut_ended_is_no_plunge() {
     };
     let v = stock::verify(&tp, spec, 90.0, &SimOptions::default());
     assert_eq!(v.plunges, fresh, "{v:?}");
+}
+
+/// Cells coarser than half the tool radius (3 mm cells, a 10 mm tool: the reach limit
+/// `r − 2c` is negative) still count the material whose cell centre the tool centre may
+/// visit. Before 2026-11-25 such cells were never flagged and a path that stops halfway
+/// passed on a coarse raster (found by the `pocket` fuzzer).
+#[test]
+fn a_coarse_raster_still_finds_material_in_the_reach_region() {
+    let half = verify_on(&passes(20.0), 0.5, 3.0);
+    // The reach region beyond the tool at x = 20 (x from 25 to 35, y from 5 to 15), counted
+    // by 9 mm² cells: most of its 100 mm².
+    assert!(half.uncut_area_mm2 > 50.0, "{half:?}");
+    let at = half.uncut_at.expect("a place");
+    assert!(at.x > 22.0 && at.x < 40.0, "{at:?}");
+    let full = verify_on(&passes(35.0), 0.5, 3.0);
+    assert!(
+        full.uncut_area_mm2 <= stock::UNCUT_AREA_TOLERANCE,
+        "{full:?}"
+    );
 }

@@ -154,8 +154,20 @@ fn one_arc(p: Point, t: Vec2, j: Point, from_start: bool, s_end: f64) -> Option<
         ccw: rho > 0.0,
         s_end,
     };
-    (a.sweep().abs() < std::f64::consts::PI && rho.abs() < 1e7).then_some(a)
+    let sweep = a.sweep().abs();
+    if sweep < MIN_ARC_SWEEP {
+        // Straight to within `ρ·θ²/8 < 1.3e-12 mm` (ρ < 1e7 mm): a line.
+        return Some(ArcSeg { center: None, ..a });
+    }
+    (sweep < std::f64::consts::PI && rho.abs() < 1e7).then_some(a)
 }
+
+/// The smallest sweep, radians, of an arc the fit keeps as an arc. A shorter one is written
+/// as its chord (within `ρ·θ²/8`, below 1.3e-12 mm at the fit's largest radius,
+/// 1e7 mm). Below 1e-12 rad [`crate::toolpath::Move::sweep_from`] reads an arc as a full
+/// circle (an arc whose end is its start): a 6.5e-6 mm arc of radius 9.7e6 mm (sweep 6.7e-13)
+/// became a circle 1.9e7 mm across in the contour pass (fuzz corpus `d19e6c61…`, 2026-11-26).
+pub const MIN_ARC_SWEEP: f64 = 1e-9;
 
 /// The equal-distance biarc from `p0` (unit tangent `t0`) to `p1` (unit tangent `t1`), or
 /// `None` when it degenerates (parallel tangents perpendicular to the chord, or an arc
@@ -408,6 +420,26 @@ pub fn fit<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64, tol: f64) -> Vec<Ar
 mod tests {
     use super::*;
     use crate::curve::catmull_rom::{OpenChain, open};
+
+    /// A near-straight stretch whose arc sweeps less than [`MIN_ARC_SWEEP`] is a line: the
+    /// move the contour pass makes of it is never read as a full circle. The arc of the fuzz
+    /// corpus' `d19e6c61…`: radius 9.7e6 mm, chord 6.5e-6 mm.
+    #[test]
+    fn arcs_too_short_to_read_back_are_lines() {
+        // From `p` along `t`, 6.5e-6 mm, bending 2.2e-18 mm: radius 9.6e6 mm, sweep 6.7e-13.
+        let (p, t) = (Point::new(0.0, 0.0), Vec2::new(-1.0, 0.0));
+        let j = Point::new(-6.5e-6, -2.2e-18);
+        let a = one_arc(p, t, j, true, 1.0).expect("a segment");
+        // `Move::sweep_from` reads a sweep below 1e-12 rad as a full turn.
+        assert!(
+            a.center.is_none() && a.sweep() == 0.0,
+            "{a:?}: sweep {}",
+            a.sweep()
+        );
+        // An arc sweeping 2e-3 rad (radius 500 mm) is kept.
+        let big = one_arc(p, t, Point::new(-1.0, -1e-3), true, 1.0);
+        assert!(big.is_some_and(|b| b.center.is_some()), "{big:?}");
+    }
 
     /// Points about `step` mm apart along a wavy Archimedean spiral of `laps` laps and
     /// pitch 2.4 mm from radius 2 mm, its radius rippling by ±0.3 mm nine times a lap: a

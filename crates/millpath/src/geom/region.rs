@@ -39,8 +39,47 @@ use super::{Outline, Point, Winding};
 use crate::error::InputError;
 use cavalier_contours::core::math::Vector2;
 use cavalier_contours::polyline::{
-    PlineSource, Polyline, seg_arc_radius_and_center, seg_split_at_point,
+    PlineCreation, PlineSource, PlineSourceMut, Polyline, seg_arc_radius_and_center,
+    seg_split_at_point,
 };
+
+/// How near, mm, a vertex of an open offset loop must come to its first vertex for
+/// [`closed_loop`] to close the loop there.
+pub const CLOSE_EPS: f64 = 1e-6;
+
+/// `pl` as a closed loop. cavalier_contours' offsets (of a shape or of one polyline) can
+/// return a loop stitched with an overlap and left open: its vertices run once round and
+/// then repeat the first ones (found on the fuzz corpus' `51e5f8bd…`: 12 vertices, the last
+/// two at the first two). Every consumer takes an offset loop for closed, and an open one has
+/// winding number 0 everywhere: the spiral took every lap sample for outside its last loop
+/// and moved it onto that loop, 0.40 mm² left uncut round the centre. Such a loop is cut at
+/// the last vertex on its first one and closed; an open loop that does not come back to its
+/// start is `None` (no loop rather than a made-up closing chord).
+pub fn closed_loop(pl: Polyline<f64>) -> Option<Polyline<f64>> {
+    if pl.is_closed() {
+        return Some(pl);
+    }
+    let n = pl.vertex_count();
+    let v0 = pl.at(0);
+    let k = (1..n).rev().find(|&i| {
+        let v = pl.at(i);
+        (v.x - v0.x).hypot(v.y - v0.y) <= CLOSE_EPS
+    })?;
+    let mut out = Polyline::with_capacity(k, true);
+    for i in 0..k {
+        out.add_vertex(pl.at(i));
+    }
+    Some(out)
+}
+
+/// cavalier_contours' parallel offset of the closed loop `pl` by `d` (positive: inward for a
+/// counter-clockwise loop), every result closed ([`closed_loop`]).
+pub fn offset_loops(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
+    pl.parallel_offset(d)
+        .into_iter()
+        .filter_map(closed_loop)
+        .collect()
+}
 
 /// Two loops closer than this (mm) count as touching.
 pub const TOUCH_EPS: f64 = 1e-6;
@@ -348,6 +387,36 @@ fn fold(a: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An offset loop left open with its first vertices repeated at its end (as cavalier's
+    /// stitching returned `B` on the fuzz corpus' `51e5f8bd…`) is closed at its first vertex:
+    /// its inside has winding number 1 (0 for the open polyline); one that does not come back
+    /// to its start is no loop.
+    #[test]
+    fn open_stitched_loops_are_closed_at_their_start() {
+        let sq = [(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)];
+        let mut open = Polyline::new();
+        for &(x, y) in sq.iter().chain(&sq[..2]) {
+            open.add(x, y, 0.0);
+        }
+        let inside = Vector2::new(5.0, 5.0);
+        assert_eq!(open.winding_number(inside), 0);
+        let closed = closed_loop(open).expect("a loop");
+        assert!(closed.is_closed());
+        assert_eq!(closed.vertex_count(), 4);
+        assert_eq!(closed.winding_number(inside), 1);
+        assert!((closed.area() - 100.0).abs() < 1e-9);
+        let mut stray = Polyline::new();
+        for &(x, y) in &sq {
+            stray.add(x, y, 0.0);
+        }
+        assert!(closed_loop(stray).is_none());
+        assert!(
+            offset_loops(rect(0.0, 0.0, 10.0, 10.0).polyline(), 1.0)
+                .iter()
+                .all(PlineSource::is_closed)
+        );
+    }
 
     fn rect(x: f64, y: f64, w: f64, h: f64) -> Outline {
         Outline::from_points(

@@ -184,9 +184,18 @@ pub struct Trimmed {
     pub dropped: Vec<Vec<OffsetVertex>>,
 }
 
+/// Points (less one) at which [`trim`] measures a slice without a vertex of its own.
+const PIECE_SAMPLES: usize = 16;
+
 /// Cuts the closed raw offset `raw` at its self-intersections and keeps the slices whose
-/// vertices all stay at least `keep` mm from `base` (see the module docs).
-pub fn trim(base: &CompositeCurve, raw: &[OffsetVertex], keep: f64) -> Trimmed {
+/// vertices all stay at least `keep` mm from `base` (see the module docs). A slice between
+/// two cuts on one chord has no vertex of its own: it is judged by 17 points along it against
+/// `floor`, the least distance a chord of the flattened offset keeps from the curve (its
+/// vertices lie on the offset, farther out than `keep`, its chords dip towards the curve by
+/// up to the chord tolerance). Judged by its midpoint against `keep`, a chord's piece in the
+/// band's lower half was dropped, the walk round the kept slices could not come back to its start, and the loop
+/// closed by a chord of its own ran 0.045 mm beyond the band (fuzz corpus `c2eb47c6…`).
+pub fn trim(base: &CompositeCurve, raw: &[OffsetVertex], keep: f64, floor: f64) -> Trimmed {
     let m = raw.len();
     let pts: Vec<Point> = raw.iter().map(|v| v.p).collect();
     let xs = crate::curve::intersect::self_intersections(&pts);
@@ -238,11 +247,13 @@ pub fn trim(base: &CompositeCurve, raw: &[OffsetVertex], keep: f64) -> Trimmed {
         .map(|s| {
             let inner = &s[1..s.len() - 1];
             if inner.is_empty() {
-                let mid = OffsetVertex {
-                    p: s[0].p.midpoint(s[s.len() - 1].p),
-                    s: s[0].s,
-                };
-                !too_close(&mid)
+                // Every point of the piece at least `floor` from the curve (to a nanometre of
+                // rounding at the cuts): a piece of a swallowtail dips below it.
+                let (a, b) = (s[0].p, s[s.len() - 1].p);
+                (0..=PIECE_SAMPLES).all(|j| {
+                    let p = a.lerp(b, j as f64 / PIECE_SAMPLES as f64);
+                    distance_to(base, p, s[0].s) >= floor - 1e-9
+                })
             } else {
                 !inner.iter().any(too_close)
             }

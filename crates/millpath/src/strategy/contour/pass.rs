@@ -144,7 +144,7 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
         v.s = v.s.rem_euclid(n as f64);
     }
     let keep = d.abs() + opt.rounding + 0.5 * t;
-    let trimmed = offset::trim(curve, &raw, keep);
+    let trimmed = offset::trim(curve, &raw, keep, d.abs() + opt.rounding);
     let mut warnings = Vec::new();
     for s in &trimmed.dropped {
         let (Some(first), Some(lastv)) = (s.first(), s.last()) else {

@@ -205,10 +205,14 @@ fn shape_offset(
         outers: off
             .ccw_plines
             .into_iter()
-            .map(|p| p.polyline)
+            .filter_map(|p| crate::geom::region::closed_loop(p.polyline))
             .filter(|p| p.vertex_count() > 1 && p.area() > 0.0)
             .collect(),
-        islands: off.cw_plines.into_iter().map(|p| p.polyline).collect(),
+        islands: off
+            .cw_plines
+            .into_iter()
+            .filter_map(|p| crate::geom::region::closed_loop(p.polyline))
+            .collect(),
     }
 }
 

@@ -435,7 +435,7 @@ impl Morph<'_> {
         // Intermediate laps stay at least `margin` inside B: next to B the discrete level sets
         // are only good to the grid spacing, and may even cross it.
         let margin = 2.0 * field.spacing();
-        let b_inner = match b.parallel_offset(margin).as_slice() {
+        let b_inner = match crate::geom::region::offset_loops(b, margin).as_slice() {
             [one] => Some(one.clone()),
             _ => None,
         };

@@ -4,7 +4,7 @@
 use super::super::chain::{Seg, segs_from_vertices};
 use super::super::shape::closed_chain;
 use crate::geom::Point;
-use cavalier_contours::polyline::{PlineCreation, PlineSource, PlineSourceMut, Polyline};
+use cavalier_contours::polyline::{PlineCreation, PlineSourceMut, Polyline};
 
 /// Inward margin of the spiral's last loop, mm (see the module docs).
 pub const LAST_LOOP_MARGIN: f64 = 0.005;
@@ -52,7 +52,7 @@ pub struct SpiralStats {
 /// `B_ε`, the spiral's last loop: `B` moved inward by [`LAST_LOOP_MARGIN`] (`B` itself if that
 /// offset is not one loop).
 pub fn last_loop(b: &Polyline<f64>) -> Polyline<f64> {
-    match b.parallel_offset(LAST_LOOP_MARGIN).as_slice() {
+    match crate::geom::region::offset_loops(b, LAST_LOOP_MARGIN).as_slice() {
         [one] => one.clone(),
         _ => b.clone(),
     }

@@ -21,6 +21,7 @@
 
 use super::common::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
 use crate::geom::Point;
+use crate::geom::region::offset_loops;
 use crate::strategy::pocket::chain::{Seg, fit_arcs, fit_arcs_where, segs_from_points};
 use crate::strategy::pocket::shape::{pt, reversed, v2};
 use cavalier_contours::polyline::{
@@ -144,7 +145,7 @@ struct ChordGuard<'a> {
 impl<'a> ChordGuard<'a> {
     /// `None` if `T` is not one loop (chords then go unchecked, as samples are).
     fn new(b_eps: &'a Polyline<f64>, max_chord: f64) -> Option<Self> {
-        let t = match b_eps.parallel_offset(-0.75 * LAST_LOOP_MARGIN).as_slice() {
+        let t = match offset_loops(b_eps, -0.75 * LAST_LOOP_MARGIN).as_slice() {
             [one] if one.vertex_count() >= 2 => one.clone(),
             _ => return None,
         };

@@ -31,6 +31,7 @@
 use super::super::loops::{OffsetLoops, samples};
 use super::super::shape::IndexedLoop;
 use crate::geom::Point;
+use crate::geom::region::offset_loops;
 use cavalier_contours::polyline::{PlineSource, Polyline};
 
 /// What the rounding may do.
@@ -188,8 +189,8 @@ pub fn open(pl: &Polyline<f64>, rho: f64) -> Option<Polyline<f64>> {
         return Some(pl.clone());
     }
     let ccw = pl.area() > 0.0;
-    let eroded = single(pl.parallel_offset(rho), ccw)?;
-    single(eroded.parallel_offset(-rho), ccw)
+    let eroded = single(offset_loops(pl, rho), ccw)?;
+    single(offset_loops(&eroded, -rho), ccw)
 }
 
 /// The one loop of `pieces` with the given orientation.
