@@ -12,7 +12,7 @@
 //! Bounded for CI: the release build (debug is ~20× slower on the stock simulation), the
 //! stock raster at `tool / 40` (never finer than 0.05 mm) in `pocket` and `verify` alike,
 //! files spread over two threads, and [`HUGE`] drawings (metres) cut with a tool sized to
-//! them, not capped at 10 mm, and not with spiral. `./scripts/test` runs it:
+//! them, not capped at 10 mm. `./scripts/test` runs it:
 //! `cargo test --release -p millpath-cli --test cli_real_files -- --ignored`.
 //! The table of what each run gave is printed (`--nocapture`).
 
@@ -39,8 +39,8 @@ const READ_FLAGS: &[(&str, &[&str])] = &[
 
 /// Drawings at building scale (in metres by their header, $INSUNITS = 6): the tool is sized
 /// to the part like any other (a tenth of the largest pocket's smaller side) without the
-/// 10 mm cap, which planned tens of kilometres of path; spiral is not run on them
-/// (`spiral::smooth` takes over 100 s at this scale).
+/// 10 mm cap, which planned tens of kilometres of path (all three strategies run: the
+/// spiral's sample spacings grow with the step beyond 10 mm).
 /// * `ez_insert_bricscad_level_1.dxf`: six 4.3 × 5.5 m panels from nested INSERTs;
 /// * `ez_1_polylines.dxf`: 50 × 117 m pockets (an ezdxf example: `ezdxf.new()` writes
 ///   $INSUNITS = 6 unless told, and nothing in the file says otherwise);
@@ -131,10 +131,6 @@ fn run_file(name: &str, work: &Path) -> Result<Vec<String>, String> {
     tool = (tool * 100.0).round() / 100.0;
     let mut rows = Vec::new();
     for s in ["spiral", "offset", "zigzag"] {
-        if huge && s == "spiral" {
-            rows.push(format!("{name} | {s} | not run (building scale) | – | – |"));
-            continue;
-        }
         let ngc = format!("{name}.{s}.ngc");
         let rep = format!("{name}.{s}.json");
         loop {

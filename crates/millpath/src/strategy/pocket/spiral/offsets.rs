@@ -53,20 +53,33 @@ const WINDOW: f64 = 6.0;
 const SMOOTH_WINDOW: f64 = 3.0;
 /// Largest displacement of the interior path by the smoothing, in steps.
 const SMOOTH_SHIFT: f64 = 0.03;
-/// Sample spacing of the smoothing, mm.
+/// Sample spacing of the smoothing, mm (times [`scale`]).
 const SMOOTH_SPACING: f64 = 0.1;
 /// Deflection (rad) of a junction the smoothing keeps as a kink (a step, an unrounded corner).
 const SMOOTH_KINK: f64 = 0.1;
-/// Largest distance between the smoothed interior and its chords, mm (the interior laps are a
-/// step from the walls; longer chords plan faster, measured: 0.002 → 0.01 mm took the
-/// aerospace level from 14.84 to 14.58 s on `hsm`).
+/// Largest distance between the smoothed interior and its chords, mm, times [`scale`] (the
+/// interior laps are a step from the walls; longer chords plan faster, measured: 0.002 →
+/// 0.01 mm took the aerospace level from 14.84 to 14.58 s on `hsm`).
 const SMOOTH_CHORD_TOLERANCE: f64 = 0.01;
-/// Sagitta of the chords that replace interior loops' arcs, mm.
+/// Sagitta of the chords that replace interior loops' arcs, mm (times [`scale`]).
 const CHORD_TOLERANCE: f64 = 0.002;
-/// Longest chord on interior loops' arcs, mm.
+/// Longest chord on interior loops' arcs, mm (times [`scale`]).
 const MAX_CHORD: f64 = 1.0;
-/// Longest chord along a lane change, mm.
+/// Longest chord along a lane change, mm (times [`scale`]).
 const LANE_CHORD: f64 = 0.5;
+/// Step (mm) up to which the sample spacings and chord tolerances above are the millimetres
+/// written; beyond it they grow with the step ([`scale`]).
+const SCALE_STEP: f64 = 10.0;
+
+/// The factor the sample spacings and chord tolerances are stretched by for a step `h`:
+/// 1 up to [`SCALE_STEP`] (every workshop tool: unchanged output), then `h / SCALE_STEP`, so
+/// that the samples per step, and the work, stay those of a 10 mm step however large the
+/// part in millimetres (at building scale 0.1 mm samples made the smoothing most of the time).
+/// The smoothing's shift and window are already in steps; the chords' sagitta stays a
+/// fixed, small fraction of the step.
+fn scale(h: f64) -> f64 {
+    (h / SCALE_STEP).max(1.0)
+}
 
 /// What the offsets spiral measured.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -88,6 +101,7 @@ pub fn plan(
     let r = tool.radius();
     let s = opts.stepover_mm(tool);
     let h = s.min(RIDGE_SPACING * r);
+    let k = scale(h);
     let d0 = r + opts.wall_stock;
     let loops = OffsetLoops::build(shape, d0, h)?;
     if loops.nodes.is_empty() {
@@ -101,7 +115,7 @@ pub fn plan(
             max_gap: gap,
             max_radius: MAX_RADIUS * h,
             min_clearance: MIN_CLEARANCE * h,
-            sample: (h / 3.0).clamp(0.05, 1.5),
+            sample: (h / 3.0).clamp(0.05, 1.5 * k),
             reach: RIDGE_SPACING * r,
         },
     );
@@ -121,23 +135,25 @@ pub fn plan(
         r,
         s,
         ccw,
+        scale: k,
         lanes: LaneOptions {
             window: WINDOW * h,
-            chord: LANE_CHORD,
+            chord: LANE_CHORD * k,
             step: h,
             reach: RIDGE_SPACING * r,
             arcs: opts.arcs,
             arc_tolerance: ARC_TOLERANCE,
-            wall_chord: LANE_CHORD.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
+            wall_chord: (LANE_CHORD * k).min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
             // Exact arcs to smooth or with --arcs, else the arcs as chords.
-            chords: (!opts.arcs && !opts.curvature_ramps).then_some((CHORD_TOLERANCE, MAX_CHORD)),
+            chords: (!opts.arcs && !opts.curvature_ramps)
+                .then_some((CHORD_TOLERANCE * k, MAX_CHORD * k)),
         },
         // The interior smoothed to curvature ramps, as chords (not with --arcs).
         smooth: (!opts.arcs && opts.curvature_ramps).then_some(SmoothOptions {
             max_window: SMOOTH_WINDOW * h,
             max_shift: SMOOTH_SHIFT * h,
-            spacing: SMOOTH_SPACING,
-            chord_tolerance: SMOOTH_CHORD_TOLERANCE,
+            spacing: SMOOTH_SPACING * k,
+            chord_tolerance: SMOOTH_CHORD_TOLERANCE * k,
             kink: SMOOTH_KINK,
         }),
         cuts: Vec::new(),
@@ -200,6 +216,8 @@ struct Emitter<'a> {
     r: f64,
     s: f64,
     ccw: bool,
+    /// [`scale`] of the step.
+    scale: f64,
     lanes: LaneOptions,
     smooth: Option<SmoothOptions>,
     cuts: Vec<Cut>,
@@ -345,7 +363,7 @@ impl Emitter<'_> {
         let mut out = if self.opts.arcs {
             lead
         } else {
-            chorded(&lead, CHORD_TOLERANCE, MAX_CHORD)
+            chorded(&lead, CHORD_TOLERANCE * self.scale, MAX_CHORD * self.scale)
         };
         out.extend(path);
         out
