@@ -353,20 +353,25 @@ mod tests {
     use crate::machine::kinematics::PaperAb;
     use crate::motion::five_axis::{FiveAxisOptions, KnotOptions, case, plan};
 
-    /// The path chart puts the deflection off the curve at the distance the replanning
-    /// reports, the projection at the origin, and the replanned path starts at the
-    /// deflection and ends at the next knot.
-    #[test]
-    fn deflection_charts_show_the_replanning() {
-        let kin = PaperAb::paper();
-        let opts = FiveAxisOptions {
+    /// Two knot iterations, no baseline: enough for the charts' shapes, quick in a test.
+    fn quick_options() -> FiveAxisOptions {
+        FiveAxisOptions {
             knots: KnotOptions {
                 iterations: 2,
                 ..KnotOptions::default()
             },
             baseline: None,
             ..FiveAxisOptions::default()
-        };
+        }
+    }
+
+    /// The path chart puts the deflection off the curve at the distance the replanning
+    /// reports, the projection at the origin, and the replanned path starts at the
+    /// deflection and ends at the next knot.
+    #[test]
+    fn deflection_charts_show_the_replanning() {
+        let kin = PaperAb::paper();
+        let opts = quick_options();
         let poses = case::paper_path();
         let out = plan(
             &kin,
@@ -414,14 +419,7 @@ mod tests {
     #[test]
     fn axis_charts_are_shares_of_the_limits() {
         let kin = PaperAb::paper();
-        let opts = FiveAxisOptions {
-            knots: KnotOptions {
-                iterations: 2,
-                ..KnotOptions::default()
-            },
-            baseline: None,
-            ..FiveAxisOptions::default()
-        };
+        let opts = quick_options();
         let lim = Limits::paper();
         let out = plan(&kin, &case::paper_path(), &lim, &opts, None).unwrap();
         assert!(out.result.violations.is_empty());

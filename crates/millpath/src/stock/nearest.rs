@@ -306,6 +306,23 @@ mod tests {
     use super::*;
     use crate::geom::Outline;
 
+    /// A 120-gon of radius 20 ± 3 with convex and concave arcs among its lines.
+    fn wavy_outline() -> Outline {
+        let pts: Vec<(Point, f64)> = (0..120)
+            .map(|k| {
+                let a = k as f64 * TAU / 120.0;
+                let r = 20.0 + 3.0 * (5.0 * a).sin();
+                let bulge = if k % 7 == 0 {
+                    -0.2
+                } else {
+                    0.1 * (k % 3) as f64
+                };
+                (Point::new(r * a.cos(), r * a.sin()), bulge)
+            })
+            .collect();
+        Outline::new(&pts, "t").expect("outline")
+    }
+
     #[test]
     fn indexed_distance_equals_the_scan() {
         // A 200-gon with wobbly radius and an arc: the index against every segment.
@@ -333,21 +350,7 @@ mod tests {
 
     #[test]
     fn segment_distance_equals_dense_sampling() {
-        let pts: Vec<(Point, f64)> = (0..120)
-            .map(|k| {
-                let a = k as f64 * TAU / 120.0;
-                let r = 20.0 + 3.0 * (5.0 * a).sin();
-                (
-                    Point::new(r * a.cos(), r * a.sin()),
-                    if k % 7 == 0 {
-                        -0.2
-                    } else {
-                        0.1 * (k % 3) as f64
-                    },
-                )
-            })
-            .collect();
-        let o = Outline::new(&pts, "t").expect("outline");
+        let o = wavy_outline();
         let w = IndexedWall::new(o.polyline());
         for k in 0..300 {
             let a = Point::new(
@@ -378,21 +381,7 @@ mod tests {
 
     #[test]
     fn arc_distance_equals_dense_sampling() {
-        let pts: Vec<(Point, f64)> = (0..120)
-            .map(|k| {
-                let a = k as f64 * TAU / 120.0;
-                let r = 20.0 + 3.0 * (5.0 * a).sin();
-                (
-                    Point::new(r * a.cos(), r * a.sin()),
-                    if k % 7 == 0 {
-                        -0.2
-                    } else {
-                        0.1 * (k % 3) as f64
-                    },
-                )
-            })
-            .collect();
-        let o = Outline::new(&pts, "t").expect("outline");
+        let o = wavy_outline();
         let w = IndexedWall::new(o.polyline());
         for k in 0..300 {
             let c = Point::new(

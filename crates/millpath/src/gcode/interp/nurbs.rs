@@ -221,19 +221,7 @@ impl State {
                 (e.0, e.1, 1.0),
             ]
         };
-        let feed = self.feed.unwrap_or(0.0);
-        for (x, y) in polyline(&cp, cp.len()) {
-            let to = self.program_to_machine([x, y, s[2]]);
-            out.push(ReadMove {
-                mv: Move {
-                    corner: self.modal.corner,
-                    ..Move::line(to, feed)
-                },
-                line,
-                modal: self.modal,
-            });
-            self.pos = to;
-        }
+        self.push_curve(&polyline(&cp, cp.len()), s[2], line, out);
         Ok(())
     }
 
@@ -258,9 +246,15 @@ impl State {
                 ),
             ));
         }
-        let feed = self.feed.unwrap_or(0.0);
         let z = self.program_mm()[2];
-        for (x, y) in polyline(&curve.points, curve.order) {
+        self.push_curve(&polyline(&curve.points, curve.order), z, line, out);
+        Ok(())
+    }
+
+    /// Feed moves through the curve's points `xy` (program units, mm) at height `z`.
+    fn push_curve(&mut self, xy: &[(f64, f64)], z: f64, line: usize, out: &mut Vec<ReadMove>) {
+        let feed = self.feed.unwrap_or(0.0);
+        for &(x, y) in xy {
             let to = self.program_to_machine([x, y, z]);
             out.push(ReadMove {
                 mv: Move {
@@ -272,7 +266,6 @@ impl State {
             });
             self.pos = to;
         }
-        Ok(())
     }
 }
 
