@@ -20,8 +20,8 @@ use millpath::gcode::{Dialect, Reader, ReaderOptions, read_str};
 use millpath::geom::Outline;
 use millpath::io::{dxf, outline_json, points, svg};
 use millpath::machine::{AxisLimits, Machine};
-use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves};
+use millpath::motion::{VerifyOptions, verify_plan};
 use millpath::stock::SimOptions;
 use millpath::strategy::contour::{self, ContourOptions, Side};
 use millpath::strategy::pocket::{
@@ -372,9 +372,9 @@ fn decode_pocket(data: &[u8], walls: bool) -> Option<PocketCase> {
         // The default morph on half the inputs; the paper's two on the rest (chosen by the
         // transition drawn above: no extra byte, so the committed corpus keeps decoding).
         morph: if b.flag() {
-            pocket::spiral::SpiralMorph::Offsets
+            pocket::SpiralMorph::Offsets
         } else {
-            pocket::spiral::SpiralMorph::Fronts
+            pocket::SpiralMorph::Fronts
         },
         arcs: false,
         // Curvature ramps (the default) unless the zigzag angle drawn is negative.
@@ -384,9 +384,7 @@ fn decode_pocket(data: &[u8], walls: bool) -> Option<PocketCase> {
     };
     let opts = PocketOptions {
         morph: match opts.morph {
-            pocket::spiral::SpiralMorph::Fronts if opts.transition >= 0.5 => {
-                pocket::spiral::SpiralMorph::Harmonic
-            }
+            pocket::SpiralMorph::Fronts if opts.transition >= 0.5 => pocket::SpiralMorph::Harmonic,
             m => m,
         },
         curvature_ramps: opts.zigzag_angle >= 0.0,
@@ -596,7 +594,7 @@ pub fn pass_distance_dense(
                 .iter()
                 .flat_map(|l| l.windows(2))
                 .map(|w| segment_distance(p, w[0], w[1]))
-                .fold(curve::verify::distance_to_curve(c, p), f64::min);
+                .fold(curve::distance_to_curve(c, p), f64::min);
             lo = lo.min(d);
             hi = hi.max(d);
         }

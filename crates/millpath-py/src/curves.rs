@@ -6,7 +6,7 @@ use crate::objects::Toolpath;
 use millpath::geom::Point3;
 use millpath::job::contour::{ContourSettings, ContourSource};
 use millpath::job::verify::VerifySettings;
-use millpath::motion::five_axis::{self as planner, FiveAxisOptions, Limits, case::LimitsFile};
+use millpath::motion::five_axis::{self as planner, FiveAxisOptions, Limits, LimitsFile};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};

@@ -100,14 +100,14 @@ impl Toolpath {
             })
             .map_err(err)?;
         let d = PyDict::new(py);
-        let col = |f: &dyn Fn(&millpath::motion::sample::Sample) -> f64| {
+        let col = |f: &dyn Fn(&millpath::motion::Sample) -> f64| {
             PyArray1::from_iter(py, samples.iter().map(f))
         };
         d.set_item("t", col(&|s| s.t))?;
         d.set_item("s", col(&|s| s.s))?;
         d.set_item("feed", col(&|s| s.feed))?;
         let n = samples.len();
-        let mat = |f: &dyn Fn(&millpath::motion::sample::Sample) -> [f64; 3]| {
+        let mat = |f: &dyn Fn(&millpath::motion::Sample) -> [f64; 3]| {
             PyArray1::from_iter(py, samples.iter().flat_map(f)).reshape([n, 3])
         };
         d.set_item(
@@ -207,7 +207,7 @@ pub struct Pocket {
 
 impl Pocket {
     /// The pocket `index` of a drawing.
-    pub fn new(py: Python<'_>, index: usize, p: &millpath::geom::nesting::Pocket) -> Self {
+    pub fn new(py: Python<'_>, index: usize, p: &millpath::geom::Pocket) -> Self {
         Pocket {
             index,
             outer: outline_array(py, &p.outer).into_any().unbind(),

@@ -3,23 +3,23 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use millpath::machine::kinematics::{PaperAb, inverse_path};
-use millpath::motion::five_axis::{BaselineOptions, KnotOptions, Limits, baseline_ga, case, knots};
+use millpath::motion::five_axis::{self, BaselineOptions, KnotOptions, Limits};
 use std::hint::black_box;
 
 fn bench(c: &mut Criterion) {
     let kin = PaperAb::paper();
     let lim = Limits::paper();
-    let poses = case::paper_path();
+    let poses = five_axis::paper_path();
     let (joints, _) = inverse_path(&kin, &poses, &Default::default()).expect("paper case");
-    let geo = knots::Geometry::new(&joints);
+    let geo = five_axis::Geometry::new(&joints);
     let bo = BaselineOptions::default();
     let ko = KnotOptions::default();
-    let fixed = baseline_ga::fixed_states(&geo, &kin, &lim, &bo);
+    let fixed = five_axis::fixed_states(&geo, &kin, &lim, &bo);
     let mut g = c.benchmark_group("five_axis_paper_case");
     g.sample_size(10);
     g.bench_function("ours_knot_optimiser", |b| {
         b.iter(|| {
-            knots::optimize(
+            five_axis::optimize(
                 black_box(&geo),
                 &kin,
                 &lim,
@@ -32,7 +32,7 @@ fn bench(c: &mut Criterion) {
     });
     g.bench_function("baseline_paper_ga", |b| {
         b.iter(|| {
-            baseline_ga::run(black_box(&fixed), &kin, &lim, &bo, &ko.min_time)
+            five_axis::run_baseline(black_box(&fixed), &kin, &lim, &bo, &ko.min_time)
                 .expect("baseline")
                 .0
                 .iter()

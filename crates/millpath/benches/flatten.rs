@@ -4,7 +4,7 @@
 //! `cargo bench --bench flatten -- --warm-up-time 1 --measurement-time 3`
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use millpath::curve::{self, flatten};
+use millpath::curve;
 use millpath::strategy::contour::{ContourOptions, offset_pass};
 use std::hint::black_box;
 
@@ -17,7 +17,7 @@ fn bench(c: &mut Criterion) {
             BenchmarkId::new("millpath_exact_greedy", tol),
             &tol,
             |b, &t| {
-                b.iter(|| flatten::flatten(black_box(&outline), t).map(|f| f.segments()));
+                b.iter(|| curve::flatten(black_box(&outline), t).map(|f| f.segments()));
             },
         );
         g.bench_with_input(BenchmarkId::new("kurbo_flatten", tol), &tol, |b, &t| {
@@ -55,12 +55,12 @@ fn bench(c: &mut Criterion) {
         pts.push(millpath::Point::new(r * th.cos(), r * th.sin()));
         th += 1.0 / r;
     }
-    let chain = curve::catmull_rom::OpenChain(curve::catmull_rom::open(&pts));
+    let chain = curve::OpenChain::through(&pts);
     let n = chain.0.len() as f64;
     let mut g = c.benchmark_group("biarcs_wavy_spiral_25_laps");
     g.sample_size(10);
     g.bench_function("fit_0.004mm", |b| {
-        b.iter(|| curve::biarc::fit(black_box(&chain), 0.0, n, 0.004).len());
+        b.iter(|| curve::fit_biarcs(black_box(&chain), 0.0, n, 0.004).len());
     });
     g.finish();
 }

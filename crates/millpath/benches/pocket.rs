@@ -9,15 +9,14 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use millpath::geom::{Outline, Point};
-use millpath::strategy::pocket::walls::level_shapes;
 use millpath::strategy::pocket::{
-    PocketOptions, PocketShape, SpiralMorph, StrategyKind, Walls, plan_level, samples,
+    PocketOptions, PocketShape, SpiralMorph, StrategyKind, Walls, builtin, level_shapes, plan_level,
 };
 use millpath::toolpath::Tool;
 use std::hint::black_box;
 
 fn plan(c: &mut Criterion) {
-    let shape = samples::aerospace_pocket();
+    let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap_or_default();
     let opts = PocketOptions::default();
     let mut g = c.benchmark_group("pocket level, aerospace 150x100");
@@ -61,7 +60,7 @@ fn plan(c: &mut Criterion) {
     g.finish();
     let mut g = c.benchmark_group("spiral level, sample part");
     g.sample_size(10);
-    for (name, shape) in samples::structural_part() {
+    for (name, shape) in builtin::structural_part() {
         g.bench_function(name.as_str(), |b| {
             b.iter(|| plan_level(StrategyKind::Spiral, black_box(&shape), &tool, &opts));
         });
@@ -103,8 +102,8 @@ fn walls(c: &mut Criterion) {
     let cases = [
         (
             "aerospace 150x100",
-            samples::rounded_rectangle(-75.0, -50.0, 150.0, 100.0, 6.0),
-            samples::rounded_rectangle(-70.0, -45.0, 140.0, 90.0, 6.0),
+            builtin::rounded_rectangle(-75.0, -50.0, 150.0, 100.0, 6.0),
+            builtin::rounded_rectangle(-70.0, -45.0, 140.0, 90.0, 6.0),
         ),
         ("wavy 512 vertices", wavy(512, 60.0), wavy(512, 54.0)),
     ];

@@ -4,7 +4,7 @@
 use millpath::stock::StockSpec;
 use millpath::stock::{SimOptions, simulate};
 use millpath::strategy::pocket::{
-    PocketOptions, StrategyKind, nominal_engagement, samples, toolpath,
+    PocketOptions, StrategyKind, builtin, nominal_engagement, toolpath,
 };
 use millpath::toolpath::{MoveKind, Tool};
 use std::fmt::Write as _;
@@ -18,12 +18,12 @@ fn main() {
     };
     let out = args.get(2).cloned().unwrap_or_else(|| "eng.svg".into());
     let shape = match args.get(3) {
-        Some(name) => samples::structural_part()
+        Some(name) => builtin::structural_part()
             .into_iter()
             .find(|(n, _)| n.starts_with(name.as_str()))
             .map(|(_, s)| s)
             .expect("pocket name"),
-        None => samples::aerospace_pocket(),
+        None => builtin::aerospace_pocket(),
     };
     let tool = Tool::flat(12.7).expect("tool");
     let mut opts = PocketOptions::default();

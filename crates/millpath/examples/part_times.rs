@@ -4,7 +4,7 @@
 use millpath::machine::Machine;
 use millpath::motion::plan_toolpath;
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 
 fn main() {
@@ -20,7 +20,7 @@ fn main() {
         ..SimOptions::default()
     };
     let machine = Machine::preset("hsm").expect("hsm");
-    for (name, shape) in samples::structural_part() {
+    for (name, shape) in builtin::structural_part() {
         let mut row = format!("{name:24}");
         for kind in [
             StrategyKind::Zigzag,

@@ -1,16 +1,16 @@
 //! Diagnostic: which morph the spiral takes on each pocket of the sample part, and its laps.
 //! `cargo run --release --example spiral_stats`
 #![allow(clippy::print_stdout)]
-use millpath::strategy::pocket::{PocketOptions, samples, spiral};
+use millpath::strategy::pocket::{PocketOptions, builtin, spiral_with_stats};
 use millpath::toolpath::Tool;
 
 fn main() {
     let tool = Tool::flat(12.7).expect("tool");
     let opts = PocketOptions::default();
-    let mut all = samples::structural_part();
-    all.push(("aerospace".into(), samples::aerospace_pocket()));
+    let mut all = builtin::structural_part();
+    all.push(("aerospace".into(), builtin::aerospace_pocket()));
     for (name, shape) in all {
-        match spiral::plan_with_stats(&shape, &tool, &opts) {
+        match spiral_with_stats(&shape, &tool, &opts) {
             Ok((plan, st)) => {
                 let len: f64 = plan
                     .cuts

@@ -1,4 +1,4 @@
-//! The three roughing strategies side by side on the shape suite (`samples::shape_suite`):
+//! The three roughing strategies side by side on the shape suite (`builtin::shape_suite`):
 //! path length, mean engagement, share above nominal, verification, and the cycle time on
 //! `hsm` and on the `linuxcnc-time` machine (LinuxCNC's limits: 500 mm/s, 2000 mm/s², jerk
 //! unlimited, 1 ms; planned with `G64 P0.01`, the tolerance the programs state), one 5 mm
@@ -15,7 +15,7 @@ use millpath::gcode::{WriterOptions, write_program};
 use millpath::machine::Machine;
 use millpath::motion::plan_toolpath;
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 
 /// The LinuxCNC judge's profile: 500 mm/s, 2000 mm/s², jerk unlimited, 1 ms.
@@ -61,7 +61,7 @@ fn main() {
     println!(
         "pocket\tstrategy\tmodulation\tpath_mm\tmean_engagement_deg\tabove_nominal_pct\thsm_s\tlinuxcnc_model_s\tuncut_mm2\tproblems"
     );
-    for p in samples::shape_suite() {
+    for p in builtin::shape_suite() {
         let tool = Tool::flat(p.tool_diameter).expect("tool");
         for modulate in [true, false] {
             let opts = PocketOptions {

@@ -5,7 +5,7 @@
 // The figures are printed for the benchmark notes (`cargo test -- --nocapture`).
 #![allow(clippy::print_stderr)]
 
-use millpath::curve::{self, CompositeCurve, CurveKind, LabeledPoint, verify};
+use millpath::curve::{self, CompositeCurve, CurveKind, LabeledPoint};
 use millpath::geom::Point;
 use millpath::strategy::contour::{self, ContourOptions, Side, offset_pass};
 
@@ -43,7 +43,7 @@ fn paper_outline_offsets_keep_their_distance() {
             let pass = offset_pass(&c, sd, &o).unwrap();
             let min = loop_points(&pass)
                 .iter()
-                .map(|l| verify::polyline_min_distance(&c, l, 8))
+                .map(|l| curve::polyline_min_distance(&c, l, 8))
                 .fold(f64::INFINITY, f64::min);
             eprintln!(
                 "{side:?} T={tol}: {} segments, min distance {min:.9} (d = {d}), measured dev {:.3e}, warnings {}",
@@ -123,7 +123,7 @@ fn reversed_and_rotated_input_give_the_same_result() {
         let summary = |pts: &[(f64, f64)]| {
             let c: CompositeCurve = curve::build(&groups(pts), kind, "t").unwrap();
             let o = opts(1e-3, Side::Inside);
-            let f = curve::flatten::flatten(&c, 1e-3).unwrap();
+            let f = curve::flatten(&c, 1e-3).unwrap();
             let pass = offset_pass(&c, 5.2, &o).unwrap();
             let a: f64 = loop_points(&pass).iter().map(|l| area(l)).sum();
             (f.segments(), f.max_deviation, a, c.signed_area())
@@ -238,7 +238,7 @@ fn every_feed_move_including_lead_arcs_keeps_the_tool_off_the_outline() {
                             .collect(),
                     };
                     for p in samples {
-                        min = min.min(verify::distance_to_curve(&c, p));
+                        min = min.min(curve::distance_to_curve(&c, p));
                     }
                 }
                 assert!(

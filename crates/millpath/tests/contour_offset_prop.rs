@@ -3,7 +3,7 @@
 //! tolerance; checked densely through kurbo's nearest point, which shares no code with the
 //! offset.
 
-use millpath::curve::{self, CurveKind, LabeledPoint, verify};
+use millpath::curve::{self, CurveKind, LabeledPoint};
 use millpath::geom::{Point, Vec2};
 use millpath::strategy::contour::{ContourOptions, offset_pass};
 use proptest::prelude::*;
@@ -43,7 +43,7 @@ proptest! {
         let pass = offset_pass(&c, if inside { d } else { -d }, &o).unwrap();
         for lp in &pass.loops {
             let pts: Vec<Point> = lp.iter().map(|v| v.p).collect();
-            let min = verify::polyline_min_distance(&c, &pts, 6);
+            let min = curve::polyline_min_distance(&c, &pts, 6);
             prop_assert!(min >= d - 1e-6, "min distance {min} < {d}");
         }
         prop_assert!(pass.max_deviation <= tol, "deviation {}", pass.max_deviation);

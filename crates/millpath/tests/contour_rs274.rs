@@ -53,7 +53,7 @@ fn contour_programs_pass_rs274() {
             let n = ((len / 0.05).ceil() as usize).clamp(1, 10_000);
             for k in 0..=n {
                 let p = m.point_at(start, len * k as f64 / n as f64);
-                min = min.min(curve::verify::distance_to_curve(&c, p.xy()));
+                min = min.min(curve::distance_to_curve(&c, p.xy()));
             }
         }
         assert!(min >= d - 1e-9, "{side:?} arcs {arcs}: {min} < {d}");

@@ -5,7 +5,7 @@
 //! the pass comes closer than `r` to the curve. The distances are measured against the
 //! moves the tool makes (lines, and arcs sampled), not against the pass's own vertices.
 
-use millpath::curve::{self, CompositeCurve, CurveKind, verify};
+use millpath::curve::{self, CompositeCurve, CurveKind};
 use millpath::geom::Point;
 use millpath::strategy::contour::{self, ContourOptions, Side};
 use millpath::toolpath::MoveKind;
@@ -120,7 +120,7 @@ fn worst_trace(c: &CompositeCurve, pieces: &[Piece], r: f64, side: Side) -> (f64
                 } else {
                     -t.perp()
                 };
-                if verify::distance_to_curve(c, p + n * r) < r * (1.0 - 1e-9) {
+                if curve::distance_to_curve(c, p + n * r) < r * (1.0 - 1e-9) {
                     continue; // a concave corner or curvature tighter than r: unreachable
                 }
             }
@@ -146,7 +146,7 @@ fn closest_approach(c: &CompositeCurve, pieces: &[Piece]) -> f64 {
         };
         let n = ((len / 2e-3).ceil() as usize).clamp(1, 4000);
         for j in 0..=n {
-            best = best.min(verify::distance_to_curve(c, at(j as f64 / n as f64)));
+            best = best.min(curve::distance_to_curve(c, at(j as f64 / n as f64)));
         }
     }
     best

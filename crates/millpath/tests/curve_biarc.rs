@@ -1,7 +1,7 @@
 //! Biarcs: the paper's outline (and its offsets) within the tolerance, verified with 1000
 //! samples per arc, with far fewer blocks than lines.
 
-use millpath::curve::{self, biarc, flatten, verify};
+use millpath::curve;
 use millpath::geom::Point;
 use millpath::strategy::contour::{ContourOptions, Side, offset_pass};
 
@@ -10,7 +10,7 @@ fn biarcs_on_the_outline_are_within_tolerance_and_fewer_than_lines() {
     let c = curve::paper_outline().unwrap();
     let corner = c.corners()[0] as f64;
     for tol in [1e-1, 1e-2, 1e-3] {
-        let arcs = biarc::fit(&c, corner, corner + c.len() as f64, tol);
+        let arcs = curve::fit_biarcs(&c, corner, corner + c.len() as f64, tol);
         // Dense: 1000 curve samples per arc against the arcs near it (curve → arcs), and
         // 1000 samples on each arc against the curve (arcs → curve, kurbo nearest).
         let mut s0 = corner;
@@ -31,10 +31,10 @@ fn biarcs_on_the_outline_are_within_tolerance_and_fewer_than_lines() {
         for a in &arcs {
             for j in (0..=1000).step_by(50) {
                 let q: Point = a.at(f64::from(j) / 1000.0);
-                worst = worst.max(verify::distance_to_curve(&c, q));
+                worst = worst.max(curve::distance_to_curve(&c, q));
             }
         }
-        let lines = flatten::flatten(&c, tol).unwrap().segments();
+        let lines = curve::flatten(&c, tol).unwrap().segments();
         assert!(worst <= tol * 1.0001, "T={tol}: {worst}");
         // Arc counts grow like T^(-1/3) against T^(-1/2) for lines: the gap widens as T shrinks.
         let factor = if tol >= 0.1 { 1 } else { 2 };
@@ -67,7 +67,7 @@ fn arc_passes_keep_the_offset_distance() {
         let mut min = f64::INFINITY;
         for a in pass.arcs.iter().flatten() {
             for j in 0..=40 {
-                min = min.min(verify::distance_to_curve(&c, a.at(f64::from(j) / 40.0)));
+                min = min.min(curve::distance_to_curve(&c, a.at(f64::from(j) / 40.0)));
             }
         }
         assert!(min >= d - 1e-6, "{side:?}: {min}");

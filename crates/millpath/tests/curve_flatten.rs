@@ -5,16 +5,16 @@
 // The figures are printed for the benchmark notes (`cargo test -- --nocapture`).
 #![allow(clippy::print_stderr)]
 
-use millpath::curve::{self, flatten, verify};
+use millpath::curve;
 
 #[test]
 fn tolerance_sweep_on_the_paper_outline() {
     let c = curve::paper_outline().unwrap();
     for tol in [1e-1, 1e-2, 1e-3, 1e-4, 4e-5] {
-        let f = flatten::flatten(&c, tol).unwrap();
-        let dense = verify::chordal_deviation(&c, &f.params, &f.points, 1000);
-        let kurbo = flatten::kurbo_count(&c, tol);
-        let asym = flatten::asymptotic_count(&c, tol);
+        let f = curve::flatten(&c, tol).unwrap();
+        let dense = curve::chordal_deviation(&c, &f.params, &f.points, 1000);
+        let kurbo = curve::kurbo_count(&c, tol);
+        let asym = curve::asymptotic_count(&c, tol);
         let lower = f.lower_bound(c.corners().len());
         let n = f.segments();
         eprintln!(
@@ -38,11 +38,11 @@ fn every_curve_kind_flattens_within_tolerance() {
     for kind in [curve::CurveKind::CatmullRom, curve::CurveKind::Spline] {
         let c = curve::build(&groups, kind, "paper").unwrap();
         for tol in [1e-2, 1e-4] {
-            let f = flatten::flatten(&c, tol).unwrap();
-            let dense = verify::chordal_deviation(&c, &f.params, &f.points, 1000);
+            let f = curve::flatten(&c, tol).unwrap();
+            let dense = curve::chordal_deviation(&c, &f.params, &f.points, 1000);
             assert!(dense <= tol, "{kind:?} T={tol}: {dense}");
             assert!(
-                f.segments() <= flatten::kurbo_count(&c, tol),
+                f.segments() <= curve::kurbo_count(&c, tol),
                 "{kind:?} T={tol}"
             );
         }

@@ -31,7 +31,7 @@ use millpath::machine::kinematics::{Kinematics, Pose, TableTable, TrtKind};
 use millpath::motion::five_axis::{FiveAxisOptions, KnotOptions, Limits, plan};
 use millpath::stock::SimOptions;
 use millpath::strategy::contour::{self, ContourOptions};
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
 use millpath::toolpath::{MoveKind, Tool, Toolpath};
 use millpath::{Error, Move};
 use proptest::prelude::*;
@@ -230,7 +230,7 @@ fn star(radii: &[f64], round: f64) -> Option<Outline> {
             Point::new(r * a.cos(), r * a.sin())
         })
         .collect();
-    samples::rounded_polygon(&pts, round, "random star")
+    builtin::rounded_polygon(&pts, round, "random star")
 }
 
 #[test]
@@ -486,7 +486,7 @@ fn estimate(text: &str, d: Dialect, start: Point3, machine: &Machine) -> f64 {
 
 #[test]
 fn the_same_pocket_takes_the_same_time_in_every_dialect() {
-    let shape = samples::aerospace_pocket();
+    let shape = builtin::aerospace_pocket();
     let opts = PocketOptions {
         depth: 6.35,
         step_down: 6.35,

@@ -3,10 +3,10 @@
 //! minimality proof excludes is infeasible by the independent verifier.
 
 use millpath::machine::kinematics::{HeadHead, Joints, Kinematics, PaperAb, TableTable, TrtKind};
-use millpath::motion::five_axis::certify::{CertifyOptions, FeedVerdict, feed_bound};
-use millpath::motion::five_axis::min_time::{MinTimeOptions, lower_bound, min_time};
-use millpath::motion::five_axis::verify::verify;
+use millpath::motion::five_axis::verify;
+use millpath::motion::five_axis::{CertifyOptions, FeedVerdict, feed_bound};
 use millpath::motion::five_axis::{KnotState, Limits, Segment};
+use millpath::motion::five_axis::{MinTimeOptions, lower_bound, min_time};
 use proptest::prelude::*;
 
 fn machine(i: usize) -> Box<dyn Kinematics> {

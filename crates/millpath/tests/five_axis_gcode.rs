@@ -4,7 +4,7 @@
 
 use millpath::gcode::five_axis::{FeedMode, FiveAxisGcodeOptions, write_five_axis};
 use millpath::machine::kinematics::{Kinematics, TableTable, TrtKind};
-use millpath::motion::five_axis::{FiveAxisOptions, KnotOptions, Limits, case, plan};
+use millpath::motion::five_axis::{self, FiveAxisOptions, KnotOptions, Limits, plan};
 
 /// `(words [X Y Z r1 r2], F or G4 seconds)` of every motion block.
 fn blocks(g: &str, names: [&str; 5]) -> Vec<([f64; 5], Option<f64>, Option<f64>)> {
@@ -37,7 +37,7 @@ fn blocks(g: &str, names: [&str; 5]) -> Vec<([f64; 5], Option<f64>, Option<f64>)
 #[test]
 fn g93_and_g94_programs_take_the_planned_time_and_follow_the_plan() {
     let kin = TableTable::typical(TrtKind::Ac);
-    let poses: Vec<_> = case::paper_path().into_iter().take(8).collect();
+    let poses: Vec<_> = five_axis::paper_path().into_iter().take(8).collect();
     let opts = FiveAxisOptions {
         knots: KnotOptions {
             iterations: 3,

@@ -6,7 +6,7 @@ use millpath::Error;
 use millpath::gcode::five_axis::{FiveAxisGcodeOptions, write_five_axis};
 use millpath::geom::{Point3, Vec3};
 use millpath::machine::kinematics::{PaperAb, Pose, TableTable, TrtKind};
-use millpath::motion::five_axis::{FiveAxisOptions, Limits, case, plan};
+use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, plan};
 
 fn quick() -> FiveAxisOptions {
     FiveAxisOptions {
@@ -28,14 +28,18 @@ fn input_err(r: Result<impl std::fmt::Debug, Error>) -> String {
 #[test]
 fn zero_axis_and_non_finite_numbers_are_rejected() {
     let csv = "# unit: mm\nx,y,z,i,j,k\n0,0,0,0,0,1\n1,0,0,0,0,0\n";
-    let e = case::parse_path_csv(csv, "p.csv").unwrap_err().to_string();
+    let e = five_axis::parse_path_csv(csv, "p.csv")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("tool axis") && e.contains("p.csv:4"), "{e}");
     let csv = "# unit: mm\nx,y,z,i,j,k\n0,0,0,0,0,1\nNaN,0,0,0,0,1\n";
-    let e = case::parse_path_csv(csv, "p.csv").unwrap_err().to_string();
+    let e = five_axis::parse_path_csv(csv, "p.csv")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("NaN") && e.contains("p.csv:4"), "{e}");
     let csv = "x,y,z,i,j,k\n0,0,0,0,0,1\n";
     assert!(
-        case::parse_path_csv(csv, "p.csv")
+        five_axis::parse_path_csv(csv, "p.csv")
             .unwrap_err()
             .to_string()
             .contains("unit")
@@ -70,7 +74,7 @@ fn zero_axis_and_non_finite_numbers_are_rejected() {
 #[test]
 fn metres_are_converted_to_millimetres() {
     let csv = "# unit: m\nx,y,z,i,j,k\n0.01,0,0,0,0,2\n0.02,0,0,0,0,1\n";
-    let p = case::parse_path_csv(csv, "p.csv").unwrap();
+    let p = five_axis::parse_path_csv(csv, "p.csv").unwrap();
     assert!((p[1].tip.x - 20.0).abs() < 1e-12);
     assert!((p[0].axis.z - 1.0).abs() < 1e-12);
 }
@@ -89,7 +93,7 @@ fn pose_out_of_rotary_range_is_rejected() {
 #[test]
 fn limits_must_be_positive() {
     let kin = PaperAb::paper();
-    let poses = case::paper_path();
+    let poses = five_axis::paper_path();
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let mut lim = Limits::paper();
         lim.feed = bad;
@@ -104,7 +108,7 @@ fn limits_must_be_positive() {
 #[test]
 fn table_table_gcode_has_rotary_words_and_inverse_time() {
     let kin = TableTable::typical(TrtKind::Ac);
-    let poses: Vec<Pose> = case::paper_path().into_iter().take(6).collect();
+    let poses: Vec<Pose> = five_axis::paper_path().into_iter().take(6).collect();
     let out = plan(&kin, &poses, &Limits::paper(), &quick(), None).unwrap();
     assert!(out.result.violations.is_empty());
     let mut g = Vec::new();

@@ -5,22 +5,20 @@
 
 use millpath::geom::Point3;
 use millpath::machine::kinematics::{Kinematics, PaperAb};
-use millpath::motion::five_axis::deflection::{RefCurve, potential_field_projection, project};
-use millpath::motion::five_axis::{
-    FiveAxisOptions, Limits, case, plan, sample, verify::verify, write_csv,
-};
+use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, plan, sample, verify, write_csv};
+use millpath::motion::five_axis::{RefCurve, potential_field_projection, project};
 
 #[test]
 fn paper_case_meets_every_limit_and_beats_the_baseline() {
     let kin = PaperAb::paper();
-    let poses = case::paper_path();
+    let poses = five_axis::paper_path();
     assert_eq!(poses.len(), 32);
     let out = plan(
         &kin,
         &poses,
         &Limits::paper(),
         &FiveAxisOptions::default(),
-        Some(case::paper_deflection()),
+        Some(five_axis::paper_deflection()),
     )
     .unwrap();
     let r = &out.result;
@@ -77,7 +75,7 @@ fn paper_case_meets_every_limit_and_beats_the_baseline() {
         .enumerate()
         .step_by(5)
     {
-        let seg = millpath::motion::five_axis::Segment::new(&w[0], &w[1], t * (1.0 - 1e-6));
+        let seg = five_axis::Segment::new(&w[0], &w[1], t * (1.0 - 1e-6));
         let v = verify(&[seg], &kin, &lim, 2000);
         assert!(
             v.tightest_margin < 0.0,
@@ -113,9 +111,9 @@ fn paper_case_meets_every_limit_and_beats_the_baseline() {
 /// reading it lies on the true circle within 2 µm.
 #[test]
 fn projection_is_exact_and_equals_the_potential_field_minimum() {
-    let tips: Vec<Point3> = case::paper_path().iter().map(|p| p.tip).collect();
+    let tips: Vec<Point3> = five_axis::paper_path().iter().map(|p| p.tip).collect();
     let curve = RefCurve::through(&tips);
-    let d = case::paper_deflection();
+    let d = five_axis::paper_deflection();
     let p = project(&curve, d).unwrap();
     // Stationarity: (c − d)·c' = 0 at the Newton point.
     let [c, c1, _] = curve.eval(p.interval, p.u);
@@ -141,5 +139,5 @@ fn projection_is_exact_and_equals_the_potential_field_minimum() {
         exact
     );
     // The paper's reported projection is on the curve but not the closest point.
-    assert!(case::paper_projection().distance(p.point) > 1.0);
+    assert!(five_axis::paper_projection().distance(p.point) > 1.0);
 }

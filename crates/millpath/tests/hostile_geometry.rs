@@ -195,7 +195,7 @@ fn finishing_distance(
                     let t = ((p - a).dot(e) / e.dot(e).max(1e-300)).clamp(0.0, 1.0);
                     p.distance(a + e * t)
                 })
-                .fold(curve::verify::distance_to_curve(c, p), f64::min);
+                .fold(curve::distance_to_curve(c, p), f64::min);
             lo = lo.min(d);
             hi = hi.max(d);
         }

@@ -9,8 +9,8 @@ mod hostile_common;
 
 use hostile_common::{Harness, env_or, hostile_f64, mostly_sane, rng};
 use millpath::machine::{AxisLimits, Machine};
-use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves, plan_toolpath_opt};
+use millpath::motion::{VerifyOptions, verify_plan};
 use millpath::toolpath::{Corner, MoveKind, Plane};
 use millpath::{Move, Point3, Tool, Toolpath};
 use rand::RngExt;

@@ -4,7 +4,7 @@
 //!   `Outline`, with its self-intersection check → inward offset) and the contour import path
 //!   (points CSV → closed Catmull-Rom curve → flattening within tolerance);
 //! * a 100,000-line G-code program through the streaming reader and the streaming planner
-//!   (`motion::stream::plan_stream`, what `millpath estimate` runs), with each chunk checked
+//!   (`motion::plan_stream`, what `millpath estimate` runs), with each chunk checked
 //!   by the limit verifier, and the planner's buffer bounded by its window whatever the
 //!   program's length.
 //!
@@ -14,12 +14,12 @@
 
 mod hostile_common;
 
-use millpath::curve::{self, CurveKind, flatten::flatten_curve};
+use millpath::curve::{self, CurveKind, flatten_curve};
 use millpath::gcode::{Reader, ReaderOptions};
 use millpath::io::{outline_json, points};
 use millpath::machine::Machine;
-use millpath::motion::stream::{StreamOptions, plan_stream};
-use millpath::motion::verify::{VerifyOptions, verify_plan};
+use millpath::motion::{StreamOptions, plan_stream};
+use millpath::motion::{VerifyOptions, verify_plan};
 use std::fmt::Write as _;
 use std::io::Read;
 

@@ -1,7 +1,7 @@
 //! Exactness: a rest-to-rest straight move takes the time-optimal jerk-limited time, equal to
 //! rsruckig's minimum duration within 1e-9 s over thousands of seeded random moves.
 
-use millpath::motion::profile::{Limits1, SpanProfile, rest_to_rest_time};
+use millpath::motion::{Limits1, SpanProfile, rest_to_rest_time};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rsruckig::prelude::*;
@@ -102,7 +102,7 @@ fn spans_between_junction_speeds_match_ruckig() {
         };
         let v0 = rng.random_range(0.0..lim.v);
         let v1 = rng.random_range(0.0..lim.v);
-        let need = millpath::motion::profile::change_distance(v0, v1, lim.a, lim.j);
+        let need = millpath::motion::change_distance(v0, v1, lim.a, lim.j);
         let d = need * (1.0 + log_uniform(&mut rng, 1e-3, 10.0)) + 1e-6;
         let ours = SpanProfile::new(v0, v1, d, lim).unwrap();
         ours.check(lim).unwrap();

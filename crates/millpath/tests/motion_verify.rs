@@ -5,7 +5,7 @@
 use millpath::machine::Machine;
 use millpath::motion::plan_toolpath;
 use millpath::motion::table2::{circle, square};
-use millpath::motion::verify::{VerifyOptions, verify_plan};
+use millpath::motion::{VerifyOptions, verify_plan};
 use millpath::toolpath::{Corner, Move, Tool, Toolpath};
 use millpath::{Point3, Vec3};
 use rand::{RngExt, SeedableRng};

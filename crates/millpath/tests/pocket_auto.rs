@@ -7,7 +7,7 @@
 use millpath::machine::Machine;
 use millpath::motion::plan_toolpath;
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, auto, samples};
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
 use millpath::toolpath::{Tool, Toolpath};
 
 /// The aerospace pocket, its 12.7 mm tool and a 0.1 mm simulation raster.
@@ -17,7 +17,7 @@ fn aerospace() -> (pocket::PocketShape, Tool, SimOptions) {
         step: 0.2,
         ..SimOptions::default()
     };
-    (samples::aerospace_pocket(), Tool::flat(12.7).unwrap(), sim)
+    (builtin::aerospace_pocket(), Tool::flat(12.7).unwrap(), sim)
 }
 
 #[test]
@@ -32,15 +32,15 @@ fn auto_writes_the_fastest_verified_strategy() {
             finish,
             ..PocketOptions::default()
         };
-        let cands = auto::plan_all(&shape, &tool, &opts, &sim, &time);
+        let cands = pocket::plan_all(&shape, &tool, &opts, &sim, &time);
         assert_eq!(
             cands.iter().map(|c| c.kind).collect::<Vec<_>>(),
-            auto::ORDER.to_vec()
+            pocket::AUTO_ORDER.to_vec()
         );
-        let chosen = auto::choose(&cands).expect("a verified strategy");
+        let chosen = pocket::choose(&cands).expect("a verified strategy");
         // Each strategy again, on its own, timed by the planner directly.
         let mut best: Option<(StrategyKind, f64, Toolpath)> = None;
-        for (c, kind) in cands.iter().zip(auto::ORDER) {
+        for (c, kind) in cands.iter().zip(pocket::AUTO_ORDER) {
             let r = pocket::generate(kind, &shape, &tool, &opts, &sim).unwrap();
             let t = plan_toolpath(&r.toolpath, &hsm).unwrap().total_time();
             let verified = r.verification.problems().is_empty();
@@ -93,7 +93,8 @@ fn arcs_request_keeps_the_faster_form_on_each_machine() {
             ..PocketOptions::default()
         };
         let (r, t) =
-            auto::arcs_or_chords(StrategyKind::Spiral, &shape, &tool, &opts, &sim, &time).unwrap();
+            pocket::arcs_or_chords(StrategyKind::Spiral, &shape, &tool, &opts, &sim, &time)
+                .unwrap();
         let t = t.unwrap();
         assert!(r.verification.problems().is_empty(), "{name}");
         let a = pocket::generate(StrategyKind::Spiral, &shape, &tool, &opts, &sim).unwrap();

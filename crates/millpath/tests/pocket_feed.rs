@@ -7,8 +7,8 @@
 //! the feed changes, lines into lines and arcs into exact arcs.
 
 use millpath::stock::{self, EngagementSample, SimOptions, StockSpec};
-use millpath::strategy::pocket::feed::{FeedProfile, factor};
-use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
+use millpath::strategy::pocket::{FeedProfile, feed_factor as factor};
 use millpath::toolpath::{MoveKind, Tool, Toolpath};
 
 const SIM: SimOptions = SimOptions {
@@ -76,7 +76,7 @@ fn along(tp: &Toolpath, samples: &[EngagementSample], opts: &PocketOptions) -> V
 
 #[allow(clippy::print_stderr)]
 fn check(kind: StrategyKind) {
-    let shape = samples::aerospace_pocket();
+    let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
     let opts = PocketOptions {
         depth: 5.0,
@@ -199,7 +199,7 @@ fn check(kind: StrategyKind) {
                     (MoveKind::Arc { .. }, MoveKind::Line) => {
                         let sub = millpath::toolpath::Move { to: piece.to, ..*m };
                         let s = sub.sagitta_from(start).unwrap();
-                        assert!(s <= pocket::chain::ARC_AS_LINE_SAGITTA, "{kind:?}: {s}");
+                        assert!(s <= pocket::ARC_AS_LINE_SAGITTA, "{kind:?}: {s}");
                     }
                     (a, b) => panic!("{kind:?}: {a:?} split into {b:?}"),
                 }

@@ -10,7 +10,7 @@ use millpath::gcode::{
 use millpath::geom::Point3;
 use millpath::machine::Machine;
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, chain};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind};
 use millpath::toolpath::{Move, MoveKind, Tool, Toolpath};
 
 /// A 180 × 30 mm slot with corners of radius 8 (bulge tan(π/8) for a quarter circle).
@@ -25,7 +25,7 @@ fn rounded_slot() -> PocketShape {
 
 #[test]
 fn the_pockets_arc_criterion_is_the_writers_default_rounding() {
-    assert!((chain::ARC_AS_LINE_SAGITTA - rounding_error_mm(3, Units::Mm)).abs() < 1e-18);
+    assert!((pocket::ARC_AS_LINE_SAGITTA - rounding_error_mm(3, Units::Mm)).abs() < 1e-18);
     assert_eq!(WriterOptions::default().effective_decimals(), 3);
 }
 
@@ -52,7 +52,7 @@ fn rounded_slot_spiral_with_arcs_verifies_times_and_writes() {
             arcs += 1;
             let s = m.sagitta_from(from).unwrap();
             assert!(
-                s > chain::ARC_AS_LINE_SAGITTA,
+                s > pocket::ARC_AS_LINE_SAGITTA,
                 "flat arc {m:?} (sagitta {s})"
             );
             assert!(center.x.abs().max(center.y.abs()) < 1e6, "{m:?}");

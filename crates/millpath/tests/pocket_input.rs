@@ -4,7 +4,7 @@ use millpath::Error;
 use millpath::io::{dxf, outline_json, svg};
 use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{
-    self, PocketOptions, PocketShape, Stepover, StrategyKind, samples,
+    self, PocketOptions, PocketShape, Stepover, StrategyKind, builtin,
 };
 use millpath::toolpath::Tool;
 
@@ -76,14 +76,14 @@ fn self_intersecting_and_touching_islands_are_refused() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("island 0"), "{e}");
-    let outer = samples::rounded_rectangle(0.0, 0.0, 20.0, 20.0, 2.0);
-    let isl = samples::rounded_rectangle(0.0, 5.0, 5.0, 5.0, 1.0);
+    let outer = builtin::rounded_rectangle(0.0, 0.0, 20.0, 20.0, 2.0);
+    let isl = builtin::rounded_rectangle(0.0, 5.0, 5.0, 5.0, 1.0);
     assert!(PocketShape::new(outer, vec![isl], "t").is_err());
 }
 
 #[test]
 fn tool_too_large_and_bad_stepovers_are_refused() {
-    let shape = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 20.0, 20.0, 2.0));
+    let shape = PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 20.0, 20.0, 2.0));
     let sim = SimOptions::default();
     for kind in [
         StrategyKind::Zigzag,
@@ -133,7 +133,7 @@ fn absurd_path_lengths_are_refused_before_planning() {
         ..PocketOptions::default()
     };
     let sim = SimOptions::default();
-    let big = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 6000.0, 4000.0, 10.0));
+    let big = PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 6000.0, 4000.0, 10.0));
     for kind in [
         StrategyKind::Spiral,
         StrategyKind::Offset,
@@ -143,6 +143,6 @@ fn absurd_path_lengths_are_refused_before_planning() {
         assert!(e.contains("check the drawing's units"), "{e}");
         assert!(e.contains("needs about 60 km"), "{e}");
     }
-    let small = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 6.0, 4.0, 1.0));
+    let small = PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 6.0, 4.0, 1.0));
     assert!(pocket::generate(StrategyKind::Zigzag, &small, &tool, &opts, &sim).is_ok());
 }

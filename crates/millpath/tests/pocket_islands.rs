@@ -7,7 +7,7 @@
 use millpath::Error;
 use millpath::geom::{Outline, Point};
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
 use millpath::toolpath::{MoveKind, Tool};
 
 fn coarse() -> SimOptions {
@@ -37,13 +37,13 @@ fn one_level() -> PocketOptions {
 /// The pockets: one square island in the middle; a round and a square island, one close to
 /// the wall (a gap narrower than two tool diameters); three islands.
 fn pockets() -> Vec<(&'static str, PocketShape)> {
-    let outer = || samples::rounded_rectangle(0.0, 0.0, 80.0, 60.0, 5.0);
+    let outer = || builtin::rounded_rectangle(0.0, 0.0, 80.0, 60.0, 5.0);
     vec![
         (
             "one island",
             PocketShape::new(
                 outer(),
-                vec![samples::rounded_rectangle(30.0, 20.0, 20.0, 20.0, 3.0)],
+                vec![builtin::rounded_rectangle(30.0, 20.0, 20.0, 20.0, 3.0)],
                 "t",
             )
             .unwrap(),
@@ -54,7 +54,7 @@ fn pockets() -> Vec<(&'static str, PocketShape)> {
                 outer(),
                 vec![
                     circle(20.0, 30.0, 8.0),
-                    samples::rounded_rectangle(50.0, 8.0, 20.0, 12.0, 2.0),
+                    builtin::rounded_rectangle(50.0, 8.0, 20.0, 12.0, 2.0),
                 ],
                 "t",
             )
@@ -67,7 +67,7 @@ fn pockets() -> Vec<(&'static str, PocketShape)> {
                 vec![
                     circle(18.0, 18.0, 6.0),
                     circle(60.0, 40.0, 7.0),
-                    samples::rounded_rectangle(35.0, 35.0, 10.0, 16.0, 2.0),
+                    builtin::rounded_rectangle(35.0, 35.0, 10.0, 16.0, 2.0),
                 ],
                 "t",
             )
@@ -177,10 +177,7 @@ fn the_spiral_verifies_with_islands_and_is_about_as_long_as_offset() {
 fn the_older_spiral_morphs_refuse_islands_and_suggest_offset() {
     let tool = Tool::flat(8.0).unwrap();
     let shapes = pockets();
-    for morph in [
-        pocket::spiral::SpiralMorph::Fronts,
-        pocket::spiral::SpiralMorph::Harmonic,
-    ] {
+    for morph in [pocket::SpiralMorph::Fronts, pocket::SpiralMorph::Harmonic] {
         let opts = PocketOptions {
             morph,
             ..one_level()
@@ -194,7 +191,7 @@ fn the_older_spiral_morphs_refuse_islands_and_suggest_offset() {
 
 #[test]
 fn touching_crossing_and_nested_islands_are_input_errors() {
-    let outer = || samples::rounded_rectangle(0.0, 0.0, 80.0, 60.0, 5.0);
+    let outer = || builtin::rounded_rectangle(0.0, 0.0, 80.0, 60.0, 5.0);
     for (what, islands) in [
         ("touching the wall", vec![circle(10.0, 30.0, 10.0)]),
         ("crossing the wall", vec![circle(5.0, 30.0, 10.0)]),

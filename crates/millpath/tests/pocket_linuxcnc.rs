@@ -10,7 +10,7 @@
 
 use millpath::gcode::{WriterOptions, write_program};
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -70,7 +70,7 @@ fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
         return;
     };
     let dir = tempfile::tempdir().expect("temp dir");
-    let shape = samples::aerospace_pocket();
+    let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).expect("tool");
     let sim = SimOptions {
         cell: 0.2,

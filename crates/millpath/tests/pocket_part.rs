@@ -10,10 +10,10 @@
 use millpath::gcode::{ReaderOptions, WriterOptions, read_str, write_to_string};
 use millpath::geom::{Outline, Point};
 use millpath::io::dxf::{DxfOptions, parse};
-use millpath::io::dxf_out::write_outlines;
+use millpath::io::write_dxf as write_outlines;
 use millpath::stock::{self, SimOptions, StockSpec};
-use millpath::strategy::pocket::part::{PartStrategy, generate_part, order_pockets, tour_length};
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
+use millpath::strategy::pocket::{PartStrategy, generate_part, order_pockets, tour_length};
 use millpath::toolpath::{MoveKind, Tool, Toolpath};
 
 fn sim() -> SimOptions {
@@ -33,7 +33,7 @@ fn opts() -> PocketOptions {
 }
 
 fn square(x: f64, y: f64, w: f64, h: f64) -> Outline {
-    samples::rounded_rectangle(x, y, w, h, 4.0)
+    builtin::rounded_rectangle(x, y, w, h, 4.0)
 }
 
 fn circle(cx: f64, cy: f64, r: f64) -> Outline {
@@ -57,7 +57,7 @@ fn drawing() -> String {
         "slot",
     )
     .expect("slot");
-    let tri = samples::rounded_polygon(
+    let tri = builtin::rounded_polygon(
         &[
             Point::new(120.0, 60.0),
             Point::new(200.0, 60.0),
@@ -238,7 +238,7 @@ fn programs_pocket_writes_pass_verification_at_their_rounding() {
         step_down: 2.5,
         ..PocketOptions::default()
     };
-    let suite = samples::shape_suite();
+    let suite = builtin::shape_suite();
     let mut checked = 0;
     for sp in suite.iter().take(4) {
         for kind in [

@@ -12,7 +12,7 @@
 use millpath::Error;
 use millpath::geom::{Outline, Point, Vec2};
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 use proptest::prelude::*;
 use proptest::test_runner::{RngSeed, TestRunner};
@@ -44,7 +44,7 @@ fn star(radii: &[f64], round: f64) -> Option<Outline> {
             Point::new(r * a.cos(), r * a.sin())
         })
         .collect();
-    samples::rounded_polygon(&pts, round, "random star")
+    builtin::rounded_polygon(&pts, round, "random star")
 }
 
 fn circle(c: Point, r: f64) -> Outline {
@@ -307,7 +307,7 @@ fn run(kind: StrategyKind, o: Outline, isl: Outline) -> (f64, f64) {
 /// An L-shaped pocket (no symmetry) with a round island.
 fn l_pocket() -> (Outline, Outline) {
     let p = Point::new;
-    let ell = samples::rounded_polygon(
+    let ell = builtin::rounded_polygon(
         &[
             p(0.0, 0.0),
             p(50.0, 0.0),

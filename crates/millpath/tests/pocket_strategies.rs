@@ -1,7 +1,7 @@
 //! The three strategies on the built-in samples, checked by the stock simulation.
 
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, samples};
+use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 
 fn coarse() -> SimOptions {
@@ -15,7 +15,7 @@ fn coarse() -> SimOptions {
 #[test]
 #[allow(clippy::print_stderr)]
 fn aerospace_pocket_all_strategies_verify() {
-    let shape = samples::aerospace_pocket();
+    let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
     let opts = PocketOptions {
         depth: 6.0,
@@ -51,8 +51,8 @@ fn aerospace_pocket_all_strategies_verify() {
 /// the fronts spiral is shorter and faster than the harmonic one, and than zigzag and offset.
 #[test]
 fn spiral_spacing_and_engagement_share() {
-    use millpath::strategy::pocket::spiral::SpiralMorph as Morph;
-    let shape = samples::aerospace_pocket();
+    use millpath::strategy::pocket::SpiralMorph as Morph;
+    let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
     let base = PocketOptions {
         depth: 6.25,
@@ -70,11 +70,11 @@ fn spiral_spacing_and_engagement_share() {
             morph,
             ..base.clone()
         };
-        let (_, stats) = pocket::spiral::plan_with_stats(&shape, &tool, &opts).unwrap();
+        let (_, stats) = pocket::spiral_with_stats(&shape, &tool, &opts).unwrap();
         let made_by = if morph == Morph::Fronts {
-            pocket::spiral::Construction::Fronts
+            pocket::Construction::Fronts
         } else {
-            pocket::spiral::Construction::Harmonic
+            pocket::Construction::Harmonic
         };
         assert_eq!(stats.construction, made_by, "{stats:?}");
         assert!(
@@ -140,7 +140,7 @@ fn spiral_on_l_t_crescent_and_long_slot() {
         ..PocketOptions::default()
     };
     let p = |x: f64, y: f64| Point::new(x, y);
-    let ell = samples::rounded_polygon(
+    let ell = builtin::rounded_polygon(
         &[
             p(0.0, 0.0),
             p(60.0, 0.0),
@@ -153,7 +153,7 @@ fn spiral_on_l_t_crescent_and_long_slot() {
         "L",
     )
     .unwrap();
-    let tee = samples::rounded_polygon(
+    let tee = builtin::rounded_polygon(
         &[
             p(0.0, 40.0),
             p(20.0, 40.0),
@@ -179,7 +179,7 @@ fn spiral_on_l_t_crescent_and_long_slot() {
         "crescent",
     )
     .unwrap();
-    let slot = samples::rounded_rectangle(0.0, 0.0, 120.0, 20.0, 5.0);
+    let slot = builtin::rounded_rectangle(0.0, 0.0, 120.0, 20.0, 5.0);
     for (name, o) in [
         ("L", ell),
         ("T", tee),
@@ -206,7 +206,7 @@ fn structural_part_all_strategies() {
         step_down: 5.0,
         ..PocketOptions::default()
     };
-    for (name, shape) in samples::structural_part() {
+    for (name, shape) in builtin::structural_part() {
         for kind in [
             StrategyKind::Zigzag,
             StrategyKind::Offset,
@@ -236,7 +236,7 @@ fn spiral_invariance_under_reversal_rotation_translation() {
         modulate_feed: false,
         ..PocketOptions::default()
     };
-    let base = samples::aerospace_pocket();
+    let base = builtin::aerospace_pocket();
     let verts: Vec<(Point, f64)> = base.outer.vertices().collect();
     let run = |v: &[(Point, f64)]| {
         let shape = pocket::PocketShape::simple(Outline::new(v, "moved").unwrap());
@@ -294,7 +294,7 @@ fn spiral_arcs_are_tangent_continuous() {
     use millpath::geom::{Point, Vec2};
     use millpath::toolpath::{Move, MoveKind};
     let shape =
-        pocket::PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 120.0, 80.0, 10.0));
+        pocket::PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 120.0, 80.0, 10.0));
     let tool = Tool::flat(12.7).unwrap();
     let base = PocketOptions {
         depth: 5.0,
@@ -365,7 +365,7 @@ fn spiral_arcs_are_tangent_continuous() {
 /// loop fed down into that sliver: a plunge, and a rapid through it).
 #[test]
 fn every_strategy_verifies_with_a_finishing_pass() {
-    let shape = samples::aerospace_pocket();
+    let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
     let opts = PocketOptions {
         depth: 5.0,

@@ -4,9 +4,7 @@
 //! the same verifier reports.
 
 use millpath::stock::{self, SimOptions, StockSpec};
-use millpath::strategy::pocket::{
-    self, PocketOptions, PocketShape, StrategyKind, Walls, samples, walls,
-};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, Walls, builtin};
 use millpath::toolpath::Tool;
 
 fn coarse() -> SimOptions {
@@ -27,8 +25,8 @@ fn opts() -> PocketOptions {
 
 fn drafted() -> PocketShape {
     PocketShape::new(
-        samples::rounded_rectangle(0.0, 0.0, 70.0, 50.0, 6.0),
-        vec![samples::rounded_rectangle(30.0, 20.0, 10.0, 10.0, 2.0)],
+        builtin::rounded_rectangle(0.0, 0.0, 70.0, 50.0, 6.0),
+        vec![builtin::rounded_rectangle(30.0, 20.0, 10.0, 10.0, 2.0)],
         "t",
     )
     .unwrap()
@@ -71,7 +69,7 @@ fn top_outline_at_every_level_gouges_a_drafted_wall() {
     let shape = drafted();
     let vertical = PocketShape::new(shape.outer.clone(), shape.islands.clone(), "t").unwrap();
     let tp = pocket::toolpath(StrategyKind::Offset, &vertical, &tool, &opts()).unwrap();
-    let sections = walls::level_shapes(&shape, &opts()).unwrap();
+    let sections = pocket::level_shapes(&shape, &opts()).unwrap();
     let specs: Vec<StockSpec<'_>> = sections
         .iter()
         .map(|s| StockSpec {
@@ -91,12 +89,12 @@ fn top_outline_at_every_level_gouges_a_drafted_wall() {
 #[test]
 fn bottom_outline_pocket_verifies_and_undercuts_are_refused() {
     let tool = Tool::flat(6.0).unwrap();
-    let top = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 70.0, 50.0, 8.0));
+    let top = PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 70.0, 50.0, 8.0));
     let shape = top
         .clone()
         .with_walls(
             Walls::Bottom {
-                outer: samples::rounded_rectangle(4.0, 3.0, 60.0, 44.0, 8.0),
+                outer: builtin::rounded_rectangle(4.0, 3.0, 60.0, 44.0, 8.0),
                 islands: Vec::new(),
             },
             "bottom.json",
@@ -113,7 +111,7 @@ fn bottom_outline_pocket_verifies_and_undercuts_are_refused() {
     let undercut = top
         .with_walls(
             Walls::Bottom {
-                outer: samples::rounded_rectangle(-4.0, -3.0, 78.0, 56.0, 8.0),
+                outer: builtin::rounded_rectangle(-4.0, -3.0, 78.0, 56.0, 8.0),
                 islands: Vec::new(),
             },
             "bottom.json",
@@ -123,7 +121,7 @@ fn bottom_outline_pocket_verifies_and_undercuts_are_refused() {
         pocket::generate(StrategyKind::Offset, &undercut, &tool, &opts(), &coarse()).unwrap_err();
     assert!(e.to_string().contains("bottom outline"), "{e}");
     // A bottom with another vertex count.
-    let wrong = PocketShape::simple(samples::rounded_rectangle(0.0, 0.0, 70.0, 50.0, 8.0))
+    let wrong = PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 70.0, 50.0, 8.0))
         .with_walls(
             Walls::Bottom {
                 outer: millpath::geom::Outline::from_points(

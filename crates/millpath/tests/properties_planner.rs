@@ -2,10 +2,10 @@
 //! every plane, full circles with extra turns, dwells; `gcode_common::build_random`):
 //!
 //! * **limits**: on every preset, the plan has no violation when the independent verifier
-//!   (`motion::verify::verify_plan`: 1 kHz sampling of axis velocity, acceleration and jerk
+//!   (`motion::verify_plan`: 1 kHz sampling of axis velocity, acceleration and jerk
 //!   against the machine, feed against the programmed feed, integration consistency and the
 //!   junctions) checks it;
-//! * **streaming = batch**: `motion::stream::plan_stream` (bounded memory, windowed exact
+//! * **streaming = batch**: `motion::plan_stream` (bounded memory, windowed exact
 //!   look-ahead) gives the same cycle time as `plan_moves` on the whole program, for windows
 //!   down to 2 spans, and every chunk it hands out verifies on its own.
 //!
@@ -15,9 +15,9 @@ mod gcode_common;
 
 use gcode_common::{build_random, random_step};
 use millpath::machine::Machine;
-use millpath::motion::stream::{StreamOptions, plan_stream};
-use millpath::motion::verify::{VerifyOptions, verify_plan};
 use millpath::motion::{PlanOptions, plan_moves};
+use millpath::motion::{StreamOptions, plan_stream};
+use millpath::motion::{VerifyOptions, verify_plan};
 use millpath::{Move, Point3};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;

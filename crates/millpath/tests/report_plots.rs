@@ -5,8 +5,8 @@
 use millpath::geom::Point3;
 use millpath::machine::Machine;
 use millpath::motion::{plan_toolpath, table2};
+use millpath::report;
 use millpath::report::plots::{self, Chart, PlotOptions, Quantity};
-use millpath::report::series;
 use millpath::toolpath::{Move, Tool, Toolpath};
 use std::path::PathBuf;
 
@@ -59,7 +59,7 @@ fn planner_plots_show_data_within_limits() {
     let m = Machine::preset("hsm").unwrap();
     let plan = plan_toolpath(&square_job(), &m).unwrap();
     let samples = plan.sample(0.002).unwrap();
-    let feed = series::feed_along_path(&samples);
+    let feed = report::feed_points(&samples);
     // The planner slows into each corner: the achieved feed drops well below programmed.
     let fmin_mid = feed
         .iter()
@@ -81,7 +81,7 @@ fn planner_plots_show_data_within_limits() {
         (Quantity::Acceleration, "axis_acceleration"),
         (Quantity::Jerk, "axis_jerk"),
     ] {
-        let (t, axes) = series::axis_series(&samples, q, &m);
+        let (t, axes) = report::axis_series(&samples, q, &m);
         let chart = plots::axis_kinematics(q, &t, &axes);
         // The chart's range holds every sample and every limit line.
         let (_, _, y0, y1) = chart.ranges();

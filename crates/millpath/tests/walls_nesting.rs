@@ -11,8 +11,8 @@ mod harness;
 mod hostile_common;
 
 use hostile_common::corpus;
-use millpath::geom::region::sample_loop;
-use millpath::strategy::pocket::{PocketShape, Walls, levels};
+use millpath::geom::sample_loop;
+use millpath::strategy::pocket::{PocketShape, Walls, level_depths};
 
 /// `a` within `b` by dense sampling: every sample of `a`'s loops in or on `b`, every sample
 /// of `b`'s loops outside or on `a` (1 µm).
@@ -40,7 +40,7 @@ fn section_nesting_agrees_with_dense_sampling_over_the_corpus() {
         let Ok(mut above) = shape.section(0.0, opts.depth) else {
             continue;
         };
-        for z in levels::level_depths(&opts) {
+        for z in level_depths(&opts) {
             let Ok(s) = shape.section(-z, opts.depth) else {
                 break;
             };

@@ -299,7 +299,7 @@ fn write_html(
     let title = format!("millpath contour {name}");
     let outlines = [outline];
     let mut html = super::html::toolpath_report(&title, summary, &job.toolpath, &outlines, plan)?;
-    let per_segment = curve::verify::segment_deviations(&job.curve, flat, 200);
+    let per_segment = curve::segment_deviations(&job.curve, flat, 200);
     html.plot(
         "Chordal deviation of each segment of the curve flattened at the tolerance (dense sampling, 200 points per segment)",
         &millpath::report::plots::render_svg(

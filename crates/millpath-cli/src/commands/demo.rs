@@ -23,7 +23,7 @@ use millpath::geom::Outline;
 use millpath::machine::Machine;
 use millpath::motion::{plan_toolpath, table2};
 use millpath::report::html::HtmlReport;
-use millpath::report::{PreviewOptions, plots, series};
+use millpath::report::{self, PreviewOptions, plots};
 use millpath::strategy::contour;
 use millpath::{Error, InputError, Tool, Toolpath};
 use std::path::{Path, PathBuf};
@@ -177,12 +177,12 @@ pub(crate) fn write_gcode(
 }
 
 /// Plans `tp` on `machine` and checks the plan with the independent 1 kHz verifier
-/// ([`millpath::job::timing::time_and_verify`]). Returns (plan, verifier summary).
+/// ([`millpath::job::time_and_verify`]). Returns (plan, verifier summary).
 pub(crate) fn time_and_verify(
     tp: &Toolpath,
     machine: &Machine,
 ) -> Result<(millpath::motion::Plan, String), Error> {
-    let (plan, v) = millpath::job::timing::time_and_verify(tp, machine)?;
+    let (plan, v) = millpath::job::time_and_verify(tp, machine)?;
     let check = match v {
         // The linuxcnc model is checked against LinuxCNC, not the limit verifier.
         None => "not verified (linuxcnc model)".to_string(),
@@ -238,8 +238,8 @@ fn die_cavity(
     pb.set_message("die cavity: plots and viewer");
     // Chordal deviation of every segment of one pass at the sample's tolerance (the paper's
     // Figure 10), measured by dense sampling (200 points per segment), not by the flattener.
-    let pass = millpath::curve::flatten::flatten_curve(&curve, opt.tolerance)?;
-    let per_segment = millpath::curve::verify::segment_deviations(&curve, &pass, 200);
+    let pass = millpath::curve::flatten_curve(&curve, opt.tolerance)?;
+    let per_segment = millpath::curve::segment_deviations(&curve, &pass, 200);
     add_plot(
         out,
         html,
@@ -253,7 +253,7 @@ fn die_cavity(
         .level(result.toolpath.levels.len().saturating_sub(1));
     let plan = plan_toolpath(&finishing, machine)
         .map_err(|e| e.engine_made("timing the die cavity's finishing pass"))?;
-    let mut chart = series::feed_chart(&plan)?;
+    let mut chart = report::feed_chart(&plan)?;
     chart.title = format!(
         "Die cavity, finishing pass: feed along the path ({})",
         machine.name
@@ -305,10 +305,10 @@ fn transition_sweep(
     html: &mut HtmlReport,
     print: Say<'_>,
 ) -> Result<(), Error> {
-    use millpath::strategy::pocket::{PocketOptions, samples};
+    use millpath::strategy::pocket::{PocketOptions, builtin};
     let ratios = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7];
     let feeds = [200.0, 300.0, 400.0, 600.0];
-    let shape = samples::aerospace_pocket();
+    let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7)?;
     let base = PocketOptions {
         depth: 6.35,
@@ -391,16 +391,16 @@ fn table_two(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<(), Er
 
 fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, Error> {
     use millpath::machine::kinematics::PaperAb;
-    use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, case};
+    use millpath::motion::five_axis::{self, FiveAxisOptions, Limits};
     let pb = spinner("five-axis: minimum-time plan and the paper's GA baseline");
     let kin = PaperAb::paper();
-    let poses = case::paper_path();
+    let poses = five_axis::paper_path();
     let outcome = five_axis::plan(
         &kin,
         &poses,
         &Limits::paper(),
         &FiveAxisOptions::default(),
-        Some(case::paper_deflection()),
+        Some(five_axis::paper_deflection()),
     )?;
     let r = &outcome.result;
     let json =
@@ -416,9 +416,7 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
         .map_err(|e| Error::internal(format!("CSV: {e}")))
     })?;
     let names = millpath::machine::kinematics::Kinematics::axis_names(&kin);
-    for (file, caption, chart) in
-        millpath::report::five_axis_plots::axis_charts(&samples, names, &Limits::paper())
-    {
+    for (file, caption, chart) in report::axis_charts(&samples, names, &Limits::paper()) {
         add_plot(out, html, file, &caption, &chart)?;
     }
     if let Some(d) = &r.deflection {
@@ -426,13 +424,9 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
         // profiles through the two new intervals.
         let tips: Vec<_> = poses.iter().map(|p| p.tip).collect();
         let curve = five_axis::RefCurve::through(&tips);
-        for (file, caption, chart) in millpath::report::five_axis_plots::deflection_charts(
-            &kin,
-            &curve,
-            &outcome.segments,
-            d,
-            &Limits::paper(),
-        ) {
+        for (file, caption, chart) in
+            report::deflection_charts(&kin, &curve, &outcome.segments, d, &Limits::paper())
+        {
             add_plot(out, html, file, &caption, &chart)?;
         }
     }
@@ -461,7 +455,7 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
 
 /// The curve as an outline for drawing (flattened coarsely: the picture only).
 fn outline_for_viewer(curve: &millpath::curve::CompositeCurve) -> Result<Outline, Error> {
-    let flat = millpath::curve::flatten::flatten_curve(curve, 0.01)?;
+    let flat = millpath::curve::flatten_curve(curve, 0.01)?;
     Ok(Outline::from_points(&flat.points, "die cavity curve")?)
 }
 
@@ -508,9 +502,9 @@ fn pockets(
             "pockets: {name} on {} pockets, stock simulation",
             part.len()
         ));
-        let whole = pocket::part::generate_part(
+        let whole = pocket::generate_part(
             &shapes,
-            pocket::part::PartStrategy::One(kind),
+            pocket::PartStrategy::One(kind),
             &tool,
             &opts,
             &sim,
@@ -563,7 +557,7 @@ fn pockets(
                 let first = bay_tp.level(0);
                 let plan = plan_toolpath(&first, machine)
                     .map_err(|e| e.engine_made("timing the spiral's first level"))?;
-                let mut chart = series::feed_chart(&plan)?;
+                let mut chart = report::feed_chart(&plan)?;
                 chart.title = format!(
                     "Spiral, {bay}, first level: feed along the path ({})",
                     machine.name

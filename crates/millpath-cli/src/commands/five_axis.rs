@@ -4,7 +4,7 @@
 use super::print;
 use millpath::Error;
 use millpath::job::five_axis::{FiveAxisRun, FiveAxisSettings};
-use millpath::motion::five_axis::{self, case::LimitsFile};
+use millpath::motion::five_axis::{self, LimitsFile};
 use std::path::PathBuf;
 
 /// Arguments of `millpath five-axis`.

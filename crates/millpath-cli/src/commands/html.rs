@@ -5,7 +5,7 @@ use millpath::geom::Outline;
 use millpath::machine::Machine;
 use millpath::motion::Plan;
 use millpath::report::html::HtmlReport;
-use millpath::report::{plots, series};
+use millpath::report::{self, plots};
 use millpath::{Error, Toolpath};
 use std::path::Path;
 
@@ -23,7 +23,7 @@ pub fn toolpath_report(
     html.toolpath_viewer(title, tp, outlines, plan)?;
     html.plot(
         "Feed along the cutting path (rapids left out): achieved by the planner against programmed",
-        &plots::render_svg(&series::feed_chart(plan)?, &plots::PlotOptions::default())?,
+        &plots::render_svg(&report::feed_chart(plan)?, &plots::PlotOptions::default())?,
     )?;
     Ok(html)
 }

@@ -14,7 +14,7 @@ pub struct ImportArgs {
     #[arg(long)]
     pub layer: Option<String>,
     /// Largest gap between piece ends joined into one outline, mm.
-    #[arg(long, default_value_t = millpath::io::drawing::DEFAULT_JOIN_TOLERANCE_MM)]
+    #[arg(long, default_value_t = millpath::io::DEFAULT_JOIN_TOLERANCE_MM)]
     pub join_tolerance: f64,
     /// The drawing's unit, overriding the file ($INSUNITS/$MEASUREMENT, SVG width/height/
     /// viewBox): mm, cm, m, in, ft, pt or px.
@@ -26,7 +26,7 @@ impl Default for ImportArgs {
     fn default() -> Self {
         ImportArgs {
             layer: None,
-            join_tolerance: millpath::io::drawing::DEFAULT_JOIN_TOLERANCE_MM,
+            join_tolerance: millpath::io::DEFAULT_JOIN_TOLERANCE_MM,
             drawing_units: None,
         }
     }

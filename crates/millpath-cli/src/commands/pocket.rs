@@ -205,7 +205,7 @@ fn list_lines(loops: &Loops) -> Vec<String> {
         .collect()
 }
 
-use millpath::job::pocket_report::{auto_line, pocket_line};
+use millpath::job::{auto_line, pocket_line};
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {

@@ -70,6 +70,13 @@ pub fn open(pts: &[Point]) -> Vec<Cubic> {
 #[derive(Debug, Clone)]
 pub struct OpenChain(pub Vec<Cubic>);
 
+impl OpenChain {
+    /// The open Catmull–Rom chain through `pts` (see `open`).
+    pub fn through(pts: &[Point]) -> Self {
+        OpenChain(open(pts))
+    }
+}
+
 impl PlanarCurve for OpenChain {
     fn piece_count(&self) -> usize {
         self.0.len()

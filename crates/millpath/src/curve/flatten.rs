@@ -215,6 +215,7 @@ pub fn dist_to_segment(p: Point, a: Point, b: Point) -> f64 {
     p.distance(a + ab * t)
 }
 
+#[cfg(test)]
 /// The exact chordal deviation of the chord from global parameter `s0` to `s1` (`s0 < s1`,
 /// unwrapped; no corner strictly inside).
 pub fn deviation<C: PlanarCurve + ?Sized>(c: &C, s0: f64, s1: f64) -> f64 {

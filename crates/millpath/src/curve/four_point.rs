@@ -28,6 +28,7 @@
 use super::Cubic;
 use crate::geom::{Point, Vec2};
 
+#[cfg(test)]
 /// The four basis functions `[G1, G2, G3, G4]` at `u`.
 pub fn basis(u: f64) -> [f64; 4] {
     [
@@ -64,6 +65,7 @@ pub fn end_derivative(p: &[Point; 4]) -> Vec2 {
     combine(basis_d1(1.0), p)
 }
 
+#[cfg(test)]
 /// The point of the four-point cubic at `u` straight from the Lagrange basis (eq. 2).
 pub fn eval(p: &[Point; 4], u: f64) -> Point {
     combine(basis(u), p).to_point()

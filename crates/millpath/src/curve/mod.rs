@@ -6,29 +6,35 @@
 //! Outlines are counter-clockwise once built (reversed if the input ran clockwise), so the
 //! left normal `perp(P')` points inside.
 //!
-//! * [`four_point`]: the paper's cubic through 4 points at u = 0, 1/3, 2/3, 1 (basis derived,
+//! * `four_point`: the paper's cubic through 4 points at u = 0, 1/3, 2/3, 1 (basis derived,
 //!   its misprint documented);
-//! * [`blend`]: the C1 blend between groups that do not meet and to close the outline;
-//! * [`catmull_rom`], [`spline`]: closed curves through scattered points;
+//! * `blend`: the C1 blend between groups that do not meet and to close the outline;
+//! * `catmull_rom`, `spline`: closed curves through scattered points;
 //! * [`flatten`]: the fewest chords within a tolerance, with an exact deviation;
-//! * [`intersect`]: self-intersection checks, and the cut of the tiny inverted "fish-tail"
+//! * `intersect`: self-intersection checks, and the cut of the tiny inverted "fish-tail"
 //!   lobe interpolating cubics leave at a nearly reversing corner (the paper's own outline
 //!   has one at (1, 15));
-//! * [`verify`]: dense-sampling verifiers that share no code with [`flatten`];
-//! * [`biarc`]: arcs within a tolerance for G2/G3 output.
+//! * `verify`: dense-sampling verifiers that share no code with [`flatten`];
+//! * `biarc`: arcs within a tolerance for G2/G3 output.
 
-pub mod biarc;
-pub mod blend;
-pub mod catmull_rom;
+pub(crate) mod biarc;
+pub(crate) mod blend;
+pub(crate) mod catmull_rom;
 mod cubic;
-pub mod flatten;
-pub mod four_point;
-pub mod intersect;
-pub mod spline;
-pub mod verify;
+pub(crate) mod flatten;
+pub(crate) mod four_point;
+pub(crate) mod intersect;
+pub(crate) mod spline;
+pub(crate) mod verify;
 
+pub use biarc::{ArcSeg, MIN_ARC_SWEEP, fit as fit_biarcs};
+pub use catmull_rom::OpenChain;
 pub use cubic::Cubic;
-pub use flatten::{Flattening, PlanarCurve};
+pub use flatten::{
+    FlattenOptions, Flattening, PlanarCurve, asymptotic_count, flatten, flatten_curve, flatten_opt,
+    kurbo_count,
+};
+pub use verify::{chordal_deviation, distance_to_curve, polyline_min_distance, segment_deviations};
 
 use crate::error::InputError;
 use crate::geom::{Aabb, LENGTH_EPS, Point, Vec2};
@@ -85,7 +91,7 @@ pub struct CompositeCurve {
 }
 
 /// A fish-tail lobe of the curve as drawn, cut off at a corner by
-/// [`intersect::remove_fishtails`]: from the crossing (the start of piece `corner`, where the
+/// `intersect::remove_fishtails`: from the crossing (the start of piece `corner`, where the
 /// trimmed curve turns) out to the drawn corner point and back. A pass on the outline
 /// (`--side on`) traces it; the region the outline bounds does not include it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -150,7 +156,7 @@ impl CompositeCurve {
         Ok(c)
     }
 
-    /// The fish-tail lobes cut off at corners ([`intersect::remove_fishtails`]): the curve
+    /// The fish-tail lobes cut off at corners (`intersect::remove_fishtails`): the curve
     /// as drawn, beyond the crossing that became the corner. Empty for most curves.
     pub fn lobes(&self) -> &[Lobe] {
         &self.lobes
@@ -454,5 +460,35 @@ mod tests {
         let g = vec![paper_groups()[0][..3].to_vec()];
         let e = build(&g, CurveKind::CatmullRom, "t").unwrap_err();
         assert!(e.to_string().contains("at least 4"), "{e}");
+    }
+
+    /// The paper's Table 1: the blended segment 2 between segments 1 and 3.
+    #[test]
+    fn table_1_blend_inner_points() {
+        let g = paper_groups();
+        let pts = |k: usize| -> [Point; 4] { [g[k][0].p, g[k][1].p, g[k][2].p, g[k][3].p] };
+        let (s1, s3) = (pts(0), pts(1));
+        assert!((four_point::end_derivative(&s1) - Vec2::new(6.0, -9.5)).length() < 1e-12);
+        assert!((four_point::start_derivative(&s3) - Vec2::new(-5.0, 49.75)).length() < 1e-12);
+        let (p2, p3) = blend::inner_points(
+            s1[3],
+            four_point::end_derivative(&s1),
+            s3[0],
+            four_point::start_derivative(&s3),
+        );
+        for (got, want) in [(p2, (10.33, 4.38)), (p3, (14.11, 0.44))] {
+            assert!(
+                (got.x - want.0).abs() < 0.01 && (got.y - want.1).abs() < 0.01,
+                "{got:?} vs {want:?}"
+            );
+        }
+        // The built outline holds exactly this blend as its second piece (before scaling).
+        let c = build(&g, CurveKind::FourPoint, "paper").unwrap();
+        let b = c.pieces()[1];
+        assert!(
+            b.p0.distance(Point::new(7.0, 10.0)) < 1e-12
+                && b.p3.distance(Point::new(15.0, 8.0)) < 1e-12
+        );
+        assert!(b.eval(1.0 / 3.0).distance(p2) < 1e-9 && b.eval(2.0 / 3.0).distance(p3) < 1e-9);
     }
 }

@@ -35,8 +35,8 @@
 //! centre format).
 
 use super::Units;
+pub use crate::toolpath::arc_rule::RADIUS_TOLERANCE_MM;
 use crate::toolpath::arc_rule::{CENTER_ARC_RADIUS_TOLERANCE_MM, radii_mismatch};
-pub use crate::toolpath::arc_rule::{RADIUS_TOLERANCE_MM, SPIRAL_RELATIVE_TOLERANCE};
 use std::f64::consts::{SQRT_2, TAU};
 
 /// LinuxCNC's `CENTER_ARC_RADIUS_TOLERANCE` in mm for a program in `units`: `2·0.01·√2` mm

@@ -65,7 +65,7 @@ impl Dialect {
         matches!(self, Dialect::Sinumerik | Dialect::Grbl)
     }
 
-    /// Whether integral values keep their decimal point (`X10.`): Fanuc, see [`super::format`].
+    /// Whether integral values keep their decimal point (`X10.`): Fanuc, see `super::format`.
     pub fn keeps_decimal_point(self) -> bool {
         matches!(self, Dialect::Fanuc)
     }

@@ -44,8 +44,8 @@ pub fn rounding_error_mm(decimals: u32, units: Units) -> f64 {
 }
 
 /// The smallest number of decimals whose XY rounding error ([`rounding_error_mm`]) is at most
-/// [`ROUNDING_SHARE`] × `tolerance_mm`, capped at [`MAX_DECIMALS`]. A non-finite or
-/// non-positive tolerance gets [`MAX_DECIMALS`].
+/// `ROUNDING_SHARE` × `tolerance_mm`, capped at `MAX_DECIMALS`. A non-finite or
+/// non-positive tolerance gets `MAX_DECIMALS`.
 pub fn required_decimals(tolerance_mm: f64, units: Units) -> u32 {
     if !(tolerance_mm.is_finite() && tolerance_mm > 0.0) {
         return MAX_DECIMALS;

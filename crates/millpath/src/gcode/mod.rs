@@ -45,7 +45,7 @@
 //! | exact stop / exact path | `G61.1` / `G61` | `G61` / `G61` (no exact-path mode) | `G60` / `G64` (continuous path without rounding) | – (grbl has only its planner) |
 //! | blend / machine | `G64 P`t / `G64 P`path or `G64` | `G64` / `G64` | `CYCLE832(t,_FINISH,1)` / CYCLE832 with the path tolerance, or `G642` | – |
 //! | multi-turn arcs | `P`turns+1 | split into full turns | `TURN=`n | split into full turns |
-//! | arc radii (rounded start and end) | LinuxCNC's rule ([`arc`]) | LinuxCNC's rule | LinuxCNC's rule | and Grbl 1.1's: 0.005 mm, or 0.1 % and 0.5 mm |
+//! | arc radii (rounded start and end) | LinuxCNC's rule (`arc`) | LinuxCNC's rule | LinuxCNC's rule | and Grbl 1.1's: 0.005 mm, or 0.1 % and 0.5 mm |
 //! | five-axis ([`five_axis`]) | `G93`, `A`/`B` `C` words | the same, decimal points | the same | refused: no rotary axes |
 //! | end | `M2` | `M30` | `M30` | `M2` |
 //!
@@ -76,7 +76,7 @@
 //! in a separate block"); Grbl 1.1 `G4 P` seconds.
 //!
 //! # Numbers and the tolerance budget
-//! See [`format`](mod@format): trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
+//! See `format`: trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
 //! a point rounds by at most `√2·½·10^(−d)` in XY, and [`required_decimals`] keeps that within
 //! 10 % of a tolerance so that chordal deviation plus rounding stays within it.
 //!
@@ -105,20 +105,20 @@
 //! (`tests/linuxcnc_programs.rs`; the counts are in BENCHMARKS.md).
 
 //! # The reader's modal rules
-//! See [`interp`]: the state machine follows RS274/NGC's order of execution within a block,
+//! See `interp`: the state machine follows RS274/NGC's order of execution within a block,
 //! accepts each dialect's own forms of what the writer emits, and refuses every word it does
 //! not understand with the line and the word (or skips it with a warning when lenient).
 //!
 //! # The arc-radius rule
-//! See [`arc`]: LinuxCNC's `arc_data_ijk` rule (`Δ > 100τ` or (`Δ/r > 0.1 %` and `Δ > τ`),
+//! See `arc`: LinuxCNC's `arc_data_ijk` rule (`Δ > 100τ` or (`Δ/r > 0.1 %` and `Δ > τ`),
 //! `τ = 0.0283 mm` or `0.00283 in`), cited from its source and checked against `rs274`.
 
-pub mod arc;
+pub(crate) mod arc;
 mod dialect;
 mod expr;
 pub mod five_axis;
-pub mod format;
-pub mod interp;
+pub(crate) mod format;
+pub(crate) mod interp;
 mod lexer;
 mod ngc;
 mod oword;

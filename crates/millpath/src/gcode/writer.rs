@@ -101,7 +101,7 @@ impl WriterOptions {
 
     /// These options with enough decimals for a path tolerance of `tolerance_mm`: the larger
     /// of the current decimals and [`super::required_decimals`] (rounding within 10 % of the
-    /// tolerance, see [`super::format`]).
+    /// tolerance, see `super::format`).
     #[must_use]
     pub fn with_tolerance(mut self, tolerance_mm: f64) -> Self {
         let need = super::required_decimals(tolerance_mm, self.units);

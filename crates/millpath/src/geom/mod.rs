@@ -4,16 +4,18 @@
 //! `Point - Point = Vec2`, `Point + Vec2 = Point`, and there is no `Point + Point`.
 
 mod aabb;
-pub mod nesting;
+pub(crate) mod nesting;
 mod outline;
-pub mod overlap;
+pub(crate) mod overlap;
 mod point;
-pub mod region;
+pub(crate) mod region;
 mod vec3;
 
 pub use aabb::Aabb;
+pub use nesting::{Pocket, nest};
 pub use outline::{MAX_BULGE, MAX_COORDINATE_MM, Outline, Winding, area_less_islands};
 pub use point::{Point, Vec2};
+pub use region::{offset_loops, sample_loop};
 pub use vec3::{Point3, Vec3};
 
 /// Tolerance below which two lengths in millimetres are considered equal when deciding

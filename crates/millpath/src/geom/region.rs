@@ -73,7 +73,7 @@ pub fn closed_loop(pl: Polyline<f64>) -> Option<Polyline<f64>> {
 }
 
 /// cavalier_contours' parallel offset of the closed loop `pl` by `d` (positive: inward for a
-/// counter-clockwise loop), every result closed ([`closed_loop`]).
+/// counter-clockwise loop), every result closed (`closed_loop`).
 pub fn offset_loops(pl: &Polyline<f64>, d: f64) -> Vec<Polyline<f64>> {
     pl.parallel_offset(d)
         .into_iter()
@@ -466,7 +466,7 @@ mod tests {
         assert!((principal_angle(&turned) - a).abs() < 1e-9);
         // A rounded rectangle: exactly along its edges (a micro-radian off would cut slivers).
         let rr =
-            crate::strategy::pocket::samples::rounded_rectangle(-75.0, -50.0, 150.0, 100.0, 6.0);
+            crate::strategy::pocket::builtin::rounded_rectangle(-75.0, -50.0, 150.0, 100.0, 6.0);
         let a = principal_angle(&rr);
         assert!(
             a.abs() < 1e-12 || (a - std::f64::consts::PI).abs() < 1e-12,

@@ -23,9 +23,6 @@ pub type Piece = Vec<(Point, f64)>;
 pub struct Affine(pub [f64; 6]);
 
 impl Affine {
-    /// The identity.
-    pub const IDENTITY: Affine = Affine([1.0, 0.0, 0.0, 1.0, 0.0, 0.0]);
-
     /// A translation.
     pub fn translate(x: f64, y: f64) -> Affine {
         Affine([1.0, 0.0, 0.0, 1.0, x, y])
@@ -110,31 +107,6 @@ pub fn transform_piece(piece: Piece, t: &Affine, tol: f64) -> Piece {
         {
             for m in arc_points(p, q, b, tol / stretch).into_iter().skip(1) {
                 out.push((t.apply(m), 0.0));
-            }
-        }
-    }
-    out
-}
-
-/// Flattens every arc of `piece` (closed when `closed`, the last vertex's arc returning to the
-/// first) into chords within `tol`.
-pub fn flatten_arcs(piece: &[(Point, f64)], closed: bool, tol: f64) -> Piece {
-    let n = piece.len();
-    let mut out = Piece::with_capacity(n);
-    for (i, &(p, b)) in piece.iter().enumerate() {
-        out.push((p, 0.0));
-        let next = if i + 1 < n {
-            Some(piece[i + 1].0)
-        } else if closed {
-            Some(piece[0].0)
-        } else {
-            None
-        };
-        if b != 0.0
-            && let Some(q) = next
-        {
-            for m in arc_points(p, q, b, tol) {
-                out.push((m, 0.0));
             }
         }
     }

@@ -23,7 +23,7 @@ pub struct ReadOptions {
     /// Largest distance between a curve (spline, ellipse, Bézier, an arc under a non-uniform
     /// scale) and its flattening, mm. Circular arcs stay exact.
     pub tolerance: f64,
-    /// Largest gap between two piece ends that are joined, mm (see [`super::join`]).
+    /// Largest gap between two piece ends that are joined, mm (see `super::join`).
     pub join_tolerance: f64,
     /// Only the outlines on this layer (DXF layer name; SVG `<g>` whose `inkscape:label` or
     /// `id` is this name, with everything inside it).

@@ -1,6 +1,6 @@
 //! Pocket outlines as JSON, and the loop classification every importer shares
 //! ([`classify`]: every closed outline of a drawing nested into pockets and islands by
-//! [`crate::geom::nesting`]).
+//! `crate::geom::nesting`).
 //!
 //! Schema (lengths in mm unless `"units": "in"`; a vertex is `[x, y]` or `[x, y, bulge]`, the
 //! bulge being `tan(θ/4)` of the arc of sweep θ that leaves the vertex, positive
@@ -22,7 +22,7 @@ use crate::geom::{Outline, Point};
 use serde::Deserialize;
 
 /// The pockets of a drawing, windings normalised: the first (largest) in `outer` and
-/// `islands`, the others in `others` (by decreasing area, see [`crate::geom::nesting`]).
+/// `islands`, the others in `others` (by decreasing area, see `crate::geom::nesting`).
 #[derive(Debug, Clone)]
 pub struct Loops {
     /// The first pocket's boundary, counter-clockwise.
@@ -32,7 +32,7 @@ pub struct Loops {
     /// The drawing's other pockets (empty for one pocket).
     pub others: Vec<Pocket>,
     /// What reading the drawing resolved: outlines merged, notched or dropped
-    /// ([`crate::geom::overlap`]), one sentence each.
+    /// (`crate::geom::overlap`), one sentence each.
     pub notes: Vec<String>,
 }
 
@@ -120,7 +120,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Loops, InputError> {
 }
 
 /// Normalises windings and checks that every island lies strictly inside the outer outline
-/// without touching it or another island ([`crate::geom::region::validate_islands`]).
+/// without touching it or another island (`crate::geom::region::validate_islands`).
 pub fn check_islands(
     outer: Outline,
     islands: Vec<Outline>,

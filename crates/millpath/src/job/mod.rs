@@ -9,22 +9,26 @@ pub mod contour;
 pub mod estimate;
 pub mod five_axis;
 pub mod pocket;
-pub mod pocket_report;
-pub mod program;
+pub(crate) mod pocket_report;
+pub(crate) mod program;
 pub mod sweep;
-pub mod timing;
+pub(crate) mod timing;
 pub mod verify;
 
 use crate::Error;
 use crate::io::ImportSettings;
 use crate::io::outline_json::Loops;
 use crate::machine::Machine;
-use crate::strategy::pocket::samples;
+use crate::strategy::pocket::builtin;
 use std::path::Path;
 
 pub use pocket::{PocketRun, PocketSettings};
-pub use pocket_report::Report as PocketReport;
+pub use pocket_report::{
+    AutoEntry, PocketEntry, REPORT_TIME_MODEL, Report as PocketReport, auto_entries, auto_line,
+    pocket_line,
+};
 pub use program::{ProgramSettings, program_time};
+pub use timing::time_and_verify;
 
 /// The built-in outline names `load_outline` takes.
 pub const SAMPLE_OUTLINES: &[&str] = &["sample:aerospace"];
@@ -34,7 +38,7 @@ pub const SAMPLE_OUTLINES: &[&str] = &["sample:aerospace"];
 /// what it held.
 pub fn load_outline(name: &str, import: &ImportSettings) -> Result<(Loops, Option<String>), Error> {
     if name == "sample:aerospace" {
-        let s = samples::aerospace_pocket();
+        let s = builtin::aerospace_pocket();
         return Ok((Loops::single(s.outer, s.islands), None));
     }
     crate::io::read_outline_file(name, import)
@@ -47,7 +51,7 @@ pub fn load_outline(name: &str, import: &ImportSettings) -> Result<(Loops, Optio
 pub fn sample_part_drawing(
     origin: &str,
 ) -> Result<(String, Vec<(String, crate::strategy::pocket::PocketShape)>), Error> {
-    let drawn = samples::structural_part();
+    let drawn = builtin::structural_part();
     let dxf = crate::io::dxf_out::write_outlines(drawn.iter().map(|(_, s)| &s.outer), "POCKETS");
     let loops = crate::io::dxf::parse(
         dxf.as_bytes(),
@@ -87,7 +91,7 @@ mod tests {
     fn sample_part_survives_the_dxf_round_trip() {
         let (dxf, part) = sample_part_drawing("part.dxf").unwrap();
         assert!(dxf.contains("LWPOLYLINE"));
-        let drawn = samples::structural_part();
+        let drawn = builtin::structural_part();
         assert_eq!(part.len(), drawn.len());
         let area = |o: &crate::geom::Outline| o.signed_area().abs();
         let mut read: Vec<f64> = part.iter().map(|(_, s)| area(&s.outer)).collect();

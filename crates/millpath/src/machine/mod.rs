@@ -89,7 +89,7 @@ pub struct AxisLimits {
 }
 
 /// The controller whose trajectory planner a machine's cycle times reproduce: the rules for
-/// corners, arcs, short blocks and look-ahead (see [`crate::motion::controller`]).
+/// corners, arcs, short blocks and look-ahead (see `crate::motion::controller`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Controller {

@@ -13,13 +13,13 @@
 //! ```
 //!
 //! # Pipeline
-//! 0. **Controller model** ([`controller`], chosen by the machine profile: `generic`,
+//! 0. **Controller model** (`controller`, chosen by the machine profile: `generic`,
 //!    `sinumerik`, `linuxcnc`): what the blocks are (the moves, or what LinuxCNC makes of
 //!    them: merged, trimmed, blend arcs) and which limits, corner rules and look-ahead apply.
 //!    Steps 1–2 below are the `generic` model's rules; steps 3–4 are shared by all models.
-//! 1. **Geometry** ([`path`]): lines and arcs/helices exactly as programmed (no flattening),
+//! 1. **Geometry** (`path`): lines and arcs/helices exactly as programmed (no flattening),
 //!    parametrised by arc length with their first three derivatives.
-//! 2. **Limits** ([`limits`]): each block's path velocity, acceleration and jerk limits — the
+//! 2. **Limits** (`limits`): each block's path velocity, acceleration and jerk limits — the
 //!    axis limits projected onto the path direction on lines; on arcs and helices the
 //!    centripetal acceleration `κv²` and the jerk it implies (`κ√(κ²+τ²)v³ + 3κ·v·a_t`)
 //!    bound the speed, with a documented share of the axis limits kept for the tangential
@@ -27,15 +27,15 @@
 //!    junction gets a speed cap: exact stop, exact path (velocity step within one
 //!    interpolation cycle), a circular blend within the path tolerance, or the curvature
 //!    step at tangent line→arc junctions spread over one interpolation cycle.
-//! 3. **Look-ahead** ([`plan`]): blocks are grouped into spans joined by knots; a backward and
+//! 3. **Look-ahead** (`plan`): blocks are grouped into spans joined by knots; a backward and
 //!    a forward pass over the whole program with the closed-form inverse of the S-curve
 //!    distance make every span feasible.
-//! 4. **Profiles** ([`profile`]): each span gets the time-optimal 7-phase jerk-limited
+//! 4. **Profiles** (`profile`): each span gets the time-optimal 7-phase jerk-limited
 //!    S-curve between its knot speeds (closed forms for every degenerate case: no cruise,
 //!    acceleration limit not reached, trapezoid when jerk is unlimited), checked against its
 //!    limits before it is accepted.
-//! 5. **Sampling** ([`sample`]): position, feed and per-axis v/a/j at any time.
-//! 6. **Verification** ([`verify`]): an independent sampler checks every per-axis limit, the
+//! 5. **Sampling** (`sample`): position, feed and per-axis v/a/j at any time.
+//! 6. **Verification** (`verify`): an independent sampler checks every per-axis limit, the
 //!    feed and the corner rules; tests require 0 violations.
 //!
 //! # Precision and range
@@ -57,7 +57,7 @@
 //!   any finite positive values (jerk may be infinite), arcs with radius > 1e-12 mm.
 //!
 //! # Known conservatism (the time is an upper bound of the model's optimum)
-//! * Zero acceleration is forced at knots (see [`plan`]): exact where the speed touches a cap,
+//! * Zero acceleration is forced at knots (see `plan`): exact where the speed touches a cap,
 //!   conservative when a short span accelerates through a knot whose cap it does not reach.
 //! * On arcs, a fixed share of the axis acceleration and jerk is reserved for the curvature
 //!   terms (as the 840D's `CURV_EFFECT_ON_PATH_ACCEL` does): the arc speed cap is
@@ -66,19 +66,22 @@
 //!
 //! The five-axis helpers live in [`five_axis`].
 
-pub mod controller;
+pub(crate) mod controller;
 pub mod five_axis;
-pub mod limits;
-pub mod path;
-pub mod plan;
-pub mod profile;
-pub mod sample;
-pub mod stream;
+pub(crate) mod limits;
+pub(crate) mod path;
+pub(crate) mod plan;
+pub(crate) mod profile;
+pub(crate) mod sample;
+pub(crate) mod stream;
 pub mod table2;
-pub mod verify;
+pub(crate) mod verify;
 
 pub use plan::{BlockPlan, Plan, PlanOptions, Span, plan_moves, plan_toolpath, plan_toolpath_opt};
+pub use profile::{Limits1, SpanProfile, change_distance, rest_to_rest_time};
 pub use sample::Sample;
+pub use stream::{Chunk, StreamOptions, StreamSummary, plan_stream};
+pub use verify::{VerifyOptions, VerifyReport, Violation, ViolationKind, verify_plan};
 
 use crate::error::Result;
 use crate::machine::Machine;

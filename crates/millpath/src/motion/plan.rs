@@ -34,8 +34,6 @@ use crate::geom::Point3;
 use crate::machine::Machine;
 use crate::toolpath::{Move, MoveKind, Toolpath};
 
-pub use super::path::{MAX_DWELL, MIN_FEED};
-
 /// Options of [`plan_moves`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlanOptions {
@@ -76,7 +74,7 @@ pub struct BlockPlan {
     pub span_offset: f64,
     /// The input move this block times: its own index, except where the controller model
     /// reshapes the path (the `linuxcnc` model's blend arcs, trimmed and merged moves; see
-    /// [`super::controller`]).
+    /// `super::controller`).
     pub origin: usize,
 }
 

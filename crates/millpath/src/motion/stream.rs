@@ -75,7 +75,7 @@ pub struct StreamSummary {
     /// Cycle time, s.
     pub total_time: f64,
     /// Blocks planned (one per move, except where the controller model reshapes the path:
-    /// see [`super::controller`]).
+    /// see `super::controller`).
     pub blocks: usize,
     /// Moves read.
     pub moves: usize,

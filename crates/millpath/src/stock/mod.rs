@@ -4,8 +4,8 @@
 //! outline; it shares no code with the strategies that made the path (it uses the geometry
 //! library directly).
 //!
-//! * [`raster`]: the material of one slab as a bitset of cells (≤ 0.05 mm by default).
-//! * [`simulate`](mod@simulate): sweeps the tool disc along every move (sample spacing 0.1 mm: the scallop
+//! * `raster`: the material of one slab as a bitset of cells (≤ 0.05 mm by default).
+//! * `simulate`: sweeps the tool disc along every move (sample spacing 0.1 mm: the scallop
 //!   between two discs of radius `r` that far apart is `0.1²/(8r)`, below 1 µm for `r ≥ 2 mm`)
 //!   and measures, at every sample, the **true radial depth of cut** as the area removed per
 //!   unit of travel, `a_e = ΔA / Δs`, averaged over 0.5 mm of travel. For a straight cut
@@ -20,21 +20,21 @@
 //! * Coverage: a material cell left after a slab is *uncut* when the tool could have reached
 //!   it: its centre lies within `r − 2c` of the region the tool centre may visit (the points
 //!   of the pocket at least `r + wall stock` from the walls), found on the raster from
-//!   distances alone ([`reach`]), not from the curve offsets the strategies use. Cells
+//!   distances alone (`reach`), not from the curve offsets the strategies use. Cells
 //!   farther away are the corner cusps and the wall stock the tool radius implies.
-//! * [`gouge`]: the exact clearance between every move below the stock top and the outline
+//! * `gouge`: the exact clearance between every move below the stock top and the outline
 //!   and islands, against `r + stock −` [`GOUGE_RESOLUTION`] (the resolution a program is
 //!   written at: closer than that is rounding, not a gouge).
 //! * Inclined walls ([`verify_levels`]): each level has its own section of the pocket; a
 //!   slab's material is its level's section, and a level's moves are checked against its
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
 
-pub mod gouge;
-pub mod nearest;
-pub mod part;
-pub mod raster;
-pub mod reach;
-pub mod simulate;
+pub(crate) mod gouge;
+pub(crate) mod nearest;
+pub(crate) mod part;
+pub(crate) mod raster;
+pub(crate) mod reach;
+pub(crate) mod simulate;
 
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use part::{PartVerification, verify_part};

@@ -175,6 +175,7 @@ impl Raster {
             .sum()
     }
 
+    #[cfg(test)]
     /// Material cells left.
     pub fn count(&self) -> u64 {
         self.bits.iter().map(|w| u64::from(w.count_ones())).sum()

@@ -13,7 +13,7 @@ use std::collections::VecDeque;
 pub struct SimOptions {
     /// Raster cell side, mm (enlarged if the raster would exceed `max_cells`).
     pub cell: f64,
-    /// Spacing of the tool positions along a move, mm; at most [`MAX_STEP_RADII`] tool radii
+    /// Spacing of the tool positions along a move, mm; at most `MAX_STEP_RADII` tool radii
     /// whatever is asked (discs farther apart would leave slivers of their own between them,
     /// uncut material no toolpath left).
     pub step: f64,

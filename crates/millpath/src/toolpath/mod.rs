@@ -4,7 +4,7 @@
 //! writer consume. Positions are in millimetres, feeds in **mm/s** (the G-code writer turns
 //! them into mm/min or in/min).
 
-pub mod arc_rule;
+pub(crate) mod arc_rule;
 mod moves;
 mod tool;
 

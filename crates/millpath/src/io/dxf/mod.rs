@@ -10,9 +10,9 @@
 //!   assumed and the summary says so. [`ReadOptions::mm_per_unit`] overrides the file.
 //!   Header variables are read wherever they appear, so dxflib's files (header variables
 //!   after the header's `ENDSEC`) read as their writer meant.
-//! * **Entities** ([`entities`]): LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE/VERTEX, ELLIPSE,
+//! * **Entities** (`entities`): LINE, ARC, CIRCLE, LWPOLYLINE, POLYLINE/VERTEX, ELLIPSE,
 //!   SPLINE, HATCH boundaries, INSERT (nested blocks); the rest counted and skipped.
-//! * **Joins** ([`crate::io::join`]): open pieces chained end to end within
+//! * **Joins** (`crate::io::join`): open pieces chained end to end within
 //!   [`ReadOptions::join_tolerance`] (mm, after scaling).
 //! * **Layers:** [`ReadOptions::layer`] keeps one layer (names compared ignoring ASCII case,
 //!   as AutoCAD does); an unknown layer is refused with the list of the file's layers.
@@ -22,9 +22,9 @@
 //! value is an input error, never a panic; the fuzz target `outline_importers` covers it).
 
 mod codes;
-pub mod entities;
+pub(crate) mod entities;
 mod hatch;
-pub mod spline;
+pub(crate) mod spline;
 
 use super::drawing::{Drawing, ReadOptions};
 use super::join::join;

@@ -14,7 +14,7 @@
 //!   known height, at the coordinates Inkscape's DXF export gives it. Arcs' bulges change sign
 //!   with the mirror.
 //! * **Transforms.** `transform` on any element (`matrix`, `translate`, `scale`, `rotate`,
-//!   `skewX`, `skewY`, lists of them) composes down the tree ([`crate::io::affine`]; arcs
+//!   `skewX`, `skewY`, lists of them) composes down the tree (`crate::io::affine`; arcs
 //!   stay exact under similarities).
 //! * **Elements:** `path`, `rect` (with `rx`/`ry`), `circle`, `ellipse`, `line`, `polyline`,
 //!   `polygon`, `use` (of any element with an id, `x`/`y` added; `symbol` content drawn only
@@ -22,7 +22,7 @@
 //!   `pattern` content is not drawn; `display="none"` elements are skipped; `text`, `image`
 //!   and the rest are counted and skipped.
 //! * **Joins:** open paths are chained end to end within [`ReadOptions::join_tolerance`]
-//!   ([`crate::io::join`]).
+//!   (`crate::io::join`).
 //! * **Layers:** [`ReadOptions::layer`] keeps the outlines inside the `<g>` whose
 //!   `inkscape:label` or `id` is that name.
 //!

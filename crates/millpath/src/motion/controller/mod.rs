@@ -21,8 +21,8 @@
 //! | `sinumerik` | as programmed | as `generic` | [`sinumerik`]: G64/G642 rounding, curvature steps smoothed within the tolerance |
 //! | `linuxcnc` | [`linuxcnc`]: LinuxCNC 2.9's queue: naive-CAM merging, blend arcs, trims | LinuxCNC's arc cap, ½ tangential acceleration, `L/T` per-cycle cap | LinuxCNC's tangent (kink) test, parabolic blends, stops, 50-segment look-ahead |
 
-pub mod linuxcnc;
-pub mod sinumerik;
+pub(crate) mod linuxcnc;
+pub(crate) mod sinumerik;
 
 use super::limits::{JunctionMode, block_limits, junction_cap, junction_mode};
 use super::path::Geom;

@@ -5,42 +5,50 @@
 //! Method: Wu, Li, Liu, Perez, *Local minimum time trajectory planning for five-axis machining
 //! with or without deflection* (2008). Its machine, equations and simulation case are the
 //! starting point; its optimiser (a one-generation GA per interval with knot states fixed in
-//! advance) is [`baseline_ga`], the baseline to beat.
+//! advance) is `baseline_ga`, the baseline to beat.
 //!
 //! # Pipeline
 //! 1. Poses (tool tip + axis, workpiece frame, mm) → joints by inverse kinematics, each nearest
 //!    its predecessor ([`crate::machine::kinematics::inverse_path`]); warnings kept.
-//! 2. One quintic per joint per interval ([`quintic`]). **Deviation from the paper:** the
+//! 2. One quintic per joint per interval (`quintic`). **Deviation from the paper:** the
 //!    paper interpolates `x_w, y_w, z_w, A, B` and maps to the linear motors through equation
 //!    (6); we interpolate the five *motor* positions, so every motor limit is a polynomial
 //!    bound checked exactly, and the feed — the tool-tip speed in the workpiece frame — goes
 //!    through the forward kinematics. The tip path between knots then departs from the
 //!    reference curve by a small chordal error, reported as `max_path_deviation_mm`.
-//! 3. Knot states optimised ([`knots`]), each interval at its minimum time ([`min_time`]):
+//! 3. Knot states optimised (`knots`), each interval at its minimum time ([`min_time`]):
 //!    motor limits exact (polynomial extrema), the feed certified by a rigorous upper bound,
-//!    and every shorter duration proven infeasible down to a relative 1e-8 ([`certify`]).
-//! 4. The paper's baseline on the same knots ([`baseline_ga`]); its fixed knot states are also
+//!    and every shorter duration proven infeasible down to a relative 1e-8 (`certify`).
+//! 4. The paper's baseline on the same knots (`baseline_ga`); its fixed knot states are also
 //!    a starting candidate of ours, so ours is never slower than the exact optimum for them.
 //! 5. Independent verification ([`verify`]) of both.
-//! 6. Optionally, replanning around a deflection ([`deflection`]).
+//! 6. Optionally, replanning around a deflection (`deflection`).
 //!
-//! Units: mm, s, rad inside; the paper's metres are converted at the edges ([`case`]).
+//! Units: mm, s, rad inside; the paper's metres are converted at the edges (`case`).
 
-pub mod baseline_ga;
-pub mod case;
-pub mod certify;
-pub mod deflection;
-pub mod knots;
-pub mod min_time;
-pub mod quintic;
-pub mod segment;
-pub mod verify;
+pub(crate) mod baseline_ga;
+pub(crate) mod case;
+pub(crate) mod certify;
+pub(crate) mod deflection;
+pub(crate) mod knots;
+pub(crate) mod min_time;
+pub(crate) mod quintic;
+pub(crate) mod segment;
+pub(crate) mod verify;
 
-pub use baseline_ga::BaselineOptions;
-pub use deflection::{Projection, RefCurve, Replan};
-pub use knots::{KnotOptions, Schedule};
-pub use min_time::{KnotState, Limits, MinTimeOptions, Segment};
-pub use verify::{VerifyReport, Violation};
+pub use baseline_ga::{BaselineOptions, fixed_states, run as run_baseline};
+pub use case::{
+    LengthUnit, LimitsFile, PAPER_INTERVALS, paper_deflection, paper_path, paper_projection,
+    parse_path_csv, parse_path_csv_lines,
+};
+pub use certify::{CertifyOptions, FeedBound, FeedVerdict, certify_infeasible, feed_bound};
+pub use deflection::{Projection, RefCurve, Replan, potential_field_projection, project, replan};
+pub use knots::{Geometry, KnotOptions, Schedule, optimize, solve_fixed};
+pub use min_time::{
+    Binding, Check, FeedCheck, KnotState, Limits, MinTimeOptions, Segment, check, lower_bound,
+    max_feed, min_time,
+};
+pub use verify::{VerifyReport, Violation, verify};
 
 use crate::error::{Error, InputError};
 use crate::geom::Point3;
@@ -166,13 +174,13 @@ pub fn plan(
         .map(|p| Pose::new(p.tip, p.axis))
         .collect::<Result<_, _>>()?;
     let (joints, warnings) = inverse_path(kin, &poses, &opts.ik)?;
-    let geo = knots::Geometry::new(&joints);
+    let geo = Geometry::new(&joints);
     let mt = &opts.knots.min_time;
 
     let mut baseline = None;
     let mut candidates = Vec::new();
     if let Some(bo) = &opts.baseline {
-        let states = baseline_ga::fixed_states(&geo, kin, lim, bo);
+        let states = fixed_states(&geo, kin, lim, bo);
         let t0 = Instant::now();
         let run = baseline_ga::run(&states, kin, lim, bo, mt);
         let dt = t0.elapsed().as_secs_f64();
@@ -187,7 +195,7 @@ pub fn plan(
         candidates.push(states);
     }
     let t0 = Instant::now();
-    let schedule = knots::optimize(&geo, kin, lim, &opts.knots, &candidates)?;
+    let schedule = optimize(&geo, kin, lim, &opts.knots, &candidates)?;
     let compute = t0.elapsed().as_secs_f64();
     let segments: Vec<Segment> = schedule
         .states
@@ -195,17 +203,17 @@ pub fn plan(
         .zip(&schedule.times)
         .map(|(w, &t)| Segment::new(&w[0], &w[1], t))
         .collect();
-    let rep = verify::verify(&segments, kin, lim, opts.verify_samples);
+    let rep = verify(&segments, kin, lim, opts.verify_samples);
     let brep = baseline
         .as_ref()
-        .map(|(_, s, _)| verify::verify(s, kin, lim, opts.verify_samples));
+        .map(|(_, s, _)| verify(s, kin, lim, opts.verify_samples));
     let curve = RefCurve::through(&poses.iter().map(|p| p.tip).collect::<Vec<_>>());
     let deviation = path_deviation(&segments, kin, &curve, 16);
 
     let (replan, dviol) = match deflection {
         Some(d) => {
             let axes: Vec<_> = poses.iter().map(|p| p.axis).collect();
-            let r = deflection::replan(
+            let r = replan(
                 kin,
                 &curve,
                 &axes,
@@ -215,7 +223,7 @@ pub fn plan(
                 lim,
                 mt,
             )?;
-            let v = verify::verify(&r.segments(), kin, lim, opts.verify_samples).violations;
+            let v = verify(&r.segments(), kin, lim, opts.verify_samples).violations;
             (Some(r), v)
         }
         None => (None, vec![]),
@@ -239,7 +247,7 @@ pub fn plan(
         max_feed_mm_s: rep.max_feed,
         feed_upper_bound_mm_s: segments
             .iter()
-            .map(|s| certify::feed_bound(s, kin, lim.feed, &mt.certify, false).upper)
+            .map(|s| feed_bound(s, kin, lim.feed, &mt.certify, false).upper)
             .fold(0.0, f64::max),
         max_minimality_gap: schedule
             .checks
@@ -275,7 +283,7 @@ fn path_deviation(segments: &[Segment], kin: &dyn Kinematics, curve: &RefCurve, 
         for s in 0..=per {
             let [q, _, _, _] = seg.eval(seg.duration * s as f64 / per as f64);
             let tip = kin.forward(&q).tip;
-            if let Some(p) = deflection::project(curve, tip) {
+            if let Some(p) = project(curve, tip) {
                 worst = worst.max(p.distance);
             }
         }

@@ -1,7 +1,7 @@
 //! Contour strategy: the free-form outline cut at its cutter offset, layer by layer.
 //!
 //! Pipeline (Mohamed's die-cavity method, made exact): closed curve ([`crate::curve`]) →
-//! exact offset by tool radius + finish allowance ([`offset`]) → fewest chords within the
+//! exact offset by tool radius + finish allowance (`offset`) → fewest chords within the
 //! tolerance (the greedy exact-deviation flattener, run on the *offset* curve) → loop trimming
 //! → roughing layers at each step-down, then a finishing pass at full depth, with lead arcs.
 //!
@@ -35,9 +35,9 @@
 //! raw offset loops; those loops are trimmed and reported in [`ContourResult::warnings`]
 //! with their position on the outline. The library never prints.
 
-pub mod offset;
+pub(crate) mod offset;
 mod pass;
-pub mod report;
+pub(crate) mod report;
 
 pub use pass::{Pass, offset_pass};
 pub use report::{ContourReport, LayerReport};

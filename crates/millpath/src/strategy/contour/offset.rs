@@ -87,11 +87,6 @@ impl<'a> OffsetCurve<'a> {
         OffsetCurve { base, d, cusps }
     }
 
-    /// The signed offset distance.
-    pub fn distance(&self) -> f64 {
-        self.d
-    }
-
     /// True where the offset runs forward (`1 − dκ > 0`) at piece `i`, parameter `u`.
     pub fn forward(&self, i: usize, u: f64) -> bool {
         1.0 - self.d * self.base.pieces()[i % self.base.len()].curvature(u) > 0.0

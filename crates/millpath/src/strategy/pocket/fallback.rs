@@ -97,7 +97,7 @@ pub fn gouge(v: &Verification) -> f64 {
 mod tests {
     use super::*;
     use crate::stock::SimOptions;
-    use crate::strategy::pocket::{generate, samples};
+    use crate::strategy::pocket::{builtin, generate};
     use crate::toolpath::Tool;
 
     /// A real spiral (a 40 × 30 mm pocket, an 8 mm tool), made to look as if it gouged 0.02 mm whenever
@@ -106,7 +106,7 @@ mod tests {
         opts: &PocketOptions,
         gouges: impl Fn(&PocketOptions) -> bool,
     ) -> (Attempts, Vec<PocketOptions>) {
-        let outline = samples::rounded_rectangle(0.0, 0.0, 40.0, 30.0, 5.0);
+        let outline = builtin::rounded_rectangle(0.0, 0.0, 40.0, 30.0, 5.0);
         let opts = &PocketOptions {
             morph: SpiralMorph::Fronts,
             ..opts.clone()

@@ -73,7 +73,7 @@
 //!   and on a helix turn within that distance plus the turn's length (a turn in the air
 //!   above the slab runs at the feed of the turn below it).
 
-pub mod profile;
+pub(crate) mod profile;
 
 use crate::stock::EngagementSample;
 use crate::toolpath::{Corner, Level, Move, MoveKind, Toolpath};
@@ -101,8 +101,8 @@ pub const SLACK: f64 = 0.005;
 /// excepted).
 pub const MIN_PIECE: f64 = 5.0;
 
-/// The constants of the feed profile (see the module docs); [`Default`] has [`RATE`],
-/// [`STEP`], [`SLACK`] and [`MIN_PIECE`].
+/// The constants of the feed profile (see the module docs); [`Default`] has `RATE`,
+/// `STEP`, `SLACK` and `MIN_PIECE`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FeedProfile {
     /// `ρ`, factor per mm.

@@ -20,7 +20,7 @@
 //! to the other. Maximal sequences of links are the chains ([`OffsetLoops::chains`]), listed
 //! innermost loop first. A chain can be cut once every loop feeding its first loop is cut.
 
-use super::shape::{IndexedLoop, PocketShape, loop_distance, pt};
+use super::shape::{IndexedLoop, PocketShape, pt};
 use crate::error::InputError;
 use crate::geom::Point;
 use cavalier_contours::polyline::{PlineSource, Polyline};
@@ -176,13 +176,6 @@ impl OffsetLoops {
         }
         out
     }
-
-    /// Distance from `p` to the nearest loop of level 0 (the boundary offset).
-    pub fn boundary_distance(&self, p: Point) -> f64 {
-        self.level(0)
-            .map(|i| loop_distance(&self.nodes[i].pline, p))
-            .fold(f64::INFINITY, f64::min)
-    }
 }
 
 /// The index of the loop nearest to `p` if it is within `reach`.
@@ -210,11 +203,11 @@ pub fn samples(pl: &Polyline<f64>, ds: f64) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::strategy::pocket::samples;
+    use crate::strategy::pocket::builtin;
 
     #[test]
     fn a_rectangle_is_one_chain_from_the_ridge_to_the_walls() {
-        let shape = samples::aerospace_pocket();
+        let shape = builtin::aerospace_pocket();
         let loops = OffsetLoops::build(&shape, 6.35, 5.08).expect("loops");
         // 150 × 100 less 2·6.35: inscribed radius 43.65, so levels 0..=8.
         assert_eq!(loops.levels(), 9);

@@ -1,10 +1,10 @@
 //! Pocket strategies: zigzag, contour-offset, adaptive spiral.
 //!
 //! [`generate`] turns a [`PocketShape`], a [`Tool`] and [`PocketOptions`] into a
-//! [`Toolpath`]: the strategy plans one level in the plane ([`levels::LevelPlan`]: cuts of
-//! lines and exact arcs, each with its entry), [`levels::assemble`] repeats it at every
+//! [`Toolpath`]: the strategy plans one level in the plane (`levels::LevelPlan`: cuts of
+//! lines and exact arcs, each with its entry), `levels::assemble` repeats it at every
 //! step-down with entries and heights, the stock simulation ([`crate::stock`]) measures the
-//! engagement along the path and [`feed`] lays a feed profile along it, slowing down where
+//! engagement along the path and `feed` lays a feed profile along it, slowing down where
 //! the engagement exceeds the nominal one (rate-limited in arc length, the same for every
 //! strategy);
 //! the same simulation and the exact gouge check give the [`Verification`].
@@ -15,7 +15,7 @@
 //! in its own section with [`plan_level`]; a pocket with vertical walls is planned once.
 //! Every strategy's `plan(&PocketShape, &Tool, &PocketOptions)` therefore receives a planar
 //! pocket (outline and islands of one level) and need not know about walls. After planning,
-//! [`levels::direct_entries`] enters every later cut of a level over material an earlier cut
+//! `levels::direct_entries` enters every later cut of a level over material an earlier cut
 //! of that level has cleared, where one is near (no ramp, no plunge); [`generate`] verifies
 //! each level against its own section ([`crate::stock::verify_levels`]).
 //!
@@ -26,7 +26,7 @@
 //! (0.01 mm), after retrying the spiral's fronts morph with the harmonic one and `--arcs`
 //! laps as chords. The tolerance sits above the spiral's arc fit (its last lap is
 //! [`spiral::LAST_LOOP_MARGIN`] inside the boundary offset, its arcs within
-//! [`spiral::ARC_TOLERANCE`] of the lap) and below any machining tolerance.
+//! `spiral::ARC_TOLERANCE` of the lap) and below any machining tolerance.
 //!
 //! **Coverage guard.** Likewise [`generate`] refuses, as an internal error naming the area and
 //! where most of it lies, a toolpath that leaves more than [`stock::UNCUT_AREA_TOLERANCE`]
@@ -34,31 +34,39 @@
 //! the corner cusps and wall stock the tool radius implies aside. Every pocket of the fuzz
 //! corpus is held to both in the test command (`tests/hostile_corpus.rs`, `corpus_pocket`).
 //!
-//! * [`zigzag`]: parallel passes at an angle plus a boundary clean-up pass;
-//! * [`offset`]: contour-parallel offsets from the inside out;
-//! * [`spiral`]: the adaptive spiral, a central spiral morphing harmonically into the
+//! * `zigzag`: parallel passes at an angle plus a boundary clean-up pass;
+//! * `offset`: contour-parallel offsets from the inside out;
+//! * `spiral`: the adaptive spiral, a central spiral morphing harmonically into the
 //!   boundary offset.
 //!
-//! [`auto`] plans all three, verifies and times each, and keeps the fastest verified one.
+//! `auto` plans all three, verifies and times each, and keeps the fastest verified one.
 
-pub mod auto;
-pub mod chain;
-pub mod fallback;
-pub mod feed;
-pub mod levels;
-pub mod loops;
-pub mod offset;
-pub mod options;
-pub mod part;
-pub mod samples;
-pub mod shape;
-pub mod spiral;
-pub mod walls;
-pub mod zigzag;
+pub(crate) mod auto;
+pub mod builtin;
+pub(crate) mod chain;
+pub(crate) mod fallback;
+pub(crate) mod feed;
+pub(crate) mod levels;
+pub(crate) mod loops;
+pub(crate) mod offset;
+pub(crate) mod options;
+pub(crate) mod part;
+pub(crate) mod shape;
+pub(crate) mod spiral;
+pub(crate) mod walls;
+pub(crate) mod zigzag;
 
+pub use auto::{Candidate, ORDER as AUTO_ORDER, Outcome, arcs_or_chords, choose, plan_all};
+pub use chain::ARC_AS_LINE_SAGITTA;
+pub use feed::{FeedProfile, factor as feed_factor};
+pub use levels::level_depths;
 pub use options::{Direction, Entry, PocketOptions, SpiralMorph, Stepover, StrategyKind};
+pub use part::{PartPocket, PartResult, PartStrategy, generate_part, order_pockets, tour_length};
 pub use shape::PocketShape;
-pub use walls::Walls;
+pub use spiral::{
+    Construction, LAST_LOOP_MARGIN, SpiralStats, plan_with_stats as spiral_with_stats,
+};
+pub use walls::{Walls, level_shapes};
 
 use crate::error::Result;
 use crate::stock::{self, SimOptions, StockSpec, Verification};
@@ -118,7 +126,7 @@ pub fn plan_level(
     Ok(plan)
 }
 
-/// Longest lead-in of a direct entry, in tool diameters (see [`levels::direct_entries`]).
+/// Longest lead-in of a direct entry, in tool diameters (see `levels::direct_entries`).
 pub const DIRECT_ENTRY_REACH: f64 = 3.0;
 
 /// The roughing plans of every level (one per level of [`levels::level_depths`]), each in
@@ -129,7 +137,7 @@ pub fn plan_levels(
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<(Vec<PocketShape>, Vec<levels::LevelPlan>)> {
-    let sections = walls::level_shapes(shape, opts)?;
+    let sections = level_shapes(shape, opts)?;
     let plans = if shape.is_prismatic() {
         match sections.first() {
             Some(s) => vec![plan_level(kind, s, tool, opts)?],
@@ -187,7 +195,7 @@ pub use fallback::GOUGE_TOLERANCE;
 ///
 /// A toolpath that gouges by more than [`GOUGE_TOLERANCE`] is never returned. The spiral's
 /// default morph ([`spiral::SpiralMorph::Fronts`]) is then planned again with the harmonic
-/// one, and `--arcs` paths again as chords ([`fallback`]: the fuzzer found chaotic outlines
+/// one, and `--arcs` paths again as chords (`fallback`: the fuzzer found chaotic outlines
 /// on which the spiral cut up to 2.9 mm into a wall, and biarcs overshooting a sharp corner by
 /// 0.011 mm, fuzz/README.md, 2026-11-22; the spiral now keeps its laps and arcs inside itself,
 /// and no input of the fuzz corpora needs a fallback), and [`PocketResult::notes`] says which
@@ -302,7 +310,7 @@ fn generate_unchecked(
     // The roughing levels leave the wall stock; a finishing pass (on the last level's slab)
     // takes the walls of that slab to zero stock.
     let last_slab_stock = if opts.finish { 0.0 } else { opts.wall_stock };
-    let n_rough = levels::level_depths(opts).len();
+    let n_rough = level_depths(opts).len();
     let specs: Vec<StockSpec<'_>> = sections
         .iter()
         .enumerate()
@@ -358,7 +366,7 @@ fn finishing_plan(
     // The roughing's last loops, a little inside: the spiral cuts its walls' loops
     // LAST_LOOP_MARGIN inside them, so a lead-in from the exact loop would feed down into
     // that sliver (a plunge, and the rapid above it through material).
-    let mut rough = shape.offset(r + stock + 2.0 * spiral::LAST_LOOP_MARGIN);
+    let mut rough = shape.offset(r + stock + 2.0 * LAST_LOOP_MARGIN);
     let mut cuts = Vec::new();
     for k in (0..steps).rev() {
         let region = shape.offset(r + k as f64 * h);

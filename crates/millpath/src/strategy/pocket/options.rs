@@ -141,10 +141,10 @@ pub struct PocketOptions {
     pub feed: f64,
     /// Feed for helical and ramp entries, mm/s.
     pub plunge_feed: f64,
-    /// Fraction of the feed at full slotting (180° engagement); see [`super::feed`].
+    /// Fraction of the feed at full slotting (180° engagement); see `super::feed`.
     pub slowdown: f64,
     /// Zigzag pass angle in rad from the pocket's principal axis (its long direction; see
-    /// [`super::zigzag`]).
+    /// `super::zigzag`).
     pub zigzag_angle: f64,
     /// Spiral transition ratio C in [0, 1]: the central circular spiral reaches C times the
     /// inscribed radius of the boundary offset.

@@ -66,7 +66,7 @@ pub struct PartResult {
 pub enum PartStrategy {
     /// One strategy for every pocket.
     One(StrategyKind),
-    /// The fastest verified of the three, per pocket ([`auto`]).
+    /// The fastest verified of the three, per pocket (`auto`).
     Auto,
 }
 

@@ -40,16 +40,14 @@ pub struct PocketShape {
     pub outer: Outline,
     /// Islands, clockwise, strictly inside the outer outline and apart from each other.
     pub islands: Vec<Outline>,
-    /// Vertical, drafted, or interpolated to a bottom outline (see [`super::walls`]).
+    /// Vertical, drafted, or interpolated to a bottom outline (see `super::walls`).
     pub walls: Walls,
 }
-
-pub use crate::geom::region::{TOUCH_EPS, loops_touch};
 
 impl PocketShape {
     /// A pocket from an outer outline and islands, in any winding; `origin` names the source.
     /// Islands must lie strictly inside the outer outline and must not touch it or each other
-    /// ([`crate::geom::region::validate_islands`]). The walls are vertical.
+    /// (`crate::geom::region::validate_islands`). The walls are vertical.
     pub fn new(outer: Outline, islands: Vec<Outline>, origin: &str) -> Result<Self, InputError> {
         let (outer, islands) = crate::geom::region::validate_islands(outer, islands, origin)?;
         Ok(PocketShape {
@@ -100,7 +98,7 @@ impl PocketShape {
     /// uncut: there it returned a part.)
     ///
     /// **Checked.** Every loop of the result must lie at `d` from the walls (within
-    /// [`OFFSET_TOLERANCE`], at the ends and middle of each of its segments): the shape
+    /// `OFFSET_TOLERANCE`, at the ends and middle of each of its segments): the shape
     /// offset, too, drops pieces on some outlines. On the fuzz corpus's `250d691f…` (a wedge
     /// spike with 3 µm edges at its root) the loop at `r` cut a convex corner of the wall
     /// 0.16 mm deep; on `57cf7b3e…` and `c2ebea30…` loops ran 0.25–0.66 mm into the walls,
@@ -465,7 +463,7 @@ mod tests {
     #[test]
     fn indexed_distance_matches_brute_force() {
         // The sample part's rounded rectangle (120 × 80, corner radius 8).
-        let (_, outline) = super::super::samples::structural_part().swap_remove(0);
+        let (_, outline) = super::super::builtin::structural_part().swap_remove(0);
         let region = outline.offset(3.0);
         let arcs = region.outers[0].clone();
         assert!(

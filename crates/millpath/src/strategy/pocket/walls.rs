@@ -180,7 +180,7 @@ impl PocketShape {
     /// our loops between the points where they meet `other`'s loops is inside `other`'s
     /// region or on its boundary, and every piece of `other`'s loops (its outer loop too:
     /// a slit of material reaching in from its wall) is outside ours or on our boundary
-    /// ([`piece_points`]: one point stands for each piece, since a piece meets no loop of
+    /// (`piece_points`: one point stands for each piece, since a piece meets no loop of
     /// the other region inside). Exact up to that tolerance; the check sampled 256 points a
     /// loop before, which stepped over a 0.8 mm slit (fuzz/README.md, 2026-11-23).
     pub fn within(&self, other: &PocketShape) -> bool {
@@ -229,7 +229,7 @@ pub fn level_shapes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::strategy::pocket::samples::rounded_rectangle;
+    use crate::strategy::pocket::builtin::rounded_rectangle;
 
     #[test]
     fn draft_sections_shrink_by_depth_times_tan() {

@@ -41,17 +41,17 @@
 //! The paper's construction, a central spiral of radius `C·ρ_B` morphed into the walls
 //! (`--morph fronts`, `--morph harmonic`, the transition `C`), is in [`classic`].
 
-pub mod classic;
-pub mod common;
-pub mod fronts;
-pub mod harmonic;
+pub(crate) mod classic;
+pub(crate) mod common;
+pub(crate) mod fronts;
+pub(crate) mod harmonic;
 mod inside;
-pub mod lanes;
-pub mod laps;
-pub mod offsets;
-pub mod ring;
-pub mod rounding;
-pub mod smooth;
+pub(crate) mod lanes;
+pub(crate) mod laps;
+pub(crate) mod offsets;
+pub(crate) mod ring;
+pub(crate) mod rounding;
+pub(crate) mod smooth;
 
 use super::levels::LevelPlan;
 use super::options::PocketOptions;
@@ -60,7 +60,7 @@ use crate::error::InputError;
 use crate::toolpath::Tool;
 
 pub use super::options::SpiralMorph;
-pub use common::{ARC_TOLERANCE, Construction, LAST_LOOP_MARGIN, SpiralStats};
+pub use common::{Construction, LAST_LOOP_MARGIN, SpiralStats};
 
 /// The spiral strategy's plan for one level.
 pub fn plan(
