@@ -3,10 +3,10 @@
 
 use crate::convert::{Kwargs, err, input_err, outline_arg, path_text, to_py};
 use crate::objects::Toolpath;
-use millpath::geom::Point3;
 use millpath::job::contour::{ContourSettings, ContourSource};
+use millpath::job::five_axis::FiveAxisSettings;
 use millpath::job::verify::VerifySettings;
-use millpath::motion::five_axis::{self as planner, FiveAxisOptions, Limits, LimitsFile};
+use millpath::motion::five_axis::LimitsFile;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
@@ -157,7 +157,7 @@ pub fn contour(
         cycle_time_s: t,
         report: to_py(py, &run.report)?,
         toolpath: Py::new(py, Toolpath { tp: run.toolpath })?,
-        warnings: run.warnings,
+        warnings: run.warnings.iter().map(ToString::to_string).collect(),
     })
 }
 
@@ -219,7 +219,7 @@ pub fn verify(
         .map_err(err)?;
     Ok(VerifyResult {
         passed: run.problems.is_empty(),
-        problems: run.problems.clone(),
+        problems: run.problems.iter().map(ToString::to_string).collect(),
         report: to_py(py, &run.json())?,
         toolpath: Py::new(py, Toolpath { tp: run.toolpath })?,
     })
@@ -258,44 +258,26 @@ pub fn five_axis<'py>(
     let mut dt = 1e-3;
     k.f64("dt", &mut dt)?;
     k.finish()?;
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(input_err(
-            millpath::InputError::new("--dt", dt).expected("a finite number > 0 s"),
-        ));
-    }
     let case = match (&case, &path) {
         (None, None) => Some("paper".to_owned()),
         _ => case,
     };
-    let text = match (&case, &path) {
-        (None, Some(p)) => Some((
-            millpath::io::read_text(std::path::Path::new(p)).map_err(err)?,
-            p.clone(),
-        )),
-        _ => None,
+    let settings = FiveAxisSettings {
+        case,
+        path: path.map(std::path::PathBuf::from),
+        machine,
+        flags: over,
+        no_deflection,
+        no_baseline,
+        dt,
+        ..FiveAxisSettings::default()
     };
     let (report, names, s) = py
         .allow_threads(|| -> Result<_, millpath::Error> {
-            let limits = over.apply(&Limits::paper());
-            limits.validate("limits")?;
-            let kin = millpath::job::five_axis::kinematics(&machine, &over)?;
-            let (poses, default_deflection) = millpath::job::five_axis::poses(
-                case.as_deref(),
-                text.as_ref().map(|(t, n)| (t.as_str(), n.as_str())),
-                kin.as_ref(),
-            )?;
-            let mut opts = FiveAxisOptions::default();
-            if no_baseline {
-                opts.baseline = None;
-            }
-            let deflection: Option<Point3> = if no_deflection {
-                None
-            } else {
-                default_deflection
-            };
-            let out = planner::plan(kin.as_ref(), &poses, &limits, &opts, deflection)?;
-            let s = planner::sample(&out.segments, kin.as_ref(), dt);
-            Ok((out.result, kin.axis_names(), s))
+            let run = millpath::job::five_axis::run(&settings)?;
+            let s = run.samples(dt);
+            let names = run.kinematics.axis_names();
+            Ok((run.outcome.result, names, s))
         })
         .map_err(err)?;
     let d = PyDict::new(py);

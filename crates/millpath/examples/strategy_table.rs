@@ -105,7 +105,7 @@ fn main() {
                     t_hsm,
                     t_lc,
                     v.uncut_area_mm2,
-                    v.problems().join("; "),
+                    millpath::stock::problems_text(&v.problems()),
                 );
                 if let Some(dir) = &out_dir {
                     let wopts = WriterOptions {

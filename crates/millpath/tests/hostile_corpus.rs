@@ -42,23 +42,25 @@ fn open_offset_loops_are_closed() {
         .expect("in the corpus");
     let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
     let d0 = tool.radius() + opts.wall_stock;
-    let b = shape.offset(d0);
-    assert!(!b.outers.is_empty());
-    for l in b.loops() {
+    let b = shape.offset_loops(d0);
+    assert!(!b.is_empty());
+    // An open loop has no area (its winding number is 0 everywhere): every loop of `B` and
+    // of `B_ε` encloses one.
+    for l in &b {
         assert!(
-            l.is_closed(),
+            l.signed_area().abs() > 1e-6,
             "an open loop of {} vertices",
-            l.vertex_count()
+            l.len()
         );
-        let eps = match millpath::geom::offset_loops(l, pocket::LAST_LOOP_MARGIN).as_slice() {
-            [one] => one.clone(),
-            _ => l.clone(),
-        };
-        assert!(
-            eps.is_closed(),
-            "B_ε: {} vertices, open",
-            eps.vertex_count()
-        );
+        let eps = l.offset(pocket::LAST_LOOP_MARGIN);
+        assert!(!eps.is_empty());
+        for e in &eps {
+            assert!(
+                e.signed_area().abs() > 1e-6,
+                "B_ε: {} vertices, open",
+                e.len()
+            );
+        }
     }
     let v = pocket::generate(kind, &shape, &tool, &opts, &sim)
         .unwrap_or_else(|e| panic!("{e}"))
@@ -105,7 +107,7 @@ fn offsets_are_checked_against_the_walls() {
                 .chain((1..40).map(|k| r + opts.wall_stock + k as f64 * h));
             let mut emptied = None;
             for d in ds {
-                let reg = sh.offset(d);
+                let reg = sh.offset_loops(d);
                 match emptied {
                     Some(e) => assert!(
                         reg.is_empty(),
@@ -114,8 +116,8 @@ fn offsets_are_checked_against_the_walls() {
                     None if reg.is_empty() => emptied = Some(d),
                     None => {}
                 }
-                for l in reg.loops() {
-                    for p in millpath::geom::sample_loop(l, 400) {
+                for l in &reg {
+                    for p in l.sample(400) {
                         let w = sh.distance_to(p);
                         assert!(
                             (w - d).abs() < 1e-4,
@@ -624,31 +626,31 @@ fn inspect_pocket() {
         shape.is_prismatic()
     );
     if std::env::var_os("OFFSET_SCAN").is_some() {
+        let outer: Vec<(millpath::Point, f64)> = shape.outer.vertices().collect();
+        let mut pl = cavalier_contours::polyline::Polyline::new_closed();
+        for (p, b) in &outer {
+            cavalier_contours::polyline::PlineSourceMut::add(&mut pl, p.x, p.y, *b);
+        }
         let mut d = 0.5;
         while d < 40.0 {
-            let reg = shape.offset(d);
-            let a: f64 = reg.outers.iter().map(|p| p.area()).sum();
+            let reg = shape.offset_loops(d);
+            let outers: Vec<_> = reg.iter().filter(|l| l.signed_area() > 0.0).collect();
+            let a: f64 = outers.iter().map(|l| l.signed_area()).sum();
             let sh = cavalier_contours::shape_algorithms::Shape::from_plines(std::iter::once(
-                shape.outer.polyline().clone(),
+                pl.clone(),
             ));
             let off = sh.parallel_offset(d, &Default::default());
             let a2: f64 = off.ccw_plines.iter().map(|p| p.polyline.area()).sum();
             eprintln!(
                 "offset {d:.2}: {} outers, area {a:.1}; shape {} area {a2:.1}",
-                reg.outers.len(),
+                outers.len(),
                 off.ccw_plines.len()
             );
             d += 0.5;
         }
         eprintln!(
-            "outline area {:.1} vertices {:?}",
-            shape.outer.polyline().area(),
-            shape
-                .outer
-                .polyline()
-                .iter_vertexes()
-                .map(|v| (v.x, v.y, v.bulge))
-                .collect::<Vec<_>>()
+            "outline area {:.1} vertices {outer:?}",
+            shape.outer.signed_area()
         );
     }
     let tp = pocket::toolpath(kind, &shape, &tool, &opts).expect("a toolpath");
@@ -675,15 +677,7 @@ fn inspect_pocket() {
         for (i, m) in tp.moves.iter().enumerate().take(b).skip(a) {
             eprintln!("{i}: {:?}", m);
         }
-        eprintln!(
-            "outer {:?}",
-            shape
-                .outer
-                .polyline()
-                .iter_vertexes()
-                .map(|v| (v.x, v.y, v.bulge))
-                .collect::<Vec<_>>()
-        );
+        eprintln!("outer {:?}", shape.outer.vertices().collect::<Vec<_>>());
     }
     for lv in &tp.levels {
         let sub = millpath::Toolpath {

@@ -114,7 +114,10 @@ fn arcs_request_keeps_the_faster_form_on_each_machine() {
         if kept_chords {
             assert_eq!(r.toolpath, c.toolpath);
             assert!(
-                r.notes.iter().any(|n| n.contains("written as G1 chords")),
+                r.notes.iter().any(|n| matches!(
+                    n,
+                    pocket::PocketNote::ChordsInsteadOfArcs { faster: Some((c, a)) } if c < a
+                )),
                 "{:?}",
                 r.notes
             );

@@ -80,7 +80,7 @@ fn top_outline_at_every_level_gouges_a_drafted_wall() {
         .collect();
     let v = stock::verify_levels(&tp, &specs, 60.0, &coarse());
     assert!(
-        v.problems().iter().any(|p| p.contains("gouge")),
+        v.problems().iter().any(stock::Problem::is_gouge),
         "{:?}",
         v.problems()
     );

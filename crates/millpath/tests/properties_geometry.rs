@@ -12,7 +12,6 @@
 //! The verifier is `Outline::distance_to` / `contains` (closest point on the original
 //! polyline), which does not share the offset code path. Seeded, bounded case counts.
 
-use cavalier_contours::polyline::{PlineSource, Polyline};
 use millpath::Point;
 use millpath::geom::{Outline, Winding};
 use proptest::prelude::*;
@@ -37,15 +36,14 @@ fn star(radii: &[f64], bulges: &[f64], r: f64) -> Option<Outline> {
     Outline::new(&verts, "prop").ok()
 }
 
-/// Points along every segment of `pl` (lines and arcs), 16 a segment.
-fn dense(pl: &Polyline<f64>) -> Vec<Point> {
+/// Points along every segment of `o` (lines and arcs), 16 a segment.
+fn dense(o: &Outline) -> Vec<Point> {
     let mut out = Vec::new();
-    let n = pl.vertex_count();
+    let v: Vec<(Point, f64)> = o.vertices().collect();
+    let n = v.len();
     for i in 0..n {
-        let a = pl.at(i);
-        let b = pl.at((i + 1) % n);
+        let ((a, bulge), (b, _)) = (v[i], v[(i + 1) % n]);
         let (ax, ay, bx, by) = (a.x, a.y, b.x, b.y);
-        let bulge = a.bulge;
         for k in 0..16 {
             let t = k as f64 / 16.0;
             if bulge.abs() < 1e-12 {
@@ -68,8 +66,8 @@ fn dense(pl: &Polyline<f64>) -> Vec<Point> {
     out
 }
 
-fn area(loops: &[Polyline<f64>]) -> f64 {
-    loops.iter().map(|p| p.area()).sum()
+fn area(loops: &[Outline]) -> f64 {
+    loops.iter().map(Outline::signed_area).sum()
 }
 
 proptest! {

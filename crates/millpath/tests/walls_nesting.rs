@@ -11,7 +11,6 @@ mod harness;
 mod hostile_common;
 
 use hostile_common::corpus;
-use millpath::geom::sample_loop;
 use millpath::strategy::pocket::{PocketShape, Walls, level_depths};
 
 /// `a` within `b` by dense sampling: every sample of `a`'s loops in or on `b`, every sample
@@ -19,12 +18,8 @@ use millpath::strategy::pocket::{PocketShape, Walls, level_depths};
 fn sampled_within(a: &PocketShape, b: &PocketShape, n: usize) -> bool {
     let on_or_in = |s: &PocketShape, p| s.contains(p) || s.distance_to(p) <= 1e-6;
     let outside = |s: &PocketShape, p| !s.contains(p) || s.distance_to(p) <= 1e-6;
-    a.loops()
-        .flat_map(|l| sample_loop(l.polyline(), n))
-        .all(|p| on_or_in(b, p))
-        && b.loops()
-            .flat_map(|l| sample_loop(l.polyline(), n))
-            .all(|p| outside(a, p))
+    a.loops().flat_map(|l| l.sample(n)).all(|p| on_or_in(b, p))
+        && b.loops().flat_map(|l| l.sample(n)).all(|p| outside(a, p))
 }
 
 #[test]

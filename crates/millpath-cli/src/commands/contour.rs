@@ -294,7 +294,7 @@ fn write_html(
     summary.extend(
         job.warnings
             .iter()
-            .map(|w| ("warning".to_owned(), w.clone())),
+            .map(|w| ("warning".to_owned(), w.to_string())),
     );
     let title = format!("millpath contour {name}");
     let outlines = [outline];

@@ -577,7 +577,7 @@ fn pockets(
         let verdict = if problems.is_empty() {
             format!("{check}; no gouge, no uncut, max engagement {max_eng:.0}°")
         } else {
-            format!("{check}; {}", problems.join("; "))
+            format!("{check}; {}", millpath::stock::problems_text(&problems))
         };
         print(&format!(
             "sample part, {name}: {} pockets, {cycle:.1} s planned, {blocks} blocks",

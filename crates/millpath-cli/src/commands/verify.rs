@@ -127,7 +127,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         Err(InputError::new("program", args.program.display())
             .expected(format!(
                 "a program that passes verification: {}",
-                problems.join("; ")
+                stock::problems_text(problems)
             ))
             .into())
     }

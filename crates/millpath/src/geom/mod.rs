@@ -15,7 +15,6 @@ pub use aabb::Aabb;
 pub use nesting::{Pocket, nest};
 pub use outline::{MAX_BULGE, MAX_COORDINATE_MM, Outline, Winding, area_less_islands};
 pub use point::{Point, Vec2};
-pub use region::{offset_loops, sample_loop};
 pub use vec3::{Point3, Vec3};
 
 /// Tolerance below which two lengths in millimetres are considered equal when deciding

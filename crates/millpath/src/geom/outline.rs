@@ -73,7 +73,10 @@ impl Outline {
     }
 
     /// Wraps a `cavalier_contours` polyline after the same checks as [`Outline::new`].
-    pub fn from_polyline(mut pline: Polyline<f64>, origin: &str) -> Result<Self, InputError> {
+    pub(crate) fn from_polyline(
+        mut pline: Polyline<f64>,
+        origin: &str,
+    ) -> Result<Self, InputError> {
         pline.set_is_closed(true);
         let n = pline.vertex_count();
         for (i, v) in pline.iter_vertexes().enumerate() {
@@ -127,7 +130,7 @@ impl Outline {
     }
 
     /// The underlying `cavalier_contours` polyline.
-    pub fn polyline(&self) -> &Polyline<f64> {
+    pub(crate) fn polyline(&self) -> &Polyline<f64> {
         &self.pline
     }
 
@@ -238,8 +241,25 @@ impl Outline {
     /// Parallel offsets at signed distance `d` (cavalier_contours convention: positive offsets
     /// a counter-clockwise outline inward). Offsets keep exact arcs; loops that would gouge are
     /// trimmed. May return several outlines, or none when the offset vanishes.
-    pub fn offset(&self, d: f64) -> Vec<Polyline<f64>> {
-        self.pline.parallel_offset(d)
+    ///
+    /// The loops are taken as cavalier_contours returns them (closed where it left them
+    /// open: [`Outline::signed_area`] is zero for an open loop), without [`Outline::new`]'s
+    /// checks: an offset of a simple loop is simple.
+    pub fn offset(&self, d: f64) -> Vec<Outline> {
+        super::region::offset_loops(&self.pline, d)
+            .into_iter()
+            .map(Outline::wrap_offset)
+            .collect()
+    }
+
+    /// An offset loop as an outline, unchecked (see [`Outline::offset`]).
+    pub(crate) fn wrap_offset(pline: Polyline<f64>) -> Outline {
+        Outline { pline }
+    }
+
+    /// `n` points equally spaced in arc length along the outline, from its first vertex.
+    pub fn sample(&self, n: usize) -> Vec<Point> {
+        super::region::sample_loop(&self.pline, n)
     }
 }
 
@@ -427,6 +447,6 @@ mod tests {
         assert!((c.signed_area() - std::f64::consts::PI * 25.0).abs() < 1e-9);
         let inner = c.offset(1.0);
         assert_eq!(inner.len(), 1);
-        assert!((inner[0].area() - std::f64::consts::PI * 16.0).abs() < 1e-9);
+        assert!((inner[0].signed_area() - std::f64::consts::PI * 16.0).abs() < 1e-9);
     }
 }

@@ -12,7 +12,7 @@ use crate::gcode::{self, WriterOptions};
 use crate::geom::Outline;
 use crate::machine::Machine;
 use crate::motion::{Plan, plan_toolpath};
-use crate::strategy::contour::{self, ContourOptions, ContourReport, Side};
+use crate::strategy::contour::{self, ContourOptions, ContourReport, ContourWarning, Side};
 use crate::{Error, InputError, Tool, Toolpath};
 
 /// A contour job's settings, named and defaulted as `millpath contour`'s flags (`None`: the
@@ -102,7 +102,7 @@ pub struct ContourRun {
     /// The input's name (`paper sample` for the sample).
     pub name: String,
     /// Warnings of the contour strategy.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ContourWarning>,
 }
 
 impl ContourRun {

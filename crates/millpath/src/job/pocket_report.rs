@@ -168,7 +168,7 @@ pub fn report(part: &PartResult, cycle_time_s: f64) -> Report {
             notes.push(if several {
                 format!("pocket {}: {n}", p.index)
             } else {
-                n.clone()
+                n.to_string()
             });
         }
         if let Some(why) = &p.skipped {
@@ -219,7 +219,7 @@ pub fn report(part: &PartResult, cycle_time_s: f64) -> Report {
         levels: tp.levels.len(),
         moves: tp.moves.len(),
         verification: v.total.clone(),
-        problems: v.problems(),
+        problems: v.problems().iter().map(ToString::to_string).collect(),
         notes,
         auto: None,
         pockets,

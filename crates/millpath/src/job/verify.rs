@@ -5,7 +5,7 @@
 
 use crate::gcode::{ReaderOptions, read_str};
 use crate::io::outline_json::Loops;
-use crate::stock::{self, PartVerification, StockSpec};
+use crate::stock::{self, PartVerification, Problem, StockSpec};
 use crate::strategy::pocket::{Stepover, nominal_engagement};
 use crate::toolpath::{Tool, Toolpath};
 use crate::{Error, InputError};
@@ -54,7 +54,7 @@ pub struct VerifyRun {
     /// The whole part's findings, each pocket's and the cuts outside every pocket.
     pub part: PartVerification,
     /// Problems beyond the gouge resolution (empty: the program passes).
-    pub problems: Vec<String>,
+    pub problems: Vec<Problem>,
     /// Decimals the gouge test allowed for.
     pub decimals: u32,
     /// The gouge resolution at those decimals, mm.
@@ -68,7 +68,7 @@ impl VerifyRun {
     pub fn json(&self) -> serde_json::Value {
         serde_json::json!({
             "passed": self.problems.is_empty(),
-            "problems": self.problems,
+            "problems": self.problems.iter().map(ToString::to_string).collect::<Vec<_>>(),
             "levels": self.toolpath.levels.len(),
             "verification": self.part.total,
             "pockets": self.part.pockets,

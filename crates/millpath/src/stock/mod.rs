@@ -32,12 +32,14 @@
 pub(crate) mod gouge;
 pub(crate) mod nearest;
 pub(crate) mod part;
+mod problem;
 pub(crate) mod raster;
 pub(crate) mod reach;
 pub(crate) mod simulate;
 
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use part::{PartVerification, verify_part};
+pub use problem::{Problem, problems_text};
 pub use simulate::{
     EngagementSample, MoveEngagement, SimOptions, Simulation, simulate, simulate_levels,
 };
@@ -107,42 +109,36 @@ impl Verification {
     /// The uncut area and where most of it lies, in words: `"1.234 mm², most of it around
     /// (x, y) at z = …"`.
     pub fn uncut_text(&self) -> String {
-        match self.uncut_at {
-            Some(p) => format!(
-                "{:.3} mm², most of it around ({:.3}, {:.3}) at z = {:.3}",
-                self.uncut_area_mm2, p.x, p.y, p.z
-            ),
-            None => format!("{:.3} mm²", self.uncut_area_mm2),
-        }
+        problem::uncut_text(self.uncut_area_mm2, self.uncut_at)
     }
 
-    /// The problems found, in words; empty when the path passes ([`GOUGE_RESOLUTION`]: a
+    /// The problems found; empty when the path passes ([`GOUGE_RESOLUTION`]: a
     /// program written to 3 decimals).
-    pub fn problems(&self) -> Vec<String> {
+    pub fn problems(&self) -> Vec<Problem> {
         self.problems_within(GOUGE_RESOLUTION)
     }
 
     /// The problems found, a gouge being a clearance more than `resolution` (mm, the
     /// program's rounding, [`gouge_resolution`]) short of the required one.
-    pub fn problems_within(&self, resolution: f64) -> Vec<String> {
+    pub fn problems_within(&self, resolution: f64) -> Vec<Problem> {
         let mut out = Vec::new();
         if self.min_clearance_mm < self.required_clearance_mm - resolution {
-            out.push(format!(
-                "gouge: the tool centre comes within {:.6} mm of a wall (needs {:.6})",
-                self.min_clearance_mm, self.required_clearance_mm
-            ));
+            out.push(Problem::Gouge {
+                clearance_mm: self.min_clearance_mm,
+                required_mm: self.required_clearance_mm,
+            });
         }
         if self.uncut_area_mm2 > UNCUT_AREA_TOLERANCE {
-            out.push(format!("uncut material: {}", self.uncut_text()));
+            out.push(Problem::Uncut {
+                area_mm2: self.uncut_area_mm2,
+                at: self.uncut_at,
+            });
         }
         if self.rapids_through_material > 0 {
-            out.push(format!(
-                "{} rapid moves through material",
-                self.rapids_through_material
-            ));
+            out.push(Problem::RapidsThroughMaterial(self.rapids_through_material));
         }
         if self.plunges > 0 {
-            out.push(format!("{} plunges into material", self.plunges));
+            out.push(Problem::Plunges(self.plunges));
         }
         out
     }

@@ -22,7 +22,7 @@
 //! (clearance, largest engagement) or weigh by cutting length (mean engagement, share above
 //! nominal).
 
-use super::{SimOptions, StockSpec, Verification, infer_levels, verify};
+use super::{Problem, SimOptions, StockSpec, Verification, infer_levels, verify};
 use crate::geom::{Point, Point3};
 use crate::toolpath::{Move, MoveKind, Toolpath};
 use serde::Serialize;
@@ -42,30 +42,29 @@ pub struct PartVerification {
 }
 
 impl PartVerification {
-    /// The problems found (see [`Verification::problems_within`]), in words; empty when the
+    /// The problems found (see [`Verification::problems_within`]); empty when the
     /// program passes. `resolution` is the program's rounding allowance, mm.
-    pub fn problems_within(&self, resolution: f64) -> Vec<String> {
+    pub fn problems_within(&self, resolution: f64) -> Vec<Problem> {
         let mut out = self.total.problems_within(resolution);
         if self.cuts_outside > 0 {
-            out.push(format!(
-                "{} cuts below the stock top outside every pocket",
-                self.cuts_outside
-            ));
+            out.push(Problem::CutsOutside(self.cuts_outside));
         }
-        for (k, v) in self.pockets.iter().enumerate() {
-            if self.pockets.len() > 1 && !v.problems_within(resolution).is_empty() {
-                out.push(format!(
-                    "pocket {}: {}",
-                    k + 1,
-                    v.problems_within(resolution).join(", ")
-                ));
+        if self.pockets.len() > 1 {
+            for (k, v) in self.pockets.iter().enumerate() {
+                let problems = v.problems_within(resolution);
+                if !problems.is_empty() {
+                    out.push(Problem::InPocket {
+                        pocket: k + 1,
+                        problems,
+                    });
+                }
             }
         }
         out
     }
 
     /// [`Self::problems_within`] at [`super::GOUGE_RESOLUTION`] (3 decimals).
-    pub fn problems(&self) -> Vec<String> {
+    pub fn problems(&self) -> Vec<Problem> {
         self.problems_within(super::GOUGE_RESOLUTION)
     }
 }

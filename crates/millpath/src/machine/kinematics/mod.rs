@@ -329,6 +329,44 @@ pub enum IkWarning {
     },
 }
 
+impl std::fmt::Display for IkWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            IkWarning::AtPole { free_axis, kept } => write!(
+                f,
+                "at the pole: {free_axis} is undetermined, kept at {:.4}°",
+                kept.to_degrees()
+            ),
+            IkWarning::NearPole {
+                pole_distance,
+                free_axis,
+            } => write!(
+                f,
+                "{:.4}° from the pole: {free_axis} moves fast for small tool-axis changes",
+                pole_distance.to_degrees()
+            ),
+            IkWarning::Flip { axis, delta } => {
+                write!(f, "{axis} flips by {:.4}°", delta.to_degrees())
+            }
+        }
+    }
+}
+
+/// An inverse-kinematics warning at one pose of a path.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PoseWarning {
+    /// The pose, 0-based.
+    pub pose: usize,
+    /// What happened there.
+    pub warning: IkWarning,
+}
+
+impl std::fmt::Display for PoseWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "point {}: {}", self.pose, self.warning)
+    }
+}
+
 /// Joints along a path and `(pose index, warning)` pairs.
 pub type PathIk = (Vec<Joints>, Vec<(usize, IkWarning)>);
 

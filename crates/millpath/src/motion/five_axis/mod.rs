@@ -52,7 +52,7 @@ pub use verify::{VerifyReport, Violation, verify};
 
 use crate::error::{Error, InputError};
 use crate::geom::Point3;
-use crate::machine::kinematics::{IkOptions, Joints, Kinematics, Pose, inverse_path};
+use crate::machine::kinematics::{IkOptions, Joints, Kinematics, Pose, PoseWarning, inverse_path};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -124,8 +124,8 @@ pub struct FiveAxisResult {
     pub compute_time_s: f64,
     /// Wall time of the baseline, s.
     pub baseline_compute_time_s: Option<f64>,
-    /// Inverse-kinematics warnings, `point i: ...`.
-    pub ik_warnings: Vec<String>,
+    /// Inverse-kinematics warnings, by pose.
+    pub ik_warnings: Vec<PoseWarning>,
     /// The deflection replanning, if asked for.
     pub deflection: Option<Replan>,
     /// Verifier on the replanned intervals.
@@ -261,7 +261,10 @@ pub fn plan(
         baseline_compute_time_s: baseline.as_ref().map(|b| b.2),
         ik_warnings: warnings
             .iter()
-            .map(|(i, w)| format!("point {i}: {w:?}"))
+            .map(|(i, w)| PoseWarning {
+                pose: *i,
+                warning: w.clone(),
+            })
             .collect(),
         deflection: replan,
         deflection_violations: dviol,

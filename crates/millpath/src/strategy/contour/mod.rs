@@ -219,7 +219,7 @@ pub struct ContourResult {
     /// written program's).
     pub report: ContourReport,
     /// Places the tool cannot reach, and other things the user should know.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ContourWarning>,
 }
 
 fn signed_offset(side: Side, d: f64) -> f64 {
@@ -313,17 +313,55 @@ pub fn contour(
     }
     tp.push(Move::rapid(Point3::from_xy(tp.end().xy(), safe)));
     if finish.loops.len() > 1 {
-        warnings.push(format!(
-            "the offset splits into {} separate loops (the outline has necks narrower than the tool); each is cut",
-            finish.loops.len()
-        ));
+        warnings.push(ContourWarning::SplitLoops(finish.loops.len()));
     }
-    let report = ContourReport::build(curve, opt, &finish, layers, &tp, warnings.clone());
+    let report = ContourReport::build(curve, opt, &finish, layers, &tp, &warnings);
     Ok(ContourResult {
         toolpath: tp,
         report,
         warnings,
     })
+}
+
+/// What a contour pass could not do as asked ([`ContourResult::warnings`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ContourWarning {
+    /// The tool cannot reach the outline between two places: a concave radius or corner
+    /// tighter than the offset; that stretch is left uncut.
+    Unreachable {
+        /// The offset distance, mm.
+        offset_mm: f64,
+        /// Where the stretch starts and ends on the outline.
+        from: Point,
+        /// See `from`.
+        to: Point,
+        /// The curve parameters of its ends.
+        params: (f64, f64),
+    },
+    /// The offset splits into this many separate loops (necks narrower than the tool); each
+    /// is cut.
+    SplitLoops(usize),
+}
+
+impl std::fmt::Display for ContourWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ContourWarning::Unreachable {
+                offset_mm,
+                from,
+                to,
+                params,
+            } => write!(
+                f,
+                "the tool (offset {offset_mm:.4} mm) cannot reach the outline between ({:.3}, {:.3}) and ({:.3}, {:.3}) (curve parameter {:.4} to {:.4}): concave radius or corner tighter than the offset; left uncut",
+                from.x, from.y, to.x, to.y, params.0, params.1
+            ),
+            ContourWarning::SplitLoops(n) => write!(
+                f,
+                "the offset splits into {n} separate loops (the outline has necks narrower than the tool); each is cut"
+            ),
+        }
+    }
 }
 
 /// The paper's example as a built-in sample: its outline scaled onto the 400 × 450 × 50 mm

@@ -2,7 +2,7 @@
 //! moves of a closed loop with its lead arcs.
 
 use super::offset::{self, OffsetCurve, OffsetVertex};
-use super::{ContourOptions, Side};
+use super::{ContourOptions, ContourWarning, Side};
 use crate::curve::biarc::{self, ArcSeg};
 use crate::curve::flatten::{self, FlattenOptions};
 use crate::curve::{CompositeCurve, Lobe, PlanarCurve};
@@ -22,7 +22,7 @@ pub struct Pass {
     /// `|dist(q, outline) − |d||` over 16 points per segment.
     pub max_deviation: f64,
     /// Places the tool cannot reach.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<ContourWarning>,
     /// With `--arcs`: per loop, the biarcs (and connecting lines) that replace its chords,
     /// starting at the loop's first vertex. Empty for line output.
     pub arcs: Vec<Vec<ArcSeg>>,
@@ -152,10 +152,12 @@ pub fn offset_pass(curve: &CompositeCurve, d: f64, opt: &ContourOptions) -> Resu
         };
         let at = curve.eval(first.s);
         let to = curve.eval(lastv.s);
-        warnings.push(format!(
-            "the tool (offset {:.4} mm) cannot reach the outline between ({:.3}, {:.3}) and ({:.3}, {:.3}) (curve parameter {:.4} to {:.4}): concave radius or corner tighter than the offset; left uncut",
-            d.abs(), at.x, at.y, to.x, to.y, first.s, lastv.s
-        ));
+        warnings.push(ContourWarning::Unreachable {
+            offset_mm: d.abs(),
+            from: at,
+            to,
+            params: (first.s, lastv.s),
+        });
     }
     // Keep loops running the same way as the outline (counter-clockwise); an inverted loop
     // is an offset that collapsed.

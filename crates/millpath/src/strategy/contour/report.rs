@@ -4,7 +4,7 @@
 //! `max_deviation_mm` (largest measured deviation of any layer from its nominal offset),
 //! `layers`, `blocks`.
 
-use super::{ContourOptions, Pass};
+use super::{ContourOptions, ContourWarning, Pass};
 use crate::curve::flatten as fl_;
 use crate::curve::{self, CompositeCurve};
 use crate::toolpath::{LevelKind, Toolpath};
@@ -87,7 +87,7 @@ impl ContourReport {
         finish: &Pass,
         layers: Vec<LayerReport>,
         tp: &Toolpath,
-        warnings: Vec<String>,
+        warnings: &[ContourWarning],
     ) -> Self {
         let t = opt.tolerance;
         let fl = fl_::flatten(c, t).ok();
@@ -116,7 +116,7 @@ impl ContourReport {
             rounding_mm: opt.rounding,
             decimals: 0,
             curve,
-            warnings,
+            warnings: warnings.iter().map(ToString::to_string).collect(),
         }
     }
 }

@@ -20,7 +20,7 @@
 
 use super::{PocketOptions, PocketResult, PocketShape, StrategyKind, generate};
 use crate::error::{Error, Result};
-use crate::stock::SimOptions;
+use crate::stock::{Problem, SimOptions};
 use crate::toolpath::{Tool, Toolpath};
 use rayon::prelude::*;
 
@@ -47,8 +47,10 @@ pub enum Outcome {
         result: Box<PocketResult>,
         /// Cycle time on the machine, s, when it could be timed.
         cycle_time_s: Option<f64>,
-        /// What is wrong with it, in words.
-        problems: Vec<String>,
+        /// What the verifier found wrong with it.
+        problems: Vec<Problem>,
+        /// Why it could not be timed, when it could not.
+        timing_error: Option<Error>,
     },
     /// The strategy could not plan the pocket.
     Failed(Error),
@@ -95,7 +97,15 @@ impl Candidate {
     pub fn why_not(&self) -> Option<String> {
         match &self.outcome {
             Outcome::Verified { .. } => None,
-            Outcome::Unverified { problems, .. } => Some(problems.join("; ")),
+            Outcome::Unverified {
+                problems,
+                timing_error,
+                ..
+            } => {
+                let mut why: Vec<String> = problems.iter().map(ToString::to_string).collect();
+                why.extend(timing_error.iter().map(ToString::to_string));
+                Some(why.join("; "))
+            }
             Outcome::Failed(e) => Some(e.to_string()),
         }
     }
@@ -125,7 +135,7 @@ pub fn plan_all(
                     let timed = time(&result.toolpath).map_err(|e| {
                         e.engine_made(&format!("timing the {} toolpath", kind.name()))
                     });
-                    let mut problems = result.verification.problems();
+                    let problems = result.verification.problems();
                     match timed {
                         Ok(t) if problems.is_empty() => Outcome::Verified {
                             result: Box::new(result),
@@ -135,15 +145,14 @@ pub fn plan_all(
                             result: Box::new(result),
                             cycle_time_s: Some(t),
                             problems,
+                            timing_error: None,
                         },
-                        Err(e) => {
-                            problems.push(e.to_string());
-                            Outcome::Unverified {
-                                result: Box::new(result),
-                                cycle_time_s: None,
-                                problems,
-                            }
-                        }
+                        Err(e) => Outcome::Unverified {
+                            result: Box::new(result),
+                            cycle_time_s: None,
+                            problems,
+                            timing_error: Some(e),
+                        },
                     }
                 }
             };
@@ -190,15 +199,13 @@ pub fn arcs_or_chords(
         _ => false,
     };
     if chords_ok && (!arcs_ok || chords_faster) {
-        let why = match (t_chords, t_arcs) {
-            (Some(c), Some(a)) if arcs_ok => {
-                format!("faster on this machine: {c:.2} s against {a:.2} s with arcs")
-            }
-            _ => "the path with arcs did not pass the verification".to_owned(),
+        let faster = match (t_chords, t_arcs) {
+            (Some(c), Some(a)) if arcs_ok => Some((c, a)),
+            _ => None,
         };
         chords
             .notes
-            .push(format!("`--arcs`: written as G1 chords, {why}"));
+            .push(super::PocketNote::ChordsInsteadOfArcs { faster });
         return Ok((chords, t_chords));
     }
     Ok((arcs, t_arcs))
@@ -306,6 +313,7 @@ mod tests {
                     result: bad.clone(),
                     cycle_time_s: Some(10.0),
                     problems: bad.verification.problems(),
+                    timing_error: None,
                 },
             },
             Candidate {

@@ -71,21 +71,78 @@ fn fallbacks(kind: StrategyKind, opts: &PocketOptions) -> Vec<PocketOptions> {
     out
 }
 
+/// What the engine did to a pocket's toolpath beyond what was asked ([`PocketResult::notes`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum PocketNote {
+    /// The toolpath as asked for cut into the walls' clearance by more than
+    /// [`GOUGE_TOLERANCE`]; it was planned again with other options, which clear them.
+    Replanned {
+        /// The strategy.
+        strategy: StrategyKind,
+        /// How far the path asked for cut into the clearance, mm.
+        gouge_mm: f64,
+        /// The harmonic morph replaced the fronts.
+        harmonic_morph: bool,
+        /// G1 chords replaced arcs.
+        chords: bool,
+    },
+    /// `--arcs` was asked for under automatic choice and the path is written as G1 chords:
+    /// faster on the machine (`Some((chords_s, arcs_s))`, the two cycle times) or the path
+    /// with arcs did not pass the verification (`None`).
+    ChordsInsteadOfArcs {
+        /// Cycle times with chords and with arcs, s, when the chords were faster.
+        faster: Option<(f64, f64)>,
+    },
+}
+
+impl std::fmt::Display for PocketNote {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PocketNote::Replanned {
+                strategy,
+                gouge_mm,
+                harmonic_morph,
+                chords,
+            } => {
+                let mut changes = Vec::new();
+                if *harmonic_morph {
+                    changes.push("the harmonic morph instead of the fronts (`--morph harmonic`)");
+                }
+                if *chords {
+                    changes.push("G1 chords instead of arcs (no `--arcs`)");
+                }
+                write!(
+                    f,
+                    "the {} toolpath as asked for cut {gouge_mm:.4} mm into the walls' clearance \
+                     (more than the {GOUGE_TOLERANCE} mm allowed); planned again with {}, which \
+                     clears them",
+                    strategy.name(),
+                    changes.join(" and ")
+                )
+            }
+            PocketNote::ChordsInsteadOfArcs { faster } => match faster {
+                Some((c, a)) => write!(
+                    f,
+                    "`--arcs`: written as G1 chords, faster on this machine: {c:.2} s against \
+                     {a:.2} s with arcs"
+                ),
+                None => f.write_str(
+                    "`--arcs`: written as G1 chords, the path with arcs did not pass the \
+                     verification",
+                ),
+            },
+        }
+    }
+}
+
 /// The note of a fallback: what the path asked for did, and what replaced it.
-fn note(kind: StrategyKind, asked: &PocketOptions, used: &PocketOptions, depth: f64) -> String {
-    let mut changes = Vec::new();
-    if asked.morph != used.morph {
-        changes.push("the harmonic morph instead of the fronts (`--morph harmonic`)");
+fn note(kind: StrategyKind, asked: &PocketOptions, used: &PocketOptions, depth: f64) -> PocketNote {
+    PocketNote::Replanned {
+        strategy: kind,
+        gouge_mm: depth,
+        harmonic_morph: asked.morph != used.morph,
+        chords: asked.arcs && !used.arcs,
     }
-    if asked.arcs && !used.arcs {
-        changes.push("G1 chords instead of arcs (no `--arcs`)");
-    }
-    format!(
-        "the {} toolpath as asked for cut {depth:.4} mm into the walls' clearance (more than \
-         the {GOUGE_TOLERANCE} mm allowed); planned again with {}, which clears them",
-        kind.name(),
-        changes.join(" and ")
-    )
 }
 
 /// How far the tool centre comes inside the required clearance, mm (≤ 0: no gouge).
@@ -153,11 +210,11 @@ mod tests {
         assert!(!tried[2].arcs && tried[2].morph == SpiralMorph::Fronts);
         assert_eq!(r.notes.len(), 1, "{:?}", r.notes);
         assert!(
-            r.notes[0].contains("G1 chords instead of arcs")
-                && r.notes[0].contains("0.0200 mm")
-                && !r.notes[0].contains("harmonic"),
+            r.notes[0].to_string().contains("G1 chords instead of arcs")
+                && r.notes[0].to_string().contains("0.0200 mm")
+                && !r.notes[0].to_string().contains("harmonic"),
             "{}",
-            r.notes[0]
+            r.notes[0].to_string()
         );
     }
 
@@ -169,7 +226,11 @@ mod tests {
             panic!("{out:?}")
         };
         assert_eq!(tried.len(), 2);
-        assert!(r.notes[0].contains("the harmonic morph instead of the fronts"));
+        assert!(
+            r.notes[0]
+                .to_string()
+                .contains("the harmonic morph instead of the fronts")
+        );
     }
 
     #[test]

@@ -86,7 +86,7 @@ pub struct PocketResult {
     pub stepover_mm: f64,
     /// What [`generate`] changed from the options asked for, and why (empty when nothing):
     /// the fallbacks it took because the first path gouged.
-    pub notes: Vec<String>,
+    pub notes: Vec<PocketNote>,
 }
 
 /// The nominal engagement angle (rad) for stepover `s` and tool radius `r`: `arccos(1 − s/r)`.
@@ -188,7 +188,7 @@ fn toolpath_and_sections(
     Ok((tp, sections))
 }
 
-pub use fallback::GOUGE_TOLERANCE;
+pub use fallback::{GOUGE_TOLERANCE, PocketNote};
 
 /// Generates, modulates the feed and verifies: every level against its own section (and the
 /// section of the slab's top, see [`crate::stock::verify_levels`]).

@@ -110,9 +110,21 @@ impl PocketShape {
     /// splits 1/2, 1/3 and 2/3, then at distances a hair larger (1 µm, 10 µm: never closer to
     /// the walls); the first faithful result is taken. If none is, the first result stands
     /// and the verification of the toolpath refuses what it would gouge.
-    pub fn offset(&self, d: f64) -> OffsetRegion {
+    pub(crate) fn offset(&self, d: f64) -> OffsetRegion {
         let walls: Vec<&Polyline<f64>> = self.loops().map(|o| o.polyline()).collect();
         checked_offset(&walls, d)
+    }
+
+    /// The loops of the region offset by `d` (as `offset` computes it, checked against the
+    /// walls): counter-clockwise outer loops, then clockwise islands; none when nothing is
+    /// left.
+    pub fn offset_loops(&self, d: f64) -> Vec<Outline> {
+        let r = self.offset(d);
+        r.outers
+            .into_iter()
+            .chain(r.islands)
+            .map(Outline::wrap_offset)
+            .collect()
     }
 }
 
