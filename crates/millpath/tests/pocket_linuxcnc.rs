@@ -40,26 +40,34 @@ fn linuxcnc_time() -> Option<PathBuf> {
 /// LinuxCNC's motion time for `program`, s.
 fn time_on_linuxcnc(tool: &Path, program: &Path) -> f64 {
     // The motion is timed in servo cycles, whatever the load; the timeout is generous so
-    // that a busy machine (other tests, other runs) does not fail the run.
-    let out = Command::new(tool)
-        .env("LCNC_TIMEOUT", "300")
-        .arg(program)
-        .args(["500", "2000"])
-        .output()
-        .expect("linuxcnc-time runs");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "linuxcnc-time {}: {}{}",
-        program.display(),
-        text,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    text.trim()
-        .lines()
-        .last()
-        .and_then(|l| l.trim().parse().ok())
-        .unwrap_or_else(|| panic!("no time in {text:?}"))
+    // that a busy machine (other tests, other runs) does not fail the run. A run whose runner
+    // gives up waiting for the machine to come on (seen under heavy load) is run again, twice
+    // at most.
+    let mut last = String::new();
+    for _ in 0..3 {
+        let out = Command::new(tool)
+            .env("LCNC_TIMEOUT", "300")
+            .arg(program)
+            .args(["500", "2000"])
+            .output()
+            .expect("linuxcnc-time runs");
+        let text = String::from_utf8_lossy(&out.stdout);
+        let t = text
+            .trim()
+            .lines()
+            .last()
+            .and_then(|l| l.trim().parse::<f64>().ok());
+        match t {
+            Some(t) if out.status.success() => return t,
+            _ => {
+                last = format!("{text}{}", String::from_utf8_lossy(&out.stderr));
+            }
+        }
+    }
+    panic!(
+        "linuxcnc-time {} failed 3 runs; last: {last}",
+        program.display()
+    )
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //! `Point - Point = Vec2`, `Point + Vec2 = Point`, and there is no `Point + Point`.
 
 mod aabb;
+mod loops;
 pub(crate) mod nesting;
 mod outline;
 pub(crate) mod overlap;

@@ -246,7 +246,7 @@ impl Outline {
     /// open: [`Outline::signed_area`] is zero for an open loop), without [`Outline::new`]'s
     /// checks: an offset of a simple loop is simple.
     pub fn offset(&self, d: f64) -> Vec<Outline> {
-        super::region::offset_loops(&self.pline, d)
+        super::loops::offset_loops(&self.pline, d)
             .into_iter()
             .map(Outline::wrap_offset)
             .collect()
@@ -259,7 +259,7 @@ impl Outline {
 
     /// `n` points equally spaced in arc length along the outline, from its first vertex.
     pub fn sample(&self, n: usize) -> Vec<Point> {
-        super::region::sample_loop(&self.pline, n)
+        super::loops::sample_loop(&self.pline, n)
     }
 }
 

@@ -295,7 +295,7 @@ impl PocketSettings {
 /// `G05.1 Q1` with t in a comment, a comment on Grbl), the tolerance its cycle time was
 /// planned with and the one `millpath estimate` reads back; `name` is the strategy's (or
 /// `mixed`). The decimals keep the rounding within the pocket's own resolution (arcs flatter
-/// than [`pocket::chain::ARC_AS_LINE_SAGITTA`], 0.0007 mm, are lines in the toolpath: 3
+/// than [`pocket::segments::ARC_AS_LINE_SAGITTA`], 0.0007 mm, are lines in the toolpath: 3
 /// decimals in mm, 5 in inches) and within 10 % of the path tolerance; fewer decimals are
 /// refused.
 pub fn program_options(
@@ -304,7 +304,7 @@ pub fn program_options(
     out: &ProgramSettings,
 ) -> Result<WriterOptions, Error> {
     let t = machine.path_tolerance;
-    let mut max_rounding = pocket::chain::ARC_AS_LINE_SAGITTA;
+    let mut max_rounding = pocket::segments::ARC_AS_LINE_SAGITTA;
     let mut why = "the pocket's resolution".to_owned();
     if t > 0.0 && crate::gcode::format::ROUNDING_SHARE * t < max_rounding {
         max_rounding = crate::gcode::format::ROUNDING_SHARE * t;

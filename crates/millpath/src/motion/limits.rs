@@ -24,7 +24,7 @@
 //!   familiar `v³/r² ≤ η_j·J`.
 //! * on a spiral arc (end radius ≠ start radius, within the G-code tolerance) the parameter
 //!   is not arc length and `acc = P''·v² + P'·a_t`, `jerk = P'''·v³ + 3P''·v·a_t + P'·j_t`
-//!   with `|P'| ≤ g1`, `|P''| ≤ g2`, `|P'''| ≤ g3` ([`Geom::derivative_bounds`]; `1`, `κ`,
+//!   with `|P'| ≤ g1`, `|P''| ≤ g2`, `|P'''| ≤ g3` ([`BlockGeometry::derivative_bounds`]; `1`, `κ`,
 //!   `κ√(κ²+τ²)` on a helix): the same shares with `κ → g2`, `κ√(κ²+τ²) → g3`, the
 //!   tangential limits divided by `g1`, and the feed bounding `g1·v`. (Treating spirals as
 //!   circles let the fuzzer's tiny spiral arcs exceed the axis acceleration 1.6×.)
@@ -40,7 +40,7 @@
 //!   (the 840D bounds it by `PATH_TRANS_JERK_LIM`, MD32432), so we require the mean jerk over
 //!   one cycle to stay within each axis's jerk: `v²·|Δ(κN)_i| ≤ jmax_i·T_ipo`. With infinite
 //!   jerk there is no such cap.
-//!   Where a spiral arc (see [`Geom::derivatives`]) meets another block, `P'` may also
+//!   Where a spiral arc (see [`BlockGeometry::derivatives`]) meets another block, `P'` may also
 //!   change length: the axis velocities step by `v·|ΔP'_i|`, capped as at an exact-path
 //!   junction below.
 //! * **near-tangent** corners (`|t2 − t1| ≤` [`NEAR_TANGENT`], what G-code rounding makes of a
@@ -62,14 +62,14 @@
 //!   shorter, so the time is slightly conservative) and does not model the curvature step at
 //!   the blend's ends (controllers blend with curvature-continuous polynomials, G642).
 
-use super::path::Geom;
+use super::path::BlockGeometry;
 use super::profile::Limits1;
 use crate::geom::Vec3;
 use crate::machine::Machine;
 use crate::toolpath::{Corner, Move, MoveKind};
 
 /// The path limits of a block of geometry `g` for move `m`.
-pub fn block_limits(g: &Geom, m: &Move, machine: &Machine) -> Limits1 {
+pub fn block_limits(g: &BlockGeometry, m: &Move, machine: &Machine) -> Limits1 {
     let prog = match m.kind {
         MoveKind::Rapid => f64::INFINITY,
         _ => m.feed.min(machine.max_feed),
@@ -93,14 +93,14 @@ pub fn block_limits(g: &Geom, m: &Move, machine: &Machine) -> Limits1 {
         j_ax = j_ax.min(ax.max_jerk);
     }
     match *g {
-        Geom::Line { .. } => Limits1 {
+        BlockGeometry::Line { .. } => Limits1 {
             v,
             a: a_line,
             j: j_line,
         },
-        Geom::Helix { .. } | Geom::Arc3 { .. } => {
+        BlockGeometry::Helix { .. } | BlockGeometry::Arc3 { .. } => {
             // g1, g2, g3 bound |P'|, |P''|, |P'''| (κ, κ√(κ²+τ²) on a circle; a spiral's
-            // radial terms included, see `Geom::derivative_bounds`).
+            // radial terms included, see `BlockGeometry::derivative_bounds`).
             let (g1, g2, g3) = g.derivative_bounds();
             let (ea, ej) = (machine.curvature_accel_share, machine.curvature_jerk_share);
             let a = (1.0 - ea) * a_ax / g1;
@@ -164,7 +164,12 @@ pub fn junction_mode(corner: Corner, machine: &Machine) -> JunctionMode {
 pub const NEAR_TANGENT: f64 = 1e-3;
 
 /// The speed cap at the junction from `g1` (whose corner mode is `mode`) into `g2`.
-pub fn junction_cap(g1: &Geom, g2: &Geom, mode: JunctionMode, machine: &Machine) -> f64 {
+pub fn junction_cap(
+    g1: &BlockGeometry,
+    g2: &BlockGeometry,
+    mode: JunctionMode,
+    machine: &Machine,
+) -> f64 {
     let t1 = g1.end_tangent();
     let t2 = g2.start_tangent();
     let du = t2 - t1;
@@ -212,8 +217,8 @@ pub(crate) fn speed_step_cap(dp: Vec3, machine: &Machine) -> f64 {
 
 /// The cap of a corner (`t1 ≠ t2`) by its mode (see the module docs).
 pub(crate) fn corner_cap(
-    g1: &Geom,
-    g2: &Geom,
+    g1: &BlockGeometry,
+    g2: &BlockGeometry,
     t1: Vec3,
     t2: Vec3,
     dp: Vec3,
@@ -280,10 +285,10 @@ mod tests {
         let c = Point3::new(0.0, r, 0.0);
         let arc_from = Point3::ORIGIN;
         let arc = Move::arc_xy(Point3::new(-r, r, 0.0), c, false, 200.0);
-        let g2 = Geom::of(arc_from, &arc).unwrap();
+        let g2 = BlockGeometry::of(arc_from, &arc).unwrap();
         let cap_of = |tilt: f64| {
             let from = Point3::new(40.0, 40.0 * tilt, 0.0);
-            let g1 = Geom::of(from, &Move::line(arc_from, 200.0)).unwrap();
+            let g1 = BlockGeometry::of(from, &Move::line(arc_from, 200.0)).unwrap();
             junction_cap(&g1, &g2, JunctionMode::Blend(m.path_tolerance), &m)
         };
         let tangent = cap_of(0.0);

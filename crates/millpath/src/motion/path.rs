@@ -7,7 +7,7 @@ use crate::toolpath::{Move, MoveKind, Plane};
 
 /// The geometry of one block.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Geom {
+pub enum BlockGeometry {
     /// A straight line.
     Line {
         /// Start point.
@@ -32,7 +32,7 @@ pub enum Geom {
         /// Start radius.
         r0: f64,
         /// End radius (differs from `r0` by the input's rounding or within LinuxCNC's
-        /// tolerance: the arc is then a spiral, see [`Geom::derivatives`]).
+        /// tolerance: the arc is then a spiral, see [`BlockGeometry::derivatives`]).
         r1: f64,
         /// Axial start.
         w0: f64,
@@ -65,9 +65,9 @@ pub enum Geom {
     },
 }
 
-impl Geom {
+impl BlockGeometry {
     /// The geometry of `m` starting at `from`; `None` for dwells and zero-length moves.
-    pub fn of(from: Point3, m: &Move) -> Option<Geom> {
+    pub fn of(from: Point3, m: &Move) -> Option<BlockGeometry> {
         match m.kind {
             MoveKind::Dwell { .. } => None,
             MoveKind::Rapid | MoveKind::Line => {
@@ -76,7 +76,7 @@ impl Geom {
                 if length.is_nan() || length <= 1e-12 {
                     return None;
                 }
-                Some(Geom::Line {
+                Some(BlockGeometry::Line {
                     from,
                     dir: d / length,
                     length,
@@ -93,7 +93,7 @@ impl Geom {
                 if length.is_nan() || length <= 1e-12 || r0.is_nan() || r0 <= 1e-12 {
                     return None;
                 }
-                Some(Geom::Helix {
+                Some(BlockGeometry::Helix {
                     plane,
                     cu,
                     cv,
@@ -112,9 +112,9 @@ impl Geom {
     /// Length in mm.
     pub fn length(&self) -> f64 {
         match *self {
-            Geom::Line { length, .. } | Geom::Helix { length, .. } | Geom::Arc3 { length, .. } => {
-                length
-            }
+            BlockGeometry::Line { length, .. }
+            | BlockGeometry::Helix { length, .. }
+            | BlockGeometry::Arc3 { length, .. } => length,
         }
     }
 
@@ -135,11 +135,11 @@ impl Geom {
     /// dominate.
     pub fn derivatives(&self, s: f64) -> [Vec3; 4] {
         match *self {
-            Geom::Line { from, dir, length } => {
+            BlockGeometry::Line { from, dir, length } => {
                 let p = from + dir * s.clamp(0.0, length);
                 [p - Point3::ORIGIN, dir, Vec3::ZERO, Vec3::ZERO]
             }
-            Geom::Helix {
+            BlockGeometry::Helix {
                 plane,
                 cu,
                 cv,
@@ -168,7 +168,7 @@ impl Geom {
                     polar(-3.0 * rp * om * om, -r * om.powi(3), 0.0),
                 ]
             }
-            Geom::Arc3 {
+            BlockGeometry::Arc3 {
                 start,
                 lead_dir,
                 lead,
@@ -202,14 +202,14 @@ impl Geom {
     }
 
     /// Bounds `(g1, g2, g3)` of `|P'|`, `|P''|`, `|P'''|` over the block (see
-    /// [`Geom::derivatives`]): with `r ≤ r_max = max(r0, r1)`,
+    /// [`BlockGeometry::derivatives`]): with `r ≤ r_max = max(r0, r1)`,
     /// `g1 = √(r'² + r_max²θ'² + h²)`, `g2 = |θ'|·√(r_max²θ'² + 4r'²)`,
     /// `g3 = θ'²·√(r_max²θ'² + 9r'²)`. Lines: `(1, 0, 0)`. For a helix of radius `r` and
     /// pitch `2πc` these are `1`, the curvature `κ = r/(r² + c²)` and `κ·√(κ² + τ²)`.
     pub fn derivative_bounds(&self) -> (f64, f64, f64) {
         match *self {
-            Geom::Line { .. } => (1.0, 0.0, 0.0),
-            Geom::Helix {
+            BlockGeometry::Line { .. } => (1.0, 0.0, 0.0),
+            BlockGeometry::Helix {
                 sweep,
                 r0,
                 r1,
@@ -226,7 +226,7 @@ impl Geom {
                 let g3 = om * om * (rm * om).hypot(3.0 * rp);
                 (g1, g2, g3)
             }
-            Geom::Arc3 { radius, .. } => (1.0, 1.0 / radius, 1.0 / (radius * radius)),
+            BlockGeometry::Arc3 { radius, .. } => (1.0, 1.0 / radius, 1.0 / (radius * radius)),
         }
     }
 
@@ -254,8 +254,8 @@ impl Geom {
     /// The largest absolute component of `P'` along each axis over the block.
     pub fn max_direction(&self) -> [f64; 3] {
         match *self {
-            Geom::Line { dir, .. } => [dir.x.abs(), dir.y.abs(), dir.z.abs()],
-            Geom::Helix {
+            BlockGeometry::Line { dir, .. } => [dir.x.abs(), dir.y.abs(), dir.z.abs()],
+            BlockGeometry::Helix {
                 plane,
                 r0,
                 r1,
@@ -271,7 +271,7 @@ impl Geom {
                 let v = plane.join(inplane, inplane, axial);
                 [v.x.abs(), v.y.abs(), v.z.abs()]
             }
-            Geom::Arc3 {
+            BlockGeometry::Arc3 {
                 lead_dir,
                 lead,
                 e0,
@@ -311,7 +311,7 @@ pub const MAX_DWELL: f64 = 1e6;
 /// Checks move `i` (from `from`) and returns its geometry (`None` for dwells and zero-length
 /// moves): coordinates within range, arcs circular within LinuxCNC's tolerance, a feed on
 /// every feed move, dwells within [`MAX_DWELL`].
-pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<Geom>, Error> {
+pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<BlockGeometry>, Error> {
     // Coordinates beyond ±1e6 mm overflow lengths and times (a target at 1e300 gave an
     // infinite cycle time; found by the `planner` fuzzer).
     let far = |p: Point3| {
@@ -339,7 +339,7 @@ pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<Geom
             );
         }
     }
-    let g = Geom::of(from, m);
+    let g = BlockGeometry::of(from, m);
     if g.is_none()
         && matches!(m.kind, MoveKind::Arc { .. })
         && (from.distance(m.to) > 1e-12 || m.length_from(from) > 1e-12)
@@ -353,7 +353,7 @@ pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<Geom
             .expected("a start point more than 1e-12 mm from the arc's centre")
             .into());
     }
-    if let Some(Geom::Helix { r0, r1, .. }) = g {
+    if let Some(BlockGeometry::Helix { r0, r1, .. }) = g {
         // The block limits take the arc as circular (a spiral's radial terms are not
         // modelled): arcs whose end radius differs from the start radius beyond what
         // LinuxCNC accepts (and the G-code reader with it) are refused, not mistimed.
@@ -367,7 +367,7 @@ pub(crate) fn check_move(i: usize, from: Point3, m: &Move) -> Result<Option<Geom
                 .into());
         }
     }
-    let length = g.as_ref().map_or(0.0, Geom::length);
+    let length = g.as_ref().map_or(0.0, BlockGeometry::length);
     if m.is_feed() && !(m.feed.is_finite() && m.feed >= MIN_FEED) && length > 0.0 {
         return Err(crate::InputError::new("feed", m.feed)
             .at(format!("move {}", i + 1))
@@ -413,7 +413,7 @@ mod tests {
                 *p = plane;
                 *t = turns;
             }
-            let g = Geom::of(from, &m).expect("geometry");
+            let g = BlockGeometry::of(from, &m).expect("geometry");
             prop_assert!((g.length() - m.length_from(from)).abs() <= 1e-12 * g.length());
             prop_assert!((g.point(g.length()) - to).length() <= 1e-9);
             let (g1, g2, g3) = g.derivative_bounds();

@@ -27,7 +27,7 @@
 //! block and per span; time is linear in the number of blocks.
 
 use super::controller::{Prepared, Shaper};
-use super::path::Geom;
+use super::path::BlockGeometry;
 use super::profile::{Limits1, SpanProfile, reachable_velocity};
 use crate::error::Error;
 use crate::geom::Point3;
@@ -121,7 +121,7 @@ pub struct Plan {
     /// The spans.
     pub spans: Vec<Span>,
     /// Geometry of each block (if kept), `None` for dwells and zero-length moves.
-    pub geometry: Vec<Option<Geom>>,
+    pub geometry: Vec<Option<BlockGeometry>>,
     /// Start and end point of each block (if geometry is kept).
     pub ends: Vec<(Point3, Point3)>,
     /// Total time in s.
@@ -205,7 +205,7 @@ impl Builder {
             j: 1.0,
         };
         let m = &p.mv;
-        let length = p.geom.as_ref().map_or(0.0, Geom::length);
+        let length = p.geom.as_ref().map_or(0.0, BlockGeometry::length);
         if p.settle_before > 0.0 {
             self.settle_last(p.settle_before);
         }

@@ -28,7 +28,7 @@
 //! doubled until one is.
 
 use super::controller::{Prepared, Shaper};
-use super::path::Geom;
+use super::path::BlockGeometry;
 use super::plan::{BlockPlan, Builder, Plan, Span, pin_dwells, time_spans};
 use super::profile::reachable_velocity;
 use crate::error::Error;
@@ -97,7 +97,7 @@ struct State<'a, F> {
     b: Builder,
     blocks: Vec<BlockPlan>,
     moves: Vec<(Point3, Move)>,
-    geoms: Vec<Option<Geom>>,
+    geoms: Vec<Option<BlockGeometry>>,
     block_base: usize,
     sum: StreamSummary,
     on_chunk: F,
@@ -258,7 +258,7 @@ where
             self.opts.check_profiles,
         )?;
         let moves: Vec<(Point3, Move)> = self.moves.drain(..nb).collect();
-        let geometry: Vec<Option<Geom>> = self.geoms.drain(..nb).collect();
+        let geometry: Vec<Option<BlockGeometry>> = self.geoms.drain(..nb).collect();
         let chunk = Chunk {
             plan: Plan {
                 reshaped: self.machine.controller == crate::machine::Controller::LinuxCnc,

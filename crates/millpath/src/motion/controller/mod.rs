@@ -25,7 +25,7 @@ pub(crate) mod linuxcnc;
 pub(crate) mod sinumerik;
 
 use super::limits::{JunctionMode, block_limits, junction_cap, junction_mode};
-use super::path::Geom;
+use super::path::BlockGeometry;
 use super::path::check_move;
 use super::profile::Limits1;
 use crate::error::Error;
@@ -42,7 +42,7 @@ pub(crate) struct Prepared {
     /// end).
     pub mv: Move,
     /// Geometry (`None` for dwells and zero-length moves).
-    pub geom: Option<Geom>,
+    pub geom: Option<BlockGeometry>,
     /// Path limits (ignored without geometry).
     pub limits: Limits1,
     /// Speed cap at the junction with the previous block with geometry.
@@ -114,11 +114,11 @@ pub(crate) struct RuleShaper<'m> {
     machine: &'m Machine,
     /// The sinumerik model's curvature state (`None`: generic).
     sinumerik: Option<sinumerik::Curvature>,
-    last: Option<(Geom, Move)>,
+    last: Option<(BlockGeometry, Move)>,
 }
 
 impl RuleShaper<'_> {
-    fn prepare(&mut self, i: usize, from: Point3, m: &Move, g: Option<Geom>) -> Prepared {
+    fn prepare(&mut self, i: usize, from: Point3, m: &Move, g: Option<BlockGeometry>) -> Prepared {
         let machine = self.machine;
         let zero = Limits1 {
             v: 0.0,

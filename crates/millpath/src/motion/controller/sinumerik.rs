@@ -36,7 +36,7 @@
 use crate::geom::Vec3;
 use crate::machine::Machine;
 use crate::motion::limits::{JunctionMode, NEAR_TANGENT, corner_cap, speed_step_cap};
-use crate::motion::path::Geom;
+use crate::motion::path::BlockGeometry;
 
 /// Largest deflection (|t₂ − t₁|, about the angle in radians) of a corner taken as part of a
 /// curve (a CAM polyline's chord junction) rather than a corner of the part: 0.35 (20°).
@@ -60,8 +60,8 @@ impl Curvature {
     /// The speed cap at the junction from `g1` (corner mode `mode`) into `g2`.
     pub(crate) fn junction_cap(
         &mut self,
-        g1: &Geom,
-        g2: &Geom,
+        g1: &BlockGeometry,
+        g2: &BlockGeometry,
         mode: JunctionMode,
         machine: &Machine,
     ) -> f64 {
@@ -96,7 +96,8 @@ impl Curvature {
                 .fold(0.0, f64::max);
         let (_, k1_end) = g1.curvature_ends();
         let (k2_start, _) = g2.curvature_ends();
-        let lines = matches!(g1, Geom::Line { .. }) && matches!(g2, Geom::Line { .. });
+        let lines =
+            matches!(g1, BlockGeometry::Line { .. }) && matches!(g2, BlockGeometry::Line { .. });
         // The samples at this junction: the curvature at the end of `g1`, then a corner's
         // Menger curvature, then the curvature at the start of `g2` — except that a corner
         // between two lines (a polyline's vertex) is sampled by its Menger curvature alone:

@@ -44,7 +44,7 @@
 //!    [`MIN_PIECE`] runs at the lowest of them, a longer one is split where the level
 //!    changes ([`crate::toolpath::Move::piece`]: lines into lines, arcs into arcs about the
 //!    same centre; a piece of an arc flatter than the writer's rounding,
-//!    [`super::chain::ARC_AS_LINE_SAGITTA`], into a line), an end fragment shorter than
+//!    [`super::segments::ARC_AS_LINE_SAGITTA`], into a line), an end fragment shorter than
 //!    half of [`MIN_PIECE`] being lowered into its neighbour or widened (at its own, lower
 //!    level) to half of [`MIN_PIECE`]. A move
 //!    whose level is constant stays one move; interior joints are tangent, so only the
@@ -210,10 +210,10 @@ pub fn modulate_with(
                 **m
             } else {
                 // A piece of an arc is flatter than the arc: a line below the pocket's
-                // criterion ([`super::chain::ARC_AS_LINE_SAGITTA`]), as the writer would.
+                // criterion ([`super::segments::ARC_AS_LINE_SAGITTA`]), as the writer would.
                 let start = m.point_at(*from, t0);
                 m.piece(*from, t0, t1)
-                    .line_if_flat(start, super::chain::ARC_AS_LINE_SAGITTA)
+                    .line_if_flat(start, super::segments::ARC_AS_LINE_SAGITTA)
             };
             piece.feed = m.feed * level;
             if j < last {

@@ -24,8 +24,8 @@
 //! Between cuts of a level and between levels the tool retracts to the clearance height and
 //! moves in rapid; rapids go down only to `z_{i−1} + safe`, above material.
 
-use super::chain::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length};
 use super::options::{Direction, Entry, PocketOptions};
+use super::segments::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length};
 use super::shape::OffsetRegion;
 use crate::error::InputError;
 use crate::geom::{Point, Point3, Vec2};
@@ -341,7 +341,7 @@ mod tests {
     /// is refused.
     #[test]
     fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
-        use super::super::chain::segs_from_points;
+        use super::super::segments::segs_from_points;
         let p = Point::new;
         let big = Cut {
             entry: CutEntry::Ramp,

@@ -43,25 +43,25 @@
 
 pub(crate) mod auto;
 pub mod builtin;
-pub(crate) mod chain;
-pub(crate) mod fallback;
 pub(crate) mod feed;
+pub(crate) mod gouge_retry;
 pub(crate) mod levels;
 pub(crate) mod loops;
 pub(crate) mod offset;
 pub(crate) mod options;
 pub(crate) mod part;
+pub(crate) mod segments;
 pub(crate) mod shape;
 pub(crate) mod spiral;
 pub(crate) mod walls;
 pub(crate) mod zigzag;
 
 pub use auto::{Candidate, ORDER as AUTO_ORDER, Outcome, arcs_or_chords, choose, plan_all};
-pub use chain::ARC_AS_LINE_SAGITTA;
 pub use feed::{FeedProfile, factor as feed_factor};
 pub use levels::level_depths;
 pub use options::{Direction, Entry, PocketOptions, SpiralMorph, Stepover, StrategyKind};
 pub use part::{PartPocket, PartResult, PartStrategy, generate_part, order_pockets, tour_length};
+pub use segments::ARC_AS_LINE_SAGITTA;
 pub use shape::PocketShape;
 pub use spiral::{
     Construction, LAST_LOOP_MARGIN, SpiralStats, plan_with_stats as spiral_with_stats,
@@ -188,14 +188,14 @@ fn toolpath_and_sections(
     Ok((tp, sections))
 }
 
-pub use fallback::{GOUGE_TOLERANCE, PocketNote};
+pub use gouge_retry::{GOUGE_TOLERANCE, PocketNote};
 
 /// Generates, modulates the feed and verifies: every level against its own section (and the
 /// section of the slab's top, see [`crate::stock::verify_levels`]).
 ///
 /// A toolpath that gouges by more than [`GOUGE_TOLERANCE`] is never returned. The spiral's
 /// default morph ([`spiral::SpiralMorph::Fronts`]) is then planned again with the harmonic
-/// one, and `--arcs` paths again as chords (`fallback`: the fuzzer found chaotic outlines
+/// one, and `--arcs` paths again as chords (`gouge_retry`: the fuzzer found chaotic outlines
 /// on which the spiral cut up to 2.9 mm into a wall, and biarcs overshooting a sharp corner by
 /// 0.011 mm, fuzz/README.md, 2026-11-22; the spiral now keeps its laps and arcs inside itself,
 /// and no input of the fuzz corpora needs a fallback), and [`PocketResult::notes`] says which
@@ -212,9 +212,9 @@ pub fn generate(
 ) -> Result<PocketResult> {
     check_path_size(shape, tool, opts)?;
     let attempt = |o: &PocketOptions| generate_unchecked(kind, shape, tool, o, sim);
-    let r = match fallback::first_clear(kind, opts, attempt)? {
-        fallback::Attempts::Clears(r) => return refuse_uncut(kind, r),
-        fallback::Attempts::Gouges(r) => r,
+    let r = match gouge_retry::first_clear(kind, opts, attempt)? {
+        gouge_retry::Attempts::Clears(r) => return refuse_uncut(kind, r),
+        gouge_retry::Attempts::Gouges(r) => r,
     };
     let (_, sections) = toolpath_and_sections(kind, shape, tool, opts)?;
     let specs: Vec<StockSpec<'_>> = sections
@@ -233,7 +233,7 @@ pub fn generate(
         kind.name(),
         r.verification.min_clearance_mm,
         r.verification.required_clearance_mm,
-        fallback::gouge(&r.verification),
+        gouge_retry::gouge(&r.verification),
         c.at.x,
         c.at.y,
         c.at.z,
@@ -413,7 +413,7 @@ fn finishing_loops(
             .unwrap_or(start);
         cuts.push(levels::Cut {
             entry: levels::CutEntry::Direct { from },
-            path: chain::segs_from_vertices(&shape::closed_chain(&lp)),
+            path: segments::segs_from_vertices(&shape::closed_chain(&lp)),
         });
     }
     cuts

@@ -37,9 +37,9 @@
 //! gouge); otherwise a new cut starts with a helix (an innermost loop with room for it) or a
 //! ramp along the loop.
 
-use super::chain::segs_from_vertices;
 use super::levels::{Cut, CutEntry, LevelPlan};
 use super::options::{Direction, Entry, PocketOptions};
+use super::segments::segs_from_vertices;
 use super::shape::{
     OffsetRegion, PocketShape, closed_chain, crosses, inscribed_centre, restart_near, reversed, v2,
 };
@@ -242,7 +242,7 @@ impl Emitter<'_> {
             h.distance(first.a) <= 2.0 * self.s + 1e-9 && !crosses(self.boundary, h, first.a)
         });
         if let (true, Some(last), Some(h)) = (linkable, self.cuts.last_mut(), self.here) {
-            last.path.push(super::chain::Seg::line(h, first.a));
+            last.path.push(super::segments::Seg::line(h, first.a));
             last.path.extend(path.iter().copied());
             self.here = path.last().map(|s| s.b);
             return;

@@ -50,10 +50,10 @@
 //! µm long with nothing cleared to enter from (a row grazing a gear's spoke,
 //! `pb_4_spoke_gear.dxf` with a 0.25 mm tool: a 1.1 µm cut that could only be plunged).
 
-use super::chain::{Seg, segs_from_vertices};
 use super::levels::{Cut, CutEntry, LevelPlan};
 use super::offset::too_large;
 use super::options::{Direction, PocketOptions};
+use super::segments::{Seg, segs_from_vertices};
 use super::shape::crosses;
 use super::shape::{PocketShape, closed_chain, restart_near, reversed};
 use crate::error::InputError;
@@ -166,7 +166,7 @@ pub fn plan(
                     if !crosses(&region, pb, q) {
                         next = Some((jj, ii, d, None));
                     } else if let Some(segs) = boundary_link(&region, pb, q, 3.0 * s) {
-                        let len = super::chain::path_length(&segs);
+                        let len = super::segments::path_length(&segs);
                         if next.as_ref().is_none_or(|n| len < n.2) {
                             next = Some((jj, ii, len, Some(segs)));
                         }
@@ -251,7 +251,7 @@ fn boundary_link(
                 if total <= max_len
                     && best
                         .as_ref()
-                        .is_none_or(|b| total < super::chain::path_length(b))
+                        .is_none_or(|b| total < super::segments::path_length(b))
                 {
                     best = Some(out);
                 }
@@ -308,7 +308,7 @@ fn rotate_seg(sg: &Seg, by: Vec2) -> Seg {
     Seg {
         a: rotate(sg.a, by),
         b: rotate(sg.b, by),
-        arc: sg.arc.map(|arc| super::chain::Arc {
+        arc: sg.arc.map(|arc| super::segments::Arc {
             center: rotate(arc.center, by),
             ..arc
         }),

@@ -14,7 +14,7 @@ use super::circle::Circle;
 use super::queue::{Shape, Tc, Term};
 use crate::geom::Point3;
 use crate::machine::Machine;
-use crate::motion::path::Geom;
+use crate::motion::path::BlockGeometry;
 use crate::toolpath::{Corner, Move, MoveKind, Plane};
 
 /// `CART_FUZZ`: axis displacements below it do not count.
@@ -104,8 +104,14 @@ pub(super) fn line(from: Point3, to: Point3, feed: f64, rapid: bool, m: &Machine
 }
 
 /// The segment of an arc (`ARC_FEED` and `tpAddCircle`).
-pub(super) fn arc(g: &Geom, from: Point3, to: Point3, feed: f64, m: &Machine) -> Option<Tc> {
-    let Geom::Helix {
+pub(super) fn arc(
+    g: &BlockGeometry,
+    from: Point3,
+    to: Point3,
+    feed: f64,
+    m: &Machine,
+) -> Option<Tc> {
+    let BlockGeometry::Helix {
         plane,
         sweep,
         r0,

@@ -7,10 +7,10 @@
 //! helical displacement along the normal `n` (the arc turns counter-clockwise about `n`).
 
 use crate::geom::{Point3, Vec3};
-use crate::motion::path::Geom;
+use crate::motion::path::BlockGeometry;
 use crate::toolpath::Plane;
 
-/// A LinuxCNC circle, with the plane it came from (to turn it back into a [`Geom`]).
+/// A LinuxCNC circle, with the plane it came from (to turn it back into a [`BlockGeometry`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Circle {
     /// Centre (at the start's height along the normal).
@@ -35,8 +35,8 @@ pub(super) struct Circle {
 
 impl Circle {
     /// The circle of an arc block; `None` for other geometry.
-    pub fn of(g: &Geom) -> Option<Circle> {
-        let Geom::Helix {
+    pub fn of(g: &BlockGeometry) -> Option<Circle> {
+        let BlockGeometry::Helix {
             plane,
             cu,
             cv,
@@ -122,7 +122,7 @@ impl Circle {
     }
 
     /// The circle as planner geometry.
-    pub fn geom(&self) -> Geom {
+    pub fn geom(&self) -> BlockGeometry {
         let (su, sv, w0) = self
             .plane
             .split(self.r_tan + (self.center - Point3::ORIGIN));
@@ -130,7 +130,7 @@ impl Circle {
         let n = self.plane.join(0.0, 0.0, 1.0);
         let sign = if self.normal.dot(n) >= 0.0 { 1.0 } else { -1.0 };
         let (_, _, dw) = self.plane.split(self.r_helix);
-        Geom::Helix {
+        BlockGeometry::Helix {
             plane: self.plane,
             cu,
             cv,
@@ -162,7 +162,7 @@ mod tests {
                 ccw,
                 10.0,
             );
-            let g = Geom::of(from, &m).unwrap();
+            let g = BlockGeometry::of(from, &m).unwrap();
             let c = Circle::of(&g).unwrap();
             assert!((c.length() - g.length()).abs() < 1e-12);
             for k in 0..=10 {

@@ -42,7 +42,7 @@
 //! The queue is run as LinuxCNC runs it, a segment at a time, and a segment leaves it once no
 //! later segment can change it (53 behind the newest). Each becomes a planner block with its
 //! own geometry (lines trimmed by blends, circles shortened, blend arcs as
-//! [`Geom::Arc3`]), the limits `v = min(F, maxvel)`, `a` =
+//! [`BlockGeometry::Arc3`]), the limits `v = min(F, maxvel)`, `a` =
 //! its tangential acceleration, jerk unlimited, and the junction cap LinuxCNC would end it at:
 //! its look-ahead final speed at tangent junctions, 0 at stops, and for a parabolic blend the
 //! speed at which the overlap starts (the overlap moves at about that speed: one segment
@@ -68,7 +68,7 @@ use super::Prepared;
 use crate::error::Error;
 use crate::geom::Point3;
 use crate::machine::Machine;
-use crate::motion::path::Geom;
+use crate::motion::path::BlockGeometry;
 use crate::motion::profile::Limits1;
 use crate::toolpath::{Move, MoveKind};
 use canon::{Chain, Mode};
@@ -111,7 +111,7 @@ impl<'m> Queue<'m> {
         i: usize,
         from: Point3,
         m: &Move,
-        g: Option<Geom>,
+        g: Option<BlockGeometry>,
         out: &mut Vec<Prepared>,
     ) -> Result<(), Error> {
         let mode = Mode::of(m.corner, self.machine);

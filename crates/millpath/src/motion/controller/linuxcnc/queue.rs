@@ -7,7 +7,7 @@ use super::blend::{self, Arc, Bounds, Piece, Side};
 use super::circle::Circle;
 use crate::geom::{Point3, Vec3};
 use crate::machine::Machine;
-use crate::motion::path::Geom;
+use crate::motion::path::BlockGeometry;
 use crate::motion::profile::Limits1;
 use crate::toolpath::Move;
 use std::collections::VecDeque;
@@ -212,12 +212,12 @@ impl Tc {
     }
 
     /// The planner geometry of the segment.
-    pub fn geom(&self) -> Option<Geom> {
+    pub fn geom(&self) -> Option<BlockGeometry> {
         match self.shape {
             Shape::Line { start, end } => {
                 let d = end - start;
                 let length = d.length();
-                (length > 1e-12).then(|| Geom::Line {
+                (length > 1e-12).then(|| BlockGeometry::Line {
                     from: start,
                     dir: d / length,
                     length,
@@ -227,7 +227,7 @@ impl Tc {
             Shape::Blend(a) => {
                 let e0 = (a.start - a.center).normalize()?;
                 let e1 = a.binormal.cross(e0).normalize()?;
-                Some(Geom::Arc3 {
+                Some(BlockGeometry::Arc3 {
                     start: a.start - a.u_tan * a.line_length,
                     lead_dir: a.u_tan,
                     lead: a.line_length,

@@ -21,7 +21,7 @@
 //!    `q` the image of `p`, so the laps join without a corner.
 //! 6. **Last loop** `B_ε`: `B` moved inward by `ε` =
 //!    [`LAST_LOOP_MARGIN`], cut once with exact arcs; every
-//!    lap is kept inside it (`spiral/inside.rs`), so the tool centre stays at least `ε/4`
+//!    lap is kept inside it (`spiral/keep_inside.rs`), so the tool centre stays at least `ε/4`
 //!    inside `B`.
 //! 7. **Restarts**: where `1 − u` decays like `exp(−πx/w)` (long arms) the field is solved
 //!    again from the lap reached; should the laps still stall, the distance-field
@@ -34,19 +34,19 @@
 //! loops on elongated pockets. Both morphs are kept for the paper's comparisons (the transition
 //! sweep, `millpath sweep`); the default morph is [`super::offsets`].
 
-use super::super::chain::{Seg, segs_from_vertices};
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::offset::too_large;
 use super::super::options::{Direction, Entry, PocketOptions, SpiralMorph};
+use super::super::segments::{Seg, segs_from_vertices};
 use super::super::shape::{
     IndexedLoop, PocketShape, closed_chain, inscribed_centre, restart_near, reversed, v2,
 };
 use super::common::{
     Construction, LAST_LOOP_MARGIN, LoopWalker, SpiralStats, blend_lap, closed_pline, fractions,
-    last_loop, resample, sample_loop,
+    last_loop, resample, sample_every,
 };
 use super::harmonic::Harmonic;
-use super::{fronts, inside, laps};
+use super::{fronts, keep_inside, laps};
 use crate::error::InputError;
 use crate::geom::{Point, Vec2};
 use crate::toolpath::Tool;
@@ -87,7 +87,7 @@ pub fn plan(
                 let len: f64 = plan
                     .cuts
                     .iter()
-                    .map(|c| super::super::chain::path_length(&c.path))
+                    .map(|c| super::super::segments::path_length(&c.path))
                     .sum();
                 if best.as_ref().is_none_or(|b| len < b.2 - 1e-9) {
                     best = Some((plan, stats, len));
@@ -189,7 +189,7 @@ fn plan_fronts(
             let len: f64 = plan
                 .cuts
                 .iter()
-                .map(|c| super::super::chain::path_length(&c.path))
+                .map(|c| super::super::segments::path_length(&c.path))
                 .sum();
             // Ties (within 1%) go to the larger radius, tried first.
             if best.as_ref().is_none_or(|b| len < 0.99 * b.2) {
@@ -281,7 +281,7 @@ fn turn_plan(plan: &LevelPlan, a: f64) -> LevelPlan {
                     .map(|sg| Seg {
                         a: turn(sg.a),
                         b: turn(sg.b),
-                        arc: sg.arc.map(|arc| super::super::chain::Arc {
+                        arc: sg.arc.map(|arc| super::super::segments::Arc {
                             center: turn(arc.center),
                             ..arc
                         }),
@@ -356,7 +356,7 @@ fn plan_in_frame(
     let ctx = Morph {
         b: &b,
         b_dir: if ccw { b_eps.clone() } else { reversed(&b_eps) },
-        b_samples: sample_loop(&b, ds),
+        b_samples: sample_every(&b, ds),
         sp,
         ds,
         ds_last,
@@ -385,7 +385,7 @@ fn plan_in_frame(
                 Construction::Harmonic
             };
             pts.extend(m.points);
-            let mut path = inside::lap_path(&pts, &b_eps, ds_last, opts.arcs);
+            let mut path = keep_inside::lap_path(&pts, &b_eps, ds_last, opts.arcs);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {

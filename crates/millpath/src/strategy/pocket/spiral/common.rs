@@ -1,7 +1,7 @@
 //! What the spiral's morphs share: the last loop's margin, the arc tolerance, the stats, and
 //! sampling along closed loops.
 
-use super::super::chain::{Seg, segs_from_vertices};
+use super::super::segments::{Seg, segs_from_vertices};
 use super::super::shape::closed_chain;
 use crate::geom::Point;
 use cavalier_contours::polyline::{PlineCreation, PlineSourceMut, Polyline};
@@ -160,7 +160,7 @@ pub fn closed_pline(pts: &[Point]) -> Polyline<f64> {
 }
 
 /// Points along a closed loop at spacing at most `ds` (arcs sampled on the arc).
-pub fn sample_loop(pl: &Polyline<f64>, ds: f64) -> Vec<Point> {
+pub fn sample_every(pl: &Polyline<f64>, ds: f64) -> Vec<Point> {
     let mut out = Vec::new();
     for sg in segs_from_vertices(&closed_chain(pl)) {
         let n = ((sg.length() / ds).ceil() as usize).max(1);

@@ -162,7 +162,7 @@ pub fn ridge_segment(
     hint: crate::geom::Vec2,
 ) -> Option<(Point, Point)> {
     let sliver = offset(b, 0.99 * rho)?;
-    let pts = super::common::sample_loop(&sliver, (0.01 * rho).max(1e-3));
+    let pts = super::common::sample_every(&sliver, (0.01 * rho).max(1e-3));
     let (_, sxx, syy, sxy) = crate::geom::region::second_moments(&pts);
     let mut u = crate::geom::Vec2::from_angle(0.5 * (2.0 * sxy).atan2(sxx - syy));
     if u.dot(hint) < 0.0 {
@@ -361,7 +361,7 @@ fn is_slot(front: &Polyline<f64>, core: &Polyline<f64>, reach: f64) -> bool {
 
 /// Sampled directed distance: the largest distance from a point of `a` to the loop `b`.
 pub fn directed_distance(a: &Polyline<f64>, b: &Polyline<f64>, ds: f64) -> f64 {
-    super::common::sample_loop(a, ds)
+    super::common::sample_every(a, ds)
         .into_iter()
         .map(|p| loop_distance(b, p))
         .fold(0.0, f64::max)

@@ -26,7 +26,7 @@
 //! loops over their windows, plus a small charge for the distance run round `R₀` past the
 //! point where the chain is entered (the first loop is run whole from there).
 
-use super::super::chain::{Seg, fit_arcs, segs_from_points};
+use super::super::segments::{Seg, fit_arcs, segs_from_points};
 use super::ring::Ring;
 use crate::geom::Point;
 

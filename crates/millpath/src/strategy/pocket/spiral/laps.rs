@@ -17,11 +17,11 @@
 //! a grid); only the start direction of the central spiral is taken from the pocket's principal
 //! axis, so that turning the pocket turns the path.
 
-use super::super::chain::segs_from_vertices;
 use super::super::levels::{Cut, CutEntry, LevelPlan};
+use super::super::segments::segs_from_vertices;
 use super::super::shape::{closed_chain, restart_near, reversed};
 use super::common::{
-    Construction, LoopWalker, SpiralStats, blend_lap, fractions, resample, sample_loop,
+    Construction, LoopWalker, SpiralStats, blend_lap, fractions, resample, sample_every,
 };
 use super::fronts::{FrontOptions, capsule, circle, fronts};
 use crate::geom::{Point, Vec2};
@@ -107,7 +107,7 @@ impl FrontSpiral<'_> {
                 let start = raw.at(0).pos();
                 restart_near(&orient(&raw), Point::new(start.x, start.y))
             };
-            let mut lap = resample(&sample_loop(&cap(rho_h), 0.25 * ds), ds);
+            let mut lap = resample(&sample_every(&cap(rho_h), 0.25 * ds), ds);
             // The first blend lap passes the ridge on one side at about (ρ_h + ρ_1)/2 and on
             // the other at ρ_1 (the half it starts on was passed at ρ_h): when those are more
             // than 1.8 r apart the ridge between them would stand uncut, so the first capsule
@@ -124,7 +124,7 @@ impl FrontSpiral<'_> {
                     target.path_length(),
                     &mut pts,
                 );
-                lap = resample(&sample_loop(&target, 0.25 * ds), ds);
+                lap = resample(&sample_every(&target, 0.25 * ds), ds);
             }
             lap
         } else {
@@ -165,7 +165,7 @@ impl FrontSpiral<'_> {
                         pts.push(*p + (along.at(acc) - *p) * w);
                         joined = acc;
                     }
-                    let fine = resample(&sample_loop(&target, 0.25 * ds), ds);
+                    let fine = resample(&sample_every(&target, 0.25 * ds), ds);
                     let fr = fractions(&fine);
                     for (q, x) in fine.iter().zip(&fr) {
                         if x * len > joined {
@@ -181,7 +181,7 @@ impl FrontSpiral<'_> {
                 // Equal spacing along the whole loop (not per segment of the front, whose
                 // vertices depend on the offsets' internals): no short chords for the
                 // look-ahead to stumble on, and the same samples however the pocket is turned.
-                lap = resample(&sample_loop(&target, 0.25 * ds), ds);
+                lap = resample(&sample_every(&target, 0.25 * ds), ds);
                 stats.morph_laps += 1;
                 continue;
             }
@@ -202,7 +202,7 @@ impl FrontSpiral<'_> {
             let first = last.at(0).pos();
             pts.push(Point::new(first.x, first.y));
             stats.morph_laps += 1;
-            let mut path = super::inside::lap_path(&pts, self.b_eps, self.ds_last, self.arcs);
+            let mut path = super::keep_inside::lap_path(&pts, self.b_eps, self.ds_last, self.arcs);
             path.extend(segs_from_vertices(&closed_chain(&last)));
             last_loop = Some(path);
             break;

@@ -45,7 +45,7 @@ pub(crate) mod classic;
 pub(crate) mod common;
 pub(crate) mod fronts;
 pub(crate) mod harmonic;
-mod inside;
+mod keep_inside;
 pub(crate) mod lanes;
 pub(crate) mod laps;
 pub(crate) mod offsets;

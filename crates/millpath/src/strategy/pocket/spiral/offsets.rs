@@ -20,11 +20,11 @@
 //! room (as `offset` does), else by a ramp; the entry moves then choose direct entries over
 //! cleared material ([`super::super::levels::direct_entries`]).
 
-use super::super::chain::{Seg, segs_from_points};
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::loops::{OffsetLoops, samples};
 use super::super::offset::{RIDGE_SPACING, entry_for, too_large};
 use super::super::options::{Direction, PocketOptions};
+use super::super::segments::{Seg, segs_from_points};
 use super::super::shape::{IndexedLoop, OffsetRegion, PocketShape, crosses, reversed};
 use super::common::{ARC_TOLERANCE, LAST_LOOP_MARGIN, last_loop};
 use super::lanes::{LaneOptions, Outermost, chain_path, chorded};

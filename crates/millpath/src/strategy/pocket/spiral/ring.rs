@@ -1,7 +1,7 @@
 //! A closed loop of lines and arcs parametrised by arc length: points, tangents, projection,
 //! exact sub-paths and how much the loop turns along a stretch.
 
-use super::super::chain::{Arc, Seg};
+use super::super::segments::{Arc, Seg};
 use super::super::shape::closed_chain;
 use crate::geom::Point;
 use cavalier_contours::polyline::Polyline;

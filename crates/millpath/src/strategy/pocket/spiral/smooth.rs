@@ -17,7 +17,7 @@
 //! change onto a wall's loop on is touched (the wall's loop is cut exactly). The result is
 //! written as chords within [`SmoothOptions::chord_tolerance`] of the smoothed samples.
 
-use super::super::chain::Seg;
+use super::super::segments::Seg;
 use crate::geom::{Point, Vec2};
 
 /// How the interior path is smoothed.

@@ -22,7 +22,7 @@
 use super::common::{ARC_TOLERANCE, LAST_LOOP_MARGIN};
 use crate::geom::Point;
 use crate::geom::region::offset_loops;
-use crate::strategy::pocket::chain::{Seg, fit_arcs, fit_arcs_where, segs_from_points};
+use crate::strategy::pocket::segments::{Seg, fit_arcs, fit_arcs_where, segs_from_points};
 use crate::strategy::pocket::shape::{pt, reversed, v2};
 use cavalier_contours::polyline::{
     PlineSegIntr, PlineSource, PlineVertex, Polyline, dist_from_segment_start, pline_seg_intr,
