@@ -336,22 +336,22 @@ fn decode_pocket(data: &[u8], walls: bool) -> Option<PocketCase> {
         number: b.pick(100) as u32,
     };
     let depth = b.num(0.5, 8.0);
-    let opts = PocketOptions {
-        stepover: if b.flag() {
+    let opts = PocketOptions::default()
+        .with_stepover(if b.flag() {
             Stepover::Fraction(b.num(0.3, 1.0))
         } else {
             Stepover::Distance(b.num(size * 0.05, size * 0.3))
-        },
-        depth,
-        step_down: b.num(depth.abs().min(1e3) / 3.0 + 0.1, 10.0),
-        wall_stock: b.num(0.0, 0.5),
-        floor_stock: b.num(0.0, 0.3),
-        direction: if b.flag() {
+        })
+        .with_depth(depth)
+        .with_step_down(b.num(depth.abs().min(1e3) / 3.0 + 0.1, 10.0))
+        .with_wall_stock(b.num(0.0, 0.5))
+        .with_floor_stock(b.num(0.0, 0.3))
+        .with_direction(if b.flag() {
             Direction::Climb
         } else {
             Direction::Conventional
-        },
-        entry: if b.flag() {
+        })
+        .with_entry(if b.flag() {
             Entry::Helix {
                 radius: b.num(0.5, 5.0),
                 ramp_angle: b.num(0.02, 0.3),
@@ -360,51 +360,47 @@ fn decode_pocket(data: &[u8], walls: bool) -> Option<PocketCase> {
             Entry::Ramp {
                 ramp_angle: b.num(0.02, 0.3),
             }
-        },
-        safe_height: b.num(0.5, 2.0),
-        clearance_height: b.num(2.0, 10.0),
-        feed: b.num(1.0, 50.0),
-        plunge_feed: b.num(1.0, 20.0),
-        slowdown: b.num(0.2, 1.0),
-        zigzag_angle: b.num(-3.2, 3.2),
-        transition: b.num(0.0, 1.0),
-        min_radius: b.num(0.1, 2.0),
+        })
+        .with_safe_height(b.num(0.5, 2.0))
+        .with_clearance_height(b.num(2.0, 10.0))
+        .with_feed(b.num(1.0, 50.0))
+        .with_plunge_feed(b.num(1.0, 20.0))
+        .with_slowdown(b.num(0.2, 1.0))
+        .with_zigzag_angle(b.num(-3.2, 3.2))
+        .with_transition(b.num(0.0, 1.0))
+        .with_min_radius(b.num(0.1, 2.0))
         // The default morph on half the inputs; the paper's two on the rest (chosen by the
         // transition drawn above: no extra byte, so the committed corpus keeps decoding).
-        morph: if b.flag() {
+        .with_morph(if b.flag() {
             pocket::SpiralMorph::Offsets
         } else {
             pocket::SpiralMorph::Fronts
-        },
-        arcs: false,
+        })
+        .with_arcs(false)
         // Curvature ramps (the default) unless the zigzag angle drawn is negative.
-        curvature_ramps: true,
-        finish: b.flag(),
-        modulate_feed: false,
+        .with_curvature_ramps(true)
+        .with_finish(b.flag())
+        .with_modulate_feed(false);
+    let morph = match opts.spiral.morph {
+        pocket::SpiralMorph::Fronts if opts.spiral.transition >= 0.5 => {
+            pocket::SpiralMorph::Harmonic
+        }
+        m => m,
     };
-    let opts = PocketOptions {
-        morph: match opts.morph {
-            pocket::SpiralMorph::Fronts if opts.transition >= 0.5 => pocket::SpiralMorph::Harmonic,
-            m => m,
-        },
-        curvature_ramps: opts.zigzag_angle >= 0.0,
-        ..opts
-    };
+    let ramps = opts.zigzag.angle >= 0.0;
     // `--arcs` on about half the inputs, derived from a drawn value so that the committed
     // corpus keeps its meaning (no extra byte drawn).
-    let opts = PocketOptions {
-        arcs: opts.min_radius > 1.05,
-        ..opts
-    };
+    let arcs = opts.spiral.min_radius > 1.05;
+    let opts = opts
+        .with_morph(morph)
+        .with_curvature_ramps(ramps)
+        .with_arcs(arcs);
     // Drawn after every other value, so that the committed corpus keeps its meaning (its
     // inputs end before these bytes, which then read as zeros: the finest cell, no
     // modulation). The stock simulation's raster as the CLI's `--cell` makes it after its
     // check (> 0 mm), coarse enough for fuzzing (at most ~80 cells across the pocket).
     let cell = b.unit(size / 80.0, size / 20.0);
-    let opts = PocketOptions {
-        modulate_feed: b.flag(),
-        ..opts
-    };
+    let opts = opts.with_modulate_feed(b.flag());
     let sim = SimOptions {
         cell,
         step: (2.0 * cell).max(0.1),

@@ -29,17 +29,11 @@ fn plan(c: &mut Criterion) {
             b.iter(|| plan_level(kind, black_box(&shape), &tool, &opts));
         });
     }
-    let fronts = PocketOptions {
-        morph: SpiralMorph::Fronts,
-        ..PocketOptions::default()
-    };
+    let fronts = PocketOptions::default().with_morph(SpiralMorph::Fronts);
     g.bench_function("spiral --morph fronts", |b| {
         b.iter(|| plan_level(StrategyKind::Spiral, black_box(&shape), &tool, &fronts));
     });
-    let arcs = PocketOptions {
-        arcs: true,
-        ..PocketOptions::default()
-    };
+    let arcs = PocketOptions::default().with_arcs(true);
     g.bench_function("spiral --arcs", |b| {
         b.iter(|| plan_level(StrategyKind::Spiral, black_box(&shape), &tool, &arcs));
     });
@@ -94,11 +88,9 @@ fn wavy(n: usize, r: f64) -> Outline {
 
 fn walls(c: &mut Criterion) {
     // Four roughing levels, 25 mm deep by 6.35 mm (the aerospace pocket's CLI example).
-    let opts = PocketOptions {
-        depth: 25.0,
-        step_down: 6.35,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default()
+        .with_depth(25.0)
+        .with_step_down(6.35);
     let cases = [
         (
             "aerospace 150x100",

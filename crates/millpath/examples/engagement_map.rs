@@ -31,7 +31,7 @@ fn main() {
         .ok()
         .and_then(|c| c.parse().ok())
     {
-        opts.transition = c;
+        opts.spiral.transition = c;
     }
     let tp = toolpath(kind, &shape, &tool, &opts).expect("toolpath");
     let s = opts.stepover_mm(&tool);

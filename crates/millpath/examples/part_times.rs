@@ -9,11 +9,9 @@ use millpath::toolpath::Tool;
 
 fn main() {
     let tool = Tool::flat(12.7).expect("tool");
-    let opts = PocketOptions {
-        depth: 12.7,
-        step_down: 6.35,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default()
+        .with_depth(12.7)
+        .with_step_down(6.35);
     let sim = SimOptions {
         cell: 0.1,
         step: 0.2,

@@ -64,21 +64,16 @@ fn main() {
     for p in builtin::shape_suite() {
         let tool = Tool::flat(p.tool_diameter).expect("tool");
         for modulate in [true, false] {
-            let opts = PocketOptions {
-                depth: 5.0,
-                step_down: 5.0,
-                modulate_feed: modulate,
-                ..PocketOptions::default()
-            };
+            let opts = PocketOptions::default()
+                .with_depth(5.0)
+                .with_step_down(5.0)
+                .with_modulate_feed(modulate);
             for kind in [
                 StrategyKind::Spiral,
                 StrategyKind::Offset,
                 StrategyKind::Zigzag,
             ] {
-                let for_lc = PocketOptions {
-                    curvature_ramps: false,
-                    ..opts.clone()
-                };
+                let for_lc = opts.clone().with_curvature_ramps(false);
                 let (r, r_lc) = match (
                     pocket::generate(kind, &p.shape, &tool, &opts, &sim),
                     pocket::generate(kind, &p.shape, &tool, &for_lc, &sim),

@@ -258,13 +258,11 @@ fn random_pockets_in_every_dialect_and_units() {
             StrategyKind::Zigzag,
         ][usize::from(kind)];
         let tool = Tool::flat(6.0).unwrap();
-        let opts = PocketOptions {
-            depth: if two_levels { 2.0 } else { 1.0 },
-            step_down: 1.0,
-            stepover: pocket::Stepover::Fraction(so),
-            arcs,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default()
+            .with_depth(if two_levels { 2.0 } else { 1.0 })
+            .with_step_down(1.0)
+            .with_stepover(pocket::Stepover::Fraction(so))
+            .with_arcs(arcs);
         let sim = SimOptions {
             cell: 0.15,
             step: 0.3,
@@ -487,11 +485,9 @@ fn estimate(text: &str, d: Dialect, start: Point3, machine: &Machine) -> f64 {
 #[test]
 fn the_same_pocket_takes_the_same_time_in_every_dialect() {
     let shape = builtin::aerospace_pocket();
-    let opts = PocketOptions {
-        depth: 6.35,
-        step_down: 6.35,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default()
+        .with_depth(6.35)
+        .with_step_down(6.35);
     let sim = SimOptions {
         cell: 0.2,
         step: 0.4,
@@ -499,10 +495,7 @@ fn the_same_pocket_takes_the_same_time_in_every_dialect() {
     };
     let machine = hsm();
     for arcs in [false, true] {
-        let opts = PocketOptions {
-            arcs,
-            ..opts.clone()
-        };
+        let opts = opts.clone().with_arcs(arcs);
         let r = pocket::generate(
             StrategyKind::Spiral,
             &shape,

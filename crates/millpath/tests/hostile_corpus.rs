@@ -353,7 +353,7 @@ fn arcs_stay_out_of_the_walls_without_a_fallback() {
         let (kind, shape, tool, mut opts, sim) =
             harness::pocket_case_vertical(&data).expect("a pocket");
         assert_eq!(kind, pocket::StrategyKind::Spiral, "{f}");
-        opts.arcs = true;
+        opts.spiral.arcs = true;
         let r = pocket::generate(kind, &shape, &tool, &opts, &sim).expect("a toolpath");
         assert!(r.notes.is_empty(), "{f}: {:?}", r.notes);
         let arcs = r
@@ -496,7 +496,7 @@ fn arcs_clearance_over_the_corpus() {
         if kind != pocket::StrategyKind::Spiral {
             continue;
         }
-        opts.arcs = true;
+        opts.spiral.arcs = true;
         if let Ok(r) = pocket::generate(kind, &shape, &tool, &opts, &sim) {
             fallbacks += usize::from(!r.notes.is_empty());
             let v = r.verification;
@@ -548,7 +548,7 @@ fn uncut_over_the_corpus() {
                     .and_then(|t| t.split(' ').next())
                     .and_then(|a| a.parse::<f64>().ok())
                     .unwrap_or(f64::NAN);
-                let morph = format!("{:?} walls {:?}", opts.morph, !shape.is_prismatic());
+                let morph = format!("{:?} walls {:?}", opts.spiral.morph, !shape.is_prismatic());
                 rows.push((area, kind, name, format!("{morph}: {text}")));
             }
             Err(_) => {}
@@ -615,7 +615,7 @@ fn inspect_pocket() {
     eprintln!("{sim:?}");
     eprintln!(
         "{kind:?} morph {:?} tool {} stepover {:.3} depth {} step-down {} stock {} finish {} islands {} prismatic {}",
-        opts.morph,
+        opts.spiral.morph,
         tool.diameter,
         opts.stepover_mm(&tool),
         opts.depth,

@@ -225,22 +225,22 @@ fn pocket_toolpaths_survive_arbitrary_polygons_and_options() {
             1 => StrategyKind::Offset,
             _ => StrategyKind::Spiral,
         };
-        let opts = PocketOptions {
-            stepover: if r.random_bool(0.5) {
+        let opts = PocketOptions::default()
+            .with_stepover(if r.random_bool(0.5) {
                 Stepover::Fraction(mostly_sane(&mut r, 0.1, 1.0, 0.05))
             } else {
                 Stepover::Distance(mostly_sane(&mut r, 0.5, 5.0, 0.05))
-            },
-            depth: mostly_sane(&mut r, 0.5, 8.0, 0.05),
-            step_down: mostly_sane(&mut r, 2.0, 5.0, 0.05),
-            wall_stock: mostly_sane(&mut r, 0.0, 0.5, 0.05),
-            floor_stock: mostly_sane(&mut r, 0.0, 0.3, 0.05),
-            direction: if r.random_bool(0.5) {
+            })
+            .with_depth(mostly_sane(&mut r, 0.5, 8.0, 0.05))
+            .with_step_down(mostly_sane(&mut r, 2.0, 5.0, 0.05))
+            .with_wall_stock(mostly_sane(&mut r, 0.0, 0.5, 0.05))
+            .with_floor_stock(mostly_sane(&mut r, 0.0, 0.3, 0.05))
+            .with_direction(if r.random_bool(0.5) {
                 Direction::Climb
             } else {
                 Direction::Conventional
-            },
-            entry: if r.random_bool(0.5) {
+            })
+            .with_entry(if r.random_bool(0.5) {
                 Entry::Helix {
                     radius: mostly_sane(&mut r, 0.5, 5.0, 0.05),
                     ramp_angle: mostly_sane(&mut r, 0.02, 0.2, 0.05),
@@ -249,27 +249,24 @@ fn pocket_toolpaths_survive_arbitrary_polygons_and_options() {
                 Entry::Ramp {
                     ramp_angle: mostly_sane(&mut r, 0.02, 0.2, 0.05),
                 }
-            },
-            safe_height: mostly_sane(&mut r, 0.5, 2.0, 0.03),
-            clearance_height: mostly_sane(&mut r, 2.0, 10.0, 0.03),
-            feed: mostly_sane(&mut r, 1.0, 50.0, 0.03),
-            plunge_feed: mostly_sane(&mut r, 1.0, 20.0, 0.03),
-            slowdown: mostly_sane(&mut r, 0.2, 1.0, 0.03),
-            zigzag_angle: mostly_sane(&mut r, -3.0, 3.0, 0.05),
-            transition: mostly_sane(&mut r, 0.0, 1.0, 0.05),
-            min_radius: mostly_sane(&mut r, 0.1, 2.0, 0.05),
-            morph: Default::default(),
-            arcs: false,
-            curvature_ramps: true,
-            finish: r.random_bool(0.3),
-            modulate_feed: false,
-        };
+            })
+            .with_safe_height(mostly_sane(&mut r, 0.5, 2.0, 0.03))
+            .with_clearance_height(mostly_sane(&mut r, 2.0, 10.0, 0.03))
+            .with_feed(mostly_sane(&mut r, 1.0, 50.0, 0.03))
+            .with_plunge_feed(mostly_sane(&mut r, 1.0, 20.0, 0.03))
+            .with_slowdown(mostly_sane(&mut r, 0.2, 1.0, 0.03))
+            .with_zigzag_angle(mostly_sane(&mut r, -3.0, 3.0, 0.05))
+            .with_transition(mostly_sane(&mut r, 0.0, 1.0, 0.05))
+            .with_min_radius(mostly_sane(&mut r, 0.1, 2.0, 0.05))
+            .with_morph(Default::default())
+            .with_arcs(false)
+            .with_curvature_ramps(true)
+            .with_finish(r.random_bool(0.3))
+            .with_modulate_feed(false);
         // Half the cases with `--arcs`, derived from a drawn value so that the seeded
         // sequence (and the cases the other fields get) stays as it was.
-        let opts = PocketOptions {
-            arcs: opts.min_radius > 1.05,
-            ..opts
-        };
+        let arcs = opts.spiral.min_radius > 1.05;
+        let opts = opts.with_arcs(arcs);
         let done = h.run(&(seed, &pts, &island, &t, kind, &opts), || {
             let Ok(outer) = Outline::from_points(&pts, "fuzz outer") else {
                 return false;

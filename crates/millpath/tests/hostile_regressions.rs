@@ -94,30 +94,29 @@ fn pocket_ramp_on_a_sliver_cut_is_bounded() {
         flute_length: 39.9137923757302,
         number: 49,
     };
-    let opts = PocketOptions {
-        stepover: Stepover::Fraction(0.7923288621551071),
-        depth: 7.152658507092601,
-        step_down: 3.859490583661331,
-        wall_stock: 0.27679943486176584,
-        floor_stock: 0.06921936228126015,
-        direction: Direction::Climb,
-        entry: Entry::Ramp {
+    let opts = PocketOptions::default()
+        .with_stepover(Stepover::Fraction(0.7923288621551071))
+        .with_depth(7.152658507092601)
+        .with_step_down(3.859490583661331)
+        .with_wall_stock(0.27679943486176584)
+        .with_floor_stock(0.06921936228126015)
+        .with_direction(Direction::Climb)
+        .with_entry(Entry::Ramp {
             ramp_angle: 0.08997854129228909,
-        },
-        safe_height: 0.7406850003585472,
-        clearance_height: 8.285104908990768,
-        feed: 22.84844133869721,
-        plunge_feed: 11.53364949088229,
-        slowdown: 0.3309526681507178,
-        zigzag_angle: -2.7371216566852055,
-        transition: 0.7358653342432562,
-        min_radius: 0.8251498205924716,
-        morph: Default::default(),
-        arcs: false,
-        curvature_ramps: true,
-        finish: false,
-        modulate_feed: false,
-    };
+        })
+        .with_safe_height(0.7406850003585472)
+        .with_clearance_height(8.285104908990768)
+        .with_feed(22.84844133869721)
+        .with_plunge_feed(11.53364949088229)
+        .with_slowdown(0.3309526681507178)
+        .with_zigzag_angle(-2.7371216566852055)
+        .with_transition(0.7358653342432562)
+        .with_min_radius(0.8251498205924716)
+        .with_morph(Default::default())
+        .with_arcs(false)
+        .with_curvature_ramps(true)
+        .with_finish(false)
+        .with_modulate_feed(false);
     let tp = pocket::toolpath(StrategyKind::Zigzag, &shape, &tool, &opts).unwrap();
     assert!(tp.moves.len() < 100_000, "{} moves", tp.moves.len());
     assert!(tp.moves.iter().all(|m| m.to.is_finite()));

@@ -26,12 +26,10 @@ fn auto_writes_the_fastest_verified_strategy() {
     let hsm = Machine::preset("hsm").unwrap();
     let time = |tp: &Toolpath| millpath::motion::cycle_time(tp, &hsm);
     for finish in [false, true] {
-        let opts = PocketOptions {
-            depth: 5.0,
-            step_down: 5.0,
-            finish,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default()
+            .with_depth(5.0)
+            .with_step_down(5.0)
+            .with_finish(finish);
         let cands = pocket::plan_all(&shape, &tool, &opts, &sim, &time);
         assert_eq!(
             cands.iter().map(|c| c.kind).collect::<Vec<_>>(),
@@ -85,23 +83,18 @@ fn arcs_request_keeps_the_faster_form_on_each_machine() {
     for (name, ramps) in [("hsm", true), ("linuxcnc-time", false)] {
         let m = Machine::preset(name).unwrap();
         let time = |tp: &Toolpath| millpath::motion::cycle_time(tp, &m);
-        let opts = PocketOptions {
-            depth: 5.0,
-            step_down: 5.0,
-            arcs: true,
-            curvature_ramps: ramps,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default()
+            .with_depth(5.0)
+            .with_step_down(5.0)
+            .with_arcs(true)
+            .with_curvature_ramps(ramps);
         let (r, t) =
             pocket::arcs_or_chords(StrategyKind::Spiral, &shape, &tool, &opts, &sim, &time)
                 .unwrap();
         let t = t.unwrap();
         assert!(r.verification.problems().is_empty(), "{name}");
         let a = pocket::generate(StrategyKind::Spiral, &shape, &tool, &opts, &sim).unwrap();
-        let chord_opts = PocketOptions {
-            arcs: false,
-            ..opts.clone()
-        };
+        let chord_opts = opts.clone().with_arcs(false);
         let c = pocket::generate(StrategyKind::Spiral, &shape, &tool, &chord_opts, &sim).unwrap();
         let ta = plan_toolpath(&a.toolpath, &m).unwrap().total_time();
         let tc = plan_toolpath(&c.toolpath, &m).unwrap().total_time();

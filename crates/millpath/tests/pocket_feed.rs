@@ -78,16 +78,14 @@ fn along(tp: &Toolpath, samples: &[EngagementSample], opts: &PocketOptions) -> V
 fn check(kind: StrategyKind) {
     let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
-    let opts = PocketOptions {
-        depth: 5.0,
-        step_down: 5.0,
-        feed: 600.0 * 25.4 / 60.0,
-        plunge_feed: 600.0 * 25.4 / 180.0,
+    let opts = PocketOptions::default()
+        .with_depth(5.0)
+        .with_step_down(5.0)
+        .with_feed(600.0 * 25.4 / 60.0)
+        .with_plunge_feed(600.0 * 25.4 / 180.0)
         // The finishing pass too (not after the spiral: its finishing lead-in feeds down
         // into the 5 µm the spiral's last lap leaves, which the verifier calls a plunge).
-        finish: kind != StrategyKind::Spiral,
-        ..PocketOptions::default()
-    };
+        .with_finish(kind != StrategyKind::Spiral);
     let r = pocket::generate(kind, &shape, &tool, &opts, &SIM).unwrap();
     assert!(r.notes.is_empty(), "{:?}", r.notes);
     assert!(r.verification.problems().is_empty());

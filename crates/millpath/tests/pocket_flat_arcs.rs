@@ -32,12 +32,10 @@ fn the_pockets_arc_criterion_is_the_writers_default_rounding() {
 #[test]
 fn rounded_slot_spiral_with_arcs_verifies_times_and_writes() {
     let tool = Tool::flat(10.0).unwrap();
-    let opts = PocketOptions {
-        depth: 5.0,
-        step_down: 5.0,
-        arcs: true,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default()
+        .with_depth(5.0)
+        .with_step_down(5.0)
+        .with_arcs(true);
     let sim = SimOptions {
         cell: 0.1,
         step: 0.2,

@@ -106,17 +106,11 @@ fn tool_too_large_and_bad_stepovers_are_refused() {
             Stepover::Fraction(1.2),
             Stepover::Distance(7.0),
         ] {
-            let o = PocketOptions {
-                stepover: s,
-                ..PocketOptions::default()
-            };
+            let o = PocketOptions::default().with_stepover(s);
             let e = input_error(pocket::generate(kind, &shape, &tool, &o, &sim));
             assert!(e.contains("stepover"), "{kind:?} {s:?}: {e}");
         }
-        let o = PocketOptions {
-            depth: f64::NAN,
-            ..PocketOptions::default()
-        };
+        let o = PocketOptions::default().with_depth(f64::NAN);
         assert!(input_error(pocket::generate(kind, &shape, &tool, &o, &sim)).contains("depth"));
     }
 }
@@ -127,11 +121,7 @@ fn tool_too_large_and_bad_stepovers_are_refused() {
 #[test]
 fn absurd_path_lengths_are_refused_before_planning() {
     let tool = Tool::flat(1.0).unwrap();
-    let opts = PocketOptions {
-        depth: 1.0,
-        step_down: 1.0,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default().with_depth(1.0).with_step_down(1.0);
     let sim = SimOptions::default();
     let big = PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 6000.0, 4000.0, 10.0));
     for kind in [

@@ -27,11 +27,7 @@ fn circle(cx: f64, cy: f64, r: f64) -> Outline {
 }
 
 fn one_level() -> PocketOptions {
-    PocketOptions {
-        depth: 2.0,
-        step_down: 2.0,
-        ..PocketOptions::default()
-    }
+    PocketOptions::default().with_depth(2.0).with_step_down(2.0)
 }
 
 /// The pockets: one square island in the middle; a round and a square island, one close to
@@ -116,18 +112,16 @@ fn islands_with_stock_levels_and_finishing() {
     let (name, shape) = &shapes[1];
     for kind in [StrategyKind::Offset, StrategyKind::Zigzag] {
         for finish in [false, true] {
-            let opts = PocketOptions {
-                depth: 4.0,
-                step_down: 2.0,
-                wall_stock: 0.5,
-                floor_stock: 0.2,
-                direction: pocket::Direction::Conventional,
-                entry: pocket::Entry::Ramp {
+            let opts = PocketOptions::default()
+                .with_depth(4.0)
+                .with_step_down(2.0)
+                .with_wall_stock(0.5)
+                .with_floor_stock(0.2)
+                .with_direction(pocket::Direction::Conventional)
+                .with_entry(pocket::Entry::Ramp {
                     ramp_angle: 5f64.to_radians(),
-                },
-                finish,
-                ..PocketOptions::default()
-            };
+                })
+                .with_finish(finish);
             let r = pocket::generate(kind, shape, &tool, &opts, &coarse())
                 .unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
             let v = &r.verification;
@@ -178,10 +172,7 @@ fn the_older_spiral_morphs_refuse_islands_and_suggest_offset() {
     let tool = Tool::flat(8.0).unwrap();
     let shapes = pockets();
     for morph in [pocket::SpiralMorph::Fronts, pocket::SpiralMorph::Harmonic] {
-        let opts = PocketOptions {
-            morph,
-            ..one_level()
-        };
+        let opts = one_level().with_morph(morph);
         let e = pocket::generate(StrategyKind::Spiral, &shapes[0].1, &tool, &opts, &coarse())
             .unwrap_err();
         assert!(matches!(e, Error::Input(_)), "{e}");

@@ -89,13 +89,11 @@ fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
     for modulate in [true, false] {
         // Made for this machine, as `--machine` does: LinuxCNC is trapezoidal, no curvature
         // ramps.
-        let opts = PocketOptions {
-            depth: 5.0,
-            step_down: 5.0,
-            modulate_feed: modulate,
-            curvature_ramps: false,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default()
+            .with_depth(5.0)
+            .with_step_down(5.0)
+            .with_modulate_feed(modulate)
+            .with_curvature_ramps(false);
         for kind in [
             StrategyKind::Spiral,
             StrategyKind::Offset,

@@ -25,11 +25,7 @@ fn sim() -> SimOptions {
 }
 
 fn opts() -> PocketOptions {
-    PocketOptions {
-        depth: 4.0,
-        step_down: 2.0,
-        ..PocketOptions::default()
-    }
+    PocketOptions::default().with_depth(4.0).with_step_down(2.0)
 }
 
 fn square(x: f64, y: f64, w: f64, h: f64) -> Outline {
@@ -233,11 +229,7 @@ fn select_cuts_only_the_pockets_asked_for() {
 #[test]
 fn programs_pocket_writes_pass_verification_at_their_rounding() {
     let tool = Tool::flat(10.0).expect("tool");
-    let o = PocketOptions {
-        depth: 5.0,
-        step_down: 2.5,
-        ..PocketOptions::default()
-    };
+    let o = PocketOptions::default().with_depth(5.0).with_step_down(2.5);
     let suite = builtin::shape_suite();
     let mut checked = 0;
     for sp in suite.iter().take(4) {

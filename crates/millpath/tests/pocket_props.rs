@@ -142,12 +142,10 @@ fn seed() -> RngSeed {
 }
 
 fn one_level(so: f64) -> PocketOptions {
-    PocketOptions {
-        depth: 1.0,
-        step_down: 1.0,
-        stepover: pocket::Stepover::Fraction(so),
-        ..PocketOptions::default()
-    }
+    PocketOptions::default()
+        .with_depth(1.0)
+        .with_step_down(1.0)
+        .with_stepover(pocket::Stepover::Fraction(so))
 }
 
 #[test]
@@ -166,10 +164,7 @@ fn convex_pockets_verify() {
             &ALL,
             &PocketShape::simple(o),
             &tool,
-            &PocketOptions {
-                arcs,
-                ..one_level(so)
-            },
+            &one_level(so).with_arcs(arcs),
         )
     });
 }
@@ -189,10 +184,7 @@ fn non_convex_pockets_verify() {
             &ALL,
             &PocketShape::simple(o),
             &tool,
-            &PocketOptions {
-                arcs,
-                ..one_level(so)
-            },
+            &one_level(so).with_arcs(arcs),
         )
     });
 }
@@ -253,10 +245,7 @@ fn a_second_maximum_of_the_distance_is_not_taken_for_a_ridge_slot() {
     let o = star(&radii, 1.5).unwrap();
     let tool = Tool::flat(4.9680392574462475).unwrap();
     for arcs in [false, true] {
-        let opts = PocketOptions {
-            arcs,
-            ..one_level(0.7175041304758163)
-        };
+        let opts = one_level(0.7175041304758163).with_arcs(arcs);
         let r = pocket::generate(
             StrategyKind::Spiral,
             &PocketShape::simple(o.clone()),
@@ -294,11 +283,7 @@ fn transformed(o: &Outline, angle: f64, dx: f64, dy: f64, reverse: bool, shift: 
 /// Path length and cycle time on `hsm` of `kind` on the pocket `o` with an island `isl`.
 fn run(kind: StrategyKind, o: Outline, isl: Outline) -> (f64, f64) {
     let tool = Tool::flat(6.0).unwrap();
-    let opts = PocketOptions {
-        depth: 2.0,
-        step_down: 2.0,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default().with_depth(2.0).with_step_down(2.0);
     let shape = PocketShape::new(o, vec![isl], "moved").unwrap();
     let tp = pocket::toolpath(kind, &shape, &tool, &opts).unwrap();
     (tp.cut_length(), hsm_time(&tp))

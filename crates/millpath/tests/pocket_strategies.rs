@@ -17,11 +17,7 @@ fn coarse() -> SimOptions {
 fn aerospace_pocket_all_strategies_verify() {
     let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
-    let opts = PocketOptions {
-        depth: 6.0,
-        step_down: 6.0,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default().with_depth(6.0).with_step_down(6.0);
     for kind in [
         StrategyKind::Zigzag,
         StrategyKind::Offset,
@@ -54,11 +50,9 @@ fn spiral_spacing_and_engagement_share() {
     use millpath::strategy::pocket::SpiralMorph as Morph;
     let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
-    let base = PocketOptions {
-        depth: 6.25,
-        step_down: 6.25,
-        ..PocketOptions::default()
-    };
+    let base = PocketOptions::default()
+        .with_depth(6.25)
+        .with_step_down(6.25);
     let s = 0.4 * 12.7;
     let off = pocket::generate(StrategyKind::Offset, &shape, &tool, &base, &coarse()).unwrap();
     let mut times = Vec::new();
@@ -66,10 +60,7 @@ fn spiral_spacing_and_engagement_share() {
         (Morph::Harmonic, s),
         (Morph::Fronts, std::f64::consts::SQRT_2 * s),
     ] {
-        let opts = PocketOptions {
-            morph,
-            ..base.clone()
-        };
+        let opts = base.clone().with_morph(morph);
         let (_, stats) = pocket::spiral_with_stats(&shape, &tool, &opts).unwrap();
         let made_by = if morph == Morph::Fronts {
             pocket::Construction::Fronts
@@ -134,11 +125,7 @@ fn spiral_spacing_and_engagement_share() {
 fn spiral_on_l_t_crescent_and_long_slot() {
     use millpath::geom::{Outline, Point};
     let tool = Tool::flat(6.0).unwrap();
-    let opts = PocketOptions {
-        depth: 3.0,
-        step_down: 3.0,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default().with_depth(3.0).with_step_down(3.0);
     let p = |x: f64, y: f64| Point::new(x, y);
     let ell = builtin::rounded_polygon(
         &[
@@ -201,11 +188,7 @@ fn spiral_on_l_t_crescent_and_long_slot() {
 #[test]
 fn structural_part_all_strategies() {
     let tool = Tool::flat(12.7).unwrap();
-    let opts = PocketOptions {
-        depth: 5.0,
-        step_down: 5.0,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default().with_depth(5.0).with_step_down(5.0);
     for (name, shape) in builtin::structural_part() {
         for kind in [
             StrategyKind::Zigzag,
@@ -230,12 +213,10 @@ fn structural_part_all_strategies() {
 fn spiral_invariance_under_reversal_rotation_translation() {
     use millpath::geom::{Outline, Point};
     let tool = Tool::flat(12.7).unwrap();
-    let opts = PocketOptions {
-        depth: 6.0,
-        step_down: 6.0,
-        modulate_feed: false,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default()
+        .with_depth(6.0)
+        .with_step_down(6.0)
+        .with_modulate_feed(false);
     let base = builtin::aerospace_pocket();
     let verts: Vec<(Point, f64)> = base.outer.vertices().collect();
     let run = |v: &[(Point, f64)]| {
@@ -296,15 +277,8 @@ fn spiral_arcs_are_tangent_continuous() {
     let shape =
         pocket::PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 120.0, 80.0, 10.0));
     let tool = Tool::flat(12.7).unwrap();
-    let base = PocketOptions {
-        depth: 5.0,
-        step_down: 5.0,
-        ..PocketOptions::default()
-    };
-    let arcs = PocketOptions {
-        arcs: true,
-        ..base.clone()
-    };
+    let base = PocketOptions::default().with_depth(5.0).with_step_down(5.0);
+    let arcs = base.clone().with_arcs(true);
     let r = pocket::generate(StrategyKind::Spiral, &shape, &tool, &arcs, &coarse()).unwrap();
     assert!(
         r.verification.problems().is_empty(),
@@ -367,12 +341,10 @@ fn spiral_arcs_are_tangent_continuous() {
 fn every_strategy_verifies_with_a_finishing_pass() {
     let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).unwrap();
-    let opts = PocketOptions {
-        depth: 5.0,
-        step_down: 5.0,
-        finish: true,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default()
+        .with_depth(5.0)
+        .with_step_down(5.0)
+        .with_finish(true);
     for kind in [
         StrategyKind::Spiral,
         StrategyKind::Offset,

@@ -16,11 +16,7 @@ fn coarse() -> SimOptions {
 }
 
 fn opts() -> PocketOptions {
-    PocketOptions {
-        depth: 6.0,
-        step_down: 2.0,
-        ..PocketOptions::default()
-    }
+    PocketOptions::default().with_depth(6.0).with_step_down(2.0)
 }
 
 fn drafted() -> PocketShape {

@@ -310,11 +310,9 @@ fn transition_sweep(
     let feeds = [200.0, 300.0, 400.0, 600.0];
     let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7)?;
-    let base = PocketOptions {
-        depth: 6.35,
-        step_down: 6.35,
-        ..PocketOptions::default()
-    };
+    let base = PocketOptions::default()
+        .with_depth(6.35)
+        .with_step_down(6.35);
     let total = (feeds.len() * (1 + ratios.len())) as u64;
     let pb = ProgressBar::new(total);
     pb.set_style(
@@ -475,11 +473,9 @@ fn pockets(
     millpath::io::write_atomic(&dxf_path, dxf.as_bytes())?;
     let tool = Tool::flat(12.7)?;
     // 12.7 mm end mill, 40 % stepover, 600 in/min, two levels of 6.35 mm.
-    let opts = PocketOptions {
-        depth: 12.7,
-        step_down: 6.35,
-        ..PocketOptions::default()
-    };
+    let opts = PocketOptions::default()
+        .with_depth(12.7)
+        .with_step_down(6.35);
     let sim = SimOptions {
         cell: 0.1,
         step: 0.2,

@@ -186,35 +186,34 @@ impl PocketSettings {
             }
         };
         let feed = parse_feed(&self.feed)?;
-        let mut opts = PocketOptions {
-            stepover: Stepover::parse(&self.stepover)?,
-            depth: self.depth,
-            step_down: self.step_down,
-            wall_stock: self.wall_stock,
-            floor_stock: self.floor_stock,
-            direction: if self.conventional {
+        let mut opts = PocketOptions::default()
+            .with_stepover(Stepover::parse(&self.stepover)?)
+            .with_depth(self.depth)
+            .with_step_down(self.step_down)
+            .with_wall_stock(self.wall_stock)
+            .with_floor_stock(self.floor_stock)
+            .with_direction(if self.conventional {
                 Direction::Conventional
             } else {
                 Direction::Climb
-            },
-            entry,
-            safe_height: self.safe_height,
-            clearance_height: self.clearance_height,
-            feed,
-            plunge_feed: feed / 3.0,
-            slowdown: self.slowdown,
-            zigzag_angle: self.angle.to_radians(),
-            transition: self.transition.unwrap_or(DEFAULT_TRANSITION),
-            min_radius: self.min_radius,
-            morph: self.morph()?,
-            arcs: self.arcs,
-            curvature_ramps: true,
-            finish: self.finish,
-            modulate_feed: !self.no_feed_modulation,
-        };
+            })
+            .with_entry(entry)
+            .with_safe_height(self.safe_height)
+            .with_clearance_height(self.clearance_height)
+            .with_feed(feed)
+            .with_plunge_feed(feed / 3.0)
+            .with_slowdown(self.slowdown)
+            .with_zigzag_angle(self.angle.to_radians())
+            .with_transition(self.transition.unwrap_or(DEFAULT_TRANSITION))
+            .with_min_radius(self.min_radius)
+            .with_morph(self.morph()?)
+            .with_arcs(self.arcs)
+            .with_curvature_ramps(true)
+            .with_finish(self.finish)
+            .with_modulate_feed(!self.no_feed_modulation);
         // Shaped for the machine: curvature ramps for a jerk-limited controller.
         let machine = super::load_machine(&self.machine)?;
-        opts.curvature_ramps = machine.axes.iter().any(|a| a.max_jerk.is_finite());
+        opts.spiral.curvature_ramps = machine.axes.iter().any(|a| a.max_jerk.is_finite());
         opts.validate(&tool)?;
         if !(self.cell.is_finite() && self.cell > 0.0) {
             return Err(InputError::new("cell", self.cell)

@@ -88,17 +88,16 @@ pub fn sweep(
     let mut done = 0;
     // The transition C is the paper's central spiral's, which the fronts and harmonic morphs
     // draw; the default (offsets) morph has none.
-    let morph = match base.morph {
+    let morph = match base.spiral.morph {
         SpiralMorph::Offsets => SpiralMorph::Fronts,
         m => m,
     };
     let mut time = |kind: StrategyKind, feed: f64, c: f64| -> Result<f64, Error> {
-        let o = PocketOptions {
-            feed: feed * 25.4 / 60.0,
-            transition: c,
-            morph,
-            ..base.clone()
-        };
+        let o = base
+            .clone()
+            .with_feed(feed * 25.4 / 60.0)
+            .with_transition(c)
+            .with_morph(morph);
         let tp = pocket::toolpath(kind, shape, tool, &o)?;
         let t = crate::motion::cycle_time(&tp, machine)
             .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
@@ -108,7 +107,7 @@ pub fn sweep(
     };
     let zigzag_s = feeds_ipm
         .iter()
-        .map(|f| time(StrategyKind::Zigzag, *f, base.transition))
+        .map(|f| time(StrategyKind::Zigzag, *f, base.spiral.transition))
         .collect::<Result<Vec<_>, _>>()?;
     let spiral_s = ratios
         .iter()
@@ -160,11 +159,7 @@ mod tests {
             [(0.0, 0.0), (60.0, 0.0), (60.0, 40.0), (0.0, 40.0)].map(|(x, y)| Point::new(x, y));
         let outer = Outline::from_points(&pts, "rect").unwrap();
         let shape = PocketShape::new(outer, Vec::new(), "rect").unwrap();
-        let opts = PocketOptions {
-            depth: 3.0,
-            step_down: 3.0,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default().with_depth(3.0).with_step_down(3.0);
         (shape, Tool::flat(6.0).unwrap(), opts)
     }
 

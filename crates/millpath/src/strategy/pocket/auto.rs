@@ -124,7 +124,7 @@ pub fn plan_all(
     ORDER
         .par_iter()
         .map(|&kind| {
-            let planned = if opts.arcs {
+            let planned = if opts.spiral.arcs {
                 arcs_or_chords(kind, shape, tool, opts, sim, time).map(|(r, _)| r)
             } else {
                 generate(kind, shape, tool, opts, sim)
@@ -179,13 +179,10 @@ pub fn arcs_or_chords(
         (r, t)
     };
     let (arcs, t_arcs) = timed(generate(kind, shape, tool, opts, sim)?);
-    if !opts.arcs {
+    if !opts.spiral.arcs {
         return Ok((arcs, t_arcs));
     }
-    let chord_opts = PocketOptions {
-        arcs: false,
-        ..opts.clone()
-    };
+    let chord_opts = opts.clone().with_arcs(false);
     let Ok(chords) = generate(kind, shape, tool, &chord_opts, sim) else {
         return Ok((arcs, t_arcs));
     };

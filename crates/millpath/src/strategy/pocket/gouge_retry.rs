@@ -55,16 +55,13 @@ pub fn first_clear(
 /// then the same without `--arcs` (any morph).
 fn fallbacks(kind: StrategyKind, opts: &PocketOptions) -> Vec<PocketOptions> {
     let mut out = Vec::new();
-    if kind == StrategyKind::Spiral && opts.morph == SpiralMorph::Fronts {
-        out.push(PocketOptions {
-            morph: SpiralMorph::Harmonic,
-            ..opts.clone()
-        });
+    if kind == StrategyKind::Spiral && opts.spiral.morph == SpiralMorph::Fronts {
+        out.push(opts.clone().with_morph(SpiralMorph::Harmonic));
     }
-    if opts.arcs {
+    if opts.spiral.arcs {
         let chords: Vec<PocketOptions> = std::iter::once(opts.clone())
             .chain(out.iter().cloned())
-            .map(|o| PocketOptions { arcs: false, ..o })
+            .map(|o| o.with_arcs(false))
             .collect();
         out.extend(chords);
     }
@@ -140,8 +137,8 @@ fn note(kind: StrategyKind, asked: &PocketOptions, used: &PocketOptions, depth: 
     PocketNote::Replanned {
         strategy: kind,
         gouge_mm: depth,
-        harmonic_morph: asked.morph != used.morph,
-        chords: asked.arcs && !used.arcs,
+        harmonic_morph: asked.spiral.morph != used.spiral.morph,
+        chords: asked.spiral.arcs && !used.spiral.arcs,
     }
 }
 
@@ -164,10 +161,7 @@ mod tests {
         gouges: impl Fn(&PocketOptions) -> bool,
     ) -> (Attempts, Vec<PocketOptions>) {
         let outline = builtin::rounded_rectangle(0.0, 0.0, 40.0, 30.0, 5.0);
-        let opts = &PocketOptions {
-            morph: SpiralMorph::Fronts,
-            ..opts.clone()
-        };
+        let opts = &opts.clone().with_morph(SpiralMorph::Fronts);
         let shape = crate::strategy::pocket::PocketShape::simple(outline);
         let tool = Tool::flat(8.0).expect("tool");
         let sim = SimOptions::default();
@@ -196,18 +190,15 @@ mod tests {
 
     #[test]
     fn gouging_arcs_are_planned_again_as_chords_and_noted() {
-        let opts = PocketOptions {
-            arcs: true,
-            ..PocketOptions::default()
-        };
-        let (out, tried) = run(&opts, |o| o.arcs);
+        let opts = PocketOptions::default().with_arcs(true);
+        let (out, tried) = run(&opts, |o| o.spiral.arcs);
         let Attempts::Clears(r) = out else {
             panic!("{out:?}")
         };
         // The harmonic morph with arcs first, then the fronts as chords.
         assert_eq!(tried.len(), 3);
-        assert!(tried[1].arcs && tried[1].morph == SpiralMorph::Harmonic);
-        assert!(!tried[2].arcs && tried[2].morph == SpiralMorph::Fronts);
+        assert!(tried[1].spiral.arcs && tried[1].spiral.morph == SpiralMorph::Harmonic);
+        assert!(!tried[2].spiral.arcs && tried[2].spiral.morph == SpiralMorph::Fronts);
         assert_eq!(r.notes.len(), 1, "{:?}", r.notes);
         assert!(
             r.notes[0].to_string().contains("G1 chords instead of arcs")
@@ -220,7 +211,7 @@ mod tests {
 
     #[test]
     fn a_gouging_fronts_morph_falls_back_to_the_harmonic_one() {
-        let fronts = |o: &PocketOptions| o.morph == SpiralMorph::Fronts;
+        let fronts = |o: &PocketOptions| o.spiral.morph == SpiralMorph::Fronts;
         let (out, tried) = run(&PocketOptions::default(), fronts);
         let Attempts::Clears(r) = out else {
             panic!("{out:?}")
@@ -235,23 +226,17 @@ mod tests {
 
     #[test]
     fn the_offsets_morph_falls_back_to_chords_only() {
-        let opts = PocketOptions {
-            arcs: true,
-            ..PocketOptions::default()
-        };
-        assert_eq!(opts.morph, SpiralMorph::Offsets);
+        let opts = PocketOptions::default().with_arcs(true);
+        assert_eq!(opts.spiral.morph, SpiralMorph::Offsets);
         let f = fallbacks(StrategyKind::Spiral, &opts);
         assert_eq!(f.len(), 1);
-        assert!(!f[0].arcs && f[0].morph == SpiralMorph::Offsets);
+        assert!(!f[0].spiral.arcs && f[0].spiral.morph == SpiralMorph::Offsets);
         assert!(fallbacks(StrategyKind::Spiral, &PocketOptions::default()).is_empty());
     }
 
     #[test]
     fn what_gouges_whatever_the_options_is_returned_as_asked() {
-        let opts = PocketOptions {
-            arcs: true,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default().with_arcs(true);
         let (out, tried) = run(&opts, |_| true);
         // Asked, harmonic, fronts as chords, harmonic as chords.
         assert_eq!(tried.len(), 4);

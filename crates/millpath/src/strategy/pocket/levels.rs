@@ -351,11 +351,7 @@ mod tests {
             entry: CutEntry::Ramp,
             path: segs_from_points(&[p(12.0, 12.5), p(12.001, 12.5)]),
         };
-        let opts = PocketOptions {
-            depth: 4.0,
-            step_down: 4.0,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default().with_depth(4.0).with_step_down(4.0);
         let tool = Tool::flat(4.0).unwrap();
         // The sliver first: it is moved after the big cut and entered from its nearest point.
         let mut plan = LevelPlan {
@@ -385,12 +381,10 @@ mod tests {
 
     #[test]
     fn levels_are_equal_and_reach_the_floor() {
-        let o = PocketOptions {
-            depth: 25.0,
-            step_down: 6.0,
-            floor_stock: 1.0,
-            ..PocketOptions::default()
-        };
+        let o = PocketOptions::default()
+            .with_depth(25.0)
+            .with_step_down(6.0)
+            .with_floor_stock(1.0);
         let d = level_depths(&o);
         assert_eq!(d.len(), 4);
         assert!((d[3] + 24.0).abs() < 1e-12);

@@ -59,7 +59,10 @@ pub(crate) mod zigzag;
 pub use auto::{Candidate, ORDER as AUTO_ORDER, Outcome, arcs_or_chords, choose, plan_all};
 pub use feed::{FeedProfile, factor as feed_factor};
 pub use levels::level_depths;
-pub use options::{Direction, Entry, PocketOptions, SpiralMorph, Stepover, StrategyKind};
+pub use options::{
+    Direction, Entry, PocketOptions, SpiralMorph, SpiralOptions, Stepover, StrategyKind,
+    ZigzagOptions,
+};
 pub use part::{PartPocket, PartResult, PartStrategy, generate_part, order_pockets, tour_length};
 pub use segments::ARC_AS_LINE_SAGITTA;
 pub use shape::PocketShape;
@@ -107,7 +110,7 @@ pub fn plan_level(
         StrategyKind::Zigzag => zigzag::plan(shape, tool, opts)?,
         StrategyKind::Offset => offset::plan(shape, tool, opts)?,
         StrategyKind::Spiral => {
-            if !shape.islands.is_empty() && opts.morph != SpiralMorph::Offsets {
+            if !shape.islands.is_empty() && opts.spiral.morph != SpiralMorph::Offsets {
                 return Err(crate::InputError::new("islands", shape.islands.len())
                     .at("--strategy spiral")
                     .expected("a pocket without islands for the spiral (use --strategy offset)")
@@ -174,10 +177,7 @@ fn toolpath_and_sections(
     let (mut sections, rough) = plan_levels(kind, shape, tool, opts)?;
     let finish = match (opts.finish, sections.last()) {
         (true, Some(last)) => {
-            let fo = PocketOptions {
-                wall_stock: 0.0,
-                ..opts.clone()
-            };
+            let fo = opts.clone().with_wall_stock(0.0);
             let plan = finishing_plan(last, tool, &fo, opts.wall_stock)?;
             sections.push(last.clone());
             Some(plan)

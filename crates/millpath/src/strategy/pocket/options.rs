@@ -116,8 +116,12 @@ pub enum SpiralMorph {
     Harmonic,
 }
 
-/// Everything a pocketing strategy needs besides the outline and the tool.
+/// Everything a pocketing strategy needs besides the outline and the tool: the settings every
+/// strategy shares, then the spiral's and the zigzag's own ([`SpiralOptions`],
+/// [`ZigzagOptions`]). Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct PocketOptions {
     /// Maximum radial depth of cut.
     pub stepover: Stepover,
@@ -143,30 +147,58 @@ pub struct PocketOptions {
     pub plunge_feed: f64,
     /// Fraction of the feed at full slotting (180° engagement); see `super::feed`.
     pub slowdown: f64,
-    /// Zigzag pass angle in rad from the pocket's principal axis (its long direction; see
-    /// `super::zigzag`).
-    pub zigzag_angle: f64,
-    /// Spiral transition ratio C in [0, 1]: the central circular spiral reaches C times the
-    /// inscribed radius of the boundary offset.
-    pub transition: f64,
-    /// Smallest radius of curvature wanted on the spiral's interior loops, mm.
-    pub min_radius: f64,
-    /// How the spiral morphs from its central circle into the boundary offset.
-    pub morph: SpiralMorph,
-    /// Output the spiral's laps as tangent-continuous arcs (G2/G3, biarcs within
-    /// `spiral::ARC_TOLERANCE`) instead of G1 chords (`--arcs`). The other strategies'
-    /// paths are lines and exact arcs already.
-    pub arcs: bool,
-    /// The spiral's interior smoothed into curvature ramps (`spiral::smooth`): for
-    /// jerk-limited controllers, which must slow where the curvature steps. A trapezoidal
-    /// controller (LinuxCNC) accelerates at half its rate along curved chord runs, so there the
-    /// rounded loops' straight stretches are faster left straight: the command line sets this
-    /// from the machine (`--machine`: on when an axis has a jerk limit).
-    pub curvature_ramps: bool,
     /// A finishing pass along the walls at the last level (no wall stock).
     pub finish: bool,
     /// Modulate the feed with the engagement measured by the stock simulation.
     pub modulate_feed: bool,
+    /// The spiral's own settings.
+    pub spiral: SpiralOptions,
+    /// The zigzag's own settings.
+    pub zigzag: ZigzagOptions,
+}
+
+/// The spiral strategy's settings ([`PocketOptions::spiral`]).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct SpiralOptions {
+    /// Transition ratio C in [0, 1]: the central circular spiral reaches C times the
+    /// inscribed radius of the boundary offset.
+    pub transition: f64,
+    /// Smallest radius of curvature wanted on the interior loops, mm.
+    pub min_radius: f64,
+    /// How the spiral morphs from its central circle into the boundary offset.
+    pub morph: SpiralMorph,
+    /// Output the laps as tangent-continuous arcs (G2/G3, biarcs within
+    /// `spiral::ARC_TOLERANCE`) instead of G1 chords (`--arcs`). The other strategies'
+    /// paths are lines and exact arcs already.
+    pub arcs: bool,
+    /// The interior smoothed into curvature ramps (`spiral::smooth`): for jerk-limited
+    /// controllers, which must slow where the curvature steps. A trapezoidal controller
+    /// (LinuxCNC) accelerates at half its rate along curved chord runs, so there the rounded
+    /// loops' straight stretches are faster left straight: the command line sets this from
+    /// the machine (`--machine`: on when an axis has a jerk limit).
+    pub curvature_ramps: bool,
+}
+
+impl Default for SpiralOptions {
+    fn default() -> Self {
+        SpiralOptions {
+            transition: 0.5,
+            min_radius: 1.0,
+            morph: SpiralMorph::default(),
+            arcs: false,
+            curvature_ramps: true,
+        }
+    }
+}
+
+/// The zigzag strategy's settings ([`PocketOptions::zigzag`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+#[non_exhaustive]
+pub struct ZigzagOptions {
+    /// Pass angle in rad from the pocket's principal axis (its long direction; see
+    /// `super::zigzag`).
+    pub angle: f64,
 }
 
 impl Default for PocketOptions {
@@ -187,16 +219,75 @@ impl Default for PocketOptions {
             feed: 600.0 * 25.4 / 60.0,
             plunge_feed: 200.0 * 25.4 / 60.0,
             slowdown: 0.75,
-            zigzag_angle: 0.0,
-            transition: 0.5,
-            min_radius: 1.0,
-            morph: SpiralMorph::default(),
-            arcs: false,
-            curvature_ramps: true,
             finish: false,
             modulate_feed: true,
+            spiral: SpiralOptions::default(),
+            zigzag: ZigzagOptions::default(),
         }
     }
+}
+
+/// `with_*` builders: each sets one field and returns the options.
+macro_rules! builders {
+    ($($(#[$doc:meta])* $name:ident => $($field:ident).+ : $ty:ty;)*) => {
+        impl PocketOptions {
+            $(
+                $(#[$doc])*
+                #[must_use]
+                pub fn $name(mut self, value: $ty) -> Self {
+                    self.$($field).+ = value;
+                    self
+                }
+            )*
+        }
+    };
+}
+
+builders! {
+    /// Sets [`PocketOptions::stepover`].
+    with_stepover => stepover: Stepover;
+    /// Sets [`PocketOptions::depth`], mm.
+    with_depth => depth: f64;
+    /// Sets [`PocketOptions::step_down`], mm.
+    with_step_down => step_down: f64;
+    /// Sets [`PocketOptions::wall_stock`], mm.
+    with_wall_stock => wall_stock: f64;
+    /// Sets [`PocketOptions::floor_stock`], mm.
+    with_floor_stock => floor_stock: f64;
+    /// Sets [`PocketOptions::direction`].
+    with_direction => direction: Direction;
+    /// Sets [`PocketOptions::entry`].
+    with_entry => entry: Entry;
+    /// Sets [`PocketOptions::safe_height`], mm.
+    with_safe_height => safe_height: f64;
+    /// Sets [`PocketOptions::clearance_height`], mm.
+    with_clearance_height => clearance_height: f64;
+    /// Sets [`PocketOptions::feed`], mm/s.
+    with_feed => feed: f64;
+    /// Sets [`PocketOptions::plunge_feed`], mm/s.
+    with_plunge_feed => plunge_feed: f64;
+    /// Sets [`PocketOptions::slowdown`].
+    with_slowdown => slowdown: f64;
+    /// Sets [`PocketOptions::finish`].
+    with_finish => finish: bool;
+    /// Sets [`PocketOptions::modulate_feed`].
+    with_modulate_feed => modulate_feed: bool;
+    /// Sets all of [`PocketOptions::spiral`].
+    with_spiral => spiral: SpiralOptions;
+    /// Sets all of [`PocketOptions::zigzag`].
+    with_zigzag => zigzag: ZigzagOptions;
+    /// Sets [`SpiralOptions::transition`].
+    with_transition => spiral.transition: f64;
+    /// Sets [`SpiralOptions::min_radius`], mm.
+    with_min_radius => spiral.min_radius: f64;
+    /// Sets [`SpiralOptions::morph`].
+    with_morph => spiral.morph: SpiralMorph;
+    /// Sets [`SpiralOptions::arcs`].
+    with_arcs => spiral.arcs: bool;
+    /// Sets [`SpiralOptions::curvature_ramps`].
+    with_curvature_ramps => spiral.curvature_ramps: bool;
+    /// Sets [`ZigzagOptions::angle`], rad.
+    with_zigzag_angle => zigzag.angle: f64;
 }
 
 fn check(what: &str, v: f64, ok: bool, flag: &str, expected: &str) -> Result<(), InputError> {
@@ -293,22 +384,22 @@ impl PocketOptions {
         )?;
         check(
             "zigzag angle",
-            self.zigzag_angle,
+            self.zigzag.angle,
             true,
             "--angle",
             "a finite angle",
         )?;
         check(
             "transition",
-            self.transition,
-            (0.0..=1.0).contains(&self.transition),
+            self.spiral.transition,
+            (0.0..=1.0).contains(&self.spiral.transition),
             "--transition",
             "a ratio in [0, 1]",
         )?;
         check(
             "min radius",
-            self.min_radius,
-            (0.0..=MAX_LENGTH_MM).contains(&self.min_radius),
+            self.spiral.min_radius,
+            (0.0..=MAX_LENGTH_MM).contains(&self.spiral.min_radius),
             "--min-radius",
             "a radius >= 0 mm and at most 1e6 mm",
         )?;
@@ -351,42 +442,28 @@ mod tests {
         for (flag, opts) in [
             (
                 "--safe-height",
-                PocketOptions {
-                    safe_height: 1e300,
-                    clearance_height: 1e300,
-                    ..PocketOptions::default()
-                },
+                PocketOptions::default()
+                    .with_safe_height(1e300)
+                    .with_clearance_height(1e300),
             ),
             (
                 "--clearance-height",
-                PocketOptions {
-                    clearance_height: 2e6,
-                    ..PocketOptions::default()
-                },
+                PocketOptions::default().with_clearance_height(2e6),
             ),
             (
                 "--wall-stock",
-                PocketOptions {
-                    wall_stock: 1e300,
-                    ..PocketOptions::default()
-                },
+                PocketOptions::default().with_wall_stock(1e300),
             ),
             (
                 "--min-radius",
-                PocketOptions {
-                    min_radius: 1e300,
-                    ..PocketOptions::default()
-                },
+                PocketOptions::default().with_min_radius(1e300),
             ),
             (
                 "--helix-radius",
-                PocketOptions {
-                    entry: Entry::Helix {
-                        radius: 1e300,
-                        ramp_angle: 0.05,
-                    },
-                    ..PocketOptions::default()
-                },
+                PocketOptions::default().with_entry(Entry::Helix {
+                    radius: 1e300,
+                    ramp_angle: 0.05,
+                }),
             ),
         ] {
             let e = opts.validate(&tool).unwrap_err().to_string();
@@ -408,10 +485,7 @@ mod tests {
     fn validation_rejects_bad_stepovers() {
         let tool = Tool::flat(10.0).unwrap();
         for s in [0.0, -0.1, 1.5, f64::NAN] {
-            let o = PocketOptions {
-                stepover: Stepover::Fraction(s),
-                ..PocketOptions::default()
-            };
+            let o = PocketOptions::default().with_stepover(Stepover::Fraction(s));
             let e = o.validate(&tool).unwrap_err();
             assert!(e.to_string().contains("stepover"), "{e}");
         }

@@ -266,11 +266,9 @@ mod tests {
         let half = p.section(10.0, 20.0).unwrap();
         let b = half.outer.bounds();
         assert!((b.min.x - 5.0).abs() < 1e-9 && (b.max.x - 95.0).abs() < 1e-9);
-        let opts = PocketOptions {
-            depth: 20.0,
-            step_down: 5.0,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default()
+            .with_depth(20.0)
+            .with_step_down(5.0);
         let levels = level_shapes(&p, &opts).unwrap();
         assert_eq!(levels.len(), 4);
         assert!(levels[3].within(&levels[2]) && !levels[2].within(&levels[3]));
@@ -322,11 +320,9 @@ mod tests {
                 "bottom",
             )
             .unwrap();
-        let opts = PocketOptions {
-            depth: 6.794117647058823,
-            step_down: 2.3652884179535856,
-            ..PocketOptions::default()
-        };
+        let opts = PocketOptions::default()
+            .with_depth(6.794117647058823)
+            .with_step_down(2.3652884179535856);
         let e = level_shapes(&shape, &opts).expect_err("an undercut");
         assert!(e.to_string().contains("undercut"), "{e}");
         // The sections themselves are valid pockets: only their nesting fails.

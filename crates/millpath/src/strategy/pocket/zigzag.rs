@@ -81,7 +81,7 @@ pub fn plan(
     }
     // Passes at `zigzag_angle` from the pocket's principal axis, so that turning the pocket
     // turns the path with it (see the module docs).
-    let angle = crate::geom::region::principal_angle(&shape.outer) + opts.zigzag_angle;
+    let angle = crate::geom::region::principal_angle(&shape.outer) + opts.zigzag.angle;
     let rot = Vec2::from_angle(-angle);
     let back = Vec2::from_angle(angle);
     let to_world = |p: Point| rotate(p, back);

@@ -71,7 +71,7 @@ pub fn plan(
     opts: &PocketOptions,
 ) -> Result<(LevelPlan, SpiralStats), InputError> {
     let theta = crate::geom::region::principal_angle(&shape.outer);
-    if opts.morph == SpiralMorph::Fronts {
+    if opts.spiral.morph == SpiralMorph::Fronts {
         if let Some(found) = plan_fronts(shape, tool, opts, theta)? {
             return Ok(found);
         }
@@ -178,11 +178,11 @@ fn plan_fronts(
             ds,
             ds_last: ds.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
             tool_radius: tool.radius(),
-            smooth: opts.min_radius.max(fraction * s),
+            smooth: opts.spiral.min_radius.max(fraction * s),
             ccw: opts.direction == Direction::Climb,
             start_angle,
             ridge,
-            arcs: opts.arcs,
+            arcs: opts.spiral.arcs,
             max_gap: (CORNER_GAP * sp).min(CORNER_GAP * tool.radius()),
         };
         if let Some((plan, stats)) = spiral.plan() {
@@ -211,7 +211,10 @@ fn centre_radii(tool: &Tool, opts: &PocketOptions, rho_b: f64) -> Result<(f64, f
     if rho_h < 1e-3 {
         return Err(too_large(tool));
     }
-    Ok((rho_h, (opts.transition * rho_b).max(rho_h).min(0.9 * rho_b)))
+    Ok((
+        rho_h,
+        (opts.spiral.transition * rho_b).max(rho_h).min(0.9 * rho_b),
+    ))
 }
 
 /// The fronts' smoothing radius as a fraction of the stepover (at least `--min-radius`).
@@ -385,7 +388,7 @@ fn plan_in_frame(
                 Construction::Harmonic
             };
             pts.extend(m.points);
-            let mut path = keep_inside::lap_path(&pts, &b_eps, ds_last, opts.arcs);
+            let mut path = keep_inside::lap_path(&pts, &b_eps, ds_last, opts.spiral.arcs);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {

@@ -77,7 +77,7 @@ pub fn plan_with_stats(
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<(LevelPlan, SpiralStats), InputError> {
-    if opts.morph == SpiralMorph::Offsets {
+    if opts.spiral.morph == SpiralMorph::Offsets {
         let (plan, st) = offsets::plan(shape, tool, opts)?;
         let stats = SpiralStats {
             morph_laps: st.loops,

@@ -141,15 +141,15 @@ pub fn plan(
             chord: LANE_CHORD * k,
             step: h,
             reach: RIDGE_SPACING * r,
-            arcs: opts.arcs,
+            arcs: opts.spiral.arcs,
             arc_tolerance: ARC_TOLERANCE,
             wall_chord: (LANE_CHORD * k).min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
             // Exact arcs to smooth or with --arcs, else the arcs as chords.
-            chords: (!opts.arcs && !opts.curvature_ramps)
+            chords: (!opts.spiral.arcs && !opts.spiral.curvature_ramps)
                 .then_some((CHORD_TOLERANCE * k, MAX_CHORD * k)),
         },
         // The interior smoothed to curvature ramps, as chords (not with --arcs).
-        smooth: (!opts.arcs && opts.curvature_ramps).then_some(SmoothOptions {
+        smooth: (!opts.spiral.arcs && opts.spiral.curvature_ramps).then_some(SmoothOptions {
             max_window: SMOOTH_WINDOW * h,
             max_shift: SMOOTH_SHIFT * h,
             spacing: SMOOTH_SPACING * k,
@@ -360,7 +360,7 @@ impl Emitter<'_> {
                 segs_from_points(&pts)
             }
         };
-        let mut out = if self.opts.arcs {
+        let mut out = if self.opts.spiral.arcs {
             lead
         } else {
             chorded(&lead, CHORD_TOLERANCE * self.scale, MAX_CHORD * self.scale)
