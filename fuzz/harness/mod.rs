@@ -512,32 +512,30 @@ pub fn contour_case(data: &[u8]) -> Option<(curve::CompositeCurve, ContourOption
                 .collect()
         })
         .collect();
-    let opt = ContourOptions {
-        tool: Tool {
+    let opt = ContourOptions::default()
+        .with_tool(Tool {
             diameter: b.num(0.2, size * 0.5),
             flutes: 2,
             flute_length: b.num(5.0, 50.0),
             number: 1,
-        },
-        tolerance: b.num(size * 1e-4, size * 1e-2),
-        side: match b.pick(3) {
+        })
+        .with_tolerance(b.num(size * 1e-4, size * 1e-2))
+        .with_side(match b.pick(3) {
             0 => Side::Inside,
             1 => Side::Outside,
             _ => Side::On,
-        },
-        top_z: b.num(-5.0, 5.0),
-        depth: b.num(0.5, 6.0),
-        step_down: b.num(1.0, 4.0),
-        finish_allowance: b.num(0.0, 1.0),
-        safe_height: b.num(1.0, 10.0),
-        clearance_height: b.num(0.5, 2.0),
-        feed: b.num(1.0, 50.0),
-        plunge_feed: b.num(1.0, 20.0),
-        lead_radius: b.num(0.0, 5.0),
-        rapid_speed: b.num(50.0, 200.0),
-        arcs: b.flag(),
-        ..ContourOptions::default()
-    };
+        })
+        .with_top_z(b.num(-5.0, 5.0))
+        .with_depth(b.num(0.5, 6.0))
+        .with_step_down(b.num(1.0, 4.0))
+        .with_finish_allowance(b.num(0.0, 1.0))
+        .with_safe_height(b.num(1.0, 10.0))
+        .with_clearance_height(b.num(0.5, 2.0))
+        .with_feed(b.num(1.0, 50.0))
+        .with_plunge_feed(b.num(1.0, 20.0))
+        .with_lead_radius(b.num(0.0, 5.0))
+        .with_rapid_speed(b.num(50.0, 200.0))
+        .with_arcs(b.flag());
     trace(&(&kind, &pts, &opt));
     let c = curve::build(&groups, kind, "fuzz").ok()?;
     Some((c, opt))

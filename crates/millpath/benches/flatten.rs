@@ -36,11 +36,9 @@ fn bench(c: &mut Criterion) {
         } else {
             0.5e-4 * std::f64::consts::SQRT_2
         };
-        let opt = ContourOptions {
-            tolerance: tol,
-            rounding,
-            ..ContourOptions::default()
-        };
+        let opt = ContourOptions::default()
+            .with_tolerance(tol)
+            .with_rounding(rounding);
         g.bench_with_input(BenchmarkId::new("inside_5.2mm", tol), &opt, |b, o| {
             b.iter(|| offset_pass(black_box(&outline), 5.2, o).map(|p| p.segments()));
         });

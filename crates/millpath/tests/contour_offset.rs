@@ -10,11 +10,9 @@ use millpath::geom::Point;
 use millpath::strategy::contour::{self, ContourOptions, ContourWarning, Side, offset_pass};
 
 fn opts(tol: f64, side: Side) -> ContourOptions {
-    ContourOptions {
-        tolerance: tol,
-        side,
-        ..ContourOptions::default()
-    }
+    ContourOptions::default()
+        .with_tolerance(tol)
+        .with_side(side)
 }
 
 fn loop_points(p: &contour::Pass) -> Vec<Vec<Point>> {
@@ -152,10 +150,7 @@ fn reversed_and_rotated_input_give_the_same_result() {
 #[test]
 fn full_contour_layers_and_report() {
     let c = curve::paper_outline().unwrap();
-    let o = ContourOptions {
-        tolerance: 1e-2,
-        ..ContourOptions::default()
-    };
+    let o = ContourOptions::default().with_tolerance(1e-2);
     let r = contour::contour(&c, &o).unwrap();
     // 20 mm at 2.5 mm: 8 roughing layers, then the finishing pass.
     assert_eq!(r.report.layers.len(), 9);
@@ -171,12 +166,10 @@ fn full_contour_layers_and_report() {
 fn on_the_outline_lines_and_arcs_stay_within_tolerance() {
     let c = curve::paper_outline().unwrap();
     for arcs in [false, true] {
-        let o = ContourOptions {
-            tolerance: 1e-3,
-            side: Side::On,
-            arcs,
-            ..ContourOptions::default()
-        };
+        let o = ContourOptions::default()
+            .with_tolerance(1e-3)
+            .with_side(Side::On)
+            .with_arcs(arcs);
         let r = contour::contour(&c, &o).unwrap();
         assert!(
             r.report.max_deviation_mm <= 1e-3,
@@ -204,12 +197,10 @@ fn every_feed_move_including_lead_arcs_keeps_the_tool_off_the_outline() {
     let c = curve::paper_outline().unwrap();
     for side in [Side::Inside, Side::Outside] {
         for arcs in [false, true] {
-            let o = ContourOptions {
-                tolerance: 1e-2,
-                side,
-                arcs,
-                ..ContourOptions::default()
-            };
+            let o = ContourOptions::default()
+                .with_tolerance(1e-2)
+                .with_side(side)
+                .with_arcs(arcs);
             let r = contour::contour(&c, &o).unwrap();
             let segs: Vec<_> = r.toolpath.segments().collect();
             for lv in &r.toolpath.levels {

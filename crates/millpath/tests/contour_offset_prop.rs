@@ -39,7 +39,7 @@ proptest! {
         prop_assume!(c.is_ok());
         let c = c.unwrap();
         let tol = 1e-2;
-        let o = ContourOptions { tolerance: tol, ..ContourOptions::default() };
+        let o = ContourOptions::default().with_tolerance(tol);
         let pass = offset_pass(&c, if inside { d } else { -d }, &o).unwrap();
         for lp in &pass.loops {
             let pts: Vec<Point> = lp.iter().map(|v| v.p).collect();

@@ -21,13 +21,11 @@ fn contour_programs_pass_rs274() {
     ] {
         let tol = 1e-3;
         let decimals = gcode::required_decimals(tol, Units::Mm);
-        let o = ContourOptions {
-            tolerance: tol,
-            rounding: gcode::rounding_error_mm(decimals, Units::Mm),
-            side,
-            arcs,
-            ..ContourOptions::default()
-        };
+        let o = ContourOptions::default()
+            .with_tolerance(tol)
+            .with_rounding(gcode::rounding_error_mm(decimals, Units::Mm))
+            .with_side(side)
+            .with_arcs(arcs);
         let r = contour::contour(&c, &o).unwrap();
         let w = WriterOptions {
             decimals: Some(decimals),

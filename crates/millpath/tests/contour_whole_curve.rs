@@ -20,21 +20,19 @@ fn table1() -> CompositeCurve {
 
 /// Options at T with six decimals in the program (ρ = √2·½·10⁻⁶ mm), a 1 mm tool.
 fn opts(side: Side, arcs: bool) -> ContourOptions {
-    ContourOptions {
-        tool: millpath::Tool {
+    ContourOptions::default()
+        .with_tool(millpath::Tool {
             diameter: 1.0,
             ..millpath::Tool::default()
-        },
-        tolerance: T,
-        rounding: 0.5e-6 * std::f64::consts::SQRT_2,
-        side,
-        depth: 1.0,
-        step_down: 1.0,
-        finish_allowance: 0.0,
-        lead_radius: 0.2,
-        arcs,
-        ..ContourOptions::default()
-    }
+        })
+        .with_tolerance(T)
+        .with_rounding(0.5e-6 * std::f64::consts::SQRT_2)
+        .with_side(side)
+        .with_depth(1.0)
+        .with_step_down(1.0)
+        .with_finish_allowance(0.0)
+        .with_lead_radius(0.2)
+        .with_arcs(arcs)
 }
 
 /// The finishing level's feed moves at depth as segments (`a`, `b`) and arcs (centre, radius,

@@ -50,18 +50,13 @@ fn biarcs_on_the_outline_are_within_tolerance_and_fewer_than_lines() {
 fn arc_passes_keep_the_offset_distance() {
     let c = curve::paper_outline().unwrap();
     for side in [Side::Inside, Side::Outside] {
-        let o = ContourOptions {
-            tolerance: 1e-3,
-            side,
-            arcs: true,
-            ..ContourOptions::default()
-        };
+        let o = ContourOptions::default()
+            .with_tolerance(1e-3)
+            .with_side(side)
+            .with_arcs(true);
         let d = 5.2;
         let pass = offset_pass(&c, if side == Side::Inside { d } else { -d }, &o).unwrap();
-        let lines = ContourOptions {
-            arcs: false,
-            ..o.clone()
-        };
+        let lines = o.clone().with_arcs(false);
         let line_pass = offset_pass(&c, if side == Side::Inside { d } else { -d }, &lines).unwrap();
         assert!(pass.segments() * 2 < line_pass.segments(), "{side:?}");
         let mut min = f64::INFINITY;

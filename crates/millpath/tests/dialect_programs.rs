@@ -319,14 +319,12 @@ fn random_contours_in_every_dialect_and_units() {
         for units in UNITS {
             let decimals =
                 required_decimals(tolerance, units).max(Dialect::LinuxCnc.default_decimals(units));
-            let opt = ContourOptions {
-                tolerance,
-                rounding: rounding_error_mm(decimals, units),
-                depth: 2.0,
-                step_down: 1.0,
-                arcs,
-                ..ContourOptions::default()
-            };
+            let opt = ContourOptions::default()
+                .with_tolerance(tolerance)
+                .with_rounding(rounding_error_mm(decimals, units))
+                .with_depth(2.0)
+                .with_step_down(1.0)
+                .with_arcs(arcs);
             let r = match contour::contour(&c, &opt) {
                 Ok(r) => r,
                 Err(Error::Input(_)) => return Ok(false),

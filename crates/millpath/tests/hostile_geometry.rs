@@ -100,27 +100,25 @@ fn contour_pipeline_survives_arbitrary_points() {
             1 => CurveKind::CatmullRom,
             _ => CurveKind::Spline,
         };
-        let opt = ContourOptions {
-            tool: tool(&mut r),
-            tolerance: mostly_sane(&mut r, 0.01, 0.2, 0.05),
-            side: match r.random_range(0..3) {
+        let opt = ContourOptions::default()
+            .with_tool(tool(&mut r))
+            .with_tolerance(mostly_sane(&mut r, 0.01, 0.2, 0.05))
+            .with_side(match r.random_range(0..3) {
                 0 => Side::Inside,
                 1 => Side::Outside,
                 _ => Side::On,
-            },
-            top_z: mostly_sane(&mut r, -5.0, 5.0, 0.05),
-            depth: mostly_sane(&mut r, 0.5, 6.0, 0.05),
-            step_down: mostly_sane(&mut r, 1.0, 4.0, 0.05),
-            finish_allowance: mostly_sane(&mut r, 0.0, 1.0, 0.05),
-            safe_height: mostly_sane(&mut r, 1.0, 10.0, 0.03),
-            clearance_height: mostly_sane(&mut r, 0.5, 2.0, 0.03),
-            feed: mostly_sane(&mut r, 1.0, 50.0, 0.03),
-            plunge_feed: mostly_sane(&mut r, 1.0, 20.0, 0.03),
-            lead_radius: mostly_sane(&mut r, 0.0, 5.0, 0.05),
-            rapid_speed: mostly_sane(&mut r, 50.0, 200.0, 0.03),
-            arcs: r.random_bool(0.5),
-            ..ContourOptions::default()
-        };
+            })
+            .with_top_z(mostly_sane(&mut r, -5.0, 5.0, 0.05))
+            .with_depth(mostly_sane(&mut r, 0.5, 6.0, 0.05))
+            .with_step_down(mostly_sane(&mut r, 1.0, 4.0, 0.05))
+            .with_finish_allowance(mostly_sane(&mut r, 0.0, 1.0, 0.05))
+            .with_safe_height(mostly_sane(&mut r, 1.0, 10.0, 0.03))
+            .with_clearance_height(mostly_sane(&mut r, 0.5, 2.0, 0.03))
+            .with_feed(mostly_sane(&mut r, 1.0, 50.0, 0.03))
+            .with_plunge_feed(mostly_sane(&mut r, 1.0, 20.0, 0.03))
+            .with_lead_radius(mostly_sane(&mut r, 0.0, 5.0, 0.05))
+            .with_rapid_speed(mostly_sane(&mut r, 50.0, 200.0, 0.03))
+            .with_arcs(r.random_bool(0.5));
         let done = h.run(&(seed, &pts, kind, &opt), || {
             let Ok(c) = curve::build(&groups, kind, "fuzz") else {
                 return false;

@@ -127,13 +127,9 @@ fn pocket_ramp_on_a_sliver_cut_is_bounded() {
 /// `ContourOptions::validate`: at most `MAX_LAYERS` (10,000) layers.
 #[test]
 fn contour_depth_1e300_is_refused() {
-    use millpath::strategy::contour::{self, ContourOptions};
+    use millpath::strategy::contour;
     let (c, base) = contour::sample().unwrap();
-    let opt = ContourOptions {
-        depth: 1e300,
-        step_down: 1.0,
-        ..base
-    };
+    let opt = base.with_depth(1e300).with_step_down(1.0);
     let e: Error = contour::contour(&c, &opt).unwrap_err();
     assert_eq!(e.exit_code(), 2);
     let msg = e.to_string();
@@ -207,33 +203,22 @@ fn planner_refuses_moves_whose_time_overflows() {
 /// `ContourOptions::validate`: lengths beyond ±1e6 mm are refused.
 #[test]
 fn contour_lengths_of_1e300_are_refused() {
-    use millpath::strategy::contour::{self, ContourOptions};
+    use millpath::strategy::contour;
     let (c, base) = contour::sample().unwrap();
     for (what, opt) in [
-        (
-            "lead radius",
-            ContourOptions {
-                lead_radius: 1e300,
-                ..base.clone()
-            },
-        ),
+        ("lead radius", base.clone().with_lead_radius(1e300)),
         (
             "safe height",
-            ContourOptions {
-                safe_height: 1e300,
-                clearance_height: 1.0,
-                ..base.clone()
-            },
+            base.clone()
+                .with_safe_height(1e300)
+                .with_clearance_height(1.0),
         ),
         (
             "tool diameter",
-            ContourOptions {
-                tool: millpath::Tool {
-                    diameter: 1e300,
-                    ..base.tool
-                },
-                ..base.clone()
-            },
+            base.clone().with_tool(millpath::Tool {
+                diameter: 1e300,
+                ..base.tool
+            }),
         ),
     ] {
         let e: Error = contour::contour(&c, &opt).unwrap_err();
@@ -274,28 +259,27 @@ fn contour_biarcs_through_a_cusp_finish() {
     // whatever the biarcs did.
     let c = curve::build(std::slice::from_ref(&group), CurveKind::FourPoint, "fuzz")
         .expect("the cusp curve builds");
-    let opt = ContourOptions {
-        tool: millpath::Tool {
+    let opt = ContourOptions::default()
+        .with_tool(millpath::Tool {
             diameter: 12.988927335640138,
             flutes: 2,
             flute_length: 24.01007095445182,
             number: 1,
-        },
-        tolerance: 0.15452526985580226,
-        rounding: 7.071067811865475e-5,
-        side: Side::On,
-        top_z: -0.1561760891126882,
-        depth: 3.3226367589837493,
-        step_down: 1.0117189288166628,
-        finish_allowance: 0.0,
-        safe_height: 1.0,
-        clearance_height: 0.5585946440833143,
-        feed: 26.07460135805295,
-        plunge_feed: 1.0,
-        lead_radius: 0.0,
-        rapid_speed: 50.13275349050126,
-        arcs: true,
-    };
+        })
+        .with_tolerance(0.15452526985580226)
+        .with_rounding(7.071067811865475e-5)
+        .with_side(Side::On)
+        .with_top_z(-0.1561760891126882)
+        .with_depth(3.3226367589837493)
+        .with_step_down(1.0117189288166628)
+        .with_finish_allowance(0.0)
+        .with_safe_height(1.0)
+        .with_clearance_height(0.5585946440833143)
+        .with_feed(26.07460135805295)
+        .with_plunge_feed(1.0)
+        .with_lead_radius(0.0)
+        .with_rapid_speed(50.13275349050126)
+        .with_arcs(true);
     let res = contour::contour(&c, &opt).expect("contour");
     // Four layers of a short closed curve: thousands of moves a layer at most, not ~10⁶.
     assert!(

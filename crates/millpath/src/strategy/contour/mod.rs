@@ -61,8 +61,10 @@ pub enum Side {
     On,
 }
 
-/// Options of [`contour`].
+/// Options of [`contour`], built from [`Default`] with the `with_*` methods
+/// (`#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct ContourOptions {
     /// The flat end mill.
     pub tool: Tool,
@@ -115,6 +117,113 @@ impl Default for ContourOptions {
             rapid_speed: 10_000.0 / 60.0,
             arcs: false,
         }
+    }
+}
+
+impl ContourOptions {
+    /// Sets the flat end mill ([`ContourOptions::tool`]).
+    #[must_use]
+    pub fn with_tool(mut self, value: Tool) -> Self {
+        self.tool = value;
+        self
+    }
+
+    /// Sets the path tolerance `T`, mm ([`ContourOptions::tolerance`]).
+    #[must_use]
+    pub fn with_tolerance(mut self, value: f64) -> Self {
+        self.tolerance = value;
+        self
+    }
+
+    /// Sets the rounding allowance `ρ`, mm ([`ContourOptions::rounding`]).
+    #[must_use]
+    pub fn with_rounding(mut self, value: f64) -> Self {
+        self.rounding = value;
+        self
+    }
+
+    /// Sets the side of the outline ([`ContourOptions::side`]).
+    #[must_use]
+    pub fn with_side(mut self, value: Side) -> Self {
+        self.side = value;
+        self
+    }
+
+    /// Sets the stock top, mm ([`ContourOptions::top_z`]).
+    #[must_use]
+    pub fn with_top_z(mut self, value: f64) -> Self {
+        self.top_z = value;
+        self
+    }
+
+    /// Sets the depth below the top, mm ([`ContourOptions::depth`]).
+    #[must_use]
+    pub fn with_depth(mut self, value: f64) -> Self {
+        self.depth = value;
+        self
+    }
+
+    /// Sets the step-down, mm ([`ContourOptions::step_down`]).
+    #[must_use]
+    pub fn with_step_down(mut self, value: f64) -> Self {
+        self.step_down = value;
+        self
+    }
+
+    /// Sets the roughing layers' radial stock, mm ([`ContourOptions::finish_allowance`]).
+    #[must_use]
+    pub fn with_finish_allowance(mut self, value: f64) -> Self {
+        self.finish_allowance = value;
+        self
+    }
+
+    /// Sets the safe height, mm ([`ContourOptions::safe_height`]).
+    #[must_use]
+    pub fn with_safe_height(mut self, value: f64) -> Self {
+        self.safe_height = value;
+        self
+    }
+
+    /// Sets the clearance height, mm ([`ContourOptions::clearance_height`]).
+    #[must_use]
+    pub fn with_clearance_height(mut self, value: f64) -> Self {
+        self.clearance_height = value;
+        self
+    }
+
+    /// Sets the cutting feed, mm/s ([`ContourOptions::feed`]).
+    #[must_use]
+    pub fn with_feed(mut self, value: f64) -> Self {
+        self.feed = value;
+        self
+    }
+
+    /// Sets the plunge feed, mm/s ([`ContourOptions::plunge_feed`]).
+    #[must_use]
+    pub fn with_plunge_feed(mut self, value: f64) -> Self {
+        self.plunge_feed = value;
+        self
+    }
+
+    /// Sets the lead arc radius, mm ([`ContourOptions::lead_radius`]).
+    #[must_use]
+    pub fn with_lead_radius(mut self, value: f64) -> Self {
+        self.lead_radius = value;
+        self
+    }
+
+    /// Sets the rapid speed, mm/s ([`ContourOptions::rapid_speed`]).
+    #[must_use]
+    pub fn with_rapid_speed(mut self, value: f64) -> Self {
+        self.rapid_speed = value;
+        self
+    }
+
+    /// Sets biarcs instead of lines ([`ContourOptions::arcs`]).
+    #[must_use]
+    pub fn with_arcs(mut self, value: bool) -> Self {
+        self.arcs = value;
+        self
     }
 }
 
@@ -369,15 +478,13 @@ impl std::fmt::Display for ContourWarning {
 /// (20 mm deep), cut inside (the blanking die cavity) at the paper's T = 0.00004 mm.
 pub fn sample() -> Result<(CompositeCurve, ContourOptions), InputError> {
     let c = curve::paper_outline()?;
-    let opt = ContourOptions {
-        tool: Tool::flat(10.0)?,
-        tolerance: 4e-5,
-        rounding: 0.5e-6 * std::f64::consts::SQRT_2,
-        depth: 20.0,
-        step_down: 2.5,
-        top_z: 0.0,
-        ..ContourOptions::default()
-    };
+    let opt = ContourOptions::default()
+        .with_tool(Tool::flat(10.0)?)
+        .with_tolerance(4e-5)
+        .with_rounding(0.5e-6 * std::f64::consts::SQRT_2)
+        .with_depth(20.0)
+        .with_step_down(2.5)
+        .with_top_z(0.0);
     Ok((c, opt))
 }
 
