@@ -116,10 +116,12 @@
 pub mod arc;
 mod dialect;
 mod expr;
+mod fanuc;
 pub mod five_axis;
 pub mod format;
 pub mod interp;
 mod lexer;
+mod macro_b;
 mod ngc;
 mod oword;
 mod params;
