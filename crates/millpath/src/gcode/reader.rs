@@ -7,7 +7,9 @@
 //!
 //! In the LinuxCNC dialect a line with parameters, expressions, an O word or a message
 //! comment goes through the RS274/NGC parser (module `ngc`); every other line, and every
-//! line of the other dialects, through the plain lexer.
+//! line of the other dialects, through the plain lexer. In the Fanuc dialect the lines come
+//! from module `fanuc` (program numbers, M98/M99/G65, macro statements run there; a block
+//! with macro values arrives as evaluated words), and the whole file is kept once read.
 
 use super::dialect::Dialect;
 use super::expr::ParamRef;
