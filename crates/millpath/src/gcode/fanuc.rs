@@ -164,10 +164,10 @@ fn header(line: &[u8]) -> Option<u32> {
     std::str::from_utf8(rest.get(..digits)?).ok()?.parse().ok()
 }
 
-/// Whether a block may be a macro statement or carry macro values: a `#`, a `[` or two
-/// letters in a row outside comments (`IF`, `GOTO`, `WHILE`, `DO1`, `END1`). Every block of
-/// a Fanuc program passes here; plain blocks go to the lexer.
-fn candidate(b: &[u8]) -> bool {
+/// Whether a block the plain lexer refused may be a macro statement or carry macro values:
+/// a `#`, a `[` or two letters in a row outside comments (`IF`, `GOTO`, `WHILE`, `DO1`,
+/// `END1`). Plain blocks never come here: the lexer reads them first.
+pub(crate) fn candidate(b: &[u8]) -> bool {
     let (mut prev_alpha, mut comment) = (false, false);
     for &c in b {
         if comment {
@@ -246,7 +246,6 @@ pub(crate) struct Fanuc<R> {
     high: usize,
     last_jump: String,
     started: bool,
-    words: Option<(Vec<Token>, String)>,
     /// The line being run.
     at: At,
 }
@@ -279,7 +278,6 @@ impl<R: BufRead> Fanuc<R> {
             high: 0,
             last_jump: String::new(),
             started: false,
-            words: None,
             at: At {
                 line: 0,
                 origin: None,
@@ -290,11 +288,6 @@ impl<R: BufRead> Fanuc<R> {
     /// The line being run (for messages).
     pub(crate) fn at(&self) -> &At {
         &self.at
-    }
-
-    /// The evaluated words of the block just returned, when it carried macro values.
-    pub(crate) fn take_words(&mut self) -> Option<(Vec<Token>, String)> {
-        self.words.take()
     }
 
     fn line(&mut self, src: Src, i: usize, buf: &mut Vec<u8>) -> R2<bool> {
@@ -355,7 +348,6 @@ impl<R: BufRead> Fanuc<R> {
         if !self.started {
             self.init()?;
         }
-        self.words = None;
         loop {
             let f = self.frames.len() - 1;
             let (src, pc, start) = match self.frames.last() {
@@ -366,7 +358,9 @@ impl<R: BufRead> Fanuc<R> {
                 line: pc + 1,
                 origin: self.origin(src),
             };
-            if !self.line(src, pc, buf)? || (header(buf).is_some() && pc != start) {
+            let got = self.line(src, pc, buf)?;
+            let is_header = got && header(buf).is_some();
+            if !got || (is_header && pc != start) {
                 if f == 0 {
                     return Ok(None);
                 }
@@ -380,76 +374,79 @@ impl<R: BufRead> Fanuc<R> {
                 fr.pc += 1;
             }
             self.count(f, pc)?;
-            let t = buf.trim_ascii();
-            if t == b"%" || pc == start && header(buf).is_some() {
+            // The program's own number; `%` lines go to the lexer, which skips them.
+            if is_header {
                 continue;
             }
-            if !candidate(buf) {
-                return Ok(Some(self.at.clone()));
+            return Ok(Some(self.at.clone()));
+        }
+    }
+
+    /// Runs the block just returned when the plain lexer refused it: a macro statement (runs
+    /// here: `None`), or NC words with macro values (evaluated, vacant ones left out).
+    pub(crate) fn macro_block(&mut self, line: &[u8]) -> R2<Option<(Vec<Token>, String)>> {
+        let f = self.frames.len() - 1;
+        let pc = self.frames.last().map_or(0, |fr| fr.pc.saturating_sub(1));
+        let text = String::from_utf8_lossy(line).into_owned();
+        let (canon, comments) = canonical(&text)?;
+        let mut s = canon.as_str();
+        if let Some(r) = s.strip_prefix('/') {
+            if self.block_delete {
+                return Ok(None);
             }
-            let text = String::from_utf8_lossy(buf).into_owned();
-            let (canon, comments) = canonical(&text)?;
-            let mut s = canon.as_str();
-            if let Some(r) = s.strip_prefix('/') {
-                if self.block_delete {
-                    continue;
+            s = r;
+        }
+        let s = skip_n(s);
+        let stmt =
+            macro_b::statement(s, &self.vars).map_err(|e| format!("{e} in '{}'", text.trim()))?;
+        match stmt {
+            Stmt::Nc(tokens) => return Ok(Some((tokens, s.to_string()))),
+            Stmt::Nothing => {}
+            Stmt::Assign(list) => {
+                for (n, v) in list {
+                    if n == 3000 {
+                        return Err(format!(
+                            "the program raised alarm #3000={} ({})",
+                            v.unwrap_or(0.0),
+                            comments.join(" ").trim()
+                        ));
+                    }
+                    self.vars.set(n, v)?;
                 }
-                s = r;
             }
-            let s = skip_n(s);
-            let stmt = macro_b::statement(s, &self.vars)
-                .map_err(|e| format!("{e} in '{}'", text.trim()))?;
-            match stmt {
-                Stmt::Nc(tokens) => {
-                    self.words = Some((tokens, s.to_string()));
-                    return Ok(Some(self.at.clone()));
+            Stmt::Goto(n) => {
+                let target = self.seq_line(f, n, pc + 1, "GOTO")?;
+                if target <= pc {
+                    self.last_jump = format!("GOTO {n} at line {}", pc + 1);
                 }
-                Stmt::Nothing => {}
-                Stmt::Assign(list) => {
-                    for (n, v) in list {
-                        if n == 3000 {
-                            return Err(format!(
-                                "the program raised alarm #3000={} ({})",
-                                v.unwrap_or(0.0),
-                                comments.join(" ").trim()
-                            ));
-                        }
-                        self.vars.set(n, v)?;
-                    }
+                self.set_pc(f, target);
+            }
+            Stmt::While(c, m) => {
+                let ix = self.index(f)?;
+                if !c {
+                    let end = ends_after(&ix, m, pc).ok_or_else(|| {
+                        format!("WHILE … DO{m} at line {} without its END{m}", pc + 1)
+                    })?;
+                    self.set_pc(f, end + 1);
                 }
-                Stmt::Goto(n) => {
-                    let target = self.seq_line(f, n, pc + 1, "GOTO")?;
-                    if target <= pc {
-                        self.last_jump = format!("GOTO {n} at line {}", pc + 1);
-                    }
-                    self.set_pc(f, target);
-                }
-                Stmt::While(c, m) => {
-                    let ix = self.index(f)?;
-                    if !c {
-                        let end = ends_after(&ix, m, pc).ok_or_else(|| {
-                            format!("WHILE … DO{m} at line {} without its END{m}", pc + 1)
-                        })?;
-                        self.set_pc(f, end + 1);
-                    }
-                }
-                Stmt::Do(_) => {
-                    self.index(f)?;
-                }
-                Stmt::End(m) => {
-                    let ix = self.index(f)?;
-                    let k = usize::from(m - 1);
-                    let d = ix
-                        .dos
-                        .get(k)
-                        .and_then(|d| d.iter().rev().find(|&&d| d < pc))
-                        .copied()
-                        .ok_or_else(|| format!("END{m} at line {} without its DO{m}", pc + 1))?;
-                    self.last_jump = format!("END{m} at line {}", pc + 1);
-                    self.set_pc(f, d);
-                }
+            }
+            Stmt::Do(_) => {
+                self.index(f)?;
+            }
+            Stmt::End(m) => {
+                let ix = self.index(f)?;
+                let k = usize::from(m - 1);
+                let d = ix
+                    .dos
+                    .get(k)
+                    .and_then(|d| d.iter().rev().find(|&&d| d < pc))
+                    .copied()
+                    .ok_or_else(|| format!("END{m} at line {} without its DO{m}", pc + 1))?;
+                self.last_jump = format!("END{m} at line {}", pc + 1);
+                self.set_pc(f, d);
             }
         }
+        Ok(None)
     }
 
     fn set_pc(&mut self, f: usize, pc: usize) {

@@ -8,8 +8,9 @@
 //! In the LinuxCNC dialect a line with parameters, expressions, an O word or a message
 //! comment goes through the RS274/NGC parser (module `ngc`); every other line, and every
 //! line of the other dialects, through the plain lexer. In the Fanuc dialect the lines come
-//! from module `fanuc` (program numbers, M98/M99/G65, macro statements run there; a block
-//! with macro values arrives as evaluated words), and the whole file is kept once read.
+//! from module `fanuc` (program numbers, M98/M99/G65; a block the plain lexer refuses is
+//! handed back to it: a macro statement runs there, NC words with macro values come back
+//! evaluated), and the whole file is kept once read.
 
 use super::dialect::Dialect;
 use super::expr::ParamRef;
@@ -215,12 +216,6 @@ impl<R: BufRead> Reader<R> {
                 self.done = true;
                 return Ok(());
             }
-            if let Source::Fanuc(f) = &mut self.source
-                && let Some((tokens, text)) = f.take_words()
-            {
-                self.run_fanuc_block(tokens, Some(&text))?;
-                continue;
-            }
             if self.opts.dialect == Dialect::LinuxCnc && ngc::needed(&self.bytes) {
                 self.run_ngc_line()?;
                 continue;
@@ -234,7 +229,23 @@ impl<R: BufRead> Reader<R> {
                         .into());
                 }
             };
-            let kind = lex(text, &mut self.tokens).map_err(|e| {
+            let lexed = lex(text, &mut self.tokens);
+            if lexed.is_err()
+                && let Source::Fanuc(f) = &mut self.source
+                && fanuc::candidate(&self.bytes)
+            {
+                // A macro statement (run by the line source) or NC words with macro values.
+                let bytes = std::mem::take(&mut self.bytes);
+                let r = f.macro_block(&bytes);
+                self.bytes = bytes;
+                match r {
+                    Ok(Some((tokens, text))) => self.run_fanuc_block(tokens, Some(&text))?,
+                    Ok(None) => {}
+                    Err(m) => return Err(self.fanuc_error(m)),
+                }
+                continue;
+            }
+            let kind = lexed.map_err(|e| {
                 InputError::new(
                     "G-code text",
                     format!("'{}' at column {}", e.text, e.column + 1),

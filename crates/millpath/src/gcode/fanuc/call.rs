@@ -29,7 +29,9 @@ pub(crate) enum Control {
 pub(crate) fn take_control(tokens: &mut Vec<Token>) -> R2<Option<Control>> {
     let (mut m98, mut m99, mut g65) = (false, false, false);
     for t in tokens.iter() {
-        if let Token::Word { letter, value, .. } = t {
+        if let Token::Word { letter, value, .. } = t
+            && matches!(letter, b'G' | b'M')
+        {
             match (letter, code(*value)) {
                 (b'M', Some(980)) => m98 = true,
                 (b'M', Some(990)) => m99 = true,
