@@ -350,3 +350,40 @@ fn plain_fanuc_programs_read_as_before() {
     let linuxcnc = read_with(text, ReaderOptions::default()).unwrap();
     assert_eq!(ends(&fanuc), ends(&linuxcnc));
 }
+
+#[test]
+fn hostile_blocks_are_refused_without_panic() {
+    let deep = format!("O1\n#1={}1{}\nM30\n", "[".repeat(200), "]".repeat(200));
+    let sets: String = (0..11).map(|k| format!(" I{k}. J{k}. K{k}.")).collect();
+    let spec2 = format!("O1\nG65 P2{sets}\nM30\nO2\nM99\n");
+    for text in [
+        deep.as_str(),
+        spec2.as_str(),
+        "O1\nM98 P-1\nM30\n",
+        "O1\nM98 P1.5\nM30\n",
+        "O1\nM98\nM30\n",
+        "O1\nG65 P2 G1 X1.\nM30\nO2\nM99\n",
+        "O1\nM98 P2 M99\nM30\n",
+        "O1\nGOTO 1e9\nM30\n",
+        "O1\nGOTO [-5]\nM30\n",
+        "O1\n#[1e6]=1\nM30\n",
+        "O1\n#[-1]=1\nM30\n",
+        "O1\n#1=\nM30\n",
+        "O1\nIF [1] \nM30\n",
+        "O1\nWHILE [1 LT 2]\nM30\n",
+        "O1\nEND9\nM30\n",
+        "O1\nG1 X[1 EQ]\nM30\n",
+        "O1\n#1=EXP[1000]\nM30\n",
+        "O1\n#1=[1 AND 2 GT 1]\nG0 X#1 F[1/3]\nM30\n",
+        "O1\nM99 P5\n",
+        ":\n%\n%\n",
+        "O1\nG0 X[ATAN[1]]\nM30\n",
+        "O1\nX#1#2\nM30\n",
+    ] {
+        let r = std::panic::catch_unwind(|| read(text));
+        assert!(r.is_ok(), "panicked on\n{text}");
+    }
+    // A bracket nest deeper than the guard is refused, naming it.
+    assert!(read(&deep).unwrap_err().contains("nested deeper"));
+    assert!(read(&spec2).unwrap_err().contains("10 sets"));
+}
