@@ -1,7 +1,9 @@
 //! G-code reading and writing throughput (the estimator reads 1-million-line programs).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use millpath::gcode::{Reader, ReaderOptions, WriterOptions, write_program, write_to_string};
+use millpath::gcode::{
+    Dialect, Reader, ReaderOptions, WriterOptions, write_program, write_to_string,
+};
 use millpath::geom::Point3;
 use millpath::toolpath::{Move, Tool, Toolpath};
 use std::hint::black_box;
@@ -45,6 +47,27 @@ fn bench(c: &mut Criterion) {
             });
         });
     }
+    // The same G1 program in the Fanuc dialect: its line source keeps the lines for jumps
+    // and looks for macro statements in each.
+    let fanuc = WriterOptions {
+        dialect: Dialect::Fanuc,
+        ..WriterOptions::default()
+    };
+    let text = write_to_string(&toolpath(n, false), &fanuc)
+        .expect("writes")
+        .0;
+    g.bench_function("read_g1_fanuc", |b| {
+        b.iter(|| {
+            let opts = ReaderOptions {
+                dialect: Dialect::Fanuc,
+                ..ReaderOptions::default()
+            };
+            let r = Reader::new(black_box(text.as_bytes()), opts);
+            r.map(|m| m.map(|m| m.mv.to.x))
+                .sum::<Result<f64, _>>()
+                .expect("reads")
+        });
+    });
     let tp = toolpath(n, true);
     g.bench_function("write_g1_g3", |b| {
         b.iter(|| {

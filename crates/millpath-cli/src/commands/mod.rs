@@ -33,11 +33,12 @@ pub fn read_text(path: &Path) -> Result<String, Error> {
     millpath::io::read_text(path)
 }
 
-/// Files a G-code program may need (RS274/NGC subroutines, a tool table).
+/// Files a G-code program may need (RS274/NGC subroutines, Fanuc subprograms, a tool table).
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct ProgramFiles {
     /// Folders searched for subroutine files `NAME.ngc` (after the program's folder),
-    /// separated by ':' (LinuxCNC's SUBROUTINE_PATH).
+    /// separated by ':' (LinuxCNC's SUBROUTINE_PATH); Fanuc programs look there for
+    /// subprogram files `O1000.nc` or `1000.nc`.
     #[arg(long, value_delimiter = ':')]
     pub subroutine_path: Vec<PathBuf>,
     /// A LinuxCNC tool table (tool.tbl, mm): G43 takes its length offsets, T words must name

@@ -74,7 +74,7 @@ impl Dialect {
 impl Dialect {
     /// The dialect of a program, from its first lines `head` (a few KiB are plenty), by the
     /// words that only one dialect's programs carry, as the writer writes them: a `%` line or
-    /// an `O` number → Fanuc; `G700`/`G710`, `CYCLE832(` or a `TURN=` → Sinumerik; `;`
+    /// an `O` or `:` number → Fanuc; `G700`/`G710`, `CYCLE832(` or a `TURN=` → Sinumerik; `;`
     /// comments without any word Grbl lacks (`G64`, `G61.1`, `G43`, `M6`: LinuxCNC programs
     /// may use `;` comments too) → Grbl; anything else → LinuxCNC. A program that carries none of
     /// these reads the same in LinuxCNC's dialect as in any other (the dialects differ in
@@ -107,10 +107,11 @@ impl Dialect {
     }
 }
 
-/// `O1234` (with an optional comment): a Fanuc program number line.
+/// `O1234` or `:1234` (with an optional comment): a Fanuc program number line.
 fn is_program_number(code: &str) -> bool {
     let code = code.split('(').next().unwrap_or("").trim();
     code.strip_prefix('O')
+        .or_else(|| code.strip_prefix(':'))
         .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
@@ -240,6 +241,7 @@ mod tests {
         }
         assert!("oil".parse::<Coolant>().is_err());
         assert_eq!(Dialect::detect("%\nO0001 (X)\nG0 X1\n"), Dialect::Fanuc);
+        assert_eq!(Dialect::detect(":0001 (X)\nG0 X1\n"), Dialect::Fanuc);
         assert_eq!(Dialect::detect("; a\nG17 G710 G90\n"), Dialect::Sinumerik);
         assert_eq!(Dialect::detect("; a\nG17 G21 G90\n"), Dialect::Grbl);
         assert_eq!(

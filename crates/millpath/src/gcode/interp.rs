@@ -81,12 +81,14 @@ pub struct ReaderOptions {
     /// must name one of its tools. Without one, tool length offsets are zero.
     pub tool_table: Option<std::sync::Arc<ToolTable>>,
     /// Folders searched for a subroutine file `NAME.ngc` (after the program's own folder,
-    /// which the caller puts first when it has one).
+    /// which the caller puts first when it has one); in the Fanuc dialect for subprogram
+    /// files `O1000.nc` or `1000.nc` (module `fanuc`).
     pub subroutine_path: Vec<std::path::PathBuf>,
     /// Parameters from a LinuxCNC `.var` file (the persistent range: work offsets, G92, …),
     /// in mm. Without one, G54..G59 take [`ReaderOptions::work_offsets`].
     pub parameters: Option<std::sync::Arc<ParamFile>>,
-    /// Lines run inside loops and subroutines before the program is refused as endless.
+    /// Lines run inside loops and subroutines (Fanuc: and lines run again after a backward
+    /// GOTO, END or M99) before the program is refused as endless.
     pub step_budget: u64,
 }
 

@@ -88,8 +88,9 @@
 //! programs are read by [`five_axis::read_five_axis`]), cutter compensation (G41/G42),
 //! canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines other than LinuxCNC's
 //! G5, G5.1 and G5.2/G5.3 NURBS (module `interp::nurbs`: the true curve within 1 µm), G92 and canned cycles in
-//! rotated systems (`G10 L2 R` itself is read: module `interp::rotation`), Fanuc subprograms
-//! and Sinumerik parameters are refused (or skipped when lenient), naming the word and the line.
+//! rotated systems (`G10 L2 R` itself is read: module `interp::rotation`), Fanuc's modal
+//! macro calls G66/G67 and Sinumerik parameters are refused (or skipped when lenient),
+//! naming the word and the line.
 //!
 //! # RS274/NGC (the LinuxCNC dialect)
 //! Parameters (`#1`, `#<name>`, `#<_global>`, the machine-state parameters), expressions
@@ -103,6 +104,23 @@
 //! speed of plain programs is unchanged. Every construct is compared with LinuxCNC's
 //! `rs274 -g` (`tests/gcode_ngc.rs`), and so are LinuxCNC's own 416 programs
 //! (`tests/linuxcnc_programs.rs`; the counts are in BENCHMARKS.md).
+//!
+//! # Fanuc subprograms and custom macro B
+//! In the Fanuc dialect the reader runs what a Fanuc 0i/30i with custom macro B runs (module
+//! `fanuc` for the program flow, module `macro_b` for variables and expressions): program
+//! numbers `O1234`/`:1234` and `%` framing, several programs in one file, `M98 P… L…` (and
+//! the packed `M98 P31000`), `M99` and `M99 P n`, `M99` in the main program (an endless
+//! loop bounded by the step budget), subprogram files `O1000.nc`/`1000.nc` on
+//! [`ReaderOptions::subroutine_path`], `G65 P… L…` with arguments (specifications I and
+//! II), locals `#1–#33` per macro level, commons `#100–#199`/`#500–#999`, vacant
+//! variables (`#0`), Fanuc's operators and functions, `IF […] GOTO n`, `IF […] THEN`,
+//! `GOTO n`, `WHILE […] DO m`/`END m`, and the alarm `#3000`. Nesting: 10 M98 levels and 5
+//! G65 levels (the 30i's). G66/G67 and system variables other than `#3000` are refused.
+//! Every block takes the plain lexer first; only a block it refuses is read as macro B (a
+//! plain G1 line pays for the line store and the program-number check: about 270
+//! instructions of its ~2 400, measured with callgrind). The file's lines are kept in memory
+//! once read (a jump may go back to any of them). Checked in `tests/gcode_fanuc.rs`
+//! against end points computed independently.
 
 //! # The reader's modal rules
 //! See `interp`: the state machine follows RS274/NGC's order of execution within a block,
@@ -116,10 +134,12 @@
 pub(crate) mod arc;
 mod dialect;
 mod expr;
+mod fanuc;
 pub mod five_axis;
 pub(crate) mod format;
 pub(crate) mod interp;
 mod lexer;
+mod macro_b;
 mod ngc;
 mod oword;
 mod params;

@@ -126,7 +126,7 @@ fn message_comment(line: &[u8]) -> bool {
 }
 
 /// The canonical form of `line` (lower case, no spaces, no comments) and its comments.
-fn canonical(line: &str) -> Result<(String, Vec<String>), String> {
+pub(crate) fn canonical(line: &str) -> Result<(String, Vec<String>), String> {
     let mut out = String::with_capacity(line.len());
     let mut comments = Vec::new();
     let mut chars = line.char_indices();

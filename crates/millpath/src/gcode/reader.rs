@@ -7,10 +7,14 @@
 //!
 //! In the LinuxCNC dialect a line with parameters, expressions, an O word or a message
 //! comment goes through the RS274/NGC parser (module `ngc`); every other line, and every
-//! line of the other dialects, through the plain lexer.
+//! line of the other dialects, through the plain lexer. In the Fanuc dialect the lines come
+//! from module `fanuc` (program numbers, M98/M99/G65; a block the plain lexer refuses is
+//! handed back to it: a macro statement runs there, NC words with macro values come back
+//! evaluated), and the whole file is kept once read.
 
 use super::dialect::Dialect;
 use super::expr::ParamRef;
+use super::fanuc::{self, Fanuc};
 use super::interp::{Block, ReadMove, ReaderOptions, Scope, State};
 use super::lexer::{LineKind, Token, lex};
 use super::ngc::{self, NgcLine};
@@ -37,11 +41,18 @@ pub struct Warning {
     pub message: String,
 }
 
+/// Where lines come from: RS274/NGC's O-word flow, or a Fanuc program's.
+#[derive(Debug)]
+enum Source<R> {
+    Ngc(Program<R>),
+    Fanuc(Box<Fanuc<R>>),
+}
+
 /// Reads G-code from `src`, yielding moves as they are interpreted. After the first error it
 /// yields nothing more.
 #[derive(Debug)]
 pub struct Reader<R> {
-    program: Program<R>,
+    source: Source<R>,
     params: Store,
     ngc: NgcLine,
     /// The file of the line being run when it is not the main program's.
@@ -66,13 +77,24 @@ impl<R: BufRead> Reader<R> {
         let mut state = State::new(&opts);
         let params = State::initial_params(&opts);
         state.load_origin(&params);
-        Reader {
-            program: Program::new(
+        let source = if opts.dialect == Dialect::Fanuc {
+            Source::Fanuc(Box::new(Fanuc::new(
                 src,
                 opts.subroutine_path.clone(),
                 opts.step_budget,
                 MAX_LINE_BYTES,
-            ),
+                opts.block_delete,
+            )))
+        } else {
+            Source::Ngc(Program::new(
+                src,
+                opts.subroutine_path.clone(),
+                opts.step_budget,
+                MAX_LINE_BYTES,
+            ))
+        };
+        Reader {
+            source,
             params,
             ngc: NgcLine::default(),
             file: None,
@@ -152,7 +174,27 @@ impl<R: BufRead> Reader<R> {
 
     /// Gets the next line to run into `self.bytes`; `false` at the end of the program.
     fn read_line(&mut self) -> Result<bool, Error> {
-        match self.program.next_line(&mut self.bytes) {
+        let program = match &mut self.source {
+            Source::Ngc(p) => p,
+            Source::Fanuc(f) => {
+                return match f.next_line(&mut self.bytes) {
+                    Ok(Some(at)) => {
+                        self.line_no = at.line;
+                        self.bytes_read += self.bytes.len() as u64;
+                        self.file = at.origin;
+                        Ok(true)
+                    }
+                    Ok(None) => Ok(false),
+                    Err(m) => {
+                        let at = f.at().clone();
+                        self.line_no = at.line;
+                        self.file = at.origin;
+                        Err(self.fanuc_error(m))
+                    }
+                };
+            }
+        };
+        match program.next_line(&mut self.bytes) {
             Ok(Some(at)) => {
                 self.line_no = at.line;
                 self.bytes_read += self.bytes.len() as u64;
@@ -187,7 +229,23 @@ impl<R: BufRead> Reader<R> {
                         .into());
                 }
             };
-            let kind = lex(text, &mut self.tokens).map_err(|e| {
+            let lexed = lex(text, &mut self.tokens);
+            if lexed.is_err()
+                && let Source::Fanuc(f) = &mut self.source
+                && fanuc::candidate(&self.bytes)
+            {
+                // A macro statement (run by the line source) or NC words with macro values.
+                let bytes = std::mem::take(&mut self.bytes);
+                let r = f.macro_block(&bytes);
+                self.bytes = bytes;
+                match r {
+                    Ok(Some((tokens, text))) => self.run_fanuc_block(tokens, Some(&text))?,
+                    Ok(None) => {}
+                    Err(m) => return Err(self.fanuc_error(m)),
+                }
+                continue;
+            }
+            let kind = lexed.map_err(|e| {
                 InputError::new(
                     "G-code text",
                     format!("'{}' at column {}", e.text, e.column + 1),
@@ -203,9 +261,47 @@ impl<R: BufRead> Reader<R> {
                 LineKind::Block { .. } => {}
             }
             let tokens = std::mem::take(&mut self.tokens);
+            if matches!(self.source, Source::Fanuc(_)) {
+                self.run_fanuc_block(tokens, None)?;
+                continue;
+            }
             let r = self.run_block(&tokens, None);
             self.tokens = tokens;
             r?;
+        }
+        Ok(())
+    }
+
+    fn fanuc_error(&self, m: String) -> Error {
+        InputError::new("G-code program", m)
+            .at(self.origin())
+            .expected(
+                "a program a Fanuc control with custom macro B runs (see millpath::gcode::fanuc)",
+            )
+            .into()
+    }
+
+    /// A Fanuc block: its M98/M99/G65 taken out, its other words run, then the call or
+    /// return. `text` is the words' text when it is not `self.bytes`.
+    fn run_fanuc_block(&mut self, mut tokens: Vec<Token>, text: Option<&str>) -> Result<(), Error> {
+        let control = fanuc::take_control(&mut tokens).map_err(|m| self.fanuc_error(m));
+        let r = match control {
+            Ok(Some(fanuc::Control::Call { args: Some(_), .. })) => Ok(()),
+            Ok(_) => self.run_block(&tokens, text),
+            Err(_) => Ok(()),
+        };
+        if text.is_none() {
+            self.tokens = tokens;
+        }
+        r?;
+        let control = control?;
+        if let (Some(c), Source::Fanuc(f)) = (control, &mut self.source)
+            && !self.state.ended
+        {
+            let r = f.apply(c);
+            if let Err(m) = r {
+                return Err(self.fanuc_error(m));
+            }
         }
         Ok(())
     }
@@ -236,7 +332,12 @@ impl<R: BufRead> Reader<R> {
             let origin = self.origin();
             let file = self.file.as_deref().unwrap_or("").to_string();
             let level = self.params.call_level();
-            self.program
+            let Source::Ngc(program) = &mut self.source else {
+                return Err(Error::internal(
+                    "an O word outside RS274/NGC (please report)",
+                ));
+            };
+            program
                 .run(&o, &self.bytes, self.line_no, &file, &mut self.params)
                 .map_err(|m| {
                     Error::from(
