@@ -42,7 +42,8 @@
 //!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
 //!   M48–M53, M61–M65 (module `machine_codes`) and M70–M73 (module `modal_save`).
 //! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
-//!   `rotation`) and splines G5, G5.1, G5.2 (module `nurbs`) expand into ordinary moves.
+//!   `rotation`), splines G5, G5.1, G5.2 (module `nurbs`) and LinuxCNC master's G6.2 NURBS
+//!   (module `g6_nurbs`) expand into ordinary moves.
 //! * Anything else is refused with its line and word, or skipped with a warning when
 //!   [`ReaderOptions::lenient`].
 
@@ -188,6 +189,8 @@ pub(crate) struct State {
     nurbs: Option<nurbs::NurbsState>,
     /// The last G5's P Q.
     spline: nurbs::SplineState,
+    /// A G6.2 NURBS being read.
+    g6: Option<g6_nurbs::G6State>,
     /// Modal states saved by M70/M73.
     saved: Vec<modal_save::Saved>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
@@ -406,11 +409,11 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
         0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
         610, 640, 800, 900, 910, 930, 940,
     ];
-    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G6.2 (LinuxCNC master), G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
     // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
     const LINUXCNC: &[u16] = &[
-        50, 51, 52, 53, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820, 830,
-        850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
+        50, 51, 52, 53, 62, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820,
+        830, 850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
     ];
     COMMON.contains(&code)
         || match dialect {
@@ -449,6 +452,7 @@ impl State {
             nurbs: None,
             saved: Vec::new(),
             spline: nurbs::SplineState::default(),
+            g6: None,
             notes: Vec::new(),
         }
     }
@@ -767,6 +771,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
 }
 
 mod cycles;
+mod g6_nurbs;
 mod home;
 mod machine_codes;
 mod modal_save;

@@ -25,7 +25,7 @@ impl State {
         for &(g, _) in &b.g {
             let linuxcnc = opts.dialect == Dialect::LinuxCnc;
             if matches!(g, 0 | 10 | 20 | 30 | 800 | 52 | 53)
-                || (linuxcnc && matches!(g, 50 | 51))
+                || (linuxcnc && matches!(g, 50 | 51 | 62))
                 || is_cycle(g)
             {
                 // G80 with another motion code: the other one wins (LinuxCNC's read_g).
@@ -43,6 +43,13 @@ impl State {
             }
         }
         let previous = self.motion;
+        if self.g6_open() && code.is_some_and(|c| c != 62) {
+            return Err(BlockError::new(
+                "G6.2 curve",
+                "not complete before another motion code",
+                "G6.2 entries up to the last P equal knots K (the curve's end)",
+            ));
+        }
         if let Some(c) = code {
             self.motion = (c != 800).then_some(c);
         }
@@ -66,6 +73,16 @@ impl State {
                 ));
             }
             return self.spline(m, previous, b, axes, line, out);
+        }
+        if self.motion == Some(62) {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            if g53 || b.polar.iter().any(Option::is_some) {
+                return Err(BlockError::unsupported(
+                    "G53 or polar words in a G6.2 block",
+                    "axis words of the plane, R, K, P and Q in a G6.2 block",
+                ));
+            }
+            return self.g6_block(b, axes, line, out);
         }
         if self.motion == Some(52) {
             let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
