@@ -44,6 +44,9 @@
 //! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
 //!   `rotation`), splines G5, G5.1, G5.2 (module `nurbs`) and LinuxCNC master's G6.2 NURBS
 //!   (module `g6_nurbs`) expand into ordinary moves.
+//! * Rotary axes A, B, C (LinuxCNC): read and left out of the path, which is X Y Z (module
+//!   `motion`): a move's time is that of its X Y Z part, so a move of rotary axes alone
+//!   takes no time in G94 and G0 (the rotary axes' speeds are not known), and 60/F in G93.
 //! * Anything else is refused with its line and word, or skipped with a warning when
 //!   [`ReaderOptions::lenient`].
 
@@ -120,6 +123,8 @@ pub enum FeedMode {
     PerMinute,
     /// G93.
     InverseTime,
+    /// G95 (LinuxCNC): units per spindle revolution (module `spindle_sync`).
+    PerRevolution,
 }
 
 /// The modal state that matters downstream, as it was for a move.
@@ -191,6 +196,8 @@ pub(crate) struct State {
     spline: nurbs::SplineState,
     /// A G6.2 NURBS being read.
     g6: Option<g6_nurbs::G6State>,
+    /// The end of the last probe move (program mm), for #5061–#5063 (module `probe`).
+    probed: Option<[f64; 3]>,
     /// Modal states saved by M70/M73.
     saved: Vec<modal_save::Saved>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
@@ -335,11 +342,11 @@ impl Block {
                     b'M' => {
                         let code = value.round();
                         if (value - code).abs() > 1e-9
-                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=65 | 70..=73)
+                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=66 | 70..=73)
                         {
                             return Err(BlockError::unsupported(
                                 text,
-                                "M0–M9, M30, M48–M53, M61–M65 or M70–M73",
+                                "M0–M9, M30, M48–M53, M61–M66 or M70–M73",
                             ));
                         }
                         self.m.push(code as u16);
@@ -358,7 +365,9 @@ impl Block {
                             None => {}
                         }
                     }
-                    l if LETTERS_OK.contains(l) => {
+                    l if LETTERS_OK.contains(l)
+                        || (dialect == Dialect::LinuxCnc && b"ABC".contains(l)) =>
+                    {
                         let slot = self.words.get_mut(letter_index(*l));
                         match slot {
                             Some(Some(_)) => {
@@ -413,7 +422,8 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
     // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
     const LINUXCNC: &[u16] = &[
         50, 51, 52, 53, 62, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820,
-        830, 850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
+        830, 850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990, 330, 331, 382, 383, 384,
+        385, 950,
     ];
     COMMON.contains(&code)
         || match dialect {
@@ -453,6 +463,7 @@ impl State {
             saved: Vec::new(),
             spline: nurbs::SplineState::default(),
             g6: None,
+            probed: None,
             notes: Vec::new(),
         }
     }
@@ -507,6 +518,8 @@ impl State {
             Some(FeedMode::InverseTime)
         } else if b.has_g(940) {
             Some(FeedMode::PerMinute)
+        } else if b.has_g(950) {
+            Some(FeedMode::PerRevolution)
         } else {
             None
         };
@@ -534,10 +547,11 @@ impl State {
             self.f_word = f;
             match self.modal.feed_mode {
                 FeedMode::PerMinute => self.feed = Some(f * self.unit() / 60.0),
+                FeedMode::PerRevolution => self.feed = Some(f * self.unit()),
                 FeedMode::InverseTime => block_f = Some(f),
             }
         }
-        let mut sync = b.m.iter().any(|m| matches!(m, 3..=9)) || b.has_g(430) || b.has_g(490);
+        let mut sync = b.m.iter().any(|m| matches!(m, 3..=9 | 66)) || b.has_g(430) || b.has_g(490);
         if let Some(s) = b.take(b'S') {
             if s < 0.0 {
                 return Err(BlockError::new("spindle speed", format!("S{s}"), "S >= 0"));
@@ -577,6 +591,9 @@ impl State {
         }
         if dialect == Dialect::LinuxCnc {
             self.machine_codes(b)?;
+            if b.m.contains(&66) {
+                store.set(5399, 0.0);
+            }
             // M70–M73 (LinuxCNC runs them after the spindle, coolant and tool codes; here
             // before them: a block with both is not expected).
             for m in b.m.clone() {
@@ -616,6 +633,9 @@ impl State {
             self.home(g, b, store, line, out)?;
         } else {
             self.motion(b, block_f, line, opts, out)?;
+        }
+        if let Some(p) = self.probed.take() {
+            self.set_probe_parameters(p, store);
         }
         // A move that goes somewhere (a zero-length G0 to where the tool is does not).
         self.moved |= out
@@ -778,7 +798,9 @@ mod modal_save;
 mod motion;
 mod nurbs;
 mod offsets;
+mod probe;
 mod rotation;
+mod spindle_sync;
 pub(crate) use offsets::Scope;
 
 /// The axis indices `(u, v, normal)` of a plane (0 = X), in [`Plane::split`] order.

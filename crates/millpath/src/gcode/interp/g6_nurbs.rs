@@ -106,7 +106,7 @@ impl State {
                 expected,
             ));
         }
-        if self.modal.feed_mode == FeedMode::InverseTime || !self.feed.is_some_and(|f| f > 0.0) {
+        if self.modal.feed_mode != FeedMode::PerMinute || !self.feed.is_some_and(|f| f > 0.0) {
             return Err(BlockError::new(
                 "G6.2",
                 "without a feed",

@@ -100,7 +100,7 @@ impl State {
                 "one plane (G17, G18 or G19) for the whole G5.2 … G5.3 curve",
             ));
         }
-        if self.modal.feed_mode == FeedMode::InverseTime || !self.feed.is_some_and(|f| f > 0.0) {
+        if self.modal.feed_mode != FeedMode::PerMinute || !self.feed.is_some_and(|f| f > 0.0) {
             return Err(BlockError::new(
                 "G5.2",
                 "without a feed",
@@ -200,7 +200,7 @@ impl State {
                 "G5/G5.1 in the XY plane (G17) with X Y I J (P Q)",
             ));
         }
-        if self.modal.feed_mode == FeedMode::InverseTime || !self.feed.is_some_and(|f| f > 0.0) {
+        if self.modal.feed_mode != FeedMode::PerMinute || !self.feed.is_some_and(|f| f > 0.0) {
             return Err(BlockError::new(name, "without a feed", "an F > 0 in G94"));
         }
         let unit = self.unit();
