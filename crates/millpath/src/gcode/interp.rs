@@ -40,10 +40,14 @@
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
 //!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
 //!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
-//!   M48–M53, M61–M65 (module `machine_codes`) and M70–M73 (module `modal_save`).
+//!   M48–M53, M61–M66 (module `machine_codes`) and M70–M73 (module `modal_save`).
 //! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
 //!   `rotation`), splines G5, G5.1, G5.2 (module `nurbs`) and LinuxCNC master's G6.2 NURBS
 //!   (module `g6_nurbs`) expand into ordinary moves.
+//! * LinuxCNC's spindle-synchronised G33, G33.1 and feed per revolution G95 (module
+//!   `spindle_sync`: speed = pitch or F × the commanded S) and straight probes G38.2–G38.5
+//!   (module `probe`: to the target, as LinuxCNC's standalone interpreter models them) are
+//!   feed moves.
 //! * Rotary axes A, B, C (LinuxCNC): read and left out of the path, which is X Y Z (module
 //!   `motion`): a move's time is that of its X Y Z part, so a move of rotary axes alone
 //!   takes no time in G94 and G0 (the rotary axes' speeds are not known), and 60/F in G93.
@@ -384,7 +388,8 @@ impl Block {
                     _ => {
                         return Err(BlockError::unsupported(
                             text,
-                            "words G, M, N, O, X, Y, Z, I, J, K, R, F, S, T, P, Q, H, D",
+                            "words G, M, N, O, X, Y, Z, I, J, K, R, F, S, T, P, Q, H, D \
+                             (and A, B, C in LinuxCNC programs)",
                         ));
                     }
                 }
