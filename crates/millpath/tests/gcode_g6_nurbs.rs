@@ -276,6 +276,14 @@ fn g6_2_refusals_name_the_word_and_the_line() {
             ":6",
             "G6.2 with Z",
         ),
+        (
+            good.replace(
+                "G6.2 K1\nG6.2 K1\nG6.2 K1\n",
+                "I5\nG6.2 K1\nG6.2 K1\nG6.2 K1\n",
+            ),
+            ":7",
+            "I5 in a G6.2 block",
+        ),
     ];
     for (text, line, expected) in cases {
         let m = refusal(&text);

@@ -87,7 +87,10 @@ impl State {
                 .flatten()
                 .is_some()
         };
-        if axes.iter().all(Option::is_none) && !b"KPQR".iter().any(|&l| words(l)) {
+        if axes.iter().all(Option::is_none)
+            && !b"KPQR".iter().any(|&l| words(l))
+            && b.leftover().is_none()
+        {
             // A block without the curve's words (F, S, a comment): nothing to add.
             return Ok(());
         }
