@@ -226,11 +226,11 @@ fn what_linuxcnc_refuses_or_the_reader_leaves_out_is_refused() {
         ),
         (
             "G21 G17 G90 F100\nG5.2 P1\nX1 P1\nG5.3\nM2\n",
-            "both X and Y",
+            "X without Y",
         ),
         (
-            "G21 G18 G90 F100\nG5.2 P1\nX1 Z1 P1\nG5.3\nM2\n",
-            "XY plane",
+            "G21 G18 G90 F100\nG5.2 P1\nX1 Z1 Y1 P1\nG5.3\nM2\n",
+            "G5.2 with Y",
         ),
         ("G21 G17 G90\nG5.2 P1\nX1 Y1 P1\nG5.3\nM2\n", "feed"),
     ] {

@@ -22,20 +22,36 @@ use std::time::{Duration, Instant};
 
 /// Programs both read whose motions differ from rs274's for a reason on rs274's side. Each
 /// must still differ (so that the list cannot go stale).
-const KNOWN_DIFFERENCES: &[(&str, &str)] = &[(
-    "nc_files/skeleton.ngc",
-    "`T1 M06 G43 H1`: standalone rs274 synchronises after the tool change and re-reads its \
-     program position from its canonical layer, which ignores USE_TOOL_LENGTH_OFFSET \
-     (saicanon.cc); it then moves Z by the tool length. LinuxCNC's machine does not move on G43.",
-)];
+const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
+    (
+        "nc_files/skeleton.ngc",
+        "`T1 M06 G43 H1`: standalone rs274 synchronises after the tool change and re-reads its \
+         program position from its canonical layer, which ignores USE_TOOL_LENGTH_OFFSET \
+         (saicanon.cc); it then moves Z by the tool length. LinuxCNC's machine does not move \
+         on G43.",
+    ),
+    (
+        "nc_files/threading.ngc",
+        "`o100 while [#6 LE #3]`: 75 additions of 0.0005 make #6 = 0.037500000000000026. The \
+         rs274 installed here (2.9.0~pre1, Feb 2023) compares LE exactly and stops; LinuxCNC \
+         2.9.0 and later (commit 014777a8, 'interp: fix GE/LE operators', June 2023) compare \
+         within 1e-6, as the reader does, and cut one more pass.",
+    ),
+    (
+        "circular-arcs/violation_checks/tap-discrimant-error-orig.ngc",
+        "`G20 … T4 M6 G43` (tool 4: Z 10 in), then `G21` and `G53 G0 X0 Z0`: rs274 prints \
+         program Z −10.0000 mm, the tool length taken as 10 mm after the change of units, so \
+         its machine Z is 244 mm; G53 Z0 is machine Z 0, as the reader has it.",
+    ),
+];
 
 /// Longest time a program may take to read.
 const LIMIT: Duration = Duration::from_secs(20);
 
 /// Programs millpath must read (of 416).
-const MIN_READ: usize = 307;
+const MIN_READ: usize = 369;
 /// Programs both read whose motions must be compared and equal (all of them must be equal).
-const MIN_COMPARED: usize = 264;
+const MIN_COMPARED: usize = 277;
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/linuxcnc-nc")
@@ -173,15 +189,30 @@ fn linuxcnc_programs_read_as_rs274_reads_them() {
         if took > slowest.0 {
             slowest = (took, f.clone());
         }
-        let theirs = rs274_file(f, Some(&ini), Some(&tools), LIMIT);
+        // rs274 fails now and then without a message, or with a HAL component name clash,
+        // when other rs274 runs share the machine: those runs are repeated (twice at most).
+        let mut theirs = rs274_file(f, Some(&ini), Some(&tools), LIMIT);
+        for _ in 0..2 {
+            if theirs.ok
+                || !(theirs.messages.trim().is_empty() || theirs.messages.contains("HAL: ERROR"))
+            {
+                break;
+            }
+            theirs = rs274_file(f, Some(&ini), Some(&tools), LIMIT);
+        }
         rs_ok += usize::from(theirs.ok);
+        if !theirs.ok && std::env::var_os("LINUXCNC_RS274").is_some() {
+            let first = theirs.messages.lines().next().unwrap_or("(no message)");
+            eprintln!("  rs274 refuses {name}: {first}");
+        }
         match ours {
             Ours::Panicked(m) => failures.push(format!("{name}: PANIC {m}")),
             Ours::TimedOut => failures.push(format!("{name}: longer than {LIMIT:?}")),
             Ours::Refused(m) => {
                 *refusals.entry(refusal_key(&m)).or_default() += 1;
                 if std::env::var_os("LINUXCNC_REFUSALS").is_some() {
-                    eprintln!("  {name}: {m}");
+                    let rs = if theirs.ok { " [rs274 reads it]" } else { "" };
+                    eprintln!("  {name}{rs}: {m}");
                 }
             }
             Ours::Read(moves) => {

@@ -40,9 +40,17 @@
 //! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
 //!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
 //!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
-//!   M48–M53, M61–M65 (module `machine_codes`) and M70–M73 (module `modal_save`).
+//!   M48–M53, M61–M66 (module `machine_codes`) and M70–M73 (module `modal_save`).
 //! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
-//!   `rotation`) and splines G5, G5.1, G5.2 (module `nurbs`) expand into ordinary moves.
+//!   `rotation`), splines G5, G5.1, G5.2 (module `nurbs`) and LinuxCNC master's G6.2 NURBS
+//!   (module `g6_nurbs`) expand into ordinary moves.
+//! * LinuxCNC's spindle-synchronised G33, G33.1 and feed per revolution G95 (module
+//!   `spindle_sync`: speed = pitch or F × the commanded S) and straight probes G38.2–G38.5
+//!   (module `probe`: to the target, as LinuxCNC's standalone interpreter models them) are
+//!   feed moves.
+//! * Rotary axes A, B, C (LinuxCNC): read and left out of the path, which is X Y Z (module
+//!   `motion`): a move's time is that of its X Y Z part, so a move of rotary axes alone
+//!   takes no time in G94 and G0 (the rotary axes' speeds are not known), and 60/F in G93.
 //! * Anything else is refused with its line and word, or skipped with a warning when
 //!   [`ReaderOptions::lenient`].
 
@@ -121,6 +129,8 @@ pub enum FeedMode {
     PerMinute,
     /// G93.
     InverseTime,
+    /// G95 (LinuxCNC): units per spindle revolution (module `spindle_sync`).
+    PerRevolution,
 }
 
 /// The modal state that matters downstream, as it was for a move.
@@ -190,6 +200,10 @@ pub(crate) struct State {
     nurbs: Option<nurbs::NurbsState>,
     /// The last G5's P Q.
     spline: nurbs::SplineState,
+    /// A G6.2 NURBS being read.
+    g6: Option<g6_nurbs::G6State>,
+    /// The end of the last probe move (program mm), for #5061–#5063 (module `probe`).
+    probed: Option<[f64; 3]>,
     /// Modal states saved by M70/M73.
     saved: Vec<modal_save::Saved>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
@@ -334,11 +348,11 @@ impl Block {
                     b'M' => {
                         let code = value.round();
                         if (value - code).abs() > 1e-9
-                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=65 | 70..=73)
+                            || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=66 | 70..=73)
                         {
                             return Err(BlockError::unsupported(
                                 text,
-                                "M0–M9, M30, M48–M53, M61–M65 or M70–M73",
+                                "M0–M9, M30, M48–M53, M61–M66 or M70–M73",
                             ));
                         }
                         self.m.push(code as u16);
@@ -357,7 +371,9 @@ impl Block {
                             None => {}
                         }
                     }
-                    l if LETTERS_OK.contains(l) => {
+                    l if LETTERS_OK.contains(l)
+                        || (dialect == Dialect::LinuxCnc && b"ABC".contains(l)) =>
+                    {
                         let slot = self.words.get_mut(letter_index(*l));
                         match slot {
                             Some(Some(_)) => {
@@ -374,7 +390,8 @@ impl Block {
                     _ => {
                         return Err(BlockError::unsupported(
                             text,
-                            "words G, M, N, O, X, Y, Z, I, J, K, R, F, S, T, P, Q, H, D",
+                            "words G, M, N, O, X, Y, Z, I, J, K, R, F, S, T, P, Q, H, D \
+                             (and A, B, C in LinuxCNC programs)",
                         ));
                     }
                 }
@@ -408,11 +425,12 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
         0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
         610, 640, 800, 900, 910, 930, 940,
     ];
-    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G6.2 (LinuxCNC master), G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
     // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
     const LINUXCNC: &[u16] = &[
-        50, 51, 52, 53, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820, 830,
-        850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
+        50, 51, 52, 53, 62, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820,
+        830, 850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990, 330, 331, 382, 383, 384,
+        385, 950,
     ];
     COMMON.contains(&code)
         || match dialect {
@@ -451,6 +469,8 @@ impl State {
             nurbs: None,
             saved: Vec::new(),
             spline: nurbs::SplineState::default(),
+            g6: None,
+            probed: None,
             notes: Vec::new(),
         }
     }
@@ -505,6 +525,8 @@ impl State {
             Some(FeedMode::InverseTime)
         } else if b.has_g(940) {
             Some(FeedMode::PerMinute)
+        } else if b.has_g(950) {
+            Some(FeedMode::PerRevolution)
         } else {
             None
         };
@@ -532,10 +554,11 @@ impl State {
             self.f_word = f;
             match self.modal.feed_mode {
                 FeedMode::PerMinute => self.feed = Some(f * self.unit() / 60.0),
+                FeedMode::PerRevolution => self.feed = Some(f * self.unit()),
                 FeedMode::InverseTime => block_f = Some(f),
             }
         }
-        let mut sync = b.m.iter().any(|m| matches!(m, 3..=9)) || b.has_g(430) || b.has_g(490);
+        let mut sync = b.m.iter().any(|m| matches!(m, 3..=9 | 66)) || b.has_g(430) || b.has_g(490);
         if let Some(s) = b.take(b'S') {
             if s < 0.0 {
                 return Err(BlockError::new("spindle speed", format!("S{s}"), "S >= 0"));
@@ -575,6 +598,9 @@ impl State {
         }
         if dialect == Dialect::LinuxCnc {
             self.machine_codes(b)?;
+            if b.m.contains(&66) {
+                store.set(5399, 0.0);
+            }
             // M70–M73 (LinuxCNC runs them after the spindle, coolant and tool codes; here
             // before them: a block with both is not expected).
             for m in b.m.clone() {
@@ -614,6 +640,9 @@ impl State {
             self.home(g, b, store, line, out)?;
         } else {
             self.motion(b, block_f, line, opts, out)?;
+        }
+        if let Some(p) = self.probed.take() {
+            self.set_probe_parameters(p, store);
         }
         // A move that goes somewhere (a zero-length G0 to where the tool is does not).
         self.moved |= out
@@ -769,13 +798,16 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
 }
 
 mod cycles;
+mod g6_nurbs;
 mod home;
 mod machine_codes;
 mod modal_save;
 mod motion;
 mod nurbs;
 mod offsets;
+mod probe;
 mod rotation;
+mod spindle_sync;
 pub(crate) use offsets::Scope;
 
 /// The axis indices `(u, v, normal)` of a plane (0 = X), in [`Plane::split`] order.

@@ -73,8 +73,16 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
     let mut g92 = [0.0; 3];
     let mut tool = [0.0; 3];
     let mut feed = 0.0;
-    let mut inverse_time = false;
+    // rs274 prints G93 like G94 as SET_FEED_MODE(0, 0) (a G93 move then carries its feed
+    // per minute in SET_FEED_RATE) and G95 as SET_FEED_MODE(s, 1).
+    let inverse_time = false;
+    let mut per_rev = false;
     let mut feed_k = 1.0;
+    // SET_SPINDLE_SPEED (rev/min) and START_SPEED_FEED_SYNC's pitch (mm/rev) while synced.
+    let mut spindle = 0.0;
+    let mut sync: Option<f64> = None;
+    // The end of the last motion (machine mm): a probe backs off toward it.
+    let mut last = Point3::ORIGIN;
     // SET_XY_ROTATION (rad): machine = tool + G5x + rot(program + G92) in XY (emccanon.cc,
     // rotate_and_offset_pos).
     let mut xy_rotation: f64 = 0.0;
@@ -91,6 +99,13 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
         let turned = if xy_rotation != 0.0 { 2.0 } else { 1.0 };
         let position_tol = PRINT_HALF_ULP * k * terms as f64 * turned + 1e-9;
         let off = offsets(&g5x, &g92, &tool);
+        // The speed of a feed move (mm/min): the feed, or per revolution times the spindle
+        // speed (G95), or the pitch times the spindle speed (G33, G33.1).
+        let (speed, feed_tol) = match sync {
+            Some(pitch) => (pitch * spindle, 0.5e-6 * k * spindle + 1e-9),
+            None if per_rev => (feed * spindle, PRINT_HALF_ULP * feed_k * spindle + 1e-9),
+            None => (feed, PRINT_HALF_ULP * feed_k + 1e-9),
+        };
         let (sin, cos) = xy_rotation.sin_cos();
         let point = |x: f64, y: f64, z: f64| {
             if xy_rotation == 0.0 {
@@ -135,7 +150,16 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
             xy_rotation = get(0).to_radians();
             None
         } else if l.contains("SET_FEED_MODE(") {
-            inverse_time = (get(1) - 1.0).abs() < 0.5;
+            per_rev = (get(1) - 1.0).abs() < 0.5;
+            None
+        } else if l.contains("SET_SPINDLE_SPEED(") {
+            spindle = get(1);
+            None
+        } else if l.contains("START_SPEED_FEED_SYNC(") {
+            sync = Some(get(0) * k);
+            None
+        } else if l.contains("STOP_SPEED_FEED_SYNC") {
+            sync = None;
             None
         } else if l.contains("SET_FEED_RATE(") {
             // LinuxCNC's canon converts a feed rate to machine units when it is set
@@ -147,7 +171,7 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
         } else if l.contains("STRAIGHT_TRAVERSE(") {
             Some(CanonMove::Rapid(point(get(0), get(1), get(2))))
         } else if l.contains("STRAIGHT_FEED(") {
-            Some(CanonMove::Feed(point(get(0), get(1), get(2)), feed))
+            Some(CanonMove::Feed(point(get(0), get(1), get(2)), speed))
         } else if l.contains("ARC_FEED(") {
             // ARC_FEED(first_end, second_end, first_centre, second_centre, rotation,
             // axis_end, a, b, c, ...)
@@ -161,18 +185,55 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
                 centre: (cu, cv),
                 rotation: get(4) as i32,
                 plane,
-                feed,
+                feed: speed,
             })
         } else if l.contains("DWELL(") {
             Some(CanonMove::Dwell(get(0)))
         } else if l.contains("NURBS_FEED(") {
             Some(CanonMove::Nurbs)
-        } else if l.contains("STRAIGHT_PROBE(") || l.contains("RIGID_TAP(") {
-            return Err(format!("a motion the comparison does not follow: {l}"));
+        } else if l.contains("STRAIGHT_PROBE(") {
+            // saicanon's STRAIGHT_PROBE: the probe reaches the target, and the position backs
+            // off 0.254 mm (0.01 in) toward the start; the interpreter goes on from there.
+            let target = point(get(0), get(1), get(2));
+            let d = last - target;
+            let moves = std::iter::once(target)
+                .chain((d.length() > 0.0).then(|| target + d * (0.254 / d.length())));
+            for p in moves {
+                out.push(Canon {
+                    mv: CanonMove::Feed(p, speed),
+                    mm_per_unit: k,
+                    inverse_time,
+                    position_tol,
+                    feed_tol,
+                    line: i + 1,
+                });
+                last = p;
+            }
+            None
+        } else if l.contains("RIGID_TAP(") {
+            // In to the point and back out to the start at the synchronised speed.
+            let start = last;
+            for p in [point(get(0), get(1), get(2)), start] {
+                out.push(Canon {
+                    mv: CanonMove::Feed(p, speed),
+                    mm_per_unit: k,
+                    inverse_time,
+                    position_tol,
+                    feed_tol,
+                    line: i + 1,
+                });
+            }
+            last = start;
+            None
         } else {
             None
         };
         if let Some(mv) = mv {
+            match mv {
+                CanonMove::Rapid(p) | CanonMove::Feed(p, _) => last = p,
+                CanonMove::Arc { end, .. } => last = end,
+                CanonMove::Dwell(_) | CanonMove::Nurbs => {}
+            }
             if let Some(bad) = [get(0), get(1), get(2)].iter().find(|x| !x.is_finite())
                 && !matches!(mv, CanonMove::Dwell(_) | CanonMove::Nurbs)
             {
@@ -183,7 +244,7 @@ pub fn canon_moves(canon: &str) -> Result<Vec<Canon>, String> {
                 mm_per_unit: k,
                 inverse_time,
                 position_tol,
-                feed_tol: PRINT_HALF_ULP * feed_k + 1e-9,
+                feed_tol,
                 line: i + 1,
             });
         }

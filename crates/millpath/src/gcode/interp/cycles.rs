@@ -127,11 +127,12 @@ impl State {
         out: &mut Vec<ReadMove>,
     ) -> Result<(), BlockError> {
         let name = format!("G{}", m / 10);
-        if self.modal.feed_mode == FeedMode::InverseTime {
+        if self.modal.feed_mode != FeedMode::PerMinute {
             return Err(BlockError::new(
                 "canned cycle",
-                format!("{name} in G93"),
-                "G94 feed (LinuxCNC refuses inverse time in canned cycles)",
+                format!("{name} in G93 or G95"),
+                "G94 feed (LinuxCNC refuses inverse time in canned cycles; the reader \
+                 expands cycles in G94 only)",
             ));
         }
         let feed = match self.feed {

@@ -13,6 +13,9 @@
 //!   `M52 P` (adaptive feed), `M53 P` (feed stop): switches of the machine; without a
 //!   machine they do nothing to the path (the programmed feed is the feed at 100 %).
 //! * `M62`–`M65 P n`: digital outputs (with the next move, or at once): no path change.
+//! * `M66 P|E n L m Q t`: wait for input n (LinuxCNC's task waits for the motion to stop
+//!   first). The input is taken as ready at once, as LinuxCNC's standalone interpreter takes
+//!   it (`saicanon.cc` `WAIT` returns at once, #5399 = 0): no wait is timed.
 //! * `M61 Q n`: tool n is in the spindle without a tool change (it must be in the tool
 //!   table when there is one).
 //!
@@ -62,6 +65,19 @@ impl State {
                             "override switch",
                             format!("M{m} P{p}"),
                             "P >= 0",
+                        ));
+                    }
+                }
+                66 => {
+                    let (p, l, q) = (b.take(b'P'), b.take(b'L'), b.take(b'Q'));
+                    if p.is_none_or(|p| p.is_nan() || p < 0.0)
+                        || l.is_some_and(|l| !(0.0..=4.0).contains(&l) || l.fract() != 0.0)
+                        || q.is_some_and(|q| q.is_nan() || q < 0.0)
+                    {
+                        return Err(BlockError::new(
+                            "M66",
+                            format!("P{p:?} L{l:?} Q{q:?}"),
+                            "M66 P n (a digital input >= 0) with L 0..4 and Q >= 0 s",
                         ));
                     }
                 }

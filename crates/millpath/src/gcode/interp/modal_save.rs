@@ -90,8 +90,10 @@ impl State {
         // F%.1f, read in the restored units.
         let f = (s.f_word * 10.0).round() / 10.0;
         self.f_word = f;
-        if self.modal.feed_mode == FeedMode::PerMinute {
-            self.feed = Some(f * self.unit() / 60.0);
+        match self.modal.feed_mode {
+            FeedMode::PerMinute => self.feed = Some(f * self.unit() / 60.0),
+            FeedMode::PerRevolution => self.feed = Some(f * self.unit()),
+            FeedMode::InverseTime => {}
         }
         self.spindle_set = s.spindle_set.round();
         self.modal.plane = s.modal.plane;

@@ -25,7 +25,7 @@ impl State {
         for &(g, _) in &b.g {
             let linuxcnc = opts.dialect == Dialect::LinuxCnc;
             if matches!(g, 0 | 10 | 20 | 30 | 800 | 52 | 53)
-                || (linuxcnc && matches!(g, 50 | 51))
+                || (linuxcnc && matches!(g, 50 | 51 | 62 | 330 | 331 | 382..=385))
                 || is_cycle(g)
             {
                 // G80 with another motion code: the other one wins (LinuxCNC's read_g).
@@ -43,6 +43,13 @@ impl State {
             }
         }
         let previous = self.motion;
+        if self.g6_open() && code.is_some_and(|c| c != 62) {
+            return Err(BlockError::new(
+                "G6.2 curve",
+                "not complete before another motion code",
+                "G6.2 entries up to the last P equal knots K (the curve's end)",
+            ));
+        }
         if let Some(c) = code {
             self.motion = (c != 800).then_some(c);
         }
@@ -66,6 +73,16 @@ impl State {
                 ));
             }
             return self.spline(m, previous, b, axes, line, out);
+        }
+        if self.motion == Some(62) {
+            let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
+            if g53 || b.polar.iter().any(Option::is_some) {
+                return Err(BlockError::unsupported(
+                    "G53 or polar words in a G6.2 block",
+                    "axis words of the plane, R, K, P and Q in a G6.2 block",
+                ));
+            }
+            return self.g6_block(b, axes, line, out);
         }
         if self.motion == Some(52) {
             let axes = [b.take(b'X'), b.take(b'Y'), b.take(b'Z')];
@@ -123,7 +140,13 @@ impl State {
             axes[1] = Some(y);
         }
         let polar_absolute = polar.iter().any(Option::is_some);
-        let has_axes = axes.iter().any(Option::is_some);
+        // Rotary axes (LinuxCNC): the move happens, its X Y Z part is the path.
+        let rotary = [b.take(b'A'), b.take(b'B'), b.take(b'C')];
+        let has_axes = axes.iter().chain(&rotary).any(Option::is_some);
+        let sync = match self.motion {
+            Some(m @ (330 | 331)) if has_axes || code == Some(m) => Some(self.sync_words(m, b)?),
+            _ => None,
+        };
         let ijk = [b.take(b'I'), b.take(b'J'), b.take(b'K')];
         let r = b.take(b'R');
         let is_arc = matches!(self.motion, Some(20 | 30));
@@ -249,7 +272,7 @@ impl State {
         };
         let kind = match motion {
             0 => MoveKind::Rapid,
-            10 => MoveKind::Line,
+            10 | 330 | 331 | 382..=385 => MoveKind::Line,
             _ => self.arc_kind(motion == 30, &cur, &target, ijk, r, p, turn, &off)?,
         };
         let mut mv = Move {
@@ -260,7 +283,10 @@ impl State {
             tag: None,
         };
         if mv.is_feed() {
-            mv.feed = self.feed_for(&mv, block_f)?;
+            mv.feed = match sync {
+                Some(s) => self.sync_feed(s)?,
+                None => self.feed_for(&mv, block_f)?,
+            };
         }
         let centre_ok = match mv.kind {
             MoveKind::Arc { center, .. } => center.is_finite(),
@@ -273,12 +299,18 @@ impl State {
                 "finite positions, centres and feeds",
             ));
         }
+        if (382..=385).contains(&motion) {
+            return self.probe(motion, mv, line, out);
+        }
         self.pos = to;
         out.push(ReadMove {
             mv,
             line,
             modal: self.modal,
         });
+        if motion == 331 {
+            self.tap_retract(Point3::new(cur[0], cur[1], cur[2]), sync, line, out);
+        }
         Ok(())
     }
 
@@ -377,6 +409,7 @@ impl State {
                     "an F word before the first feed move (G1/G2/G3), and after G93/G94",
                 )),
             },
+            FeedMode::PerRevolution => self.per_revolution_feed(),
             FeedMode::InverseTime => match block_f {
                 Some(f) if f > 0.0 => Ok(mv.length_from(self.pos).max(1e-9) * f / 60.0),
                 Some(f) => Err(BlockError::new(

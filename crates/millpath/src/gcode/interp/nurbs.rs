@@ -1,4 +1,4 @@
-//! LinuxCNC's NURBS blocks `G5.2 … G5.3` (XY plane), read as the true curve: a polyline on
+//! LinuxCNC's NURBS blocks `G5.2 … G5.3`, read as the true curve: a polyline on
 //! the NURBS within [`CHORD_TOLERANCE_MM`].
 //!
 //! # The blocks (LinuxCNC 2.9, `interp_convert.cc` `convert_nurbs`)
@@ -16,8 +16,9 @@
 //!
 //! # Tolerance and what differs from LinuxCNC
 //! Each knot span is cut into at least 8 pieces, and a piece is halved while the curve's
-//! point at its middle parameter lies more than [`CHORD_TOLERANCE_MM`] from its chord
-//! (to 2⁻¹⁶ of a span). LinuxCNC's machine moves along biarcs through 4 points per control
+//! point at its middle or quarter parameters lies more than 0.8 [`CHORD_TOLERANCE_MM`] from
+//! its chord (to 2⁻¹⁶ of a span; the quarter points catch an inflection inside a piece, where
+//! the curve crosses its chord near the middle). LinuxCNC's machine moves along biarcs through 4 points per control
 //! point (`emccanon.cc` `NURBS_G5_FEED`), whose basis closes both ends of the order-1
 //! intervals and so evaluates points exactly on an interior knot off the curve; its path
 //! therefore differs from the true curve by more than this tolerance in places. `rs274 -g`
@@ -25,7 +26,9 @@
 //! around the curve; the curve itself is checked against an independent evaluation
 //! (tests/gcode_nurbs.rs).
 //!
-//! Refused: other planes than G17, G91, Z words, inverse-time feed.
+//! Planes: in G18 (Z X) and G19 (Y Z) the control points are the plane's two axis words and
+//! the curve is the same in those axes (LinuxCNC master's `convert_nurbs`; 2.9's rs274
+//! refuses them). Refused: G91, the plane's normal axis word, inverse-time feed.
 //!
 //! # G5 and G5.1 (LinuxCNC's cubic and quadratic splines)
 //! Bézier curves, read the same way (a Bézier is the NURBS of one span, unit weights):
@@ -34,7 +37,7 @@
 //! I J, in a run of G5, the first control point is the previous G5's second one reflected
 //! about S: S − (P, Q)ₚᵣₑᵥ. X Y are absolute or incremental as usual; XY plane only, no Z.
 
-use super::{Block, BlockError, FeedMode, ReadMove, State};
+use super::{Block, BlockError, FeedMode, ReadMove, State, plane_axes};
 use crate::toolpath::{Move, Plane};
 
 /// Largest distance of the curve from the polyline (mm), checked at each piece's middle.
@@ -45,7 +48,22 @@ pub(crate) const CHORD_TOLERANCE_MM: f64 = 0.001;
 pub(crate) struct NurbsState {
     points: Vec<(f64, f64, f64)>,
     order: usize,
+    plane: Plane,
 }
+
+/// `a[k]`, 0 outside.
+fn at(a: &[f64; 3], k: usize) -> f64 {
+    a.get(k).copied().unwrap_or(0.0)
+}
+
+/// The letter of axis `k` (0 = X).
+pub(crate) fn axis_letter(k: usize) -> char {
+    char::from(b"XYZ".get(k).copied().unwrap_or(b'?'))
+}
+
+/// Pieces are refined until the sampled distances are within this fraction of the
+/// tolerance, which leaves room for the largest distance lying between the samples.
+const REFINE_TO: f64 = 0.8;
 
 /// The last G5's P Q (program mm), for a following G5 without I J.
 #[derive(Debug, Clone, Copy, Default)]
@@ -61,13 +79,28 @@ impl State {
         b: &mut Block,
         axes: [Option<f64>; 3],
     ) -> Result<(), BlockError> {
-        if self.modal.plane != Plane::Xy || !self.modal.absolute || axes[2].is_some() {
+        let plane = self.modal.plane;
+        let (ua, va, na) = plane_axes(plane);
+        let normal = axes.get(na).copied().flatten();
+        if !self.modal.absolute || normal.is_some() {
             return Err(BlockError::unsupported(
-                "G5.2 outside G17 G90, or with Z",
-                "NURBS (G5.2) in the XY plane (G17), in G90, with X Y P words",
+                if normal.is_some() {
+                    format!("G5.2 with {}", axis_letter(na))
+                } else {
+                    "G5.2 in G91".to_string()
+                },
+                "NURBS (G5.2) in G90 with the active plane's two axis words and P \
+                 (G17: X Y, G18: Z X, G19: Y Z)",
             ));
         }
-        if self.modal.feed_mode == FeedMode::InverseTime || !self.feed.is_some_and(|f| f > 0.0) {
+        if same && self.nurbs.as_ref().is_some_and(|c| c.plane != plane) {
+            return Err(BlockError::new(
+                "G5.2",
+                "a plane change inside the curve",
+                "one plane (G17, G18 or G19) for the whole G5.2 … G5.3 curve",
+            ));
+        }
+        if self.modal.feed_mode != FeedMode::PerMinute || !self.feed.is_some_and(|f| f > 0.0) {
             return Err(BlockError::new(
                 "G5.2",
                 "without a feed",
@@ -83,12 +116,21 @@ impl State {
             ));
         }
         let unit = self.unit();
-        let (x, y) = (axes[0], axes[1]);
+        let (x, y) = (
+            axes.get(ua).copied().flatten(),
+            axes.get(va).copied().flatten(),
+        );
         if x.is_some() != y.is_some() {
             return Err(BlockError::new(
                 "G5.2",
-                "X without Y or Y without X",
-                "both X and Y for a control point",
+                format!(
+                    "{} without {} or {} without {}",
+                    axis_letter(ua),
+                    axis_letter(va),
+                    axis_letter(va),
+                    axis_letter(ua)
+                ),
+                "both axis words of the plane for a control point",
             ));
         }
         if !same || self.nurbs.is_none() {
@@ -98,8 +140,9 @@ impl State {
             };
             let here = self.program_mm();
             self.nurbs = Some(NurbsState {
-                points: vec![(here[0], here[1], w)],
+                points: vec![(at(&here, ua), at(&here, va), w)],
                 order: 3,
+                plane,
             });
         } else if x.is_none() && p.is_some_and(|p| p > 0.0) {
             return Err(BlockError::new(
@@ -157,7 +200,7 @@ impl State {
                 "G5/G5.1 in the XY plane (G17) with X Y I J (P Q)",
             ));
         }
-        if self.modal.feed_mode == FeedMode::InverseTime || !self.feed.is_some_and(|f| f > 0.0) {
+        if self.modal.feed_mode != FeedMode::PerMinute || !self.feed.is_some_and(|f| f > 0.0) {
             return Err(BlockError::new(name, "without a feed", "an F > 0 in G94"));
         }
         let unit = self.unit();
@@ -221,7 +264,8 @@ impl State {
                 (e.0, e.1, 1.0),
             ]
         };
-        self.push_curve(&polyline(&cp, cp.len()), s[2], line, out);
+        let t = knots(cp.len(), cp.len());
+        self.push_curve(&polyline(&cp, cp.len(), &t), Plane::Xy, line, out);
         Ok(())
     }
 
@@ -246,16 +290,32 @@ impl State {
                 ),
             ));
         }
-        let z = self.program_mm()[2];
-        self.push_curve(&polyline(&curve.points, curve.order), z, line, out);
+        let t = knots(curve.points.len(), curve.order);
+        let uv = polyline(&curve.points, curve.order, &t);
+        self.push_curve(&uv, curve.plane, line, out);
         Ok(())
     }
 
-    /// Feed moves through the curve's points `xy` (program units, mm) at height `z`.
-    fn push_curve(&mut self, xy: &[(f64, f64)], z: f64, line: usize, out: &mut Vec<ReadMove>) {
+    /// Feed moves through the curve's points `uv` (program mm, in the axes of `plane`); the
+    /// plane's normal axis stays where it is.
+    pub(crate) fn push_curve(
+        &mut self,
+        uv: &[(f64, f64)],
+        plane: Plane,
+        line: usize,
+        out: &mut Vec<ReadMove>,
+    ) {
         let feed = self.feed.unwrap_or(0.0);
-        for &(x, y) in xy {
-            let to = self.program_to_machine([x, y, z]);
+        let (ua, va, _) = plane_axes(plane);
+        let mut p = self.program_mm();
+        for &(u, v) in uv {
+            if let Some(c) = p.get_mut(ua) {
+                *c = u;
+            }
+            if let Some(c) = p.get_mut(va) {
+                *c = v;
+            }
+            let to = self.program_to_machine(p);
             out.push(ReadMove {
                 mv: Move {
                     corner: self.modal.corner,
@@ -318,17 +378,25 @@ pub(crate) fn point(cp: &[(f64, f64, f64)], k: usize, t: &[f64], u: f64) -> (f64
     (h[0] / h[2], h[1] / h[2])
 }
 
-/// The polyline's vertices after the start (see the module docs).
-fn polyline(cp: &[(f64, f64, f64)], k: usize) -> Vec<(f64, f64)> {
-    let t = knots(cp.len(), k);
-    let umax = (cp.len() + 1 - k) as f64;
+/// The polyline's vertices after the start (see the module docs): the curve of order `k`
+/// over the knots `t` (`cp.len() + k` of them, the first k equal and the last k equal),
+/// span by span over its domain `t[k−1] … t[n+1]`.
+pub(crate) fn polyline(cp: &[(f64, f64, f64)], k: usize, t: &[f64]) -> Vec<(f64, f64)> {
     let mut out = Vec::new();
-    for span in 0..(umax as usize) {
-        let (a, b) = (span as f64, (span + 1) as f64);
+    let domain = t.get(k.saturating_sub(1)..=cp.len()).unwrap_or_default();
+    for w in domain.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if b <= a {
+            continue;
+        }
         for piece in 0..8 {
             let u0 = a + (b - a) * piece as f64 / 8.0;
-            let u1 = a + (b - a) * (piece + 1) as f64 / 8.0;
-            refine(cp, k, &t, u0, u1, 13, &mut out);
+            let u1 = if piece == 7 {
+                b
+            } else {
+                a + (b - a) * (piece + 1) as f64 / 8.0
+            };
+            refine(cp, k, t, u0, u1, 13, &mut out);
         }
     }
     // The end is the last control point exactly.
@@ -350,15 +418,22 @@ fn refine(
     let p0 = point(cp, k, t, u0);
     let p1 = point(cp, k, t, u1);
     let um = 0.5 * (u0 + u1);
-    let pm = point(cp, k, t, um);
     let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
     let len = dx.hypot(dy);
-    let off = if len > 0.0 {
-        ((pm.0 - p0.0) * dy - (pm.1 - p0.1) * dx).abs() / len
-    } else {
-        (pm.0 - p0.0).hypot(pm.1 - p0.1)
-    };
-    if off > CHORD_TOLERANCE_MM && depth > 0 {
+    // The curve's distance from the chord at the quarter points too: a piece with an
+    // inflection can cross its chord near the middle while bulging on both sides.
+    let off = [0.25, 0.5, 0.75]
+        .iter()
+        .map(|f| {
+            let pm = point(cp, k, t, u0 + f * (u1 - u0));
+            if len > 0.0 {
+                ((pm.0 - p0.0) * dy - (pm.1 - p0.1) * dx).abs() / len
+            } else {
+                (pm.0 - p0.0).hypot(pm.1 - p0.1)
+            }
+        })
+        .fold(0.0, f64::max);
+    if off > REFINE_TO * CHORD_TOLERANCE_MM && depth > 0 {
         refine(cp, k, t, u0, um, depth - 1, out);
         refine(cp, k, t, um, u1, depth - 1, out);
     } else {

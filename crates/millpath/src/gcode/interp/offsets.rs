@@ -143,8 +143,14 @@ impl State {
             }
             920 => {
                 let axes = Self::axes(b);
-                if axes.iter().all(Option::is_none) {
-                    return Err(BlockError::new("G92", "no axis word", "G92 with X, Y or Z"));
+                // Rotary offsets (LinuxCNC): the rotary axes are not part of the path.
+                let rotary = [b.take(b'A'), b.take(b'B'), b.take(b'C')];
+                if axes.iter().chain(&rotary).all(Option::is_none) {
+                    return Err(BlockError::new(
+                        "G92",
+                        "no axis word",
+                        "G92 with X, Y or Z (or A, B, C)",
+                    ));
                 }
                 let u = self.unit();
                 let mut g92 = [self.g92.x, self.g92.y, self.g92.z];
@@ -213,7 +219,7 @@ impl State {
             "_incremental" => t(!self.modal.absolute),
             "_inverse_time" => t(self.modal.feed_mode == FeedMode::InverseTime),
             "_units_per_minute" => t(self.modal.feed_mode == FeedMode::PerMinute),
-            "_units_per_rev" => 0.0,
+            "_units_per_rev" => t(self.modal.feed_mode == FeedMode::PerRevolution),
             "_feed" => self.feed_number(),
             "_rpm" => self.spindle_set,
             "_current_tool" | "_selected_tool" => f64::from(self.modal.tool),
