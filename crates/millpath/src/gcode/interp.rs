@@ -190,6 +190,8 @@ pub(crate) struct State {
     spline: nurbs::SplineState,
     /// Modal states saved by M70/M73.
     saved: Vec<modal_save::Saved>,
+    /// Cutter radius compensation (G41/G42), while it is on or has moves queued.
+    comp: Option<Box<cutter_comp::Comp>>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -406,11 +408,12 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
         0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
         610, 640, 800, 900, 910, 930, 940,
     ];
-    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G7/G8, G10, G28/G30, G41/G42/G41.1/G42.1, G59.1–.3,
+    // G61.1, G73, G81–G83, G85, G89,
     // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
     const LINUXCNC: &[u16] = &[
-        50, 51, 52, 53, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820, 830,
-        850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
+        50, 51, 52, 53, 70, 80, 100, 200, 210, 280, 300, 410, 411, 420, 421, 591, 592, 593, 611,
+        730, 810, 820, 830, 850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990,
     ];
     COMMON.contains(&code)
         || match dialect {
@@ -448,6 +451,7 @@ impl State {
             rotation: 0.0,
             nurbs: None,
             saved: Vec::new(),
+            comp: None,
             spline: nurbs::SplineState::default(),
             notes: Vec::new(),
         }
@@ -492,6 +496,7 @@ impl State {
         out: &mut Vec<ReadMove>,
     ) -> Result<(), BlockError> {
         let dialect = opts.dialect;
+        let start = out.len();
         b.take(b'N');
         b.take(b'O');
         if dialect == Dialect::LinuxCnc {
@@ -581,7 +586,8 @@ impl State {
                 }
             }
         }
-        b.take(b'D');
+        // D (and G41.1's L) words; what compensation refuses (module `cutter_comp`).
+        let comp_words = self.cutter_comp_check(b, dialect)?;
         if b.m.contains(&6) {
             self.modal.tool = self.pending_tool;
         }
@@ -634,6 +640,7 @@ impl State {
                 modal: self.modal,
             });
         }
+        self.cutter_comp_moves(comp_words, b, start, before, from, out)?;
         if b.m.contains(&2) || b.m.contains(&30) {
             self.ended = true;
         }
@@ -766,6 +773,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
     })
 }
 
+mod cutter_comp;
 mod cycles;
 mod home;
 mod machine_codes;

@@ -171,6 +171,8 @@ impl<R: BufRead> Reader<R> {
     fn advance(&mut self) -> Result<(), Error> {
         while self.pending.is_empty() && !self.state.ended {
             if !self.read_line()? {
+                // Moves still waiting for cutter compensation keep their ends.
+                self.state.cutter_comp_end(&mut self.pending);
                 self.done = true;
                 return Ok(());
             }
