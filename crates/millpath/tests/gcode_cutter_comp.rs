@@ -24,6 +24,9 @@ use std::time::Duration;
 const TOOLS: &str = "T1 P1 D0.236220472 ;6 mm\nT2 P2 D0.25 ;1/4 in\n\
                      T3 P3 D0.787401575 ;20 mm\nT4 P4 D0.062992126 Q2 ;lathe\n";
 
+/// T1's radius in mm, as the table gives it (0.236220472 in, 6 mm to 8 digits).
+const R: f64 = 0.236220472 * 25.4 / 2.0;
+
 fn options(name: &str) -> ReaderOptions {
     ReaderOptions {
         origin: name.to_string(),
@@ -274,10 +277,10 @@ fn rectangles_inside_and_outside_as_rs274() {
                 .filter(|m| matches!(m.mv.kind, MoveKind::Arc { .. }))
                 .count();
             assert_eq!(arcs, if outside { 4 } else { 0 }, "{p}");
-            let (worst, at) = worst_offset_error(&p, 6, 12, 3.0);
+            let (worst, at) = worst_offset_error(&p, 6, 12, R);
             assert!(worst < 1e-6, "{side} outside={outside}: {at}\n{p}");
             // The verifier sees a path offset by another radius.
-            assert!(worst_offset_error(&p, 6, 12, 3.01).0 > 0.009);
+            assert!(worst_offset_error(&p, 6, 12, R + 0.01).0 > 0.009);
         }
     }
 }
@@ -302,7 +305,7 @@ fn lines_and_arcs_with_both_kinds_of_corner_as_rs274() {
             let p = format!("{HEAD}{}", profile.replace("G41", side).replace("{Y}", y));
             let m = same_as_rs274(&p);
             assert!(m.iter().any(|m| matches!(m.mv.kind, MoveKind::Arc { .. })));
-            let (worst, at) = worst_offset_error(&p, 6, exit, 3.0);
+            let (worst, at) = worst_offset_error(&p, 6, exit, R);
             assert!(worst < 1e-6, "{side}: {at}\n{p}");
         }
     }

@@ -37,8 +37,11 @@
 //!   (LinuxCNC: n turns in all) or `TURN=n` (Sinumerik: n extra full turns) makes a
 //!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
-//! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
-//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
+//! * Cutter radius compensation (LinuxCNC: G40/G41/G42/G41.1/G42.1 with D, module
+//!   `cutter_comp`): the reader's position stays the programmed point; the moves put out are
+//!   the tool centre's, each held until the next move decides its end.
+//! * Accepted and without effect on motion: N, O (program number), S, T, D (outside G41/G42),
+//!   H, M0/M1, M3–M9, G40 (other dialects), G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
 //!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
 //!   M48–M53, M61–M65 (module `machine_codes`) and M70–M73 (module `modal_save`).
 //! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
