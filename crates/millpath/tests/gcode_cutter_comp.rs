@@ -339,6 +339,12 @@ fn entry_and_exit_moves_as_rs274() {
         format!(
             "{HEAD}G0 X0 Y-20\nG41 D1\nG3 X20 Y0 R20\nG3 I-20 J0\nG3 X0 Y20 Z-3 R20\nG40\nG1 X0 Y30\nM2\n"
         ),
+        // G0 round a convex corner: a straight traverse instead of the arc.
+        format!("{HEAD}G0 X-10 Y10\nG41 D1\nG0 X0 Y0\nG0 X20\nG0 X20 Y-20\nG40\nG0 X30\nM2\n"),
+        // A two-turn circle (P2) after a line.
+        format!(
+            "{HEAD}G0 X-10 Y-10\nG42 D1\nG1 X0 Y0\nG1 X20\nG2 I0 J10 P2\nG1 X30\nG40\nG1 X40\nM2\n"
+        ),
         // A collinear continuation and a straight line across a tangent arc.
         format!(
             "{HEAD}G0 X-10 Y-10\nG41 D1\nG1 X0 Y0\nG1 X10\nG1 X20\nG3 X30 Y10 R10\nG1 Y30\nG40\nG1 X40\nM2\n"

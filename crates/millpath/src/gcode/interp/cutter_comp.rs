@@ -30,7 +30,9 @@
 //! * **Arcs** are offset to radius R ± r about the same centre; the inside of an arc must be
 //!   larger than the tool ("tool radius not less than arc radius with comp").
 //! * **Exit** (G40): the last offset move keeps its end; the next move (which must be a line,
-//!   not an arc) goes from there to its programmed end.
+//!   not an arc) goes from there to its programmed end. Positions left out of the next moves
+//!   are the programmed point's, until a tool change (M6) synchronises the position with the
+//!   tool's, as LinuxCNC's does.
 //! * **Refused while compensation is on**, as LinuxCNC refuses them: G41/G42 again, changing
 //!   the plane, a tool change, G43/G49, G54–G59.3, G61/G64, G98/G99, G92/G52, G10 L2/L20 of
 //!   the active system, G28/G30, canned cycles, splines, G53 moves; also inverse time (G93),
@@ -165,6 +167,15 @@ impl State {
             return Ok(None);
         }
         let on_before = self.comp.as_ref().is_some_and(|c| c.side.is_some());
+        if !on_before
+            && b.m.contains(&6)
+            && let Some(comp) = &mut self.comp
+            && let Some(t) = comp.tool.take()
+        {
+            // A tool change synchronises LinuxCNC's interpreter with the machine: after G40
+            // its position becomes where the tool is, not the programmed point.
+            self.pos = t;
+        }
         let turning_on = matches!(code, Some(410 | 411 | 420 | 421));
         let on_after = turning_on || (on_before && code != Some(400));
         if on_before && b.m.contains(&6) {
