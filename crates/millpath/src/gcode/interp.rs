@@ -37,8 +37,11 @@
 //!   (LinuxCNC: n turns in all) or `TURN=n` (Sinumerik: n extra full turns) makes a
 //!   multi-turn arc (`turns` = n − 1, resp. n); an axis move along the plane's normal
 //!   makes a helix. Radii are checked with LinuxCNC's rule ([`super::arc`]).
-//! * Accepted and without effect on motion: N, O (program number), S, T, D, H, M0/M1, M3–M9,
-//!   G40, G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
+//! * Cutter radius compensation (LinuxCNC: G40/G41/G42/G41.1/G42.1 with D, module
+//!   `cutter_comp`): the reader's position stays the programmed point; the moves put out are
+//!   the tool centre's, each held until the next move decides its end.
+//! * Accepted and without effect on motion: N, O (program number), S, T, D (outside G41/G42),
+//!   H, M0/M1, M3–M9, G40 (other dialects), G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
 //!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
 //!   M48–M53, M61–M66 (module `machine_codes`) and M70–M73 (module `modal_save`).
 //! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
@@ -206,6 +209,8 @@ pub(crate) struct State {
     probed: Option<[f64; 3]>,
     /// Modal states saved by M70/M73.
     saved: Vec<modal_save::Saved>,
+    /// Cutter radius compensation (G41/G42), while it is on or has moves queued.
+    comp: Option<Box<cutter_comp::Comp>>,
     /// Warnings of the last block (lenient mode), for the reader to collect.
     pub(crate) notes: Vec<String>,
 }
@@ -425,12 +430,13 @@ fn g_supported(code: u16, dialect: Dialect) -> bool {
         0, 10, 20, 30, 40, 90, 170, 180, 190, 400, 430, 490, 530, 540, 550, 560, 570, 580, 590,
         610, 640, 800, 900, 910, 930, 940,
     ];
-    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G6.2 (LinuxCNC master), G7/G8, G10, G28/G30, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
-    // G90.1/G91.1, G92–G92.3, G96/G97, G98/G99.
+    // LinuxCNC: also G5, G5.1, G5.2/G5.3, G6.2 (LinuxCNC master), G7/G8, G10, G28/G30,
+    // G33/G33.1, G38.2–G38.5, G41/G42/G41.1/G42.1, G59.1–.3, G61.1, G73, G81–G83, G85, G89,
+    // G90.1/G91.1, G92–G92.3, G95, G96/G97, G98/G99.
     const LINUXCNC: &[u16] = &[
-        50, 51, 52, 53, 62, 70, 80, 100, 200, 210, 280, 300, 591, 592, 593, 611, 730, 810, 820,
-        830, 850, 890, 901, 911, 920, 921, 922, 923, 960, 970, 980, 990, 330, 331, 382, 383, 384,
-        385, 950,
+        50, 51, 52, 53, 62, 70, 80, 100, 200, 210, 280, 300, 330, 331, 382, 383, 384, 385, 410,
+        411, 420, 421, 591, 592, 593, 611, 730, 810, 820, 830, 850, 890, 901, 911, 920, 921, 922,
+        923, 950, 960, 970, 980, 990,
     ];
     COMMON.contains(&code)
         || match dialect {
@@ -468,6 +474,7 @@ impl State {
             rotation: 0.0,
             nurbs: None,
             saved: Vec::new(),
+            comp: None,
             spline: nurbs::SplineState::default(),
             g6: None,
             probed: None,
@@ -514,6 +521,7 @@ impl State {
         out: &mut Vec<ReadMove>,
     ) -> Result<(), BlockError> {
         let dialect = opts.dialect;
+        let start = out.len();
         b.take(b'N');
         b.take(b'O');
         if dialect == Dialect::LinuxCnc {
@@ -609,7 +617,8 @@ impl State {
                 }
             }
         }
-        b.take(b'D');
+        // D (and G41.1's L) words; what compensation refuses (module `cutter_comp`).
+        let comp_words = self.cutter_comp_check(b, dialect)?;
         if b.m.contains(&6) {
             self.modal.tool = self.pending_tool;
         }
@@ -665,6 +674,7 @@ impl State {
                 modal: self.modal,
             });
         }
+        self.cutter_comp_moves(comp_words, b, start, before, from, out)?;
         if b.m.contains(&2) || b.m.contains(&30) {
             self.ended = true;
         }
@@ -797,6 +807,7 @@ fn cycle832(args: &str, unit: f64) -> Result<Corner, BlockError> {
     })
 }
 
+mod cutter_comp;
 mod cycles;
 mod g6_nurbs;
 mod home;

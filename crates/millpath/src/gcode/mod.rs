@@ -85,8 +85,8 @@
 //! exponent; lines to 64 KiB. The reader's position is the machine position: program
 //! position + work offset + G92 offset + tool length offset (G43, from
 //! [`ReaderOptions::tool_table`]; zero without one). Rotary axes (A/B/C; five-axis joint
-//! programs are read by [`five_axis::read_five_axis`]), cutter compensation (G41/G42),
-//! canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines other than LinuxCNC's
+//! programs are read by [`five_axis::read_five_axis`]), cutter compensation in G19 or in
+//! inverse time (G93), canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines other than LinuxCNC's
 //! G5, G5.1 and G5.2/G5.3 NURBS (module `interp::nurbs`: the true curve within 1 µm), G92 and canned cycles in
 //! rotated systems (`G10 L2 R` itself is read: module `interp::rotation`), Fanuc's modal
 //! macro calls G66/G67 and Sinumerik parameters are refused (or skipped when lenient),
@@ -99,7 +99,10 @@
 //! step budget [`ReaderOptions::step_budget`] against endless loops), work offsets G10 L2/L20,
 //! G54–G59.3, G92/G92.1/G92.2/G92.3 (`interp::offsets`), polar words `@` (radius) and `^`
 //! (angle) about the program origin, lathe diameter mode G7/G8, canned cycles G73, G81–G83, G85,
-//! G89 with G98/G99 (`interp::cycles`, expanded as LinuxCNC expands them), and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
+//! G89 with G98/G99 (`interp::cycles`, expanded as LinuxCNC expands them), cutter radius
+//! compensation G40/G41/G42/G41.1/G42.1 (`interp::cutter_comp`: LinuxCNC's entry, corner,
+//! arc and exit rules and its refusals, in G17 and G18, D from [`ReaderOptions::tool_table`]),
+//! and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
 //! passed to [`Reader::messages`]. Lines with none of these take the plain lexer: the reading
 //! speed of plain programs is unchanged. Every construct is compared with LinuxCNC's
 //! `rs274 -g` (`tests/gcode_ngc.rs`), and so are LinuxCNC's own 416 programs

@@ -1,7 +1,8 @@
 //! The streaming reader: lines of a [`BufRead`] → [`ReadMove`]s, one block at a time.
 //!
 //! Memory is bounded for a program without loops: one line (at most [`MAX_LINE_BYTES`]), its
-//! tokens, the modal state, the parameters, at most two pending moves and at most
+//! tokens, the modal state, the parameters, at most two pending moves (plus those cutter
+//! compensation holds until the next move in the plane) and at most
 //! [`MAX_WARNINGS`] stored warnings and messages (all are counted). Subroutines and the lines
 //! of an open loop are kept while they may run again (module `oword`).
 //!
@@ -213,6 +214,8 @@ impl<R: BufRead> Reader<R> {
     fn advance(&mut self) -> Result<(), Error> {
         while self.pending.is_empty() && !self.state.ended {
             if !self.read_line()? {
+                // Moves still waiting for cutter compensation keep their ends.
+                self.state.cutter_comp_end(&mut self.pending);
                 self.done = true;
                 return Ok(());
             }

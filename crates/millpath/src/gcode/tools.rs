@@ -2,8 +2,9 @@
 //!
 //! One tool a line: `T<n> P<pocket> [X Y Z A B C U V W <offset>] [D<diameter>]
 //! [I J Q <lathe>] [;comment]`, words in any order, case-insensitive (LinuxCNC's
-//! `tooldata_read_entry`). The reader uses the X/Y/Z offsets (G43, G43 H) and the diameter
-//! (cutter compensation); rotary, UVW and lathe words are read and ignored. Values are in the
+//! `tooldata_read_entry`). The reader uses the X/Y/Z offsets (G43, G43 H), the diameter and
+//! the lathe orientation Q (cutter compensation); rotary, UVW and the angles I/J are read and
+//! ignored. Values are in the
 //! table's units (the machine's units in LinuxCNC, given here), stored in mm.
 //!
 //! ```text
@@ -23,6 +24,8 @@ pub struct ToolEntry {
     pub offset: Vec3,
     /// The diameter (mm).
     pub diameter: f64,
+    /// The lathe tool orientation `Q` (0 for a mill tool, 1–9 for lathe tools).
+    pub orientation: u8,
 }
 
 /// A tool table.
@@ -47,6 +50,7 @@ impl ToolTable {
             let mut entry = ToolEntry {
                 offset: Vec3::ZERO,
                 diameter: 0.0,
+                orientation: 0,
             };
             for word in line.split_whitespace() {
                 let mut chars = word.chars();
@@ -74,7 +78,15 @@ impl ToolTable {
                     'Y' => entry.offset.y = value * k,
                     'Z' => entry.offset.z = value * k,
                     'D' => entry.diameter = value * k,
-                    'P' | 'A' | 'B' | 'C' | 'U' | 'V' | 'W' | 'I' | 'J' | 'Q' => {}
+                    'Q' => {
+                        if !(0.0..=9.0).contains(&value) || value.fract() != 0.0 {
+                            return Err(InputError::new("tool orientation", word)
+                                .at(at())
+                                .expected("Q and an integer 0..9"));
+                        }
+                        entry.orientation = value as u8;
+                    }
+                    'P' | 'A' | 'B' | 'C' | 'U' | 'V' | 'W' | 'I' | 'J' => {}
                     _ => {
                         return Err(InputError::new("tool table word", word)
                             .at(at())
@@ -107,6 +119,7 @@ impl ToolTable {
             return Some(self.tools.get(&0).copied().unwrap_or(ToolEntry {
                 offset: Vec3::ZERO,
                 diameter: 0.0,
+                orientation: 0,
             }));
         }
         self.tools.get(&n).copied()
@@ -142,7 +155,10 @@ mod tests {
         assert!(t.get(2).is_none());
         let inch = ToolTable::parse("T2 Z1", Units::Inch, "t").unwrap();
         assert!((inch.get(2).unwrap().offset.z - 25.4).abs() < 1e-12);
-        for bad in ["T1 Zx", "P1 Z1", "T1.5 Z1", "T1 K2"] {
+        let lathe = ToolTable::parse("T2 P2 D0.1 I+85 J+25 Q2 ;", Units::Inch, "t").unwrap();
+        assert_eq!(lathe.get(2).unwrap().orientation, 2);
+        assert!((lathe.get(2).unwrap().diameter - 2.54).abs() < 1e-12);
+        for bad in ["T1 Zx", "P1 Z1", "T1.5 Z1", "T1 K2", "T1 Q10", "T1 Q1.5"] {
             let e = ToolTable::parse(bad, Units::Mm, "t.tbl").unwrap_err();
             assert!(e.to_string().contains("t.tbl:1"), "{bad}: {e}");
         }

@@ -9,6 +9,14 @@ pub mod canon;
 use std::io::Write;
 use std::process::Command;
 
+/// A HOME folder of this test process's own for rs274: LinuxCNC's tool data lives in a
+/// memory-mapped `$HOME/.tool.mmap` shared by every rs274 running, so rs274 runs of other
+/// processes (other test binaries, other clones) truncate each other's (SIGBUS).
+fn private_home() -> &'static std::path::Path {
+    static HOME: std::sync::OnceLock<tempfile::TempDir> = std::sync::OnceLock::new();
+    HOME.get_or_init(|| tempfile::tempdir().unwrap()).path()
+}
+
 /// Runs rs274 on `text`; Ok(stdout) or Err(stderr).
 pub fn rs274(text: &str) -> Result<String, String> {
     // rs274 instances running at the same time crash each other (status None seen when the
@@ -21,6 +29,7 @@ pub fn rs274(text: &str) -> Result<String, String> {
     file.write_all(text.as_bytes()).unwrap();
     file.flush().unwrap();
     let out = Command::new("rs274")
+        .env("HOME", private_home())
         .arg("-g")
         .arg(file.path())
         .output()
@@ -74,6 +83,7 @@ pub fn rs274_file(
         .unwrap_or_else(std::sync::PoisonError::into_inner);
     let dir = file.parent().unwrap();
     let mut cmd = Command::new("timeout");
+    cmd.env("HOME", private_home());
     cmd.arg(format!("{}", limit.as_secs().max(1))).arg("rs274");
     if let Some(ini) = ini {
         cmd.arg("-i").arg(ini);
