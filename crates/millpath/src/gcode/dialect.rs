@@ -1,6 +1,6 @@
 //! Dialects, units and coolant: the vocabulary shared by the writer and the reader.
 //!
-//! What each dialect gets (and why) is tabled in the [module docs](super).
+//! What each dialect gets (and why) is tabled on [`Dialect`].
 
 use crate::error::InputError;
 use serde::{Deserialize, Serialize};
@@ -8,6 +8,50 @@ use std::fmt;
 use std::str::FromStr;
 
 /// A G-code dialect (serialised as its [`Dialect::name`]).
+///
+/// # What each dialect gets
+/// | | LinuxCNC (default) | Fanuc | Sinumerik 840D | Grbl 1.1 |
+/// |---|---|---|---|---|
+/// | framing | – | `%`, `O0001 (NAME)`, `%` | – | – |
+/// | comments | `( )` | `( )`, upper case | `;` | `;` |
+/// | units | G21/G20 | G21/G20 | G710/G700 (feeds follow) | G21/G20 |
+/// | numbers | `X10` | `X10.` (keeps the point: without decimal point programming `X10` means 10 increments) | `X10` | `X10` |
+/// | tool | `T1 M6`, `G43` on the first move | `T1 M6`, `G43 H1` on the first move | `T1 M6` (D1 is active by default) | a comment: no M6 |
+/// | dwell | `G4 P`s | `G04 X`s (X with a decimal point is seconds; P would be ms) | `G4 F`s (own block; F does not change the feed) | `G4 P`s |
+/// | path tolerance | `G64 P`tol | `G05.1 Q1` (AI contour control; its tolerance is a machine parameter, written as a comment), `G05.1 Q0` at the end | `CYCLE832(tol,_FINISH,1)` | none (a comment) |
+/// | path tolerance 0 | `G61.1` (never `G64 P0`: LinuxCNC reads it as no limit) | `G61` | `G60` | none (a comment) |
+/// | exact stop / exact path | `G61.1` / `G61` | `G61` / `G61` (no exact-path mode) | `G60` / `G64` (continuous path without rounding) | – (grbl has only its planner) |
+/// | blend / machine | `G64 P`t / `G64 P`path or `G64` | `G64` / `G64` | `CYCLE832(t,_FINISH,1)` / CYCLE832 with the path tolerance, or `G642` | – |
+/// | multi-turn arcs | `P`turns+1 | split into full turns | `TURN=`n | split into full turns |
+/// | arc radii (rounded start and end) | LinuxCNC's rule (`arc`) | LinuxCNC's rule | LinuxCNC's rule | and Grbl 1.1's: 0.005 mm, or 0.1 % and 0.5 mm |
+/// | five-axis ([`five_axis`](super::five_axis)) | `G93`, `A`/`B` `C` words | the same, decimal points | the same | refused: no rotary axes |
+/// | end | `M2` | `M30` | `M30` | `M2` |
+///
+/// **The program's path tolerance** ([`WriterOptions::path_tolerance`](super::WriterOptions::path_tolerance),
+/// [`WriterOptions::with_path_tolerance`](super::WriterOptions::with_path_tolerance)) is stated once in the header, after the work
+/// offset. Programs that millpath times state the tolerance they were timed with: `pocket`
+/// and the demo's pocket programs the machine's (`--machine`, hsm's 0.01 mm by default),
+/// `contour` the machine's or the contour's tolerance where that is tighter. Read back, a
+/// LinuxCNC or Sinumerik program's moves carry it as `Blend(t)` (exact stop at 0), so
+/// `millpath estimate` plans it with that tolerance whatever machine it is given; Fanuc's
+/// `G64` and Grbl's silence read back as the estimating machine's own tolerance. Without it
+/// LinuxCNC runs in its default `G64` and blends each corner by up to a quarter of the
+/// shorter segment (`tc.c`, `tcFindBlendTolerance`); under `G64 P t` its naive-CAM merging
+/// (`Q`, which defaults to `P`: `interp_convert.cc`, `convert_control_mode`) also joins
+/// short collinear-within-t line segments of one feed.
+///
+/// Corner modes are modal: the writer writes one on its own line only when a move's
+/// [`Corner`](crate::toolpath::Corner) differs from the last one written. What a corner mode
+/// reads back as: LinuxCNC keeps all four exactly (`G64 P`tol reads as `Blend(tol)`, so a
+/// `Machine` move written under a header `G64 P` reads back as the blend it means); Fanuc
+/// reads `G61` as exact stop and `G64` as machine; Sinumerik `G60` exact stop, `G64` exact
+/// path, `CYCLE832(t,..)` blend, `G642` machine; Grbl programs carry no corner mode (the
+/// writer writes none), so they read back as machine.
+///
+/// Sources for the dwell words: LinuxCNC's G-code reference (`G4 P` seconds); Siemens'
+/// ISO-dialect manual (840D, `G04 X_` seconds with decimal point, `P_` in ms without) and
+/// Fanuc's identical convention; Sinumerik's Siemens mode `G4 F…` (seconds, "must be programmed
+/// in a separate block"); Grbl 1.1 `G4 P` seconds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Dialect {

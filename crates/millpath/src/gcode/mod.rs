@@ -32,48 +32,9 @@
 //! the rounding bound with the defaults).
 //!
 //! # What each dialect gets
-//! | | LinuxCNC (default) | Fanuc | Sinumerik 840D | Grbl 1.1 |
-//! |---|---|---|---|---|
-//! | framing | – | `%`, `O0001 (NAME)`, `%` | – | – |
-//! | comments | `( )` | `( )`, upper case | `;` | `;` |
-//! | units | G21/G20 | G21/G20 | G710/G700 (feeds follow) | G21/G20 |
-//! | numbers | `X10` | `X10.` (keeps the point: without decimal point programming `X10` means 10 increments) | `X10` | `X10` |
-//! | tool | `T1 M6`, `G43` on the first move | `T1 M6`, `G43 H1` on the first move | `T1 M6` (D1 is active by default) | a comment: no M6 |
-//! | dwell | `G4 P`s | `G04 X`s (X with a decimal point is seconds; P would be ms) | `G4 F`s (own block; F does not change the feed) | `G4 P`s |
-//! | path tolerance | `G64 P`tol | `G05.1 Q1` (AI contour control; its tolerance is a machine parameter, written as a comment), `G05.1 Q0` at the end | `CYCLE832(tol,_FINISH,1)` | none (a comment) |
-//! | path tolerance 0 | `G61.1` (never `G64 P0`: LinuxCNC reads it as no limit) | `G61` | `G60` | none (a comment) |
-//! | exact stop / exact path | `G61.1` / `G61` | `G61` / `G61` (no exact-path mode) | `G60` / `G64` (continuous path without rounding) | – (grbl has only its planner) |
-//! | blend / machine | `G64 P`t / `G64 P`path or `G64` | `G64` / `G64` | `CYCLE832(t,_FINISH,1)` / CYCLE832 with the path tolerance, or `G642` | – |
-//! | multi-turn arcs | `P`turns+1 | split into full turns | `TURN=`n | split into full turns |
-//! | arc radii (rounded start and end) | LinuxCNC's rule (`arc`) | LinuxCNC's rule | LinuxCNC's rule | and Grbl 1.1's: 0.005 mm, or 0.1 % and 0.5 mm |
-//! | five-axis ([`five_axis`]) | `G93`, `A`/`B` `C` words | the same, decimal points | the same | refused: no rotary axes |
-//! | end | `M2` | `M30` | `M30` | `M2` |
-//!
-//! **The program's path tolerance** ([`WriterOptions::path_tolerance`],
-//! [`WriterOptions::with_path_tolerance`]) is stated once in the header, after the work
-//! offset. Programs that millpath times state the tolerance they were timed with: `pocket`
-//! and the demo's pocket programs the machine's (`--machine`, hsm's 0.01 mm by default),
-//! `contour` the machine's or the contour's tolerance where that is tighter. Read back, a
-//! LinuxCNC or Sinumerik program's moves carry it as `Blend(t)` (exact stop at 0), so
-//! `millpath estimate` plans it with that tolerance whatever machine it is given; Fanuc's
-//! `G64` and Grbl's silence read back as the estimating machine's own tolerance. Without it
-//! LinuxCNC runs in its default `G64` and blends each corner by up to a quarter of the
-//! shorter segment (`tc.c`, `tcFindBlendTolerance`); under `G64 P t` its naive-CAM merging
-//! (`Q`, which defaults to `P`: `interp_convert.cc`, `convert_control_mode`) also joins
-//! short collinear-within-t line segments of one feed.
-//!
-//! Corner modes are modal: the writer writes one on its own line only when a move's
-//! [`Corner`](crate::toolpath::Corner) differs from the last one written. What a corner mode
-//! reads back as: LinuxCNC keeps all four exactly (`G64 P`tol reads as `Blend(tol)`, so a
-//! `Machine` move written under a header `G64 P` reads back as the blend it means); Fanuc
-//! reads `G61` as exact stop and `G64` as machine; Sinumerik `G60` exact stop, `G64` exact
-//! path, `CYCLE832(t,..)` blend, `G642` machine; Grbl programs carry no corner mode (the
-//! writer writes none), so they read back as machine.
-//!
-//! Sources for the dwell words: LinuxCNC's G-code reference (`G4 P` seconds); Siemens'
-//! ISO-dialect manual (840D, `G04 X_` seconds with decimal point, `P_` in ms without) and
-//! Fanuc's identical convention; Sinumerik's Siemens mode `G4 F…` (seconds, "must be programmed
-//! in a separate block"); Grbl 1.1 `G4 P` seconds.
+//! Tabled on [`Dialect`]: framing, comments, units, numbers, tool change, dwell, path
+//! tolerance and corner modes, multi-turn arcs, five-axis words and the end of each; how a
+//! program's path tolerance is stated and read back.
 //!
 //! # Numbers and the tolerance budget
 //! See `format`: trailing zeros trimmed, no `-0`, default 3 decimals in mm and 4 in inches;
@@ -84,29 +45,25 @@
 //! Numbers in a program are limited to ±1e9 (program units) and must be decimals without
 //! exponent; lines to 64 KiB. The reader's position is the machine position: program
 //! position + work offset + G92 offset + tool length offset (G43, from
-//! [`ReaderOptions::tool_table`]; zero without one). Rotary axes (A/B/C; five-axis joint
-//! programs are read by [`five_axis::read_five_axis`]), cutter compensation in G19 or in
-//! inverse time (G93), canned cycles other than LinuxCNC's G73/G81–G83/G85/G89, splines other than LinuxCNC's
-//! G5, G5.1 and G5.2/G5.3 NURBS (module `interp::nurbs`: the true curve within 1 µm), G92 and canned cycles in
-//! rotated systems (`G10 L2 R` itself is read: module `interp::rotation`), Fanuc's modal
-//! macro calls G66/G67 and Sinumerik parameters are refused (or skipped when lenient),
-//! naming the word and the line.
+//! [`ReaderOptions::tool_table`]; zero without one). Rotary words A/B/C are read and left out
+//! of the X Y Z path (five-axis joint programs: [`five_axis::read_five_axis`]). What the
+//! reader does not know — lathe cycles G70–G72, arcs in a rotated vertical plane, cutter
+//! compensation in G19 or G93, Fanuc's modal macros G66/G67, Sinumerik parameters, HAL pins —
+//! is refused with the word and the line (or skipped when lenient).
 //!
 //! # RS274/NGC (the LinuxCNC dialect)
-//! Parameters (`#1`, `#<name>`, `#<_global>`, the machine-state parameters), expressions
-//! (module `expr`: LinuxCNC's operators, precedence and functions), O-word subroutines and
-//! control flow (module `oword`; subroutine files on [`ReaderOptions::subroutine_path`], a
-//! step budget [`ReaderOptions::step_budget`] against endless loops), work offsets G10 L2/L20,
-//! G54–G59.3, G92/G92.1/G92.2/G92.3 (`interp::offsets`), polar words `@` (radius) and `^`
-//! (angle) about the program origin, lathe diameter mode G7/G8, canned cycles G73, G81–G83, G85,
-//! G89 with G98/G99 (`interp::cycles`, expanded as LinuxCNC expands them), cutter radius
-//! compensation G40/G41/G42/G41.1/G42.1 (`interp::cutter_comp`: LinuxCNC's entry, corner,
-//! arc and exit rules and its refusals, in G17 and G18, D from [`ReaderOptions::tool_table`]),
-//! and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
-//! passed to [`Reader::messages`]. Lines with none of these take the plain lexer: the reading
-//! speed of plain programs is unchanged. Every construct is compared with LinuxCNC's
-//! `rs274 -g` (`tests/gcode_ngc.rs`), and so are LinuxCNC's own 416 programs
-//! (`tests/linuxcnc_programs.rs`; the counts are in BENCHMARKS.md).
+//! LinuxCNC 2.9's language, module by module under `interp`: parameters and expressions
+//! (`expr`), O-word subroutines and control flow (`oword`; files on
+//! [`ReaderOptions::subroutine_path`], [`ReaderOptions::step_budget`] against endless loops),
+//! work and G92 offsets, `G10 L2/L20` (`offsets`), rotated systems (`rotation`), polar words,
+//! G7/G8, canned cycles G73, G81–G83, G85, G89 (`cycles`), splines G5, G5.1, G5.2/G5.3 and
+//! master's G6.2 as the true curve within 1 µm (`nurbs`, `g6_nurbs`), G33/G33.1/G95
+//! (`spindle_sync`), probes G38.2–G38.5 (`probe`), cutter radius compensation
+//! G40–G42/G41.1/G42.1 with LinuxCNC's entry, corner, arc and exit rules and refusals
+//! (`cutter_comp`), and `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)` passed to [`Reader::messages`].
+//! Lines with none of these take the plain lexer, so plain programs read as fast as before.
+//! Every construct is compared with LinuxCNC's `rs274 -g` (`tests/gcode_ngc.rs`), and so are
+//! LinuxCNC's own 416 programs (`tests/linuxcnc_programs.rs`; counts in BENCHMARKS.md).
 //!
 //! # Fanuc subprograms and custom macro B
 //! In the Fanuc dialect the reader runs what a Fanuc 0i/30i with custom macro B runs (module
@@ -119,9 +76,8 @@
 //! variables (`#0`), Fanuc's operators and functions, `IF […] GOTO n`, `IF […] THEN`,
 //! `GOTO n`, `WHILE […] DO m`/`END m`, and the alarm `#3000`. Nesting: 10 M98 levels and 5
 //! G65 levels (the 30i's). G66/G67 and system variables other than `#3000` are refused.
-//! Every block takes the plain lexer first; only a block it refuses is read as macro B (a
-//! plain G1 line pays for the line store and the program-number check: about 270
-//! instructions of its ~2 400, measured with callgrind). The file's lines are kept in memory
+//! Every block takes the plain lexer first; only a block it refuses is read as macro B. The
+//! file's lines are kept in memory
 //! once read (a jump may go back to any of them). Checked in `tests/gcode_fanuc.rs`
 //! against end points computed independently.
 

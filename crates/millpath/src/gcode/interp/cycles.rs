@@ -60,11 +60,6 @@ pub(crate) fn is_cycle(code: u16) -> bool {
     matches!(code, 730 | 810 | 820 | 830 | 850 | 890)
 }
 
-/// Cycles recognised but refused.
-pub(crate) fn is_refused_cycle(code: u16) -> bool {
-    matches!(code, 740 | 760 | 840 | 860 | 870 | 880)
-}
-
 struct Emit<'a> {
     out: &'a mut Vec<ReadMove>,
     state: &'a State,
