@@ -2,18 +2,8 @@
 //! with `--subroutine-path`) and a G65 macro times exactly as the same moves written out;
 //! what cannot run is bad input (exit 2) naming the word and the line.
 
-use std::process::Output;
-
 mod common;
-use common::{millpath, stderr};
-
-fn time(o: &Output) -> f64 {
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON on stdout");
-    v["cycle_time_s"]
-        .as_f64()
-        .unwrap_or_else(|| panic!("no time in {v}"))
-}
+use common::{json_cycle_time as time, millpath, stderr};
 
 #[test]
 fn subprograms_and_macros_time_as_the_program_written_out() {

@@ -9,26 +9,13 @@
 //!   Cox–de Boor recursion of the basis functions (not the reader's de Boor algorithm), stays
 //!   within the tolerance of the polyline everywhere, and the vertices lie on it.
 
-use millpath::gcode::{ReadMove, Reader, ReaderOptions};
+mod nurbs_common;
+
 use millpath::geom::Point3;
 use millpath::toolpath::MoveKind;
+use nurbs_common::{curve_on_knots as curve, distance_to_segment, read, refusal, try_read};
 
 const TOL: f64 = 0.001;
-
-fn try_read(text: &str) -> Result<Vec<ReadMove>, millpath::Error> {
-    Reader::new(text.as_bytes(), ReaderOptions::default()).collect()
-}
-
-fn read(text: &str) -> Vec<ReadMove> {
-    try_read(text).unwrap()
-}
-
-fn refusal(text: &str) -> String {
-    match try_read(text) {
-        Ok(m) => panic!("read {} moves, expected a refusal", m.len()),
-        Err(e) => e.to_string(),
-    }
-}
 
 /// A G6.2 program: the tool at the first control point (in the plane `g`, with the axis
 /// letters `a b`), then one entry per control point and `order` knot-only entries.
@@ -118,49 +105,6 @@ fn a_g6_2_in_g19_is_the_same_curve_in_y_z() {
         assert!((p.x - q.y).abs() < 1e-12 && (p.y - q.z).abs() < 1e-12 && q.x == 0.0);
         assert!((p.x - s.z).abs() < 1e-12 && (p.y - s.x).abs() < 1e-12 && s.y == 0.0);
     }
-}
-
-/// Cox–de Boor basis N(i, k, u) on half-open spans, the last non-empty span closed.
-fn basis(i: usize, k: usize, u: f64, t: &[f64]) -> f64 {
-    if k == 1 {
-        let end = t[t.len() - 1];
-        let inside = t[i] <= u && u < t[i + 1];
-        let last = u >= end && t[i] < end && t[i + 1] >= end;
-        return f64::from(u8::from(inside || last));
-    }
-    let a = if t[i + k - 1] > t[i] {
-        (u - t[i]) / (t[i + k - 1] - t[i]) * basis(i, k - 1, u, t)
-    } else {
-        0.0
-    };
-    let b = if t[i + k] > t[i + 1] {
-        (t[i + k] - u) / (t[i + k] - t[i + 1]) * basis(i + 1, k - 1, u, t)
-    } else {
-        0.0
-    };
-    a + b
-}
-
-fn curve(cp: &[(f64, f64, f64)], k: usize, t: &[f64], u: f64) -> (f64, f64) {
-    let (mut x, mut y, mut d) = (0.0, 0.0, 0.0);
-    for (i, (px, py, w)) in cp.iter().enumerate() {
-        let b = basis(i, k, u, t) * w;
-        x += b * px;
-        y += b * py;
-        d += b;
-    }
-    (x / d, y / d)
-}
-
-fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let l2 = dx * dx + dy * dy;
-    let s = if l2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p.0 - a.0 - s * dx).hypot(p.1 - a.1 - s * dy)
 }
 
 #[test]

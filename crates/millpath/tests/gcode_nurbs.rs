@@ -8,19 +8,13 @@
 //!   the basis functions (not the reader's de Boor algorithm), must stay within the tolerance
 //!   of the polyline everywhere, and the polyline's vertices on the curve.
 
-use millpath::gcode::{ReadMove, Reader, ReaderOptions};
+mod nurbs_common;
+
 use millpath::geom::Point3;
 use millpath::toolpath::MoveKind;
+use nurbs_common::{clamped_knots, curve_on_knots, distance_to_segment, read, try_read};
 
 const TOL: f64 = 0.001;
-
-fn try_read(text: &str) -> Result<Vec<ReadMove>, millpath::Error> {
-    Reader::new(text.as_bytes(), ReaderOptions::default()).collect()
-}
-
-fn read(text: &str) -> Vec<ReadMove> {
-    try_read(text).unwrap()
-}
 
 #[test]
 fn a_weighted_quadratic_is_a_quarter_circle() {
@@ -59,51 +53,8 @@ fn a_weighted_quadratic_is_a_quarter_circle() {
     );
 }
 
-/// Cox–de Boor basis N(i, k, u) on half-open spans (the last span closed).
-fn basis(i: usize, k: usize, u: f64, t: &[f64]) -> f64 {
-    if k == 1 {
-        // Knots are integers: exact comparisons are exact.
-        let end = t[t.len() - 1];
-        let last = u >= end && t[i + 1] >= end && t[i] < u;
-        return f64::from(u8::from((t[i] <= u && u < t[i + 1]) || last));
-    }
-    let a = if t[i + k - 1] > t[i] {
-        (u - t[i]) / (t[i + k - 1] - t[i]) * basis(i, k - 1, u, t)
-    } else {
-        0.0
-    };
-    let b = if t[i + k] > t[i + 1] {
-        (t[i + k] - u) / (t[i + k] - t[i + 1]) * basis(i + 1, k - 1, u, t)
-    } else {
-        0.0
-    };
-    a + b
-}
-
 fn curve(cp: &[(f64, f64, f64)], k: usize, u: f64) -> (f64, f64) {
-    let n = cp.len() - 1;
-    let t: Vec<f64> = (0..=n + k)
-        .map(|i| (i.saturating_sub(k - 1)).min(n + 1 - (k - 1)) as f64)
-        .collect();
-    let (mut x, mut y, mut d) = (0.0, 0.0, 0.0);
-    for (i, (px, py, w)) in cp.iter().enumerate() {
-        let b = basis(i, k, u, &t) * w;
-        x += b * px;
-        y += b * py;
-        d += b;
-    }
-    (x / d, y / d)
-}
-
-fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let l2 = dx * dx + dy * dy;
-    let s = if l2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p.0 - a.0 - s * dx).hypot(p.1 - a.1 - s * dy)
+    curve_on_knots(cp, k, &clamped_knots(cp.len() - 1, k), u)
 }
 
 #[test]

@@ -3,24 +3,12 @@
 //! the definitions (pitch × rev/min ÷ 60, F × rev/min ÷ 60), not taken from the reader;
 //! tests/linuxcnc_programs.rs compares the same programs' end points and feeds with rs274.
 
+mod nurbs_common;
+
 use millpath::gcode::{ReadMove, Reader, ReaderOptions};
 use millpath::geom::Point3;
 use millpath::toolpath::MoveKind;
-
-fn try_read(text: &str) -> Result<Vec<ReadMove>, millpath::Error> {
-    Reader::new(text.as_bytes(), ReaderOptions::default()).collect()
-}
-
-fn read(text: &str) -> Vec<ReadMove> {
-    try_read(text).unwrap()
-}
-
-fn refusal(text: &str) -> String {
-    match try_read(text) {
-        Ok(m) => panic!("read {} moves, expected a refusal", m.len()),
-        Err(e) => e.to_string(),
-    }
-}
+use nurbs_common::{read, refusal};
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() < 1e-9

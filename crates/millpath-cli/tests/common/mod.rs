@@ -18,3 +18,12 @@ pub fn millpath(args: &[&str], dir: &Path) -> Output {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
+
+/// The `cycle_time_s` of a successful run's JSON on stdout.
+pub fn json_cycle_time(o: &Output) -> f64 {
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON on stdout");
+    v["cycle_time_s"]
+        .as_f64()
+        .unwrap_or_else(|| panic!("no time in {v}"))
+}
