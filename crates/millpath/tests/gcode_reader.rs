@@ -308,14 +308,24 @@ fn a_huge_line_is_refused_not_buffered() {
 }
 
 #[test]
-fn units_in_the_same_block_apply_to_its_feed() {
+fn units_in_the_same_block_follow_the_dialects_order() {
+    // RS274/NGC sets the feed rate before the length units (rs274 prints SET_FEED_RATE(60)
+    // before USE_LENGTH_UNITS(INCHES)): 60 mm/min.
     let tp = read("G21 F600\nG20 G1 X1 F60\nG21 G1 X30\n");
-    assert!((tp.moves[0].feed - 25.4).abs() < 1e-12, "60 in/min");
+    assert!((tp.moves[0].feed - 1.0).abs() < 1e-12, "60 mm/min");
     assert!(
-        (tp.moves[1].feed - 25.4).abs() < 1e-12,
+        (tp.moves[1].feed - 1.0).abs() < 1e-12,
         "the feed keeps its physical value"
     );
     assert!(close(tp.moves[1].to, Point3::new(30.0, 0.0, 0.0)));
+    // The other dialects take the units first: 60 in/min.
+    let o = ReaderOptions {
+        dialect: Dialect::Fanuc,
+        ..ReaderOptions::default()
+    };
+    let (tp, _) = read_str("G21 F600.\nG20 G1 X1. F60.\nG21 G1 X30.\n", o).unwrap();
+    assert!((tp.moves[0].feed - 25.4).abs() < 1e-12, "60 in/min");
+    assert!((tp.moves[1].feed - 25.4).abs() < 1e-12);
 }
 
 #[test]

@@ -2,9 +2,9 @@
 //! from block to block.
 //!
 //! # Modal rules
-//! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"),
-//! except that units (G20/G21) apply before F so that `G20 F10` means 10 in/min:
-//! units (G20/G21) → feed mode (G93/G94) → F → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell
+//! Within a block the order of execution is RS274/NGC's (LinuxCNC's "order of execution"):
+//! feed mode (G93/G94/G95) → F → units (G20/G21; in the other dialects units come before F,
+//! so that `G20 F10` means 10 in/min) → S → T → M6 → M3/M4/M5 → M7/M8/M9 → dwell
 //! (G4) → plane (G17–G19) → cutter compensation off (G40) → tool length (G43/G49) →
 //! work offset (G54–G59) → path mode (G61, G61.1, G64; G60/G642/CYCLE832 on Sinumerik) →
 //! distance mode (G90/G91) → arc-centre mode (G90.1/G91.1) → G53 → motion (G0–G3, G80) →
@@ -310,14 +310,18 @@ impl State {
             self.modal.feed_mode = mode;
             self.feed = None;
         }
-        // Units first, so that `G20 F10` in one block is 10 in/min (an F read earlier keeps its
-        // physical value: it is stored in mm/s).
-        for &(g, _) in &b.g {
-            match g {
-                200 | 700 | 7000 => self.modal.units = Units::Inch,
-                210 | 710 | 7100 => self.modal.units = Units::Mm,
-                _ => {}
-            }
+        // Units and F. RS274/NGC's order of execution sets the feed rate before the length
+        // units (LinuxCNC: `G20 F60` after G21 is 60 mm/min); the other dialects take the units
+        // first, so that `G20 F10` in one block is 10 in/min. An F read earlier keeps its
+        // physical value (it is stored in mm/s).
+        let units = b.g.iter().rev().find_map(|&(g, _)| match g {
+            200 | 700 | 7000 => Some(Units::Inch),
+            210 | 710 | 7100 => Some(Units::Mm),
+            _ => None,
+        });
+        let f_first = dialect == Dialect::LinuxCnc;
+        if !f_first && let Some(u) = units {
+            self.modal.units = u;
         }
         let f_is_dwell = dwell && dialect == Dialect::Sinumerik;
         let mut block_f = None;
@@ -331,6 +335,9 @@ impl State {
                 FeedMode::PerRevolution => self.feed = Some(f * self.unit()),
                 FeedMode::InverseTime => block_f = Some(f),
             }
+        }
+        if f_first && let Some(u) = units {
+            self.modal.units = u;
         }
         let mut sync = b.m.iter().any(|m| matches!(m, 3..=9 | 66)) || b.has_g(430) || b.has_g(490);
         if let Some(s) = b.take(b'S') {
