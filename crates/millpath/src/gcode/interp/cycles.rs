@@ -32,6 +32,9 @@ use super::{Block, BlockError, FeedMode, ReadMove, State, plane_axes};
 use crate::geom::Point3;
 use crate::toolpath::{Corner, Move};
 
+/// Two Z levels closer than this, mm, are the same level (rounding of offset sums).
+const LEVEL_EPS_MM: f64 = 1e-9;
+
 /// LinuxCNC 2.9's G73/G83 peck clearance, mm.
 const PECK_CLEARANCE_MM: f64 = 0.254;
 
@@ -292,12 +295,15 @@ impl State {
                 };
                 (aa, bb) = (rad * th.cos(), rad * th.sin());
             }
-            if repeat == 0 && current_cc > r {
+            // Levels equal to within LEVEL_EPS_MM are one level: R and the Z the last cycle
+            // left the tool at come from different sums of the same offsets, and a rapid of
+            // no length down to R is not a move (LinuxCNC makes none).
+            if repeat == 0 && current_cc > r + LEVEL_EPS_MM {
                 e.rapid(aa, bb, current_cc);
                 e.rapid(aa, bb, r);
             } else {
                 e.rapid(aa, bb, clear);
-                if clear > r {
+                if clear > r + LEVEL_EPS_MM {
                     e.rapid(aa, bb, r);
                 }
             }
