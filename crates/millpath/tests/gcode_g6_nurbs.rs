@@ -13,7 +13,9 @@ mod nurbs_common;
 
 use millpath::geom::Point3;
 use millpath::toolpath::MoveKind;
-use nurbs_common::{curve_on_knots as curve, distance_to_segment, read, refusal, try_read};
+use nurbs_common::{
+    assert_vertices_on_curve, curve_off_polyline, curve_on_knots as curve, read, refusal, try_read,
+};
 
 const TOL: f64 = 0.001;
 
@@ -145,29 +147,13 @@ fn a_weighted_cubic_on_uneven_knots_stays_on_the_true_curve() {
     assert_eq!(dense[0], (0.0, 0.0));
     assert!((dense[samples].0 - 100.0).abs() < 1e-12 && dense[samples].1.abs() < 1e-12);
     // The true curve along the polyline (a window that moves forward).
-    let mut seg = 0;
-    let mut worst: f64 = 0.0;
-    for p in &dense {
-        let (best, at) = (seg..(seg + 40).min(poly.len() - 1))
-            .map(|j| (distance_to_segment(*p, poly[j], poly[j + 1]), j))
-            .fold((f64::INFINITY, seg), |a, b| if b.0 < a.0 { b } else { a });
-        seg = at;
-        worst = worst.max(best);
-    }
+    let worst = curve_off_polyline(&dense, &poly);
     assert!(
         worst <= TOL + 1e-9,
         "the curve is {worst} mm from the polyline"
     );
     // The vertices on the curve.
-    let mut j = 0;
-    for v in &poly {
-        let (d, at) = (j..dense.len() - 1)
-            .take(5000)
-            .map(|i| (distance_to_segment(*v, dense[i], dense[i + 1]), i))
-            .fold((f64::INFINITY, j), |a, b| if b.0 < a.0 { b } else { a });
-        j = at;
-        assert!(d < 1e-5, "vertex {v:?} is {d} mm off the curve");
-    }
+    assert_vertices_on_curve(&poly, &dense);
 }
 
 #[test]

@@ -12,7 +12,9 @@ mod nurbs_common;
 
 use millpath::geom::Point3;
 use millpath::toolpath::MoveKind;
-use nurbs_common::{clamped_knots, curve_on_knots, distance_to_segment, read, try_read};
+use nurbs_common::{
+    assert_vertices_on_curve, clamped_knots, curve_off_polyline, curve_on_knots, read, try_read,
+};
 
 const TOL: f64 = 0.001;
 
@@ -85,33 +87,16 @@ fn a_weighted_cubic_stays_within_the_tolerance_of_the_true_curve() {
     // The true curve, densely sampled, along the polyline (a window that moves forward).
     let umax = (cp.len() + 1 - 4) as f64;
     let samples = 200_000;
-    let mut seg = 0;
-    let mut worst: f64 = 0.0;
-    for s in 0..=samples {
-        let p = curve(&cp, 4, umax * s as f64 / samples as f64);
-        let (best, at) = (seg..(seg + 40).min(poly.len() - 1))
-            .map(|j| (distance_to_segment(p, poly[j], poly[j + 1]), j))
-            .fold((f64::INFINITY, seg), |a, b| if b.0 < a.0 { b } else { a });
-        seg = at;
-        worst = worst.max(best);
-    }
+    let dense: Vec<_> = (0..=samples)
+        .map(|s| curve(&cp, 4, umax * s as f64 / samples as f64))
+        .collect();
+    let worst = curve_off_polyline(&dense, &poly);
     assert!(
         worst <= TOL + 1e-9,
         "the curve is {worst} mm from the polyline"
     );
     // And the vertices lie on the curve (found by the nearest dense sample).
-    let dense: Vec<_> = (0..=samples)
-        .map(|s| curve(&cp, 4, umax * s as f64 / samples as f64))
-        .collect();
-    let mut j = 0;
-    for v in &poly {
-        let (d, at) = (j..dense.len() - 1)
-            .take(5000)
-            .map(|i| (distance_to_segment(*v, dense[i], dense[i + 1]), i))
-            .fold((f64::INFINITY, j), |a, b| if b.0 < a.0 { b } else { a });
-        j = at;
-        assert!(d < 1e-5, "vertex {v:?} is {d} mm off the curve");
-    }
+    assert_vertices_on_curve(&poly, &dense);
 }
 
 #[test]

@@ -75,3 +75,32 @@ pub fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
     };
     (p.0 - a.0 - s * dx).hypot(p.1 - a.1 - s * dy)
 }
+
+/// The farthest the densely sampled curve `dense` comes from the polyline `poly`, both in
+/// order along the curve (the nearest segment is searched in a window that moves forward).
+pub fn curve_off_polyline(dense: &[(f64, f64)], poly: &[(f64, f64)]) -> f64 {
+    let mut seg = 0;
+    let mut worst: f64 = 0.0;
+    for p in dense {
+        let (best, at) = (seg..(seg + 40).min(poly.len() - 1))
+            .map(|j| (distance_to_segment(*p, poly[j], poly[j + 1]), j))
+            .fold((f64::INFINITY, seg), |a, b| if b.0 < a.0 { b } else { a });
+        seg = at;
+        worst = worst.max(best);
+    }
+    worst
+}
+
+/// Asserts that every vertex of `poly` lies on the densely sampled curve `dense` (within
+/// 1e-5 mm of its nearest chord, searched forward).
+pub fn assert_vertices_on_curve(poly: &[(f64, f64)], dense: &[(f64, f64)]) {
+    let mut j = 0;
+    for v in poly {
+        let (d, at) = (j..dense.len() - 1)
+            .take(5000)
+            .map(|i| (distance_to_segment(*v, dense[i], dense[i + 1]), i))
+            .fold((f64::INFINITY, j), |a, b| if b.0 < a.0 { b } else { a });
+        j = at;
+        assert!(d < 1e-5, "vertex {v:?} is {d} mm off the curve");
+    }
+}
