@@ -698,3 +698,22 @@ fn inspect_pocket() {
         Err(e) => eprintln!("{e}"),
     }
 }
+
+/// The strict pocket run of 2026-11-25 timed out (54 s in a test build) on a `--morph fronts`
+/// spiral whose fronts failed, after a checked shape offset for each of the four smoothing
+/// offsets of every front, and fell back to the harmonic morph. The smoothing takes the
+/// single-loop offset when its area is plausible: the fronts succeed, in milliseconds.
+#[test]
+fn the_slow_fronts_input_is_cut_with_the_fronts() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(
+        "../../fuzz/regressions/pocket-slow/timeout-3c9f2d235e3936d3f9d3f978735ab9c0e3ae6c3f",
+    );
+    let data = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    assert_eq!(opts.spiral.morph, pocket::SpiralMorph::Fronts);
+    let (_, stats) = pocket::spiral_with_stats(&shape, &tool, &opts).expect("a spiral");
+    assert_eq!(stats.construction, pocket::Construction::Fronts);
+    let r = pocket::generate(kind, &shape, &tool, &opts, &sim).unwrap_or_else(|e| panic!("{e}"));
+    let problems = r.verification.problems();
+    assert!(problems.is_empty(), "{problems:?}");
+}

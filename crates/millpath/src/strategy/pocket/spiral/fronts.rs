@@ -209,6 +209,32 @@ fn offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
     largest(pieces(pl, d))
 }
 
+/// [`offset`] for the smoothing's small radii, cheap first: cavalier_contours' offset of the
+/// single loop (closed where it left it open), taken when its area is what an offset by `d`
+/// can have, otherwise the checked one. Offsetting a loop of area `A` and length `L` inward by `d > 0` leaves at most `A` and
+/// at least `A − L·d` (every removed point is within `d` of the loop); outward by `|d|` it adds
+/// at least nothing and at most `L·|d| + π·d²`. An offset that dropped a piece (the failure
+/// [`checked_offset`] guards against) falls below the lower bound unless the piece is
+/// smaller than the slack `1e-9·A`; the laps made from the result are kept inside the walls
+/// and verified like any other.
+fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
+    let (a, l) = (pl.area().abs(), pl.path_length());
+    let slack = 1e-9 * a.max(1.0);
+    let plain = largest(crate::geom::region::offset_loops(pl, d));
+    let plausible = |p: &Polyline<f64>| {
+        let pa = p.area().abs();
+        if d > 0.0 {
+            pa <= a + slack && pa >= a - l * d - slack
+        } else {
+            pa >= a - slack && pa <= a + l * -d + std::f64::consts::PI * d * d + slack
+        }
+    };
+    match plain {
+        Some(p) if plausible(&p) => Some(p),
+        _ => offset(pl, d),
+    }
+}
+
 /// The inscribed radius of `b` (the largest inward offset that is not empty), found by
 /// bisection on the exact offsets to `1e-9` relative, and the centre: the centroid of the
 /// ridge `D ≥ ρ_B − δ` (`δ` = 1% of `ρ_B`), moved onto the ridge when the centroid falls
@@ -297,12 +323,12 @@ fn centroid(pl: &Polyline<f64>) -> Point {
 fn smooth(u: &Polyline<f64>, b: &Polyline<f64>, ro: f64, rc: f64) -> Option<Polyline<f64>> {
     let mut cur = u.clone();
     if ro > 0.0 {
-        let eroded = offset(&cur, ro)?;
-        cur = offset(&eroded, -ro)?;
+        let eroded = smoothing_offset(&cur, ro)?;
+        cur = smoothing_offset(&eroded, -ro)?;
     }
     if rc > 0.0 {
-        let dilated = offset(&cur, -rc)?;
-        cur = offset(&dilated, rc)?;
+        let dilated = smoothing_offset(&cur, -rc)?;
+        cur = smoothing_offset(&dilated, rc)?;
     }
     largest(
         cur.boolean(b, BooleanOp::And)
