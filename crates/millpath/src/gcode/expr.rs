@@ -146,18 +146,8 @@ impl<'a> Cursor<'a> {
         while matches!(self.peek(), Some(b'0'..=b'9' | b'.')) {
             self.i += 1;
         }
-        let text =
-            std::str::from_utf8(self.s.get(start..self.i).unwrap_or_default()).unwrap_or_default();
-        text.parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite())
-            .ok_or_else(|| {
-                if text.is_empty() {
-                    format!("a number expected at '{}'", self.rest())
-                } else {
-                    format!("bad number '{text}'")
-                }
-            })
+        let text = self.s.get(start..self.i).unwrap_or_default();
+        scanned_number(text, || format!("a number expected at '{}'", self.rest()))
     }
 
     /// `[ expression ]`.
@@ -380,6 +370,19 @@ fn binary(op: Op, a: f64, b: f64) -> R<f64> {
         Op::Or => t(a != 0.0 || b != 0.0),
         Op::Xor => t((a != 0.0) != (b != 0.0)),
     })
+}
+
+/// The number scanned as `text` (signs, digits, points), finite; `nothing` gives the message
+/// when nothing was scanned. Shared by the RS274/NGC and the macro B expression readers.
+pub(crate) fn scanned_number(text: &[u8], nothing: impl FnOnce() -> String) -> Result<f64, String> {
+    let text = std::str::from_utf8(text).unwrap_or_default();
+    if text.is_empty() {
+        return Err(nothing());
+    }
+    text.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| format!("bad number '{text}'"))
 }
 
 #[cfg(test)]

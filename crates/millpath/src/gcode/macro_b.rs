@@ -378,17 +378,8 @@ impl Cur<'_> {
         while self.peek().is_some_and(|c| c.is_ascii_digit() || c == b'.') {
             self.i += 1;
         }
-        let t = std::str::from_utf8(self.s.get(start..self.i).unwrap_or_default()).unwrap_or("");
-        t.parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite())
-            .ok_or_else(|| {
-                if t.is_empty() {
-                    format!("a value expected at '{}'", self.rest())
-                } else {
-                    format!("bad number '{t}'")
-                }
-            })
+        let text = self.s.get(start..self.i).unwrap_or_default();
+        super::expr::scanned_number(text, || format!("a value expected at '{}'", self.rest()))
     }
 
     fn deeper(&mut self) -> R<()> {

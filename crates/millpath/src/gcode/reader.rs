@@ -175,27 +175,11 @@ impl<R: BufRead> Reader<R> {
 
     /// Gets the next line to run into `self.bytes`; `false` at the end of the program.
     fn read_line(&mut self) -> Result<bool, Error> {
-        let program = match &mut self.source {
-            Source::Ngc(p) => p,
-            Source::Fanuc(f) => {
-                return match f.next_line(&mut self.bytes) {
-                    Ok(Some(at)) => {
-                        self.line_no = at.line;
-                        self.bytes_read += self.bytes.len() as u64;
-                        self.file = at.origin;
-                        Ok(true)
-                    }
-                    Ok(None) => Ok(false),
-                    Err(m) => {
-                        let at = f.at().clone();
-                        self.line_no = at.line;
-                        self.file = at.origin;
-                        Err(self.fanuc_error(m))
-                    }
-                };
-            }
+        let next = match &mut self.source {
+            Source::Ngc(p) => p.next_line(&mut self.bytes),
+            Source::Fanuc(f) => f.next_line(&mut self.bytes),
         };
-        match program.next_line(&mut self.bytes) {
+        match next {
             Ok(Some(at)) => {
                 self.line_no = at.line;
                 self.bytes_read += self.bytes.len() as u64;
@@ -203,10 +187,18 @@ impl<R: BufRead> Reader<R> {
                 Ok(true)
             }
             Ok(None) => Ok(false),
-            Err(m) => Err(InputError::new("G-code program", m)
-                .at(self.origin())
-                .expected("a program LinuxCNC runs (see millpath::gcode::oword)")
-                .into()),
+            Err(m) => match &self.source {
+                Source::Fanuc(f) => {
+                    let at = f.at().clone();
+                    self.line_no = at.line;
+                    self.file = at.origin;
+                    Err(self.fanuc_error(m))
+                }
+                Source::Ngc(_) => Err(InputError::new("G-code program", m)
+                    .at(self.origin())
+                    .expected("a program LinuxCNC runs (see millpath::gcode::oword)")
+                    .into()),
+            },
         }
     }
 
