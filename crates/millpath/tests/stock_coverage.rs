@@ -54,15 +54,31 @@ fn verify(tp: &Toolpath, step: f64) -> stock::Verification {
 }
 
 fn verify_on(tp: &Toolpath, step: f64, cell: f64) -> stock::Verification {
-    let outer = rectangle();
+    verify_in(
+        tp,
+        &rectangle(),
+        step,
+        cell,
+        SimOptions::default().max_cells,
+    )
+}
+
+fn verify_in(
+    tp: &Toolpath,
+    outer: &Outline,
+    step: f64,
+    cell: f64,
+    max_cells: usize,
+) -> stock::Verification {
     let spec = StockSpec {
-        outer: &outer,
+        outer,
         islands: &[],
         wall_stock: 0.0,
     };
     let sim = SimOptions {
         cell,
         step,
+        max_cells,
         ..SimOptions::default()
     };
     stock::verify(tp, spec, 90.0, &sim)
@@ -160,20 +176,72 @@ fn feeding_down_where_a_cut_ended_is_no_plunge() {
 }
 
 /// Cells coarser than half the tool radius (3 mm cells, a 10 mm tool: the reach limit
-/// `r − 2c` is negative) still count the material whose cell centre the tool centre may
+/// `r − 2c` is negative; only a cell budget forces them, [`stock::MAX_CELL_RADII`]) still count the material whose cell centre the tool centre may
 /// visit. Before 2026-11-25 such cells were never flagged and a path that stops halfway
 /// passed on a coarse raster (found by the `pocket` fuzzer).
 #[test]
 fn a_coarse_raster_still_finds_material_in_the_reach_region() {
-    let half = verify_on(&passes(20.0), 0.5, 3.0);
+    // 800 mm² in at most 88 cells: 3 mm cells.
+    let coarse = |tp: &Toolpath| verify_in(tp, &rectangle(), 0.5, 0.05, 88);
+    let half = coarse(&passes(20.0));
+    assert!(half.cell_mm >= 3.0, "{half:?}");
     // The reach region beyond the tool at x = 20 (x from 25 to 35, y from 5 to 15), counted
     // by 9 mm² cells: most of its 100 mm².
     assert!(half.uncut_area_mm2 > 50.0, "{half:?}");
     let at = half.uncut_at.expect("a place");
     assert!(at.x > 22.0 && at.x < 40.0, "{at:?}");
-    let full = verify_on(&passes(35.0), 0.5, 3.0);
+    let full = coarse(&passes(35.0));
     assert!(
         full.uncut_area_mm2 <= stock::UNCUT_AREA_TOLERANCE,
         "{full:?}"
     );
+}
+
+/// A 0.1 mm tool whose passes are 0.12 mm apart leaves strips 0.02 mm wide between them:
+/// the simulation's cell follows the tool down ([`stock::MAX_CELL_RADII`] of its radius,
+/// whatever `--cell` asks), and the strips are measured within 10 % (on the 0.05 mm cell
+/// asked for, 0.385 mm² of 0.456).
+#[test]
+fn a_small_tool_is_verified_on_a_cell_of_its_own_scale() {
+    let p = Point::new;
+    let (len, r, gap) = (4.0, 0.05, 0.12);
+    let height = 2.0 * r + 6.0 * gap;
+    let outer = Outline::from_points(
+        &[p(0.0, 0.0), p(len, 0.0), p(len, height), p(0.0, height)],
+        "strip pocket",
+    )
+    .expect("a rectangle");
+    let tool = Tool::flat(2.0 * r).expect("a tool");
+    let mut tp = Toolpath::new(tool, Point3::new(r, r, 1.0));
+    let start = tp.moves.len();
+    tp.push(Move::line(Point3::new(r, r, -0.1), 1.0));
+    for k in 0..7 {
+        let y = r + gap * k as f64;
+        let (a, b) = if k % 2 == 0 {
+            (r, len - r)
+        } else {
+            (len - r, r)
+        };
+        tp.push(Move::line(Point3::new(a, y, -0.1), 5.0));
+        tp.push(Move::line(Point3::new(b, y, -0.1), 5.0));
+    }
+    let end = tp.moves.len();
+    tp.push(Move::rapid(Point3::new(r, height - r, 1.0)));
+    tp.levels.push(Level {
+        z: -0.1,
+        kind: LevelKind::Roughing,
+        start,
+        end,
+    });
+    let v = verify_in(&tp, &outer, 0.1, 0.05, SimOptions::default().max_cells);
+    assert!(v.cell_mm <= r / 8.0 + 1e-12, "{v:?}");
+    // Six strips (gap − 2r) wide between the links at x = r and x = len − r, which cut them
+    // back by the tool radius at each end.
+    let strips = 6.0 * (gap - 2.0 * r) * (len - 4.0 * r);
+    assert!(
+        (v.uncut_area_mm2 - strips).abs() <= 0.1 * strips,
+        "uncut {} mm², the strips {strips} mm²: {v:?}",
+        v.uncut_area_mm2
+    );
+    assert!(!v.problems().is_empty(), "{v:?}");
 }

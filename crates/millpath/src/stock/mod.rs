@@ -4,10 +4,14 @@
 //! outline; it shares no code with the strategies that made the path (it uses the geometry
 //! library directly).
 //!
-//! * `raster`: the material of one slab as a bitset of cells (≤ 0.05 mm by default).
-//! * `simulate`: sweeps the tool disc along every move (sample spacing 0.1 mm: the scallop
-//!   between two discs of radius `r` that far apart is `0.1²/(8r)`, below 1 µm for `r ≥ 2 mm`)
-//!   and measures, at every sample, the **true radial depth of cut** as the area removed per
+//! * `raster`: the material of one slab as a bitset of cells (0.05 mm by default, at most
+//!   an eighth of the tool radius, [`MAX_CELL_RADII`]).
+//! * `simulate`: sweeps the tool disc along every move, sample by sample (0.1 mm apart, at
+//!   most a quarter of the tool radius), clearing between consecutive samples the cells
+//!   within `r` of the segment joining them (along an arc, within `r` plus the sagitta of the
+//!   arc between them): the swept area itself, with no scallop between samples, so that
+//!   passes exactly one diameter apart leave nothing. It measures, at every sample, the
+//!   **true radial depth of cut** as the area removed per
 //!   unit of travel, `a_e = ΔA / Δs`, averaged over 0.5 mm of travel. For a straight cut
 //!   removing a band of width `a_e` this is exact; the **engagement angle** follows from the
 //!   chord geometry of a one-sided cut, `φ = arccos(1 − a_e/r)` (0 at `a_e = 0`, 90° at
@@ -41,7 +45,8 @@ pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
 pub use simulate::{
-    EngagementSample, MoveEngagement, SimOptions, Simulation, simulate, simulate_levels,
+    EngagementSample, MAX_CELL_RADII, MoveEngagement, SimOptions, Simulation, simulate,
+    simulate_levels,
 };
 
 use crate::geom::Outline;

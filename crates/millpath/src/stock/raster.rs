@@ -159,6 +159,81 @@ impl Raster {
         })
     }
 
+    /// The rows `j0..=j1` of the cells whose centres lie between `y0` and `y1`.
+    fn rows(&self, y0: f64, y1: f64) -> std::ops::Range<usize> {
+        let j0 = ((y0 - self.origin.y) / self.cell - 0.5).ceil().max(0.0) as usize;
+        let j1 = ((y1 - self.origin.y) / self.cell - 0.5).floor();
+        if j1 < 0.0 || self.ny == 0 {
+            return 0..0;
+        }
+        let j1 = (j1 as usize).min(self.ny - 1);
+        if j0 <= j1 { j0..j1 + 1 } else { 0..0 }
+    }
+
+    /// The columns `i0..=i1` of the cells whose centres lie between `x0` and `x1`.
+    fn columns(&self, x0: f64, x1: f64) -> Option<(usize, usize)> {
+        let i0 = ((x0 - self.origin.x) / self.cell - 0.5).ceil().max(0.0) as usize;
+        let i1 = ((x1 - self.origin.x) / self.cell - 0.5).floor();
+        (i1 >= 0.0 && self.nx > 0).then(|| (i0, (i1 as usize).min(self.nx - 1)))
+    }
+
+    /// Rows and column ranges of the cells whose centres lie within `r` of the segment from
+    /// `a` to `b` (the area a disc of radius `r` sweeps along it). Each row meets this convex
+    /// region in one interval: the hull of where it meets the two end discs and the band
+    /// `0 ≤ t ≤ |b − a|`, `|s| ≤ r` (`t` along the segment, `s` across it, both linear in x).
+    fn capsule_spans(&self, a: Point, b: Point, r: f64) -> Vec<(usize, usize, usize)> {
+        let d = b - a;
+        let len = d.length();
+        let u = if len > 0.0 { d / len } else { d };
+        self.rows(a.y.min(b.y) - r, a.y.max(b.y) + r)
+            .filter_map(|j| {
+                let y = self.centre(0, j).y;
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for c in [a, b] {
+                    let w2 = r * r - (y - c.y) * (y - c.y);
+                    if w2 >= 0.0 {
+                        let w = w2.sqrt();
+                        lo = lo.min(c.x - w);
+                        hi = hi.max(c.x + w);
+                    }
+                }
+                if len > 0.0 {
+                    // t(x) = u.x·(x − a.x) + u.y·(y − a.y) ∈ [0, len];
+                    // s(x) = u.y·(x − a.x) − u.x·(y − a.y) ∈ [−r, r].
+                    let (t0, s0) = (u.y * (y - a.y), -u.x * (y - a.y));
+                    let band = [(u.x, t0, 0.0, len), (u.y, s0, -r, r)].iter().try_fold(
+                        (f64::NEG_INFINITY, f64::INFINITY),
+                        |(l, h), &(k, c0, min, max)| {
+                            if k.abs() < 1e-12 {
+                                (min..=max).contains(&c0).then_some((l, h))
+                            } else {
+                                let (x0, x1) = ((min - c0) / k + a.x, (max - c0) / k + a.x);
+                                Some((l.max(x0.min(x1)), h.min(x0.max(x1))))
+                            }
+                        },
+                    );
+                    if let Some((l, h)) = band.filter(|(l, h)| l <= h) {
+                        lo = lo.min(l);
+                        hi = hi.max(h);
+                    }
+                }
+                if lo > hi {
+                    return None;
+                }
+                self.columns(lo, hi).map(|(i0, i1)| (j, i0, i1))
+            })
+            .collect()
+    }
+
+    /// Clears the cells within `r` of the segment from `a` to `b`; returns how many material
+    /// cells it removed.
+    pub fn clear_capsule(&mut self, a: Point, b: Point, r: f64) -> u64 {
+        self.capsule_spans(a, b, r)
+            .into_iter()
+            .map(|(j, i0, i1)| u64::from(self.set_span(j, i0, i1, false)))
+            .sum()
+    }
+
     /// Clears the disc of radius `r` about `c`; returns how many material cells it removed.
     pub fn clear_disc(&mut self, c: Point, r: f64) -> u64 {
         let spans: Vec<(usize, usize, usize)> = self.disc_spans(c, r).collect();
@@ -251,5 +326,60 @@ mod tests {
         );
         assert_eq!(r.count_disc(Point::ORIGIN, 4.9), 0);
         assert!(r.count_disc(Point::new(7.0, 0.0), 1.0) > 0);
+    }
+
+    /// The capsule's cells against the distance from each cell centre to the segment,
+    /// computed directly (projection clamped to the segment): every direction, degenerate
+    /// (a point) and axis-parallel segments, centres near the raster's edges.
+    #[test]
+    fn capsule_clears_exactly_the_cells_within_r_of_the_segment() {
+        let bounds = Aabb {
+            min: Point::new(-3.0, -2.0),
+            max: Point::new(5.0, 4.0),
+        };
+        let all = |ras: &Raster| -> Vec<Point> { ras.material_cells().collect() };
+        let mut full = Raster::new(bounds, 0.07);
+        let (nx, ny) = full.dims();
+        for j in 0..ny {
+            full.set_span(j, 0, nx - 1, true);
+        }
+        let mut seed = 12345u64;
+        let mut next = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut segments = vec![
+            (Point::new(0.0, 0.0), Point::new(0.0, 0.0), 0.5),
+            (Point::new(-1.0, 1.0), Point::new(3.0, 1.0), 0.7),
+            (Point::new(1.0, -1.0), Point::new(1.0, 3.0), 0.3),
+            (Point::new(-3.5, -2.5), Point::new(5.5, 4.5), 0.4),
+        ];
+        for _ in 0..60 {
+            let a = Point::new(-4.0 + 10.0 * next(), -3.0 + 8.0 * next());
+            let b = a + crate::geom::Vec2::new(4.0 * next() - 2.0, 4.0 * next() - 2.0);
+            segments.push((a, b, 0.05 + 1.5 * next()));
+        }
+        for (a, b, r) in segments {
+            let mut ras = full.clone();
+            let removed = ras.clear_capsule(a, b, r);
+            let left = all(&ras);
+            let dist = |p: Point| {
+                let d = b - a;
+                let l2 = d.length_squared();
+                let t = if l2 > 0.0 {
+                    ((p - a).dot(d) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                p.distance(a + d * t)
+            };
+            let expected = all(&full).into_iter().filter(|&p| dist(p) <= r).count();
+            assert_eq!(removed as usize, expected, "{a:?} {b:?} {r}");
+            // No cell within r left, none beyond r cleared (a margin for rounding).
+            assert!(left.iter().all(|&p| dist(p) > r - 1e-9), "{a:?} {b:?} {r}");
+            assert_eq!(left.len() + expected, full.count() as usize);
+        }
     }
 }

@@ -11,7 +11,8 @@ use std::collections::VecDeque;
 /// Simulation resolution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SimOptions {
-    /// Raster cell side, mm (enlarged if the raster would exceed `max_cells`).
+    /// Raster cell side, mm: at most [`MAX_CELL_RADII`] tool radii whatever is asked, and
+    /// enlarged if the raster would exceed `max_cells`.
     pub cell: f64,
     /// Spacing of the tool positions along a move, mm; at most `MAX_STEP_RADII` tool radii
     /// whatever is asked (discs farther apart would leave slivers of their own between them,
@@ -98,12 +99,15 @@ pub fn engagement_angle(ae: f64, r: f64) -> f64 {
     (1.0 - (ae / r).clamp(0.0, 2.0)).acos()
 }
 
-/// The largest spacing of the tool positions, in tool radii: discs of radius `r` that far
-/// apart leave a sliver `r·(1 − √(1 − 1/64))`, 0.8% of the radius, uncovered between them,
-/// below the raster cell of any simulation that can see a cusp. The pocket fuzz target's
-/// coarse rasters asked for steps of up to 6 mm with a 2.4 mm tool, and the simulation then
-/// reported 1,743 mm² uncut behind a spiral that cut it all (2026-11-25).
+/// The largest spacing of the tool positions, in tool radii: the engagement is measured
+/// per step, and a plunge or a rapid is looked for at the samples.
 pub const MAX_STEP_RADII: f64 = 0.25;
+
+/// The largest raster cell, in tool radii. The coverage check looks at material within
+/// `r − 2c` of where the tool may reach (module docs of `super`), and the engagement is
+/// measured in cells swept per step: with a cell of `r/8` the first still reaches `3r/4`
+/// and a disc covers about 200 cells.
+pub const MAX_CELL_RADII: f64 = 0.125;
 
 /// Positions along a move from `from`, at most `step` apart (the end included, not the start).
 fn samples(from: Point3, m: &Move, step: f64) -> Vec<Point3> {
@@ -184,7 +188,10 @@ pub fn simulate_levels(
         .flat_map(|sp| std::iter::once(sp.outer).chain(sp.islands.iter()))
         .fold(first_spec.outer.bounds(), |b, o| b.union(o.bounds()));
     let area = bounds.width() * bounds.height();
-    let cell = opts.cell.max((area / opts.max_cells as f64).sqrt());
+    let cell = opts
+        .cell
+        .min(MAX_CELL_RADII * r)
+        .max((area / opts.max_cells as f64).sqrt());
     let fresh = |spec: StockSpec<'_>| {
         let loops: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
             .chain(spec.islands.iter().map(|i| i.polyline()))
@@ -297,9 +304,18 @@ pub fn simulate_levels(
                 let mut prev = start;
                 let at = samples(start, m, opts.step);
                 let (len, n) = (m.length_from(start), at.len() as f64);
+                // The tool sweeps the capsule between consecutive samples; along an arc the
+                // chord's capsule is widened by the sagitta of the arc between them, so that
+                // it holds the arc's own sweep.
+                let widen = match (m.kind, m.sweep_from(start)) {
+                    (MoveKind::Arc { .. }, Some((rad, sweep))) => {
+                        rad * (1.0 - (0.5 * sweep / n).cos())
+                    }
+                    _ => 0.0,
+                };
                 for (j, p) in at.into_iter().enumerate() {
                     let ds = prev.distance(p);
-                    prev = p;
+                    let from = std::mem::replace(&mut prev, p);
                     let mut record = |angle: f64| {
                         if opts.record_samples {
                             out.samples.push(EngagementSample {
@@ -313,7 +329,12 @@ pub fn simulate_levels(
                         record(0.0);
                         continue;
                     }
-                    let removed = ras.clear_disc(p.xy(), r);
+                    // From a sample above the slab the tool enters it at this one.
+                    let removed = if from.z >= top - 1e-9 {
+                        ras.clear_disc(p.xy(), r)
+                    } else {
+                        ras.clear_capsule(from.xy(), p.xy(), r + widen)
+                    };
                     window.push_back((removed, ds));
                     if window.len() > window_n {
                         window.pop_front();

@@ -297,7 +297,7 @@ fn nearest_loop(loops: &[&Polyline<f64>], p: Point) -> usize {
 /// islands of its level); the room is measured to the *boundary offset* (the region the tool
 /// centre may visit), not to the loop: the loop is itself inside that region, `d_k − d_0`
 /// from its walls. The helix radius is `min(ρ, 0.9·r, 0.99·room)` (a helix wider than the
-/// tool leaves a pillar at its centre), and at least [`MIN_HELIX_RADIUS`]; the lead from the
+/// tool leaves a pillar at its centre), and at least [`min_helix_radius`]; the lead from the
 /// helix to the loop must cross no loop of the boundary offset. Island loops never get a
 /// helix (their inside is the island): the caller does not ask for one.
 pub(super) fn entry_for(
@@ -337,7 +337,7 @@ pub(super) fn entry_for(
     });
     let c = centroid.unwrap_or_else(|| inscribed_centre(&outer, level_islands, 24).0);
     let rho = want.min(0.99 * room_at(c));
-    if rho < MIN_HELIX_RADIUS {
+    if rho < min_helix_radius(r) {
         return CutEntry::Ramp;
     }
     let start = helix_exit(&outer, c);
@@ -376,8 +376,15 @@ fn loop_centroid(pl: &Polyline<f64>) -> Option<Point> {
     (a2.abs() > 1e-12).then(|| Point::new(cx / (3.0 * a2), cy / (3.0 * a2)))
 }
 
-/// The smallest helix radius worth a helix, mm (below, the ramp along the loop is used).
+/// The smallest helix radius worth a helix, mm (below, the ramp along the loop is used), for
+/// tools of radius 3 mm and more; a thirtieth of the tool radius `r` for smaller tools, so
+/// that a part and its tool drawn at another scale get the same entries.
 pub const MIN_HELIX_RADIUS: f64 = 0.1;
+
+/// [`MIN_HELIX_RADIUS`] for a tool of radius `r`: `min(0.1 mm, r/30)`.
+pub(super) fn min_helix_radius(r: f64) -> f64 {
+    MIN_HELIX_RADIUS.min(r / 30.0)
+}
 
 /// Largest loop spacing as a fraction of the tool radius (see the module docs).
 pub const RIDGE_SPACING: f64 = 0.95;
