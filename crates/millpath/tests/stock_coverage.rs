@@ -60,11 +60,7 @@ fn verify_on(tp: &Toolpath, step: f64, cell: f64) -> stock::Verification {
         islands: &[],
         wall_stock: 0.0,
     };
-    let sim = SimOptions {
-        cell,
-        step,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(cell).with_step(step);
     stock::verify(tp, spec, 90.0, &sim)
 }
 
