@@ -156,17 +156,15 @@ pub fn gcode_reader(data: &[u8]) {
     let Some((&flags, body)) = data.split_first() else {
         return;
     };
-    let opts = ReaderOptions {
-        dialect: match flags % 4 {
+    let opts = ReaderOptions::default()
+        .with_dialect(match flags % 4 {
             0 => Dialect::LinuxCnc,
             1 => Dialect::Fanuc,
             2 => Dialect::Sinumerik,
             _ => Dialect::Grbl,
-        },
-        lenient: flags & 4 != 0,
-        block_delete: flags & 8 != 0,
-        ..ReaderOptions::default()
-    };
+        })
+        .with_lenient(flags & 4 != 0)
+        .with_block_delete(flags & 8 != 0);
     let mut rd = Reader::new(std::io::Cursor::new(body), opts.clone());
     for rm in rd.by_ref().take(100_000).flatten() {
         assert!(!rm.mv.to.x.is_nan(), "reader produced a NaN target");
@@ -188,21 +186,17 @@ pub fn round_trip(tp: &Toolpath, text: &str) {
     if tp.moves.is_empty() {
         return;
     }
-    let wopts = WriterOptions {
-        dialect: Dialect::LinuxCnc,
-        decimals: Some(10),
-        ..WriterOptions::default()
-    };
+    let wopts = WriterOptions::default()
+        .with_dialect(Dialect::LinuxCnc)
+        .with_decimals(Some(10));
     let written = match write_to_string(tp, &wopts) {
         Ok((w, _)) => w,
         Err(millpath::Error::Input(_)) => return,
         Err(e) => panic!("the writer failed: {e}\n{text}"),
     };
-    let ropts = ReaderOptions {
-        dialect: Dialect::LinuxCnc,
-        start: tp.start,
-        ..ReaderOptions::default()
-    };
+    let ropts = ReaderOptions::default()
+        .with_dialect(Dialect::LinuxCnc)
+        .with_start(tp.start);
     let (back, _) = read_str(&written, ropts)
         .unwrap_or_else(|e| panic!("the written program does not read: {e}\n{written}"));
     let first_arc = tp
@@ -401,11 +395,9 @@ fn decode_pocket(data: &[u8], walls: bool) -> Option<PocketCase> {
     // check (> 0 mm), coarse enough for fuzzing (at most ~80 cells across the pocket).
     let cell = b.unit(size / 80.0, size / 20.0);
     let opts = opts.with_modulate_feed(b.flag());
-    let sim = SimOptions {
-        cell,
-        step: (2.0 * cell).max(0.1),
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default()
+        .with_cell(cell)
+        .with_step((2.0 * cell).max(0.1));
     // The walls, drawn after everything else (zeros: vertical; an older input with bytes left
     // over reads walls from them, hence `pocket_case_vertical` for the regression tests): a draft
     // angle in [0, 60°], or a bottom outline vertex for vertex like the top, the outer loop
@@ -705,10 +697,7 @@ pub fn planner(data: &[u8]) {
         let Ok(text) = std::str::from_utf8(b.rest()) else {
             return;
         };
-        let opts = ReaderOptions {
-            lenient: true,
-            ..ReaderOptions::default()
-        };
+        let opts = ReaderOptions::default().with_lenient(true);
         match read_str(text, opts) {
             Ok((mut tp, _)) => {
                 tp.moves.truncate(200);
@@ -721,10 +710,9 @@ pub fn planner(data: &[u8]) {
     };
     trace(&(&m, &tp, check));
     let moves: Vec<(Point3, Move)> = tp.segments().map(|(f, mv)| (f, *mv)).collect();
-    let opts = PlanOptions {
-        keep_geometry: true,
-        check_profiles: check,
-    };
+    let opts = PlanOptions::default()
+        .with_keep_geometry(true)
+        .with_check_profiles(check);
     let Ok(plan) = plan_moves(moves.iter().map(|x| Ok(*x)), &m, &opts) else {
         return;
     };

@@ -49,19 +49,13 @@ fn bench(c: &mut Criterion) {
     }
     // The same G1 program in the Fanuc dialect: its line source keeps the lines for jumps
     // and looks for macro statements in each.
-    let fanuc = WriterOptions {
-        dialect: Dialect::Fanuc,
-        ..WriterOptions::default()
-    };
+    let fanuc = WriterOptions::default().with_dialect(Dialect::Fanuc);
     let text = write_to_string(&toolpath(n, false), &fanuc)
         .expect("writes")
         .0;
     g.bench_function("read_g1_fanuc", |b| {
         b.iter(|| {
-            let opts = ReaderOptions {
-                dialect: Dialect::Fanuc,
-                ..ReaderOptions::default()
-            };
+            let opts = ReaderOptions::default().with_dialect(Dialect::Fanuc);
             let r = Reader::new(black_box(text.as_bytes()), opts);
             r.map(|m| m.map(|m| m.mv.to.x))
                 .sum::<Result<f64, _>>()

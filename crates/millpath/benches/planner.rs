@@ -31,10 +31,7 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     for name in ["hsm", "linuxcnc-sim", "linuxcnc-time"] {
         let m = Machine::preset(name).expect("preset");
-        let opts = PlanOptions {
-            keep_geometry: false,
-            ..PlanOptions::default()
-        };
+        let opts = PlanOptions::default().with_keep_geometry(false);
         g.bench_function(format!("short_g1_{name}"), |b| {
             b.iter(|| {
                 let plan = plan_moves(moves.iter().map(|x| Ok(*x)), &m, &opts).expect("plan");
@@ -56,10 +53,7 @@ fn bench(c: &mut Criterion) {
         p = p + d;
     }
     let m = Machine::preset("hsm").expect("preset");
-    let opts = PlanOptions {
-        keep_geometry: false,
-        ..PlanOptions::default()
-    };
+    let opts = PlanOptions::default().with_keep_geometry(false);
     g.bench_function("staircase_corners_hsm", |b| {
         b.iter(|| {
             let plan = plan_moves(stairs.iter().map(|x| Ok(*x)), &m, &opts).expect("plan");

@@ -12,11 +12,7 @@ fn main() {
     let opts = PocketOptions::default()
         .with_depth(12.7)
         .with_step_down(6.35);
-    let sim = SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
     let machine = Machine::preset("hsm").expect("hsm");
     for (name, shape) in builtin::structural_part() {
         let mut row = format!("{name:24}");

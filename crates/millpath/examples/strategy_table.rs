@@ -53,11 +53,7 @@ fn main() {
     let out_dir = std::env::args().nth(1);
     let hsm = Machine::preset("hsm").expect("hsm");
     let lc = linuxcnc_judge();
-    let sim = SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
     println!(
         "pocket\tstrategy\tmodulation\tpath_mm\tmean_engagement_deg\tabove_nominal_pct\thsm_s\tlinuxcnc_model_s\tuncut_mm2\tproblems"
     );
@@ -103,10 +99,8 @@ fn main() {
                     millpath::stock::problems_text(&v.problems()),
                 );
                 if let Some(dir) = &out_dir {
-                    let wopts = WriterOptions {
-                        path_tolerance: Some(0.01),
-                        ..WriterOptions::default()
-                    };
+                    let mut wopts = WriterOptions::default();
+                    wopts.path_tolerance = Some(0.01);
                     let mut buf = Vec::new();
                     write_program(&r_lc.toolpath, &wopts, &mut buf).expect("write");
                     let name = format!(

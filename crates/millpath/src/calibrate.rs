@@ -174,11 +174,11 @@ pub fn load(csv: &Path, machine: &Machine) -> Result<Vec<Measured>, Error> {
                 .at(&origin)
                 .expected(format!("a readable G-code file, relative to the CSV ({e})"))
         })?;
-        let opts = ReaderOptions {
-            origin: path.display().to_string(),
-            sync_points: (machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait),
-            ..ReaderOptions::default()
-        };
+        let opts = ReaderOptions::default()
+            .with_origin(path.display().to_string())
+            .with_sync_points(
+                (machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait),
+            );
         let (tp, _) = read_str(&program, opts)?;
         out.push(Measured {
             name,
@@ -209,10 +209,9 @@ fn times(m: &Machine, programs: &[Measured]) -> Result<Option<Vec<f64>>, Error> 
     if m.validate(&m.name).is_err() {
         return Ok(None);
     }
-    let opts = PlanOptions {
-        keep_geometry: false,
-        check_profiles: false,
-    };
+    let opts = PlanOptions::default()
+        .with_keep_geometry(false)
+        .with_check_profiles(false);
     let mut out = Vec::with_capacity(programs.len());
     for p in programs {
         match plan_moves(p.moves.iter().map(|x| Ok(*x)), m, &opts) {

@@ -27,11 +27,8 @@ fn contour_programs_pass_rs274() {
             .with_side(side)
             .with_arcs(arcs);
         let r = contour::contour(&c, &o).unwrap();
-        let w = WriterOptions {
-            decimals: Some(decimals),
-            path_tolerance: Some(tol),
-            ..WriterOptions::default()
-        };
+        let mut w = WriterOptions::default().with_decimals(Some(decimals));
+        w.path_tolerance = Some(tol); // at these decimals: `with_path_tolerance` may add some
         let (text, _) = gcode::write_to_string(&r.toolpath, &w).unwrap();
         rs274(&text).unwrap_or_else(|e| panic!("{side:?} arcs {arcs}: {e}"));
         // The program as read back (rounded, flat arcs written as chords) keeps the tool at

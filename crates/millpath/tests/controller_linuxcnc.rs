@@ -42,11 +42,9 @@ fn programs() -> Vec<PathBuf> {
 fn model_time(path: &Path) -> f64 {
     let m = Machine::preset("linuxcnc-time").unwrap();
     let text = std::fs::read_to_string(path).unwrap();
-    let opts = ReaderOptions {
-        sync_points: Some(m.sync_wait),
-        origin: path.display().to_string(),
-        ..ReaderOptions::default()
-    };
+    let opts = ReaderOptions::default()
+        .with_sync_points(Some(m.sync_wait))
+        .with_origin(path.display().to_string());
     let (tp, _) = read_str(&text, opts).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let moves: Vec<_> = tp.segments().map(|(f, mv)| (f, *mv)).collect();
     plan_moves(moves.iter().map(|x| Ok(*x)), &m, &PlanOptions::default())

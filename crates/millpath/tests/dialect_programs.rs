@@ -77,11 +77,9 @@ fn write_check_read(tp: &Toolpath, w: &WriterOptions) -> Result<String, String> 
     if !states_tolerance(&text, d) {
         return Err(format!("{d}: the path tolerance is not stated"));
     }
-    let ropts = ReaderOptions {
-        dialect: d,
-        start: tp.start,
-        ..ReaderOptions::default()
-    };
+    let ropts = ReaderOptions::default()
+        .with_dialect(d)
+        .with_start(tp.start);
     let (read, warnings) = read_str(&text, ropts).map_err(|e| format!("{d}: read: {e}"))?;
     if !warnings.is_empty() {
         return Err(format!("{d}: warnings {warnings:?}"));
@@ -209,15 +207,13 @@ fn hsm() -> Machine {
 
 /// The pocket program's options, as `millpath pocket` sets them.
 fn pocket_writer(d: Dialect, units: Units) -> WriterOptions {
-    WriterOptions {
-        dialect: d,
-        units,
-        decimals: Some(pocket_decimals(units)),
-        program_name: Some("random pocket".into()),
-        tool_number: Some(3),
-        ..WriterOptions::default()
-    }
-    .with_path_tolerance(hsm().path_tolerance)
+    WriterOptions::default()
+        .with_dialect(d)
+        .with_units(units)
+        .with_decimals(Some(pocket_decimals(units)))
+        .with_program_name(Some("random pocket".into()))
+        .with_tool_number(Some(3))
+        .with_path_tolerance(hsm().path_tolerance)
 }
 
 fn star(radii: &[f64], round: f64) -> Option<Outline> {
@@ -263,11 +259,7 @@ fn random_pockets_in_every_dialect_and_units() {
             .with_step_down(1.0)
             .with_stepover(pocket::Stepover::Fraction(so))
             .with_arcs(arcs);
-        let sim = SimOptions {
-            cell: 0.15,
-            step: 0.3,
-            ..SimOptions::default()
-        };
+        let sim = SimOptions::default().with_cell(0.15).with_step(0.3);
         let r = match pocket::generate(kind, &shape, &tool, &opts, &sim) {
             Ok(r) => r,
             Err(Error::Input(_)) => return Ok(false),
@@ -331,13 +323,11 @@ fn random_contours_in_every_dialect_and_units() {
                 Err(e) => return Err(TestCaseError::fail(format!("contour: {e}"))),
             };
             for d in Dialect::ALL {
-                let w = WriterOptions {
-                    dialect: d,
-                    units,
-                    decimals: Some(decimals),
-                    ..WriterOptions::default()
-                }
-                .with_path_tolerance(tolerance.min(hsm().path_tolerance));
+                let w = WriterOptions::default()
+                    .with_dialect(d)
+                    .with_units(units)
+                    .with_decimals(Some(decimals))
+                    .with_path_tolerance(tolerance.min(hsm().path_tolerance));
                 write_check_read(&r.toolpath, &w)
                     .map_err(|e| TestCaseError::fail(format!("contour arcs {arcs}: {e}")))?;
             }
@@ -401,11 +391,10 @@ fn random_five_axis_paths_in_every_dialect_and_units() {
                         } else {
                             FeedMode::InverseTime
                         },
-                        program: WriterOptions {
-                            dialect: d,
-                            units,
-                            ..FiveAxisGcodeOptions::default().program
-                        },
+                        program: FiveAxisGcodeOptions::default()
+                            .program
+                            .with_dialect(d)
+                            .with_units(units),
                         ..FiveAxisGcodeOptions::default()
                     };
                     let mut buf = Vec::new();
@@ -469,11 +458,7 @@ fn eval_plan(segs: &[millpath::motion::five_axis::Segment], t: f64) -> [f64; 5] 
 
 /// The cycle time of `text` read back in its dialect and planned on `machine`.
 fn estimate(text: &str, d: Dialect, start: Point3, machine: &Machine) -> f64 {
-    let ropts = ReaderOptions {
-        dialect: d,
-        start,
-        ..ReaderOptions::default()
-    };
+    let ropts = ReaderOptions::default().with_dialect(d).with_start(start);
     let (tp, _) = read_str(text, ropts).unwrap();
     millpath::motion::plan_toolpath(&tp, machine)
         .unwrap()
@@ -486,11 +471,7 @@ fn the_same_pocket_takes_the_same_time_in_every_dialect() {
     let opts = PocketOptions::default()
         .with_depth(6.35)
         .with_step_down(6.35);
-    let sim = SimOptions {
-        cell: 0.2,
-        step: 0.4,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(0.2).with_step(0.4);
     let machine = hsm();
     for arcs in [false, true] {
         let opts = opts.clone().with_arcs(arcs);

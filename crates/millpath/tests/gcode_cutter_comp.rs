@@ -28,13 +28,11 @@ const TOOLS: &str = "T1 P1 D0.236220472 ;6 mm\nT2 P2 D0.25 ;1/4 in\n\
 const R: f64 = 0.236220472 * 25.4 / 2.0;
 
 fn options(name: &str) -> ReaderOptions {
-    ReaderOptions {
-        origin: name.to_string(),
-        tool_table: Some(std::sync::Arc::new(
+    ReaderOptions::default()
+        .with_origin(name)
+        .with_tool_table(Some(std::sync::Arc::new(
             ToolTable::parse(TOOLS, Units::Inch, "tool.tbl").unwrap(),
-        )),
-        ..ReaderOptions::default()
-    }
+        )))
 }
 
 fn ours(text: &str) -> Result<Vec<ReadMove>, String> {

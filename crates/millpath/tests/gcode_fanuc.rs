@@ -7,10 +7,7 @@ use millpath::toolpath::MoveKind;
 use std::path::Path;
 
 fn opts() -> ReaderOptions {
-    ReaderOptions {
-        dialect: Dialect::Fanuc,
-        ..ReaderOptions::default()
-    }
+    ReaderOptions::default().with_dialect(Dialect::Fanuc)
 }
 
 fn read_with(text: &str, o: ReaderOptions) -> Result<Vec<ReadMove>, String> {
@@ -24,16 +21,14 @@ fn read(text: &str) -> Result<Vec<ReadMove>, String> {
 }
 
 fn read_file(main: &Path, search: &[&Path]) -> Result<Vec<ReadMove>, String> {
-    let o = ReaderOptions {
-        origin: main.display().to_string(),
-        ..opts()
-    }
-    .with_program_files(
-        main,
-        &search.iter().map(|p| p.to_path_buf()).collect::<Vec<_>>(),
-        None,
-    )
-    .map_err(|e| e.to_string())?;
+    let o = opts()
+        .with_origin(main.display().to_string())
+        .with_program_files(
+            main,
+            &search.iter().map(|p| p.to_path_buf()).collect::<Vec<_>>(),
+            None,
+        )
+        .map_err(|e| e.to_string())?;
     let f = std::fs::File::open(main).unwrap();
     Reader::new(std::io::BufReader::new(f), o)
         .collect::<Result<Vec<_>, _>>()
@@ -248,20 +243,14 @@ fn nested_while_loops_functions_and_argument_specification_two() {
 fn m99_in_the_main_program_loops_within_the_step_budget() {
     let text = "O8\nG90 G0 X0 Y0\nG1 X10. F600.\nG1 X0\n/M99\nM30\n";
     // With block delete on, /M99 is skipped and the program ends at M30.
-    let on = ReaderOptions {
-        block_delete: true,
-        ..opts()
-    };
+    let on = opts().with_block_delete(true);
     assert_ends(
         &read_with(text, on).unwrap(),
         &[[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
         text,
     );
     // Off: M99 goes back to the start for ever; the step budget stops it with a message.
-    let off = ReaderOptions {
-        step_budget: 1000,
-        ..opts()
-    };
+    let off = opts().with_step_budget(1000);
     let mut n = 0;
     let mut err = None;
     for m in Reader::new(text.as_bytes(), off) {
@@ -331,10 +320,7 @@ fn refusals_name_the_word_and_the_line() {
             &["step budget", "END1 at line 4"],
         ),
     ] {
-        let o = ReaderOptions {
-            step_budget: 10_000,
-            ..opts()
-        };
+        let o = opts().with_step_budget(10_000);
         let e = read_with(text, o).expect_err(text);
         for n in needles {
             assert!(e.contains(n), "'{n}' not in: {e}\n{text}");

@@ -14,11 +14,9 @@ use std::path::Path;
 use std::time::Duration;
 
 fn ours(path: &Path) -> Result<Vec<ReadMove>, String> {
-    let opts = ReaderOptions {
-        origin: path.display().to_string(),
-        subroutine_path: vec![path.parent().unwrap().to_path_buf()],
-        ..ReaderOptions::default()
-    };
+    let opts = ReaderOptions::default()
+        .with_origin(path.display().to_string())
+        .with_subroutine_path(vec![path.parent().unwrap().to_path_buf()]);
     let f = std::fs::File::open(path).unwrap();
     Reader::new(std::io::BufReader::new(f), opts)
         .collect::<Result<Vec<_>, _>>()
@@ -250,10 +248,7 @@ fn rotated_systems_as_rs274() {
 
 #[test]
 fn endless_loops_stop_at_the_step_budget() {
-    let opts = ReaderOptions {
-        step_budget: 100_000,
-        ..ReaderOptions::default()
-    };
+    let opts = ReaderOptions::default().with_step_budget(100_000);
     let t0 = std::time::Instant::now();
     let r: Result<Vec<_>, _> = Reader::new(
         "G21 F100\no1 while [1]\nG1 X1\nG1 X0\no1 endwhile\nM2\n".as_bytes(),
@@ -301,10 +296,7 @@ fn messages_pass_through_with_values() {
 fn a_missing_subroutine_names_itself_and_the_search() {
     let r: Result<Vec<_>, _> = Reader::new(
         "G21\no<nowhere> call\nM2\n".as_bytes(),
-        ReaderOptions {
-            origin: "p.ngc".into(),
-            ..ReaderOptions::default()
-        },
+        ReaderOptions::default().with_origin("p.ngc"),
     )
     .collect();
     let e = r.unwrap_err().to_string();

@@ -14,20 +14,14 @@ fn read(text: &str) -> Toolpath {
 }
 
 fn read_as(d: Dialect, text: &str) -> Toolpath {
-    let o = ReaderOptions {
-        dialect: d,
-        ..ReaderOptions::default()
-    };
+    let o = ReaderOptions::default().with_dialect(d);
     read_str(text, o)
         .unwrap_or_else(|e| panic!("{e}\n{text}"))
         .0
 }
 
 fn error(text: &str) -> String {
-    let o = ReaderOptions {
-        origin: "part.ngc".into(),
-        ..ReaderOptions::default()
-    };
+    let o = ReaderOptions::default().with_origin("part.ngc");
     match read_str(text, o) {
         Err(e @ Error::Input(_)) => e.to_string(),
         other => panic!("expected an input error for\n{text}\ngot {other:?}"),
@@ -97,10 +91,7 @@ fn errors_name_the_file_line_and_word() {
 #[test]
 fn lenient_skips_unsupported_words_with_warnings() {
     let text = "G21 G90\nG1 X1 F100 U5\nG70 Z1\nG1 X2\n";
-    let o = ReaderOptions {
-        lenient: true,
-        ..ReaderOptions::default()
-    };
+    let o = ReaderOptions::default().with_lenient(true);
     let (tp, warnings) = read_str(text, o).unwrap();
     // Only the word is skipped: Z1 still moves in the modal G1.
     assert_eq!(tp.moves.len(), 3);
@@ -114,10 +105,7 @@ fn lenient_skips_unsupported_words_with_warnings() {
         "{warnings:?}"
     );
     // Lenient does not excuse a real error.
-    let o = ReaderOptions {
-        lenient: true,
-        ..ReaderOptions::default()
-    };
+    let o = ReaderOptions::default().with_lenient(true);
     assert!(read_str("G1 X1\n", o).is_err());
 }
 
@@ -251,10 +239,7 @@ fn program_end_block_delete_comments_and_percent() {
         2,
         "the / line runs with the switch off; nothing after M30"
     );
-    let o = ReaderOptions {
-        block_delete: true,
-        ..ReaderOptions::default()
-    };
+    let o = ReaderOptions::default().with_block_delete(true);
     let tp = read_str("G21 G1 X1 F60\n/G1 X5\nG1 X2\n", o).unwrap().0;
     assert_eq!(tp.moves.len(), 2);
     assert!(close(tp.moves[1].to, Point3::new(2.0, 0.0, 0.0)));
@@ -319,10 +304,7 @@ fn units_in_the_same_block_follow_the_dialects_order() {
     );
     assert!(close(tp.moves[1].to, Point3::new(30.0, 0.0, 0.0)));
     // The other dialects take the units first: 60 in/min.
-    let o = ReaderOptions {
-        dialect: Dialect::Fanuc,
-        ..ReaderOptions::default()
-    };
+    let o = ReaderOptions::default().with_dialect(Dialect::Fanuc);
     let (tp, _) = read_str("G21 F600.\nG20 G1 X1. F60.\nG21 G1 X30.\n", o).unwrap();
     assert!((tp.moves[0].feed - 25.4).abs() < 1e-12, "60 in/min");
     assert!((tp.moves[1].feed - 25.4).abs() < 1e-12);
@@ -330,10 +312,7 @@ fn units_in_the_same_block_follow_the_dialects_order() {
 
 #[test]
 fn lenient_skips_unused_words_but_keeps_the_motion() {
-    let o = ReaderOptions {
-        lenient: true,
-        ..ReaderOptions::default()
-    };
+    let o = ReaderOptions::default().with_lenient(true);
     let (tp, warnings) = read_str("G21 G1 X1 F60 Q3\n", o).unwrap();
     assert_eq!(tp.moves.len(), 1);
     assert!(warnings[0].message.contains("Q3"), "{warnings:?}");
@@ -419,7 +398,7 @@ mod no_panics {
         fn the_reader_never_panics_or_yields_non_finite_moves(text in words(), bytes in prop::collection::vec(any::<u8>(), 0..200)) {
             for d in Dialect::ALL {
                 for lenient in [false, true] {
-                    let o = ReaderOptions { dialect: d, lenient, ..ReaderOptions::default() };
+                    let o = ReaderOptions::default().with_dialect(d).with_lenient(lenient);
                     for m in Reader::new(text.as_bytes(), o.clone()).flatten() {
                         prop_assert!(m.mv.to.is_finite() && m.mv.feed.is_finite());
                         prop_assert!(!m.mv.is_feed() || m.mv.feed > 0.0);

@@ -15,19 +15,15 @@ fn round_trip(
     units: Units,
     decimals: Option<u32>,
 ) -> (Toolpath, Toolpath, String) {
-    let opts = WriterOptions {
-        dialect: d,
-        units,
-        decimals,
-        line_numbers: true,
-        ..WriterOptions::default()
-    };
+    let opts = WriterOptions::default()
+        .with_dialect(d)
+        .with_units(units)
+        .with_decimals(decimals)
+        .with_line_numbers(true);
     let (text, _) = write_to_string(tp, &opts).unwrap();
-    let ropts = ReaderOptions {
-        dialect: d,
-        start: tp.start,
-        ..ReaderOptions::default()
-    };
+    let ropts = ReaderOptions::default()
+        .with_dialect(d)
+        .with_start(tp.start);
     let (read, warnings) =
         read_str(&text, ropts).unwrap_or_else(|e| panic!("{d} {units}: {e}\n{text}"));
     assert!(warnings.is_empty(), "{warnings:?}");

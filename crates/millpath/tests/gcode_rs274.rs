@@ -29,14 +29,12 @@ fn rs274_reports_errors_so_this_test_can_fail() {
 fn linuxcnc_output_passes_rs274_in_mm_and_inch() {
     for units in [Units::Mm, Units::Inch] {
         for (line_numbers, tol) in [(false, None), (true, Some(0.01))] {
-            let opts = WriterOptions {
-                dialect: Dialect::LinuxCnc,
-                units,
-                line_numbers,
-                path_tolerance: tol,
-                program_name: Some("rs274 check".into()),
-                ..WriterOptions::default()
-            };
+            let mut opts = WriterOptions::default()
+                .with_dialect(Dialect::LinuxCnc)
+                .with_units(units)
+                .with_line_numbers(line_numbers)
+                .with_program_name(Some("rs274 check".into()));
+            opts.path_tolerance = tol;
             let (text, summary) = write_to_string(&varied_toolpath(), &opts).unwrap();
             let canon = rs274(&text).unwrap_or_else(|e| panic!("rs274 refused:\n{e}\n{text}"));
             // Every motion block reached the canonical machine.
@@ -68,10 +66,7 @@ fn many_short_arcs_and_lines_pass_rs274_at_default_decimals() {
         tp.push(m);
     }
     for units in [Units::Mm, Units::Inch] {
-        let opts = WriterOptions {
-            units,
-            ..WriterOptions::default()
-        };
+        let opts = WriterOptions::default().with_units(units);
         let (text, _) = write_to_string(&tp, &opts).unwrap();
         rs274(&text).unwrap_or_else(|e| panic!("{e}"));
     }
@@ -179,11 +174,9 @@ fn rs274_interprets_the_program_as_the_toolpath() {
     use millpath::toolpath::MoveKind;
     let tp = varied_toolpath();
     for units in [Units::Mm, Units::Inch] {
-        let opts = WriterOptions {
-            units,
-            decimals: Some(6),
-            ..WriterOptions::default()
-        };
+        let opts = WriterOptions::default()
+            .with_units(units)
+            .with_decimals(Some(6));
         let (text, _) = write_to_string(&tp, &opts).unwrap();
         let canon = rs274(&text).unwrap_or_else(|e| panic!("{e}"));
         let got = canon_motions(&canon);
@@ -245,7 +238,7 @@ mod random {
         fn random_toolpaths_pass_rs274(steps in proptest::collection::vec(random_step(), 1..20)) {
             let tp = build_random(&steps);
             for units in [Units::Mm, Units::Inch] {
-                let opts = WriterOptions { units, ..WriterOptions::default() };
+                let opts = WriterOptions::default().with_units(units);
                 let (text, _) = write_to_string(&tp, &opts).unwrap();
                 if let Err(e) = rs274(&text) {
                     prop_assert!(false, "rs274 refused: {}\n{}", e, text);

@@ -102,10 +102,7 @@ fn rotary_words_are_read_and_the_path_is_x_y_z() {
     );
     assert!(close(m[1].mv.feed, 10.0));
     // Other dialects have no rotary words in the reader.
-    let fanuc = ReaderOptions {
-        dialect: millpath::gcode::Dialect::Fanuc,
-        ..ReaderOptions::default()
-    };
+    let fanuc = ReaderOptions::default().with_dialect(millpath::gcode::Dialect::Fanuc);
     let r: Result<Vec<ReadMove>, _> = Reader::new("G21\nG0 A10\nM30\n".as_bytes(), fanuc).collect();
     assert!(r.is_err());
 }

@@ -9,16 +9,17 @@ use millpath::geom::Point3;
 use millpath::toolpath::{Corner, Move, Tool, Toolpath};
 
 fn opts(dialect: Dialect) -> WriterOptions {
-    WriterOptions {
-        dialect,
-        path_tolerance: Some(0.01),
-        program_name: Some("demo (part)".into()),
-        ..WriterOptions::default()
-    }
+    // The tolerance alone (`with_path_tolerance` would also fix the decimals, before the
+    // units are chosen).
+    let mut o = WriterOptions::default()
+        .with_dialect(dialect)
+        .with_program_name(Some("demo (part)".into()));
+    o.path_tolerance = Some(0.01);
+    o
 }
 
 fn write(d: Dialect, units: Units) -> String {
-    let o = WriterOptions { units, ..opts(d) };
+    let o = opts(d).with_units(units);
     write_to_string(&varied_toolpath(), &o).unwrap().0
 }
 
@@ -121,11 +122,9 @@ fn a_zero_path_tolerance_is_exact_stop_not_g64_p0() {
         (Dialect::Fanuc, "G61"),
     ] {
         for t in [0.0, 1e-9] {
-            let o = WriterOptions {
-                dialect: d,
-                path_tolerance: Some(t),
-                ..WriterOptions::default()
-            };
+            // The tolerance alone: `with_path_tolerance` would add decimals enough to hold 1e-9.
+            let mut o = WriterOptions::default().with_dialect(d);
+            o.path_tolerance = Some(t);
             let (text, _) = write_to_string(&tp, &o).unwrap();
             assert!(!text.contains("G64 P0\n"), "{d}: {text}");
             assert!(
@@ -134,14 +133,7 @@ fn a_zero_path_tolerance_is_exact_stop_not_g64_p0() {
             );
             let header: Vec<&str> = text.lines().take_while(|l| !l.contains("G0")).collect();
             assert!(header.contains(&stop), "{d}: {stop} in the header: {text}");
-            let (read, _) = read_str(
-                &text,
-                ReaderOptions {
-                    dialect: d,
-                    ..ReaderOptions::default()
-                },
-            )
-            .unwrap();
+            let (read, _) = read_str(&text, ReaderOptions::default().with_dialect(d)).unwrap();
             let corners: Vec<Corner> = read.moves.iter().map(|m| m.corner).collect();
             // Moves 0, 1 and 3 stop; move 2 blends (LinuxCNC, Sinumerik) or runs in G64.
             for k in [0, 1, 3] {
@@ -150,19 +142,13 @@ fn a_zero_path_tolerance_is_exact_stop_not_g64_p0() {
             assert_ne!(corners[2], Corner::ExactStop, "{d}: {text}");
         }
     }
-    let bad = WriterOptions {
-        path_tolerance: Some(-0.01),
-        ..WriterOptions::default()
-    };
+    let bad = WriterOptions::default().with_path_tolerance(-0.01);
     assert!(write_to_string(&tp, &bad).is_err());
 }
 
 #[test]
 fn line_numbers_count_up_and_skip_percent_lines() {
-    let o = WriterOptions {
-        line_numbers: true,
-        ..opts(Dialect::Fanuc)
-    };
+    let o = opts(Dialect::Fanuc).with_line_numbers(true);
     let (t, s) = write_to_string(&varied_toolpath(), &o).unwrap();
     let numbered: Vec<u64> = t
         .lines()
@@ -188,10 +174,7 @@ fn non_finite_coordinates_are_refused_with_the_move_index() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("feed") && e.contains("move 2"), "{e}");
-    let o = WriterOptions {
-        work_offset: 60,
-        ..WriterOptions::default()
-    };
+    let o = WriterOptions::default().with_work_offset(60);
     assert!(write_to_string(&varied_toolpath(), &o).is_err());
 }
 
@@ -235,10 +218,7 @@ fn arcs_too_small_for_the_decimals_become_lines_and_still_read_back() {
     ));
     let (text, s) = write_to_string(&tp, &WriterOptions::default()).unwrap();
     assert_eq!(s.arcs_as_lines, 2, "{text}");
-    let ropts = ReaderOptions {
-        start,
-        ..ReaderOptions::default()
-    };
+    let ropts = ReaderOptions::default().with_start(start);
     let (read, _) = read_str(&text, ropts).unwrap();
     let len: f64 = read.segments().map(|(f, m)| m.length_from(f)).sum();
     assert!(len < 0.01, "no full circle sneaked in: {len} mm\n{text}");
@@ -261,10 +241,7 @@ fn near_full_circles_stay_near_full_after_rounding() {
             tp.push(Move::arc_xy(end, Point3::ORIGIN, ccw, 5.0));
             let want = tp.cut_length();
             let (text, _) = write_to_string(&tp, &WriterOptions::default()).unwrap();
-            let ropts = ReaderOptions {
-                start,
-                ..ReaderOptions::default()
-            };
+            let ropts = ReaderOptions::default().with_start(start);
             let (read, _) = read_str(&text, ropts).unwrap();
             let got = read.cut_length();
             assert!(
@@ -296,11 +273,9 @@ fn with_tolerance_raises_the_decimals_only_when_needed() {
     );
     for tol in [1e-2, 1e-3, 1e-4, 4e-5] {
         for units in [Units::Mm, Units::Inch] {
-            let o = WriterOptions {
-                units,
-                ..WriterOptions::default()
-            }
-            .with_tolerance(tol);
+            let o = WriterOptions::default()
+                .with_units(units)
+                .with_tolerance(tol);
             let d = o.effective_decimals();
             assert!(d >= required_decimals(tol, units));
             assert!(
@@ -314,10 +289,7 @@ fn with_tolerance_raises_the_decimals_only_when_needed() {
 #[test]
 fn comments_off_means_no_comments_in_any_dialect() {
     for d in Dialect::ALL {
-        let o = WriterOptions {
-            comments: false,
-            ..opts(d)
-        };
+        let o = opts(d).with_comments(false);
         let (t, _) = write_to_string(&varied_toolpath(), &o).unwrap();
         let code = t.replace("CYCLE832(", "");
         assert!(!code.contains('(') && !code.contains(';'), "{d}:\n{t}");

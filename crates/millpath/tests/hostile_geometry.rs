@@ -279,11 +279,9 @@ fn pocket_toolpaths_survive_arbitrary_polygons_and_options() {
             // A coarse raster (about 60 cells across) keeps the pass to seconds.
             let b = shape.outer.bounds();
             let cell = (b.width().max(b.height()) / 60.0).max(0.05);
-            let sim = millpath::stock::SimOptions {
-                cell,
-                step: 2.0 * cell,
-                ..Default::default()
-            };
+            let sim = millpath::stock::SimOptions::default()
+                .with_cell(cell)
+                .with_step(2.0 * cell);
             match pocket::generate(kind, &shape, &t, &opts, &sim) {
                 Ok(res) => {
                     let p = res.verification.problems();

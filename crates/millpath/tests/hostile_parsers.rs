@@ -63,16 +63,14 @@ fn gcode_line(rng: &mut ChaCha8Rng) -> String {
 }
 
 fn gcode_opts(rng: &mut ChaCha8Rng) -> ReaderOptions {
-    ReaderOptions {
-        dialect: match rng.random_range(0..3) {
+    ReaderOptions::default()
+        .with_dialect(match rng.random_range(0..3) {
             0 => Dialect::LinuxCnc,
             1 => Dialect::Fanuc,
             _ => Dialect::Sinumerik,
-        },
-        lenient: rng.random_bool(0.5),
-        block_delete: rng.random_bool(0.3),
-        ..ReaderOptions::default()
-    }
+        })
+        .with_lenient(rng.random_bool(0.5))
+        .with_block_delete(rng.random_bool(0.3))
 }
 
 #[test]
@@ -206,11 +204,9 @@ fn round_trips(text: &str, opts: &ReaderOptions) -> bool {
     if tp.moves.is_empty() {
         return false;
     }
-    let wopts = WriterOptions {
-        dialect: Dialect::LinuxCnc,
-        decimals: Some(10),
-        ..WriterOptions::default()
-    };
+    let wopts = WriterOptions::default()
+        .with_dialect(Dialect::LinuxCnc)
+        .with_decimals(Some(10));
     // The writer may refuse what the reader took (an arc below its smallest radius, a
     // coordinate it cannot write): an input error, never a panic.
     let written = match write_to_string(&tp, &wopts) {
@@ -218,11 +214,9 @@ fn round_trips(text: &str, opts: &ReaderOptions) -> bool {
         Err(millpath::Error::Input(_)) => return false,
         Err(e) => panic!("the writer failed: {e}\n{text}"),
     };
-    let ropts = ReaderOptions {
-        dialect: Dialect::LinuxCnc,
-        start: tp.start,
-        ..ReaderOptions::default()
-    };
+    let ropts = ReaderOptions::default()
+        .with_dialect(Dialect::LinuxCnc)
+        .with_start(tp.start);
     let (back, _) = read_str(&written, ropts)
         .unwrap_or_else(|e| panic!("the written program does not read: {e}\n{written}"));
     let want = gcode_common::with_start_rapid(&tp);

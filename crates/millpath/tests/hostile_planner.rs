@@ -127,10 +127,9 @@ fn planner_survives_arbitrary_programs_and_machines() {
     for case in 0..2000 {
         let tp = program(&mut r);
         let m = machine(&mut r);
-        let opts = PlanOptions {
-            keep_geometry: true,
-            check_profiles: r.random_bool(0.7),
-        };
+        let opts = PlanOptions::default()
+            .with_keep_geometry(true)
+            .with_check_profiles(r.random_bool(0.7));
         let outcome = h.run(&(seed, case, &tp, &m, &opts), || {
             let plan = if case % 2 == 0 {
                 plan_toolpath_opt(&tp, &m, &opts)

@@ -131,15 +131,15 @@ fn tool_table(program: &Path) -> std::sync::Arc<ToolTable> {
 }
 
 fn options(path: &Path) -> ReaderOptions {
-    ReaderOptions {
-        dialect: Dialect::LinuxCnc,
-        origin: path.display().to_string(),
-        tool_table: Some(tool_table(path)),
-        subroutine_path: std::iter::once(path.parent().unwrap().to_path_buf())
-            .chain(SUBROUTINE_DIRS.iter().map(|d| data().join(d)))
-            .collect(),
-        ..ReaderOptions::default()
-    }
+    ReaderOptions::default()
+        .with_dialect(Dialect::LinuxCnc)
+        .with_origin(path.display().to_string())
+        .with_tool_table(Some(tool_table(path)))
+        .with_subroutine_path(
+            std::iter::once(path.parent().unwrap().to_path_buf())
+                .chain(SUBROUTINE_DIRS.iter().map(|d| data().join(d)))
+                .collect(),
+        )
 }
 
 /// What millpath made of a program.

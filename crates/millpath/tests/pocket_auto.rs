@@ -12,11 +12,7 @@ use millpath::toolpath::{Tool, Toolpath};
 
 /// The aerospace pocket, its 12.7 mm tool and a 0.1 mm simulation raster.
 fn aerospace() -> (pocket::PocketShape, Tool, SimOptions) {
-    let sim = SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
     (builtin::aerospace_pocket(), Tool::flat(12.7).unwrap(), sim)
 }
 

@@ -11,13 +11,14 @@ use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
 use millpath::strategy::pocket::{FeedProfile, feed_factor as factor};
 use millpath::toolpath::{MoveKind, Tool, Toolpath};
 
-const SIM: SimOptions = SimOptions {
-    cell: 0.05,
-    step: 0.1,
-    window: 0.5,
-    max_cells: 40_000_000,
-    record_samples: true,
-};
+fn sim() -> SimOptions {
+    SimOptions::default()
+        .with_cell(0.05)
+        .with_step(0.1)
+        .with_window(0.5)
+        .with_max_cells(40_000_000)
+        .with_record_samples(true)
+}
 
 /// Path length along each chain of feed moves (reset at rapids and dwells) of every sample,
 /// with the sample's programmed feed factor and engagement.
@@ -86,7 +87,7 @@ fn check(kind: StrategyKind) {
         // The finishing pass too (not after the spiral: its finishing lead-in feeds down
         // into the 5 µm the spiral's last lap leaves, which the verifier calls a plunge).
         .with_finish(kind != StrategyKind::Spiral);
-    let r = pocket::generate(kind, &shape, &tool, &opts, &SIM).unwrap();
+    let r = pocket::generate(kind, &shape, &tool, &opts, &sim()).unwrap();
     assert!(r.notes.is_empty(), "{:?}", r.notes);
     assert!(r.verification.problems().is_empty());
     let nominal = pocket::nominal_engagement(opts.stepover_mm(&tool), tool.radius());
@@ -95,11 +96,11 @@ fn check(kind: StrategyKind) {
         islands: &shape.islands,
         wall_stock: 0.0,
     };
-    let again = stock::simulate(&r.toolpath, spec, nominal.to_degrees(), &SIM);
+    let again = stock::simulate(&r.toolpath, spec, nominal.to_degrees(), &sim());
     let pts = along(&r.toolpath, &again.samples, &opts);
     assert!(pts.len() > 20_000, "{} samples", pts.len());
     let profile = FeedProfile::default();
-    let tolerance = profile.tolerance(SIM.step);
+    let tolerance = profile.tolerance(sim().step);
     let ramp = profile.ramp_distance(opts.slowdown);
 
     // 1. Never above the law's feed (plus the tolerance) at the engagement measured there.

@@ -36,11 +36,7 @@ fn rounded_slot_spiral_with_arcs_verifies_times_and_writes() {
         .with_depth(5.0)
         .with_step_down(5.0)
         .with_arcs(true);
-    let sim = SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
     let r = pocket::generate(StrategyKind::Spiral, &rounded_slot(), &tool, &opts, &sim).unwrap();
     let problems = r.verification.problems();
     assert!(problems.is_empty(), "{problems:?}");
@@ -102,10 +98,7 @@ fn the_writer_writes_an_arc_flatter_than_its_rounding_as_a_line() {
     let (bent, s_bent) = one(bent_radius);
     assert!((s_bent - 1e-3).abs() < 1e-6, "{s_bent}");
     for (tp, decimals, line) in [(&flat, 3, true), (&flat, 4, false), (&bent, 3, false)] {
-        let o = WriterOptions {
-            decimals: Some(decimals),
-            ..WriterOptions::default()
-        };
+        let o = WriterOptions::default().with_decimals(Some(decimals));
         let (text, summary) = write_to_string(tp, &o).unwrap();
         assert_eq!(summary.arcs_as_lines, usize::from(line), "{text}");
         let last = text.lines().rev().find(|l| l.contains('X')).unwrap();

@@ -80,11 +80,7 @@ fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
     let dir = tempfile::tempdir().expect("temp dir");
     let shape = builtin::aerospace_pocket();
     let tool = Tool::flat(12.7).expect("tool");
-    let sim = SimOptions {
-        cell: 0.2,
-        step: 0.4,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(0.2).with_step(0.4);
     let mut jobs = Vec::new();
     for modulate in [true, false] {
         // Made for this machine, as `--machine` does: LinuxCNC is trapezoidal, no curvature
@@ -101,10 +97,8 @@ fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
         ] {
             let r = pocket::generate(kind, &shape, &tool, &opts, &sim).expect("pocket");
             assert!(r.verification.problems().is_empty(), "{kind:?}");
-            let wopts = WriterOptions {
-                path_tolerance: Some(0.01),
-                ..WriterOptions::default()
-            };
+            let mut wopts = WriterOptions::default();
+            wopts.path_tolerance = Some(0.01);
             let mut buf = Vec::new();
             write_program(&r.toolpath, &wopts, &mut buf).expect("write");
             let path = dir.path().join(format!("{}_{modulate}.ngc", kind.name()));

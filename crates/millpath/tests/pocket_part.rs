@@ -17,11 +17,7 @@ use millpath::strategy::pocket::{PartStrategy, generate_part, order_pockets, tou
 use millpath::toolpath::{MoveKind, Tool, Toolpath};
 
 fn sim() -> SimOptions {
-    SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    }
+    SimOptions::default().with_cell(0.1).with_step(0.2)
 }
 
 fn opts() -> PocketOptions {

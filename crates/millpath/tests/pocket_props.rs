@@ -18,11 +18,7 @@ use proptest::prelude::*;
 use proptest::test_runner::{RngSeed, TestRunner};
 
 fn coarse() -> SimOptions {
-    SimOptions {
-        cell: 0.15,
-        step: 0.3,
-        ..SimOptions::default()
-    }
+    SimOptions::default().with_cell(0.15).with_step(0.3)
 }
 
 /// All three strategies.

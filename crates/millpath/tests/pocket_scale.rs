@@ -67,11 +67,10 @@ fn options(k: f64) -> PocketOptions {
 
 /// The simulation at scale `k`: a 0.15 mm cell at scale 1, scaled, never finer than 0.05 mm.
 fn sim(k: f64) -> SimOptions {
-    let mut s = SimOptions::default();
-    s.cell = (0.15 * k).max(0.05);
-    s.step = (0.3 * k).max(0.1);
-    s.window = 0.5 * k;
-    s
+    SimOptions::default()
+        .with_cell((0.15 * k).max(0.05))
+        .with_step((0.3 * k).max(0.1))
+        .with_window(0.5 * k)
 }
 
 /// Cut length of `kind` at scale `k`, after the verifier's verdict is checked.

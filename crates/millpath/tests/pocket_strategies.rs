@@ -5,11 +5,7 @@ use millpath::strategy::pocket::{self, PocketOptions, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 
 fn coarse() -> SimOptions {
-    SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    }
+    SimOptions::default().with_cell(0.1).with_step(0.2)
 }
 
 #[test]

@@ -8,11 +8,7 @@ use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind,
 use millpath::toolpath::Tool;
 
 fn coarse() -> SimOptions {
-    SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    }
+    SimOptions::default().with_cell(0.1).with_step(0.2)
 }
 
 fn opts() -> PocketOptions {

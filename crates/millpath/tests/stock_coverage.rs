@@ -75,12 +75,10 @@ fn verify_in(
         islands: &[],
         wall_stock: 0.0,
     };
-    let sim = SimOptions {
-        cell,
-        step,
-        max_cells,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default()
+        .with_cell(cell)
+        .with_step(step)
+        .with_max_cells(max_cells);
     stock::verify(tp, spec, 90.0, &sim)
 }
 

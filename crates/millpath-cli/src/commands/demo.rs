@@ -204,13 +204,12 @@ fn die_cavity(
     // Stated in the program and timed with: the machine's path tolerance, or the contour's
     // where that is tighter (see `contour::program_machine`).
     let machine = &millpath::job::contour::program_machine(machine, opt.tolerance);
-    let wopt = WriterOptions {
-        dialect: Dialect::LinuxCnc,
-        decimals: Some(6),
-        program_name: Some("die cavity (Mohamed 2006)".to_owned()),
-        path_tolerance: Some(machine.path_tolerance),
-        ..WriterOptions::default()
-    };
+    let mut wopt = WriterOptions::default()
+        .with_dialect(Dialect::LinuxCnc)
+        .with_decimals(Some(6))
+        .with_program_name(Some("die cavity (Mohamed 2006)".to_owned()));
+    // The tolerance alone, at 6 decimals (`with_path_tolerance` would add decimals if needed).
+    wopt.path_tolerance = Some(machine.path_tolerance);
     let blocks = write_gcode(&out.join("die_cavity.ngc"), &result.toolpath, &wopt)?;
     pb.set_message("die cavity: cycle time and limit check");
     let (full_plan, check) = time_and_verify(&result.toolpath, machine)?;
@@ -476,11 +475,7 @@ fn pockets(
     let opts = PocketOptions::default()
         .with_depth(12.7)
         .with_step_down(6.35);
-    let sim = SimOptions {
-        cell: 0.1,
-        step: 0.2,
-        ..SimOptions::default()
-    };
+    let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
     let outlines: Vec<Outline> = part.iter().map(|(_, s)| s.outer.clone()).collect();
     let shapes: Vec<(usize, pocket::PocketShape)> = part
         .iter()
@@ -515,11 +510,9 @@ fn pockets(
         }
         let program = Some(whole.toolpath);
         let Some(tp) = program else { continue };
-        let wopt = WriterOptions {
-            program_name: Some(format!("sample part, {name} roughing")),
-            ..WriterOptions::default()
-        }
-        .with_path_tolerance(machine.path_tolerance);
+        let wopt = WriterOptions::default()
+            .with_program_name(Some(format!("sample part, {name} roughing")))
+            .with_path_tolerance(machine.path_tolerance);
         let blocks = write_gcode(&out.join(format!("part_{name}.ngc")), &tp, &wopt)?;
         pb.set_message(format!("pockets: {name}: cycle time and limit check"));
         let (plan, check) = time_and_verify(&tp, machine)?;

@@ -100,12 +100,10 @@ impl Default for FiveAxisGcodeOptions {
             tolerance_mm: 0.001,
             tolerance_deg: 0.001,
             max_blocks_per_interval: 10_000,
-            program: WriterOptions {
-                spindle_rpm: 0.0,
-                coolant: super::Coolant::Off,
-                tool_change: false,
-                ..WriterOptions::default()
-            },
+            program: WriterOptions::default()
+                .with_spindle_rpm(0.0)
+                .with_coolant(super::Coolant::Off)
+                .with_tool_change(false),
         }
     }
 }
@@ -200,11 +198,8 @@ pub fn write_five_axis(
             .into());
     };
     let dec = five_axis_decimals(&opts.program);
-    let program = WriterOptions {
-        decimals: Some(dec),
-        path_tolerance: None,
-        ..opts.program.clone()
-    };
+    let mut program = opts.program.clone().with_decimals(Some(dec));
+    program.path_tolerance = None;
     let dialect = program.dialect;
     let keep_point = dialect.keeps_decimal_point();
     let unit = program.units.mm_per_unit();

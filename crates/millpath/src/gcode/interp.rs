@@ -64,8 +64,10 @@ use super::tools::ToolTable;
 use crate::geom::{Point3, Vec3};
 use crate::toolpath::{Corner, Move, Plane};
 
-/// How the reader reads.
+/// How the reader reads. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct ReaderOptions {
     /// The dialect: decides what G64, G61, `G4 P` and G70/G71 mean.
     pub dialect: Dialect,
@@ -119,6 +121,54 @@ impl Default for ReaderOptions {
             parameters: None,
             step_budget: DEFAULT_STEP_BUDGET,
         }
+    }
+}
+
+/// `with_*` builders: each sets one field and returns the options.
+macro_rules! builders {
+    ($($(#[$doc:meta])* $name:ident => $field:ident : $ty:ty;)*) => {
+        impl ReaderOptions {
+            $(
+                $(#[$doc])*
+                #[must_use]
+                pub fn $name(mut self, value: $ty) -> Self {
+                    self.$field = value;
+                    self
+                }
+            )*
+        }
+    };
+}
+
+builders! {
+    /// Sets [`ReaderOptions::dialect`].
+    with_dialect => dialect: Dialect;
+    /// Sets [`ReaderOptions::lenient`].
+    with_lenient => lenient: bool;
+    /// Sets [`ReaderOptions::start`], machine coordinates, mm.
+    with_start => start: Point3;
+    /// Sets [`ReaderOptions::work_offsets`], mm.
+    with_work_offsets => work_offsets: [Vec3; 6];
+    /// Sets [`ReaderOptions::block_delete`].
+    with_block_delete => block_delete: bool;
+    /// Sets [`ReaderOptions::sync_points`], s.
+    with_sync_points => sync_points: Option<f64>;
+    /// Sets [`ReaderOptions::tool_table`].
+    with_tool_table => tool_table: Option<std::sync::Arc<ToolTable>>;
+    /// Sets [`ReaderOptions::subroutine_path`].
+    with_subroutine_path => subroutine_path: Vec<std::path::PathBuf>;
+    /// Sets [`ReaderOptions::parameters`], mm.
+    with_parameters => parameters: Option<std::sync::Arc<ParamFile>>;
+    /// Sets [`ReaderOptions::step_budget`], lines.
+    with_step_budget => step_budget: u64;
+}
+
+impl ReaderOptions {
+    /// Sets [`ReaderOptions::origin`].
+    #[must_use]
+    pub fn with_origin(mut self, origin: impl Into<String>) -> Self {
+        self.origin = origin.into();
+        self
     }
 }
 

@@ -13,10 +13,10 @@
 //! tp.push(Move::rapid(Point3::new(10.0, 0.0, 5.0)));
 //! tp.push(Move::line(Point3::new(10.0, 0.0, -1.0), 5.0));
 //! tp.push(Move::arc_xy(Point3::new(10.0, 0.0, -1.0), Point3::new(0.0, 0.0, -1.0), true, 20.0));
-//! let opts = WriterOptions { dialect: Dialect::Fanuc, ..WriterOptions::default() };
+//! let opts = WriterOptions::default().with_dialect(Dialect::Fanuc);
 //! let (text, summary) = write_to_string(&tp, &opts).unwrap();
 //! assert_eq!(summary.blocks, 3);
-//! let ropts = ReaderOptions { dialect: Dialect::Fanuc, start: tp.start, ..ReaderOptions::default() };
+//! let ropts = ReaderOptions::default().with_dialect(Dialect::Fanuc).with_start(tp.start);
 //! let read: Vec<_> = Reader::new(text.as_bytes(), ropts).collect::<Result<_, _>>().unwrap();
 //! assert_eq!(read.len(), 3);
 //! assert!(read[2].mv.to.distance(tp.moves[2].to) < 1e-12);

@@ -8,7 +8,7 @@ use super::program::ProgramSettings;
 use crate::curve::Flattening;
 use crate::curve::flatten::flatten_curve;
 use crate::curve::{self, CompositeCurve, CurveKind};
-use crate::gcode::{self, WriterOptions};
+use crate::gcode;
 use crate::geom::Outline;
 use crate::machine::Machine;
 use crate::motion::{Plan, plan_toolpath};
@@ -232,19 +232,19 @@ pub fn run(
     let decimals = budget_decimals(&mut opt, program)?;
     let result = contour::contour(&curve, &opt)?;
     let machine = program_machine(&machine, opt.tolerance);
-    let wopt = WriterOptions {
-        path_tolerance: Some(machine.path_tolerance),
-        header_notes: vec![format!(
+    // The settings carry the user's decimals, spindle and tool number: refused as input
+    // there; what the writer refuses after that is in the toolpath the engine made.
+    let mut wopt = program
+        .writer_options(decimals, format!("millpath contour {name}"))?
+        .with_header_notes(vec![format!(
             "tolerance {} mm = chord {:.3e} + rounding {:.3e}; {} segments per pass",
             opt.tolerance,
             opt.chord_tolerance(1.0),
             opt.rounding,
             result.report.segments
-        )],
-        // The settings carry the user's decimals, spindle and tool number: refused as input
-        // there; what the writer refuses after that is in the toolpath the engine made.
-        ..program.writer_options(decimals, format!("millpath contour {name}"))?
-    };
+        )]);
+    // The tolerance alone, at the user's decimals (`with_path_tolerance` would add some).
+    wopt.path_tolerance = Some(machine.path_tolerance);
     let (text, summary) = gcode::write_to_string(&result.toolpath, &wopt)
         .map_err(|e| e.engine_made("writing the contour program"))?;
     let mut report = result.report.clone();

@@ -216,14 +216,12 @@ fn reader_options(
     machine: &Machine,
     settings: &EstimateSettings,
 ) -> ReaderOptions {
-    ReaderOptions {
-        dialect,
-        lenient: settings.lenient,
-        origin,
+    ReaderOptions::default()
+        .with_dialect(dialect)
+        .with_lenient(settings.lenient)
+        .with_origin(origin)
         // LinuxCNC stops where its task waits for motion (spindle, coolant, tool commands).
-        sync_points: (machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait),
-        ..ReaderOptions::default()
-    }
+        .with_sync_points((machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait))
 }
 
 /// The estimate of the program `source` holds, read with `opts`.

@@ -273,11 +273,9 @@ impl PocketSettings {
 
     /// Simulation options.
     pub fn sim(&self) -> SimOptions {
-        SimOptions {
-            cell: self.cell,
-            step: (2.0 * self.cell).max(0.1),
-            ..SimOptions::default()
-        }
+        SimOptions::default()
+            .with_cell(self.cell)
+            .with_step((2.0 * self.cell).max(0.1))
     }
 
     /// The checks made before the outline is read (an error at once, before a drawing is

@@ -72,18 +72,16 @@ impl ProgramSettings {
                 .expected("a finite number >= 0 rev/min (0: spindle left alone)")
                 .into());
         }
-        let w = WriterOptions {
-            dialect: self.dialect,
-            units: self.units,
-            decimals: Some(decimals),
-            line_numbers: self.line_numbers,
-            spindle_rpm: self.spindle,
-            coolant: self.coolant,
-            program_name: Some(name),
-            tool_change: self.tool_number > 0,
-            tool_number: Some(self.tool_number),
-            ..WriterOptions::default()
-        };
+        let w = WriterOptions::default()
+            .with_dialect(self.dialect)
+            .with_units(self.units)
+            .with_decimals(Some(decimals))
+            .with_line_numbers(self.line_numbers)
+            .with_spindle_rpm(self.spindle)
+            .with_coolant(self.coolant)
+            .with_program_name(Some(name))
+            .with_tool_change(self.tool_number > 0)
+            .with_tool_number(Some(self.tool_number));
         w.validate()?;
         Ok(w)
     }
@@ -123,12 +121,12 @@ pub fn program_time(
     machine: &Machine,
 ) -> Result<f64, Error> {
     use crate::motion::stream::{StreamOptions, plan_stream};
-    let opts = ReaderOptions {
-        dialect,
-        origin: origin.to_owned(),
-        sync_points: (machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait),
-        ..ReaderOptions::default()
-    };
+    let opts = ReaderOptions::default()
+        .with_dialect(dialect)
+        .with_origin(origin)
+        .with_sync_points(
+            (machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait),
+        );
     let mut at = opts.start;
     let mut reader = Reader::new(BufReader::new(bytes), opts);
     let tracked = std::iter::from_fn(|| {

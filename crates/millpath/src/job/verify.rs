@@ -88,15 +88,13 @@ pub fn run(
     settings: &VerifySettings,
 ) -> Result<VerifyRun, Error> {
     let (tool, s) = settings.check()?;
-    let ropts = ReaderOptions {
-        origin: origin.to_owned(),
-        ..ReaderOptions::default()
-    }
-    .with_program_files(
-        std::path::Path::new(origin),
-        &settings.subroutine_path,
-        settings.tool_table.as_deref(),
-    )?;
+    let ropts = ReaderOptions::default()
+        .with_origin(origin)
+        .with_program_files(
+            std::path::Path::new(origin),
+            &settings.subroutine_path,
+            settings.tool_table.as_deref(),
+        )?;
     let (mut tp, _warnings) = read_str(text, ropts)?;
     tp.tool = tool;
     stock::infer_levels(&mut tp);
@@ -112,11 +110,9 @@ pub fn run(
             wall_stock: settings.wall_stock,
         })
         .collect();
-    let sim = stock::SimOptions {
-        cell: settings.cell,
-        step: (2.0 * settings.cell).max(0.1),
-        ..stock::SimOptions::default()
-    };
+    let sim = stock::SimOptions::default()
+        .with_cell(settings.cell)
+        .with_step((2.0 * settings.cell).max(0.1));
     let part = stock::verify_part(
         &tp,
         &specs,

@@ -34,8 +34,10 @@ use crate::geom::Point3;
 use crate::machine::Machine;
 use crate::toolpath::{Move, MoveKind, Toolpath};
 
-/// Options of [`plan_moves`].
+/// Options of [`plan_moves`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct PlanOptions {
     /// Keep each block's geometry in the plan (needed by [`Plan::sample`]; costs ~100 bytes per
     /// block).
@@ -50,6 +52,22 @@ impl Default for PlanOptions {
             keep_geometry: true,
             check_profiles: true,
         }
+    }
+}
+
+impl PlanOptions {
+    /// Sets [`PlanOptions::keep_geometry`].
+    #[must_use]
+    pub fn with_keep_geometry(mut self, keep_geometry: bool) -> Self {
+        self.keep_geometry = keep_geometry;
+        self
+    }
+
+    /// Sets [`PlanOptions::check_profiles`].
+    #[must_use]
+    pub fn with_check_profiles(mut self, check_profiles: bool) -> Self {
+        self.check_profiles = check_profiles;
+        self
     }
 }
 

@@ -8,8 +8,10 @@ use crate::toolpath::{Move, MoveKind, Toolpath};
 use cavalier_contours::polyline::Polyline;
 use std::collections::VecDeque;
 
-/// Simulation resolution.
+/// Simulation resolution. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct SimOptions {
     /// Raster cell side, mm: at most [`MAX_CELL_RADII`] tool radii whatever is asked, and
     /// enlarged if the raster would exceed `max_cells`.
@@ -37,6 +39,35 @@ impl Default for SimOptions {
             record_samples: false,
         }
     }
+}
+
+/// `with_*` builders: each sets one field and returns the options.
+macro_rules! builders {
+    ($($(#[$doc:meta])* $name:ident => $field:ident : $ty:ty;)*) => {
+        impl SimOptions {
+            $(
+                $(#[$doc])*
+                #[must_use]
+                pub fn $name(mut self, value: $ty) -> Self {
+                    self.$field = value;
+                    self
+                }
+            )*
+        }
+    };
+}
+
+builders! {
+    /// Sets [`SimOptions::cell`], mm.
+    with_cell => cell: f64;
+    /// Sets [`SimOptions::step`], mm.
+    with_step => step: f64;
+    /// Sets [`SimOptions::window`], mm.
+    with_window => window: f64;
+    /// Sets [`SimOptions::max_cells`].
+    with_max_cells => max_cells: usize;
+    /// Sets [`SimOptions::record_samples`].
+    with_record_samples => record_samples: bool;
 }
 
 /// Engagement measured along one move.

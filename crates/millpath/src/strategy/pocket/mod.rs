@@ -324,10 +324,7 @@ fn generate_unchecked(
             },
         })
         .collect();
-    let sim = SimOptions {
-        record_samples: opts.modulate_feed,
-        ..*sim
-    };
+    let sim = sim.with_record_samples(opts.modulate_feed);
     let simulation = stock::simulate_levels(&tp, &specs, nominal.to_degrees(), &sim);
     if opts.modulate_feed {
         tp = feed::modulate(&tp, &simulation.samples, nominal, opts.slowdown);
