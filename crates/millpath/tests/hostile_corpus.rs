@@ -717,3 +717,63 @@ fn the_slow_fronts_input_is_cut_with_the_fronts() {
     let problems = r.verification.problems();
     assert!(problems.is_empty(), "{problems:?}");
 }
+
+/// Decodes a pocket regression input of `fuzz/regressions/`, plans it with `generate` and
+/// returns the verifier's problems (none expected) with the spiral's construction when it is
+/// a spiral.
+fn regression_pocket(rel: &str) -> (Vec<String>, Option<pocket::Construction>) {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fuzz/regressions")
+        .join(rel);
+    let data = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let (kind, shape, tool, opts, sim) = harness::pocket_case(&data).expect("a pocket");
+    let construction = (kind == pocket::StrategyKind::Spiral).then(|| {
+        pocket::spiral_with_stats(&shape, &tool, &opts)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+            .1
+            .construction
+    });
+    let r = pocket::generate(kind, &shape, &tool, &opts, &sim)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let problems = r
+        .verification
+        .problems()
+        .iter()
+        .map(|p| p.to_string())
+        .collect();
+    (problems, construction)
+}
+
+/// The strict pocket run of 2026-11-26 (fuzz/README.md, pk38): a zigzag whose passes are
+/// exactly one tool diameter apart, verified on a raster of 0.19 mm cells with the tool
+/// sampled 0.375 mm apart. The simulation stamped a disc at each sample, and the scallops
+/// between the discs of two tangent passes left 0.21 mm² "uncut" that no tool leaves, so
+/// `generate` refused a correct program. It now sweeps the capsule between samples.
+#[test]
+fn passes_one_diameter_apart_leave_nothing() {
+    let (problems, _) =
+        regression_pocket("pocket-tangent/crash-181787d61090147b776c0ade61895ac2d628c9b0");
+    assert!(problems.is_empty(), "{problems:?}");
+}
+
+/// Two `--morph fronts` inputs of the pk38 run: one ran out of memory (24 GB) in
+/// cavalier_contours' shape offset of a 301-vertex sliver of 5·10⁻⁹ mm² by 0.4 mm, the other
+/// took 20 s because a checked outward offset returned a sliver of 7·10⁻⁷ mm² for a loop
+/// of 510 mm² (the loop went out to a point 2·10⁻⁵ mm away and came back: a spike of no
+/// width) and the next smoothing offset started from it. An inward offset by `d` of a loop
+/// smaller than `π·d²` is now empty without offsetting; the smoothing offsets drop repeated
+/// vertices and spikes first (cavalier_contours' `remove_redundant`), and refuse a checked
+/// offset that grew inward or shrank outward. Both are cut and verified, the second with the
+/// fronts (without the spike's removal its fronts fail, and the harmonic morph does not
+/// converge on its 1° corner).
+#[test]
+fn fronts_neither_offset_slivers_nor_take_implausible_offsets() {
+    let (problems, construction) =
+        regression_pocket("pocket-slow/timeout-4396f9382c1547d45778fa9e1d4a9578fef7bed4");
+    assert!(problems.is_empty(), "{problems:?}");
+    assert!(construction.is_some(), "a spiral");
+    let (problems, construction) =
+        regression_pocket("pocket-slow/slow-unit-e5c93547ef69f7975a35d1c995690f3917231ea1");
+    assert!(problems.is_empty(), "{problems:?}");
+    assert_eq!(construction, Some(pocket::Construction::Fronts));
+}

@@ -218,15 +218,18 @@ fn offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
 
 /// [`offset`] for the smoothing's small radii, cheap first: cavalier_contours' offset of the
 /// single loop (closed where it left it open), taken when its area is what an offset by `d`
-/// can have, otherwise the checked one if its area is (none when neither is: the checked
-/// offset outward of a 42-vertex loop of 510 mm² once returned a sliver of 7·10⁻⁷ mm², and
-/// the next offset of that sliver took 20 s). Offsetting a loop of area `A` and length `L` inward by `d > 0` leaves at most `A` and
+/// can have, otherwise the checked one unless it grew inward or shrank outward (none then:
+/// the checked offset outward of a loop with a spike of no width once returned a sliver
+/// for it, and the next offset of that sliver took 20 s). The loop's repeated vertices and
+/// spikes are removed first (`remove_redundant`, 10⁻⁷ mm). Offsetting a loop of area `A` and length `L` inward by `d > 0` leaves at most `A` and
 /// at least `A − L·d` (every removed point is within `d` of the loop); outward by `|d|` it adds
 /// at least nothing and at most `L·|d| + π·d²`. An offset that dropped a piece (the failure
 /// [`checked_offset`] guards against) falls below the lower bound unless the piece is
 /// smaller than the slack `1e-9·A`; the laps made from the result are kept inside the walls
 /// and verified like any other.
 fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
+    let cleaned = pl.remove_redundant(1e-7);
+    let pl = cleaned.as_ref().unwrap_or(pl);
     let (a, l) = (pl.area().abs(), pl.path_length());
     let slack = 1e-9 * a.max(1.0);
     let plain = largest(crate::geom::region::offset_loops(pl, d));
@@ -240,7 +243,16 @@ fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
     };
     match plain {
         Some(p) if plausible(&p) => Some(p),
-        _ => offset(pl, d).filter(plausible),
+        // The checked offset may split an inward offset into pieces (the largest is then
+        // smaller than `A − L·d`), but it never grows it, nor shrinks an outward one.
+        _ => offset(pl, d).filter(|p| {
+            let pa = p.area().abs();
+            if d > 0.0 {
+                pa <= a + slack
+            } else {
+                pa >= a - slack
+            }
+        }),
     }
 }
 
