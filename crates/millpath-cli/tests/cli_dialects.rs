@@ -1,7 +1,7 @@
 //! The shared G-code output flags on `contour`, `pocket` and `five-axis`: the same names on
 //! every command, every dialect written, `millpath estimate` reading each back (its dialect
-//! found from the program) with the cycle time `pocket` planned, and what a dialect cannot
-//! express refused with exit 2 and no file.
+//! found from the program) with the cycle time `pocket` planned and `millpath verify`
+//! passing it, and what a dialect cannot express refused with exit 2 and no file.
 
 use std::process::Output;
 
@@ -48,7 +48,7 @@ fn every_program_command_takes_the_same_output_flags_and_shows_a_dialect_example
 }
 
 #[test]
-fn pocket_writes_every_dialect_and_estimate_reads_each_back_at_the_planned_time() {
+fn pocket_writes_every_dialect_and_estimate_and_verify_read_each_back() {
     let dir = tempfile::tempdir().unwrap();
     let common = [
         "pocket",
@@ -81,6 +81,26 @@ fn pocket_writes_every_dialect_and_estimate_reads_each_back_at_the_planned_time(
             (read / planned - 1.0).abs() <= 0.005,
             "{dialect}: pocket planned {planned} s, estimate read {read} s"
         );
+        // What it writes, `millpath verify` accepts: the dialect found from the program, and
+        // named.
+        for named in [None, Some(dialect)] {
+            let mut v = vec![
+                "verify",
+                file,
+                "--outline",
+                "sample:aerospace",
+                "--tool-diameter",
+                "12.7",
+                "--cell",
+                "0.2",
+                "--json",
+            ];
+            v.extend(named.iter().flat_map(|d| ["--dialect", *d]));
+            let o = millpath(&v, dir.path());
+            assert_eq!(o.status.code(), Some(0), "{dialect} verify: {}", stderr(&o));
+            let js: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+            assert_eq!(js["passed"], true, "{dialect}: {js}");
+        }
     }
 }
 

@@ -206,6 +206,7 @@ pub fn verify(
     k.f64("cell", &mut s.cell)?;
     k.opt_u32("decimals", &mut s.decimals)?;
     k.opt_text("select", &mut s.select)?;
+    k.text("dialect", &mut s.dialect)?;
     k.finish()?;
     s.check().map_err(err)?;
     let (loops, _, _) = outline_arg(py, outline, "outline", &import)?;

@@ -232,6 +232,16 @@ def test_verify_equals_cli(tmp_path):
     assert v.report == js and v.passed
 
 
+def test_verify_reads_every_dialect_written(tmp_path):
+    for dialect in ("fanuc", "sinumerik", "grbl"):
+        r = millpath.pocket("sample:aerospace", dialect=dialect, cell=0.2, **POCKET_ARGS)
+        v = millpath.verify(r.gcode, "sample:aerospace", tool_diameter=12.7, cell=0.2)
+        assert v.passed, (dialect, v.problems)
+        named = millpath.verify(r.gcode, "sample:aerospace", tool_diameter=12.7, cell=0.2,
+                                dialect=dialect)
+        assert named.report == v.report
+
+
 def test_five_axis_equals_cli():
     d = millpath.five_axis("paper", no_baseline=True, dt=0.01)
     js = json.loads(cli("five-axis", "--case", "paper", "--no-baseline", "--json").stdout)

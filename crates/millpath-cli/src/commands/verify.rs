@@ -8,11 +8,15 @@ use std::path::PathBuf;
 /// Arguments of `millpath verify`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7\n  millpath verify pocket.ngc --outline part.dxf --tool-diameter 10 --json --svg pocket.svg --per-level\n\nExit code 2 when the program fails verification (the findings are printed first)."
+    after_help = "Examples:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7\n  millpath verify pocket.ngc --outline part.dxf --tool-diameter 10 --json --svg pocket.svg --per-level\n  millpath verify pocket.nc --dialect fanuc --outline sample:aerospace --tool-diameter 12.7\n\nExit code 2 when the program fails verification (the findings are printed first)."
 )]
 pub struct Args {
-    /// The G-code program (LinuxCNC dialect).
+    /// The G-code program.
     pub program: PathBuf,
+    /// Dialect of the program: linuxcnc, fanuc, sinumerik, grbl, or auto (the default: found
+    /// from the program's first lines, as `millpath estimate` does).
+    #[arg(long, default_value = "auto")]
+    pub dialect: String,
     /// Subroutine folders and tool table.
     #[command(flatten)]
     pub files: super::ProgramFiles,
@@ -67,6 +71,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         select: args.select.clone(),
         subroutine_path: args.files.subroutine_path.clone(),
         tool_table: args.files.tool_table.clone(),
+        dialect: args.dialect.clone(),
     };
     settings.check()?;
     let loops = super::pocket::load_outline(&args.outline, &args.import)?;

@@ -174,11 +174,13 @@ def verify(
     cell: float = 0.05,
     decimals: Optional[int] = None,
     select: Optional[str] = None,
+    dialect: str = "auto",
     layer: Optional[str] = None,
     join_tolerance: float = 0.01,
     drawing_units: Optional[str] = None,
 ) -> VerifyResult:
-    """Check a program against a pocket outline by material-removal simulation."""
+    """Check a program against a pocket outline by material-removal simulation; the
+    program's dialect is found from its first lines unless `dialect` names it."""
 
 def five_axis(
     case: Optional[str] = None,

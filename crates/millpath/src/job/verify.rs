@@ -29,6 +29,9 @@ pub struct VerifySettings {
     pub subroutine_path: Vec<std::path::PathBuf>,
     /// A LinuxCNC tool table for G43 and T words.
     pub tool_table: Option<std::path::PathBuf>,
+    /// The program's dialect: `linuxcnc`, `fanuc`, `sinumerik`, `grbl`, or `auto` (found from
+    /// its first lines, [`crate::gcode::Dialect::detect`]).
+    pub dialect: String,
 }
 
 impl Default for VerifySettings {
@@ -42,6 +45,7 @@ impl Default for VerifySettings {
             select: None,
             subroutine_path: Vec::new(),
             tool_table: None,
+            dialect: "auto".into(),
         }
     }
 }
@@ -88,7 +92,9 @@ pub fn run(
     settings: &VerifySettings,
 ) -> Result<VerifyRun, Error> {
     let (tool, s) = settings.check()?;
+    let dialect = super::estimate::dialect(&settings.dialect, text)?;
     let ropts = ReaderOptions::default()
+        .with_dialect(dialect)
         .with_origin(origin)
         .with_program_files(
             std::path::Path::new(origin),
