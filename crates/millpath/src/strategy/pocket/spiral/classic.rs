@@ -185,7 +185,10 @@ fn plan_fronts(
             arcs: opts.spiral.arcs,
             max_gap: (CORNER_GAP * sp).min(CORNER_GAP * tool.radius()),
         };
-        if let Some((plan, stats)) = spiral.plan() {
+        // cavalier_contours panics on some degenerate booleans of the fronts (its slices
+        // fail to stitch into closed loops): the fronts then fail, like any failed front.
+        let planned = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| spiral.plan()));
+        if let Ok(Some((plan, stats))) = planned {
             let len: f64 = plan
                 .cuts
                 .iter()

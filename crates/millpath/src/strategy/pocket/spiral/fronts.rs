@@ -68,9 +68,14 @@
 use super::super::shape::{checked_offset, loop_distance, v2};
 use crate::geom::Point;
 use cavalier_contours::polyline::{
-    BooleanOp, PlineCreation, PlineSource, PlineSourceMut, Polyline,
+    BooleanOp, PlineCreation, PlineSource, PlineSourceMut, PlineVertex, Polyline,
 };
 
+/// The most vertices of a loop whose smoothing offset falls back to the checked offset
+/// (larger: the fronts fail). The fallback is taken where cavalier_contours' single-loop
+/// offset failed, on loops with hairs and slivers; there the shape offset grew a loop from
+/// 229 to 782 vertices a call and then ran for minutes.
+const MAX_CHECKED_SMOOTHING_VERTICES: usize = 512;
 /// The largest number of loops the fronts may take.
 const MAX_LOOPS: usize = 2000;
 /// A front that lies within this fraction of a step of the previous loop everywhere is
@@ -228,8 +233,8 @@ fn offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
 /// smaller than the slack `1e-9·A`; the laps made from the result are kept inside the walls
 /// and verified like any other.
 fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
-    let cleaned = pl.remove_redundant(1e-7);
-    let pl = cleaned.as_ref().unwrap_or(pl);
+    let cleaned = drop_spikes(pl.remove_redundant(1e-7).as_ref().unwrap_or(pl), 1e-6);
+    let pl = &cleaned;
     let (a, l) = (pl.area().abs(), pl.path_length());
     let slack = 1e-9 * a.max(1.0);
     let plain = largest(crate::geom::region::offset_loops(pl, d));
@@ -245,6 +250,7 @@ fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
         Some(p) if plausible(&p) => Some(p),
         // The checked offset may split an inward offset into pieces (the largest is then
         // smaller than `A − L·d`), but it never grows it, nor shrinks an outward one.
+        _ if pl.vertex_count() > MAX_CHECKED_SMOOTHING_VERTICES => None,
         _ => offset(pl, d).filter(|p| {
             let pa = p.area().abs();
             if d > 0.0 {
@@ -254,6 +260,48 @@ fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
             }
         }),
     }
+}
+
+/// `pl` without its spikes: a vertex where the loop turns back on itself (the two segments
+/// meeting there run in opposite directions) and the triangle it makes with its neighbours is
+/// thinner than `eps`, both segments within `eps` of lines, is removed, until none is left.
+/// Each removal changes the region by that triangle, less than `eps` times the longer
+/// segment. The boolean unions the fronts are made of leave such hairs of no width, and
+/// cavalier_contours' offsets fail on them (the single-loop one returns nothing, the shape
+/// offset of the loop grows it by hundreds of vertices a call).
+fn drop_spikes(pl: &Polyline<f64>, eps: f64) -> Polyline<f64> {
+    let mut v: Vec<PlineVertex<f64>> = pl.iter_vertexes().collect();
+    let near_line = |a: &PlineVertex<f64>, b: &PlineVertex<f64>| {
+        // The sagitta of an arc of bulge `β` over a chord `c` is `c·|β|/2` for small `β`.
+        let c = ((b.x - a.x).powi(2) + (b.y - a.y).powi(2)).sqrt();
+        0.5 * c * a.bulge.abs() <= eps
+    };
+    let mut changed = true;
+    while changed && v.len() > 3 {
+        changed = false;
+        let mut i = 0;
+        while i < v.len() && v.len() > 3 {
+            let n = v.len();
+            let (p, q, r) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+            let (ux, uy) = (q.x - p.x, q.y - p.y);
+            let (wx, wy) = (r.x - q.x, r.y - q.y);
+            let longer = (ux * ux + uy * uy).max(wx * wx + wy * wy).sqrt();
+            let thin = (ux * wy - uy * wx).abs() <= eps * longer;
+            if ux * wx + uy * wy < 0.0 && thin && near_line(&p, &q) && near_line(&q, &r) {
+                v.remove(i);
+                let prev = (i + v.len() - 1) % v.len();
+                v[prev].bulge = 0.0;
+                changed = true;
+            } else {
+                i += 1;
+            }
+        }
+    }
+    let mut out = Polyline::new_closed();
+    for x in v {
+        out.add_vertex(x);
+    }
+    out
 }
 
 /// The inscribed radius of `b` (the largest inward offset that is not empty), found by
