@@ -286,9 +286,12 @@ fn importer_seeds_are_accepted() {
 /// (1e6 mm) and the level count (10 000), as `ContourOptions::validate` does. The second
 /// file (`crash-2c2cc0ef…`, the strict run of 2026-11-25) made cavalier_contours' shape
 /// offset panic ("expect non-empty polyline") with the finer epsilons `PocketShape::offset`
-/// tries: such a candidate now counts as none.
+/// tries: such a candidate now counts as none. Three more (pk39, 2026-11-26,
+/// `crash-{b4767a26,c53e840c,d7d51d15}…`) made cavalier_contours' boolean panic in a
+/// `--morph fronts` front (`index out of bounds` while stitching its slices): the fronts'
+/// planning catches it, and the fronts fail as for any failed front.
 #[test]
-fn pocket_depth_1e300_does_not_overflow() {
+fn pocket_crashes_found_by_the_fuzzer() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/pocket-crash");
     let mut h = Harness::new("pocket crash");
     for e in std::fs::read_dir(&dir).expect("regressions dir") {
