@@ -26,6 +26,24 @@
 //! Two families, see [`Error`]: [`InputError`] is the user's to fix (it names the value, where
 //! it came from and what would be accepted), [`InternalError`] is a bug to report.
 
+/// `with_*` builders of an options struct, one per line `NAME => FIELD(.FIELD)* : TYPE;`
+/// (with its doc): each sets the field and returns the options. Declared before the modules,
+/// so every module may use it without an import.
+macro_rules! option_builders {
+    ($opts:ty; $($(#[$doc:meta])* $name:ident => $($field:ident).+ : $ty:ty;)*) => {
+        impl $opts {
+            $(
+                $(#[$doc])*
+                #[must_use]
+                pub fn $name(mut self, value: $ty) -> Self {
+                    self.$($field).+ = value;
+                    self
+                }
+            )*
+        }
+    };
+}
+
 pub mod calibrate;
 pub mod curve;
 pub mod error;

@@ -124,23 +124,8 @@ impl Default for ReaderOptions {
     }
 }
 
-/// `with_*` builders: each sets one field and returns the options.
-macro_rules! builders {
-    ($($(#[$doc:meta])* $name:ident => $field:ident : $ty:ty;)*) => {
-        impl ReaderOptions {
-            $(
-                $(#[$doc])*
-                #[must_use]
-                pub fn $name(mut self, value: $ty) -> Self {
-                    self.$field = value;
-                    self
-                }
-            )*
-        }
-    };
-}
-
-builders! {
+option_builders! {
+    ReaderOptions;
     /// Sets [`ReaderOptions::dialect`].
     with_dialect => dialect: Dialect;
     /// Sets [`ReaderOptions::lenient`].

@@ -41,23 +41,8 @@ impl Default for SimOptions {
     }
 }
 
-/// `with_*` builders: each sets one field and returns the options.
-macro_rules! builders {
-    ($($(#[$doc:meta])* $name:ident => $field:ident : $ty:ty;)*) => {
-        impl SimOptions {
-            $(
-                $(#[$doc])*
-                #[must_use]
-                pub fn $name(mut self, value: $ty) -> Self {
-                    self.$field = value;
-                    self
-                }
-            )*
-        }
-    };
-}
-
-builders! {
+option_builders! {
+    SimOptions;
     /// Sets [`SimOptions::cell`], mm.
     with_cell => cell: f64;
     /// Sets [`SimOptions::step`], mm.

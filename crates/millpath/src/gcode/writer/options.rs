@@ -142,25 +142,8 @@ impl WriterOptions {
     }
 }
 
-/// `with_*` builders: each sets one field and returns the options.
-macro_rules! builders {
-    ($($(#[$doc:meta])* $name:ident => $field:ident : $ty:ty;)*) => {
-        impl WriterOptions {
-            $(
-                $(#[$doc])*
-                #[must_use]
-                pub fn $name(mut self, value: $ty) -> Self {
-                    self.$field = value;
-                    self
-                }
-            )*
-        }
-    };
-}
-
-// `path_tolerance` has its own builder above ([`WriterOptions::with_path_tolerance`]), which
-// adds the decimals the tolerance needs.
-builders! {
+option_builders! {
+    WriterOptions;
     /// Sets [`WriterOptions::dialect`].
     with_dialect => dialect: Dialect;
     /// Sets [`WriterOptions::units`].

@@ -227,23 +227,8 @@ impl Default for PocketOptions {
     }
 }
 
-/// `with_*` builders: each sets one field and returns the options.
-macro_rules! builders {
-    ($($(#[$doc:meta])* $name:ident => $($field:ident).+ : $ty:ty;)*) => {
-        impl PocketOptions {
-            $(
-                $(#[$doc])*
-                #[must_use]
-                pub fn $name(mut self, value: $ty) -> Self {
-                    self.$($field).+ = value;
-                    self
-                }
-            )*
-        }
-    };
-}
-
-builders! {
+option_builders! {
+    PocketOptions;
     /// Sets [`PocketOptions::stepover`].
     with_stepover => stepover: Stepover;
     /// Sets [`PocketOptions::depth`], mm.
