@@ -128,34 +128,14 @@ impl Raster {
 
     /// Rows and column ranges of the cells whose centres lie within `r` of `c`.
     fn disc_spans(&self, c: Point, r: f64) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
-        let j0 = ((c.y - r - self.origin.y) / self.cell - 0.5)
-            .ceil()
-            .max(0.0) as usize;
-        let j1 = ((c.y + r - self.origin.y) / self.cell - 0.5).floor();
-        let j1 = if j1 < 0.0 {
-            None
-        } else {
-            Some((j1 as usize).min(self.ny - 1))
-        };
-        let rows = match j1 {
-            Some(j1) if j0 <= j1 => j0..j1 + 1,
-            _ => 0..0,
-        };
-        rows.filter_map(move |j| {
+        self.rows(c.y - r, c.y + r).filter_map(move |j| {
             let dy = self.centre(0, j).y - c.y;
             let w2 = r * r - dy * dy;
             if w2 < 0.0 {
                 return None;
             }
             let w = w2.sqrt();
-            let i0 = ((c.x - w - self.origin.x) / self.cell - 0.5)
-                .ceil()
-                .max(0.0) as usize;
-            let i1 = ((c.x + w - self.origin.x) / self.cell - 0.5).floor();
-            if i1 < 0.0 {
-                return None;
-            }
-            Some((j, i0, (i1 as usize).min(self.nx - 1)))
+            self.columns(c.x - w, c.x + w).map(|(i0, i1)| (j, i0, i1))
         })
     }
 
