@@ -780,3 +780,20 @@ fn fronts_neither_offset_slivers_nor_take_implausible_offsets() {
     assert!(problems.is_empty(), "{problems:?}");
     assert_eq!(construction, Some(pocket::Construction::Fronts));
 }
+
+/// The strict pocket run of 2026-11-26 (fuzz/README.md, pk40) ran out of memory on a
+/// `--morph fronts` spiral: a front, a union of offsets, carried hairs a tenth of a
+/// micrometre wide running back and forth along a line, which the spike removal did not see
+/// (a removed spike left its neighbours on one point, hiding the next). cavalier_contours'
+/// single-loop offset returned open pieces for it, and the checked shape offset the smoothing
+/// fell back to took 7.9 GB on a 24-vertex loop. The smoothing now removes repeated vertices
+/// with the spikes, hairs up to 1e-4 mm wide, and has no shape-offset fallback: the fronts
+/// fail in milliseconds (a later front's single-loop offset is still implausible), and the
+/// pocket is cut with the harmonic morph and verified.
+#[test]
+fn hairy_fronts_are_smoothed_without_the_shape_offset() {
+    let (problems, construction) =
+        regression_pocket("pocket-slow/oom-ca63de143e55be7646178f185c9e4a0e9a15bd24");
+    assert!(problems.is_empty(), "{problems:?}");
+    assert_eq!(construction, Some(pocket::Construction::Harmonic));
+}

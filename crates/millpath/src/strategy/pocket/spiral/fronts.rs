@@ -71,11 +71,10 @@ use cavalier_contours::polyline::{
     BooleanOp, PlineCreation, PlineSource, PlineSourceMut, PlineVertex, Polyline,
 };
 
-/// The most vertices of a loop whose smoothing offset falls back to the checked offset
-/// (larger: the fronts fail). The fallback is taken where cavalier_contours' single-loop
-/// offset failed, on loops with hairs and slivers; there the shape offset grew a loop from
-/// 229 to 782 vertices a call and then ran for minutes.
-const MAX_CHECKED_SMOOTHING_VERTICES: usize = 512;
+/// The widest hair, mm, that the smoothing removes from a front before offsetting it
+/// ([`drop_spikes`]): the joining tolerance of cavalier_contours' booleans (`1e-4` mm), of
+/// which the unions the fronts are made of leave such hairs.
+const HAIR_WIDTH: f64 = 1e-4;
 /// The largest number of loops the fronts may take.
 const MAX_LOOPS: usize = 2000;
 /// A front that lies within this fraction of a step of the previous loop everywhere is
@@ -221,23 +220,24 @@ fn offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
     largest(pieces(pl, d))
 }
 
-/// [`offset`] for the smoothing's small radii, cheap first: cavalier_contours' offset of the
-/// single loop (closed where it left it open), taken when its area is what an offset by `d`
-/// can have, otherwise the checked one unless it grew inward or shrank outward (none then:
-/// the checked offset outward of a loop with a spike of no width once returned a sliver
-/// for it, and the next offset of that sliver took 20 s). The loop's repeated vertices and
-/// spikes are removed first (`remove_redundant`, 10⁻⁷ mm). Offsetting a loop of area `A` and length `L` inward by `d > 0` leaves at most `A` and
-/// at least `A − L·d` (every removed point is within `d` of the loop); outward by `|d|` it adds
-/// at least nothing and at most `L·|d| + π·d²`. An offset that dropped a piece (the failure
-/// [`checked_offset`] guards against) falls below the lower bound unless the piece is
-/// smaller than the slack `1e-9·A`; the laps made from the result are kept inside the walls
-/// and verified like any other.
+/// [`offset`] for the smoothing's small radii: cavalier_contours' offset of the single loop
+/// (closed where it left it open), taken when its area is what an offset by `d` can have;
+/// none otherwise (the fronts then fail, and the next morph is taken). The loop's repeated
+/// vertices and spikes are removed first ([`drop_spikes`], [`HAIR_WIDTH`]). Offsetting a
+/// loop of area `A` and length `L` inward by `d > 0` leaves at most `A` and at least `A − L·d`
+/// (every removed point is within `d` of the loop); outward by `|d|` it adds at least nothing
+/// and at most `L·|d| + π·d²`. An offset that dropped a piece falls below the lower bound
+/// unless the piece is smaller than the slack `1e-9·A`; the laps made from the result are
+/// kept inside the walls and verified like any other.
+///
+/// There is no checked (shape) offset to fall back on: on the loops where the single-loop
+/// offset fails, hairy unions of fronts, cavalier_contours' shape offset can take minutes and
+/// gigabytes (one 24-vertex loop: 7.9 GB).
 fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
-    let cleaned = drop_spikes(pl.remove_redundant(1e-7).as_ref().unwrap_or(pl), 1e-6);
+    let cleaned = drop_spikes(pl.remove_redundant(1e-7).as_ref().unwrap_or(pl), HAIR_WIDTH);
     let pl = &cleaned;
     let (a, l) = (pl.area().abs(), pl.path_length());
     let slack = 1e-9 * a.max(1.0);
-    let plain = largest(crate::geom::region::offset_loops(pl, d));
     let plausible = |p: &Polyline<f64>| {
         let pa = p.area().abs();
         if d > 0.0 {
@@ -246,29 +246,20 @@ fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
             pa >= a - slack && pa <= a + l * -d + std::f64::consts::PI * d * d + slack
         }
     };
-    match plain {
-        Some(p) if plausible(&p) => Some(p),
-        // The checked offset may split an inward offset into pieces (the largest is then
-        // smaller than `A − L·d`), but it never grows it, nor shrinks an outward one.
-        _ if pl.vertex_count() > MAX_CHECKED_SMOOTHING_VERTICES => None,
-        _ => offset(pl, d).filter(|p| {
-            let pa = p.area().abs();
-            if d > 0.0 {
-                pa <= a + slack
-            } else {
-                pa >= a - slack
-            }
-        }),
-    }
+    largest(crate::geom::region::offset_loops(pl, d)).filter(plausible)
 }
 
-/// `pl` without its spikes: a vertex where the loop turns back on itself (the two segments
-/// meeting there run in opposite directions) and the triangle it makes with its neighbours is
-/// thinner than `eps`, both segments within `eps` of lines, is removed, until none is left.
-/// Each removal changes the region by that triangle, less than `eps` times the longer
-/// segment. The boolean unions the fronts are made of leave such hairs of no width, and
-/// cavalier_contours' offsets fail on them (the single-loop one returns nothing, the shape
-/// offset of the loop grows it by hundreds of vertices a call).
+/// `pl` without its spikes and repeated vertices, until none is left: a vertex within `eps`
+/// of the one before it (the segment between them within `eps` of a line), and a vertex
+/// where the loop turns back on itself (the two segments meeting there run in opposite
+/// directions) and the triangle it makes with its neighbours is thinner than `eps`, both
+/// segments within `eps` of lines. Each removal changes the region by a triangle less than
+/// `eps` times the longer segment wide. The boolean unions the fronts are made of leave
+/// hairs up to a tenth of a micrometre wide that run back and forth along a line, and
+/// cavalier_contours' offsets fail on them (the single-loop one returns open pieces, the
+/// shape offset grows the loop by hundreds of vertices a call or runs out of memory); a spike
+/// removed can leave its two neighbours on one point, and the next spike behind that point
+/// is found only once the point is one vertex.
 fn drop_spikes(pl: &Polyline<f64>, eps: f64) -> Polyline<f64> {
     let mut v: Vec<PlineVertex<f64>> = pl.iter_vertexes().collect();
     let near_line = |a: &PlineVertex<f64>, b: &PlineVertex<f64>| {
@@ -287,10 +278,15 @@ fn drop_spikes(pl: &Polyline<f64>, eps: f64) -> Polyline<f64> {
             let (wx, wy) = (r.x - q.x, r.y - q.y);
             let longer = (ux * ux + uy * uy).max(wx * wx + wy * wy).sqrt();
             let thin = (ux * wy - uy * wx).abs() <= eps * longer;
-            if ux * wx + uy * wy < 0.0 && thin && near_line(&p, &q) && near_line(&q, &r) {
+            let prev = (i + n - 1) % n;
+            if ux.hypot(uy) <= eps && near_line(&p, &q) {
+                // `q` on `p`: the segment `p → q` goes, `p` takes `q`'s segment to `r`.
+                v[prev].bulge = q.bulge;
                 v.remove(i);
-                let prev = (i + v.len() - 1) % v.len();
+                changed = true;
+            } else if ux * wx + uy * wy < 0.0 && thin && near_line(&p, &q) && near_line(&q, &r) {
                 v[prev].bulge = 0.0;
+                v.remove(i);
                 changed = true;
             } else {
                 i += 1;
