@@ -42,8 +42,10 @@ pub struct Measured {
     pub seconds: f64,
 }
 
-/// Options of [`calibrate`].
+/// Options of [`calibrate`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct CalibrateOptions {
     /// Objective evaluations per Nelder–Mead run.
     pub max_evaluations: usize,
@@ -55,6 +57,12 @@ impl Default for CalibrateOptions {
             max_evaluations: 300,
         }
     }
+}
+
+option_builders! {
+    CalibrateOptions;
+    /// Sets [`CalibrateOptions::max_evaluations`].
+    with_max_evaluations => max_evaluations: usize;
 }
 
 /// What became of one parameter.

@@ -368,14 +368,12 @@ fn random_five_axis_paths_in_every_dialect_and_units() {
         s,
         |(r, pitch, start, sweep, tilt, bc, g94)| {
             let kin = TableTable::typical(if bc { TrtKind::Bc } else { TrtKind::Ac });
-            let opts = FiveAxisOptions {
-                knots: KnotOptions {
+            let opts = FiveAxisOptions::default()
+                .with_knots(KnotOptions {
                     iterations: 2,
                     ..KnotOptions::default()
-                },
-                baseline: None,
-                ..FiveAxisOptions::default()
-            };
+                })
+                .with_baseline(None);
             let poses = five_axis_path(r, pitch, start, sweep, tilt);
             let out = match plan(&kin, &poses, &Limits::paper(), &opts, None) {
                 Ok(o) => o,
@@ -385,18 +383,15 @@ fn random_five_axis_paths_in_every_dialect_and_units() {
             let total: f64 = out.segments.iter().map(|s| s.duration).sum();
             for d in Dialect::ALL {
                 for units in UNITS {
-                    let go = FiveAxisGcodeOptions {
-                        feed_mode: if g94 {
+                    let defaults = FiveAxisGcodeOptions::default();
+                    let program = defaults.program.clone().with_dialect(d).with_units(units);
+                    let go = defaults
+                        .with_feed_mode(if g94 {
                             FeedMode::UnitsPerMinute
                         } else {
                             FeedMode::InverseTime
-                        },
-                        program: FiveAxisGcodeOptions::default()
-                            .program
-                            .with_dialect(d)
-                            .with_units(units),
-                        ..FiveAxisGcodeOptions::default()
-                    };
+                        })
+                        .with_program(program);
                     let mut buf = Vec::new();
                     let written = write_five_axis(&mut buf, &out.segments, &kin, &go);
                     if d == Dialect::Grbl {

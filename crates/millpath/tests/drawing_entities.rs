@@ -99,10 +99,7 @@ fn nested_inserts_scale_rotate_and_move_from_the_base_point() {
         d.summary()
     );
     // The block's layer-0 square takes the INSERT's layer.
-    let part = ReadOptions {
-        layer: Some("part".into()),
-        ..ReadOptions::default()
-    };
+    let part = ReadOptions::default().with_layer(Some("part".into()));
     let bytes = dxf_file(&[], &blocks, &ents);
     assert_eq!(
         dxf::read_loops(&bytes, "i.dxf", &part)
@@ -204,10 +201,7 @@ fn partial_ellipse_flattened_within_tolerance() {
         (21, "0"),
     ];
     let tol = 0.01;
-    let opts = ReadOptions {
-        tolerance: tol,
-        ..ReadOptions::default()
-    };
+    let opts = ReadOptions::default().with_tolerance(tol);
     let d = dxf::read_loops(&dxf_file(&[], &[], &ents), "e.dxf", &opts).unwrap();
     let (area, ext) = area_and_extents(&d);
     let exact = PI * 25.0;
@@ -264,10 +258,7 @@ fn gaps_are_named_and_the_join_tolerance_closes_them() {
     ] {
         assert!(e.contains(w), "{w:?} not in {e}");
     }
-    let opts = ReadOptions {
-        join_tolerance: 0.03,
-        ..ReadOptions::default()
-    };
+    let opts = ReadOptions::default().with_join_tolerance(0.03);
     let d = dxf::read_loops(&bytes, "gap.dxf", &opts).unwrap();
     let (area, _) = area_and_extents(&d);
     assert!((area - 100.0).abs() < 0.03 * 10.0, "{area}");

@@ -38,22 +38,17 @@ fn blocks(g: &str, names: [&str; 5]) -> Vec<([f64; 5], Option<f64>, Option<f64>)
 fn g93_and_g94_programs_take_the_planned_time_and_follow_the_plan() {
     let kin = TableTable::typical(TrtKind::Ac);
     let poses: Vec<_> = five_axis::paper_path().into_iter().take(8).collect();
-    let opts = FiveAxisOptions {
-        knots: KnotOptions {
+    let opts = FiveAxisOptions::default()
+        .with_knots(KnotOptions {
             iterations: 3,
             ..KnotOptions::default()
-        },
-        baseline: None,
-        ..FiveAxisOptions::default()
-    };
+        })
+        .with_baseline(None);
     let out = plan(&kin, &poses, &Limits::paper(), &opts, None).unwrap();
     let total = out.result.total_time_s;
     let names = kin.axis_names();
     for mode in [FeedMode::InverseTime, FeedMode::UnitsPerMinute] {
-        let go = FiveAxisGcodeOptions {
-            feed_mode: mode,
-            ..FiveAxisGcodeOptions::default()
-        };
+        let go = FiveAxisGcodeOptions::default().with_feed_mode(mode);
         let mut buf = Vec::new();
         write_five_axis(&mut buf, &out.segments, &kin, &go).unwrap();
         let g = String::from_utf8(buf).unwrap();

@@ -9,10 +9,7 @@ use millpath::machine::kinematics::{PaperAb, Pose, TableTable, TrtKind};
 use millpath::motion::five_axis::{self, FiveAxisOptions, Limits, plan};
 
 fn quick() -> FiveAxisOptions {
-    FiveAxisOptions {
-        baseline: None,
-        ..FiveAxisOptions::default()
-    }
+    FiveAxisOptions::default().with_baseline(None)
 }
 
 fn input_err(r: Result<impl std::fmt::Debug, Error>) -> String {

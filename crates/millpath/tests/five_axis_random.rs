@@ -74,13 +74,10 @@ fn random_smooth_paths_meet_every_limit() {
                 _ => Box::new(HeadHead::typical()),
             };
             let poses = path(r, pitch, start, sweep, tilt, 10);
-            let opts = FiveAxisOptions {
-                knots: KnotOptions {
-                    iterations: 12,
-                    ..KnotOptions::default()
-                },
-                ..FiveAxisOptions::default()
-            };
+            let opts = FiveAxisOptions::default().with_knots(KnotOptions {
+                iterations: 12,
+                ..KnotOptions::default()
+            });
             let out = match plan(kin.as_ref(), &poses, &Limits::paper(), &opts, None) {
                 Ok(o) => o,
                 Err(e) => return Err(TestCaseError::fail(format!("{}: {e}", kin.name()))),

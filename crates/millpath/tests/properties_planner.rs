@@ -58,7 +58,7 @@ proptest! {
         let sum = plan_stream(
             moves.iter().map(|x| Ok(*x)),
             &m,
-            &StreamOptions { window, ..StreamOptions::default() },
+            &StreamOptions::default().with_window(window),
             |c| {
                 assert_eq!(c.first_block, next_block, "chunks in order, none lost");
                 assert!((c.start_time - t).abs() <= 1e-9 * (1.0 + t));

@@ -199,10 +199,7 @@ fn svg_and_dxf_exports_agree() {
         "{sw} {sh} / {xw} {xh}"
     );
     // The DXF in inches although it says metric: --drawing-units in makes them agree.
-    let inch = ReadOptions {
-        mm_per_unit: Some(IN),
-        ..ReadOptions::default()
-    };
+    let inch = ReadOptions::default().with_mm_per_unit(Some(IN));
     let d = read("pb_screw_plate.dxf", &inch).unwrap();
     assert!(d.units.contains("given"), "{}", d.units);
     let (xw, xh) = size(&d);
@@ -235,10 +232,7 @@ fn nested_transforms_place_the_island() {
 /// unknown name is refused with the layers the file has.
 #[test]
 fn layers_select_outlines() {
-    let on = |l: &str| ReadOptions {
-        layer: Some(l.to_owned()),
-        ..ReadOptions::default()
-    };
+    let on = |l: &str| ReadOptions::default().with_layer(Some(l.to_owned()));
     let all = read("lc_t-part.dxf", &ReadOptions::default()).unwrap();
     let aux = read("lc_t-part.dxf", &on("AUXILIARY")).unwrap();
     let zero = read("lc_t-part.dxf", &on("0")).unwrap();

@@ -67,11 +67,9 @@ fn build_report() -> (String, Vec<[f64; 4]>, millpath::motion::Plan) {
     let preview = toolpath_svg(
         &tp,
         &outlines,
-        &PreviewOptions {
-            title: Some("rectangle <two levels>".into()),
-            achieved_feed: Some(plan.blocks.iter().map(|b| b.peak_feed).collect()),
-            ..PreviewOptions::default()
-        },
+        &PreviewOptions::default()
+            .with_title(Some("rectangle <two levels>".into()))
+            .with_achieved_feed(Some(plan.blocks.iter().map(|b| b.peak_feed).collect())),
     );
     let traj = trajectory_of(&samples);
     let mut r = HtmlReport::new("millpath report <test> & co");

@@ -209,11 +209,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
             path,
             &job.toolpath,
             std::slice::from_ref(&outline),
-            &millpath::report::PreviewOptions {
-                title: Some(title),
-                achieved_feed: Some(plan.peak_feed_by_move(job.toolpath.moves.len())),
-                ..millpath::report::PreviewOptions::default()
-            },
+            &millpath::report::PreviewOptions::default()
+                .with_title(Some(title))
+                .with_achieved_feed(Some(plan.peak_feed_by_move(job.toolpath.moves.len()))),
             args.per_level,
         )?;
     }

@@ -223,15 +223,15 @@ fn die_cavity(
         &out.join("die_cavity.svg"),
         &result.toolpath,
         &[outline],
-        &PreviewOptions {
-            title: Some(format!(
+        &PreviewOptions::default()
+            .with_title(Some(format!(
                 "die cavity: {} segments per pass within {} mm",
                 result.report.segments, opt.tolerance
+            )))
+            .with_level(result.toolpath.levels.len().checked_sub(1))
+            .with_achieved_feed(Some(
+                full_plan.peak_feed_by_move(result.toolpath.moves.len()),
             )),
-            level: result.toolpath.levels.len().checked_sub(1),
-            achieved_feed: Some(full_plan.peak_feed_by_move(result.toolpath.moves.len())),
-            ..PreviewOptions::default()
-        },
         true,
     )?;
     pb.set_message("die cavity: plots and viewer");
@@ -522,14 +522,12 @@ fn pockets(
             &out.join(format!("part_{name}.svg")),
             &tp,
             &outlines,
-            &PreviewOptions {
-                title: Some(format!(
+            &PreviewOptions::default()
+                .with_title(Some(format!(
                     "sample part, {name}: {cycle:.1} s on {}",
                     machine.name
-                )),
-                achieved_feed: Some(plan.peak_feed_by_move(tp.moves.len())),
-                ..PreviewOptions::default()
-            },
+                )))
+                .with_achieved_feed(Some(plan.peak_feed_by_move(tp.moves.len()))),
             kind == StrategyKind::Spiral,
         )?;
         if kind == StrategyKind::Spiral {

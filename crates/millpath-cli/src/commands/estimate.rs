@@ -159,11 +159,9 @@ fn write_pictures(
             out,
             tp,
             &[],
-            &millpath::report::PreviewOptions {
-                title: Some(title),
-                achieved_feed: Some(plan.peak_feed_by_move(tp.moves.len())),
-                ..millpath::report::PreviewOptions::default()
-            },
+            &millpath::report::PreviewOptions::default()
+                .with_title(Some(title))
+                .with_achieved_feed(Some(plan.peak_feed_by_move(tp.moves.len()))),
             args.per_level,
         )?;
     }

@@ -81,10 +81,7 @@ pub fn write_previews(
     opts: &millpath::report::PreviewOptions,
     per_level: bool,
 ) -> Result<Vec<PathBuf>, Error> {
-    let opts = millpath::report::PreviewOptions {
-        side_view: true,
-        ..opts.clone()
-    };
+    let opts = opts.clone().with_side_view(true);
     let mut written = vec![path.to_path_buf()];
     millpath::io::write_atomic(
         path,

@@ -101,10 +101,11 @@ pub fn run(args: &Args) -> Result<(), Error> {
             out,
             tp,
             &outlines,
-            &millpath::report::PreviewOptions {
-                title: Some(format!("{} over {}", args.program.display(), args.outline)),
-                ..millpath::report::PreviewOptions::default()
-            },
+            &millpath::report::PreviewOptions::default().with_title(Some(format!(
+                "{} over {}",
+                args.program.display(),
+                args.outline
+            ))),
             args.per_level,
         )?;
     }

@@ -135,8 +135,10 @@ impl Flattening {
     }
 }
 
-/// Options of [`flatten`].
+/// Options of [`flatten`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct FlattenOptions {
     /// Parameter of the first vertex when the curve has no corner (with corners, the first
     /// corner at or after it).
@@ -152,6 +154,14 @@ impl Default for FlattenOptions {
             probe: true,
         }
     }
+}
+
+option_builders! {
+    FlattenOptions;
+    /// Sets [`FlattenOptions::start`], curve parameter.
+    with_start => start: f64;
+    /// Sets [`FlattenOptions::probe`].
+    with_probe => probe: bool;
 }
 
 struct Run<'a, C: PlanarCurve + ?Sized> {

@@ -73,8 +73,10 @@ pub enum FeedMode {
     UnitsPerMinute,
 }
 
-/// Options of [`write_five_axis`].
+/// Options of [`write_five_axis`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct FiveAxisGcodeOptions {
     /// Feed mode. Default [`FeedMode::InverseTime`].
     pub feed_mode: FeedMode,
@@ -106,6 +108,20 @@ impl Default for FiveAxisGcodeOptions {
                 .with_tool_change(false),
         }
     }
+}
+
+option_builders! {
+    FiveAxisGcodeOptions;
+    /// Sets [`FiveAxisGcodeOptions::feed_mode`].
+    with_feed_mode => feed_mode: FeedMode;
+    /// Sets [`FiveAxisGcodeOptions::tolerance_mm`], mm.
+    with_tolerance_mm => tolerance_mm: f64;
+    /// Sets [`FiveAxisGcodeOptions::tolerance_deg`], degrees.
+    with_tolerance_deg => tolerance_deg: f64;
+    /// Sets [`FiveAxisGcodeOptions::max_blocks_per_interval`], blocks.
+    with_max_blocks_per_interval => max_blocks_per_interval: usize;
+    /// Sets [`FiveAxisGcodeOptions::program`].
+    with_program => program: WriterOptions;
 }
 
 /// Decimals of a five-axis program's words: `decimals` when given, else one more than the

@@ -17,8 +17,10 @@ use crate::geom::{Aabb, Outline};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 
-/// How an importer reads a drawing.
+/// How an importer reads a drawing. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct ReadOptions {
     /// Largest distance between a curve (spline, ellipse, Bézier, an arc under a non-uniform
     /// scale) and its flattening, mm. Circular arcs stay exact.
@@ -48,6 +50,18 @@ impl Default for ReadOptions {
             mm_per_unit: None,
         }
     }
+}
+
+option_builders! {
+    ReadOptions;
+    /// Sets [`ReadOptions::tolerance`], mm.
+    with_tolerance => tolerance: f64;
+    /// Sets [`ReadOptions::join_tolerance`], mm.
+    with_join_tolerance => join_tolerance: f64;
+    /// Sets [`ReadOptions::layer`].
+    with_layer => layer: Option<String>;
+    /// Sets [`ReadOptions::mm_per_unit`], mm per drawing unit.
+    with_mm_per_unit => mm_per_unit: Option<f64>;
 }
 
 impl ReadOptions {

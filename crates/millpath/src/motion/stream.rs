@@ -36,8 +36,10 @@ use crate::geom::Point3;
 use crate::machine::Machine;
 use crate::toolpath::Move;
 
-/// Options of [`plan_stream`].
+/// Options of [`plan_stream`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct StreamOptions {
     /// Check every span profile against its limits before accepting it.
     pub check_profiles: bool,
@@ -52,6 +54,14 @@ impl Default for StreamOptions {
             window: 8192,
         }
     }
+}
+
+option_builders! {
+    StreamOptions;
+    /// Sets [`StreamOptions::check_profiles`].
+    with_check_profiles => check_profiles: bool;
+    /// Sets [`StreamOptions::window`], blocks.
+    with_window => window: usize;
 }
 
 /// One timed chunk of a streamed program: a self-contained [`Plan`] (geometry kept, block and

@@ -82,8 +82,10 @@ pub struct Chart {
     pub y_range: Option<(f64, f64)>,
 }
 
-/// Size of a rendered chart.
+/// Size of a rendered chart. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct PlotOptions {
     /// Width in pixels.
     pub width: u32,
@@ -98,6 +100,14 @@ impl Default for PlotOptions {
             height: 420,
         }
     }
+}
+
+option_builders! {
+    PlotOptions;
+    /// Sets [`PlotOptions::width`], px.
+    with_width => width: u32;
+    /// Sets [`PlotOptions::height`], px.
+    with_height => height: u32;
 }
 
 /// Colour-blind-friendly palette (Okabe–Ito).

@@ -29,8 +29,10 @@ use crate::geom::{Aabb, Outline, Point};
 use crate::toolpath::{Move, MoveKind, Plane, Toolpath};
 use std::fmt::Write;
 
-/// Options of [`toolpath_svg`].
+/// Options of [`toolpath_svg`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct PreviewOptions {
     /// Width of the picture in pixels (the height follows the aspect ratio).
     pub width_px: f64,
@@ -59,6 +61,22 @@ impl Default for PreviewOptions {
             side_view: false,
         }
     }
+}
+
+option_builders! {
+    PreviewOptions;
+    /// Sets [`PreviewOptions::width_px`], px.
+    with_width_px => width_px: f64;
+    /// Sets [`PreviewOptions::margin_mm`], mm.
+    with_margin_mm => margin_mm: f64;
+    /// Sets [`PreviewOptions::title`].
+    with_title => title: Option<String>;
+    /// Sets [`PreviewOptions::level`].
+    with_level => level: Option<usize>;
+    /// Sets [`PreviewOptions::achieved_feed`], mm/s.
+    with_achieved_feed => achieved_feed: Option<Vec<f64>>;
+    /// Sets [`PreviewOptions::side_view`].
+    with_side_view => side_view: bool;
 }
 
 /// Colours of cutting moves, from slowest to fastest feed.

@@ -272,8 +272,10 @@ fn max_abs_diff(a: &Joints, b: &Joints) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Options of [`Kinematics::inverse_near`].
+/// Options of [`Kinematics::inverse_near`]. Built from [`Default`] with the `with_*` methods (the
+/// struct is `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub struct IkOptions {
     /// Pole distance (rad of tilt) below which the free angle is taken as undetermined and kept
     /// from the previous pose. Default 1e-9 rad.
@@ -292,6 +294,16 @@ impl Default for IkOptions {
             flip_threshold: PI / 2.0,
         }
     }
+}
+
+option_builders! {
+    IkOptions;
+    /// Sets [`IkOptions::pole_eps`], rad.
+    with_pole_eps => pole_eps: f64;
+    /// Sets [`IkOptions::pole_warn`], rad.
+    with_pole_warn => pole_warn: f64;
+    /// Sets [`IkOptions::flip_threshold`], rad.
+    with_flip_threshold => flip_threshold: f64;
 }
 
 /// The chosen solution and what the caller should know about it.

@@ -63,8 +63,10 @@ use super::segment::{KnotState, Limits, Segment};
 use crate::machine::kinematics::{Joints, Kinematics};
 use serde::{Deserialize, Serialize};
 
-/// Options of the certificates.
+/// Options of the certificates. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub struct CertifyOptions {
     /// Initial feed samples per interval. Default 48.
     pub feed_samples: usize,
@@ -86,6 +88,18 @@ impl Default for CertifyOptions {
             max_steps: 400,
         }
     }
+}
+
+option_builders! {
+    CertifyOptions;
+    /// Sets [`CertifyOptions::feed_samples`].
+    with_feed_samples => feed_samples: usize;
+    /// Sets [`CertifyOptions::feed_rel_eps`].
+    with_feed_rel_eps => feed_rel_eps: f64;
+    /// Sets [`CertifyOptions::max_depth`].
+    with_max_depth => max_depth: usize;
+    /// Sets [`CertifyOptions::max_steps`].
+    with_max_steps => max_steps: usize;
 }
 
 /// Verdict of [`feed_bound`].

@@ -51,8 +51,10 @@ pub enum FeedCheck {
     Certified,
 }
 
-/// Options of the per-interval search.
+/// Options of the per-interval search. Built from [`Default`] with the `with_*` methods (the struct
+/// is `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub struct MinTimeOptions {
     /// Feed samples per interval before refinement. Default 48.
     pub feed_samples: usize,
@@ -83,6 +85,24 @@ impl Default for MinTimeOptions {
             prove_rel: 1e-8,
         }
     }
+}
+
+option_builders! {
+    MinTimeOptions;
+    /// Sets [`MinTimeOptions::feed_samples`].
+    with_feed_samples => feed_samples: usize;
+    /// Sets [`MinTimeOptions::scan_ratio`].
+    with_scan_ratio => scan_ratio: f64;
+    /// Sets [`MinTimeOptions::scan_span`].
+    with_scan_span => scan_span: f64;
+    /// Sets [`MinTimeOptions::rel_tol`].
+    with_rel_tol => rel_tol: f64;
+    /// Sets [`MinTimeOptions::feed`].
+    with_feed => feed: FeedCheck;
+    /// Sets [`MinTimeOptions::certify`].
+    with_certify => certify: CertifyOptions;
+    /// Sets [`MinTimeOptions::prove_rel`].
+    with_prove_rel => prove_rel: f64;
 }
 
 /// Which constraint is tightest.

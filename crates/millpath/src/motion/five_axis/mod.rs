@@ -56,8 +56,10 @@ use crate::machine::kinematics::{IkOptions, Joints, Kinematics, Pose, PoseWarnin
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
-/// Options of [`plan`].
+/// Options of [`plan`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub struct FiveAxisOptions {
     /// Our optimiser.
     pub knots: KnotOptions,
@@ -78,6 +80,18 @@ impl Default for FiveAxisOptions {
             verify_samples: 400,
         }
     }
+}
+
+option_builders! {
+    FiveAxisOptions;
+    /// Sets [`FiveAxisOptions::knots`].
+    with_knots => knots: KnotOptions;
+    /// Sets [`FiveAxisOptions::baseline`].
+    with_baseline => baseline: Option<BaselineOptions>;
+    /// Sets [`FiveAxisOptions::ik`].
+    with_ik => ik: IkOptions;
+    /// Sets [`FiveAxisOptions::verify_samples`].
+    with_verify_samples => verify_samples: usize;
 }
 
 /// The library result (serialised as the CLI's JSON).
