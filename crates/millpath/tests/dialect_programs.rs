@@ -369,10 +369,7 @@ fn random_five_axis_paths_in_every_dialect_and_units() {
         |(r, pitch, start, sweep, tilt, bc, g94)| {
             let kin = TableTable::typical(if bc { TrtKind::Bc } else { TrtKind::Ac });
             let opts = FiveAxisOptions::default()
-                .with_knots(KnotOptions {
-                    iterations: 2,
-                    ..KnotOptions::default()
-                })
+                .with_knots(KnotOptions::default().with_iterations(2))
                 .with_baseline(None);
             let poses = five_axis_path(r, pitch, start, sweep, tilt);
             let out = match plan(&kin, &poses, &Limits::paper(), &opts, None) {

@@ -39,10 +39,7 @@ fn g93_and_g94_programs_take_the_planned_time_and_follow_the_plan() {
     let kin = TableTable::typical(TrtKind::Ac);
     let poses: Vec<_> = five_axis::paper_path().into_iter().take(8).collect();
     let opts = FiveAxisOptions::default()
-        .with_knots(KnotOptions {
-            iterations: 3,
-            ..KnotOptions::default()
-        })
+        .with_knots(KnotOptions::default().with_iterations(3))
         .with_baseline(None);
     let out = plan(&kin, &poses, &Limits::paper(), &opts, None).unwrap();
     let total = out.result.total_time_s;

@@ -74,10 +74,8 @@ fn random_smooth_paths_meet_every_limit() {
                 _ => Box::new(HeadHead::typical()),
             };
             let poses = path(r, pitch, start, sweep, tilt, 10);
-            let opts = FiveAxisOptions::default().with_knots(KnotOptions {
-                iterations: 12,
-                ..KnotOptions::default()
-            });
+            let opts =
+                FiveAxisOptions::default().with_knots(KnotOptions::default().with_iterations(12));
             let out = match plan(kin.as_ref(), &poses, &Limits::paper(), &opts, None) {
                 Ok(o) => o,
                 Err(e) => return Err(TestCaseError::fail(format!("{}: {e}", kin.name()))),

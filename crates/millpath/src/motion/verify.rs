@@ -31,8 +31,10 @@ use crate::geom::{Point3, Vec3};
 use crate::machine::Machine;
 use crate::toolpath::{Corner, Move, MoveKind};
 
-/// Options of [`verify_plan`].
+/// Options of [`verify_plan`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct VerifyOptions {
     /// Sampling rate in Hz (at least 1000).
     pub rate: f64,
@@ -47,6 +49,14 @@ impl Default for VerifyOptions {
             rel_tol: 1e-6,
         }
     }
+}
+
+option_builders! {
+    VerifyOptions;
+    /// Sets [`VerifyOptions::rate`], Hz.
+    with_rate => rate: f64;
+    /// Sets [`VerifyOptions::rel_tol`].
+    with_rel_tol => rel_tol: f64;
 }
 
 /// What was violated.

@@ -22,8 +22,10 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-/// Options of the baseline.
+/// Options of the baseline. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub struct BaselineOptions {
     /// Knot tip speed as a fraction β of the feed limit. Default 0.8.
     pub knot_feed_fraction: f64,
@@ -50,6 +52,22 @@ impl Default for BaselineOptions {
             seed: 2008,
         }
     }
+}
+
+option_builders! {
+    BaselineOptions;
+    /// Sets [`BaselineOptions::knot_feed_fraction`].
+    with_knot_feed_fraction => knot_feed_fraction: f64;
+    /// Sets [`BaselineOptions::population`].
+    with_population => population: usize;
+    /// Sets [`BaselineOptions::span`].
+    with_span => span: f64;
+    /// Sets [`BaselineOptions::crossover`].
+    with_crossover => crossover: f64;
+    /// Sets [`BaselineOptions::mutation`].
+    with_mutation => mutation: f64;
+    /// Sets [`BaselineOptions::seed`].
+    with_seed => seed: u64;
 }
 
 /// The baseline's fixed knot states.

@@ -118,8 +118,10 @@ impl Schedule {
     }
 }
 
-/// Options of [`optimize`].
+/// Options of [`optimize`]. Built from [`Default`] with the `with_*` methods (the struct is
+/// `#[non_exhaustive]`: new settings do not break callers).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub struct KnotOptions {
     /// Largest number of outer iterations. Default 40.
     pub iterations: usize,
@@ -151,6 +153,24 @@ impl Default for KnotOptions {
             min_time: MinTimeOptions::default(),
         }
     }
+}
+
+option_builders! {
+    KnotOptions;
+    /// Sets [`KnotOptions::iterations`].
+    with_iterations => iterations: usize;
+    /// Sets [`KnotOptions::patience`], iterations.
+    with_patience => patience: usize;
+    /// Sets [`KnotOptions::rel_gain`].
+    with_rel_gain => rel_gain: f64;
+    /// Sets [`KnotOptions::shrink`].
+    with_shrink => shrink: f64;
+    /// Sets [`KnotOptions::grow`].
+    with_grow => grow: f64;
+    /// Sets [`KnotOptions::iteration_rel_tol`].
+    with_iteration_rel_tol => iteration_rel_tol: f64;
+    /// Sets [`KnotOptions::min_time`].
+    with_min_time => min_time: MinTimeOptions;
 }
 
 /// Solves every interval for fixed states; `None` if one has no feasible time.
