@@ -253,8 +253,8 @@ fn smoothing_offset(pl: &Polyline<f64>, d: f64) -> Option<Polyline<f64>> {
 /// of the one before it (the segment between them within `eps` of a line), and a vertex
 /// where the loop turns back on itself (the two segments meeting there run in opposite
 /// directions) and the triangle it makes with its neighbours is thinner than `eps`, both
-/// segments within `eps` of lines. Each removal changes the region by a triangle less than
-/// `eps` times the longer segment wide. The boolean unions the fronts are made of leave
+/// segments within `eps` of lines. Each removal changes the region by a triangle of area
+/// less than `eps` times the longer segment. The boolean unions the fronts are made of leave
 /// hairs up to a tenth of a micrometre wide that run back and forth along a line, and
 /// cavalier_contours' offsets fail on them (the single-loop one returns open pieces, the
 /// shape offset grows the loop by hundreds of vertices a call or runs out of memory); a spike
