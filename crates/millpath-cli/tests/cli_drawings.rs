@@ -93,3 +93,65 @@ fn bad_drawing_flags_are_refused() {
         assert!(!dir.path().join("out.ngc").exists());
     }
 }
+
+/// Drawings nested 100,000 levels deep through the binary's main thread: SVG groups around one
+/// square are cut (exit 0, a program `verify` accepts); DXF blocks inserting blocks are
+/// refused by name (exit 2), nothing written.
+#[test]
+fn drawings_nested_100000_deep_are_read_or_refused_never_a_crash() {
+    const DEPTH: usize = 100_000;
+    let dir = tempfile::tempdir().unwrap();
+    let svg = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">{}<rect x="10" y="10" width="50" height="30"/>{}</svg>"#,
+        "<g>".repeat(DEPTH),
+        "</g>".repeat(DEPTH)
+    );
+    std::fs::write(dir.path().join("deep.svg"), svg).unwrap();
+    let args = ["--tool-diameter", "6", "--depth", "2", "--step-down", "2"];
+    let mut pocket = vec!["pocket", "deep.svg", "-o", "deep.ngc"];
+    pocket.extend(args);
+    let o = Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(&pocket)
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let mut verify = vec!["verify", "deep.ngc", "--outline", "deep.svg"];
+    verify.extend(&args[..2]);
+    let v = Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(&verify)
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(
+        v.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&v.stderr)
+    );
+
+    let mut dxf = String::from("0\nSECTION\n2\nBLOCKS\n");
+    for i in 0..DEPTH {
+        dxf.push_str(&format!("0\nBLOCK\n2\nB{i}\n10\n0\n20\n0\n"));
+        dxf.push_str(&format!("0\nINSERT\n2\nB{}\n10\n1\n20\n0\n", i + 1));
+        dxf.push_str("0\nENDBLK\n");
+    }
+    dxf.push_str("0\nENDSEC\n0\nSECTION\n2\nENTITIES\n0\nINSERT\n2\nB0\n0\nENDSEC\n0\nEOF\n");
+    std::fs::write(dir.path().join("deep.dxf"), dxf).unwrap();
+    let mut pocket = vec!["pocket", "deep.dxf", "-o", "dxf.ngc"];
+    pocket.extend(args);
+    let o = Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(&pocket)
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("INSERT nesting"), "{err}");
+    assert!(!dir.path().join("dxf.ngc").exists());
+}

@@ -21,6 +21,11 @@
 //!   through `use`), nested `svg` (its `x`/`y`); `defs`, `clipPath`, `mask`, `marker`,
 //!   `pattern` content is not drawn; `display="none"` elements are skipped; `text`, `image`
 //!   and the rest are counted and skipped.
+//! * **Depth.** Groups, nested `svg` and the rest may nest to any depth: the walk keeps its
+//!   own stack rather than the thread's. A `use` reached through more than 16 other `use`
+//!   references, or one inside its own target, is skipped with that reason (a cycle never
+//!   ends otherwise); at most a million elements are drawn with every `use` expanded, so
+//!   references that double at each level are refused rather than followed.
 //! * **Joins:** open paths are chained end to end within [`ReadOptions::join_tolerance`]
 //!   (`crate::io::join`).
 //! * **Layers:** [`ReadOptions::layer`] keeps the outlines inside the `<g>` whose
@@ -194,14 +199,48 @@ fn layer_names<'a>(n: Node<'a, '_>) -> impl Iterator<Item = &'a str> {
         .chain(n.attribute("id"))
 }
 
+/// One element still to be drawn: the element, the transform and layer state its ancestors
+/// (or the `use` that reached it) give it, and how many `use` references led to it.
+#[derive(Clone, Copy)]
+struct Pending<'a, 'input> {
+    node: Node<'a, 'input>,
+    ctm: Affine,
+    on_layer: bool,
+    /// A nested `svg` (not the root) places its content at its `x`/`y`.
+    nested: bool,
+    use_depth: usize,
+}
+
 impl<'a, 'input> Walker<'a, 'input> {
-    fn walk(
+    /// Draws `root` and everything under it, depth first in document order. The walk keeps
+    /// its own stack instead of recursing, so that no nesting depth can exhaust the thread's.
+    fn walk(&mut self, root: Node<'a, 'input>, ctm: Affine) -> Result<(), InputError> {
+        let mut stack = vec![Pending {
+            node: root,
+            ctm,
+            on_layer: false,
+            nested: false,
+            use_depth: 0,
+        }];
+        while let Some(p) = stack.pop() {
+            self.visit(p, &mut stack)?;
+        }
+        Ok(())
+    }
+
+    /// Draws one element; the elements it contains (or refers to) go on `stack`, last first.
+    fn visit(
         &mut self,
-        n: Node<'a, 'input>,
-        ctm: Affine,
-        on_layer: bool,
-        depth: usize,
+        p: Pending<'a, 'input>,
+        stack: &mut Vec<Pending<'a, 'input>>,
     ) -> Result<(), InputError> {
+        let Pending {
+            node: n,
+            ctm,
+            on_layer,
+            nested,
+            use_depth,
+        } = p;
         self.visited += 1;
         if self.visited > MAX_ELEMENTS {
             return Err(
@@ -254,12 +293,10 @@ impl<'a, 'input> Walker<'a, 'input> {
         let d = match name {
             "svg" | "g" | "a" | "switch" => {
                 let mut ctm = ctm;
-                if name == "svg" && depth > 0 {
+                if name == "svg" && nested {
                     ctm = ctm.after(Affine::translate(num(n, "x"), num(n, "y")));
                 }
-                for c in n.children().filter(Node::is_element) {
-                    self.walk(c, ctm, on_layer, depth + 1)?;
-                }
+                push_children(stack, n, ctm, on_layer, use_depth);
                 return Ok(());
             }
             "use" => {
@@ -275,19 +312,31 @@ impl<'a, 'input> Walker<'a, 'input> {
                     self.drawing.skip("use", "its target is missing");
                     return Ok(());
                 };
-                if depth > MAX_USE_DEPTH + 64 || n.ancestors().any(|a| a == target) {
+                if n.ancestors().any(|a| a == target) {
                     self.drawing.skip("use", "refers to itself");
+                    return Ok(());
+                }
+                if use_depth >= MAX_USE_DEPTH {
+                    self.drawing.skip(
+                        "use",
+                        &format!("more than {MAX_USE_DEPTH} `use` references deep (a cycle?)"),
+                    );
                     return Ok(());
                 }
                 self.drawing.count("use");
                 let ctm = ctm.after(Affine::translate(num(n, "x"), num(n, "y")));
                 if target.tag_name().name() == "symbol" {
-                    for c in target.children().filter(Node::is_element) {
-                        self.walk(c, ctm, on_layer, depth + 1)?;
-                    }
-                    return Ok(());
+                    push_children(stack, target, ctm, on_layer, use_depth + 1);
+                } else {
+                    stack.push(Pending {
+                        node: target,
+                        ctm,
+                        on_layer,
+                        nested: true,
+                        use_depth: use_depth + 1,
+                    });
                 }
-                return self.walk(target, ctm, on_layer, depth + 1);
+                return Ok(());
             }
             "path" => n.attribute("d").unwrap_or("").to_owned(),
             "rect" => {
@@ -399,6 +448,25 @@ impl<'a, 'input> Walker<'a, 'input> {
     }
 }
 
+/// Puts the element children of `n` on `stack` so that the first is taken first.
+fn push_children<'a, 'input>(
+    stack: &mut Vec<Pending<'a, 'input>>,
+    n: Node<'a, 'input>,
+    ctm: Affine,
+    on_layer: bool,
+    use_depth: usize,
+) {
+    let first = stack.len();
+    stack.extend(n.children().filter(Node::is_element).map(|c| Pending {
+        node: c,
+        ctm,
+        on_layer,
+        nested: true,
+        use_depth,
+    }));
+    stack[first..].reverse();
+}
+
 /// Reads the closed outlines of an SVG document, in mm; `origin` names the file.
 pub fn read_loops(text: &str, origin: &str, opts: &ReadOptions) -> Result<Drawing, InputError> {
     opts.validate(origin)?;
@@ -450,7 +518,7 @@ pub fn read_loops(text: &str, origin: &str, opts: &ReadOptions) -> Result<Drawin
         visited: 0,
     };
     // The root's own transform attribute is not part of SVG 1.1 but SVG 2 allows it.
-    w.walk(root, map, false, 0)?;
+    w.walk(root, map)?;
     let mut drawing = w.drawing;
     if let Some(want) = &opts.layer
         && !drawing.layers.contains(want)
