@@ -1,7 +1,8 @@
 //! The shared G-code output flags on `contour`, `pocket` and `five-axis`: the same names on
 //! every command, every dialect written, `millpath estimate` reading each back (its dialect
 //! found from the program) with the cycle time `pocket` planned and `millpath verify`
-//! passing it, and what a dialect cannot express refused with exit 2 and no file.
+//! passing it, and what a dialect cannot express refused with exit 2 and no file. Programs
+//! of LinuxCNC, Sinumerik and Fanuc read with the dialect found, which a note names.
 
 use std::process::Output;
 
@@ -76,6 +77,11 @@ fn pocket_writes_every_dialect_and_estimate_and_verify_read_each_back() {
         assert!(text.contains("T7"), "{dialect}: tool number");
         let e = millpath(&["estimate", file], dir.path());
         assert_eq!(e.status.code(), Some(0), "{dialect}: {}", stderr(&e));
+        assert!(
+            stderr(&e).contains(&format!("note: dialect {dialect}: found from ")),
+            "{}",
+            stderr(&e)
+        );
         let read = cycle_time(&e);
         assert!(
             (read / planned - 1.0).abs() <= 0.005,
@@ -98,6 +104,14 @@ fn pocket_writes_every_dialect_and_estimate_and_verify_read_each_back() {
             v.extend(named.iter().flat_map(|d| ["--dialect", *d]));
             let o = millpath(&v, dir.path());
             assert_eq!(o.status.code(), Some(0), "{dialect} verify: {}", stderr(&o));
+            // Found, the dialect is named in a note with why; named, no note.
+            let note = format!("note: dialect {dialect}: found from ");
+            assert_eq!(
+                stderr(&o).contains(&note),
+                named.is_none(),
+                "{}",
+                stderr(&o)
+            );
             let js: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
             assert_eq!(js["passed"], true, "{dialect}: {js}");
         }
@@ -193,4 +207,86 @@ fn five_axis_writes_fanuc_and_sinumerik_programs() {
         let text = std::fs::read_to_string(dir.path().join("f.nc")).unwrap();
         assert!(text.contains(word) && text.contains("G93") && text.contains(" B"));
     }
+}
+
+/// A file of the engine's test data.
+fn engine_data(rel: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../millpath/tests/data")
+        .join(rel)
+}
+
+/// The `note: dialect …` line of a run.
+fn dialect_note(o: &Output) -> String {
+    stderr(o)
+        .lines()
+        .find(|l| l.starts_with("note: dialect "))
+        .unwrap_or_default()
+        .to_string()
+}
+
+#[test]
+fn estimate_finds_the_dialect_of_each_controllers_programs_and_says_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (from, to) in [
+        ("linuxcnc-nc/nc_files/factorial.ngc", "factorial.ngc"),
+        ("linuxcnc-demos/boat-xyzac.ngc", "boat-xyzac.ngc"),
+    ] {
+        std::fs::copy(engine_data(from), d.join(to)).unwrap();
+    }
+    let sin = "; inch part\nG17 G70 G90 G60\nG0 X1 Y1 Z0.5\nG1 Z-0.1 F10\nG1 X2\nM30\n";
+    std::fs::write(d.join("inch.mpf"), sin).unwrap();
+    let fanuc =
+        "%\nO0001\nG21 G90\n#1=0\nWHILE [#1 LT 3] DO1\nG1 X#1 F600.\n#1=#1+1\nEND1\nM30\n%\n";
+    std::fs::write(d.join("loop.nc"), fanuc).unwrap();
+    for (file, extra, dialect, why) in [
+        (
+            "factorial.ngc",
+            None,
+            "linuxcnc",
+            "`o<factorial> sub` at line 3",
+        ),
+        ("inch.mpf", None, "sinumerik", "`G70` at line 2"),
+        (
+            "boat-xyzac.ngc",
+            Some("--lenient"),
+            "linuxcnc",
+            "the file extension .ngc",
+        ),
+        ("loop.nc", None, "fanuc", "`O0001` at line 2"),
+    ] {
+        let mut args = vec!["estimate", file, "--json"];
+        args.extend(extra);
+        let auto = millpath(&args, d);
+        assert_eq!(auto.status.code(), Some(0), "{file}: {}", stderr(&auto));
+        let note = dialect_note(&auto);
+        assert!(
+            note.starts_with(&format!("note: dialect {dialect}: found from "))
+                && note.contains(why),
+            "{file}: {note}"
+        );
+        args.extend(["--dialect", dialect]);
+        let named = millpath(&args, d);
+        assert_eq!(auto.stdout, named.stdout, "{file}");
+        assert_eq!(dialect_note(&named), "", "{file}");
+    }
+    // Grbl, which `;` comments suggest, has no rotary axes; LinuxCNC reads the program.
+    std::fs::write(
+        d.join("rotary.nc"),
+        "; c\nG21 G90\nG0 X1 A5\nG1 X2 F600\nM2\n",
+    )
+    .unwrap();
+    let o = millpath(&["estimate", "rotary.nc"], d);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let note = dialect_note(&o);
+    assert!(
+        note.starts_with("note: dialect linuxcnc: grbl (suggested by `;` at line 1")
+            && note.contains("A5")
+            && note.ends_with("this dialect reads all of it"),
+        "{note}"
+    );
+    let o = millpath(&["estimate", "rotary.nc", "--dialect", "grbl"], d);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("A5") && stderr(&o).contains("rotary.nc:3"));
 }

@@ -392,6 +392,21 @@ fn cases() -> Vec<Case> {
             outputs: &[],
         },
         Case {
+            what: "program that never ends (a while loop)",
+            args: &["estimate", "loop.ngc", "--step-budget", "1000"],
+            files: &[(
+                "loop.ngc",
+                b"#1 = 1\no100 while [#1 GT 0]\nG1 X1 F600\nG1 X0\no100 endwhile\nM2\n",
+            )],
+            outputs: &[],
+        },
+        Case {
+            what: "Fanuc main program that loops by M99",
+            args: &["estimate", "loop.nc", "--step-budget", "1000", "--svg", "out.svg"],
+            files: &[("loop.nc", b"%\nO1\nG1 X1. F600.\nG1 X0\nM99\n%\n")],
+            outputs: &["out.svg"],
+        },
+        Case {
             what: "sampling rate below 1 kHz",
             args: &["estimate", "ok.ngc", "--rate", "10", "--samples", "out.csv"],
             files: &[("ok.ngc", GOOD_NGC)],
@@ -469,6 +484,24 @@ fn cases() -> Vec<Case> {
                 ("sq.json", SQUARE_JSON),
             ],
             outputs: &["out.json"],
+        },
+        Case {
+            what: "program that never ends (a GOTO loop)",
+            args: &[
+                "verify",
+                "loop.nc",
+                "--outline",
+                "sq.json",
+                "--tool-diameter",
+                "6",
+                "--step-budget",
+                "1000",
+            ],
+            files: &[
+                ("loop.nc", b"%\nO1\nN10 G1 X1. F600.\nG1 X0\nGOTO 10\nM30\n%\n"),
+                ("sq.json", SQUARE_JSON),
+            ],
+            outputs: &[],
         },
         Case {
             what: "tool diameter of zero",

@@ -197,6 +197,11 @@ pub fn estimate(
         blocks: run.estimate.blocks,
         violations: run.estimate.violations,
         toolpath: Py::new(py, Toolpath { tp })?,
+        dialect: run.dialect.dialect.name().to_owned(),
+        dialect_reason: match run.dialect.reason {
+            millpath::gcode::DialectReason::Named => "named".to_owned(),
+            r => r.to_string(),
+        },
     })
 }
 

@@ -179,6 +179,11 @@ pub struct Estimate {
     pub violations: Option<usize>,
     /// The program read back.
     pub toolpath: Py<Toolpath>,
+    /// The dialect the program was read in (`linuxcnc`, `fanuc`, `sinumerik`, `grbl`).
+    pub dialect: String,
+    /// Why: `named` when given as `dialect=`, else what it was found from (the CLI's
+    /// `note: dialect …` line).
+    pub dialect_reason: String,
 }
 
 #[pymethods]

@@ -185,10 +185,15 @@ def test_estimate_subroutines_and_tool_table_equal_cli(tmp_path):
     prog.write_text(text)
     table = tmp_path / "tool.tbl"
     table.write_text("T1 P1 Z25 D6 ;6 mm end mill\n")
-    js = json.loads(
-        cli("estimate", prog, "--json", "--subroutine-path", tmp_path / "lib",
-            "--tool-table", table).stdout
-    )
+    run = cli("estimate", prog, "--json", "--subroutine-path", tmp_path / "lib",
+              "--tool-table", table)
+    js = json.loads(run.stdout)
+    # The dialect found, and why, as the CLI's note says it (the file's extension counts too).
+    e = millpath.estimate(prog, subroutine_path=[tmp_path / "lib"], tool_table=table)
+    assert e.dialect == "linuxcnc" and "o1 repeat" in e.dialect_reason
+    assert f"note: dialect linuxcnc: {e.dialect_reason}" in run.stderr
+    assert millpath.estimate(prog, dialect="linuxcnc", subroutine_path=[tmp_path / "lib"],
+                             tool_table=table).dialect_reason == "named"
     for program in (text, prog):
         e = millpath.estimate(program, subroutine_path=[tmp_path / "lib"], tool_table=table)
         assert e.cycle_time_s == js["cycle_time_s"]

@@ -22,8 +22,8 @@ use millpath::gcode::five_axis::{
     FeedMode, FiveAxisGcodeOptions, five_axis_decimals, read_five_axis, write_five_axis,
 };
 use millpath::gcode::{
-    Dialect, ReaderOptions, Units, WriterOptions, read_str, required_decimals, rounding_error_mm,
-    write_to_string,
+    Dialect, DialectGuess, ReaderOptions, Units, WriterOptions, read_str, required_decimals,
+    rounding_error_mm, write_to_string,
 };
 use millpath::geom::{Outline, Point, Point3, Vec2, Vec3};
 use millpath::machine::Machine;
@@ -74,6 +74,12 @@ fn write_check_read(tp: &Toolpath, w: &WriterOptions) -> Result<String, String> 
     let d = w.dialect;
     let (text, summary) = write_to_string(tp, w).map_err(|e| format!("{d}: write: {e}"))?;
     controller_accepts(&text, d)?;
+    // `--dialect auto` finds the dialect written, under the dialect's usual extension.
+    let name = format!("p.{}", d.file_extension());
+    let found = DialectGuess::new(Some(std::path::Path::new(&name)), &text).best();
+    if found != d {
+        return Err(format!("{d}: found as {found} ({name})"));
+    }
     if !states_tolerance(&text, d) {
         return Err(format!("{d}: the path tolerance is not stated"));
     }

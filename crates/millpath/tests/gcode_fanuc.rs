@@ -1,6 +1,10 @@
 //! Fanuc subprograms (M98/M99), macro calls (G65) and custom macro B, written from Fanuc's
 //! documented semantics: each program's move end points are computed here independently
-//! (own trigonometry, own loops) and compared with what the reader yields.
+//! (own trigonometry, own loops) and compared with what the reader yields. Every program
+//! read here in the Fanuc dialect is also read as `--dialect auto` reads it, to the same
+//! moves.
+
+mod detect_common;
 
 use millpath::gcode::{Dialect, ReadMove, Reader, ReaderOptions};
 use millpath::toolpath::MoveKind;
@@ -11,9 +15,18 @@ fn opts() -> ReaderOptions {
 }
 
 fn read_with(text: &str, o: ReaderOptions) -> Result<Vec<ReadMove>, String> {
-    Reader::new(text.as_bytes(), o)
+    let auto = (o.dialect == Dialect::Fanuc).then(|| detect_common::auto_read(None, text, &o));
+    let r = Reader::new(text.as_bytes(), o)
         .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| e.to_string())
+        .map_err(|e| e.to_string());
+    if let (Some((choice, auto)), Ok(moves)) = (&auto, &r) {
+        assert_eq!(
+            auto.as_ref().ok(),
+            Some(moves),
+            "read as {choice}, not as Fanuc reads it:\n{text}"
+        );
+    }
+    r
 }
 
 fn read(text: &str) -> Result<Vec<ReadMove>, String> {

@@ -4,7 +4,10 @@
 //! For every program: millpath reads it or refuses it with a message (never a panic, never
 //! longer than [`LIMIT`]); for every program both accept, the motions (kind, end point, arc
 //! centre and turns, feed, dwell) equal rs274's canonical calls within rs274's printed
-//! precision (4 decimals of the program unit per printed number, plus 1e-6). The counts are
+//! precision (4 decimals of the program unit per printed number, plus 1e-6). Each program is
+//! also read as `--dialect auto` reads it (the dialect from its extension and words, the
+//! fallback to the next that reads it all): it must read as many, each in LinuxCNC's
+//! dialect, to the same moves. The counts are
 //! printed (`cargo test -p millpath --test linuxcnc_programs -- --nocapture`, on stderr) and must not
 //! fall below the floors below, which record what the reader reads today.
 //!
@@ -14,6 +17,7 @@
 
 #![allow(clippy::print_stderr)]
 
+mod detect_common;
 mod rs274_common;
 
 use millpath::gcode::{Dialect, ReadMove, Reader, ReaderOptions, ToolTable, Units};
@@ -58,6 +62,8 @@ const LIMIT: Duration = Duration::from_secs(20);
 
 /// Programs millpath must read (of 416).
 const MIN_READ: usize = 377;
+/// Programs millpath must read with the dialect found (`--dialect auto`), of 416.
+const MIN_READ_AUTO: usize = 377;
 /// Programs both read whose motions must be compared and equal (all of them must be equal).
 const MIN_COMPARED: usize = 284;
 
@@ -151,15 +157,36 @@ enum Ours {
 }
 
 fn read_ours(path: &Path) -> (Ours, Duration) {
+    read_with(path, |p| {
+        let file = std::fs::File::open(p).unwrap();
+        let reader = Reader::new(std::io::BufReader::new(file), options(p));
+        reader.collect::<Result<Vec<_>, _>>()
+    })
+}
+
+/// The program read as `--dialect auto` reads it; `Refused` also when it is read in
+/// another dialect than LinuxCNC's (named in the message).
+fn read_auto(path: &Path) -> (Ours, Duration) {
+    read_with(path, |p| {
+        let text = String::from_utf8_lossy(&std::fs::read(p).unwrap()).into_owned();
+        let (choice, r) = detect_common::auto_read(Some(p), &text, &options(p));
+        match (choice.dialect, r) {
+            (Dialect::LinuxCnc, r) => r,
+            (_, Ok(_)) => Err(millpath::InputError::new("dialect", choice).into()),
+            (_, Err(e)) => Err(e),
+        }
+    })
+}
+
+fn read_with(
+    path: &Path,
+    read: fn(&Path) -> Result<Vec<ReadMove>, millpath::Error>,
+) -> (Ours, Duration) {
     let (tx, rx) = std::sync::mpsc::channel();
     let p = path.to_path_buf();
     let t0 = Instant::now();
     std::thread::spawn(move || {
-        let r = std::panic::catch_unwind(|| {
-            let file = std::fs::File::open(&p).unwrap();
-            let reader = Reader::new(std::io::BufReader::new(file), options(&p));
-            reader.collect::<Result<Vec<_>, _>>()
-        });
+        let r = std::panic::catch_unwind(|| read(&p));
         let _ = tx.send(r);
     });
     let ours = match rx.recv_timeout(LIMIT) {
@@ -213,6 +240,7 @@ fn linuxcnc_programs_read_as_rs274_reads_them() {
     )
     .unwrap();
     let (mut read, mut compared, mut rs_ok, mut both, mut known_seen) = (0, 0, 0, 0, 0);
+    let mut read_auto_count = 0;
     let mut failures = Vec::new();
     let mut refusals: std::collections::BTreeMap<String, usize> = Default::default();
     let mut slowest = (Duration::ZERO, PathBuf::new());
@@ -221,6 +249,15 @@ fn linuxcnc_programs_read_as_rs274_reads_them() {
         let (ours, took) = read_ours(f);
         if took > slowest.0 {
             slowest = (took, f.clone());
+        }
+        // As `--dialect auto` reads it: LinuxCNC's dialect, the same moves or the same refusal.
+        match (read_auto(f).0, &ours) {
+            (Ours::Read(a), Ours::Read(b)) if a == *b => read_auto_count += 1,
+            (Ours::Refused(_), Ours::Refused(_)) => {}
+            (Ours::Refused(m), _) => failures.push(format!("{name}: auto: {m}")),
+            (Ours::Read(_), _) => failures.push(format!("{name}: auto: other moves")),
+            (Ours::Panicked(m), _) => failures.push(format!("{name}: auto: PANIC {m}")),
+            (Ours::TimedOut, _) => failures.push(format!("{name}: auto: longer than {LIMIT:?}")),
         }
         // rs274 fails now and then without a message, or with a HAL component name clash,
         // when other rs274 runs share the machine: those runs are repeated (twice at most).
@@ -279,8 +316,9 @@ fn linuxcnc_programs_read_as_rs274_reads_them() {
         }
     }
     eprintln!(
-        "LinuxCNC programs: {} in all; millpath reads {read}, refuses {}; rs274 reads {rs_ok}; \
-         both read {both}; motions identical to rs274 in {compared}; slowest read {:?} ({})",
+        "LinuxCNC programs: {} in all; millpath reads {read}, refuses {}; as --dialect auto \
+         {read_auto_count}; rs274 reads {rs_ok}; both read {both}; motions identical to rs274 \
+         in {compared}; slowest read {:?} ({})",
         files.len(),
         files.len() - read,
         slowest.0,
@@ -305,6 +343,11 @@ fn linuxcnc_programs_read_as_rs274_reads_them() {
     assert!(
         read >= MIN_READ,
         "millpath reads {read} programs, fewer than {MIN_READ}"
+    );
+    assert!(
+        read_auto_count >= MIN_READ_AUTO,
+        "millpath reads {read_auto_count} programs with the dialect found, fewer than \
+         {MIN_READ_AUTO}"
     );
     assert!(
         compared >= MIN_COMPARED,

@@ -38,8 +38,10 @@ pub struct Args {
     #[arg(long)]
     pub no_verify: bool,
     /// Dialect of the program: linuxcnc, fanuc, sinumerik, grbl, or auto (the default: found
-    /// from the program's first lines: `%`/`O` number → fanuc, `G710`/`G700`/`CYCLE832` →
-    /// sinumerik, `;` comments → grbl, else linuxcnc).
+    /// from the file's extension and words, e.g. `.ngc`/`o<sub>`/`#<x>` → linuxcnc,
+    /// `%`/`O1234`/`M98`/`WHILE [..] DO1` → fanuc, `.mpf`/`G710`/`G70`/`CYCLE832` →
+    /// sinumerik, `;` comments alone → grbl; when that dialect refuses the program, the next
+    /// that reads all of it; a `note:` on stderr says which and why).
     #[arg(long, default_value = "auto")]
     pub dialect: String,
     /// Skip unsupported G-code words with a warning instead of refusing them.
@@ -89,6 +91,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         lenient: args.lenient,
         subroutine_path: args.files.subroutine_path.clone(),
         tool_table: args.files.tool_table.clone(),
+        step_budget: args.files.step_budget,
         per_block: args.json && args.blocks,
         // Samples and pictures need the whole plan and every move.
         whole: args.samples.is_some() || args.html.is_some() || args.svg.is_some(),
@@ -108,6 +111,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         b.finish_and_clear();
     }
     let run = run?;
+    super::dialect_note(&run.dialect);
     let e = &run.estimate;
     let mut pictures = Vec::new();
     if let (Some(plan), Some(tp)) = (&run.plan, &run.toolpath) {

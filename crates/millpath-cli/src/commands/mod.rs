@@ -28,13 +28,20 @@ pub fn eprint(line: &str) {
     let _ = writeln!(std::io::stderr(), "{line}");
 }
 
+/// `note: dialect linuxcnc: found from …` on stderr, when the dialect was not named.
+pub fn dialect_note(choice: &millpath::gcode::DialectChoice) {
+    if choice.reason != millpath::gcode::DialectReason::Named {
+        eprint(&format!("note: {choice}"));
+    }
+}
+
 /// Reads a whole text file, turning an I/O failure into an input error naming the file.
 pub fn read_text(path: &Path) -> Result<String, Error> {
     millpath::io::read_text(path)
 }
 
 /// Files a G-code program may need (RS274/NGC subroutines, Fanuc subprograms, a tool table).
-#[derive(Debug, Clone, Default, clap::Args)]
+#[derive(Debug, Clone, clap::Args)]
 pub struct ProgramFiles {
     /// Folders searched for subroutine files `NAME.ngc` (after the program's folder),
     /// separated by ':' (LinuxCNC's SUBROUTINE_PATH); Fanuc programs look there for
@@ -45,6 +52,11 @@ pub struct ProgramFiles {
     /// its tools.
     #[arg(long)]
     pub tool_table: Option<PathBuf>,
+    /// Lines the program may run again (in loops, subroutines and after backward jumps)
+    /// before it is refused as endless (exit 2, naming the loop): a program that never ends
+    /// stops within seconds.
+    #[arg(long, default_value_t = millpath::gcode::DEFAULT_STEP_BUDGET)]
+    pub step_budget: u64,
 }
 
 /// The machine named by `--machine` ([`millpath::job::load_machine`]): a preset name (see

@@ -14,7 +14,8 @@ pub struct Args {
     /// The G-code program.
     pub program: PathBuf,
     /// Dialect of the program: linuxcnc, fanuc, sinumerik, grbl, or auto (the default: found
-    /// from the program's first lines, as `millpath estimate` does).
+    /// from the program's extension and words, falling back to the next dialect that reads
+    /// all of it, as `millpath estimate` does; a `note:` on stderr says which and why).
     #[arg(long, default_value = "auto")]
     pub dialect: String,
     /// Subroutine folders and tool table.
@@ -71,6 +72,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         select: args.select.clone(),
         subroutine_path: args.files.subroutine_path.clone(),
         tool_table: args.files.tool_table.clone(),
+        step_budget: args.files.step_budget,
         dialect: args.dialect.clone(),
     };
     settings.check()?;
@@ -82,6 +84,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         &args.program.display().to_string(),
         &settings,
     )?;
+    super::dialect_note(&job.dialect);
     let (tp, pv, problems) = (&job.toolpath, &job.part, &job.problems);
     let v = pv.total.clone();
     let pockets = loops.pockets();

@@ -115,50 +115,6 @@ impl Dialect {
     }
 }
 
-impl Dialect {
-    /// The dialect of a program, from its first lines `head` (a few KiB are plenty), by the
-    /// words that only one dialect's programs carry, as the writer writes them: a `%` line or
-    /// an `O` or `:` number → Fanuc; `G700`/`G710`, `CYCLE832(` or a `TURN=` → Sinumerik; `;`
-    /// comments without any word Grbl lacks (`G64`, `G61.1`, `G43`, `M6`: LinuxCNC programs
-    /// may use `;` comments too) → Grbl; anything else → LinuxCNC. A program that carries none of
-    /// these reads the same in LinuxCNC's dialect as in any other (the dialects differ in
-    /// those words, in `G64`/`G61` and in the dwell words), so the fallback is safe.
-    pub fn detect(head: &str) -> Dialect {
-        let (mut semicolons, mut not_grbl) = (false, false);
-        for line in head.lines().take(200) {
-            let t = line.trim().to_ascii_uppercase();
-            let code = t.split(';').next().unwrap_or("");
-            if t.starts_with('%') || is_program_number(code) {
-                return Dialect::Fanuc;
-            }
-            let words: Vec<&str> = code.split_whitespace().collect();
-            if words.iter().any(|w| matches!(*w, "G700" | "G710"))
-                || code.contains("CYCLE832(")
-                || code.contains("TURN=")
-            {
-                return Dialect::Sinumerik;
-            }
-            semicolons |= t.starts_with(';');
-            not_grbl |= words
-                .iter()
-                .any(|w| matches!(*w, "G64" | "G61.1" | "G43" | "M6" | "M06"));
-        }
-        if semicolons && !not_grbl {
-            Dialect::Grbl
-        } else {
-            Dialect::LinuxCnc
-        }
-    }
-}
-
-/// `O1234` or `:1234` (with an optional comment): a Fanuc program number line.
-fn is_program_number(code: &str) -> bool {
-    let code = code.split('(').next().unwrap_or("").trim();
-    code.strip_prefix('O')
-        .or_else(|| code.strip_prefix(':'))
-        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
-}
-
 impl fmt::Display for Dialect {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())

@@ -43,9 +43,13 @@
 //!   memory too); a jump or a call never reads a file twice.
 //! * **Step budget:** every block run inside a subprogram, or run again in the main program
 //!   (after a backward GOTO, END or M99), counts against
-//!   [`ReaderOptions::step_budget`](super::ReaderOptions::step_budget); past it the program
-//!   is refused naming the last backward jump, never hangs.
+//!   [`ReaderOptions::step_budget`](super::ReaderOptions::step_budget) (module `budget`);
+//!   past it the program is refused naming the backward jump, repetition or call that ran
+//!   most often, never hangs.
+//! * **No recursion:** programs, calls and loops are vectors and indices; an expression's
+//!   brackets nest at most 64 deep (module `macro_b`).
 
+use super::budget::Budget;
 use super::lexer::Token;
 use super::macro_b::{self, Locals, Stmt, Vars};
 use super::ngc::canonical;
@@ -150,7 +154,7 @@ impl<S: BufRead> Text<S> {
 }
 
 /// `O1234` or `:1234` (spaces and a comment allowed): the program number.
-fn header(line: &[u8]) -> Option<u32> {
+pub(crate) fn header(line: &[u8]) -> Option<u32> {
     let t = line.trim_ascii_start();
     let rest = t
         .strip_prefix(b"O")
@@ -240,11 +244,9 @@ pub(crate) struct Fanuc<R> {
     index: HashMap<(Src, usize), Rc<Index>>,
     search: Vec<PathBuf>,
     block_delete: bool,
-    steps: u64,
-    budget: u64,
+    budget: Budget,
     /// Main-program lines below this have run (a line below it runs again).
     high: usize,
-    last_jump: String,
     started: bool,
     /// The line being run.
     at: At,
@@ -273,10 +275,8 @@ impl<R: BufRead> Fanuc<R> {
             index: HashMap::new(),
             search,
             block_delete,
-            steps: 0,
-            budget,
+            budget: Budget::new(budget, "blocks run in subprograms and loops"),
             high: 0,
-            last_jump: String::new(),
             started: false,
             at: At {
                 line: 0,
@@ -288,6 +288,24 @@ impl<R: BufRead> Fanuc<R> {
     /// The line being run (for messages).
     pub(crate) fn at(&self) -> &At {
         &self.at
+    }
+
+    /// Whether the step budget ran out (the last error is its refusal).
+    pub(crate) fn over_budget(&self) -> bool {
+        self.budget.exhausted()
+    }
+
+    /// What the step budget's refusal expects.
+    pub(crate) fn budget_expected(&self) -> String {
+        self.budget.expected()
+    }
+
+    /// Tallies a backward jump, repetition or call made at line `line` (1-based) of the
+    /// running program's file.
+    fn jumped(&mut self, line: usize, what: impl FnOnce() -> String) {
+        let origin = self.at.origin.clone();
+        self.budget
+            .jump(origin.as_deref().unwrap_or(""), line, what);
     }
 
     fn line(&mut self, src: Src, i: usize, buf: &mut Vec<u8>) -> R2<bool> {
@@ -397,8 +415,8 @@ impl<R: BufRead> Fanuc<R> {
             s = r;
         }
         let s = skip_n(s);
-        let stmt =
-            macro_b::statement(s, &self.vars).map_err(|e| format!("{e} in '{}'", text.trim()))?;
+        let stmt = macro_b::statement(s, &self.vars)
+            .map_err(|e| format!("{e} in '{}'", super::lexer::shown(&text)))?;
         match stmt {
             Stmt::Nc(tokens) => return Ok(Some((tokens, s.to_string()))),
             Stmt::Nothing => {}
@@ -417,7 +435,7 @@ impl<R: BufRead> Fanuc<R> {
             Stmt::Goto(n) => {
                 let target = self.seq_line(f, n, pc + 1, "GOTO")?;
                 if target <= pc {
-                    self.last_jump = format!("GOTO {n} at line {}", pc + 1);
+                    self.jumped(pc + 1, || format!("GOTO {n}"));
                 }
                 self.set_pc(f, target);
             }
@@ -442,7 +460,7 @@ impl<R: BufRead> Fanuc<R> {
                     .and_then(|d| d.iter().rev().find(|&&d| d < pc))
                     .copied()
                     .ok_or_else(|| format!("END{m} at line {} without its DO{m}", pc + 1))?;
-                self.last_jump = format!("END{m} at line {}", pc + 1);
+                self.jumped(pc + 1, || format!("END{m}"));
                 self.set_pc(f, d);
             }
         }
@@ -461,20 +479,7 @@ impl<R: BufRead> Fanuc<R> {
             self.high = pc + 1;
             return Ok(());
         }
-        self.steps += 1;
-        if self.steps > self.budget {
-            let why = if self.last_jump.is_empty() {
-                String::new()
-            } else {
-                format!("; the last backward jump: {}", self.last_jump)
-            };
-            return Err(format!(
-                "more than {} blocks run in subprograms and loops (the step budget{why}): a \
-                 loop that never ends?",
-                self.budget
-            ));
-        }
-        Ok(())
+        self.budget.step()
     }
 
     /// The line of block N `n` in frame `f`'s program: the first at or after `from`, else
@@ -601,6 +606,8 @@ impl<R: BufRead> Fanuc<R> {
             ));
         }
         let (src, start) = self.find(program, word)?;
+        let line = self.at.line;
+        self.jumped(line, || format!("{word} P{program}"));
         if let Some(a) = &args {
             self.vars.push(**a);
         }
@@ -623,10 +630,7 @@ impl<R: BufRead> Fanuc<R> {
                 Some(s) => self.seq_line(0, f64::from(s), 0, "M99 P")?,
                 None => self.frames.first().map_or(0, |fr| fr.start),
             };
-            self.last_jump = format!(
-                "M99 at line {line} in the main program (back to line {})",
-                target + 1
-            );
+            self.jumped(line, || "M99".to_string());
             self.set_pc(0, target);
             return Ok(());
         }
@@ -635,9 +639,11 @@ impl<R: BufRead> Fanuc<R> {
         {
             top.left -= 1;
             top.pc = top.start;
+            let number = top.number;
             if let Some(a) = &top.args {
                 self.vars.reset(**a);
             }
+            self.jumped(line, || format!("M99 of O{number:04}"));
             return Ok(());
         }
         if let Some(fr) = self.frames.pop()
@@ -650,7 +656,7 @@ impl<R: BufRead> Fanuc<R> {
             let from = self.frames.last().map_or(0, |fr| fr.pc);
             let t = self.seq_line(caller, f64::from(s), from, "M99 P")?;
             if t < from {
-                self.last_jump = format!("M99 P{s} at line {line}");
+                self.jumped(line, || format!("M99 P{s}"));
             }
             self.set_pc(caller, t);
         }

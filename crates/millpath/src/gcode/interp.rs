@@ -99,12 +99,16 @@ pub struct ReaderOptions {
     /// in mm. Without one, G54..G59 take [`ReaderOptions::work_offsets`].
     pub parameters: Option<std::sync::Arc<ParamFile>>,
     /// Lines run inside loops and subroutines (Fanuc: and lines run again after a backward
-    /// GOTO, END or M99) before the program is refused as endless.
+    /// GOTO, END or M99) before the program is refused as endless, naming the loop (see
+    /// the step budget in the [module docs](super#limits)).
     pub step_budget: u64,
 }
 
-/// The default [`ReaderOptions::step_budget`]: ten million lines (a few seconds).
-pub const DEFAULT_STEP_BUDGET: u64 = 10_000_000;
+/// The default [`ReaderOptions::step_budget`]: 300,000 lines run again. An endless
+/// loop whose every line moves the tool then stops within seconds of estimating in a release
+/// build (reader, planner and limit verifier), and a real program's loops stay far below it
+/// (of LinuxCNC's own programs, its recursive fractals come closest).
+pub const DEFAULT_STEP_BUDGET: u64 = 300_000;
 
 impl Default for ReaderOptions {
     fn default() -> Self {

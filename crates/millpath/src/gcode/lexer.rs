@@ -9,6 +9,19 @@
 //! assignments `NAME=number` (`TURN=2`) and calls `NAME(args)` (`CYCLE832(0.01,_FINISH,1)`).
 //! A `%` line (Fanuc framing) is reported as such.
 
+/// Longest part of a line quoted in a message, in characters.
+const QUOTED_CHARS: usize = 80;
+
+/// `line` trimmed, as a message quotes it: its first [`QUOTED_CHARS`] characters and `…`
+/// when longer (a 64 KiB line is not repeated in full).
+pub(crate) fn shown(line: &str) -> String {
+    let t = line.trim();
+    match t.char_indices().nth(QUOTED_CHARS) {
+        Some((k, _)) => format!("{}…", t.get(..k).unwrap_or(t)),
+        None => t.to_string(),
+    }
+}
+
 /// One token of a line.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Token {

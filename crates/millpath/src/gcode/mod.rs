@@ -51,6 +51,17 @@
 //! compensation in G19 or G93, Fanuc's modal macros G66/G67, Sinumerik parameters, HAL pins —
 //! is refused with the word and the line (or skipped when lenient).
 //!
+//! **Programs that never end.** Lines run again (in loops and subroutines, after a backward
+//! jump) count against [`ReaderOptions::step_budget`] (default [`DEFAULT_STEP_BUDGET`],
+//! module `budget`): past it the program is refused naming the loop end, jump or call that
+//! ran most often and the number of lines run, so an endless program stops within seconds.
+//!
+//! **Nesting.** Nothing in the reader recurses once per level of its input: O-word calls nest
+//! at most 100 deep, Fanuc's M98 10 and G65 5 levels, `if`/`while`/`do`/`repeat` 1000
+//! deep (program flow on vectors, module `oword`, `fanuc`); brackets, signs and functions
+//! of an expression 64 deep (modules `expr`, `macro_b`, the only recursive descent); comments
+//! do not nest. Input nested deeper is refused with a message, never overflows a stack.
+//!
 //! # RS274/NGC (the LinuxCNC dialect)
 //! LinuxCNC 2.9's language, module by module under `interp`: parameters and expressions
 //! (`expr`), O-word subroutines and control flow (`oword`; files on
@@ -91,6 +102,8 @@
 //! `τ = 0.0283 mm` or `0.00283 in`), cited from its source and checked against `rs274`.
 
 pub(crate) mod arc;
+mod budget;
+mod detect;
 mod dialect;
 mod expr;
 mod fanuc;
@@ -106,6 +119,9 @@ mod reader;
 mod tools;
 mod writer;
 
+pub use detect::{
+    Clue, ClueRule, DETECT_BYTES, DialectChoice, DialectGuess, DialectReason, reads_whole,
+};
 pub use dialect::{Coolant, Dialect, Units};
 pub use format::{required_decimals, rounding_error_mm};
 pub use interp::{DEFAULT_STEP_BUDGET, FeedMode, Modal, ReadMove, ReaderOptions};

@@ -51,6 +51,26 @@ const KEYWORDS: [(&[u8], Kw); 15] = [
     (b"continue", Kw::Continue),
 ];
 
+impl Kw {
+    /// The keyword as written (`endwhile`).
+    pub(crate) fn word(self) -> &'static str {
+        KEYWORDS
+            .iter()
+            .find(|(_, k)| *k == self)
+            .and_then(|(w, _)| std::str::from_utf8(w).ok())
+            .unwrap_or("")
+    }
+}
+
+/// An O word's label as written: `o100` for a number, `o<name>` for a name.
+pub(crate) fn o_label(name: &str) -> String {
+    if name.bytes().all(|b| b.is_ascii_digit()) {
+        format!("o{name}")
+    } else {
+        format!("o<{name}>")
+    }
+}
+
 /// An O-word command: its name, keyword and the values of its bracketed arguments.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct OWord {

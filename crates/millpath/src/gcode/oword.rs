@@ -18,11 +18,15 @@
 //! * Memory: the main program is streamed; only from the start of an open loop on are its
 //!   lines kept, until the loop ends.
 //! * Every line run inside a loop or a subroutine counts against the step budget
-//!   ([`ReaderOptions::step_budget`](super::ReaderOptions::step_budget)): a program that
-//!   loops for ever is refused with the loop's line, never hangs. Calls nest at most
-//!   [`MAX_CALL_DEPTH`] deep.
+//!   ([`ReaderOptions::step_budget`](super::ReaderOptions::step_budget), module `budget`):
+//!   a program that loops for ever is refused naming the loop end (or call) that ran most
+//!   often, never hangs. Calls nest at most [`MAX_CALL_DEPTH`] deep, and `if`/`while`/`do`/
+//!   `repeat` at most [`MAX_NESTING`] deep within one subroutine (or the main program): the
+//!   control stacks are vectors (no recursion), and what each line checks of them is kept
+//!   as a count, so a line costs the same at any depth.
 
-use super::ngc::{Kw, OWord, o_header};
+use super::budget::Budget;
+use super::ngc::{Kw, OWord, o_header, o_label};
 use super::params::Store;
 use std::collections::{HashMap, VecDeque};
 use std::io::BufRead;
@@ -31,6 +35,10 @@ use std::rc::Rc;
 
 /// Deepest subroutine nesting.
 pub const MAX_CALL_DEPTH: usize = 100;
+
+/// Deepest nesting of `if`, `while`, `do` and `repeat` within one subroutine or the main
+/// program (real programs nest a handful; LinuxCNC sets no limit of its own).
+pub const MAX_NESTING: usize = 1000;
 
 /// A subroutine's lines.
 #[derive(Debug)]
@@ -54,6 +62,12 @@ struct Ctl {
     kind: CtlKind,
 }
 
+impl CtlKind {
+    fn is_loop(&self) -> bool {
+        !matches!(self, CtlKind::If { .. })
+    }
+}
+
 #[derive(Debug, Clone)]
 struct Skip {
     name: String,
@@ -70,6 +84,10 @@ struct Frame {
     /// Index of the next line (in `body`, or the main program's line index).
     pc: usize,
     ctl: Vec<Ctl>,
+    /// Loops in `ctl` (its entries other than `if`).
+    loops: usize,
+    /// The next line runs again (a `while` line after its `endwhile` or `continue`).
+    again: bool,
     skip: Option<Skip>,
     name: String,
 }
@@ -82,6 +100,10 @@ struct Main<R> {
     /// Index of `kept[0]`.
     first: usize,
     eof: bool,
+    /// Lines read from `src` so far.
+    read: usize,
+    /// Reading the line after them failed.
+    failed: bool,
 }
 
 /// Where a line came from.
@@ -99,8 +121,7 @@ pub(crate) struct Program<R> {
     frames: Vec<Frame>,
     subs: HashMap<String, Rc<Body>>,
     search: Vec<PathBuf>,
-    steps: u64,
-    budget: u64,
+    budget: Budget,
     max_line: u64,
 }
 
@@ -145,16 +166,20 @@ impl<R: BufRead> Main<R> {
         if self.eof {
             return Ok(false);
         }
+        self.failed = true;
         let n = std::io::Read::take(&mut self.src, max + 1)
             .read_until(b'\n', buf)
             .map_err(|e| format!("unreadable ({e})"))?;
         if n == 0 {
             self.eof = true;
+            self.failed = false;
             return Ok(false);
         }
         if n as u64 > max && buf.last() != Some(&b'\n') {
             return Err(format!("a line longer than {max} bytes"));
         }
+        self.failed = false;
+        self.read += 1;
         Ok(true)
     }
 
@@ -189,18 +214,21 @@ impl<R: BufRead> Program<R> {
                 kept: VecDeque::new(),
                 first: 0,
                 eof: false,
+                read: 0,
+                failed: false,
             },
             frames: vec![Frame {
                 body: None,
                 pc: 0,
                 ctl: Vec::new(),
+                loops: 0,
+                again: false,
                 skip: None,
                 name: String::new(),
             }],
             subs: HashMap::new(),
             search,
-            steps: 0,
-            budget,
+            budget: Budget::new(budget, "lines run in loops and subroutines"),
             max_line,
         }
     }
@@ -211,9 +239,69 @@ impl<R: BufRead> Program<R> {
         &mut self.frames[n - 1]
     }
 
+    /// Whether the step budget ran out (the last error is its refusal).
+    pub(crate) fn over_budget(&self) -> bool {
+        self.budget.exhausted()
+    }
+
+    /// The main program's line whose reading failed (too long, unreadable), if one did.
+    pub(crate) fn unread_line(&self) -> Option<usize> {
+        self.main.failed.then_some(self.main.read + 1)
+    }
+
+    /// What the step budget's refusal expects.
+    pub(crate) fn budget_expected(&self) -> String {
+        self.budget.expected()
+    }
+
+    /// Counts a line of frame `f` against the step budget when it runs in a subroutine or
+    /// an open loop, or runs again (a `while` line).
+    #[inline]
+    fn count(&mut self, f: usize) -> R2<()> {
+        let again = match self.frames.get_mut(f) {
+            Some(fr) => std::mem::take(&mut fr.again) || fr.loops > 0,
+            None => false,
+        };
+        if f > 0 || again {
+            self.budget.step()?;
+        }
+        Ok(())
+    }
+
+    /// Opens an `if` or a loop in the running frame.
+    fn push_ctl(&mut self, name: &str, kind: CtlKind) -> R2<()> {
+        let top = self.top();
+        if top.ctl.len() >= MAX_NESTING {
+            return Err(format!(
+                "o{name}: if, while, do and repeat nested deeper than {MAX_NESTING}"
+            ));
+        }
+        top.loops += usize::from(kind.is_loop());
+        top.ctl.push(Ctl {
+            name: name.to_string(),
+            kind,
+        });
+        Ok(())
+    }
+
+    /// Closes the innermost `if` or loop of the running frame.
+    fn pop_ctl(&mut self) -> Option<Ctl> {
+        let top = self.top();
+        let c = top.ctl.pop()?;
+        top.loops -= usize::from(c.kind.is_loop());
+        Some(c)
+    }
+
+    /// Tallies a backward jump (or a call) made by `o` at `line` of `origin`.
+    fn jumped(&mut self, o: &OWord, origin: &str, line: usize) {
+        self.budget.jump(origin, line, || {
+            format!("{} {}", o_label(&o.name), o.kw.word())
+        });
+    }
+
     /// Whether main-program lines must be kept (an open loop in the main frame).
     fn main_keep_from(&self) -> Option<usize> {
-        self.frames.first().and_then(|f| {
+        self.frames.first().filter(|f| f.loops > 0).and_then(|f| {
             f.ctl
                 .iter()
                 .filter_map(|c| match c.kind {
@@ -271,22 +359,7 @@ impl<R: BufRead> Program<R> {
                 return Ok(None);
             };
             self.top().pc += 1;
-            if f > 0
-                || self
-                    .top()
-                    .ctl
-                    .iter()
-                    .any(|c| !matches!(c.kind, CtlKind::If { .. }))
-            {
-                self.steps += 1;
-                if self.steps > self.budget {
-                    return Err(format!(
-                        "more than {} lines run in loops and subroutines (step budget; a loop \
-                         that never ends?)",
-                        self.budget
-                    ));
-                }
-            }
+            self.count(f)?;
             let Some(skip) = self.top().skip.clone() else {
                 return Ok(Some(at));
             };
@@ -344,13 +417,13 @@ impl<R: BufRead> Program<R> {
                 params.set_named("_value", v.unwrap_or(0.0));
                 params.set_named("_value_returned", f64::from(u8::from(v.is_some())));
             }
-            Kw::Call => self.call(o, params)?,
+            Kw::Call => {
+                self.call(o, params)?;
+                self.jumped(o, origin, line);
+            }
             Kw::If => {
                 let c = cond(o)? != 0.0;
-                self.top().ctl.push(Ctl {
-                    name: o.name.clone(),
-                    kind: CtlKind::If { taken: c },
-                });
+                self.push_ctl(&o.name, CtlKind::If { taken: c })?;
                 if !c {
                     self.skip_to(&o.name, &[Kw::Elseif, Kw::Else, Kw::Endif], false, line);
                 }
@@ -365,7 +438,7 @@ impl<R: BufRead> Program<R> {
                 };
                 let take = !taken && (o.kw == Kw::Else || cond(o)? != 0.0);
                 if taken {
-                    self.top().ctl.pop();
+                    self.pop_ctl();
                     self.skip_to(&o.name, &[Kw::Endif], true, line);
                 } else if take {
                     if let Some(c) = self.top().ctl.last_mut() {
@@ -392,19 +465,17 @@ impl<R: BufRead> Program<R> {
                         }) = self.top().ctl.last().cloned()
                         {
                             self.top().pc = start;
+                            self.jumped(o, origin, line);
                         }
                     } else {
-                        self.top().ctl.pop();
+                        self.pop_ctl();
                     }
                 } else if c {
                     let at = self.current();
                     if self.frames.len() == 1 {
                         self.main.retain(at, raw);
                     }
-                    self.top().ctl.push(Ctl {
-                        name: o.name.clone(),
-                        kind: CtlKind::While { at },
-                    });
+                    self.push_ctl(&o.name, CtlKind::While { at })?;
                 } else {
                     self.skip_to(&o.name, &[Kw::Endwhile], true, line);
                 }
@@ -413,36 +484,32 @@ impl<R: BufRead> Program<R> {
                 let k = self.pop_named(o, |k| matches!(k, CtlKind::While { .. }))?;
                 if let CtlKind::While { at } = k {
                     self.top().pc = at;
+                    self.top().again = true;
+                    self.jumped(o, origin, line);
                 }
             }
             Kw::Do => {
                 let start = self.top().pc;
-                self.top().ctl.push(Ctl {
-                    name: o.name.clone(),
-                    kind: CtlKind::Do { start },
-                });
+                self.push_ctl(&o.name, CtlKind::Do { start })?;
             }
             Kw::Repeat => {
                 let n = cond(o)?.round();
                 if n >= 1.0 {
                     let start = self.top().pc;
-                    self.top().ctl.push(Ctl {
-                        name: o.name.clone(),
-                        kind: CtlKind::Repeat { start, left: n },
-                    });
+                    self.push_ctl(&o.name, CtlKind::Repeat { start, left: n })?;
                 } else {
                     self.skip_to(&o.name, &[Kw::Endrepeat], true, line);
                 }
             }
-            Kw::Endrepeat => self.end_repeat(o)?,
-            Kw::Break | Kw::Continue => self.break_continue(o, line)?,
+            Kw::Endrepeat => self.end_repeat(o, origin, line)?,
+            Kw::Break | Kw::Continue => self.break_continue(o, origin, line)?,
         }
         Ok(())
     }
 
-    fn end_repeat(&mut self, o: &OWord) -> R2<()> {
+    fn end_repeat(&mut self, o: &OWord, origin: &str, line: usize) -> R2<()> {
         let top = self.top();
-        match top.ctl.last_mut() {
+        let again = match top.ctl.last_mut() {
             Some(Ctl {
                 name,
                 kind: CtlKind::Repeat { start, left },
@@ -450,13 +517,19 @@ impl<R: BufRead> Program<R> {
                 *left -= 1.0;
                 if *left >= 1.0 {
                     top.pc = *start;
+                    true
                 } else {
-                    top.ctl.pop();
+                    false
                 }
-                Ok(())
             }
-            _ => Err(format!("o{} endrepeat without its repeat", o.name)),
+            _ => return Err(format!("o{} endrepeat without its repeat", o.name)),
+        };
+        if again {
+            self.jumped(o, origin, line);
+        } else {
+            self.pop_ctl();
         }
+        Ok(())
     }
 
     /// Pops the control entry named `o.name` (it must be the innermost and of the right kind).
@@ -464,43 +537,47 @@ impl<R: BufRead> Program<R> {
         match self.top().ctl.last() {
             Some(c) if c.name == o.name && kind(&c.kind) => {
                 let k = c.kind;
-                self.top().ctl.pop();
+                self.pop_ctl();
                 Ok(k)
             }
             _ => Err(format!("o{} {:?} without its opening word", o.name, o.kw)),
         }
     }
 
-    fn break_continue(&mut self, o: &OWord, line: usize) -> R2<()> {
+    fn break_continue(&mut self, o: &OWord, origin: &str, line: usize) -> R2<()> {
         let top = self.top();
         let Some(k) = top
             .ctl
             .iter()
-            .rposition(|c| c.name == o.name && !matches!(c.kind, CtlKind::If { .. }))
+            .rposition(|c| c.name == o.name && c.kind.is_loop())
         else {
             return Err(format!(
                 "o{} {:?} outside a loop of that name",
                 o.name, o.kw
             ));
         };
-        top.ctl.truncate(k + 1);
-        let kind = top.ctl.last().map(|c| c.kind);
+        while self.top().ctl.len() > k + 1 {
+            self.pop_ctl();
+        }
+        let kind = self.top().ctl.last().map(|c| c.kind);
         match (o.kw, kind) {
             (Kw::Break, Some(CtlKind::While { .. })) => {
-                top.ctl.pop();
+                self.pop_ctl();
                 self.skip_to(&o.name, &[Kw::Endwhile], true, line);
             }
             (Kw::Break, Some(CtlKind::Do { .. })) => {
-                top.ctl.pop();
+                self.pop_ctl();
                 self.skip_to(&o.name, &[Kw::While], true, line);
             }
             (Kw::Break, _) => {
-                top.ctl.pop();
+                self.pop_ctl();
                 self.skip_to(&o.name, &[Kw::Endrepeat], true, line);
             }
             (_, Some(CtlKind::While { at })) => {
-                top.ctl.pop();
-                top.pc = at;
+                self.pop_ctl();
+                self.top().pc = at;
+                self.top().again = true;
+                self.jumped(o, origin, line);
             }
             (_, Some(CtlKind::Do { .. })) => self.skip_to(&o.name, &[Kw::While], false, line),
             _ => self.skip_to(&o.name, &[Kw::Endrepeat], false, line),
@@ -508,7 +585,8 @@ impl<R: BufRead> Program<R> {
         Ok(())
     }
 
-    /// At `o<name> sub`: keeps the lines up to `endsub` and goes on after it.
+    /// At `o<name> sub`: keeps the lines up to `endsub` and goes on after it. Inside a loop
+    /// or a subroutine the lines count against the step budget (a definition run again).
     fn define(&mut self, name: &str, origin: &str) -> R2<()> {
         let f = self.frames.len() - 1;
         let origin: Rc<str> = Rc::from(origin);
@@ -520,6 +598,7 @@ impl<R: BufRead> Program<R> {
                 return Err(format!("o<{name}> sub without endsub"));
             };
             self.top().pc += 1;
+            self.count(f)?;
             if let Some((n, Kw::Endsub)) = o_header(&buf)
                 && n == name
             {
@@ -563,6 +642,8 @@ impl<R: BufRead> Program<R> {
             body: Some(body),
             pc: 0,
             ctl: Vec::new(),
+            loops: 0,
+            again: false,
             skip: None,
             name: o.name.clone(),
         });

@@ -194,10 +194,21 @@ impl<R: BufRead> Reader<R> {
                     self.file = at.origin;
                     Err(self.fanuc_error(m))
                 }
-                Source::Ngc(_) => Err(InputError::new("G-code program", m)
-                    .at(self.origin())
-                    .expected("a program LinuxCNC runs (see millpath::gcode::oword)")
-                    .into()),
+                Source::Ngc(p) => {
+                    if let Some(line) = p.unread_line() {
+                        self.line_no = line;
+                        self.file = None;
+                    }
+                    let expected = if p.over_budget() {
+                        p.budget_expected()
+                    } else {
+                        "a program LinuxCNC runs (see millpath::gcode::oword)".to_string()
+                    };
+                    Err(InputError::new("G-code program", m)
+                        .at(self.origin())
+                        .expected(expected)
+                        .into())
+                }
             },
         }
     }
@@ -268,11 +279,14 @@ impl<R: BufRead> Reader<R> {
     }
 
     fn fanuc_error(&self, m: String) -> Error {
+        let expected = match &self.source {
+            Source::Fanuc(f) if f.over_budget() => f.budget_expected(),
+            _ => "a program a Fanuc control with custom macro B runs (see millpath::gcode::fanuc)"
+                .to_string(),
+        };
         InputError::new("G-code program", m)
             .at(self.origin())
-            .expected(
-                "a program a Fanuc control with custom macro B runs (see millpath::gcode::fanuc)",
-            )
+            .expected(expected)
             .into()
     }
 
@@ -315,7 +329,7 @@ impl<R: BufRead> Reader<R> {
             self.message(m);
         }
         if let Err(m) = parsed {
-            return Err(InputError::new("G-code line", text.trim())
+            return Err(InputError::new("G-code line", super::lexer::shown(&text))
                 .at(self.origin())
                 .expected(format!("RS274/NGC as LinuxCNC reads it: {m}"))
                 .into());
@@ -335,11 +349,15 @@ impl<R: BufRead> Reader<R> {
             program
                 .run(&o, &self.bytes, self.line_no, &file, &mut self.params)
                 .map_err(|m| {
-                    Error::from(
-                        InputError::new("O word", m)
-                            .at(origin)
-                            .expected("O-word control flow as LinuxCNC runs it"),
-                    )
+                    let (what, expected) = if program.over_budget() {
+                        ("G-code program", program.budget_expected())
+                    } else {
+                        (
+                            "O word",
+                            "O-word control flow as LinuxCNC runs it".to_string(),
+                        )
+                    };
+                    Error::from(InputError::new(what, m).at(origin).expected(expected))
                 })?;
             // A return: the state M73 saved at the level left is restored.
             if self.params.call_level() < level {

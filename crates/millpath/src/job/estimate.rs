@@ -3,13 +3,19 @@
 //! the limit verifier, into an [`Estimate`]: cycle time, blocks, spans, limit violations and
 //! the time at programmed feeds (Σ length / programmed feed over the feed blocks).
 //!
+//! The dialect, when not named (`auto`), is the best candidate of the program's clues
+//! ([`DialectGuess`]: its file extension and first lines); when that dialect's reader refuses
+//! the program, the other candidates are read in turn and the first that reads all of it is
+//! taken (module [`crate::gcode`]'s `detect`): the estimate's [`EstimateRun::dialect`] says
+//! which and why.
+//!
 //! Two ways through, same figures: streaming (bounded memory: the planner hands out chunks
 //! whose boundaries are knots at rest and the verifier checks each chunk as it is timed), or
 //! whole ([`EstimateSettings::whole`]: the plan and every move kept, for samples and
 //! pictures). The verifier samples at `rate` ≥ 1 kHz; it does not run on the `linuxcnc`
 //! controller model, whose plans follow LinuxCNC's rules and are judged against LinuxCNC.
 
-use crate::gcode::{Dialect, Reader, ReaderOptions};
+use crate::gcode::{Dialect, DialectChoice, DialectGuess, Reader, ReaderOptions, reads_whole};
 use crate::machine::{Controller, Machine};
 use crate::motion::stream::{StreamOptions, plan_stream};
 use crate::motion::verify::{VerifyOptions, verify_plan};
@@ -22,7 +28,7 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 /// Bytes of a program read to find its dialect (`--dialect auto`).
-pub const DETECT_BYTES: usize = 8192;
+pub const DETECT_BYTES: usize = crate::gcode::DETECT_BYTES;
 
 /// Moves read between two calls of the progress callback.
 const PROGRESS_MOVES: u64 = 65_536;
@@ -42,6 +48,9 @@ pub struct EstimateSettings {
     pub subroutine_path: Vec<PathBuf>,
     /// A LinuxCNC tool table.
     pub tool_table: Option<PathBuf>,
+    /// Lines the program may run again before it is refused as endless
+    /// ([`ReaderOptions::step_budget`]).
+    pub step_budget: u64,
     /// Per-block times in the estimate.
     pub per_block: bool,
     /// Keep the whole plan and the toolpath (with its levels) for samples and pictures.
@@ -57,6 +66,7 @@ impl Default for EstimateSettings {
             lenient: false,
             subroutine_path: Vec::new(),
             tool_table: None,
+            step_budget: crate::gcode::DEFAULT_STEP_BUDGET,
             per_block: false,
             whole: false,
         }
@@ -108,6 +118,8 @@ pub struct EstimateRun {
     pub plan: Option<Plan>,
     /// The moves read, levels found from the retracts (whole runs only).
     pub toolpath: Option<Toolpath>,
+    /// The dialect the program was read in, and why.
+    pub dialect: DialectChoice,
 }
 
 /// Counts the bytes read, for progress.
@@ -133,15 +145,79 @@ fn unreadable(path: &Path, what: &str, e: &std::io::Error) -> Error {
 /// The dialect named by `spec` (`--dialect`), or for `auto` the one the program's head
 /// (its first [`DETECT_BYTES`], cut at a character boundary) suggests.
 pub fn dialect(spec: &str, head: &str) -> Result<Dialect, Error> {
-    match spec {
-        "auto" => {
-            let mut end = head.len().min(DETECT_BYTES);
-            while !head.is_char_boundary(end) {
-                end -= 1;
-            }
-            Ok(Dialect::detect(&head[..end]))
+    Ok(Choosing::new(spec, None, head)?.first().dialect)
+}
+
+/// How a job's dialect is chosen: named (`--dialect fanuc`), or found (`auto`) with the
+/// fallback to the other candidates.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Choosing {
+    Named(Dialect),
+    Auto(DialectGuess),
+}
+
+/// A job's failure: the error, and whether the G-code reader raised it (only a reader's
+/// refusal makes the fallback try another dialect).
+pub(crate) struct Failure {
+    pub(crate) error: Error,
+    pub(crate) by_reader: bool,
+}
+
+impl Choosing {
+    /// From `--dialect` (`spec`), the program's file `name` and its `head`.
+    pub(crate) fn new(spec: &str, name: Option<&Path>, head: &str) -> Result<Self, Error> {
+        Ok(match spec {
+            "auto" => Choosing::Auto(DialectGuess::new(name, head)),
+            d => Choosing::Named(d.parse::<Dialect>().map_err(|e| e.at("--dialect"))?),
+        })
+    }
+
+    /// The first dialect to read the program in.
+    pub(crate) fn first(&self) -> DialectChoice {
+        match self {
+            Choosing::Named(d) => DialectChoice {
+                dialect: *d,
+                reason: crate::gcode::DialectReason::Named,
+            },
+            Choosing::Auto(g) => g.choice(),
         }
-        d => Ok(d.parse::<Dialect>().map_err(|e| e.at("--dialect"))?),
+    }
+
+    /// Runs `attempt` in the first dialect; when it was found (not named) and its reader
+    /// refused the program, in the first other candidate for which `reads` (the whole
+    /// program read in that dialect) is true. A program no candidate reads keeps the first
+    /// refusal, which then says which dialect it was read in.
+    pub(crate) fn run<T>(
+        &self,
+        mut attempt: impl FnMut(Dialect) -> Result<T, Failure>,
+        reads: impl FnMut(Dialect) -> bool,
+    ) -> Result<(T, DialectChoice), Error> {
+        let first = self.first();
+        let failure = match attempt(first.dialect) {
+            Ok(t) => return Ok((t, first)),
+            Err(f) => f,
+        };
+        let Choosing::Auto(guess) = self else {
+            return Err(failure.error);
+        };
+        if !failure.by_reader {
+            return Err(failure.error);
+        }
+        match guess.fall_back(&failure.error, reads) {
+            Some(c) => attempt(c.dialect).map(|t| (t, c)).map_err(|f| f.error),
+            None => Err(match failure.error {
+                Error::Input(mut e) => {
+                    let said = e.expected.take().unwrap_or_default();
+                    e.expected = Some(format!(
+                        "{said} (read as {}, found from the program; no other dialect reads \
+                         it either)",
+                        first.dialect
+                    ));
+                    Error::Input(e)
+                }
+                e => e,
+            }),
+        }
     }
 }
 
@@ -161,24 +237,58 @@ pub fn run(
 ) -> Result<EstimateRun, Error> {
     check_rate(settings)?;
     let mut file = std::fs::File::open(path).map_err(|e| unreadable(path, "readable", &e))?;
-    let dialect = if settings.dialect == "auto" {
-        let mut head = Vec::with_capacity(DETECT_BYTES);
+    let mut head = Vec::new();
+    if settings.dialect == "auto" {
         Read::by_ref(&mut file)
             .take(DETECT_BYTES as u64)
             .read_to_end(&mut head)
             .map_err(|e| unreadable(path, "readable", &e))?;
-        std::io::Seek::rewind(&mut file).map_err(|e| unreadable(path, "seekable", &e))?;
-        Dialect::detect(&String::from_utf8_lossy(&head))
-    } else {
-        dialect(&settings.dialect, "")?
-    };
-    let opts = reader_options(dialect, path.display().to_string(), machine, settings)
-        .with_program_files(
+    }
+    let choosing = Choosing::new(
+        &settings.dialect,
+        Some(path),
+        &String::from_utf8_lossy(&head),
+    )?;
+    let opts = |d: Dialect| {
+        reader_options(d, path.display().to_string(), machine, settings).with_program_files(
             path,
             &settings.subroutine_path,
             settings.tool_table.as_deref(),
-        )?;
-    run_source(file, opts, machine, settings, progress)
+        )
+    };
+    // The options are checked once, before anything is read.
+    opts(Dialect::LinuxCnc)?;
+    let mut file = Some(file);
+    let (run, choice) = choosing.run(
+        |d| {
+            let f = match file.take() {
+                Some(mut f) => {
+                    std::io::Seek::rewind(&mut f).map_err(|e| Failure {
+                        error: unreadable(path, "seekable", &e),
+                        by_reader: false,
+                    })?;
+                    f
+                }
+                None => std::fs::File::open(path).map_err(|e| Failure {
+                    error: unreadable(path, "readable", &e),
+                    by_reader: false,
+                })?,
+            };
+            let o = opts(d).map_err(|error| Failure {
+                error,
+                by_reader: false,
+            })?;
+            run_source(f, o, machine, settings, progress)
+        },
+        |d| {
+            std::fs::File::open(path)
+                .is_ok_and(|f| opts(d).is_ok_and(|o| reads_whole(BufReader::new(f), o)))
+        },
+    )?;
+    Ok(EstimateRun {
+        dialect: choice,
+        ..run
+    })
 }
 
 /// [`run`] on a program's text, named `origin` in messages. It has no folder of its own:
@@ -190,13 +300,29 @@ pub fn run_text(
     settings: &EstimateSettings,
 ) -> Result<EstimateRun, Error> {
     check_rate(settings)?;
-    let d = dialect(&settings.dialect, text)?;
-    let opts = reader_options(d, origin.to_owned(), machine, settings).with_program_files(
-        Path::new(""),
-        &settings.subroutine_path,
-        settings.tool_table.as_deref(),
+    let choosing = Choosing::new(&settings.dialect, None, text)?;
+    let opts = |d: Dialect| {
+        reader_options(d, origin.to_owned(), machine, settings).with_program_files(
+            Path::new(""),
+            &settings.subroutine_path,
+            settings.tool_table.as_deref(),
+        )
+    };
+    opts(Dialect::LinuxCnc)?;
+    let (run, choice) = choosing.run(
+        |d| {
+            let o = opts(d).map_err(|error| Failure {
+                error,
+                by_reader: false,
+            })?;
+            run_source(text.as_bytes(), o, machine, settings, &mut |_| {})
+        },
+        |d| opts(d).is_ok_and(|o| reads_whole(text.as_bytes(), o)),
     )?;
-    run_source(text.as_bytes(), opts, machine, settings, &mut |_| {})
+    Ok(EstimateRun {
+        dialect: choice,
+        ..run
+    })
 }
 
 fn check_rate(settings: &EstimateSettings) -> Result<(), Error> {
@@ -219,6 +345,7 @@ fn reader_options(
     ReaderOptions::default()
         .with_dialect(dialect)
         .with_lenient(settings.lenient)
+        .with_step_budget(settings.step_budget)
         .with_origin(origin)
         // LinuxCNC stops where its task waits for motion (spindle, coolant, tool commands).
         .with_sync_points((machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait))
@@ -231,8 +358,29 @@ fn run_source<R: Read>(
     machine: &Machine,
     settings: &EstimateSettings,
     progress: &mut dyn FnMut(u64),
+) -> Result<EstimateRun, Failure> {
+    let refused = Cell::new(false);
+    estimate_source(source, opts, machine, settings, progress, &refused).map_err(|error| Failure {
+        error,
+        by_reader: refused.get(),
+    })
+}
+
+/// [`run_source`]; `refused` is set when the reader refuses the program.
+fn estimate_source<R: Read>(
+    source: R,
+    opts: ReaderOptions,
+    machine: &Machine,
+    settings: &EstimateSettings,
+    progress: &mut dyn FnMut(u64),
+    refused: &Cell<bool>,
 ) -> Result<EstimateRun, Error> {
     let start = opts.start;
+    // Replaced by the caller, which knows why the dialect was chosen.
+    let dialect = DialectChoice {
+        dialect: opts.dialect,
+        reason: crate::gcode::DialectReason::Named,
+    };
     let count = Rc::new(Cell::new(0));
     let counting = Counting {
         inner: source,
@@ -244,6 +392,7 @@ fn run_source<R: Read>(
     // Every move with where it starts, progress reported as the file is read.
     let tracked = std::iter::from_fn(|| {
         let item = reader.next()?;
+        refused.set(item.is_err());
         n_read += 1;
         if n_read % PROGRESS_MOVES == 0 {
             progress(count.get());
@@ -259,6 +408,7 @@ fn run_source<R: Read>(
             estimate: streamed(tracked, machine, settings)?,
             plan: None,
             toolpath: None,
+            dialect,
         });
     }
     let mut moves: Vec<(Point3, Move)> = Vec::new();
@@ -300,6 +450,7 @@ fn run_source<R: Read>(
         estimate,
         plan: Some(plan),
         toolpath: Some(tp),
+        dialect,
     })
 }
 

@@ -3,7 +3,8 @@
 //! material, rapids through material, engagement), with the gouge test allowing for the
 //! program's own rounding (2·½·10^−d·√2 mm at d decimals).
 
-use crate::gcode::{ReaderOptions, read_str};
+use super::estimate::{Choosing, Failure};
+use crate::gcode::{Dialect, DialectChoice, ReaderOptions, read_str};
 use crate::io::outline_json::Loops;
 use crate::stock::{self, PartVerification, Problem, StockSpec};
 use crate::strategy::pocket::{Stepover, nominal_engagement};
@@ -29,8 +30,12 @@ pub struct VerifySettings {
     pub subroutine_path: Vec<std::path::PathBuf>,
     /// A LinuxCNC tool table for G43 and T words.
     pub tool_table: Option<std::path::PathBuf>,
+    /// Lines the program may run again before it is refused as endless
+    /// ([`ReaderOptions::step_budget`]).
+    pub step_budget: u64,
     /// The program's dialect: `linuxcnc`, `fanuc`, `sinumerik`, `grbl`, or `auto` (found from
-    /// its first lines, [`crate::gcode::Dialect::detect`]).
+    /// its extension and first lines, [`crate::gcode::DialectGuess`], with the fallback to
+    /// the next candidate when the first one's reader refuses the program).
     pub dialect: String,
 }
 
@@ -45,6 +50,7 @@ impl Default for VerifySettings {
             select: None,
             subroutine_path: Vec::new(),
             tool_table: None,
+            step_budget: crate::gcode::DEFAULT_STEP_BUDGET,
             dialect: "auto".into(),
         }
     }
@@ -65,6 +71,8 @@ pub struct VerifyRun {
     pub gouge_resolution_mm: f64,
     /// The pockets checked (indices in the drawing, 1-based).
     pub selected: Vec<usize>,
+    /// The dialect the program was read in, and why.
+    pub dialect: DialectChoice,
 }
 
 impl VerifyRun {
@@ -92,16 +100,30 @@ pub fn run(
     settings: &VerifySettings,
 ) -> Result<VerifyRun, Error> {
     let (tool, s) = settings.check()?;
-    let dialect = super::estimate::dialect(&settings.dialect, text)?;
-    let ropts = ReaderOptions::default()
-        .with_dialect(dialect)
-        .with_origin(origin)
-        .with_program_files(
-            std::path::Path::new(origin),
-            &settings.subroutine_path,
-            settings.tool_table.as_deref(),
-        )?;
-    let (mut tp, _warnings) = read_str(text, ropts)?;
+    let choosing = Choosing::new(&settings.dialect, Some(std::path::Path::new(origin)), text)?;
+    let ropts = |d: Dialect| {
+        ReaderOptions::default()
+            .with_dialect(d)
+            .with_step_budget(settings.step_budget)
+            .with_origin(origin)
+            .with_program_files(
+                std::path::Path::new(origin),
+                &settings.subroutine_path,
+                settings.tool_table.as_deref(),
+            )
+    };
+    ropts(Dialect::LinuxCnc)?;
+    let read = |d: Dialect| {
+        let o = ropts(d).map_err(|error| Failure {
+            error,
+            by_reader: false,
+        })?;
+        read_str(text, o).map_err(|error| Failure {
+            error,
+            by_reader: true,
+        })
+    };
+    let ((mut tp, _warnings), dialect) = choosing.run(read, |d| read(d).is_ok())?;
     tp.tool = tool;
     stock::infer_levels(&mut tp);
     let decimals = settings.decimals.unwrap_or_else(|| program_decimals(text));
@@ -133,6 +155,7 @@ pub fn run(
         decimals,
         gouge_resolution_mm: resolution,
         selected,
+        dialect,
     })
 }
 
