@@ -203,7 +203,7 @@ pub fn verify(
     k.f64("tool_diameter", &mut s.tool_diameter)?;
     k.f64("wall_stock", &mut s.wall_stock)?;
     k.text("stepover", &mut s.stepover)?;
-    k.f64("cell", &mut s.cell)?;
+    k.opt_f64("cell", &mut s.cell)?;
     k.opt_u32("decimals", &mut s.decimals)?;
     k.opt_text("select", &mut s.select)?;
     k.text("dialect", &mut s.dialect)?;

@@ -71,7 +71,7 @@ pub fn pocket(
     k.bool("finish", &mut s.finish)?;
     k.bool("no_feed_modulation", &mut s.no_feed_modulation)?;
     k.text("machine", &mut s.machine)?;
-    k.f64("cell", &mut s.cell)?;
+    k.opt_f64("cell", &mut s.cell)?;
     k.opt_f64("draft", &mut s.draft)?;
     k.opt_text("bottom_outline", &mut s.bottom_outline)?;
     let program = k.program()?;

@@ -100,7 +100,7 @@ fn check(kind: StrategyKind) {
     let pts = along(&r.toolpath, &again.samples, &opts);
     assert!(pts.len() > 20_000, "{} samples", pts.len());
     let profile = FeedProfile::default();
-    let tolerance = profile.tolerance(sim().step);
+    let tolerance = profile.tolerance(sim().step_for(&r.toolpath.tool));
     let ramp = profile.ramp_distance(opts.slowdown);
 
     // 1. Never above the law's feed (plus the tolerance) at the engagement measured there.

@@ -122,9 +122,11 @@ pub struct CommonArgs {
     /// Machine for the cycle time: a preset name or a TOML machine profile.
     #[arg(long, default_value = "hsm")]
     pub machine: String,
-    /// Raster cell of the stock simulation, mm.
-    #[arg(long, default_value_t = 0.05)]
-    pub cell: f64,
+    /// Raster cell of the stock simulation, mm [default: 0.05 up to a 12.7 mm tool, then
+    /// 1/254 of the diameter: the simulation's resolution, like every tolerance, scales
+    /// with the tool above 12.7 mm]
+    #[arg(long)]
+    pub cell: Option<f64>,
     /// Draft angle of the walls, degrees (the walls lean into the pocket going down; each
     /// level is cut in its own section).
     #[arg(long, conflicts_with = "bottom_outline")]

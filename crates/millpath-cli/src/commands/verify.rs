@@ -36,9 +36,11 @@ pub struct Args {
     /// The nominal stepover, for the share above the nominal engagement.
     #[arg(long, default_value = "0.4")]
     pub stepover: String,
-    /// Raster cell, mm.
-    #[arg(long, default_value_t = 0.05)]
-    pub cell: f64,
+    /// Raster cell of the stock simulation, mm [default: 0.05 up to a 12.7 mm tool, then
+    /// 1/254 of the diameter: the simulation's resolution, like every tolerance, scales
+    /// with the tool above 12.7 mm]
+    #[arg(long)]
+    pub cell: Option<f64>,
     /// Write the findings as JSON.
     #[arg(long)]
     pub report: Option<PathBuf>,

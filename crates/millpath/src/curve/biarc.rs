@@ -155,12 +155,19 @@ fn one_arc(p: Point, t: Vec2, j: Point, from_start: bool, s_end: f64) -> Option<
         s_end,
     };
     let sweep = a.sweep().abs();
-    if sweep < MIN_ARC_SWEEP {
-        // Straight to within `ρ·θ²/8 < 1.3e-12 mm` (ρ < 1e7 mm): a line.
+    if sweep < MIN_ARC_SWEEP || (sweep < std::f64::consts::PI && rho.abs() >= MAX_ARC_RADIUS) {
+        // Straight to within `ρ·θ²/8 < 1.3e-12 mm` (ρ < 1e7 mm), or a radius beyond
+        // [`MAX_ARC_RADIUS`]: a line, whose deviation from the curve the fit measures like
+        // an arc's (a straight stretch of a part drawn 100 times as large has biarcs of
+        // radii beyond it: refusing them cut the stretch into tiny biarcs).
         return Some(ArcSeg { center: None, ..a });
     }
-    (sweep < std::f64::consts::PI && rho.abs() < 1e7).then_some(a)
+    (sweep < std::f64::consts::PI).then_some(a)
 }
+
+/// The largest radius of an arc the fit makes, mm: a biarc's arc of a larger radius is its
+/// chord (measured against the curve like any piece of the fit).
+pub const MAX_ARC_RADIUS: f64 = 1e7;
 
 /// The smallest sweep, radians, of an arc the fit keeps as an arc. A shorter one is written
 /// as its chord (within `ρ·θ²/8`, below 1.3e-12 mm at the fit's largest radius,

@@ -81,8 +81,9 @@ pub struct PocketSettings {
     pub no_feed_modulation: bool,
     /// Machine for the cycle time: a preset name or a TOML machine profile.
     pub machine: String,
-    /// Raster cell of the stock simulation, mm.
-    pub cell: f64,
+    /// Raster cell of the stock simulation, mm (`None`: 0.05 mm up to a 12.7 mm tool, 1/254
+    /// of the diameter above, [`crate::stock::DEFAULT_CELL`]).
+    pub cell: Option<f64>,
     /// Draft angle of the walls, degrees.
     pub draft: Option<f64>,
     /// Outline of the pocket's bottom (same vertex count and islands as the top).
@@ -116,7 +117,7 @@ impl Default for PocketSettings {
             finish: false,
             no_feed_modulation: false,
             machine: "hsm".into(),
-            cell: 0.05,
+            cell: None,
             draft: None,
             bottom_outline: None,
         }
@@ -215,12 +216,7 @@ impl PocketSettings {
         let machine = super::load_machine(&self.machine)?;
         opts.spiral.curvature_ramps = machine.axes.iter().any(|a| a.max_jerk.is_finite());
         opts.validate(&tool)?;
-        if !(self.cell.is_finite() && self.cell > 0.0) {
-            return Err(InputError::new("cell", self.cell)
-                .at("--cell")
-                .expected("a cell > 0 mm")
-                .into());
-        }
+        check_cell(self.cell)?;
         Ok((tool, opts))
     }
 
@@ -271,11 +267,10 @@ impl PocketSettings {
         Ok(shape)
     }
 
-    /// Simulation options.
+    /// Simulation options: [`SimOptions::default`] (scaled with the tool) unless a cell is
+    /// given ([`sim_options`]).
     pub fn sim(&self) -> SimOptions {
-        SimOptions::default()
-            .with_cell(self.cell)
-            .with_step((2.0 * self.cell).max(0.1))
+        sim_options(self.cell, self.tool_diameter)
     }
 
     /// The checks made before the outline is read (an error at once, before a drawing is
@@ -284,6 +279,28 @@ impl PocketSettings {
         parse_choice(&self.strategy)?;
         program_options("spiral", &super::load_machine(&self.machine)?, program)?;
         Ok(())
+    }
+}
+
+/// The stock simulation of a job with `cell` (`None`: the defaults, which scale with the
+/// tool, [`SimOptions`]) and a tool of `diameter` mm: a cell given is used as given, with the
+/// tool positions two cells apart (no closer than the default spacing for the tool).
+pub fn sim_options(cell: Option<f64>, diameter: f64) -> SimOptions {
+    match cell {
+        None => SimOptions::default(),
+        Some(c) => SimOptions::default().with_cell(c).with_step(
+            (2.0 * c).max(crate::stock::DEFAULT_STEP * crate::toolpath::tolerance_scale(diameter)),
+        ),
+    }
+}
+
+/// Refuses a cell given that is not a length > 0 (`--cell`).
+pub fn check_cell(cell: Option<f64>) -> Result<(), InputError> {
+    match cell {
+        Some(c) if !(c.is_finite() && c > 0.0) => Err(InputError::new("cell", c)
+            .at("--cell")
+            .expected("a cell > 0 mm")),
+        _ => Ok(()),
     }
 }
 

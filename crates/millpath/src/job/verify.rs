@@ -20,8 +20,9 @@ pub struct VerifySettings {
     pub wall_stock: f64,
     /// The nominal stepover, for the share above the nominal engagement.
     pub stepover: String,
-    /// Raster cell, mm.
-    pub cell: f64,
+    /// Raster cell, mm (`None`: 0.05 mm up to a 12.7 mm tool, 1/254 of the diameter above,
+    /// [`crate::stock::DEFAULT_CELL`]).
+    pub cell: Option<f64>,
     /// Decimals the program was written with (`None`: the most found in it).
     pub decimals: Option<u32>,
     /// Check only these pockets of the drawing: `1,3`, `2-4` (all when `None`).
@@ -45,7 +46,7 @@ impl Default for VerifySettings {
             tool_diameter: 12.7,
             wall_stock: 0.0,
             stepover: "0.4".into(),
-            cell: 0.05,
+            cell: None,
             decimals: None,
             select: None,
             subroutine_path: Vec::new(),
@@ -138,9 +139,7 @@ pub fn run(
             wall_stock: settings.wall_stock,
         })
         .collect();
-    let sim = stock::SimOptions::default()
-        .with_cell(settings.cell)
-        .with_step((2.0 * settings.cell).max(0.1));
+    let sim = super::pocket::sim_options(settings.cell, tool.diameter);
     let part = stock::verify_part(
         &tp,
         &specs,
@@ -170,12 +169,7 @@ impl VerifySettings {
                 .expected("a stock >= 0 mm")
                 .into());
         }
-        if !(self.cell.is_finite() && self.cell > 0.0) {
-            return Err(InputError::new("cell", self.cell)
-                .at("--cell")
-                .expected("a cell > 0 mm")
-                .into());
-        }
+        super::pocket::check_cell(self.cell)?;
         let s = Stepover::parse(&self.stepover)?.distance(tool.diameter);
         Ok((tool, s))
     }

@@ -27,7 +27,9 @@ pub struct Clearance {
     pub move_index: usize,
 }
 
-/// Sample spacing before refinement, mm.
+/// Sample spacing before refinement, mm, times the tool's
+/// [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale) (the refinement finds the
+/// minimum to 1e-9 mm whatever the spacing; the spacing only has to separate the minima).
 const SAMPLE: f64 = 0.25;
 
 /// The smallest distance between the tool centre (below `z = 0`) and the walls.
@@ -169,7 +171,7 @@ pub fn min_clearance_levels(tp: &Toolpath, specs: &[StockSpec<'_>]) -> Clearance
                 _ => from.lerp(m.to, f),
             }
         };
-        let n = ((len / SAMPLE).ceil() as usize).max(1);
+        let n = ((len / (SAMPLE * tp.tool.tolerance_scale())).ceil() as usize).max(1);
         let h = len / n as f64;
         let vals: Vec<f64> = (0..=n).map(|i| dist(pos(h * i as f64).xy())).collect();
         let floor = vals.iter().copied().fold(f64::INFINITY, f64::min);

@@ -4,15 +4,15 @@
 //! outline; it shares no code with the strategies that made the path (it uses the geometry
 //! library directly).
 //!
-//! * `raster`: the material of one slab as a bitset of cells (0.05 mm by default, at most
-//!   an eighth of the tool radius, [`MAX_CELL_RADII`]).
-//! * `simulate`: sweeps the tool disc along every move, sample by sample (0.1 mm apart, at
-//!   most a quarter of the tool radius), clearing between consecutive samples the cells
-//!   within `r` of the segment joining them (along an arc, within `r` plus the sagitta of the
-//!   arc between them): the swept area itself, with no scallop between samples, so that
-//!   passes exactly one diameter apart leave nothing. It measures, at every sample, the
-//!   **true radial depth of cut** as the area removed per
-//!   unit of travel, `a_e = ΔA / Δs`, averaged over 0.5 mm of travel. For a straight cut
+//! * `raster`: the material of one slab as a bitset of cells ([`DEFAULT_CELL`], 0.05 mm, by
+//!   default, at most an eighth of the tool radius, [`MAX_CELL_RADII`]).
+//! * `simulate`: sweeps the tool disc along every move, sample by sample ([`DEFAULT_STEP`],
+//!   0.1 mm apart, at most a quarter of the tool radius), clearing between consecutive
+//!   samples the cells within `r` of the segment joining them (along an arc, within `r` plus
+//!   the sagitta of the arc between them): the swept area itself, with no scallop between
+//!   samples, so that passes exactly one diameter apart leave nothing. It measures, at every
+//!   sample, the **true radial depth of cut** as the area removed per unit of travel,
+//!   `a_e = ΔA / Δs`, averaged over [`DEFAULT_WINDOW`] (0.5 mm) of travel. For a straight cut
 //!   removing a band of width `a_e` this is exact; the **engagement angle** follows from the
 //!   chord geometry of a one-sided cut, `φ = arccos(1 − a_e/r)` (0 at `a_e = 0`, 90° at
 //!   `a_e = r`, 180° at slotting, `a_e = 2r`). With [`SimOptions::record_samples`] it keeps
@@ -29,6 +29,14 @@
 //! * `gouge`: the exact clearance between every move below the stock top and the outline
 //!   and islands, against `r + stock −` [`GOUGE_RESOLUTION`] (the resolution a program is
 //!   written at: closer than that is rounding, not a gouge).
+//! * Scale: the default cell, step and window are millimetres for tools up to 12.7 mm and
+//!   grow with the tool above ([`crate::toolpath::Tool::tolerance_scale`], `λ = D/12.7 mm`:
+//!   a cell of `D/254`), and so does the uncut-area tolerance, with `λ²`
+//!   ([`uncut_area_tolerance`]): a pocket and its enlargement cut with the tool enlarged
+//!   alike are simulated on the same raster, cell for cell, with the same tool positions
+//!   ([`Verification::raster_cells`], [`Verification::tool_positions`] count them). A cell,
+//!   step or window given ([`SimOptions::with_cell`]) is used as given. The gouge verdict's
+//!   [`GOUGE_RESOLUTION`] stays the written program's resolution at every scale.
 //! * Inclined walls ([`verify_levels`]): each level has its own section of the pocket; a
 //!   slab's material is its level's section, and a level's moves are checked against its
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
@@ -45,8 +53,8 @@ pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
 pub use simulate::{
-    EngagementSample, MAX_CELL_RADII, MoveEngagement, SimOptions, Simulation, simulate,
-    simulate_levels,
+    DEFAULT_CELL, DEFAULT_STEP, DEFAULT_WINDOW, EngagementSample, MAX_CELL_RADII, MoveEngagement,
+    SimOptions, Simulation, simulate, simulate_levels,
 };
 
 use crate::geom::Outline;
@@ -90,6 +98,15 @@ pub struct Verification {
     pub share_above_nominal: f64,
     /// Raster cell used, mm.
     pub cell_mm: f64,
+    /// Cells of one slab's raster (the simulation's memory and the work of filling and
+    /// checking a slab; the same for a drawing and its enlargement cut with the tool enlarged
+    /// alike, [`SimOptions`]).
+    pub raster_cells: usize,
+    /// Tool positions the simulation swept along the feed moves (the work of the sweep).
+    pub tool_positions: usize,
+    /// The uncut area beyond which coverage fails, mm² ([`uncut_area_tolerance`] of the
+    /// tool).
+    pub uncut_tolerance_mm2: f64,
 }
 
 /// How much closer than the required clearance the tool centre may come before it is a
@@ -107,8 +124,17 @@ pub fn gouge_resolution(decimals: u32) -> f64 {
 }
 
 /// How far uncut material may add up, mm², before coverage fails (a few cells along a
-/// boundary where the raster's rounding leaves single cells).
+/// boundary where the raster's rounding leaves single cells), for tools up to
+/// [`crate::toolpath::REFERENCE_DIAMETER`]; [`uncut_area_tolerance`] scales it for larger
+/// ones.
 pub const UNCUT_AREA_TOLERANCE: f64 = 0.05;
+
+/// The uncut area beyond which coverage fails for `tool`, mm²: [`UNCUT_AREA_TOLERANCE`] times
+/// the square of [`Tool::tolerance_scale`](crate::toolpath::Tool::tolerance_scale) (the
+/// raster's cells, and the slivers they leave, grow with the tool's square).
+pub fn uncut_area_tolerance(tool: &crate::toolpath::Tool) -> f64 {
+    UNCUT_AREA_TOLERANCE * tool.tolerance_scale().powi(2)
+}
 
 impl Verification {
     /// The uncut area and where most of it lies, in words: `"1.234 mm², most of it around
@@ -133,7 +159,7 @@ impl Verification {
                 required_mm: self.required_clearance_mm,
             });
         }
-        if self.uncut_area_mm2 > UNCUT_AREA_TOLERANCE {
+        if self.uncut_area_mm2 > self.uncut_tolerance_mm2 {
             out.push(Problem::Uncut {
                 area_mm2: self.uncut_area_mm2,
                 at: self.uncut_at,
@@ -195,6 +221,9 @@ pub fn combine_levels(tp: &Toolpath, specs: &[StockSpec<'_>], s: &Simulation) ->
         max_radial_depth_mm: s.max_radial_depth_mm,
         share_above_nominal: s.share_above_nominal,
         cell_mm: s.cell_mm,
+        raster_cells: s.raster_cells,
+        tool_positions: s.tool_positions,
+        uncut_tolerance_mm2: uncut_area_tolerance(&tp.tool),
     }
 }
 

@@ -137,7 +137,11 @@ pub fn verify_part(
             }
             None => {
                 lengths.push(0.0);
-                let area = if super::simulate::reachable(*spec, tp.tool.radius(), sim.cell) {
+                let area = if super::simulate::reachable(
+                    *spec,
+                    tp.tool.radius(),
+                    sim.cell_for(&tp.tool),
+                ) {
                     crate::geom::area_less_islands(spec.outer, spec.islands)
                 } else {
                     unreachable.push(per.len());
@@ -155,7 +159,10 @@ pub fn verify_part(
                     mean_engagement_deg: 0.0,
                     max_radial_depth_mm: 0.0,
                     share_above_nominal: 0.0,
-                    cell_mm: sim.cell,
+                    cell_mm: sim.cell_for(&tp.tool),
+                    raster_cells: 0,
+                    tool_positions: 0,
+                    uncut_tolerance_mm2: super::uncut_area_tolerance(&tp.tool),
                 });
             }
         }
@@ -203,5 +210,11 @@ fn combine_all(per: &[Verification], lengths: &[f64], r: f64) -> Verification {
             .fold(0.0, f64::max),
         share_above_nominal: weigh(|v| v.share_above_nominal),
         cell_mm: per.iter().map(|v| v.cell_mm).fold(0.0, f64::max),
+        raster_cells: per.iter().map(|v| v.raster_cells).sum(),
+        tool_positions: per.iter().map(|v| v.tool_positions).sum(),
+        uncut_tolerance_mm2: per
+            .iter()
+            .map(|v| v.uncut_tolerance_mm2)
+            .fold(super::UNCUT_AREA_TOLERANCE, f64::max),
     }
 }

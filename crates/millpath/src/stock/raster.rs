@@ -24,8 +24,7 @@ pub struct Raster {
 impl Raster {
     /// An empty raster covering `bounds` with square cells of side `cell` mm.
     pub fn new(bounds: Aabb, cell: f64) -> Self {
-        let nx = ((bounds.width() / cell).ceil() as usize).max(1) + 2;
-        let ny = ((bounds.height() / cell).ceil() as usize).max(1) + 2;
+        let (nx, ny) = Self::dims_of(bounds, cell);
         let words = nx.div_ceil(64);
         Raster {
             origin: Point::new(bounds.min.x - cell, bounds.min.y - cell),
@@ -35,6 +34,15 @@ impl Raster {
             words,
             bits: vec![0; words * ny],
         }
+    }
+
+    /// Cells along x and along y of the raster [`Raster::new`] makes (a cell of margin on
+    /// every side).
+    pub fn dims_of(bounds: Aabb, cell: f64) -> (usize, usize) {
+        (
+            ((bounds.width() / cell).ceil() as usize).max(1) + 2,
+            ((bounds.height() / cell).ceil() as usize).max(1) + 2,
+        )
     }
 
     /// Cell side in mm.

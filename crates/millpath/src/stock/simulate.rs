@@ -4,24 +4,41 @@ use super::StockSpec;
 use super::raster::Raster;
 use super::reach::ReachMap;
 use crate::geom::Point3;
-use crate::toolpath::{Move, MoveKind, Toolpath};
+use crate::toolpath::{Move, MoveKind, Tool, Toolpath};
 use cavalier_contours::polyline::Polyline;
 use std::collections::VecDeque;
 
+/// The raster cell for tools up to 12.7 mm
+/// ([`REFERENCE_DIAMETER`](crate::toolpath::REFERENCE_DIAMETER)), mm; larger tools get it
+/// times their [`Tool::tolerance_scale`] (`D/254`).
+pub const DEFAULT_CELL: f64 = 0.05;
+/// The spacing of the tool positions for tools up to 12.7 mm, mm (scaled like
+/// [`DEFAULT_CELL`]).
+pub const DEFAULT_STEP: f64 = 0.1;
+/// The travel the radial depth of cut is averaged over for tools up to 12.7 mm, mm (scaled
+/// like [`DEFAULT_CELL`]).
+pub const DEFAULT_WINDOW: f64 = 0.5;
+
 /// Simulation resolution. Built from [`Default`] with the `with_*` methods (the struct is
-/// `#[non_exhaustive]`: new settings do not break callers).
+/// `#[non_exhaustive]`: new settings do not break callers). A length left at `None` is its
+/// default for the toolpath's tool ([`DEFAULT_CELL`], [`DEFAULT_STEP`], [`DEFAULT_WINDOW`]
+/// times [`Tool::tolerance_scale`]: a drawing and its enlargement with the tool enlarged
+/// alike are simulated on the same raster, cell for cell); a length set is used as given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct SimOptions {
-    /// Raster cell side, mm: at most [`MAX_CELL_RADII`] tool radii whatever is asked, and
-    /// enlarged if the raster would exceed `max_cells`.
-    pub cell: f64,
-    /// Spacing of the tool positions along a move, mm; at most `MAX_STEP_RADII` tool radii
-    /// whatever is asked (discs farther apart would leave slivers of their own between them,
-    /// uncut material no toolpath left).
-    pub step: f64,
-    /// Travel over which the radial depth of cut is averaged, mm.
-    pub window: f64,
+    /// Raster cell side, mm (`None`: [`DEFAULT_CELL`] scaled with the tool): at most
+    /// [`MAX_CELL_RADII`] tool radii whatever is asked, and enlarged if the raster would
+    /// exceed `max_cells`.
+    pub cell: Option<f64>,
+    /// Spacing of the tool positions along a move, mm (`None`: [`DEFAULT_STEP`] scaled with
+    /// the tool); at most `MAX_STEP_RADII` tool radii whatever is asked (discs farther
+    /// apart would leave slivers of their own between them, uncut material no toolpath
+    /// left).
+    pub step: Option<f64>,
+    /// Travel over which the radial depth of cut is averaged, mm (`None`:
+    /// [`DEFAULT_WINDOW`] scaled with the tool).
+    pub window: Option<f64>,
     /// Most cells in one raster.
     pub max_cells: usize,
     /// Keep the engagement at every tool position of every feed move
@@ -32,9 +49,9 @@ pub struct SimOptions {
 impl Default for SimOptions {
     fn default() -> Self {
         SimOptions {
-            cell: 0.05,
-            step: 0.1,
-            window: 0.5,
+            cell: None,
+            step: None,
+            window: None,
             max_cells: 40_000_000,
             record_samples: false,
         }
@@ -43,16 +60,51 @@ impl Default for SimOptions {
 
 option_builders! {
     SimOptions;
-    /// Sets [`SimOptions::cell`], mm.
-    with_cell => cell: f64;
-    /// Sets [`SimOptions::step`], mm.
-    with_step => step: f64;
-    /// Sets [`SimOptions::window`], mm.
-    with_window => window: f64;
     /// Sets [`SimOptions::max_cells`].
     with_max_cells => max_cells: usize;
     /// Sets [`SimOptions::record_samples`].
     with_record_samples => record_samples: bool;
+}
+
+impl SimOptions {
+    /// Sets [`SimOptions::cell`], mm (used as given, whatever the tool).
+    #[must_use]
+    pub fn with_cell(mut self, cell: f64) -> Self {
+        self.cell = Some(cell);
+        self
+    }
+
+    /// Sets [`SimOptions::step`], mm (used as given, whatever the tool).
+    #[must_use]
+    pub fn with_step(mut self, step: f64) -> Self {
+        self.step = Some(step);
+        self
+    }
+
+    /// Sets [`SimOptions::window`], mm (used as given, whatever the tool).
+    #[must_use]
+    pub fn with_window(mut self, window: f64) -> Self {
+        self.window = Some(window);
+        self
+    }
+
+    /// The cell asked for `tool`, mm: the one set, else [`DEFAULT_CELL`] scaled with the
+    /// tool (before the bounds of [`SimOptions::cell`]).
+    pub fn cell_for(&self, tool: &Tool) -> f64 {
+        self.cell.unwrap_or(DEFAULT_CELL * tool.tolerance_scale())
+    }
+
+    /// The spacing of the tool positions asked for `tool`, mm (before the bound of
+    /// [`SimOptions::step`]).
+    pub fn step_for(&self, tool: &Tool) -> f64 {
+        self.step.unwrap_or(DEFAULT_STEP * tool.tolerance_scale())
+    }
+
+    /// The averaging travel for `tool`, mm.
+    pub fn window_for(&self, tool: &Tool) -> f64 {
+        self.window
+            .unwrap_or(DEFAULT_WINDOW * tool.tolerance_scale())
+    }
 }
 
 /// Engagement measured along one move.
@@ -108,6 +160,10 @@ pub struct Simulation {
     pub plunges: usize,
     /// The raster cell used, mm.
     pub cell_mm: f64,
+    /// Cells of the raster of one slab (what a slab costs to fill and to check).
+    pub raster_cells: usize,
+    /// Tool positions swept along the feed moves (what the sweep costs).
+    pub tool_positions: usize,
 }
 
 /// Engagement angle (rad) of a one-sided cut of radial depth `ae` with a tool of radius `r`.
@@ -205,7 +261,7 @@ pub fn simulate_levels(
         .fold(first_spec.outer.bounds(), |b, o| b.union(o.bounds()));
     let area = bounds.width() * bounds.height();
     let cell = opts
-        .cell
+        .cell_for(&tp.tool)
         .min(MAX_CELL_RADII * r)
         .max((area / opts.max_cells as f64).sqrt());
     let fresh = |spec: StockSpec<'_>| {
@@ -236,13 +292,16 @@ pub fn simulate_levels(
     let mut out = Simulation {
         per_move: vec![None; tp.moves.len()],
         cell_mm: cell,
+        raster_cells: {
+            let (nx, ny) = Raster::dims_of(bounds, cell);
+            nx * ny
+        },
         ..Simulation::default()
     };
     let cell_area = cell * cell;
-    let step = opts.step.min(MAX_STEP_RADII * r).max(1e-3);
-    let opts = &SimOptions { step, ..*opts };
+    let step = opts.step_for(&tp.tool).min(MAX_STEP_RADII * r).max(1e-3);
     let rim = plunge_rim(cell, step, r);
-    let window_n = ((opts.window / opts.step).ceil() as usize).max(1);
+    let window_n = ((opts.window_for(&tp.tool) / step).ceil() as usize).max(1);
     let (mut sum_angle, mut cut_len, mut above_len) = (0.0, 0.0, 0.0);
     let nominal = nominal_deg.to_radians() + 2f64.to_radians();
     let mut uncut_cells = 0usize;
@@ -299,7 +358,7 @@ pub fn simulate_levels(
                 // (the tool is a cylinder), never material.
                 let retract = m.to.z >= start.z && start.xy().distance(m.to.xy()) <= 1e-9;
                 if !retract && start.z.min(m.to.z) < top - 1e-9 {
-                    let hit = samples(start, m, opts.step)
+                    let hit = samples(start, m, step)
                         .iter()
                         .any(|p| p.z < top - 1e-9 && ras.count_disc(p.xy(), r) > 0);
                     if hit {
@@ -318,7 +377,8 @@ pub fn simulate_levels(
                 }
                 let mut eng: Option<MoveEngagement> = None;
                 let mut prev = start;
-                let at = samples(start, m, opts.step);
+                let at = samples(start, m, step);
+                out.tool_positions += at.len();
                 let (len, n) = (m.length_from(start), at.len() as f64);
                 // The tool sweeps the capsule between consecutive samples; along an arc the
                 // chord's capsule is widened by the sagitta of the arc between them, so that

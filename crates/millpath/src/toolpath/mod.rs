@@ -9,7 +9,7 @@ mod moves;
 mod tool;
 
 pub use moves::{Corner, CurveTag, Move, MoveKind, Plane};
-pub use tool::Tool;
+pub use tool::{REFERENCE_DIAMETER, Tool, tolerance_scale};
 
 use crate::geom::{Aabb, Point3};
 use serde::{Deserialize, Serialize};

@@ -56,6 +56,14 @@
 //!
 //! `F` is each move's programmed feed (the feed, or the plunge feed of entries).
 //!
+//! **Scale.** The samples come `λ·0.1 mm` apart for a tool of diameter `D` over 12.7 mm
+//! (`λ = D / 12.7 mm`, [`crate::stock::SimOptions`]), as the simulation's cells grow with
+//! the tool. The rate `ρ` and the shortest piece stay in millimetres at every scale: they
+//! are the machine's (its deceleration at the feed, the planner's cost of a knot), not the
+//! part's. A pocket and its enlargement cut with the tool enlarged alike therefore get the
+//! same path with the same samples, but the larger one's feed changes are sharper relative
+//! to the part, and its path is split into more pieces.
+//!
 //! **Why 5 % and 5 mm.** Every feed change is a knot of the jerk-limited planner
 //! ([`crate::motion::plan`]: zero acceleration at knots), about 10 ms each at 600 in/min on
 //! `hsm`; LinuxCNC's trapezoidal planner does not notice them. On the aerospace pocket (one

@@ -12,16 +12,24 @@ use super::{PocketOptions, PocketResult, StrategyKind};
 use crate::error::Result;
 use crate::stock::Verification;
 
-/// The deepest gouge [`super::generate`] lets through, mm: the tool centre may come this much
-/// closer to a wall than the tool radius plus the wall stock. Above the offsets' rounding and
-/// the stock simulation's sampling (nanometres to micrometres, which
-/// [`Verification::problems`] still reports, from 1e-6 mm), below any machining tolerance.
+/// The deepest gouge [`super::generate`] lets through, mm, for tools up to 12.7 mm
+/// ([`gouge_tolerance`] for a tool): the tool centre may come this much closer to a wall than
+/// the tool radius plus the wall stock. Above the offsets' rounding and the stock
+/// simulation's sampling (nanometres to micrometres, which [`Verification::problems`] still
+/// reports, from 1e-6 mm), below any machining tolerance.
 pub const GOUGE_TOLERANCE: f64 = 0.01;
+
+/// [`GOUGE_TOLERANCE`] for `tool`: times its
+/// [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale), as the spiral's margin and arc
+/// tolerance it sits above.
+pub fn gouge_tolerance(tool: &crate::toolpath::Tool) -> f64 {
+    GOUGE_TOLERANCE * tool.tolerance_scale()
+}
 
 /// What [`first_clear`] found.
 #[derive(Debug)]
 pub enum Attempts {
-    /// The first result that clears the walls to within [`GOUGE_TOLERANCE`]: the one asked
+    /// The first result that clears the walls to within [`gouge_tolerance`]: the one asked
     /// for, or a fallback with its note.
     Clears(PocketResult),
     /// Every attempt gouged: the one asked for.
@@ -29,20 +37,21 @@ pub enum Attempts {
 }
 
 /// Runs `attempt` with `opts`, then with each fallback of `opts` while the result gouges by
-/// more than [`GOUGE_TOLERANCE`]. An error of the first attempt is returned; a fallback that
-/// fails is skipped.
+/// more than [`gouge_tolerance`] of the tool. An error of the first attempt is returned; a
+/// fallback that fails is skipped.
 pub fn first_clear(
     kind: StrategyKind,
     opts: &PocketOptions,
     mut attempt: impl FnMut(&PocketOptions) -> Result<PocketResult>,
 ) -> Result<Attempts> {
     let r = attempt(opts)?;
-    if gouge(&r.verification) <= GOUGE_TOLERANCE {
+    let tol = gouge_tolerance(&r.toolpath.tool);
+    if gouge(&r.verification) <= tol {
         return Ok(Attempts::Clears(r));
     }
     for o in &fallbacks(kind, opts) {
         if let Ok(mut r2) = attempt(o)
-            && gouge(&r2.verification) <= GOUGE_TOLERANCE
+            && gouge(&r2.verification) <= tol
         {
             r2.notes.push(note(kind, opts, o, gouge(&r.verification)));
             return Ok(Attempts::Clears(r2));

@@ -40,6 +40,17 @@
 //!   boundary offset.
 //!
 //! `auto` plans all three, verifies and times each, and keeps the fastest verified one.
+//!
+//! **Scale.** Every length above written in millimetres (the gouge and uncut-area
+//! tolerances, the spiral's margin and arc tolerance, sample spacings and chords, the stock
+//! simulation's cell and step) holds for tools up to 12.7 mm and grows with the tool above
+//! it ([`crate::toolpath::Tool::tolerance_scale`], an area with its square): a pocket and its
+//! enlargement cut with the tool, depths and heights enlarged alike plan the same path,
+//! scaled, with the same work. What stays in millimetres is the written program's resolution
+//! (arcs flatter than [`ARC_AS_LINE_SAGITTA`] are lines, the gouge verdict's resolution),
+//! the offsets' numerical tolerances, and the feed profile's rate and shortest piece (the
+//! machine's deceleration and the planner's cost of a knot, `feed`): the larger pocket's
+//! feed changes are split into more pieces.
 
 pub(crate) mod auto;
 pub mod builtin;
@@ -188,7 +199,7 @@ fn toolpath_and_sections(
     Ok((tp, sections))
 }
 
-pub use gouge_retry::{GOUGE_TOLERANCE, PocketNote};
+pub use gouge_retry::{GOUGE_TOLERANCE, PocketNote, gouge_tolerance};
 
 /// Generates, modulates the feed and verifies: every level against its own section (and the
 /// section of the slab's top, see [`crate::stock::verify_levels`]).
@@ -281,11 +292,12 @@ fn check_path_size(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Re
 }
 
 /// `r`, unless it leaves material the tool could have reached (more than
-/// [`stock::UNCUT_AREA_TOLERANCE`] beyond the corner cusps and wall stock the tool radius
+/// [`stock::uncut_area_tolerance`] of the tool, [`stock::UNCUT_AREA_TOLERANCE`] up to a
+/// 12.7 mm tool, beyond the corner cusps and wall stock the tool radius
 /// implies): then an internal error naming the area and where most of it lies, as for a
 /// gouge. A strategy that leaves such material is a bug in the strategy.
 fn refuse_uncut(kind: StrategyKind, r: PocketResult) -> Result<PocketResult> {
-    if r.verification.uncut_area_mm2 <= stock::UNCUT_AREA_TOLERANCE {
+    if r.verification.uncut_area_mm2 <= r.verification.uncut_tolerance_mm2 {
         return Ok(r);
     }
     Err(crate::Error::internal(format!(
@@ -363,7 +375,7 @@ fn finishing_plan(
     // The roughing's last loops, a little inside: the spiral cuts its walls' loops
     // LAST_LOOP_MARGIN inside them, so a lead-in from the exact loop would feed down into
     // that sliver (a plunge, and the rapid above it through material).
-    let mut rough = shape.offset(r + stock + 2.0 * LAST_LOOP_MARGIN);
+    let mut rough = shape.offset(r + stock + 2.0 * spiral::last_loop_margin(tool));
     let mut cuts = Vec::new();
     for k in (0..steps).rev() {
         let region = shape.offset(r + k as f64 * h);

@@ -377,13 +377,16 @@ fn loop_centroid(pl: &Polyline<f64>) -> Option<Point> {
 }
 
 /// The smallest helix radius worth a helix, mm (below, the ramp along the loop is used), for
-/// tools of radius 3 mm and more; a thirtieth of the tool radius `r` for smaller tools, so
-/// that a part and its tool drawn at another scale get the same entries.
+/// tools of radius 3 mm to 6.35 mm; a thirtieth of the tool radius `r` for smaller tools, and
+/// times the [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale) for tools over
+/// 12.7 mm (`r/63.5`), so that a part and its tool drawn at another scale get the same
+/// entries.
 pub const MIN_HELIX_RADIUS: f64 = 0.1;
 
-/// [`MIN_HELIX_RADIUS`] for a tool of radius `r`: `min(0.1 mm, r/30)`.
+/// [`MIN_HELIX_RADIUS`] for a tool of radius `r`: `min(0.1 mm·λ, r/30)`, `λ` the tool's
+/// tolerance scale.
 pub(super) fn min_helix_radius(r: f64) -> f64 {
-    MIN_HELIX_RADIUS.min(r / 30.0)
+    (MIN_HELIX_RADIUS * crate::toolpath::tolerance_scale(2.0 * r)).min(r / 30.0)
 }
 
 /// Largest loop spacing as a fraction of the tool radius (see the module docs).

@@ -64,7 +64,9 @@ use std::f64::consts::TAU;
 
 /// The most material a row left to the clean-up pass may leave, mm: the lens between the
 /// tool's sweep along a row of length `L` and its discs at the row's ends, `L²/(8r)` thick
-/// (see the module docs). Well below the verifier's resolution (the program's rounding).
+/// (see the module docs), for tools up to 12.7 mm (times the tool's
+/// [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale) above). Well below the
+/// verifier's resolution (the program's rounding, and the simulation's cell).
 pub const ROW_LEFT_CUSP: f64 = 1e-4;
 
 /// The zigzag strategy's plan for one level.
@@ -105,7 +107,9 @@ pub fn plan(
     let n = ((y1 - y0) / s - 1e-9).ceil().max(1.0) as usize;
     let h = (y1 - y0) / n as f64;
     // Rows shorter than this are left to the clean-up pass (see the module docs).
-    let min_row = (8.0 * tool.radius() * ROW_LEFT_CUSP).sqrt().max(1e-9);
+    let min_row = (8.0 * tool.radius() * ROW_LEFT_CUSP * tool.tolerance_scale())
+        .sqrt()
+        .max(1e-9);
     let mut rows: Vec<Vec<(f64, f64)>> = Vec::with_capacity(n + 1);
     let mut ys = Vec::with_capacity(n + 1);
     for j in 0..=n {

@@ -153,12 +153,14 @@ fn plan_fronts(
         [one] => one.clone(),
         _ => return Ok(None),
     };
-    let b_eps = last_loop(&b);
+    let k = tool.tolerance_scale();
+    let margin = LAST_LOOP_MARGIN * k;
+    let b_eps = last_loop(&b, margin);
     let Some((c, rho_b)) = fronts::ridge_centre(&b) else {
         return Ok(None);
     };
     let (rho_h, r0) = centre_radii(tool, opts, rho_b)?;
-    let ds = (s / 3.0).clamp(0.05, FRONT_SAMPLE);
+    let ds = (s / 3.0).clamp(0.05 * k, FRONT_SAMPLE * k);
     let ridge = fronts::ridge_segment(&b, c, rho_b, r0, 0.5 * sp, Vec2::from_angle(start_angle));
     // Both smoothing radii; the shorter spiral is kept. The larger radius runs faster where
     // it takes no more laps; where its rounded fronts need an extra (halved) step, or cannot
@@ -176,7 +178,7 @@ fn plan_fronts(
             rho_h,
             sp,
             ds,
-            ds_last: ds.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
+            ds_last: ds.min(0.9 * (8.0 * d0 * margin).sqrt()),
             tool_radius: tool.radius(),
             smooth: opts.spiral.min_radius.max(fraction * s),
             ccw: opts.direction == Direction::Climb,
@@ -184,6 +186,7 @@ fn plan_fronts(
             ridge,
             arcs: opts.spiral.arcs,
             max_gap: (CORNER_GAP * sp).min(CORNER_GAP * tool.radius()),
+            scale: k,
         };
         // cavalier_contours panics on some degenerate booleans of the fronts (its slices
         // fail to stitch into closed loops): the fronts then fail, like any failed front.
@@ -245,7 +248,9 @@ const CORNER_GAP: f64 = 1.8;
 /// then sit just below the nominal engagement (at exactly `s` the raster's noise puts half of
 /// them above it).
 const FRONT_STEP: f64 = 0.98;
-/// Largest sample spacing along the fronts' laps, mm. The laps are output as G1 polylines; a
+/// Largest sample spacing along the fronts' laps, mm (times the tool's
+/// [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale), as the smallest, 0.05 mm,
+/// and the margin of the last loop). The laps are output as G1 polylines; a
 /// controller's look-ahead sees their curvature only through the vertices, and at 0.01 mm
 /// path tolerance the corner blend at a vertex is as wide as the curve itself only when
 /// `h² ≤ 8·ε·R` (chord `h`, radius `R`): 0.5 mm keeps that for `R ≥ 3 mm`.
@@ -325,7 +330,9 @@ fn plan_in_frame(
                     ),
             ),
         };
-    let b_eps = last_loop(&b);
+    let k = tool.tolerance_scale();
+    let margin = LAST_LOOP_MARGIN * k;
+    let b_eps = last_loop(&b, margin);
     let (c, rho_b) = inscribed_centre(&b, &[], 48);
     let (rho_h, r0) = centre_radii(tool, opts, rho_b)?;
     let ccw = opts.direction == Direction::Climb;
@@ -337,8 +344,8 @@ fn plan_in_frame(
 
     // Sample spacing: a fraction of the stepover, and fine enough on the last lap that chords
     // stay within B_ε at concave arcs of radius ≥ d0.
-    let ds = (s / 3.0).clamp(0.05, 2.0);
-    let ds_last = ds.min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt());
+    let ds = (s / 3.0).clamp(0.05 * k, 2.0 * k);
+    let ds_last = ds.min(0.9 * (8.0 * d0 * margin).sqrt());
 
     // Central Archimedean spiral.
     let mut pts: Vec<Point> = Vec::new();
@@ -391,7 +398,7 @@ fn plan_in_frame(
                 Construction::Harmonic
             };
             pts.extend(m.points);
-            let mut path = keep_inside::lap_path(&pts, &b_eps, ds_last, opts.spiral.arcs);
+            let mut path = keep_inside::lap_path(&pts, &b_eps, ds_last, opts.spiral.arcs, k);
             path.extend(segs_from_vertices(&closed_chain(&m.last_loop)));
             let plan = LevelPlan {
                 cuts: vec![Cut {

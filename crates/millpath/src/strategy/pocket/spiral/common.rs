@@ -4,14 +4,28 @@
 use super::super::segments::{Seg, segs_from_vertices};
 use super::super::shape::closed_chain;
 use crate::geom::Point;
+use crate::toolpath::Tool;
 use cavalier_contours::polyline::{PlineCreation, PlineSourceMut, Polyline};
 
-/// Inward margin of the spiral's last loop, mm (see the module docs).
+/// Inward margin of the spiral's last loop, mm, for tools up to 12.7 mm, times the tool's
+/// [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale) above (see the module docs).
 pub const LAST_LOOP_MARGIN: f64 = 0.005;
 /// With `--arcs`: the largest distance between the fitted arcs and the smooth curve through
-/// the spiral's samples, mm. Below [`LAST_LOOP_MARGIN`], so that the last lap's arcs stay
-/// inside the boundary offset where the lap runs onto it.
+/// the spiral's samples, mm, for tools up to 12.7 mm ([`arc_tolerance`] for a tool). Below
+/// [`LAST_LOOP_MARGIN`], so that the last lap's arcs stay inside the boundary offset where
+/// the lap runs onto it.
 pub const ARC_TOLERANCE: f64 = 0.004;
+
+/// [`LAST_LOOP_MARGIN`] for `tool`: times its [`Tool::tolerance_scale`].
+pub fn last_loop_margin(tool: &Tool) -> f64 {
+    LAST_LOOP_MARGIN * tool.tolerance_scale()
+}
+
+/// [`ARC_TOLERANCE`] for `tool`: times its [`Tool::tolerance_scale`] (below
+/// [`last_loop_margin`] at every scale).
+pub fn arc_tolerance(tool: &Tool) -> f64 {
+    ARC_TOLERANCE * tool.tolerance_scale()
+}
 
 /// The construction a spiral's laps came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -49,10 +63,10 @@ pub struct SpiralStats {
     pub chains: usize,
 }
 
-/// `B_ε`, the spiral's last loop: `B` moved inward by [`LAST_LOOP_MARGIN`] (`B` itself if that
-/// offset is not one loop).
-pub fn last_loop(b: &Polyline<f64>) -> Polyline<f64> {
-    match crate::geom::region::offset_loops(b, LAST_LOOP_MARGIN).as_slice() {
+/// `B_ε`, the spiral's last loop: `B` moved inward by `margin` ([`last_loop_margin`]; `B`
+/// itself if that offset is not one loop).
+pub fn last_loop(b: &Polyline<f64>, margin: f64) -> Polyline<f64> {
+    match crate::geom::region::offset_loops(b, margin).as_slice() {
         [one] => one.clone(),
         _ => b.clone(),
     }

@@ -83,8 +83,8 @@ const SKIP_FRACTION: f64 = 0.5;
 
 /// The area, mm², of the first front's new part that may lie beyond the slot's reach
 /// ([`is_slot`]): slivers of the offsets' rounding, far below the verifier's uncut-area
-/// tolerance.
-const SLOT_AREA: f64 = 1e-3;
+/// tolerance; for tools up to 12.7 mm ([`FrontOptions::slot_area`] for a tool).
+pub const SLOT_AREA: f64 = 1e-3;
 
 /// What the fronts need.
 #[derive(Debug, Clone, Copy)]
@@ -104,6 +104,10 @@ pub struct FrontOptions {
     /// How far from the loops that bound it a point of the first front's ridge slot may lie,
     /// mm: a little less than the tool radius (the first lap traces the front all round).
     pub slot_reach: f64,
+    /// The area of the first front beyond the slot's reach that still counts as a slot, mm²:
+    /// [`SLOT_AREA`] times the square of the tool's
+    /// [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale).
+    pub slot_area: f64,
 }
 
 /// The loops of the morph, from the disc (first) to `B` (last), counter-clockwise.
@@ -427,12 +431,13 @@ fn front(b: &Polyline<f64>, disc: &Polyline<f64>, rho_b: f64, tau: f64) -> Optio
 
 /// True when the part of `front` outside `core` is a slot that a lap tracing `front` clears:
 /// every point of it is within `reach` of `front`'s loop or of `core`'s, that is `front`
-/// eroded by `reach` lies within `core` dilated by `reach` (to [`SLOT_AREA`]). The first front
+/// eroded by `reach` lies within `core` dilated by `reach` (to `area`, mm²,
+/// [`FrontOptions::slot_area`]). The first front
 /// may reach beyond the core along the ridge, a thin neighbourhood of it; where the offsets'
 /// new part is wider (a second maximum of the distance to `B` nearly as high as the first,
 /// away from the ridge: found by `pocket_props`, 21 mm² left uncut), it is not a slot and the
 /// harmonic morph takes the pocket.
-fn is_slot(front: &Polyline<f64>, core: &Polyline<f64>, reach: f64) -> bool {
+fn is_slot(front: &Polyline<f64>, core: &Polyline<f64>, reach: f64, area: f64) -> bool {
     if reach.is_nan() || reach <= 0.0 {
         return false;
     }
@@ -446,7 +451,7 @@ fn is_slot(front: &Polyline<f64>, core: &Polyline<f64>, reach: f64) -> bool {
             .iter()
             .map(|p| p.pline.area().abs())
             .sum();
-        outside <= SLOT_AREA
+        outside <= area
     })
 }
 
@@ -516,7 +521,7 @@ pub fn fronts(
                 // within the slotting bound, as zigzag's first pass). Anything else that will
                 // not come within the bound is left to the harmonic morph.
                 match full_step.take() {
-                    Some(f) if first && is_slot(&f.0, prev, o.slot_reach) => {
+                    Some(f) if first && is_slot(&f.0, prev, o.slot_reach, o.slot_area) => {
                         ridge = f.1;
                         break f;
                     }
@@ -620,6 +625,7 @@ mod tests {
             sample: 0.5,
             max_gap: 0.0,
             slot_reach: 1.0,
+            slot_area: SLOT_AREA,
         };
         let f = fronts(&b, &circle(c, 25.0), rho, &o).unwrap();
         // ⌈43.65 / 4.8⌉ = 10 steps after the circle, and at most one halved step where the
@@ -677,6 +683,7 @@ mod tests {
             sample: 0.5,
             max_gap: 0.0,
             slot_reach: 1.0,
+            slot_area: SLOT_AREA,
         };
         let r0 = 0.5 * rho;
         let (p, q) = ridge_segment(&b, c, rho, r0, 1.0, crate::geom::Vec2::new(1.0, 0.0)).unwrap();

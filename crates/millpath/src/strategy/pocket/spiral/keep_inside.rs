@@ -32,7 +32,9 @@ use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 
 /// The samples `pts` as moves, kept inside `b_eps` ([`keep_inside`], resampling at
 /// `max_chord / 2` beside a moved sample, and splitting chords that leave it): G1 chords, or
-/// with `arcs` tangent-continuous biarcs within [`ARC_TOLERANCE`]. A moved stretch has a kink
+/// with `arcs` tangent-continuous biarcs within [`ARC_TOLERANCE`] (times `scale`, the
+/// tool's [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale), as the margin
+/// [`LAST_LOOP_MARGIN`] of `b_eps`). A moved stretch has a kink
 /// where it meets `B_ε`, and biarcs fitted through it overshoot by more than their tolerance
 /// (18 µm found by the fuzzer): a path with moved samples or split chords is written as
 /// chords. Elsewhere a biarc may still bulge past the samples by up to the tolerance, so each
@@ -44,13 +46,16 @@ pub(super) fn lap_path(
     b_eps: &Polyline<f64>,
     max_chord: f64,
     arcs: bool,
+    scale: f64,
 ) -> Vec<Seg> {
-    let guard = ChordGuard::new(b_eps, max_chord);
-    let (pts, moved) = keep_inside(pts, b_eps, max_chord, guard.as_ref());
+    let margin = LAST_LOOP_MARGIN * scale;
+    let guard = ChordGuard::new(b_eps, max_chord, margin);
+    let (pts, moved) = keep_inside(pts, b_eps, max_chord, margin, guard.as_ref());
     if arcs && !moved {
+        let tol = ARC_TOLERANCE * scale;
         let fitted = match &guard {
-            Some(g) => fit_arcs_where(&pts, ARC_TOLERANCE, |s| !g.crosses_seg(s)),
-            None => Some(fit_arcs(&pts, ARC_TOLERANCE)),
+            Some(g) => fit_arcs_where(&pts, tol, |s| !g.crosses_seg(s)),
+            None => Some(fit_arcs(&pts, tol)),
         };
         if let Some(path) = fitted {
             return path;
@@ -59,31 +64,32 @@ pub(super) fn lap_path(
     segs_from_points(&pts)
 }
 
-/// Moves a sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` onto its nearest point
-/// (`true`: moved). Samples on `B_ε` (the last lap ends on it) or less than half the margin
-/// outside it are still well inside `B`: left alone, so that a lap merely touching `B_ε`
-/// keeps its arcs.
-fn project(b_eps: &Polyline<f64>, p: Point) -> (Point, bool) {
+/// Moves a sample more than half the margin (`margin`, [`LAST_LOOP_MARGIN`] for the tool)
+/// outside `b_eps` onto its nearest point (`true`: moved). Samples on `B_ε` (the last lap
+/// ends on it) or less than half the margin outside it are still well inside `B`: left
+/// alone, so that a lap merely touching `B_ε` keeps its arcs.
+fn project(b_eps: &Polyline<f64>, p: Point, margin: f64) -> (Point, bool) {
     if b_eps.winding_number(v2(p)) != 0 {
         return (p, false);
     }
     match b_eps.closest_point(v2(p), 1e-12) {
-        Some(c) if c.distance > 0.5 * LAST_LOOP_MARGIN => (pt(c.seg_point), true),
+        Some(c) if c.distance > 0.5 * margin => (pt(c.seg_point), true),
         _ => (p, false),
     }
 }
 
-/// `pts` with every sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` moved onto its
-/// nearest point ([`project_samples`]), then every chord that crosses the test loop `T` split
+/// `pts` with every sample more than half `margin` outside `b_eps` moved onto its nearest
+/// point ([`project_samples`]), then every chord that crosses the test loop `T` split
 /// ([`ChordGuard`]). A path whose samples and chords never leave `B_ε` is returned unchanged,
 /// with `false` (`true`: some moved or split).
 fn keep_inside(
     pts: &[Point],
     b_eps: &Polyline<f64>,
     max_chord: f64,
+    margin: f64,
     guard: Option<&ChordGuard<'_>>,
 ) -> (Vec<Point>, bool) {
-    let (out, moved) = project_samples(pts, b_eps, max_chord);
+    let (out, moved) = project_samples(pts, b_eps, max_chord, margin);
     match guard {
         Some(guard) => {
             let (out, split) = guard.split_chords(&out);
@@ -93,23 +99,28 @@ fn keep_inside(
     }
 }
 
-/// `pts` with every sample more than half [`LAST_LOOP_MARGIN`] outside `b_eps` moved onto its
-/// nearest point ([`project`]), and the stretches next to a moved sample resampled at
+/// `pts` with every sample more than half `margin` outside `b_eps` moved onto its nearest
+/// point ([`project`]), and the stretches next to a moved sample resampled at
 /// `max_chord / 2` (each new sample moved in the same way); `true` if any was moved.
-fn project_samples(pts: &[Point], b_eps: &Polyline<f64>, max_chord: f64) -> (Vec<Point>, bool) {
+fn project_samples(
+    pts: &[Point],
+    b_eps: &Polyline<f64>,
+    max_chord: f64,
+    margin: f64,
+) -> (Vec<Point>, bool) {
     let step = resample_step(max_chord);
     let mut out = Vec::with_capacity(pts.len());
     let mut prev: Option<(Point, bool)> = None;
     let mut any = false;
     for &p in pts {
-        let (q, moved) = project(b_eps, p);
+        let (q, moved) = project(b_eps, p, margin);
         any |= moved;
         if let Some((a, a_moved)) = prev
             && (moved || a_moved)
         {
             let n = ((a.distance(p) / step).ceil() as usize).clamp(1, 10_000);
             for k in 1..n {
-                out.push(project(b_eps, a + (p - a) * (k as f64 / n as f64)).0);
+                out.push(project(b_eps, a + (p - a) * (k as f64 / n as f64), margin).0);
             }
         }
         out.push(q);
@@ -130,22 +141,24 @@ fn resample_step(max_chord: f64) -> f64 {
 /// the sagitta), one across a thin spike of the wall never does.
 const SPLIT_BUDGET: u32 = 64;
 
-/// The chord check of [`keep_inside`]: `T`, `B_ε` moved outward by ¾ of
-/// [`LAST_LOOP_MARGIN`], and an index of its segments. Every sample is at most half the margin
-/// outside `B_ε` (so at least ¼ of it inside `T`); a chord that stays inside `T` stays at least
-/// ¼ of the margin inside `B`, clear of the wall's clearance.
+/// The chord check of [`keep_inside`]: `T`, `B_ε` moved outward by ¾ of the margin
+/// ([`LAST_LOOP_MARGIN`] for the tool), and an index of its segments. Every sample is at most
+/// half the margin outside `B_ε` (so at least ¼ of it inside `T`); a chord that stays inside
+/// `T` stays at least ¼ of the margin inside `B`, clear of the wall's clearance.
 struct ChordGuard<'a> {
     b_eps: &'a Polyline<f64>,
     t: Polyline<f64>,
     index: StaticAABB2DIndex<f64>,
     /// Sample spacing on the arcs of a walk along `B_ε`, mm.
     step: f64,
+    /// The margin of `B_ε` inside `B`, mm.
+    margin: f64,
 }
 
 impl<'a> ChordGuard<'a> {
     /// `None` if `T` is not one loop (chords then go unchecked, as samples are).
-    fn new(b_eps: &'a Polyline<f64>, max_chord: f64) -> Option<Self> {
-        let t = match offset_loops(b_eps, -0.75 * LAST_LOOP_MARGIN).as_slice() {
+    fn new(b_eps: &'a Polyline<f64>, max_chord: f64, margin: f64) -> Option<Self> {
+        let t = match offset_loops(b_eps, -0.75 * margin).as_slice() {
             [one] if one.vertex_count() >= 2 => one.clone(),
             _ => return None,
         };
@@ -155,6 +168,7 @@ impl<'a> ChordGuard<'a> {
             t,
             index,
             step: resample_step(max_chord),
+            margin,
         })
     }
 
@@ -223,7 +237,7 @@ impl<'a> ChordGuard<'a> {
             return false;
         }
         *budget -= 1;
-        let (m, _) = project(self.b_eps, a.midpoint(b));
+        let (m, _) = project(self.b_eps, a.midpoint(b), self.margin);
         if m.distance(a) < 1e-12 || m.distance(b) < 1e-12 {
             return false;
         }
@@ -350,14 +364,20 @@ mod tests {
         let pts: Vec<Point> = (0..=12)
             .map(|i| Point::new(8.0 - 0.5 * i as f64, 10.6))
             .collect();
-        let (projected, moved) = project_samples(&pts, &b, 0.2);
+        let (projected, moved) = project_samples(&pts, &b, 0.2, LAST_LOOP_MARGIN);
         assert!(moved);
         let deep = deepest_outside(&b, &projected);
         assert!(
             deep > 2.0 * LAST_LOOP_MARGIN,
             "the samples alone are not enough: {deep}"
         );
-        let (out, moved) = keep_inside(&pts, &b, 0.2, ChordGuard::new(&b, 0.2).as_ref());
+        let (out, moved) = keep_inside(
+            &pts,
+            &b,
+            0.2,
+            LAST_LOOP_MARGIN,
+            ChordGuard::new(&b, 0.2, LAST_LOOP_MARGIN).as_ref(),
+        );
         assert!(moved);
         let deep = deepest_outside(&b, &out);
         assert!(deep <= 0.75 * LAST_LOOP_MARGIN + 1e-9, "{deep}");
@@ -371,7 +391,13 @@ mod tests {
         let on = |deg: f64| c + crate::geom::Vec2::from_angle(deg.to_radians()) * 1.25;
         let pts = [on(-90.0 - 40.0), on(-90.0 + 40.0)];
         assert!(deepest_outside(&b, &pts) > 0.1);
-        let (out, moved) = keep_inside(&pts, &b, 10.0, ChordGuard::new(&b, 10.0).as_ref());
+        let (out, moved) = keep_inside(
+            &pts,
+            &b,
+            10.0,
+            LAST_LOOP_MARGIN,
+            ChordGuard::new(&b, 10.0, LAST_LOOP_MARGIN).as_ref(),
+        );
         assert!(moved && out.len() > 2, "{out:?}");
         assert!(deepest_outside(&b, &out) <= 0.75 * LAST_LOOP_MARGIN + 1e-9);
         assert_eq!(out.first(), pts.first());
@@ -404,9 +430,15 @@ mod tests {
         let pts: Vec<Point> = (0..=20)
             .map(|i| Point::new(12.0, 5.0 + 0.5 * i as f64))
             .collect();
-        let (projected, _) = project_samples(&pts, &b, 0.2);
+        let (projected, _) = project_samples(&pts, &b, 0.2, LAST_LOOP_MARGIN);
         assert!(deepest_outside(&b, &projected) > 0.01);
-        let (out, moved) = keep_inside(&pts, &b, 0.2, ChordGuard::new(&b, 0.2).as_ref());
+        let (out, moved) = keep_inside(
+            &pts,
+            &b,
+            0.2,
+            LAST_LOOP_MARGIN,
+            ChordGuard::new(&b, 0.2, LAST_LOOP_MARGIN).as_ref(),
+        );
         assert!(moved);
         let deep = deepest_outside(&b, &out);
         assert!(deep <= 0.75 * LAST_LOOP_MARGIN + 1e-9, "{deep}");
@@ -426,7 +458,13 @@ mod tests {
                 Point::new(5.0 + 3.0 * t.cos(), 5.0 + 3.0 * t.sin())
             })
             .collect();
-        let (out, moved) = keep_inside(&pts, &b, 0.2, ChordGuard::new(&b, 0.2).as_ref());
+        let (out, moved) = keep_inside(
+            &pts,
+            &b,
+            0.2,
+            LAST_LOOP_MARGIN,
+            ChordGuard::new(&b, 0.2, LAST_LOOP_MARGIN).as_ref(),
+        );
         assert!(!moved);
         assert_eq!(out, pts);
     }
@@ -450,7 +488,7 @@ mod tests {
         // The dent of `dented` reaches down to y = 9.5 between x = 4 and 6; its chord from
         // (3, 9.3) to (7, 9.3) passes under it, an arc through (5, 9.9) does not.
         let b = dented();
-        let g = ChordGuard::new(&b, 0.2).expect("one loop");
+        let g = ChordGuard::new(&b, 0.2, LAST_LOOP_MARGIN).expect("one loop");
         let (p, q) = (Point::new(3.0, 9.3), Point::new(7.0, 9.3));
         assert!(!g.crosses(p, q));
         let sagitta = 0.6;

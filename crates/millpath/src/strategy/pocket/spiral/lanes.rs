@@ -22,9 +22,10 @@
 //! the last window: as long as the contour-parallel loops without their links.
 //!
 //! **Where.** The windows should lie where every loop is straight: the start `P₀` is chosen
-//! among positions of `R₀` every `WINDOW_STEP` mm to minimise the total turning of all the
-//! loops over their windows, plus a small charge for the distance run round `R₀` past the
-//! point where the chain is entered (the first loop is run whole from there).
+//! among positions of `R₀` every `WINDOW_STEP` mm (times the tool's scale) to minimise the
+//! total turning of all the loops over their windows, plus a small charge for the distance
+//! run round `R₀` past the point where the chain is entered (the first loop is run whole
+//! from there).
 
 use super::super::segments::{Seg, fit_arcs, segs_from_points};
 use super::ring::Ring;
@@ -53,9 +54,13 @@ pub struct LaneOptions {
     /// Interior loops' arcs as chords: their largest sagitta and length, mm (`None`: exact
     /// arcs).
     pub chords: Option<(f64, f64)>,
+    /// The tool's [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale): the window
+    /// starts are tried `WINDOW_STEP` times it apart, and the entry charge is per that many
+    /// mm.
+    pub scale: f64,
 }
 
-/// Candidate window starts along the first loop, mm apart.
+/// Candidate window starts along the first loop, mm apart (times [`LaneOptions::scale`]).
 const WINDOW_STEP: f64 = 1.0;
 /// What a straight step instead of a lane change costs in the choice of the windows, rad of
 /// turning: a step is a corner the controller must slow for.
@@ -64,8 +69,8 @@ const STEP_COST: f64 = 3.0;
 const MAX_REFINE: usize = 10;
 /// Window starts tried in full, best first estimate first.
 const CANDIDATES: usize = 12;
-/// Turning (rad) that one mm of extra path past the entry point is worth in the choice of
-/// the windows.
+/// Turning (rad) that one mm (times [`LaneOptions::scale`]) of extra path past the entry
+/// point is worth in the choice of the windows.
 const ENTRY_CHARGE: f64 = 0.002;
 
 /// A lane change's sample: `u` along the window, the position of the nearest point on the
@@ -281,15 +286,13 @@ fn chain_segs(
         }
         (changes, cost)
     };
-    let n = ((first.len() / WINDOW_STEP).ceil() as usize).max(8);
+    let charge = ENTRY_CHARGE / opts.scale;
+    let n = ((first.len() / (WINDOW_STEP * opts.scale)).ceil() as usize).max(8);
     let step = first.len() / n as f64;
     let mut order: Vec<(f64, f64)> = (0..n)
         .map(|j| {
             let past = step * j as f64;
-            (
-                estimate(first.wrap(s_in + past)) + ENTRY_CHARGE * past,
-                past,
-            )
+            (estimate(first.wrap(s_in + past)) + charge * past, past)
         })
         .collect();
     order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
@@ -297,7 +300,7 @@ fn chain_segs(
     let mut best: Option<(Changes, f64, f64)> = None;
     for &(_, past) in order.iter().take(CANDIDATES) {
         let (changes, turn) = stack(first.wrap(s_in + past));
-        let cost = turn + ENTRY_CHARGE * past;
+        let cost = turn + charge * past;
         let clean = changes.iter().all(|c| c.1.is_some());
         if best.as_ref().is_none_or(|b| cost < b.1 - 1e-12) {
             best = Some((changes, cost, past));

@@ -21,7 +21,8 @@ use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::segments::segs_from_vertices;
 use super::super::shape::{closed_chain, restart_near, reversed};
 use super::common::{
-    Construction, LoopWalker, SpiralStats, blend_lap, fractions, resample, sample_every,
+    Construction, LAST_LOOP_MARGIN, LoopWalker, SpiralStats, blend_lap, fractions, resample,
+    sample_every,
 };
 use super::fronts::{FrontOptions, capsule, circle, fronts};
 use crate::geom::{Point, Vec2};
@@ -60,6 +61,9 @@ pub struct FrontSpiral<'a> {
     pub arcs: bool,
     /// Largest gap between consecutive fronts, mm ([`super::fronts::FrontOptions::max_gap`]).
     pub max_gap: f64,
+    /// The tool's [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale) (the last
+    /// loop's margin and the arc tolerance).
+    pub scale: f64,
 }
 
 impl FrontSpiral<'_> {
@@ -72,6 +76,7 @@ impl FrontSpiral<'_> {
             sample: self.ds,
             max_gap: self.max_gap,
             slot_reach: SLOT_REACH * self.tool_radius,
+            slot_area: super::fronts::SLOT_AREA * self.scale * self.scale,
         };
         let core = match self.ridge {
             Some((p, q)) => capsule(p, q, self.r0),
@@ -191,7 +196,13 @@ impl FrontSpiral<'_> {
             // The last front is `B` with rounded corners (see [`fronts`]): the lap ends on
             // it (moved in by ε), and the last loop `B_ε` starts from the nearest point.
             let fine = resample(&lap, self.ds_last);
-            let target = restart_near(&orient(&super::common::last_loop(next)), ahead);
+            let target = restart_near(
+                &orient(&super::common::last_loop(
+                    next,
+                    LAST_LOOP_MARGIN * self.scale,
+                )),
+                ahead,
+            );
             let len = target.path_length();
             let along = LoopWalker::new(&target);
             blend_lap(&fine, &along, len, &mut pts);
@@ -202,7 +213,8 @@ impl FrontSpiral<'_> {
             let first = last.at(0).pos();
             pts.push(Point::new(first.x, first.y));
             stats.morph_laps += 1;
-            let mut path = super::keep_inside::lap_path(&pts, self.b_eps, self.ds_last, self.arcs);
+            let mut path =
+                super::keep_inside::lap_path(&pts, self.b_eps, self.ds_last, self.arcs, self.scale);
             path.extend(segs_from_vertices(&closed_chain(&last)));
             last_loop = Some(path);
             break;

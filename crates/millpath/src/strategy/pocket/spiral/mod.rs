@@ -60,7 +60,7 @@ use crate::error::InputError;
 use crate::toolpath::Tool;
 
 pub use super::options::SpiralMorph;
-pub use common::{Construction, LAST_LOOP_MARGIN, SpiralStats};
+pub use common::{Construction, LAST_LOOP_MARGIN, SpiralStats, last_loop_margin};
 
 /// The spiral strategy's plan for one level.
 pub fn plan(

@@ -19,6 +19,12 @@
 //! The first chain is entered by a helix at its innermost loop's centroid where there is
 //! room (as `offset` does), else by a ramp; the entry moves then choose direct entries over
 //! cleared material ([`super::super::levels::direct_entries`]).
+//!
+//! **Scale.** Sample spacings, chord lengths and sagittas, the last loop's margin and the arc
+//! tolerance are millimetres for tools up to 12.7 mm and grow with the tool above it
+//! ([`Tool::tolerance_scale`]); the rest is in steps or tool radii. A pocket and its
+//! enlargement cut with the tool enlarged alike get the same spiral, scaled, from the same
+//! number of samples.
 
 use super::super::levels::{Cut, CutEntry, LevelPlan};
 use super::super::loops::{OffsetLoops, samples};
@@ -26,7 +32,7 @@ use super::super::offset::{RIDGE_SPACING, entry_for, too_large};
 use super::super::options::{Direction, PocketOptions};
 use super::super::segments::{Seg, segs_from_points};
 use super::super::shape::{IndexedLoop, OffsetRegion, PocketShape, crosses, reversed};
-use super::common::{ARC_TOLERANCE, LAST_LOOP_MARGIN, last_loop};
+use super::common::{arc_tolerance, last_loop, last_loop_margin};
 use super::lanes::{LaneOptions, Outermost, chain_path, chorded};
 use super::ring::Ring;
 use super::rounding::{RoundOptions, round};
@@ -53,33 +59,23 @@ const WINDOW: f64 = 6.0;
 const SMOOTH_WINDOW: f64 = 3.0;
 /// Largest displacement of the interior path by the smoothing, in steps.
 const SMOOTH_SHIFT: f64 = 0.03;
-/// Sample spacing of the smoothing, mm (times [`scale`]).
+/// Sample spacing of the smoothing, mm (times the tool's scale, module docs).
 const SMOOTH_SPACING: f64 = 0.1;
 /// Deflection (rad) of a junction the smoothing keeps as a kink (a step, an unrounded corner).
 const SMOOTH_KINK: f64 = 0.1;
-/// Largest distance between the smoothed interior and its chords, mm, times [`scale`] (the
+/// Largest distance between the smoothed interior and its chords, mm, times the tool's scale (the
 /// interior laps are a step from the walls; longer chords plan faster, measured: 0.002 →
 /// 0.01 mm took the aerospace level from 14.84 to 14.58 s on `hsm`).
 const SMOOTH_CHORD_TOLERANCE: f64 = 0.01;
-/// Sagitta of the chords that replace interior loops' arcs, mm (times [`scale`]).
+/// Sagitta of the chords that replace interior loops' arcs, mm (times the tool's scale).
 const CHORD_TOLERANCE: f64 = 0.002;
-/// Longest chord on interior loops' arcs, mm (times [`scale`]).
+/// Longest chord on interior loops' arcs, mm (times the tool's scale).
 const MAX_CHORD: f64 = 1.0;
-/// Longest chord along a lane change, mm (times [`scale`]).
+/// Longest chord along a lane change, mm (times the tool's scale).
 const LANE_CHORD: f64 = 0.5;
-/// Step (mm) up to which the sample spacings and chord tolerances above are the millimetres
-/// written; beyond it they grow with the step ([`scale`]).
-const SCALE_STEP: f64 = 10.0;
-
-/// The factor the sample spacings and chord tolerances are stretched by for a step `h`:
-/// 1 up to [`SCALE_STEP`] (every workshop tool: unchanged output), then `h / SCALE_STEP`, so
-/// that the samples per step, and the work, stay those of a 10 mm step however large the
-/// part in millimetres (at building scale 0.1 mm samples made the smoothing most of the time).
-/// The smoothing's shift and window are already in steps; the chords' sagitta stays a
-/// fixed, small fraction of the step.
-fn scale(h: f64) -> f64 {
-    (h / SCALE_STEP).max(1.0)
-}
+/// Spacing of the samples that check a wall's loop moved in by the last loop's margin, mm
+/// (times the tool's scale).
+const FAITHFUL_SAMPLE: f64 = 0.5;
 
 /// What the offsets spiral measured.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -101,7 +97,8 @@ pub fn plan(
     let r = tool.radius();
     let s = opts.stepover_mm(tool);
     let h = s.min(RIDGE_SPACING * r);
-    let k = scale(h);
+    let k = tool.tolerance_scale();
+    let margin = last_loop_margin(tool);
     let d0 = r + opts.wall_stock;
     let loops = OffsetLoops::build(shape, d0, h)?;
     if loops.nodes.is_empty() {
@@ -115,7 +112,7 @@ pub fn plan(
             max_gap: gap,
             max_radius: MAX_RADIUS * h,
             min_clearance: MIN_CLEARANCE * h,
-            sample: (h / 3.0).clamp(0.05, 1.5 * k),
+            sample: (h / 3.0).clamp(0.05 * k, 1.5 * k),
             reach: RIDGE_SPACING * r,
         },
     );
@@ -136,14 +133,16 @@ pub fn plan(
         s,
         ccw,
         scale: k,
+        margin,
         lanes: LaneOptions {
             window: WINDOW * h,
             chord: LANE_CHORD * k,
             step: h,
             reach: RIDGE_SPACING * r,
             arcs: opts.spiral.arcs,
-            arc_tolerance: ARC_TOLERANCE,
-            wall_chord: (LANE_CHORD * k).min(0.9 * (8.0 * d0 * LAST_LOOP_MARGIN).sqrt()),
+            arc_tolerance: arc_tolerance(tool),
+            wall_chord: (LANE_CHORD * k).min(0.9 * (8.0 * d0 * margin).sqrt()),
+            scale: k,
             // Exact arcs to smooth or with --arcs, else the arcs as chords.
             chords: (!opts.spiral.arcs && !opts.spiral.curvature_ramps)
                 .then_some((CHORD_TOLERANCE * k, MAX_CHORD * k)),
@@ -216,8 +215,10 @@ struct Emitter<'a> {
     r: f64,
     s: f64,
     ccw: bool,
-    /// [`scale`] of the step.
+    /// The tool's [`Tool::tolerance_scale`].
     scale: f64,
+    /// The last loop's margin for the tool ([`last_loop_margin`]), mm.
+    margin: f64,
     lanes: LaneOptions,
     smooth: Option<SmoothOptions>,
     cuts: Vec<Cut>,
@@ -263,18 +264,19 @@ impl Emitter<'_> {
             Ring::new(&reversed(pl))
         };
         if self.loops.nodes[i].level == 0 {
-            // The walls' loops moved in by LAST_LOOP_MARGIN (5 µm of extra stock): the lane
+            // The walls' loops moved in by the margin (5 µm of extra stock): the lane
             // change's chords onto one, at most `wall_chord` long, then stay inside the wall
             // loop itself at its concave arcs too (sagitta c²/(8·d₀) below the margin).
             // Not where that drops a part of the loop (a zero-width bridge where an island
             // meets the wall at exactly the tool's diameter: the tool centre must run along
             // it to clear the gap).
-            let moved = last_loop(pl);
+            let moved = last_loop(pl, self.margin);
             let idx = IndexedLoop::new(&moved);
-            let faithful = samples(pl, 0.5)
+            let sample = FAITHFUL_SAMPLE * self.scale;
+            let faithful = samples(pl, sample)
                 .into_iter()
-                .all(|p| idx.distance(p) <= 2.0 * LAST_LOOP_MARGIN)
-                && samples(&moved, 0.5)
+                .all(|p| idx.distance(p) <= 2.0 * self.margin)
+                && samples(&moved, sample)
                     .into_iter()
                     .all(|p| self.in_boundary(p));
             let b_eps = if self.ccw {
@@ -344,7 +346,7 @@ impl Emitter<'_> {
                 .map(|a| Seg::from_bulge(a.start, a.end, (0.25 * a.sweep()).tan()))
                 .collect(),
             None => {
-                let n = ((k / 0.1).ceil() as usize).max(16);
+                let n = ((k / (0.1 * self.scale)).ceil() as usize).max(16);
                 let pts: Vec<Point> = (0..=n)
                     .map(|j| {
                         let t = j as f64 / n as f64;
