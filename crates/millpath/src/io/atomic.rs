@@ -2,6 +2,11 @@
 //!
 //! An error while producing the content leaves no output file and does not touch an existing
 //! file of the same name.
+//!
+//! A path that names something other than a file (`/dev/null`, `/dev/stdout`, a FIFO) is
+//! written in place, once the whole content is produced in memory: renaming a file onto it
+//! would replace the device. A symbolic link is followed: the file it points to is replaced,
+//! the link stays.
 
 use crate::error::{Error, InputError};
 use std::io::Write;
@@ -19,6 +24,28 @@ pub fn write_atomic_with<F>(path: &Path, fill: F) -> Result<(), Error>
 where
     F: FnOnce(&mut dyn Write) -> Result<(), Error>,
 {
+    if let Ok(m) = std::fs::metadata(path)
+        && !m.is_file()
+        && !m.is_dir()
+    {
+        let mut buf = Vec::new();
+        fill(&mut buf)?;
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map_err(|e| io_error(path, &e))?;
+        return f
+            .write_all(&buf)
+            .and_then(|()| f.flush())
+            .map_err(|e| io_error(path, &e));
+    }
+    let resolved;
+    let path = if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
+        resolved = std::fs::canonicalize(path).map_err(|e| io_error(path, &e))?;
+        resolved.as_path()
+    } else {
+        path
+    };
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => std::path::PathBuf::from("."),
@@ -70,6 +97,39 @@ mod tests {
             "temp file left behind"
         );
         write_atomic(&target, b"new").unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"new");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn devices_are_written_in_place_and_links_followed() {
+        use std::os::unix::fs::FileTypeExt;
+        let dir = std::env::temp_dir().join(format!("millpath-link-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // A FIFO stands for /dev/null and /dev/stdout: not a file, written in place.
+        let fifo = dir.join("pipe");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let reader = {
+                let fifo = fifo.clone();
+                std::thread::spawn(move || std::fs::read(fifo).unwrap())
+            };
+            write_atomic(&fifo, b"through the pipe").unwrap();
+            assert_eq!(reader.join().unwrap(), b"through the pipe");
+            assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+        }
+        let target = dir.join("real.ngc");
+        let link = dir.join("link.ngc");
+        std::fs::write(&target, b"old").unwrap();
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_atomic(&link, b"new").unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
         assert_eq!(std::fs::read(&target).unwrap(), b"new");
         std::fs::remove_dir_all(&dir).unwrap();
     }
