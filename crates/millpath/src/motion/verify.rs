@@ -26,6 +26,7 @@
 //! exactly, radial terms included, and checks the feed against the tool's speed `|P'|·ṡ`.
 
 use super::plan::Plan;
+use super::sample::Cursor;
 use crate::error::Error;
 use crate::geom::{Point3, Vec3};
 use crate::machine::Machine;
@@ -173,6 +174,78 @@ impl Shape {
     }
 }
 
+/// The block being sampled and what its checks need: the limits and their thresholds
+/// (`lim·(1 + tol) + 1e-9`), the line's derivatives (the same at every sample), and the
+/// largest value of each checked quantity over the block's samples so far (the ratio to a
+/// limit is monotonic in the value, so the largest ratio is the largest value's).
+struct Current {
+    block: usize,
+    shape: Shape,
+    /// Per-axis (velocity, acceleration, jerk) limits (rapids: the rapid velocity too) and
+    /// the values above which they are violated.
+    limits: [[(f64, f64); 3]; 3],
+    /// The feed limit of a feed move and its threshold.
+    feed_limit: Option<(f64, f64)>,
+    /// The span the block belongs to.
+    span: Option<u32>,
+    /// The first three derivatives of a line (constant along it).
+    line: Option<[Vec3; 3]>,
+    /// Largest |velocity|, |acceleration|, |jerk| per axis and speed seen in the block.
+    peak: [[f64; 3]; 3],
+    peak_speed: f64,
+}
+
+impl Current {
+    fn new(block: usize, shape: Shape, plan: &Plan, machine: &Machine, tol: f64) -> Current {
+        let rapid = matches!(shape.m.kind, MoveKind::Rapid);
+        let limit = |lim: f64| (lim, lim * (1.0 + tol) + 1e-9);
+        let limits = std::array::from_fn(|i| {
+            let ax = machine.axes[i];
+            let vlim = if rapid {
+                ax.max_velocity.min(machine.rapid[i])
+            } else {
+                ax.max_velocity
+            };
+            [limit(vlim), limit(ax.max_acceleration), limit(ax.max_jerk)]
+        });
+        let feed_limit = shape
+            .m
+            .is_feed()
+            .then(|| limit(shape.m.feed.min(machine.max_feed)));
+        let line = match shape.m.kind {
+            MoveKind::Arc { .. } => None,
+            _ => {
+                let [_, d1, d2, d3] = shape.eval(0.0);
+                Some([d1, d2, d3])
+            }
+        };
+        Current {
+            block,
+            limits,
+            feed_limit,
+            span: plan.blocks.get(block).map(|b| b.span),
+            line,
+            peak: [[0.0; 3]; 3],
+            peak_speed: 0.0,
+            shape,
+        }
+    }
+
+    /// Folds the block's peaks into the report's largest ratios.
+    fn close(&self, rep: &mut VerifyReport) {
+        for (axis, peaks) in self.limits.iter().zip(&self.peak) {
+            for (w, ((lim, _), peak)) in axis.iter().zip(peaks).enumerate() {
+                if lim.is_finite() {
+                    rep.worst_ratio[w] = rep.worst_ratio[w].max(peak / lim);
+                }
+            }
+        }
+        if let Some((flim, _)) = self.feed_limit {
+            rep.worst_ratio[3] = rep.worst_ratio[3].max(self.peak_speed / flim);
+        }
+    }
+}
+
 /// Verifies `plan`, made from `moves` (the `(from, move)` pairs it was planned from) for
 /// `machine`.
 pub fn verify_plan(
@@ -199,14 +272,13 @@ pub fn verify_plan(
     if moves.len() != plan.blocks.len() {
         return Err(Error::internal("verifier: moves and plan differ in length"));
     }
-    let shapes: Vec<Shape> = moves
-        .iter()
-        .map(|(f, m)| Shape {
-            from: *f,
-            m: *m,
-            len: m.length_from(*f),
+    let shape = |i: usize| {
+        moves.get(i).map(|&(from, m)| Shape {
+            from,
+            m,
+            len: m.length_from(from),
         })
-        .collect();
+    };
     let tol = opts.rel_tol;
     let mut rep = VerifyReport::default();
     let dt = 1.0 / opts.rate;
@@ -216,43 +288,51 @@ pub fn verify_plan(
         .iter()
         .map(|a| a.max_acceleration)
         .fold(0.0, f64::max);
-    let mut prev: Option<(f64, usize, f64, f64, f64)> = None;
+    // The block being sampled (samples come in block order) and what its checks need.
+    let mut current: Option<Current> = None;
+    let mut prev: Option<(f64, Option<u32>, f64, f64, f64)> = None;
     let mut last_sample = None;
-    plan.for_each_sample(dt, |smp| {
+    plan.for_each_path_sample(dt, |smp| {
         rep.samples += 1;
-        last_sample = Some(smp);
-        let Some(sh) = shapes.get(smp.block) else {
-            return Err(Error::internal("verifier: sample outside the program"));
+        last_sample = Some(*smp);
+        if current.as_ref().is_none_or(|c| c.block != smp.block) {
+            if let Some(c) = &current {
+                c.close(&mut rep);
+            }
+            let Some(sh) = shape(smp.block) else {
+                return Err(Error::internal("verifier: sample outside the program"));
+            };
+            current = Some(Current::new(smp.block, sh, plan, machine, tol));
+        }
+        let Some(cur) = current.as_mut() else {
+            return Err(Error::internal("verifier: no block"));
         };
         let st = smp.path;
-        let [_, d1, d2, d3] = sh.eval(smp.s);
+        let [d1, d2, d3] = match cur.line {
+            Some(d) => d,
+            None => {
+                let [_, d1, d2, d3] = cur.shape.eval(smp.s);
+                [d1, d2, d3]
+            }
+        };
         let v = d1 * st.v;
         let a = d2 * (st.v * st.v) + d1 * st.a;
         let j = d3 * st.v.powi(3) + d2 * (3.0 * st.v * st.a) + d1 * st.j;
-        let rapid = matches!(sh.m.kind, MoveKind::Rapid);
+        let (v3, a3, j3) = (v.to_array(), a.to_array(), j.to_array());
+        const KINDS: [ViolationKind; 3] = [
+            ViolationKind::Velocity,
+            ViolationKind::Acceleration,
+            ViolationKind::Jerk,
+        ];
         for i in 0..3 {
-            let ax = machine.axes[i];
-            let vlim = if rapid {
-                ax.max_velocity.min(machine.rapid[i])
-            } else {
-                ax.max_velocity
-            };
-            let checks = [
-                (ViolationKind::Velocity, v.to_array()[i].abs(), vlim, 0),
-                (
-                    ViolationKind::Acceleration,
-                    a.to_array()[i].abs(),
-                    ax.max_acceleration,
-                    1,
-                ),
-                (ViolationKind::Jerk, j.to_array()[i].abs(), ax.max_jerk, 2),
-            ];
-            for (kind, val, lim, w) in checks {
+            let vals = [v3[i].abs(), a3[i].abs(), j3[i].abs()];
+            for (w, val) in vals.into_iter().enumerate() {
+                let (lim, over) = cur.limits[i][w];
                 if lim.is_finite() {
-                    rep.worst_ratio[w] = rep.worst_ratio[w].max(val / lim);
-                    if val > lim * (1.0 + tol) + 1e-9 {
+                    cur.peak[i][w] = cur.peak[i][w].max(val);
+                    if val > over {
                         rep.add(Violation {
-                            kind,
+                            kind: KINDS[w],
                             block: smp.block,
                             t: smp.t,
                             value: val,
@@ -262,12 +342,11 @@ pub fn verify_plan(
                 }
             }
         }
-        if sh.m.is_feed() {
-            let flim = sh.m.feed.min(machine.max_feed);
+        if let Some((flim, over)) = cur.feed_limit {
             // The tool's speed |P'|·ṡ (ṡ itself on lines and circles, where |P'| = 1).
             let speed = v.length();
-            rep.worst_ratio[3] = rep.worst_ratio[3].max(speed / flim);
-            if speed > flim * (1.0 + tol) + 1e-9 {
+            cur.peak_speed = cur.peak_speed.max(speed);
+            if speed > over {
                 rep.add(Violation {
                     kind: ViolationKind::Feed,
                     block: smp.block,
@@ -278,11 +357,9 @@ pub fn verify_plan(
             }
         }
         // Integration consistency of the path state within a span.
-        if let Some((t0, b0, s0, v0, a0)) = prev {
-            let span_same =
-                plan.blocks.get(b0).map(|b| b.span) == plan.blocks.get(smp.block).map(|b| b.span);
+        if let Some((t0, span0, s0, v0, a0)) = prev {
             let h = smp.t - t0;
-            if span_same && h > 0.0 {
+            if span0 == cur.span && h > 0.0 {
                 let ds = st.s - s0;
                 let pred = 0.5 * h * (v0 + st.v) + h * h * (a0 - st.a) / 12.0;
                 // Exact for a cubic; a jerk jump inside the interval adds O(Δj·h³).
@@ -302,11 +379,15 @@ pub fn verify_plan(
                 }
             }
         }
-        prev = Some((smp.t, smp.block, st.s, st.v, st.a));
+        prev = Some((smp.t, cur.span, st.s, st.v, st.a));
         Ok(())
     })?;
+    if let Some(c) = &current {
+        c.close(&mut rep);
+    }
+    let last_sample = last_sample.map(|p| plan.sample_of(&p)).transpose()?;
     // Every block completed, and the junctions.
-    if let (Some(last), Some(sh)) = (last_sample, shapes.last()) {
+    if let (Some(last), Some(sh)) = (last_sample, moves.len().checked_sub(1).and_then(shape)) {
         let end = sh.eval(sh.len)[0];
         let got = last.position - Point3::ORIGIN;
         if (end - got).length() > 1e-6 {
@@ -319,22 +400,23 @@ pub fn verify_plan(
             });
         }
     }
-    let mut last_motion: Option<usize> = None;
-    for (i, sh) in shapes.iter().enumerate() {
+    // The junctions, in time order (one span profile kept between them).
+    let mut last_motion: Option<Shape> = None;
+    let mut cursor = Cursor::default();
+    for i in 0..moves.len() {
+        let Some(sh) = shape(i) else { break };
         if sh.len <= 1e-12 || matches!(sh.m.kind, MoveKind::Dwell { .. }) {
             if matches!(sh.m.kind, MoveKind::Dwell { .. }) {
                 last_motion = None;
             }
             continue;
         }
-        if let Some(p) = last_motion
-            && let (Some(prev_sh), Some(b)) = (shapes.get(p), plan.blocks.get(i))
-        {
+        if let (Some(prev_sh), Some(b)) = (&last_motion, plan.blocks.get(i)) {
             rep.junctions += 1;
-            let v = plan.state_at(b.start_time)?.path.v;
-            check_junction(prev_sh, sh, v, b.start_time, i, machine, tol, &mut rep);
+            let v = plan.path_state_at(b.start_time, &mut cursor)?.v;
+            check_junction(prev_sh, &sh, v, b.start_time, i, machine, tol, &mut rep);
         }
-        last_motion = Some(i);
+        last_motion = Some(sh);
     }
     Ok(rep)
 }
