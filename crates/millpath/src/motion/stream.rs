@@ -121,11 +121,46 @@ pub fn plan_stream<I, F>(
     moves: I,
     machine: &Machine,
     opts: &StreamOptions,
-    on_chunk: F,
+    mut on_chunk: F,
 ) -> Result<StreamSummary, Error>
 where
     I: IntoIterator<Item = Result<(Point3, Move), Error>>,
     F: FnMut(&Chunk) -> Result<(), Error>,
+{
+    plan_stream_owned(moves, machine, opts, |c: &mut Chunk| on_chunk(c))
+}
+
+/// A chunk with nothing in it, for `machine` (what [`plan_stream_owned`]'s callback may
+/// leave in place of the chunk it takes).
+pub(crate) fn empty_chunk(machine: &Machine) -> Chunk {
+    Chunk {
+        plan: Plan {
+            reshaped: machine.controller == crate::machine::Controller::LinuxCnc,
+            machine: machine.name.clone(),
+            blocks: Vec::new(),
+            spans: Vec::new(),
+            geometry: Vec::new(),
+            ends: Vec::new(),
+            total_time: 0.0,
+        },
+        moves: Vec::new(),
+        start_time: 0.0,
+        first_block: 0,
+    }
+}
+
+/// [`plan_stream`] whose callback may take the chunk (swap it with another chunk of the same
+/// machine, [`empty_chunk`] or one handed back): the stream refills whatever chunk is left,
+/// reusing its buffers.
+pub(crate) fn plan_stream_owned<I, F>(
+    moves: I,
+    machine: &Machine,
+    opts: &StreamOptions,
+    on_chunk: F,
+) -> Result<StreamSummary, Error>
+where
+    I: IntoIterator<Item = Result<(Point3, Move), Error>>,
+    F: FnMut(&mut Chunk) -> Result<(), Error>,
 {
     machine.validate(&machine.name)?;
     let mut st = State {
@@ -136,20 +171,7 @@ where
         geoms: Vec::new(),
         block_base: 0,
         sum: StreamSummary::default(),
-        chunk: Chunk {
-            plan: Plan {
-                reshaped: machine.controller == crate::machine::Controller::LinuxCnc,
-                machine: machine.name.clone(),
-                blocks: Vec::new(),
-                spans: Vec::new(),
-                geometry: Vec::new(),
-                ends: Vec::new(),
-                total_time: 0.0,
-            },
-            moves: Vec::new(),
-            start_time: 0.0,
-            first_block: 0,
-        },
+        chunk: empty_chunk(machine),
         on_chunk,
     };
     let base_window = opts.window.max(2);
@@ -185,7 +207,7 @@ where
 
 impl<F> State<F>
 where
-    F: FnMut(&Chunk) -> Result<(), Error>,
+    F: FnMut(&mut Chunk) -> Result<(), Error>,
 {
     /// Adds one prepared block to the window.
     fn take(&mut self, p: &Prepared) -> Result<(), Error> {
@@ -268,8 +290,7 @@ where
             end: s.end.saturating_sub(base),
             ..*s
         }));
-        plan.blocks.clear();
-        plan.blocks.extend(self.blocks.drain(..nb));
+        take_prefix(&mut self.blocks, nb, &mut plan.blocks);
         let span_base = u32::try_from(self.b.span_base).unwrap_or(u32::MAX);
         for bp in &mut plan.blocks {
             bp.span = bp.span.saturating_sub(span_base);
@@ -282,10 +303,8 @@ where
             0.0,
             self.opts.check_profiles,
         )?;
-        chunk.moves.clear();
-        chunk.moves.extend(self.moves.drain(..nb));
-        plan.geometry.clear();
-        plan.geometry.extend(self.geoms.drain(..nb));
+        take_prefix(&mut self.moves, nb, &mut chunk.moves);
+        take_prefix(&mut self.geoms, nb, &mut plan.geometry);
         plan.ends.clear();
         plan.ends
             .extend(chunk.moves.iter().map(|(f, m)| (*f, m.to)));
@@ -306,4 +325,14 @@ where
         self.b.span_base += p;
         Ok(p)
     }
+}
+
+/// Moves the first `n` items of `window` into `out` (whatever `out` held is dropped): the two
+/// buffers are swapped and only the items after `n` (the window's unfinished tail, usually
+/// short) are copied, not the chunk handed out.
+fn take_prefix<T: Copy>(window: &mut Vec<T>, n: usize, out: &mut Vec<T>) {
+    out.clear();
+    out.extend_from_slice(window.get(n..).unwrap_or_default());
+    window.truncate(n);
+    std::mem::swap(window, out);
 }
