@@ -46,7 +46,11 @@
 //! * **near-tangent** corners (`|t2 − t1| ≤` [`NEAR_TANGENT`], what G-code rounding makes of a
 //!   tangent junction) keep the tangent case's curvature-step cap on top of their corner
 //!   rule.
-//! * **exact stop** (`Corner::ExactStop`, or a path tolerance of 0): the junction speed is 0.
+//! * **exact stop** (`Corner::ExactStop`, or a path tolerance of 0): the junction speed is 0
+//!   at a corner. After a `Corner::ExactStop` move it is 0 at a tangent junction too (the
+//!   controller model sets it: `super::controller`); under a zero tolerance the axes pass a
+//!   tangent junction at speed. The machine's settling at each stop
+//!   ([`Machine::exact_stop_time`]) is the controller model's to add.
 //! * **exact path** (`Corner::ExactPath`, G61): the direction changes within one
 //!   interpolation cycle, each axis's velocity stepping by `v·|t2_i − t1_i|`; the mean
 //!   acceleration over the cycle must stay within `amax_i` and the step of acceleration

@@ -11,7 +11,8 @@
 //! * that the path state integrates consistently between samples (`Δs` against the
 //!   trapezoid of `ṡ` with the `s̈` end correction, exact for piecewise-cubic `s(t)`), and that
 //!   the plan reaches the end of every block;
-//! * at each junction with speed `v > 0`: a non-tangent junction is allowed only in blend
+//! * at each junction with speed `v > 0`: none after an exact stop (`Corner::ExactStop`,
+//!   tangent or not); a non-tangent junction is allowed only in blend
 //!   mode, where the tightest circular blend the axes allow at that speed
 //!   (`R = max(v²/A, √(v³/J))`) must stay within the path tolerance
 //!   (`R·(1/cos(θ/2) − 1) ≤ tol`) and fit in the blocks, or in exact-path mode
@@ -438,6 +439,17 @@ fn check_junction(
     rep: &mut VerifyReport,
 ) {
     if v <= 1e-9 {
+        return;
+    }
+    // An exact stop comes to rest at the end of its move, tangent to the next or not.
+    if a.m.corner == Corner::ExactStop {
+        rep.add(Violation {
+            kind: ViolationKind::Corner,
+            block,
+            t,
+            value: v,
+            limit: 0.0,
+        });
         return;
     }
     let ea = a.eval(a.len);
