@@ -117,7 +117,8 @@ pub(crate) struct RuleShaper<'m> {
     machine: &'m Machine,
     /// The sinumerik model's curvature state (`None`: generic).
     sinumerik: Option<sinumerik::Curvature>,
-    last: Option<(BlockGeometry, Move)>,
+    /// The last block with geometry: its geometry, move and path limits.
+    last: Option<(BlockGeometry, Move, Limits1)>,
 }
 
 impl RuleShaper<'_> {
@@ -133,10 +134,12 @@ impl RuleShaper<'_> {
             Some(g) => {
                 let lim = block_limits(g, m, machine);
                 let cap = match &self.last {
-                    Some((pg, pm)) => {
+                    Some((pg, pm, pl)) => {
                         let mode = junction_mode(pm.corner, machine);
+                        // The planner keeps min(cap, the blocks' speed limits).
+                        let ceiling = pl.v.min(lim.v);
                         let mut cap = match &mut self.sinumerik {
-                            Some(c) => c.junction_cap(pg, g, mode, machine),
+                            Some(c) => c.junction_cap(pg, g, mode, machine, ceiling),
                             None => junction_cap(pg, g, mode, machine),
                         };
                         // An exact stop (G61.1, G60, G9, G09, Fanuc's G61) stops at the end
@@ -154,7 +157,7 @@ impl RuleShaper<'_> {
                     }
                     None => 0.0,
                 };
-                self.last = Some((*g, *m));
+                self.last = Some((*g, *m, lim));
                 (lim, cap)
             }
             None => {
@@ -165,7 +168,7 @@ impl RuleShaper<'_> {
                     if self
                         .last
                         .as_ref()
-                        .is_some_and(|(_, pm)| pm.corner == Corner::ExactStop)
+                        .is_some_and(|(_, pm, _)| pm.corner == Corner::ExactStop)
                     {
                         settle_before = machine.exact_stop_time;
                     }

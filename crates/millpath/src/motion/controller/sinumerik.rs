@@ -36,7 +36,7 @@
 use crate::geom::Vec3;
 use crate::machine::Machine;
 use crate::motion::limits::{
-    JunctionMode, NEAR_TANGENT, above_cube, corner_cap, min_cbrt, speed_step_cap,
+    JunctionMode, NEAR_TANGENT, above_cube, blend_cap_reaches, corner_cap, min_cbrt, speed_step_cap,
 };
 use crate::motion::path::BlockGeometry;
 
@@ -61,13 +61,19 @@ pub(crate) struct Curvature {
 }
 
 impl Curvature {
-    /// The speed cap at the junction from `g1` (corner mode `mode`) into `g2`.
+    /// The speed cap at the junction from `g1` (corner mode `mode`) into `g2`. `ceiling` is
+    /// the blocks' own speed limit there (the smaller of the two; `∞` if none): the planner
+    /// keeps `min(cap, ceiling)` and asks only whether the cap reaches the ceiling, so a ramp
+    /// at least 1e-9 above it is not computed (a ramp's tests then fail with a margin far
+    /// beyond their rounding). A cap below the ceiling is the cap; one at or above it is some
+    /// value at or above it.
     pub(crate) fn junction_cap(
         &mut self,
         g1: &BlockGeometry,
         g2: &BlockGeometry,
         mode: JunctionMode,
         machine: &Machine,
+        ceiling: f64,
     ) -> f64 {
         let t1 = g1.end_tangent();
         let t2 = g2.start_tangent();
@@ -79,8 +85,23 @@ impl Curvature {
         // The generic corner rules without their one-IPO-cycle curvature step (replaced by
         // the ramp below), and the speed step where a spiral arc meets another block.
         let dp = g2.derivatives(0.0)[1] - g1.derivatives(g1.length())[1];
+        // No cap above the fastest the path can go matters, nor one above the ceiling (see
+        // above): a blend cap surely above both is not computed (its trigonometry is the
+        // costliest part of a smooth junction) and stands as ∞.
+        let vmax = 3f64.sqrt()
+            * machine
+                .axes
+                .iter()
+                .map(|a| a.max_velocity)
+                .fold(0.0, f64::max);
+        let vtop = vmax.min(ceiling * (1.0 + 1e-9));
         let mut cap = if deflection > 1e-9 {
-            corner_cap(g1, g2, t1, t2, dp, mode, machine)
+            let lmin = g1.length().min(g2.length());
+            if tol > 0.0 && blend_cap_reaches(t1.dot(t2), lmin, tol, machine, vtop) {
+                f64::INFINITY
+            } else {
+                corner_cap(g1, g2, t1, t2, dp, mode, machine)
+            }
         } else {
             speed_step_cap(dp, machine)
         };
@@ -91,13 +112,6 @@ impl Curvature {
             self.samples.push_back((self.s, k0));
         }
         self.s += g1.length();
-        // No cap above the fastest the path can go matters.
-        let vmax = 3f64.sqrt()
-            * machine
-                .axes
-                .iter()
-                .map(|a| a.max_velocity)
-                .fold(0.0, f64::max);
         let (_, k1_end) = g1.curvature_ends();
         let (k2_start, _) = g2.curvature_ends();
         let lines =
@@ -132,7 +146,7 @@ impl Curvature {
                 let (a, j) = weakest(k, machine);
                 cap = cap.min((ea * a / kappa).sqrt());
                 let cube = ej * j / (kappa * kappa);
-                if j.is_finite() && cube < cap.min(vmax).powi(3) {
+                if j.is_finite() && cube < cap.min(vtop).powi(3) {
                     cap = min_cbrt(cap, cube);
                 }
             }
@@ -148,7 +162,7 @@ impl Curvature {
             .iter()
             .map(|a| a.max_jerk)
             .fold(f64::INFINITY, f64::min);
-        // Each ramp's cheap tests (a step too small, a cap above `min(cap, v_max)` by the
+        // Each ramp's cheap tests (a step too small, a cap above `min(cap, v_top)` by the
         // smallest jerk and the plain distance, a pair farther apart than the smoothing
         // length; see `ramp_cap`) with the products that do not change hoisted out of the
         // loop, the same operations in the same order.
@@ -167,22 +181,26 @@ impl Curvature {
             }
         };
         for &k in new.iter().take(n_new) {
-            let mut bound6 = cap.min(vmax).powi(6);
-            let mut above = cap12(cap);
+            let mut bound6 = cap.min(vtop).powi(6);
+            let mut above = cap12(cap.min(vtop));
             // The oldest samples fail one of the last two tests whatever their step: with
             // `(η_j·J_min·D)²·D⁴ ≥ bound⁶·(24ε)²` a step small enough to pass the smoothing
             // test (`D⁴·|Δκ|² ≤ (24ε)²`) is also small enough to fail the bound test
             // (a 1e-9 margin covers the rounding of both). The distances decrease along the
-            // samples, so they are a leading run, found by bisection and passed over.
+            // samples, so they are a leading run, found from the newest sample back (only a
+            // few are near enough to bind) and passed over.
             let reach = bound6 * smooth2 * (1.0 + 1e-9);
-            let first = if tol > 0.0 && reach.is_finite() {
-                self.samples.partition_point(|&(sk, _)| {
-                    let d = self.s - sk;
-                    (ej * d).powi(2) * (d * d).powi(2) >= reach
-                })
-            } else {
-                0
+            let far = |&(sk, _): &(f64, Vec3)| {
+                let d = self.s - sk;
+                (ej * d).powi(2) * (d * d).powi(2) >= reach
             };
+            let mut first = 0;
+            if tol > 0.0 && reach.is_finite() {
+                first = self.samples.len();
+                while first > 0 && !self.samples.get(first - 1).is_some_and(far) {
+                    first -= 1;
+                }
+            }
             if first > 0 {
                 cap = cap.min(f64::INFINITY);
             }
@@ -205,10 +223,10 @@ impl Curvature {
                     continue;
                 }
                 let before = cap.to_bits();
-                cap = ramp_cap(cap, step, distance, tol, machine, jmin, cap.min(vmax));
+                cap = ramp_cap(cap, step, distance, tol, machine, jmin, cap.min(vtop));
                 if cap.to_bits() != before {
-                    bound6 = cap.min(vmax).powi(6);
-                    above = cap12(cap);
+                    bound6 = cap.min(vtop).powi(6);
+                    above = cap12(cap.min(vtop));
                 }
             }
             match self.samples.back_mut() {
