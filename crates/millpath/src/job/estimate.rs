@@ -8,6 +8,10 @@
 //! whole ([`EstimateSettings::whole`]: the plan and every move kept, for samples and
 //! pictures). The verifier samples at `rate` ≥ 1 kHz; it does not run on the `linuxcnc`
 //! controller model, whose plans follow LinuxCNC's rules and are judged against LinuxCNC.
+//! Streaming on two or more cores ([`EstimateSettings::parallel`]), each chunk is verified on
+//! a second thread while the next is read and planned: the verifier's work overlaps the
+//! planner's, its counts are summed in program order, and the first error is the one the
+//! sequential run would meet.
 
 use crate::gcode::{Dialect, Reader, ReaderOptions};
 use crate::machine::{Controller, Machine};
