@@ -196,23 +196,45 @@ struct Current {
     peak_speed: f64,
 }
 
-impl Current {
-    fn new(block: usize, shape: Shape, plan: &Plan, machine: &Machine, tol: f64) -> Current {
-        let rapid = matches!(shape.m.kind, MoveKind::Rapid);
-        let limit = |lim: f64| (lim, lim * (1.0 + tol) + 1e-9);
-        let limits = std::array::from_fn(|i| {
+/// A limit and the value above which it is violated (`lim·(1 + tol) + 1e-9`).
+fn limit(lim: f64, tol: f64) -> (f64, f64) {
+    (lim, lim * (1.0 + tol) + 1e-9)
+}
+
+/// The per-axis limits of feed moves (`[0]`) and of rapids (`[1]`), as [`Current`] holds them.
+fn axis_limits(machine: &Machine, tol: f64) -> [[[(f64, f64); 3]; 3]; 2] {
+    [false, true].map(|rapid| {
+        std::array::from_fn(|i| {
             let ax = machine.axes[i];
             let vlim = if rapid {
                 ax.max_velocity.min(machine.rapid[i])
             } else {
                 ax.max_velocity
             };
-            [limit(vlim), limit(ax.max_acceleration), limit(ax.max_jerk)]
-        });
+            [
+                limit(vlim, tol),
+                limit(ax.max_acceleration, tol),
+                limit(ax.max_jerk, tol),
+            ]
+        })
+    })
+}
+
+impl Current {
+    fn new(
+        block: usize,
+        shape: Shape,
+        plan: &Plan,
+        machine: &Machine,
+        tol: f64,
+        axis_limits: &[[[(f64, f64); 3]; 3]; 2],
+    ) -> Current {
+        let rapid = matches!(shape.m.kind, MoveKind::Rapid);
+        let limits = axis_limits[usize::from(rapid)];
         let feed_limit = shape
             .m
             .is_feed()
-            .then(|| limit(shape.m.feed.min(machine.max_feed)));
+            .then(|| limit(shape.m.feed.min(machine.max_feed), tol));
         let line = match shape.m.kind {
             MoveKind::Arc { .. } => None,
             _ => {
@@ -291,6 +313,7 @@ pub fn verify_plan(
         .fold(0.0, f64::max);
     // The block being sampled (samples come in block order) and what its checks need.
     let mut current: Option<Current> = None;
+    let limits = axis_limits(machine, tol);
     let mut prev: Option<(f64, Option<u32>, f64, f64, f64)> = None;
     let mut last_sample = None;
     plan.for_each_path_sample(dt, |smp| {
@@ -303,7 +326,7 @@ pub fn verify_plan(
             let Some(sh) = shape(smp.block) else {
                 return Err(Error::internal("verifier: sample outside the program"));
             };
-            current = Some(Current::new(smp.block, sh, plan, machine, tol));
+            current = Some(Current::new(smp.block, sh, plan, machine, tol, &limits));
         }
         let Some(cur) = current.as_mut() else {
             return Err(Error::internal("verifier: no block"));
@@ -325,12 +348,18 @@ pub fn verify_plan(
             ViolationKind::Acceleration,
             ViolationKind::Jerk,
         ];
-        for i in 0..3 {
-            let vals = [v3[i].abs(), a3[i].abs(), j3[i].abs()];
-            for (w, val) in vals.into_iter().enumerate() {
-                let (lim, over) = cur.limits[i][w];
+        for ((lims, peaks), vals) in cur.limits.iter().zip(&mut cur.peak).zip([
+            [v3[0].abs(), a3[0].abs(), j3[0].abs()],
+            [v3[1].abs(), a3[1].abs(), j3[1].abs()],
+            [v3[2].abs(), a3[2].abs(), j3[2].abs()],
+        ]) {
+            for (w, ((&(lim, over), peak), val)) in lims.iter().zip(peaks).zip(vals).enumerate() {
                 if lim.is_finite() {
-                    cur.peak[i][w] = cur.peak[i][w].max(val);
+                    // The running maximum (a NaN, which `f64::max` would pass over, fails
+                    // the comparison alike).
+                    if val > *peak {
+                        *peak = val;
+                    }
                     if val > over {
                         rep.add(Violation {
                             kind: KINDS[w],
@@ -346,7 +375,9 @@ pub fn verify_plan(
         if let Some((flim, over)) = cur.feed_limit {
             // The tool's speed |P'|·ṡ (ṡ itself on lines and circles, where |P'| = 1).
             let speed = v.length();
-            cur.peak_speed = cur.peak_speed.max(speed);
+            if speed > cur.peak_speed {
+                cur.peak_speed = speed;
+            }
             if speed > over {
                 rep.add(Violation {
                     kind: ViolationKind::Feed,
