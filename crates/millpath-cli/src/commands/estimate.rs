@@ -95,6 +95,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         per_block: args.json && args.blocks,
         // Samples and pictures need the whole plan and every move.
         whole: args.samples.is_some() || args.html.is_some() || args.svg.is_some(),
+        ..EstimateSettings::default()
     };
     let size = std::fs::metadata(path).map_or(0, |m| m.len());
     let bar = (size > PROGRESS_BYTES && std::io::stderr().is_terminal()).then(|| {

@@ -198,26 +198,61 @@ fn number(line: &str, i: usize) -> Option<(f64, usize)> {
     }
     let start = j;
     let mut digits = 0;
-    while b.get(j).is_some_and(u8::is_ascii_digit) {
+    // The digits as an integer (while it fits) and how many follow the point.
+    let mut mantissa: u64 = 0;
+    let mut fraction = 0;
+    while let Some(d) = b.get(j).filter(|c| c.is_ascii_digit()) {
+        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
         j += 1;
         digits += 1;
     }
     if b.get(j) == Some(&b'.') {
         j += 1;
-        while b.get(j).is_some_and(u8::is_ascii_digit) {
+        while let Some(d) = b.get(j).filter(|c| c.is_ascii_digit()) {
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
             j += 1;
             digits += 1;
+            fraction += 1;
         }
     }
     if digits == 0 {
         return None;
     }
-    // A number glued to a letter other than the next word's (`1e5`, `1x`) is still fine:
-    // the letter starts the next word. Rust's parser accepts every form we let through.
-    let text = line.get(start..j)?;
-    let value: f64 = text.parse().ok()?;
+    let value = match exact_decimal(mantissa, digits, fraction) {
+        Some(v) => v,
+        None => {
+            // A number glued to a letter other than the next word's (`1e5`, `1x`) is still
+            // fine: the letter starts the next word. Rust's parser accepts every form we let
+            // through.
+            let text = line.get(start..j)?;
+            text.parse().ok()?
+        }
+    };
     let value = if negative { -value } else { value };
     value.is_finite().then_some((value, j))
+}
+
+/// Powers of ten that are exact in f64 (10²² is the last: 5²² < 2⁵³).
+const EXACT_POWERS_OF_TEN: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// The value of the decimal `mantissa · 10^−fraction` (`digits` digits in all) when it is
+/// computed exactly by one division (Clinger's fast path): the mantissa at most 2⁵³ (exact in
+/// f64; at most 19 digits, so the integer did not wrap) and `10^fraction` exact. The quotient
+/// of two exact numbers rounded once is the correctly rounded decimal, the value Rust's
+/// parser returns; other numbers (`None`) go to that parser.
+fn exact_decimal(mantissa: u64, digits: usize, fraction: usize) -> Option<f64> {
+    const MAX_EXACT: u64 = 1 << 53;
+    if digits > 19 || mantissa > MAX_EXACT {
+        return None;
+    }
+    let power = EXACT_POWERS_OF_TEN.get(fraction)?;
+    // The mantissa is at most 2⁵³: the conversion is exact.
+    #[allow(clippy::cast_precision_loss)]
+    let m = mantissa as f64;
+    Some(m / power)
 }
 
 /// `NAME=number` or `NAME(args)` at `start`.
@@ -302,6 +337,57 @@ mod tests {
                 value: 3.0
             })
         );
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20000))]
+        /// The fast path gives the value Rust's parser gives, to the bit, on 20 000 decimals
+        /// of every shape G-code has (up to 22 digits, up to 22 after the point, leading
+        /// zeros, no digits before or after the point).
+        #[test]
+        fn fast_decimals_are_the_parsers(
+            int in proptest::collection::vec(0u8..10, 0..12),
+            frac in proptest::option::of(proptest::collection::vec(0u8..10, 0..23)),
+        ) {
+            let digit = |d: &u8| char::from(b'0' + d);
+            let mut text: String = int.iter().map(digit).collect();
+            if let Some(f) = &frac {
+                text.push('.');
+                text.extend(f.iter().map(digit));
+            }
+            let parsed: Option<f64> = text.parse().ok();
+            let lexed = number(&text, 0).map(|(v, _)| v);
+            proptest::prop_assert_eq!(lexed.map(f64::to_bits), parsed.map(f64::to_bits), "{}", text);
+            let neg = format!("-{text}");
+            let lexed = number(&neg, 0).map(|(v, _)| v);
+            proptest::prop_assert_eq!(lexed.map(f64::to_bits), parsed.map(|v| (-v).to_bits()), "{}", neg);
+        }
+    }
+
+    /// The fast path's edges: 2⁵³ and 2⁵³ + 1 (the first not exact), 19 and 20 digits,
+    /// 10⁻²² and 10⁻²³, halfway cases, against Rust's parser.
+    #[test]
+    fn fast_decimal_edges_are_the_parsers() {
+        for text in [
+            "9007199254740992",
+            "9007199254740993",
+            "900719925474099.3",
+            "1234567890123456789",
+            "12345678901234567890",
+            "0.0000000000000000000001",
+            "0.00000000000000000000001",
+            "1.0000000000000002220446049250313080847263336181640625",
+            "0.1",
+            "0.3",
+            "2.675",
+            "000000000000000000000000000001.5",
+            "123.",
+            ".5",
+        ] {
+            let parsed: f64 = text.parse().unwrap();
+            let lexed = number(text, 0).unwrap().0;
+            assert_eq!(lexed.to_bits(), parsed.to_bits(), "{text}");
+        }
     }
 
     #[test]

@@ -95,10 +95,16 @@ pub(crate) struct NgcLine {
 /// Whether `line` needs this parser rather than the plain lexer. No allocation: every line
 /// of a plain program passes here.
 pub(crate) fn needed(line: &[u8]) -> bool {
-    if line.iter().any(|&c| matches!(c, b'#' | b'[')) {
-        return true;
+    // One pass for parameters, expressions and comments.
+    let mut comment = false;
+    for &c in line {
+        match c {
+            b'#' | b'[' => return true,
+            b'(' => comment = true,
+            _ => {}
+        }
     }
-    if line.contains(&b'(') && message_comment(line) {
+    if comment && message_comment(line) {
         return true;
     }
     starts_with_o(line) && o_header(line).is_some()

@@ -14,10 +14,14 @@
 //! whole ([`EstimateSettings::whole`]: the plan and every move kept, for samples and
 //! pictures). The verifier samples at `rate` ≥ 1 kHz; it does not run on the `linuxcnc`
 //! controller model, whose plans follow LinuxCNC's rules and are judged against LinuxCNC.
+//! Streaming on two or more cores ([`EstimateSettings::parallel`]), each chunk is verified on
+//! a second thread while the next is read and planned: the verifier's work overlaps the
+//! planner's, its counts are summed in program order, and the first error is the one the
+//! sequential run would meet.
 
 use crate::gcode::{Dialect, DialectChoice, DialectGuess, Reader, ReaderOptions, reads_whole};
 use crate::machine::{Controller, Machine};
-use crate::motion::stream::{StreamOptions, plan_stream};
+use crate::motion::stream::{Chunk, StreamOptions, empty_chunk, plan_stream, plan_stream_owned};
 use crate::motion::verify::{VerifyOptions, verify_plan};
 use crate::motion::{Plan, PlanOptions, plan_moves};
 use crate::{Error, InputError, Move, Point3, Toolpath};
@@ -55,6 +59,9 @@ pub struct EstimateSettings {
     pub per_block: bool,
     /// Keep the whole plan and the toolpath (with its levels) for samples and pictures.
     pub whole: bool,
+    /// Verify each timed chunk on a second thread while the next one is read and planned
+    /// (streaming runs on a machine with two or more cores; the same figures either way).
+    pub parallel: bool,
 }
 
 impl Default for EstimateSettings {
@@ -69,6 +76,7 @@ impl Default for EstimateSettings {
             step_budget: crate::gcode::DEFAULT_STEP_BUDGET,
             per_block: false,
             whole: false,
+            parallel: true,
         }
     }
 }
@@ -469,27 +477,39 @@ fn block_times(
 
 /// The streaming way: plans in bounded memory ([`plan_stream`]) and verifies each chunk as
 /// it is timed (a chunk boundary is a knot where the acceleration is zero; its junction is
-/// the one check the chunked verifier does not repeat across chunks).
+/// the one check the chunked verifier does not repeat across chunks). With
+/// [`EstimateSettings::parallel`] the chunks are verified on a second thread, in order, while
+/// the planner goes on (at most two chunks wait for it: memory stays bounded).
 fn streamed<I>(stream: I, machine: &Machine, settings: &EstimateSettings) -> Result<Estimate, Error>
 where
     I: Iterator<Item = Result<(Point3, Move), Error>>,
 {
-    let mut violations = 0usize;
     let mut per_block = Vec::new();
     let vopts = VerifyOptions {
         rate: settings.rate,
         ..VerifyOptions::default()
     };
     let verify = verifies(settings, machine);
-    let sum = plan_stream(stream, machine, &StreamOptions::default(), |chunk| {
-        if verify {
-            violations += verify_plan(&chunk.plan, &chunk.moves, machine, &vopts)?.violations;
-        }
-        if settings.per_block {
-            per_block.extend(block_times(&chunk.plan.blocks, chunk.start_time));
-        }
-        Ok(())
-    })?;
+    let two_cores = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    let (sum, violations) = if verify && settings.parallel && two_cores {
+        verified_beside(stream, machine, &vopts, |chunk| {
+            if settings.per_block {
+                per_block.extend(block_times(&chunk.plan.blocks, chunk.start_time));
+            }
+        })?
+    } else {
+        let mut violations = 0usize;
+        let sum = plan_stream(stream, machine, &StreamOptions::default(), |chunk| {
+            if verify {
+                violations += verify_plan(&chunk.plan, &chunk.moves, machine, &vopts)?.violations;
+            }
+            if settings.per_block {
+                per_block.extend(block_times(&chunk.plan.blocks, chunk.start_time));
+            }
+            Ok(())
+        })?;
+        (sum, violations)
+    };
     Ok(Estimate {
         cycle_time_s: sum.total_time,
         blocks: sum.blocks,
@@ -498,6 +518,52 @@ where
         machine: machine.name.clone(),
         time_at_programmed_feed_s: sum.time_at_programmed_feed,
         per_block: settings.per_block.then_some(per_block),
+    })
+}
+
+/// Plans `stream` on this thread and verifies its chunks on another, in program order; each
+/// chunk goes to `seen` first. Returns the summary and the violations counted. Errors are
+/// those of the sequential run: the verifier's on a chunk comes before anything the planner
+/// met after handing that chunk over.
+fn verified_beside<I>(
+    stream: I,
+    machine: &Machine,
+    vopts: &VerifyOptions,
+    mut seen: impl FnMut(&Chunk),
+) -> Result<(crate::motion::StreamSummary, usize), Error>
+where
+    I: Iterator<Item = Result<(Point3, Move), Error>>,
+{
+    use std::sync::mpsc;
+    std::thread::scope(|scope| {
+        // Filled chunks to the verifier (one waiting at most), emptied ones back.
+        let (to_verifier, filled) = mpsc::sync_channel::<Chunk>(1);
+        let (give_back, emptied) = mpsc::channel::<Chunk>();
+        let verifier = scope.spawn(move || -> Result<usize, Error> {
+            let mut violations = 0;
+            for chunk in filled {
+                violations += verify_plan(&chunk.plan, &chunk.moves, machine, vopts)?.violations;
+                // The planner may have finished: then the chunk is not needed back.
+                let _ = give_back.send(chunk);
+            }
+            Ok(violations)
+        });
+        let planned = plan_stream_owned(stream, machine, &StreamOptions::default(), |chunk| {
+            seen(chunk);
+            let mut spare = emptied.try_recv().unwrap_or_else(|_| empty_chunk(machine));
+            std::mem::swap(chunk, &mut spare);
+            // A closed channel: the verifier stopped at an error, reported below.
+            to_verifier
+                .send(spare)
+                .map_err(|_| Error::internal("the verifier stopped"))
+        });
+        drop(to_verifier);
+        let verified = match verifier.join() {
+            Ok(r) => r,
+            Err(panic) => std::panic::resume_unwind(panic),
+        };
+        let violations = verified?;
+        Ok((planned?, violations))
     })
 }
 
@@ -588,6 +654,47 @@ mod tests {
         // The same time as a program read back from bytes.
         let t = super::super::program_time(RECT.as_bytes(), Dialect::LinuxCnc, "rect", &m).unwrap();
         assert!((t - a.cycle_time_s).abs() < 1e-9 * t);
+    }
+
+    /// A program of `n` short G1 moves along a wavy line (several of the stream's chunks),
+    /// ending with `tail`.
+    fn wavy(n: usize, tail: &str) -> String {
+        let mut text = String::from("G21 G90 G64 P0.01\nG0 X0 Y0 Z1\nG1 Z0 F1500\n");
+        for i in 1..=n {
+            let x = i as f64 * 0.1;
+            text.push_str(&format!("X{x:.3} Y{:.3}\n", (x * 0.3).sin() * 5.0));
+        }
+        text.push_str(tail);
+        text
+    }
+
+    /// The verifier on a second thread gives the sequential run's estimate (cycle time,
+    /// violations, every block's time) and its error, whichever comes first.
+    #[test]
+    fn verifying_beside_the_planner_changes_nothing() {
+        let m = Machine::preset("hsm").unwrap();
+        let settings = |parallel| EstimateSettings {
+            parallel,
+            per_block: true,
+            ..EstimateSettings::default()
+        };
+        let text = wavy(20_000, "M2\n");
+        let a = run_text(&text, "wavy", &m, &settings(true))
+            .unwrap()
+            .estimate;
+        let b = run_text(&text, "wavy", &m, &settings(false))
+            .unwrap()
+            .estimate;
+        assert_eq!(a, b);
+        assert_eq!(a.violations, Some(0));
+        assert_eq!(a.per_block.as_ref().map(Vec::len), Some(20_002));
+        // An error after several chunks were handed to the verifier: the same message.
+        let bad = wavy(20_000, "G1 X1 E5\nM2\n");
+        let ea = run_text(&bad, "wavy", &m, &settings(true)).unwrap_err();
+        let eb = run_text(&bad, "wavy", &m, &settings(false)).unwrap_err();
+        assert_eq!(ea.to_string(), eb.to_string());
+        assert_eq!(ea.exit_code(), 2);
+        assert!(ea.to_string().contains("wavy:20004"), "{ea}");
     }
 
     #[test]

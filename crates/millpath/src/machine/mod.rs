@@ -56,7 +56,7 @@
 //! curvature_accel_share = 0.75   # optional, default 0.75
 //! curvature_jerk_share = 0.75    # optional, default 0.75
 //! controller = "generic"  # optional: "generic" (default), "sinumerik" or "linuxcnc"
-//! exact_stop_time = 0.0   # s, optional: settling at exact stops (sinumerik model only)
+//! exact_stop_time = 0.0   # s, optional: settling at each exact stop (not linuxcnc)
 //! sync_wait = 0.0         # s, optional: wait at spindle/coolant/tool commands (linuxcnc only)
 //!
 //! [axes.x]
@@ -156,8 +156,12 @@ pub struct Machine {
     #[serde(default)]
     pub controller: Controller,
     /// Time in s the controller waits at each exact stop and at the program's end for the
-    /// axes to settle in position (the 840D's exact-stop window, G60/G9); the `sinumerik`
-    /// model only.
+    /// axes to settle in position (the 840D's exact-stop window). A property of the machine,
+    /// not of the program's dialect: every exact stop the reader finds
+    /// ([`crate::toolpath::Corner::ExactStop`]: LinuxCNC's G61.1, Fanuc's G61/G09,
+    /// Sinumerik's G60/G9) and every corner under a zero tolerance costs it, on the
+    /// `generic` and `sinumerik` models; the `linuxcnc` model has none (LinuxCNC's planner
+    /// waits for no in-position window).
     #[serde(default)]
     pub exact_stop_time: f64,
     /// Time in s a LinuxCNC controller's task waits, at rest, at a spindle, coolant or tool

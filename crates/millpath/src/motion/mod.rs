@@ -50,9 +50,10 @@
 //!   1% of an independent time-optimal reference (`tests/motion_topp.rs`).
 //! * Every plan of the test corpus sampled at 1 kHz has 0 violations of per-axis v/a/j
 //!   (relative 1e-6), feed, and corner rules (`tests/motion_verify.rs`).
-//! * Speed: ≥ 2 million planned moves per second on one core for short-segment G1 programs
-//!   (`benches/planner.rs`); a 1-million-line program is read and planned in about 1.2 s
-//!   (`millpath estimate --no-verify`), 3.3 s with the 1 kHz verifier.
+//! * Speed: time linear in the number of blocks and, for the verifier, in the cycle time
+//!   (samples at its rate); the figures are in BENCHMARKS.md (`benches/planner.rs`,
+//!   `benches/estimate.rs`: a 1,000,000-line program read, planned and verified beside
+//!   LinuxCNC's interpreter reading it).
 //! * Input range: lengths from 1e-12 mm (shorter moves are skipped with zero time), limits
 //!   any finite positive values (jerk may be infinite), arcs with radius > 1e-12 mm.
 //!

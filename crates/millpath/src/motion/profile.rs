@@ -308,6 +308,38 @@ impl SpanProfile {
         st
     }
 
+    /// The state at the start of each phase, in order (what [`SpanProfile::state`] computes
+    /// on its way to the phase it stops in), for [`SpanProfile::state_from`].
+    pub(crate) fn phase_starts(&self) -> [State1; 7] {
+        let mut starts = [State1::default(); 7];
+        let mut st = State1 {
+            s: 0.0,
+            v: self.v0,
+            a: 0.0,
+            j: 0.0,
+        };
+        for (start, ph) in starts.iter_mut().zip(&self.phases) {
+            *start = st;
+            st = advance(st, ph, ph.duration);
+        }
+        starts
+    }
+
+    /// [`SpanProfile::state`] with the phases' start states `starts` (from
+    /// [`SpanProfile::phase_starts`]) looked up instead of advanced through: the same
+    /// operations on the same numbers, so the same state to the bit, for samplers that query
+    /// one profile many times.
+    pub(crate) fn state_from(&self, starts: &[State1; 7], t: f64) -> State1 {
+        let mut rest = t.clamp(0.0, self.duration);
+        for (i, (ph, st)) in self.phases.iter().zip(starts).enumerate() {
+            if rest <= ph.duration || i == 6 {
+                return advance(*st, ph, rest.min(ph.duration));
+            }
+            rest -= ph.duration;
+        }
+        starts[6]
+    }
+
     /// The time at which the profile has covered `s` (0 ≤ s ≤ length), by a safeguarded
     /// Newton iteration within the phase that contains it.
     pub fn time_at(&self, s: f64) -> f64 {
@@ -584,6 +616,38 @@ mod tests {
             proptest::prop_assert!(p.is_ok(), "{:?}", p);
             let p = p.expect("feasible");
             proptest::prop_assert!(p.check(lim).is_ok(), "{:?}", p.check(lim));
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
+        /// The samplers' lookup of the phase starts gives `state` to the bit, at every time
+        /// (inside, at and beyond the phase boundaries), on 512 feasible profiles.
+        #[test]
+        fn state_from_phase_starts_is_state(
+            v0 in 0.0f64..200.0, v1 in 0.0f64..200.0, extra in 0.0f64..100.0,
+            a in 10.0f64..1e4, lj in 2.0f64..7.0, unlimited in proptest::bool::ANY,
+            ts in proptest::collection::vec(-0.1f64..1.1, 16),
+        ) {
+            let j = if unlimited { f64::INFINITY } else { 10f64.powf(lj) };
+            let lim = Limits1 { v: 200.0, a, j };
+            let l = change_distance(v0, v1, a, j) + extra + 1e-6;
+            let p = SpanProfile::new(v0, v1, l, lim).unwrap();
+            let starts = p.phase_starts();
+            let mut bounds = vec![0.0, p.duration];
+            let mut t = 0.0;
+            for ph in &p.phases {
+                t += ph.duration;
+                bounds.push(t);
+            }
+            for t in ts.iter().map(|f| f * p.duration).chain(bounds) {
+                let (x, y) = (p.state(t), p.state_from(&starts, t));
+                proptest::prop_assert_eq!(
+                    [x.s, x.v, x.a, x.j].map(f64::to_bits),
+                    [y.s, y.v, y.a, y.j].map(f64::to_bits),
+                    "t {}", t
+                );
+            }
         }
     }
 

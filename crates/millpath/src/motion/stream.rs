@@ -101,8 +101,7 @@ pub struct StreamSummary {
     pub max_buffered_blocks: usize,
 }
 
-struct State<'a, F> {
-    machine: &'a Machine,
+struct State<F> {
     opts: StreamOptions,
     b: Builder,
     blocks: Vec<BlockPlan>,
@@ -110,6 +109,8 @@ struct State<'a, F> {
     geoms: Vec<Option<BlockGeometry>>,
     block_base: usize,
     sum: StreamSummary,
+    /// The chunk handed out, its buffers kept from one chunk to the next.
+    chunk: Chunk,
     on_chunk: F,
 }
 
@@ -120,15 +121,49 @@ pub fn plan_stream<I, F>(
     moves: I,
     machine: &Machine,
     opts: &StreamOptions,
-    on_chunk: F,
+    mut on_chunk: F,
 ) -> Result<StreamSummary, Error>
 where
     I: IntoIterator<Item = Result<(Point3, Move), Error>>,
     F: FnMut(&Chunk) -> Result<(), Error>,
 {
+    plan_stream_owned(moves, machine, opts, |c: &mut Chunk| on_chunk(c))
+}
+
+/// A chunk with nothing in it, for `machine` (what [`plan_stream_owned`]'s callback may
+/// leave in place of the chunk it takes).
+pub(crate) fn empty_chunk(machine: &Machine) -> Chunk {
+    Chunk {
+        plan: Plan {
+            reshaped: machine.controller == crate::machine::Controller::LinuxCnc,
+            machine: machine.name.clone(),
+            blocks: Vec::new(),
+            spans: Vec::new(),
+            geometry: Vec::new(),
+            ends: Vec::new(),
+            total_time: 0.0,
+        },
+        moves: Vec::new(),
+        start_time: 0.0,
+        first_block: 0,
+    }
+}
+
+/// [`plan_stream`] whose callback may take the chunk (swap it with another chunk of the same
+/// machine, [`empty_chunk`] or one handed back): the stream refills whatever chunk is left,
+/// reusing its buffers.
+pub(crate) fn plan_stream_owned<I, F>(
+    moves: I,
+    machine: &Machine,
+    opts: &StreamOptions,
+    on_chunk: F,
+) -> Result<StreamSummary, Error>
+where
+    I: IntoIterator<Item = Result<(Point3, Move), Error>>,
+    F: FnMut(&mut Chunk) -> Result<(), Error>,
+{
     machine.validate(&machine.name)?;
     let mut st = State {
-        machine,
         opts: *opts,
         b: Builder::new(),
         blocks: Vec::new(),
@@ -136,6 +171,7 @@ where
         geoms: Vec::new(),
         block_base: 0,
         sum: StreamSummary::default(),
+        chunk: empty_chunk(machine),
         on_chunk,
     };
     let base_window = opts.window.max(2);
@@ -169,9 +205,9 @@ where
     Ok(st.sum)
 }
 
-impl<F> State<'_, F>
+impl<F> State<F>
 where
-    F: FnMut(&Chunk) -> Result<(), Error>,
+    F: FnMut(&mut Chunk) -> Result<(), Error>,
 {
     /// Adds one prepared block to the window.
     fn take(&mut self, p: &Prepared) -> Result<(), Error> {
@@ -246,45 +282,37 @@ where
             .saturating_sub(self.block_base)
             .min(self.blocks.len());
         let base = self.block_base;
-        let mut spans: Vec<Span> = self.b.spans[..p]
-            .iter()
-            .map(|s| Span {
-                first: s.first.saturating_sub(base),
-                end: s.end.saturating_sub(base),
-                ..*s
-            })
-            .collect();
-        let mut blocks: Vec<BlockPlan> = self.blocks.drain(..nb).collect();
+        let chunk = &mut self.chunk;
+        let plan = &mut chunk.plan;
+        plan.spans.clear();
+        plan.spans.extend(self.b.spans[..p].iter().map(|s| Span {
+            first: s.first.saturating_sub(base),
+            end: s.end.saturating_sub(base),
+            ..*s
+        }));
+        take_prefix(&mut self.blocks, nb, &mut plan.blocks);
         let span_base = u32::try_from(self.b.span_base).unwrap_or(u32::MAX);
-        for bp in &mut blocks {
+        for bp in &mut plan.blocks {
             bp.span = bp.span.saturating_sub(span_base);
         }
         let dt = time_spans(
-            &mut spans,
+            &mut plan.spans,
             &y[..=p],
-            &mut blocks,
+            &mut plan.blocks,
             0,
             0.0,
             self.opts.check_profiles,
         )?;
-        let moves: Vec<(Point3, Move)> = self.moves.drain(..nb).collect();
-        let geometry: Vec<Option<BlockGeometry>> = self.geoms.drain(..nb).collect();
-        let chunk = Chunk {
-            plan: Plan {
-                reshaped: self.machine.controller == crate::machine::Controller::LinuxCnc,
-                machine: self.machine.name.clone(),
-                blocks,
-                spans,
-                geometry,
-                ends: moves.iter().map(|(f, m)| (*f, m.to)).collect(),
-                total_time: dt,
-            },
-            moves,
-            start_time: self.sum.total_time,
-            first_block: base,
-        };
+        take_prefix(&mut self.moves, nb, &mut chunk.moves);
+        take_prefix(&mut self.geoms, nb, &mut plan.geometry);
+        plan.ends.clear();
+        plan.ends
+            .extend(chunk.moves.iter().map(|(f, m)| (*f, m.to)));
+        plan.total_time = dt;
+        chunk.start_time = self.sum.total_time;
+        chunk.first_block = base;
         if !chunk.moves.is_empty() {
-            (self.on_chunk)(&chunk)?;
+            (self.on_chunk)(chunk)?;
             self.sum.chunks += 1;
         }
         self.sum.total_time += dt;
@@ -297,4 +325,14 @@ where
         self.b.span_base += p;
         Ok(p)
     }
+}
+
+/// Moves the first `n` items of `window` into `out` (whatever `out` held is dropped): the two
+/// buffers are swapped and only the items after `n` (the window's unfinished tail, usually
+/// short) are copied, not the chunk handed out.
+fn take_prefix<T: Copy>(window: &mut Vec<T>, n: usize, out: &mut Vec<T>) {
+    out.clear();
+    out.extend_from_slice(window.get(n..).unwrap_or_default());
+    window.truncate(n);
+    std::mem::swap(window, out);
 }

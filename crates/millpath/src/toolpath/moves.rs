@@ -45,9 +45,15 @@ pub enum Corner {
     /// Whatever the machine's profile says (its path tolerance).
     #[default]
     Machine,
-    /// Exact stop at the end of the move (G61.1 / G09).
+    /// Exact stop at the end of the move: the axes come to rest in position before the next
+    /// move. One notion whichever dialect wrote it: LinuxCNC's `G61.1`, Fanuc's `G61` and
+    /// `G09`, Sinumerik's `G60` and `G9` (Grbl has none). What a stop costs beyond coming to
+    /// rest (the settling in the controller's exact-stop window) is the machine's, not the
+    /// program's: [`crate::machine::Machine::exact_stop_time`].
     ExactStop,
-    /// Exact path, no stop required: the corner speed is limited by the axes (G61).
+    /// Exact path, no stop required: the corner speed is limited by the axes (LinuxCNC's
+    /// `G61`, Sinumerik's `G64` without rounding). The axes may slow down to nearly nothing
+    /// at a sharp corner but wait for no exact-stop window.
     ExactPath,
     /// Blend within this tolerance in mm (G64 P).
     Blend(f64),

@@ -58,7 +58,29 @@ impl BlockError {
 /// enough that squares of it (arc geometry) stay finite.
 pub const MAX_WORD_VALUE: f64 = 1e9;
 
-const LETTERS_OK: &[u8] = b"DFHIJKLNOPQRSTXYZ";
+/// The letters every dialect's words may have besides G and M: D F H I J K L N O P Q R S T X
+/// Y Z.
+fn letter_ok(l: u8) -> bool {
+    matches!(
+        l,
+        b'D' | b'F'
+            | b'H'
+            | b'I'
+            | b'J'
+            | b'K'
+            | b'L'
+            | b'N'
+            | b'O'
+            | b'P'
+            | b'Q'
+            | b'R'
+            | b'S'
+            | b'T'
+            | b'X'
+            | b'Y'
+            | b'Z'
+    )
+}
 
 pub(crate) fn letter_index(l: u8) -> usize {
     usize::from(l.saturating_sub(b'A')).min(25)
@@ -114,11 +136,12 @@ impl Block {
                 start,
                 end,
             } => {
-                let text = line.get(*start..*end).unwrap_or("?").trim();
+                // The word's text, for messages only.
+                let text = || line.get(*start..*end).unwrap_or("?").trim();
                 if value.abs() > MAX_WORD_VALUE {
                     return Err(BlockError::new(
                         "G-code number",
-                        text,
+                        text(),
                         format!("a magnitude of at most {MAX_WORD_VALUE:e}"),
                     ));
                 }
@@ -126,19 +149,19 @@ impl Block {
                     b'G' => {
                         let code = (value * 10.0).round();
                         if (value * 10.0 - code).abs() > 1e-6 || !(0.0..=9999.0).contains(&code) {
-                            return Err(BlockError::unsupported(text, "a supported G code"));
+                            return Err(BlockError::unsupported(text(), "a supported G code"));
                         }
                         let code = code as u16;
                         if dialect == Dialect::LinuxCnc && is_refused_cycle(code) {
                             return Err(BlockError::unsupported(
-                                text,
+                                text(),
                                 "a canned cycle the reader expands: G73, G81, G82, G83, G85, G89 \
                                  (not G74/G76/G84 tapping and threading, G86/G87/G88)",
                             ));
                         }
                         if !g_supported(code, dialect) {
                             return Err(BlockError::unsupported(
-                                text,
+                                text(),
                                 "a supported G code (see the reader docs)",
                             ));
                         }
@@ -150,7 +173,7 @@ impl Block {
                             || !matches!(code as i64, 0..=9 | 30 | 48..=53 | 61..=66 | 70..=73)
                         {
                             return Err(BlockError::unsupported(
-                                text,
+                                text(),
                                 "M0–M9, M30, M48–M53, M61–M66 or M70–M73",
                             ));
                         }
@@ -162,7 +185,7 @@ impl Block {
                             Some(Some(_)) => {
                                 return Err(BlockError::new(
                                     "G-code word",
-                                    text,
+                                    text(),
                                     format!("one {} word per block", char::from(*letter)),
                                 ));
                             }
@@ -170,15 +193,15 @@ impl Block {
                             None => {}
                         }
                     }
-                    l if LETTERS_OK.contains(l)
-                        || (dialect == Dialect::LinuxCnc && b"ABC".contains(l)) =>
+                    l if letter_ok(*l)
+                        || (dialect == Dialect::LinuxCnc && matches!(l, b'A' | b'B' | b'C')) =>
                     {
                         let slot = self.words.get_mut(letter_index(*l));
                         match slot {
                             Some(Some(_)) => {
                                 return Err(BlockError::new(
                                     "G-code word",
-                                    text,
+                                    text(),
                                     format!("one {} word per block", char::from(*l)),
                                 ));
                             }
@@ -188,7 +211,7 @@ impl Block {
                     }
                     _ => {
                         return Err(BlockError::unsupported(
-                            text,
+                            text(),
                             "words G, M, N, O, X, Y, Z, I, J, K, R, F, S, T, P, Q, H, D \
                              (and A, B, C in LinuxCNC programs)",
                         ));

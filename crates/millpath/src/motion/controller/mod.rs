@@ -31,7 +31,7 @@ use super::profile::Limits1;
 use crate::error::Error;
 use crate::geom::Point3;
 use crate::machine::{Controller, Machine};
-use crate::toolpath::Move;
+use crate::toolpath::{Corner, Move};
 
 /// One block as the planner times it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -96,10 +96,11 @@ impl<'m> Shaper<'m> {
     }
 
     /// The end of the program: appends the blocks still held; returns the time the
-    /// controller then waits at rest (exact-stop settling).
+    /// controller then waits at rest (exact-stop settling: the program ends in an exact
+    /// stop).
     pub(crate) fn finish(&mut self, out: &mut Vec<Prepared>) -> Result<f64, Error> {
         match self {
-            Shaper::Rules(r) => Ok(if r.sinumerik.is_some() && r.last.is_some() {
+            Shaper::Rules(r) => Ok(if r.last.is_some() {
                 r.machine.exact_stop_time
             } else {
                 0.0
@@ -109,12 +110,15 @@ impl<'m> Shaper<'m> {
     }
 }
 
-/// The per-block rules of the `generic` and `sinumerik` models.
+/// The per-block rules of the `generic` and `sinumerik` models. Both wait
+/// [`Machine::exact_stop_time`] at rest at every exact stop and at the program's end (the
+/// `linuxcnc` model waits for none: LinuxCNC's planner has no exact-stop window).
 pub(crate) struct RuleShaper<'m> {
     machine: &'m Machine,
     /// The sinumerik model's curvature state (`None`: generic).
     sinumerik: Option<sinumerik::Curvature>,
-    last: Option<(BlockGeometry, Move)>,
+    /// The last block with geometry: its geometry, move and path limits.
+    last: Option<(BlockGeometry, Move, Limits1)>,
 }
 
 impl RuleShaper<'_> {
@@ -130,25 +134,44 @@ impl RuleShaper<'_> {
             Some(g) => {
                 let lim = block_limits(g, m, machine);
                 let cap = match &self.last {
-                    Some((pg, pm)) => {
+                    Some((pg, pm, pl)) => {
                         let mode = junction_mode(pm.corner, machine);
-                        if self.sinumerik.is_some() && mode == JunctionMode::Stop {
+                        // The planner keeps min(cap, the blocks' speed limits).
+                        let ceiling = pl.v.min(lim.v);
+                        let mut cap = match &mut self.sinumerik {
+                            Some(c) => c.junction_cap(pg, g, mode, machine, ceiling),
+                            None => junction_cap(pg, g, mode, machine),
+                        };
+                        // An exact stop (G61.1, G60, G9, G09, Fanuc's G61) stops at the end
+                        // of its move even where the next one goes on in the same direction.
+                        if pm.corner == Corner::ExactStop {
+                            cap = 0.0;
+                        }
+                        // Every stop of an exact-stop mode settles, whatever dialect the
+                        // program is in: the move's `Corner::ExactStop`, or a corner under a
+                        // zero tolerance (which the axes pass at speed where it is tangent).
+                        if mode == JunctionMode::Stop && cap <= 0.0 {
                             settle_before = machine.exact_stop_time;
                         }
-                        match &mut self.sinumerik {
-                            Some(c) => c.junction_cap(pg, g, mode, machine),
-                            None => junction_cap(pg, g, mode, machine),
-                        }
+                        cap
                     }
                     None => 0.0,
                 };
-                self.last = Some((*g, *m));
+                self.last = Some((*g, *m, lim));
                 (lim, cap)
             }
             None => {
                 if m.is_feed() || matches!(m.kind, crate::toolpath::MoveKind::Rapid) {
                     // A zero-length move keeps the previous block's junction.
                 } else {
+                    // A dwell after an exact stop waits for it to settle first.
+                    if self
+                        .last
+                        .as_ref()
+                        .is_some_and(|(_, pm, _)| pm.corner == Corner::ExactStop)
+                    {
+                        settle_before = machine.exact_stop_time;
+                    }
                     self.last = None;
                     if let Some(c) = &mut self.sinumerik {
                         *c = sinumerik::Curvature::default();

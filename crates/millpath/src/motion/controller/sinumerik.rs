@@ -35,7 +35,9 @@
 
 use crate::geom::Vec3;
 use crate::machine::Machine;
-use crate::motion::limits::{JunctionMode, NEAR_TANGENT, corner_cap, speed_step_cap};
+use crate::motion::limits::{
+    JunctionMode, NEAR_TANGENT, above_cube, blend_cap_reaches, corner_cap, min_cbrt, speed_step_cap,
+};
 use crate::motion::path::BlockGeometry;
 
 /// Largest deflection (|t₂ − t₁|, about the angle in radians) of a corner taken as part of a
@@ -54,16 +56,24 @@ pub(crate) struct Curvature {
     s: f64,
     /// Recent samples: (position along the path, `κN`).
     samples: std::collections::VecDeque<(f64, Vec3)>,
+    /// The sample horizon of the last tolerance seen: (tolerance, horizon), both mm.
+    horizon: Option<(f64, f64)>,
 }
 
 impl Curvature {
-    /// The speed cap at the junction from `g1` (corner mode `mode`) into `g2`.
+    /// The speed cap at the junction from `g1` (corner mode `mode`) into `g2`. `ceiling` is
+    /// the blocks' own speed limit there (the smaller of the two; `∞` if none): the planner
+    /// keeps `min(cap, ceiling)` and asks only whether the cap reaches the ceiling, so a ramp
+    /// at least 1e-9 above it is not computed (a ramp's tests then fail with a margin far
+    /// beyond their rounding). A cap below the ceiling is the cap; one at or above it is some
+    /// value at or above it.
     pub(crate) fn junction_cap(
         &mut self,
         g1: &BlockGeometry,
         g2: &BlockGeometry,
         mode: JunctionMode,
         machine: &Machine,
+        ceiling: f64,
     ) -> f64 {
         let t1 = g1.end_tangent();
         let t2 = g2.start_tangent();
@@ -75,8 +85,23 @@ impl Curvature {
         // The generic corner rules without their one-IPO-cycle curvature step (replaced by
         // the ramp below), and the speed step where a spiral arc meets another block.
         let dp = g2.derivatives(0.0)[1] - g1.derivatives(g1.length())[1];
+        // No cap above the fastest the path can go matters, nor one above the ceiling (see
+        // above): a blend cap surely above both is not computed (its trigonometry is the
+        // costliest part of a smooth junction) and stands as ∞.
+        let vmax = 3f64.sqrt()
+            * machine
+                .axes
+                .iter()
+                .map(|a| a.max_velocity)
+                .fold(0.0, f64::max);
+        let vtop = vmax.min(ceiling * (1.0 + 1e-9));
         let mut cap = if deflection > 1e-9 {
-            corner_cap(g1, g2, t1, t2, dp, mode, machine)
+            let lmin = g1.length().min(g2.length());
+            if tol > 0.0 && blend_cap_reaches(t1.dot(t2), lmin, tol, machine, vtop) {
+                f64::INFINITY
+            } else {
+                corner_cap(g1, g2, t1, t2, dp, mode, machine)
+            }
         } else {
             speed_step_cap(dp, machine)
         };
@@ -87,13 +112,6 @@ impl Curvature {
             self.samples.push_back((self.s, k0));
         }
         self.s += g1.length();
-        // No cap above the fastest the path can go matters.
-        let vmax = 3f64.sqrt()
-            * machine
-                .axes
-                .iter()
-                .map(|a| a.max_velocity)
-                .fold(0.0, f64::max);
         let (_, k1_end) = g1.curvature_ends();
         let (k2_start, _) = g2.curvature_ends();
         let lines =
@@ -128,8 +146,8 @@ impl Curvature {
                 let (a, j) = weakest(k, machine);
                 cap = cap.min((ea * a / kappa).sqrt());
                 let cube = ej * j / (kappa * kappa);
-                if j.is_finite() && cube < cap.min(vmax).powi(3) {
-                    cap = cap.min(cube.cbrt());
+                if j.is_finite() && cube < cap.min(vtop).powi(3) {
+                    cap = min_cbrt(cap, cube);
                 }
             }
             new[n_new] = k;
@@ -139,9 +157,77 @@ impl Curvature {
             new[n_new] = k2_start;
             n_new += 1;
         }
+        let jmin = machine
+            .axes
+            .iter()
+            .map(|a| a.max_jerk)
+            .fold(f64::INFINITY, f64::min);
+        // Each ramp's cheap tests (a step too small, a cap above `min(cap, v_top)` by the
+        // smallest jerk and the plain distance, a pair farther apart than the smoothing
+        // length; see `ramp_cap`) with the products that do not change hoisted out of the
+        // loop, the same operations in the same order.
+        let ej = machine.curvature_jerk_share * jmin;
+        let smooth2 = (24.0 * tol).powi(2);
+        // Past those tests, with ε > 0, the ramp is at least `η_j·J_min·√(24ε/|Δκ|)/|Δκ|`
+        // (the smoothing length); its fourth power `(η_j·J_min)⁴·(24ε)²/|Δκ|⁶` is compared
+        // with `cap¹²` without roots, 1e-8 above the rounding of either side: a ramp above
+        // `cap` cannot bind (`ramp_cap` would compute it and keep `cap`).
+        let smooth_reach = (ej * ej).powi(2) * smooth2;
+        let cap12 = |cap: f64| {
+            if (1e-20..1e20).contains(&cap) {
+                (cap * cap * cap).powi(4)
+            } else {
+                f64::NAN
+            }
+        };
         for &k in new.iter().take(n_new) {
-            for &(sk, kk) in &self.samples {
-                cap = cap.min(ramp_cap(k - kk, self.s - sk, tol, machine, cap.min(vmax)));
+            let mut bound6 = cap.min(vtop).powi(6);
+            let mut above = cap12(cap.min(vtop));
+            // The oldest samples fail one of the last two tests whatever their step: with
+            // `(η_j·J_min·D)²·D⁴ ≥ bound⁶·(24ε)²` a step small enough to pass the smoothing
+            // test (`D⁴·|Δκ|² ≤ (24ε)²`) is also small enough to fail the bound test
+            // (a 1e-9 margin covers the rounding of both). The distances decrease along the
+            // samples, so they are a leading run, found from the newest sample back (only a
+            // few are near enough to bind) and passed over.
+            let reach = bound6 * smooth2 * (1.0 + 1e-9);
+            let far = |&(sk, _): &(f64, Vec3)| {
+                let d = self.s - sk;
+                (ej * d).powi(2) * (d * d).powi(2) >= reach
+            };
+            let mut first = 0;
+            if tol > 0.0 && reach.is_finite() {
+                first = self.samples.len();
+                while first > 0 && !self.samples.get(first - 1).is_some_and(far) {
+                    first -= 1;
+                }
+            }
+            if first > 0 {
+                cap = cap.min(f64::INFINITY);
+            }
+            for &(sk, kk) in self.samples.range(first..) {
+                let step = k - kk;
+                let distance = self.s - sk;
+                let dk2 = step.dot(step);
+                if dk2 <= 1e-24
+                    || (ej * distance).powi(2) >= bound6 * dk2
+                    || (tol > 0.0 && (distance * distance).powi(2) * dk2 > smooth2)
+                {
+                    cap = cap.min(f64::INFINITY);
+                    continue;
+                }
+                if tol > 0.0
+                    && smooth_reach.is_finite()
+                    && smooth_reach > above * (dk2 * dk2 * dk2) * (1.0 + 1e-8)
+                {
+                    cap = cap.min(f64::INFINITY);
+                    continue;
+                }
+                let before = cap.to_bits();
+                cap = ramp_cap(cap, step, distance, tol, machine, jmin, cap.min(vtop));
+                if cap.to_bits() != before {
+                    bound6 = cap.min(vtop).powi(6);
+                    above = cap12(cap.min(vtop));
+                }
             }
             match self.samples.back_mut() {
                 // A run of equal samples (a straight line's zeros): only the latest one can
@@ -152,17 +238,13 @@ impl Curvature {
         }
         // Samples farther back than any ramp that could bind: a ramp over `D` binds only if
         // `∛(η_j·J·D/Δκ) < v_max` while `D ≤ √(24ε/Δκ)`, i.e. `D < v_max·∛(24ε/(η_j·J))`.
-        let horizon = if tol > 0.0 {
-            let (vmax, jmin) = machine
-                .axes
-                .iter()
-                .fold((0.0f64, f64::INFINITY), |(v, j), a| {
-                    (v.max(a.max_velocity), j.min(a.max_jerk))
-                });
-            (3f64.sqrt() * vmax * (24.0 * tol / (machine.curvature_jerk_share * jmin)).cbrt())
-                .min(HORIZON)
-        } else {
-            HORIZON
+        let horizon = match self.horizon {
+            Some((t, h)) if t.to_bits() == tol.to_bits() => h,
+            _ => {
+                let h = horizon(tol, machine);
+                self.horizon = Some((tol, h));
+                h
+            }
         };
         while self.samples.len() > MAX_SAMPLES
             || self
@@ -176,28 +258,51 @@ impl Curvature {
     }
 }
 
-/// The speed at which the curvature may change by `step` over `distance` mm of path, the
-/// controller smoothing the change within the tolerance `tol` (see the module docs).
-/// Caps at or above `bound` are not computed (they would not bind).
-fn ramp_cap(step: Vec3, distance: f64, tol: f64, machine: &Machine, bound: f64) -> f64 {
+/// Samples farther back than this (mm) cannot bind a ramp at tolerance `tol` (see
+/// [`Curvature::junction_cap`]).
+fn horizon(tol: f64, machine: &Machine) -> f64 {
+    if tol > 0.0 {
+        let (vmax, jmin) = machine
+            .axes
+            .iter()
+            .fold((0.0f64, f64::INFINITY), |(v, j), a| {
+                (v.max(a.max_velocity), j.min(a.max_jerk))
+            });
+        (3f64.sqrt() * vmax * (24.0 * tol / (machine.curvature_jerk_share * jmin)).cbrt())
+            .min(HORIZON)
+    } else {
+        HORIZON
+    }
+}
+
+/// `cap` lowered to the speed at which the curvature may change by `step` over `distance`
+/// mm of path, the controller smoothing the change within the tolerance `tol` (see the
+/// module docs); `jmin` is the machine's smallest axis jerk. Ramp caps at or above `bound`
+/// (≤ `cap`) are not computed (they would not bind), nor, in cube space, those at or above
+/// `cap`.
+fn ramp_cap(
+    cap: f64,
+    step: Vec3,
+    distance: f64,
+    tol: f64,
+    machine: &Machine,
+    jmin: f64,
+    bound: f64,
+) -> f64 {
+    // (`cap.min(∞)` where the original rule's cap is infinite: `cap` itself, unless NaN.)
     let dk2 = step.dot(step);
     if dk2 <= 1e-24 {
-        return f64::INFINITY;
+        return cap.min(f64::INFINITY);
     }
     // The cap is at least ∛(η_j·J_min·D/|Δκ|): skip it when that is above the bound
     // (compared as cubes, without roots).
-    let jmin = machine
-        .axes
-        .iter()
-        .map(|a| a.max_jerk)
-        .fold(f64::INFINITY, f64::min);
     if (machine.curvature_jerk_share * jmin * distance).powi(2) >= bound.powi(6) * dk2 {
-        return f64::INFINITY;
+        return cap.min(f64::INFINITY);
     }
     // Farther apart than the smoothing length (`D² > 24ε/|Δκ|`, checked without roots):
     // the step between them was already met (and smoothed) by the samples in between.
     if tol > 0.0 && (distance * distance).powi(2) * dk2 > (24.0 * tol).powi(2) {
-        return f64::INFINITY;
+        return cap.min(f64::INFINITY);
     }
     let dk = dk2.sqrt();
     let smoothing = if tol > 0.0 {
@@ -206,15 +311,20 @@ fn ramp_cap(step: Vec3, distance: f64, tol: f64, machine: &Machine, bound: f64) 
         0.0
     };
     let avail = distance.max(smoothing);
+    // With the smallest jerk the cube `η_j·J·L/|Δκ|` is at most what it is with the axes'
+    // own (J ≥ J_min, rounding is monotonic): above `cap³` it cannot bind.
+    if avail > 0.0 && above_cube(cap, machine.curvature_jerk_share * jmin * avail / dk) {
+        return cap.min(f64::INFINITY);
+    }
     let (_, j) = weakest(step, machine);
     if !j.is_finite() {
-        return f64::INFINITY;
+        return cap.min(f64::INFINITY);
     }
     if avail > 0.0 {
-        (machine.curvature_jerk_share * j * avail / dk).cbrt()
+        min_cbrt(cap, machine.curvature_jerk_share * j * avail / dk)
     } else {
         // Within one interpolation cycle (the generic rule).
-        (j * machine.ipo_cycle / dk).sqrt()
+        cap.min((j * machine.ipo_cycle / dk).sqrt())
     }
 }
 
