@@ -455,6 +455,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "stock",
     "strategy",
     "strategy::contour",
+    "strategy::face",
     "strategy::pocket",
     "strategy::pocket::builtin",
     "toolpath",

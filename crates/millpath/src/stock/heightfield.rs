@@ -29,6 +29,8 @@
 //! z. So a chain of short moves costs the area it sweeps, `2r` per unit of travel, not a disc
 //! per move.
 //!
+//! Nothing lies below the block's bottom: a through cut leaves the cells at the bottom.
+//!
 //! **Per operation** ([`OperationCut`]): the volume and the area the operation lowered, the
 //! **rapids through material** (a rapid that lowers some cell by more than the z tolerance;
 //! a vertical retract never does: it sweeps the column the tool stands in), and the
@@ -378,13 +380,9 @@ impl HeightField {
         };
         let mut out = OperationCut::default();
         let rim = self.cell * std::f64::consts::FRAC_1_SQRT_2 + super::GOUGE_RESOLUTION;
-        let start = tp.start;
-        self.sweep(start, start, r, None, &mut tally);
-        let mut last = Some(Stamp {
-            at: start.xy(),
-            z: start.z,
-            r,
-        });
+        // Where the tool stands before the first move is not a cut (how it got there is not
+        // in this program).
+        let mut last: Option<Stamp> = None;
         for (k, (from, m)) in tp.segments().enumerate() {
             match m.kind {
                 MoveKind::Dwell { .. } => {}
@@ -452,7 +450,7 @@ impl HeightField {
             return false;
         }
         let c = to.xy();
-        let limit = to.z + ztol;
+        let limit = to.z.max(self.bottom) + ztol;
         let mut found = false;
         self.for_rows(c.y - reach, c.y + reach, |j, y| {
             if found {
@@ -554,6 +552,8 @@ impl HeightField {
                         let t = if dz < 0.0 { t1 } else { t0 };
                         a.z + dz * t / len
                     };
+                    // Below the block's bottom there is no material to cut.
+                    let z = z.max(self.bottom);
                     let k = j * nx + i;
                     let old = f64::from(self.h[k]);
                     if old > z {

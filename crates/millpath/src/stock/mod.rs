@@ -44,9 +44,11 @@
 //!   cut by one operation after another (each tool on what the previous ones left), with
 //!   each operation's volume and area removed, rapids through material and plunges
 //!   ([`OperationCut`]); the material a profile leaves standing in its slot, as bridges
-//!   holding the piece or not ([`held_by`]).
+//!   holding the piece or not ([`held_by`]); and at the end what is left against the floors
+//!   the job meant to cut and the part it meant to keep ([`check_field`]).
 
 pub(crate) mod bridges;
+pub(crate) mod field_check;
 pub(crate) mod gouge;
 pub(crate) mod heightfield;
 pub(crate) mod nearest;
@@ -57,6 +59,7 @@ pub(crate) mod reach;
 pub(crate) mod simulate;
 
 pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
+pub use field_check::{CheckOptions, Deviation, FieldCheck, Floor, PartTop, check_field};
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use heightfield::{
     ARC_SAGITTA, CutOptions, Cutter, DEFAULT_FIELD_MAX_CELLS, DEFAULT_Z_TOLERANCE, FieldOptions,

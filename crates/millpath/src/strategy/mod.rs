@@ -1,4 +1,5 @@
-//! Strategies: turn geometry into toolpaths (contour, pockets).
+//! Strategies: turn geometry into toolpaths (contour, pockets, facing).
 
 pub mod contour;
+pub mod face;
 pub mod pocket;
