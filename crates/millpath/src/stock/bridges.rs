@@ -36,11 +36,11 @@
 //! the walls (its extent, within the band). At a cell of `c` both are within about `2c`.
 
 use super::heightfield::{DEFAULT_Z_TOLERANCE, HeightField};
+use super::nearest::IndexedWall;
 use super::raster::Raster;
 use super::reach::edt;
 use crate::error::{InputError, require_finite, require_positive};
 use crate::geom::{Aabb, Outline, Point};
-use cavalier_contours::core::math::Vector2;
 use cavalier_contours::polyline::{PlineSource, seg_arc_radius_and_center};
 use std::fmt;
 
@@ -456,6 +456,7 @@ const NEIGHBOURS: [(isize, isize); 8] = [
 /// Arc length along an outline of the nearest point to a point.
 struct SegmentLengths<'a> {
     outline: &'a Outline,
+    wall: IndexedWall<'a>,
     /// Arc length at the start of each segment, mm.
     before: Vec<f64>,
     total: f64,
@@ -476,6 +477,7 @@ impl<'a> SegmentLengths<'a> {
         }
         SegmentLengths {
             outline,
+            wall: IndexedWall::new(outline.polyline()),
             before,
             total,
         }
@@ -484,13 +486,11 @@ impl<'a> SegmentLengths<'a> {
     /// Arc length of the outline's point nearest to `p`, mm.
     fn at(&self, p: Point) -> f64 {
         let pl = self.outline.polyline();
-        let Some(hit) = pl.closest_point(Vector2::new(p.x, p.y), 1e-12) else {
+        let Some((i, q)) = self.wall.closest(p) else {
             return 0.0;
         };
-        let i = hit.seg_start_index;
         let v1 = pl.at(i);
         let v2 = pl.at(pl.next_wrapping_index(i));
-        let q = hit.seg_point;
         let part = if v1.bulge_is_zero() {
             (q.x - v1.x).hypot(q.y - v1.y)
         } else {
