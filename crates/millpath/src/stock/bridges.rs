@@ -33,7 +33,9 @@
 //! extent over the layers of its cells one cell thick across the slot (cells at the same
 //! distance from the outline, by the transform). A tab a program leaves by lifting over a
 //! stretch `w + 2r` of its path is `w` wide at the slot's middle (its neck) and wider towards
-//! the walls (its extent, within the band). At a cell of `c` both are within about `2c`.
+//! the walls (its extent, within the band). At a cell of `c` both are within about `2c`
+//! (a bridge of more than 50 000 cells, a stretch of slot left uncut, is measured on every
+//! k-th of its cells, as finely as they lie).
 
 use super::heightfield::{DEFAULT_Z_TOLERANCE, HeightField};
 use super::nearest::IndexedWall;
@@ -404,8 +406,10 @@ pub fn held_by(
             (lo.min(h), hi.max(h))
         });
         // The extent of all its cells, and of each layer one cell thick across the slot.
+        let stride = cells.len().div_ceil(MAX_MEASURED_CELLS).max(1);
         let arcs: Vec<(f64, usize)> = cells
             .iter()
+            .step_by(stride)
             .map(|&k| {
                 let layer = (f64::from(d2[k]).sqrt()) as usize;
                 (lengths.at(centre(k)), layer)
@@ -440,6 +444,10 @@ pub fn held_by(
         cell_mm: c,
     })
 }
+
+/// Most cells of one bridge whose nearest outline point is found for its extent and neck; a
+/// larger bridge (a stretch of the slot left uncut) is measured on every k-th cell.
+const MAX_MEASURED_CELLS: usize = 50_000;
 
 /// The eight neighbours of a cell.
 const NEIGHBOURS: [(isize, isize); 8] = [

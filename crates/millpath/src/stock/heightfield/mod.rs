@@ -31,7 +31,9 @@
 //! descend leaves the cells within the previous stamp's radius of its start alone: they were
 //! lowered to the previous end's z or below, and the move's lowest tip over them is its start
 //! z. So a chain of short moves costs the area it sweeps, `2r` per unit of travel, not a disc
-//! per move.
+//! per move. Going down, the cells within `r` of the move's end get the end's z outright
+//! (their interval reaches the end), and a move wholly at or above the block's top cuts
+//! nothing.
 //!
 //! Nothing lies below the block's bottom: a through cut leaves the cells at the bottom.
 //!
@@ -549,6 +551,10 @@ impl HeightField {
         let flat = dz.abs() <= 1e-12;
         let skip = last.filter(|s| s.at.distance(pa) <= 1e-9 && s.z <= a.z + 1e-12 && dz >= 0.0);
         let mut swept = Swept::default();
+        // Nothing stands above the block's top.
+        if a.z.min(b.z) >= self.top {
+            return swept;
+        }
         let nx = self.nx;
         let (cell, origin) = (self.cell, self.origin);
         let (ylo, yhi) = (pa.y.min(pb.y) - r, pa.y.max(pb.y) + r);
@@ -572,6 +578,16 @@ impl HeightField {
                 Some((h0, h1)) => [(i0, h0.min(i1 + 1)), ((h1 + 1).max(i0), i1 + 1)],
                 None => [(i0, i1 + 1), (0, 0)],
             };
+            // Going down, the cells within r of the end get its z: their travel interval
+            // reaches the end (`t_c + w ≥ L`).
+            let end_disc = if dz < 0.0 {
+                let w2 = r * r - (y - pb.y) * (y - pb.y);
+                (w2 >= 0.0)
+                    .then(|| self.columns(pb.x - w2.sqrt(), pb.x + w2.sqrt()))
+                    .flatten()
+            } else {
+                None
+            };
             let ay = y - pa.y;
             for (s0, s1) in ranges {
                 for i in s0..s1 {
@@ -579,6 +595,8 @@ impl HeightField {
                         a.z
                     } else if len <= 1e-12 {
                         a.z.min(b.z)
+                    } else if end_disc.is_some_and(|(e0, e1)| (e0..=e1).contains(&i)) {
+                        b.z
                     } else {
                         let x = origin.x + (i as f64 + 0.5) * cell;
                         let (wx, wy) = (x - pa.x, ay);
