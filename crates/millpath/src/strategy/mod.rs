@@ -1,4 +1,9 @@
-//! Strategies: turn geometry into toolpaths (contour, pockets).
+//! Strategies: turn geometry into toolpaths (contour, pockets, holes), and the order to visit
+//! a part's pockets or holes in.
 
 pub mod contour;
+pub mod drill;
+pub(crate) mod order;
 pub mod pocket;
+
+pub use order::{TWO_OPT_MAX, order_tour, tour_length};

@@ -74,7 +74,8 @@ pub use options::{
     Direction, Entry, PocketOptions, SpiralMorph, SpiralOptions, Stepover, StrategyKind,
     ZigzagOptions,
 };
-pub use part::{PartPocket, PartResult, PartStrategy, generate_part, order_pockets, tour_length};
+pub use part::{PartPocket, PartResult, PartStrategy, generate_part};
+pub use crate::strategy::order::{order_tour as order_pockets, tour_length};
 pub use segments::ARC_AS_LINE_SAGITTA;
 pub use shape::PocketShape;
 pub use spiral::{
