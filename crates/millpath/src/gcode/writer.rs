@@ -42,30 +42,50 @@ pub struct WriteSummary {
     /// Multi-turn arcs split into single turns (dialects without a turn count).
     pub split_turns: usize,
     /// A rapid to the toolpath's start was written before the first motion, an arc (whose
-    /// centre offsets need a known start).
+    /// centre offsets need a known start) or a canned cycle.
     pub start_rapid: bool,
+    /// Canned cycles written as cycles (G81…, CYCLE81…); those a dialect lacks are written
+    /// as their moves and not counted.
+    pub cycles: usize,
 }
 
 /// Writes `tp` as a G-code program to `out`, streaming (nothing but one line is buffered
 /// beyond [`BufWriter`]'s buffer).
 ///
+/// The toolpath's canned cycles ([`Toolpath::cycles`]) are written as the dialect's cycles
+/// (module `cycles`), their moves where it has none.
+///
 /// Errors: an [`InputError`] naming the move index for non-finite coordinates, a feed move
 /// without a positive finite feed, a negative or non-finite dwell, or an arc that rounding to
-/// the chosen decimals would make unreadable; a failing output (I/O error) as an input error.
+/// the chosen decimals would make unreadable; a canned cycle whose moves are not its own
+/// ([`Toolpath::check_cycles`]); a failing output (I/O error) as an input error.
 pub fn write_program(
     tp: &Toolpath,
     opts: &WriterOptions,
     out: &mut dyn Write,
 ) -> Result<WriteSummary, Error> {
     opts.validate()?;
+    tp.check_cycles()?;
     let mut w = Emitter::new(opts, out);
     w.header(Some(&tp.tool))?;
     let mut from = tp.start;
-    for (i, m) in tp.moves.iter().enumerate() {
+    let mut cycles = tp.cycles.iter().peekable();
+    let mut i = 0;
+    while let Some(m) = tp.moves.get(i) {
+        if let Some(c) = cycles.next_if(|c| c.start == i) {
+            let run = tp.moves.get(c.start..c.end).unwrap_or_default();
+            w.canned_cycle(i, c, run, from)?;
+            from = run.last().map_or(from, |m| m.to);
+            i = c.end.max(i + 1);
+            continue;
+        }
+        w.end_cycle_run()?;
         check_move(i, m, from)?;
         w.motion(i, m, from)?;
         from = m.to;
+        i += 1;
     }
+    w.end_cycle_run()?;
     w.footer()?;
     w.finish()
 }
@@ -155,6 +175,8 @@ pub(super) struct Emitter<'a> {
     pos: [Option<f64>; 3],
     first_motion: bool,
     tool: u32,
+    /// The run of canned cycles being written (LinuxCNC, Fanuc), until `G80`.
+    cycle_run: Option<cycles::CycleRun>,
 }
 
 impl<'a> Emitter<'a> {
@@ -181,6 +203,7 @@ impl<'a> Emitter<'a> {
             pos: [None; 3],
             first_motion: true,
             tool: 0,
+            cycle_run: None,
         }
     }
 
@@ -594,6 +617,7 @@ impl<'a> Emitter<'a> {
 }
 
 mod arcs;
+mod cycles;
 
 /// `v` rounded to `decimals` as a reader of the printed value gets it.
 fn round(v: f64, decimals: u32) -> f64 {

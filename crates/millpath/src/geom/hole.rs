@@ -218,9 +218,11 @@ mod tests {
         let mut pts: Vec<Point> = (0..=200)
             .map(|k| Point::ORIGIN + crate::geom::Vec2::from_angle(PI * k as f64 / 200.0) * 10.0)
             .collect();
-        pts.extend((0..=200).rev().map(|k| {
-            Point::ORIGIN + crate::geom::Vec2::from_angle(PI * k as f64 / 200.0) * 9.996
-        }));
+        pts.extend(
+            (0..=200).rev().map(|k| {
+                Point::ORIGIN + crate::geom::Vec2::from_angle(PI * k as f64 / 200.0) * 9.996
+            }),
+        );
         let o = Outline::from_points(&pts, "sliver").unwrap();
         assert!(Hole::from_outline(&o, CIRCLE_TOLERANCE).is_none());
     }

@@ -154,8 +154,7 @@ impl Cycle {
                     .expected("a finite dwell >= 0 s"));
             }
             CycleKind::Peck { step } | CycleKind::ChipBreak { step } => {
-                if !(step.is_finite() && step > 0.0 && (self.r - self.bottom) / step <= MAX_PECKS)
-                {
+                if !(step.is_finite() && step > 0.0 && (self.r - self.bottom) / step <= MAX_PECKS) {
                     return Err(InputError::new("canned cycle peck", step)
                         .at(at.to_owned())
                         .expected(format!(

@@ -39,7 +39,11 @@ pub(crate) struct Bored {
 /// helix radius of the outermost ring), for a tool of radius `r`.
 pub(crate) fn ring_radii(rho: f64, r: f64, opts: &HoleOptions) -> Vec<f64> {
     let a = opts.finish_allowance;
-    let helix = if rho - a >= 0.5 * rho { rho - a } else { 0.5 * rho };
+    let helix = if rho - a >= 0.5 * rho {
+        rho - a
+    } else {
+        0.5 * rho
+    };
     if helix <= r {
         return vec![helix];
     }

@@ -21,12 +21,16 @@ pub fn find_holes(outlines: &[Outline], tolerance: f64) -> Vec<Hole> {
             continue;
         };
         let bounds = o.bounds();
-        let holds_another = outlines.iter().zip(&firsts).enumerate().any(|(j, (other, p))| {
-            j != i
-                && p.is_some_and(|p| bounds.contains(p) && o.contains(p))
-                && other.signed_area().abs() < o.signed_area().abs()
-                && !same_circle(o, other, tolerance)
-        });
+        let holds_another = outlines
+            .iter()
+            .zip(&firsts)
+            .enumerate()
+            .any(|(j, (other, p))| {
+                j != i
+                    && p.is_some_and(|p| bounds.contains(p) && o.contains(p))
+                    && other.signed_area().abs() < o.signed_area().abs()
+                    && !same_circle(o, other, tolerance)
+            });
         if holds_another {
             continue;
         }
@@ -75,9 +79,11 @@ pub fn select_holes(
     if let (Some(a), Some(b)) = (min, max)
         && a > b
     {
-        return Err(InputError::new("hole diameter range", format!("{a} to {b} mm"))
-            .at("--min-diameter / --max-diameter")
-            .expected("a minimum at most the maximum"));
+        return Err(
+            InputError::new("hole diameter range", format!("{a} to {b} mm"))
+                .at("--min-diameter / --max-diameter")
+                .expected("a minimum at most the maximum"),
+        );
     }
     Ok(holes
         .iter()

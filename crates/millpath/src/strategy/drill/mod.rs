@@ -135,7 +135,11 @@ pub fn plan_holes(
 
 /// Drills every hole of `holes` with the canned cycle; a hole whose diameter is not the
 /// tool's is refused, naming it.
-pub fn drill(holes: &[(usize, Hole)], tool: &Tool, opts: &HoleOptions) -> Result<HoleResult, Error> {
+pub fn drill(
+    holes: &[(usize, Hole)],
+    tool: &Tool,
+    opts: &HoleOptions,
+) -> Result<HoleResult, Error> {
     plan(holes, tool, opts, Mode::Drill)
 }
 
@@ -222,10 +226,7 @@ fn plan(
             ))
             .into());
     }
-    let ends: Vec<(Point, Point)> = cut
-        .iter()
-        .map(|p| (p.hole.center, p.hole.center))
-        .collect();
+    let ends: Vec<(Point, Point)> = cut.iter().map(|p| (p.hole.center, p.hole.center)).collect();
     let order = order_tour(&ends, Point::ORIGIN);
     let clear = opts.clearance();
     let mut tp = Toolpath::new(*tool, Point3::new(0.0, 0.0, clear));
@@ -236,7 +237,9 @@ fn plan(
             HoleOp::Drill(kind) => {
                 // G99 keeps the tool at R between drilled holes; otherwise up first.
                 let at_r = opts.retract == CycleRetract::R
-                    && ordered.last().is_some_and(|q| matches!(q.op, HoleOp::Drill(_)));
+                    && ordered
+                        .last()
+                        .is_some_and(|q| matches!(q.op, HoleOp::Drill(_)));
                 if !at_r {
                     up_to(&mut tp, clear);
                 }
@@ -316,11 +319,16 @@ mod tests {
     use super::*;
 
     fn holes() -> Vec<(usize, Hole)> {
-        [(10.0, 10.0, 6.0), (40.0, 12.0, 6.0), (25.0, 30.0, 10.0), (60.0, 5.0, 4.0)]
-            .iter()
-            .enumerate()
-            .map(|(i, &(x, y, d))| (i + 1, Hole::new(Point::new(x, y), d)))
-            .collect()
+        [
+            (10.0, 10.0, 6.0),
+            (40.0, 12.0, 6.0),
+            (25.0, 30.0, 10.0),
+            (60.0, 5.0, 4.0),
+        ]
+        .iter()
+        .enumerate()
+        .map(|(i, &(x, y, d))| (i + 1, Hole::new(Point::new(x, y), d)))
+        .collect()
     }
 
     #[test]

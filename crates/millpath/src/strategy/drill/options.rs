@@ -173,15 +173,13 @@ impl HoleOptions {
             false,
         )?;
         if self.clearance_height < self.retract_height {
-            return Err(
-                InputError::new("clearance height", self.clearance_height)
-                    .at("--clearance-height")
-                    .expected(format!(
-                        "at least the retract height {} mm (the R plane lies below the \
+            return Err(InputError::new("clearance height", self.clearance_height)
+                .at("--clearance-height")
+                .expected(format!(
+                    "at least the retract height {} mm (the R plane lies below the \
                          clearance level)",
-                        self.retract_height
-                    )),
-            );
+                    self.retract_height
+                )));
         }
         length("drilling feed", self.drill_feed, "--feed", false)?;
         length("boring feed", self.bore_feed, "--bore-feed", false)?;
