@@ -6,4 +6,4 @@ pub mod drill;
 pub(crate) mod order;
 pub mod pocket;
 
-pub use order::{TWO_OPT_MAX, order_tour, tour_length};
+pub use order::{MULTI_START_MAX, TWO_OPT_MAX, order_tour, tour_length};

@@ -12,13 +12,29 @@
 //!
 //! Steps 2 and 3 repeat until neither finds a move that saves more than 1e-9 mm (each pass
 //! is `O(n²)`); they run up to [`TWO_OPT_MAX`] items, beyond which the nearest-neighbour tour
-//! is kept. The result is a local optimum, not the shortest tour: the tests compare it with
+//! is kept. Up to [`MULTI_START_MAX`] items the whole is done once from each item as the
+//! first (nearest neighbour from there), and the shortest tour kept.
+//! 4. **Kicks:** the best tour is changed at pseudo-random (seeded, repeatable) places, by
+//!    turns cut in three places with its two middle stretches swapped (a "double bridge",
+//!    which 2-opt and segment moves cannot undo in one step) or with one item moved
+//!    elsewhere, then improved again (steps 2 and 3) and kept when shorter; `400 000 / n²`
+//!    kicks, from 1 to 200.
+//!
+//! The result is a local optimum, not always the shortest tour. The tests compare it with
 //! the brute-force optimum over every permutation of random 8-item sets.
 
 use crate::geom::Point;
 
 /// Most items 2-opt and segment moves improve the order of.
 pub const TWO_OPT_MAX: usize = 2000;
+
+/// Up to this many items every item is tried as the first one (each tour improved, the
+/// shortest kept).
+pub const MULTI_START_MAX: usize = 32;
+
+/// Kicks tried on the best tour: `KICK_BUDGET / n²`, from 1 to [`MAX_KICKS`].
+const KICK_BUDGET: usize = 400_000;
+const MAX_KICKS: usize = 200;
 
 /// Smallest saving a move must make, mm.
 const SAVING_EPS: f64 = 1e-9;
@@ -27,9 +43,84 @@ const SAVING_EPS: f64 = 1e-9;
 /// the module docs): the item indices in visiting order.
 pub fn order_tour(ends: &[(Point, Point)], home: Point) -> Vec<usize> {
     let n = ends.len();
+    if n > TWO_OPT_MAX {
+        return nearest_neighbour(ends, home, None);
+    }
+    let starts: Vec<Option<usize>> = if n <= MULTI_START_MAX {
+        (0..n).map(Some).collect()
+    } else {
+        vec![None]
+    };
+    let mut best: Option<(f64, Vec<usize>)> = None;
+    for first in starts {
+        let mut tour = nearest_neighbour(ends, home, first);
+        improve(ends, home, &mut tour);
+        let len = tour_length(ends, home, &tour);
+        if best.as_ref().is_none_or(|(b, _)| len < b - SAVING_EPS) {
+            best = Some((len, tour));
+        }
+    }
+    let Some((mut len, mut tour)) = best else {
+        return Vec::new();
+    };
+    // Kicks at pseudo-random places, each improved and kept when shorter: a double bridge
+    // (A B C D → A C B D), or one item moved elsewhere, by turns.
+    if n >= 4 {
+        let kicks = (KICK_BUDGET / (n * n)).clamp(1, MAX_KICKS);
+        let mut state: u64 = 0x9E37_79B9_7F4A_7C15 ^ n as u64;
+        let mut next = |m: usize| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % m as u64) as usize
+        };
+        for k in 0..kicks {
+            let mut t: Vec<usize>;
+            if k % 2 == 0 {
+                let mut cuts = [1 + next(n - 1), 1 + next(n - 1), 1 + next(n - 1)];
+                cuts.sort_unstable();
+                let [a, b, c] = cuts;
+                if a == b || b == c {
+                    continue;
+                }
+                t = tour[..a].to_vec();
+                t.extend_from_slice(&tour[b..c]);
+                t.extend_from_slice(&tour[a..b]);
+                t.extend_from_slice(&tour[c..]);
+            } else {
+                t = tour.clone();
+                let item = t.remove(next(n));
+                t.insert(next(n), item);
+            }
+            improve(ends, home, &mut t);
+            let l = tour_length(ends, home, &t);
+            if l < len - SAVING_EPS {
+                (len, tour) = (l, t);
+            }
+        }
+    }
+    tour
+}
+
+/// 2-opt and segment moves until neither helps.
+fn improve(ends: &[(Point, Point)], home: Point, tour: &mut Vec<usize>) {
+    let mut rounds = 0;
+    while (two_opt(ends, home, tour) | or_opt(ends, home, tour)) && rounds < 1000 {
+        rounds += 1;
+    }
+}
+
+/// The nearest-neighbour tour from `home`, through `first` first when given.
+fn nearest_neighbour(ends: &[(Point, Point)], home: Point, first: Option<usize>) -> Vec<usize> {
+    let n = ends.len();
     let mut tour: Vec<usize> = Vec::with_capacity(n);
     let mut left: Vec<usize> = (0..n).collect();
     let mut at = home;
+    if let Some(f) = first.filter(|&f| f < n) {
+        left.retain(|&i| i != f);
+        at = ends[f].1;
+        tour.push(f);
+    }
     while !left.is_empty() {
         let (k, _) = left
             .iter()
@@ -39,12 +130,6 @@ pub fn order_tour(ends: &[(Point, Point)], home: Point) -> Vec<usize> {
         let i = left.remove(k);
         at = ends[i].1;
         tour.push(i);
-    }
-    if (2..=TWO_OPT_MAX).contains(&n) {
-        let mut rounds = 0;
-        while (two_opt(ends, home, &mut tour) | or_opt(ends, home, &mut tour)) && rounds < 1000 {
-            rounds += 1;
-        }
     }
     tour
 }
@@ -101,38 +186,52 @@ fn two_opt(ends: &[(Point, Point)], home: Point, tour: &mut [usize]) -> bool {
     improved
 }
 
-/// One pass of segment moves (runs of 1 to 3 items); true when it shortened the tour.
+/// One pass of segment moves (runs of 1 to 3 items, put back as they were or reversed);
+/// true when it shortened the tour.
 fn or_opt(ends: &[(Point, Point)], home: Point, tour: &mut Vec<usize>) -> bool {
     let n = tour.len();
     let mut improved = false;
     for len in 1..=3.min(n.saturating_sub(1)) {
         let mut i = 0;
         while i + len <= tour.len() {
-            let (first, last) = (tour[i], tour[i + len - 1]);
+            let run: Vec<usize> = tour[i..i + len].to_vec();
+            let inner = |r: &[usize]| -> f64 {
+                r.windows(2)
+                    .map(|w| link(ends, home, Some(w[0]), Some(w[1])))
+                    .sum()
+            };
             let before = (i > 0).then(|| tour[i - 1]);
             let after = tour.get(i + len).copied();
-            let removed = link(ends, home, before, Some(first))
-                + link(ends, home, Some(last), after)
+            let removed = link(ends, home, before, Some(run[0]))
+                + link(ends, home, Some(run[len - 1]), after)
+                + inner(&run)
                 - link(ends, home, before, after);
-            // The rest of the tour, and the best gap to put the run in.
+            let reversed: Vec<usize> = run.iter().rev().copied().collect();
+            let inner_fwd = inner(&run);
+            let inner_rev = inner(&reversed);
+            // The rest of the tour, and the best gap (and way round) to put the run in.
             let rest: Vec<usize> = tour[..i].iter().chain(&tour[i + len..]).copied().collect();
-            let mut best: Option<(usize, f64)> = None;
+            let mut best: Option<(usize, bool, f64)> = None;
             for g in 0..=rest.len() {
-                if g == i {
-                    continue;
-                }
                 let a = g.checked_sub(1).map(|k| rest[k]);
                 let b = rest.get(g).copied();
-                let added = link(ends, home, a, Some(first)) + link(ends, home, Some(last), b)
-                    - link(ends, home, a, b);
-                if added < removed - SAVING_EPS && best.is_none_or(|(_, c)| added < c) {
-                    best = Some((g, added));
+                let gap = link(ends, home, a, b);
+                for (rev, r, inn) in [(false, &run, inner_fwd), (true, &reversed, inner_rev)] {
+                    if g == i && !rev {
+                        continue;
+                    }
+                    let added = link(ends, home, a, Some(r[0]))
+                        + inn
+                        + link(ends, home, Some(r[len - 1]), b)
+                        - gap;
+                    if added < removed - SAVING_EPS && best.is_none_or(|(_, _, c)| added < c) {
+                        best = Some((g, rev, added));
+                    }
                 }
             }
-            if let Some((g, _)) = best {
-                let run: Vec<usize> = tour[i..i + len].to_vec();
+            if let Some((g, rev, _)) = best {
                 let mut next = rest;
-                next.splice(g..g, run);
+                next.splice(g..g, if rev { reversed } else { run });
                 *tour = next;
                 improved = true;
             }
