@@ -196,3 +196,92 @@ fn the_verifier_catches_a_hole_drilled_off_its_centre_or_not_at_all() {
             .any(|p| matches!(p, HoleProblem::TooDeep { .. }))
     );
 }
+
+/// The feed depths, rapid levels and dwells of a program read back: `f-5`, `r2`, `d0.5`.
+fn steps(text: &str, d: Dialect) -> Vec<String> {
+    let (tp, _) = read_str(text, ReaderOptions::default().with_dialect(d))
+        .unwrap_or_else(|e| panic!("{e}\n{text}"));
+    tp.moves
+        .iter()
+        .map(|m| match m.kind {
+            millpath::MoveKind::Line => format!("f{}", (m.to.z * 1e6).round() / 1e6),
+            millpath::MoveKind::Rapid => format!("r{}", (m.to.z * 1e6).round() / 1e6),
+            millpath::MoveKind::Dwell { seconds } => format!("d{seconds}"),
+            millpath::MoveKind::Arc { .. } => "a".into(),
+        })
+        .collect()
+}
+
+#[test]
+fn sinumerik_cycles_read_as_the_840d_documents_them() {
+    let head = "G17 G710 G90 G94\nG0 X10 Y5 Z10\nF120\n";
+    // CYCLE81 with the depth relative to RFP: R = RFP + SDIS = 2, bottom −5.
+    assert_eq!(
+        steps(
+            &format!("{head}CYCLE81(10,0,2,,5)\nM30\n"),
+            Dialect::Sinumerik
+        ),
+        ["r10", "r2", "f-5", "r10"]
+    );
+    // CYCLE82: a dwell at the bottom.
+    assert_eq!(
+        steps(
+            &format!("{head}CYCLE82(10,0,2,-5,,0.5)\nM30\n"),
+            Dialect::Sinumerik
+        ),
+        ["r10", "r2", "f-5", "d0.5", "r10"]
+    );
+    // CYCLE83 chip removal with degression 2 from a first stroke of 7 (R 2 to FDEP −5):
+    // strokes 7, 5, 3, 2, 2, 2, then to DP; out to R and back down to 0.6 mm above the
+    // depth reached (the 840D's own anticipation distance up to a hole 30 mm deep).
+    let s = steps(
+        &format!("{head}CYCLE83(10,0,2,-20,,-5,,2,0,0,1,1)\nM30\n"),
+        Dialect::Sinumerik,
+    );
+    let feeds: Vec<&str> = s
+        .iter()
+        .filter(|x| x.starts_with('f'))
+        .map(|x| x.as_str())
+        .collect();
+    assert_eq!(
+        feeds,
+        ["f-5", "f-10", "f-13", "f-15", "f-17", "f-19", "f-20"]
+    );
+    assert_eq!(&s[..7], ["r10", "r2", "f-5", "r2", "r-4.4", "f-10", "r2"]);
+    // Chip breaking (VARI 0): a feed back by _VRT, no degression (every stroke the first).
+    assert_eq!(
+        steps(
+            &format!("{head}CYCLE83(10,0,2,-6,,-2,,0,0,0,1,0,,,0.5)\nM30\n"),
+            Dialect::Sinumerik
+        ),
+        ["r10", "r2", "f-2", "f-1.5", "f-6", "r10"]
+    );
+    // Refused: a degression factor, a variable, RTP below R.
+    for bad in [
+        "CYCLE83(10,0,2,-20,,-5,,-0.5,0,0,1,1)",
+        "CYCLE81(R1,0,2,-5)",
+        "CYCLE81(1,0,2,-5)",
+    ] {
+        let text = format!("{head}{bad}\nM30\n");
+        assert!(
+            read_str(
+                &text,
+                ReaderOptions::default().with_dialect(Dialect::Sinumerik)
+            )
+            .is_err(),
+            "{bad}"
+        );
+    }
+}
+
+#[test]
+fn fanuc_cycles_take_g82_p_in_milliseconds() {
+    let text = "%\nO0001\nG17 G21 G90 G94\nG0 X10. Y5. Z10.\n\
+                G98 G82 X10. Y5. Z-5. R2. P500 F120.\nG99 G81 X20. Z-5. R2.\nG80\nM30\n%\n";
+    assert_eq!(
+        steps(text, Dialect::Fanuc),
+        [
+            "r10", "r10", "r2", "f-5", "d0.5", "r10", "r10", "r2", "f-5", "r2"
+        ]
+    );
+}
