@@ -174,11 +174,17 @@ impl State {
                 let dts = get(9).unwrap_or(0.0);
                 let frf = match get(10) {
                     None => 1.0,
-                    Some(f) if f == 0.0 => 1.0,
                     Some(f) if f > 0.0 && f <= 1.0 => f,
+                    Some(f) if f.abs() <= 0.0 => 1.0,
                     Some(f) => return Err(BlockError::new("CYCLE83 FRF", f, "0 < FRF <= 1")),
                 };
-                let vari = get(11).unwrap_or(0.0);
+                // VARI: 0 chip breaking, 1 chip removal.
+                let removal = match get(11) {
+                    None => false,
+                    Some(v) if v.abs() <= 0.0 => false,
+                    Some(v) if (v - 1.0).abs() <= 0.0 => true,
+                    Some(v) => return Err(BlockError::new("CYCLE83 VARI", v, "0 or 1")),
+                };
                 for (k, what) in [(12, "_AXN"), (13, "_MDEP"), (15, "_DTD")] {
                     if get(k).is_some_and(|v| v != 0.0) {
                         return Err(BlockError::unsupported(
@@ -187,11 +193,11 @@ impl State {
                         ));
                     }
                 }
-                if dam < 0.0 || dtb < 0.0 || dts < 0.0 || !(vari == 0.0 || vari == 1.0) {
+                if dam < 0.0 || dtb < 0.0 || dts < 0.0 {
                     return Err(BlockError::new(
                         "CYCLE83",
                         call(),
-                        "DAM >= 0 (a value, not a factor), DTB and DTS >= 0, VARI 0 or 1",
+                        "DAM >= 0 (a value, not a factor), DTB and DTS >= 0",
                     ));
                 }
                 if first >= r {
@@ -233,7 +239,7 @@ impl State {
                     if dtb > 0.0 {
                         push(Move::dwell(at(depth), dtb));
                     }
-                    if vari == 1.0 {
+                    if removal {
                         push(Move::rapid(at(r_mm)));
                         if dts > 0.0 {
                             push(Move::dwell(at(r_mm), dts));

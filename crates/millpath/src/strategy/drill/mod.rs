@@ -7,7 +7,7 @@
 //! * **Which operation:** a hole whose diameter is the tool's within
 //!   [`HoleOptions::diameter_tolerance`] is **drilled** with the canned cycle of
 //!   [`HoleOptions::cycle`] (G81, G82 with a dwell, G83 pecks out to R, G73 chip-breaking
-//!   pecks; the toolpath carries it as a [`Cycle`](crate::toolpath::Cycle) so the writer
+//!   pecks; the toolpath carries it as a [`Cycle`] so the writer
 //!   writes the dialect's cycle while the planner and the simulation see its moves); a
 //!   larger one is **bored** (`bore`: helix rings and a finishing circle with tangent
 //!   leads); a smaller one is left out, as is a larger one with
@@ -368,6 +368,6 @@ mod tests {
         let CycleKind::Peck { step } = adjusted(CycleKind::Peck { step: 3.0 }, &opts) else {
             panic!()
         };
-        assert_eq!(step, 3.0);
+        assert!((step - 3.0).abs() < 1e-15);
     }
 }
