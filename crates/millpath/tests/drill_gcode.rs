@@ -285,3 +285,104 @@ fn fanuc_cycles_take_g82_p_in_milliseconds() {
         ]
     );
 }
+
+/// Random hole sets (holes of the tool's diameter and up to 14 mm larger, apart), tools,
+/// depths, cycles and retract modes: every plan, written in a random dialect and units and
+/// read back, passes the holes verifier; all `CASES` cases must be planned and checked.
+#[test]
+fn random_hole_sets_read_back_pass_the_verifier() {
+    use proptest::prelude::*;
+    use proptest::test_runner::{RngSeed, TestRunner};
+    const CASES: u32 = 48;
+    let seed = std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .map_or(RngSeed::Fixed(3), RngSeed::Fixed);
+    let config = ProptestConfig {
+        cases: CASES,
+        rng_seed: seed,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    };
+    let hole = (
+        -80.0f64..80.0,
+        -60.0f64..60.0,
+        prop_oneof![Just(0.0), 0.0f64..14.0],
+    );
+    let case = (
+        prop::collection::vec(hole, 1..7),
+        1.0f64..8.0,
+        0.5f64..12.0,
+        0u8..4,
+        any::<bool>(),
+        0usize..4,
+        any::<bool>(),
+    );
+    let cut = std::sync::atomic::AtomicUsize::new(0);
+    let mut runner = TestRunner::new(config);
+    let result = runner.run(&case, |(hs, tool_d, depth, kind, g99, dialect, inch)| {
+        // Holes far enough apart not to overlap; a 0 extra diameter is the tool's own.
+        let mut holes: Vec<(usize, Hole)> = Vec::new();
+        for (x, y, extra) in hs {
+            let h = Hole::new(Point::new(x, y), tool_d + extra);
+            if holes
+                .iter()
+                .all(|(_, o)| o.center.distance(h.center) > o.radius() + h.radius() + 1.0)
+            {
+                holes.push((holes.len() + 1, h));
+            }
+        }
+        let cycle = match kind {
+            0 => DrillCycle::Drill,
+            1 => DrillCycle::Dwell { seconds: 0.2 },
+            2 => DrillCycle::Peck {
+                step: 0.3 * depth + 0.2,
+            },
+            _ => DrillCycle::ChipBreak {
+                step: 0.25 * depth + 0.2,
+            },
+        };
+        let opts = HoleOptions::default()
+            .with_depth(depth)
+            .with_cycle(cycle)
+            .with_retract(if g99 {
+                CycleRetract::R
+            } else {
+                CycleRetract::Initial
+            });
+        let tool = Tool::flat(tool_d).unwrap();
+        let r = plan_holes(&holes, &tool, &opts).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let d = Dialect::ALL[dialect];
+        let units = if inch { Units::Inch } else { Units::Mm };
+        let wopts = WriterOptions::default()
+            .with_dialect(d)
+            .with_units(units)
+            .with_decimals(Some(if inch { 5 } else { 3 }));
+        let (text, _) = write_to_string(&r.toolpath, &wopts).map_err(|e| {
+            let segs = segments(&r.toolpath);
+            let at = format!("{e}");
+            let i: usize = at
+                .split("move ")
+                .nth(1)
+                .and_then(|t| t.split(|c: char| !c.is_ascii_digit()).next())
+                .and_then(|t| t.parse().ok())
+                .unwrap_or(0);
+            TestCaseError::fail(format!(
+                "{d} {units}: {e}: {:?} (tool {tool_d}, holes {holes:?})",
+                segs.get(i)
+            ))
+        })?;
+        let (read, _) = read_str(&text, ReaderOptions::default().with_dialect(d))
+            .map_err(|e| TestCaseError::fail(format!("{d}: {e}")))?;
+        let cut_holes: Vec<Hole> = r.holes.iter().map(|p| p.hole).collect();
+        let v = verify_holes(&cut_holes, &segments(&read), &tool, 0.0, -depth, 0.01);
+        prop_assert!(v.ok(), "{d} {units}: {:?}", v.problems);
+        prop_assert_eq!(v.holes.len(), holes.len());
+        cut.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    assert_eq!(cut.into_inner(), CASES as usize);
+}

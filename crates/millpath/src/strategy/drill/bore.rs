@@ -3,8 +3,9 @@
 //! With `c` the hole's centre, `R` its radius, `r` the tool's and `ρ = R − r` the radius the
 //! tool centre must reach:
 //!
-//! * **Rings.** The helix runs at `ρ_h = ρ − a` (`a` the finish allowance; `ρ/2` when the
-//!   allowance is more than half of `ρ`). When `ρ_h ≤ r` the tool covers the centre on that
+//! * **Rings.** The helix runs at `ρ_h = ρ − a` (`a` the finish allowance, at most `ρ/2`;
+//!   none when that is under twice [`MIN_LEAD_RADIUS`]: the helix then runs on the wall
+//!   circle, which its last full circle finishes). When `ρ_h ≤ r` the tool covers the centre on that
 //!   one helix. A wider hole would keep a core: it gets rings from `r/2` out to `ρ_h`, at
 //!   most the stepover apart, each helixed down from the retract height (the tool discs of
 //!   neighbouring rings overlap by at least `D − stepover`, the innermost covers the centre).
@@ -26,6 +27,11 @@ use crate::geom::{Hole, Point, Point3, Vec2};
 use crate::strategy::pocket::Direction;
 use crate::toolpath::{Move, Tool, Toolpath};
 
+/// The smallest lead-in radius, mm: an allowance under twice it is not left (the helix runs
+/// on the wall circle), so that no arc is too small to write (0.00127 mm, LinuxCNC's
+/// smallest radius) or to survive the program's rounding.
+pub const MIN_LEAD_RADIUS: f64 = 0.01;
+
 /// What boring one hole made.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Bored {
@@ -38,11 +44,11 @@ pub(crate) struct Bored {
 /// The helix radii of a hole whose tool centre must reach `rho` (ascending; the last is the
 /// helix radius of the outermost ring), for a tool of radius `r`.
 pub(crate) fn ring_radii(rho: f64, r: f64, opts: &HoleOptions) -> Vec<f64> {
-    let a = opts.finish_allowance;
-    let helix = if rho - a >= 0.5 * rho {
+    let a = opts.finish_allowance.min(0.5 * rho);
+    let helix = if a >= 2.0 * MIN_LEAD_RADIUS {
         rho - a
     } else {
-        0.5 * rho
+        rho
     };
     if helix <= r {
         return vec![helix];
@@ -119,5 +125,6 @@ mod tests {
         }
         assert_eq!(ring_radii(2.0, r, &opts), vec![1.9]);
         assert_eq!(ring_radii(0.1, r, &opts), vec![0.05]);
+        assert_eq!(ring_radii(0.03, r, &opts), vec![0.03]);
     }
 }

@@ -27,13 +27,14 @@
 //! The result is checked by `crate::stock::verify_holes` (the job layer does it on the
 //! program read back), which shares none of this code.
 
-mod bore;
+pub(crate) mod bore;
 mod find;
 mod options;
 
 pub use crate::geom::{CIRCLE_TOLERANCE, Hole};
+pub use bore::MIN_LEAD_RADIUS;
 pub use find::{find_holes, select_holes};
-pub use options::{DrillCycle, HoleOptions, MAX_TURNS};
+pub use options::{DrillCycle, HoleOptions, MAX_TURNS, MIN_DIAMETER_TOLERANCE};
 
 use crate::error::{Error, InputError};
 use crate::geom::{Point, Point3};

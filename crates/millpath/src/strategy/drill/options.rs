@@ -12,6 +12,11 @@ use crate::toolpath::{CycleRetract, Tool};
 /// Largest length accepted, mm (as for outlines' coordinates).
 const MAX_LENGTH_MM: f64 = 1e6;
 
+/// The smallest diameter tolerance, mm: a hole larger than the tool by more is bored on a
+/// helix of radius at least half of it (2.5 µm), above the smallest arc a program can hold
+/// (LinuxCNC's 1.27 µm).
+pub const MIN_DIAMETER_TOLERANCE: f64 = 0.005;
+
 /// Most helix turns a bore may take (per ring).
 pub const MAX_TURNS: f64 = 10_000.0;
 
@@ -70,7 +75,8 @@ pub struct HoleOptions {
     pub stepover: f64,
     /// Stock left on the wall by the helix for the finishing circle, mm.
     pub finish_allowance: f64,
-    /// A hole within this of the tool's diameter is drilled; larger ones are bored, mm.
+    /// A hole within this of the tool's diameter is drilled; larger ones are bored, mm (at
+    /// least [`MIN_DIAMETER_TOLERANCE`]).
     pub diameter_tolerance: f64,
     /// Drill only: holes larger than the tool are left out rather than bored.
     pub drill_only: bool,
@@ -202,12 +208,18 @@ impl HoleOptions {
             "--finish-allowance",
             true,
         )?;
-        length(
-            "diameter tolerance",
-            self.diameter_tolerance,
-            "--diameter-tolerance",
-            false,
-        )?;
+        if !(self.diameter_tolerance.is_finite()
+            && (MIN_DIAMETER_TOLERANCE..=1.0).contains(&self.diameter_tolerance))
+        {
+            return Err(
+                InputError::new("diameter tolerance", self.diameter_tolerance)
+                    .at("--diameter-tolerance")
+                    .expected(format!(
+                        "{MIN_DIAMETER_TOLERANCE} to 1 mm (a hole within less of the tool would \
+                         be bored on a helix too small to write)"
+                    )),
+            );
+        }
         match self.cycle {
             DrillCycle::Drill => {}
             DrillCycle::Dwell { seconds } => {
