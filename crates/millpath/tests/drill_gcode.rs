@@ -1,9 +1,11 @@
 //! Drilling and boring programs in every dialect: the canned cycles the writer writes
 //! (G81/G82/G83/G73 on LinuxCNC and Fanuc, CYCLE81/82/83 on Sinumerik, the moves on Grbl)
 //! read back by the reader to the toolpath's moves; LinuxCNC's own `rs274` reads the
-//! LinuxCNC programs to the same moves as our reader; the holes verifier passes the moves
+//! LinuxCNC programs to the same moves as our reader, and the controller checker of
+//! `dialect_check` (written from the controllers' documents) passes the others; the holes verifier passes the moves
 //! read back and catches a program that misses.
 
+mod dialect_check;
 mod gcode_common;
 mod rs274_common;
 
@@ -104,6 +106,9 @@ fn every_dialect_reads_the_cycles_back_as_the_toolpath_moves() {
                         (_, DrillCycle::ChipBreak { .. }) => "G73 ",
                     };
                     assert!(text.contains(word), "{d} {cycle:?}: no {word}\n{text}");
+                    if d != Dialect::LinuxCnc && decimals.is_none() {
+                        dialect_check::check(&text, d).unwrap_or_else(|e| panic!("{e}\n{text}"));
+                    }
                     let ropts = ReaderOptions::default()
                         .with_dialect(d)
                         .with_start(tp.start);
@@ -134,6 +139,11 @@ fn every_dialect_reads_the_cycles_back_as_the_toolpath_moves() {
         }
     }
     assert_eq!(checked, 4 * 2 * 4 * 4);
+}
+
+#[test]
+fn the_controller_checker_refuses_what_the_controllers_refuse() {
+    dialect_check::self_test();
 }
 
 #[test]
