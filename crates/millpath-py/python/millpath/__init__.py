@@ -18,6 +18,7 @@ plan several parts at once.
 
 from ._millpath import (
     ContourResult,
+    DrillResult,
     Estimate,
     InputError,
     InternalError,
@@ -26,6 +27,7 @@ from ._millpath import (
     Toolpath,
     VerifyResult,
     contour,
+    drill,
     estimate,
     five_axis,
     machines,
@@ -36,6 +38,7 @@ from ._millpath import (
 
 __all__ = [
     "ContourResult",
+    "DrillResult",
     "Estimate",
     "InputError",
     "InternalError",
@@ -44,6 +47,7 @@ __all__ = [
     "Toolpath",
     "VerifyResult",
     "contour",
+    "drill",
     "estimate",
     "five_axis",
     "machines",

@@ -37,6 +37,10 @@
 //!   ([`Verification::raster_cells`], [`Verification::tool_positions`] count them). A cell,
 //!   step or window given ([`SimOptions::with_cell`]) is used as given. The gouge verdict's
 //!   [`GOUGE_RESOLUTION`] stays the written program's resolution at every scale.
+//! * Holes ([`verify_holes`], module `holes`): a drilling or boring program against its
+//!   holes, with exact geometry on the moves rather than the raster: nothing cut outside a
+//!   hole, no rapid through material, each hole's envelope at its bottom on the drawn centre
+//!   and diameter, its bottom cleared.
 //! * Inclined walls ([`verify_levels`]): each level has its own section of the pocket; a
 //!   slab's material is its level's section, and a level's moves are checked against its
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
@@ -51,6 +55,7 @@ pub(crate) mod bridges;
 pub(crate) mod field_check;
 pub(crate) mod gouge;
 pub(crate) mod heightfield;
+pub(crate) mod holes;
 pub(crate) mod nearest;
 pub(crate) mod part;
 mod problem;
@@ -65,6 +70,7 @@ pub use heightfield::{
     ARC_SAGITTA, CutOptions, Cutter, DEFAULT_FIELD_MAX_CELLS, DEFAULT_Z_TOLERANCE, FieldOptions,
     HeightField, OperationCut,
 };
+pub use holes::{HoleCheck, HoleProblem, HoleVerification, verify_holes};
 pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
 pub use simulate::{
