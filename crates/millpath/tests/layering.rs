@@ -442,6 +442,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "job::estimate",
     "job::five_axis",
     "job::pocket",
+    "job::profile",
     "job::sweep",
     "job::verify",
     "machine",
@@ -457,6 +458,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "strategy::contour",
     "strategy::pocket",
     "strategy::pocket::builtin",
+    "strategy::profile",
     "toolpath",
 ];
 

@@ -2,3 +2,4 @@
 
 pub mod contour;
 pub mod pocket;
+pub mod profile;
