@@ -580,14 +580,48 @@ fn verify(
         });
     }
     // The walls: every outside and inside outline, exactly, for every move below the top.
-    let walls: Vec<&ProfileTarget> = targets
+    let walls: Vec<(usize, &ProfileTarget)> = targets
         .iter()
-        .filter(|t| t.side != ProfileSide::On)
+        .enumerate()
+        .filter(|(_, t)| t.side != ProfileSide::On)
         .collect();
     let mut min_clearance = f64::INFINITY;
     if !walls.is_empty() {
         let shifted = shift_to_zero_top(tp, opts.top_z);
-        for w in &walls {
+        // A finishing loop that passes within the tool radius of another outline: the two
+        // outlines are closer than the tool can pass between (the drawing's, not a bug).
+        for cut in &res.cuts {
+            for range in &cut.finish_moves {
+                let part = Toolpath {
+                    start: if range.start > 0 {
+                        shifted.moves[range.start - 1].to
+                    } else {
+                        shifted.start
+                    },
+                    moves: shifted.moves[range.clone()].to_vec(),
+                    levels: Vec::new(),
+                    ..shifted.clone()
+                };
+                for (j, w) in walls.iter().filter(|(j, _)| *j != cut.target) {
+                    let spec = crate::stock::StockSpec {
+                        outer: &w.outline,
+                        islands: &[],
+                        wall_stock: 0.0,
+                    };
+                    let c = crate::stock::min_clearance(&part, spec);
+                    if c.distance < r {
+                        return Err(InputError::new("tool diameter", 2.0 * r)
+                            .at("--tool-diameter")
+                            .expected(format!(
+                                "a tool that passes between outlines {} and {}: cutting outline {} {} brings the tool centre {:.4} mm from outline {} at ({:.3}, {:.3})",
+                                cut.target + 1, j + 1, cut.target + 1, cut.side, c.distance, j + 1, c.at.x, c.at.y
+                            ))
+                            .into());
+                    }
+                }
+            }
+        }
+        for (_, w) in &walls {
             let spec = crate::stock::StockSpec {
                 outer: &w.outline,
                 islands: &[],
@@ -605,11 +639,11 @@ fn verify(
         let material = |p: Point| {
             let outside = walls
                 .iter()
-                .filter(|w| w.side == ProfileSide::Outside && w.outline.contains(p))
+                .filter(|(_, w)| w.side == ProfileSide::Outside && w.outline.contains(p))
                 .count();
             let inside = walls
                 .iter()
-                .filter(|w| w.side == ProfileSide::Inside && w.outline.contains(p))
+                .filter(|(_, w)| w.side == ProfileSide::Inside && w.outline.contains(p))
                 .count();
             outside > inside
         };

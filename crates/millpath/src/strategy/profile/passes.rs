@@ -262,21 +262,62 @@ fn circle(c: Point, rad: f64) -> impl Iterator<Item = Point> {
     (0..32).map(move |k| c + Vec2::from_angle(f64::from(k) * PI / 16.0) * rad)
 }
 
-/// True when every point keeps `d` from the outline on the free side.
-fn clear(
-    outline: &Outline,
-    side: ProfileSide,
-    d: f64,
-    pts: impl IntoIterator<Item = Point>,
-) -> bool {
-    pts.into_iter().all(|p| {
-        let free = match side {
-            ProfileSide::Inside => outline.contains(p),
-            ProfileSide::Outside => !outline.contains(p),
-            ProfileSide::On => true,
+/// The walls of every target cut outside or inside: what the tool must keep clear of.
+struct Walls<'a> {
+    all: Vec<(usize, &'a Outline, ProfileSide)>,
+}
+
+impl<'a> Walls<'a> {
+    fn new(targets: &'a [ProfileTarget]) -> Self {
+        let all = targets
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| t.side != ProfileSide::On)
+            .map(|(i, t)| (i, &t.outline, t.side))
+            .collect();
+        Walls { all }
+    }
+
+    /// Inside more parts than holes: the part's material.
+    fn material(&self, p: Point) -> bool {
+        let count = |s: ProfileSide| {
+            self.all
+                .iter()
+                .filter(|(_, o, side)| *side == s && o.contains(p))
+                .count()
         };
-        free && (side == ProfileSide::On || outline.distance_to(p) >= d - 1e-9)
-    })
+        count(ProfileSide::Outside) > count(ProfileSide::Inside)
+    }
+
+    /// Least distance from `p` to a wall other than target `own`'s.
+    fn others(&self, own: usize, p: Point) -> f64 {
+        self.all
+            .iter()
+            .filter(|(i, _, _)| *i != own)
+            .map(|(_, o, _)| o.distance_to(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// True when every point lies on target `own`'s free side, out of the material, and keeps
+    /// `d` from every wall.
+    fn clear(
+        &self,
+        own: (usize, &Outline, ProfileSide),
+        d: f64,
+        pts: impl IntoIterator<Item = Point>,
+    ) -> bool {
+        let (i, outline, side) = own;
+        pts.into_iter().all(|p| {
+            let free = match side {
+                ProfileSide::Inside => outline.contains(p),
+                ProfileSide::Outside => !outline.contains(p),
+                ProfileSide::On => true,
+            };
+            free && !self.material(p)
+                && (side == ProfileSide::On || outline.distance_to(p) >= d - 1e-9)
+                && self.others(i, p) >= d - 1e-9
+        })
+    }
 }
 
 /// Goes to `p` (XY) at the clearance height (up first if lower), then feeds down to `z`.
@@ -298,7 +339,13 @@ fn approach(tp: &mut Toolpath, p: Point, z: f64, opts: &ProfileOptions) {
 
 /// The lead arc radius (`want`, halved up to four times, else 0) whose arcs keep `d` from
 /// the outline on the free side.
-fn lead_radius(cut: &Cut, outline: &Outline, side: ProfileSide, d: f64, want: f64) -> f64 {
+fn lead_radius(
+    cut: &Cut,
+    walls: &Walls<'_>,
+    own: (usize, &Outline, ProfileSide),
+    d: f64,
+    want: f64,
+) -> f64 {
     let v0 = cut.lp.elems[0].start;
     let lp = [OffsetVertex { p: v0, s: 0.0 }];
     let mut rl = want;
@@ -320,7 +367,7 @@ fn lead_radius(cut: &Cut, outline: &Outline, side: ProfileSide, d: f64, want: f6
                 pts.extend((0..=8).map(|k| m.point_at(from, l * f64::from(k) / 8.0).xy()));
             }
         }
-        if clear(outline, side, d, pts) {
+        if walls.clear(own, d, pts) {
             return rl;
         }
         rl *= 0.5;
@@ -352,8 +399,10 @@ pub(super) fn generate(
     let mut cuts_out = Vec::new();
     let zs = layer_depths(opts.top_z, opts.depth, opts.step_down);
     let bottom = opts.top_z - opts.depth;
+    let walls = Walls::new(targets);
     for (ti, t) in targets.iter().enumerate() {
         let side = t.side;
+        let own = (ti, &t.outline, side);
         let band = if side == ProfileSide::On {
             0.0
         } else {
@@ -368,6 +417,7 @@ pub(super) fn generate(
         };
         let d_rough = d_fin + stock;
         let tab_top = opts.bottom_z() + opts.tabs.height;
+        let mut tab_note = None;
         let tabs_here: Vec<Tab> = if opts.tabs.count == super::TabCount::None {
             Vec::new()
         } else if side == ProfileSide::On {
@@ -383,7 +433,7 @@ pub(super) fn generate(
             });
             Vec::new()
         } else {
-            let (v, asked) = tabs::place(
+            let (mut v, asked) = tabs::place(
                 ti,
                 &t.outline,
                 side,
@@ -392,8 +442,14 @@ pub(super) fn generate(
                 &opts.tabs,
                 (tab_top, opts.bottom_z()),
             );
+            // Not where another outline's cut (its path, leads and helix) passes near.
+            let reach = d_rough + r + 2.0 * opts.lead_radius + 2.0 * opts.helix_radius;
+            v.retain(|tab| {
+                let w = 0.5 * tab.placed.width;
+                walls.others(ti, tab.placed.at + tab.free_normal * d_fin) >= reach + w
+            });
             if v.len() < asked {
-                notes.push(ProfileNote::FewerTabs {
+                tab_note = Some(ProfileNote::FewerTabs {
                     target: ti,
                     asked,
                     placed: v.len(),
@@ -441,6 +497,7 @@ pub(super) fn generate(
             });
             continue;
         }
+        notes.extend(tab_note);
         if fin.len() > 1 {
             notes.push(ProfileNote::SplitLoops {
                 target: ti,
@@ -454,7 +511,7 @@ pub(super) fn generate(
         let mut lead_note = false;
         let mut steep_note = false;
         for cut in &rough {
-            let rl = lead_radius(cut, &t.outline, side, d_rough - band, opts.lead_radius);
+            let rl = lead_radius(cut, &walls, own, d_rough - band, opts.lead_radius);
             if rl < opts.lead_radius && !lead_note {
                 lead_note = true;
                 notes.push(ProfileNote::LeadReduced {
@@ -482,7 +539,7 @@ pub(super) fn generate(
                 // the two radii are equal).
                 helix_c = lead_entry + cut.lp.tangent(0.0) * opts.helix_radius;
                 let pts = circle(helix_c, opts.helix_radius);
-                if rl <= 0.0 || !clear(&t.outline, side, d_rough - band, pts) {
+                if rl <= 0.0 || !walls.clear(own, d_rough - band, pts) {
                     entry = ProfileEntry::Ramp;
                     if !entry_note {
                         entry_note = true;
