@@ -88,7 +88,11 @@ fn check_written(job: &ProfileRun) -> Toolpath {
         .filter(|x| x.side != ProfileSide::On)
         .collect();
     for k in 0..back.moves.len() {
-        let from = if k == 0 { back.start } else { back.moves[k - 1].to };
+        let from = if k == 0 {
+            back.start
+        } else {
+            back.moves[k - 1].to
+        };
         if !back.moves[k].is_feed() || from.z.min(back.moves[k].to.z) >= opts.top_z {
             continue;
         }
