@@ -88,6 +88,12 @@ pub struct ReaderOptions {
     /// [`crate::machine::Machine::sync_wait`]) when timing for a LinuxCNC controller; other
     /// controllers output such functions without stopping the path.
     pub sync_points: Option<f64>,
+    /// Emit a dwell of this many seconds at every tool change (`M6`) that changes the tool:
+    /// the machine's tool change time ([`crate::machine::Machine::tool_change_time`]) when
+    /// timing a program. The program's first `M6` is free (its tool is in the spindle when
+    /// the program starts: loading it is part of the setup), as is an `M6` of the tool
+    /// already loaded. `None` (the default) reads every `M6` as taking no time.
+    pub tool_change_time: Option<f64>,
     /// The tool table (LinuxCNC `tool.tbl`): G43 applies its length offsets, and a T word
     /// must name one of its tools. Without one, tool length offsets are zero.
     pub tool_table: Option<std::sync::Arc<ToolTable>>,
@@ -120,6 +126,7 @@ impl Default for ReaderOptions {
             block_delete: false,
             origin: "G-code".to_string(),
             sync_points: None,
+            tool_change_time: None,
             tool_table: None,
             subroutine_path: Vec::new(),
             parameters: None,
@@ -142,6 +149,8 @@ option_builders! {
     with_block_delete => block_delete: bool;
     /// Sets [`ReaderOptions::sync_points`], s.
     with_sync_points => sync_points: Option<f64>;
+    /// Sets [`ReaderOptions::tool_change_time`], s.
+    with_tool_change_time => tool_change_time: Option<f64>;
     /// Sets [`ReaderOptions::tool_table`].
     with_tool_table => tool_table: Option<std::sync::Arc<ToolTable>>;
     /// Sets [`ReaderOptions::subroutine_path`].
@@ -222,6 +231,8 @@ pub(crate) struct State {
     g92: Vec3,
     spindle_set: f64,
     pending_tool: u32,
+    /// The tool the last `M6` loaded (`None` before the first).
+    loaded_tool: Option<u32>,
     /// The active tool length offset (G43), mm.
     pub(crate) tool_offset: Vec3,
     tool_table: Option<std::sync::Arc<ToolTable>>,
@@ -269,6 +280,7 @@ impl State {
             g92: Vec3::ZERO,
             spindle_set: 0.0,
             pending_tool: 0,
+            loaded_tool: None,
             tool_offset: Vec3::ZERO,
             tool_table: opts.tool_table.clone(),
             moved: false,
@@ -432,7 +444,19 @@ impl State {
         // D (and G41.1's L) words; what compensation refuses (module `cutter_comp`).
         let comp_words = self.cutter_comp_check(b, dialect)?;
         if b.m.contains(&6) {
+            let changed = self.loaded_tool.is_some_and(|t| t != self.pending_tool);
+            self.loaded_tool = Some(self.pending_tool);
             self.modal.tool = self.pending_tool;
+            if let Some(t) = opts.tool_change_time
+                && t > 0.0
+                && changed
+            {
+                out.push(ReadMove {
+                    mv: Move::dwell(self.pos, t),
+                    line,
+                    modal: self.modal,
+                });
+            }
         }
         if b.m.contains(&3) || b.m.contains(&4) {
             self.modal.spindle_rpm = self.spindle_speed(self.spindle_set);

@@ -128,7 +128,9 @@ pub use interp::{DEFAULT_STEP_BUDGET, FeedMode, Modal, ReadMove, ReaderOptions};
 pub use params::ParamFile;
 pub use reader::{MAX_LINE_BYTES, MAX_WARNINGS, Reader, Warning, read_str, read_toolpath};
 pub use tools::{ToolEntry, ToolTable};
-pub use writer::{MIN_ARC_RADIUS_MM, WriteSummary, WriterOptions, write_program};
+pub use writer::{
+    MIN_ARC_RADIUS_MM, ProgramSection, WriteSummary, WriterOptions, write_program, write_sections,
+};
 
 /// Writes `tp` into a `String` (convenience for tests and small programs).
 pub fn write_to_string(

@@ -15,7 +15,9 @@ use crate::toolpath::{Corner, Move, MoveKind, Plane, Tool, Toolpath};
 use std::io::{BufWriter, Write};
 
 mod options;
+mod sections;
 pub use options::WriterOptions;
+pub use sections::{ProgramSection, write_sections};
 
 /// Largest `N` number written; numbering wraps around after it (LinuxCNC refuses N > 99999,
 /// Fanuc 0i accepts five digits).
@@ -60,12 +62,7 @@ pub fn write_program(
     opts.validate()?;
     let mut w = Emitter::new(opts, out);
     w.header(Some(&tp.tool))?;
-    let mut from = tp.start;
-    for (i, m) in tp.moves.iter().enumerate() {
-        check_move(i, m, from)?;
-        w.motion(i, m, from)?;
-        from = m.to;
-    }
+    w.moves(tp)?;
     w.footer()?;
     w.finish()
 }
@@ -155,6 +152,9 @@ pub(super) struct Emitter<'a> {
     pos: [Option<f64>; 3],
     first_motion: bool,
     tool: u32,
+    /// Spindle speed and coolant the last tool start turned on (stopped by the footer).
+    spindle_on: f64,
+    coolant_on: Coolant,
 }
 
 impl<'a> Emitter<'a> {
@@ -181,6 +181,8 @@ impl<'a> Emitter<'a> {
             pos: [None; 3],
             first_motion: true,
             tool: 0,
+            spindle_on: 0.0,
+            coolant_on: Coolant::Off,
         }
     }
 
@@ -253,9 +255,23 @@ impl<'a> Emitter<'a> {
     /// path tolerance, tool change, spindle and coolant.
     /// `tool` is described in a comment when given (the five-axis writer has only a number).
     pub(super) fn header(&mut self, tool: Option<&Tool>) -> Result<(), Error> {
-        let d = self.dialect();
         let o = self.opts;
         self.tool = o.tool_number.or(tool.map(|t| t.number)).unwrap_or(0);
+        let described = tool.map(|t| {
+            (
+                self.tool,
+                format!("flat end mill D{} mm, {} flutes", t.diameter, t.flutes),
+            )
+        });
+        self.header_common(described.as_slice())?;
+        self.tool_start(self.tool, o.spindle_rpm, o.coolant)
+    }
+
+    /// The header up to the path tolerance: framing, name, the tools described (number and
+    /// description), notes, units and safety block, work offset, path tolerance.
+    pub(super) fn header_common(&mut self, tools: &[(u32, String)]) -> Result<(), Error> {
+        let d = self.dialect();
+        let o = self.opts;
         if d == Dialect::Fanuc {
             self.bare("%")?;
             let mut l = format!("O{:04}", o.program_number);
@@ -274,11 +290,8 @@ impl<'a> Emitter<'a> {
             o.units,
             self.decimals
         ))?;
-        if let Some(tool) = tool {
-            self.comment(&format!(
-                "tool T{}: flat end mill D{} mm, {} flutes",
-                self.tool, tool.diameter, tool.flutes
-            ))?;
+        for (number, description) in tools {
+            self.comment(&format!("tool T{number}: {description}"))?;
         }
         for note in &o.header_notes {
             self.comment(note)?;
@@ -317,37 +330,69 @@ impl<'a> Emitter<'a> {
             // Moves with `Corner::Machine` run in the mode just set.
             self.corner = Corner::Machine;
         }
+        Ok(())
+    }
+
+    /// Loads tool `tool` (`T n M6`, a comment on Grbl) when the options write tool changes,
+    /// and starts the spindle and the coolant. The next motion block carries the tool length
+    /// compensation and every axis (the tool's length offset changes what Z means).
+    pub(super) fn tool_start(
+        &mut self,
+        tool: u32,
+        rpm: f64,
+        coolant: Coolant,
+    ) -> Result<(), Error> {
+        let d = self.dialect();
+        let o = self.opts;
+        let changed = self.tool != 0 && self.tool != tool;
+        self.tool = tool;
+        self.first_motion = true;
+        self.pos = [None; 3];
+        self.spindle_on = rpm;
+        self.coolant_on = coolant;
         if o.tool_change && self.tool > 0 {
             if d == Dialect::Grbl {
                 self.comment(&format!(
                     "tool change: load T{} by hand, grbl has no tool-change command",
                     self.tool
                 ))?;
+                if changed {
+                    // The operator changes the tool during the pause.
+                    self.block("M0")?;
+                }
             } else {
                 self.block(&format!("T{} M6", self.tool))?;
             }
         }
-        if o.spindle_rpm > 0.0 {
+        if rpm > 0.0 {
             self.begin();
-            self.raw(&format!("S{}", num(o.spindle_rpm, 0, false)));
+            self.raw(&format!("S{}", num(rpm, 0, false)));
             self.raw(if o.spindle_cw { "M3" } else { "M4" });
             self.end()?;
         }
-        match o.coolant {
+        match coolant {
             Coolant::Off => Ok(()),
             Coolant::Flood => self.block("M8"),
             Coolant::Mist => self.block("M7"),
         }
     }
 
+    /// Stops the coolant and the spindle that [`Emitter::tool_start`] started.
+    pub(super) fn tool_stop(&mut self) -> Result<(), Error> {
+        if self.coolant_on != Coolant::Off {
+            self.block("M9")?;
+            self.coolant_on = Coolant::Off;
+        }
+        if self.spindle_on > 0.0 {
+            self.block("M5")?;
+            self.spindle_on = 0.0;
+        }
+        Ok(())
+    }
+
     pub(super) fn footer(&mut self) -> Result<(), Error> {
         let d = self.dialect();
-        if self.opts.coolant != Coolant::Off {
-            self.block("M9")?;
-        }
-        if self.opts.spindle_rpm > 0.0 {
-            self.block("M5")?;
-        }
+        self.tool_stop()?;
         if d == Dialect::Fanuc
             && self
                 .opts
@@ -528,6 +573,17 @@ impl<'a> Emitter<'a> {
             *out = self.pos.get(k).copied().flatten().unwrap_or(fallback);
         }
         r
+    }
+
+    /// Every move of `tp`, checked ([`check_move`]) as it is written.
+    pub(super) fn moves(&mut self, tp: &Toolpath) -> Result<(), Error> {
+        let mut from = tp.start;
+        for (i, m) in tp.moves.iter().enumerate() {
+            check_move(i, m, from)?;
+            self.motion(i, m, from)?;
+            from = m.to;
+        }
+        Ok(())
     }
 
     fn motion(&mut self, i: usize, m: &Move, from: Point3) -> Result<(), Error> {

@@ -357,6 +357,7 @@ fn reader_options(
         .with_origin(origin)
         // LinuxCNC stops where its task waits for motion (spindle, coolant, tool commands).
         .with_sync_points((machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait))
+        .with_tool_change_time(Some(machine.tool_change_time))
 }
 
 /// The estimate of the program `source` holds, read with `opts`.

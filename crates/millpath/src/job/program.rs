@@ -124,9 +124,8 @@ pub fn program_time(
     let opts = ReaderOptions::default()
         .with_dialect(dialect)
         .with_origin(origin)
-        .with_sync_points(
-            (machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait),
-        );
+        .with_sync_points((machine.controller == Controller::LinuxCnc).then_some(machine.sync_wait))
+        .with_tool_change_time(Some(machine.tool_change_time));
     let mut at = opts.start;
     let mut reader = Reader::new(BufReader::new(bytes), opts);
     let tracked = std::iter::from_fn(|| {

@@ -58,6 +58,7 @@
 //! controller = "generic"  # optional: "generic" (default), "sinumerik" or "linuxcnc"
 //! exact_stop_time = 0.0   # s, optional: settling at each exact stop (not linuxcnc)
 //! sync_wait = 0.0         # s, optional: wait at spindle/coolant/tool commands (linuxcnc only)
+//! tool_change_time = 0.0  # s, optional: a tool change (M6), from rest to rest
 //!
 //! [axes.x]
 //! max_velocity = 500.0      # units/s
@@ -169,7 +170,20 @@ pub struct Machine {
     /// `linuxcnc` model only.
     #[serde(default)]
     pub sync_wait: f64,
+    /// Time in s a tool change (`M6`) takes, from the axes coming to rest to the next move
+    /// (the changer's cycle, spindle stop and start included). The reader charges it as a
+    /// dwell at every `M6` ([`crate::gcode::ReaderOptions::tool_change_time`]).
+    #[serde(default)]
+    pub tool_change_time: f64,
 }
+
+/// The `hsm` preset's tool change time, s: a chip-to-chip time of a high-speed mill's
+/// disc changer with the spindle's stop and run-up (makers quote 2.5–6 s).
+pub const HSM_TOOL_CHANGE_TIME: f64 = 4.0;
+
+/// The `router` preset's tool change time, s: a hobby router's tool is changed by hand
+/// (`M6` pauses for the operator, who changes the collet and touches off the length).
+pub const ROUTER_TOOL_CHANGE_TIME: f64 = 60.0;
 
 /// The `hsm` preset's exact-stop settling time, s (fitted to Table 2, see
 /// [`crate::motion::table2`]).
@@ -216,6 +230,7 @@ impl Machine {
                 controller: Controller::Sinumerik,
                 exact_stop_time: HSM_EXACT_STOP_TIME,
                 sync_wait: 0.0,
+                tool_change_time: HSM_TOOL_CHANGE_TIME,
             }),
             "linuxcnc-sim" => {
                 let v = 4.0 * MM_PER_INCH;
@@ -233,6 +248,7 @@ impl Machine {
                     controller: Controller::Generic,
                     exact_stop_time: 0.0,
                     sync_wait: 0.0,
+                    tool_change_time: 0.0,
                 })
             }
             "linuxcnc-time" => Ok(Machine {
@@ -250,6 +266,7 @@ impl Machine {
                 controller: Controller::LinuxCnc,
                 exact_stop_time: 0.0,
                 sync_wait: LINUXCNC_TIME_SYNC_WAIT,
+                tool_change_time: 0.0,
             }),
             "router" => Ok(Machine {
                 name: "router".into(),
@@ -268,6 +285,7 @@ impl Machine {
                 controller: Controller::Generic,
                 exact_stop_time: 0.0,
                 sync_wait: 0.0,
+                tool_change_time: ROUTER_TOOL_CHANGE_TIME,
             }),
             _ => Err(InputError::new("machine preset", name)
                 .expected(format!("one of {}", Self::PRESET_NAMES.join(", ")))),
@@ -345,6 +363,12 @@ impl Machine {
                     .expected("a time in [0, 10] s"));
             }
         }
+        let t = self.tool_change_time;
+        if !(t.is_finite() && (0.0..=3600.0).contains(&t)) {
+            return Err(InputError::new("tool_change_time", t)
+                .at(origin)
+                .expected("a time in [0, 3600] s"));
+        }
         let max_tol = crate::geom::MAX_COORDINATE_MM;
         if !(self.path_tolerance.is_finite()
             && self.path_tolerance >= 0.0
@@ -390,6 +414,7 @@ impl Machine {
             ("curvature_jerk_share", self.curvature_jerk_share),
             ("exact_stop_time", self.exact_stop_time),
             ("sync_wait", self.sync_wait),
+            ("tool_change_time", self.tool_change_time),
         ] {
             t.insert(k.into(), Value::Float(v));
         }
@@ -533,6 +558,7 @@ impl Machine {
             curvature_jerk_share: opt("curvature_jerk_share", 0.75)?,
             exact_stop_time: opt("exact_stop_time", 0.0)?,
             sync_wait: opt("sync_wait", 0.0)?,
+            tool_change_time: opt("tool_change_time", 0.0)?,
             controller: match table.get("controller") {
                 None => Controller::Generic,
                 Some(v) => v.as_str().and_then(Controller::from_name).ok_or_else(|| {
@@ -560,6 +586,7 @@ const TOP_KEYS: &[&str] = &[
     "controller",
     "exact_stop_time",
     "sync_wait",
+    "tool_change_time",
     "axes",
 ];
 

@@ -40,8 +40,15 @@
 //! * Inclined walls ([`verify_levels`]): each level has its own section of the pocket; a
 //!   slab's material is its level's section, and a level's moves are checked against its
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
+//! * Whole jobs ([`HeightField`]): a block of stock as the height of its top over every cell,
+//!   cut by one operation after another (each tool on what the previous ones left), with
+//!   each operation's volume and area removed, rapids through material and plunges
+//!   ([`OperationCut`]); the material a profile leaves standing in its slot, as bridges
+//!   holding the piece or not ([`held_by`]).
 
+pub(crate) mod bridges;
 pub(crate) mod gouge;
+pub(crate) mod heightfield;
 pub(crate) mod nearest;
 pub(crate) mod part;
 mod problem;
@@ -49,7 +56,12 @@ pub(crate) mod raster;
 pub(crate) mod reach;
 pub(crate) mod simulate;
 
+pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
+pub use heightfield::{
+    ARC_SAGITTA, CutOptions, Cutter, DEFAULT_FIELD_MAX_CELLS, DEFAULT_Z_TOLERANCE, FieldOptions,
+    HeightField, OperationCut,
+};
 pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
 pub use simulate::{

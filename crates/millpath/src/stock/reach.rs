@@ -133,7 +133,7 @@ fn cell_of(origin: Point, c: f64, nx: usize, ny: usize, p: Point) -> Option<(usi
 /// Squared Euclidean distance, in cells², from every cell of an `nx × ny` grid to the nearest
 /// seed (`f32::INFINITY` without seeds): columns, then rows, each by the lower envelope of
 /// parabolas (Felzenszwalb & Huttenlocher 2012), exact on the grid.
-fn edt(seeds: &[bool], nx: usize, ny: usize) -> Vec<f32> {
+pub(crate) fn edt(seeds: &[bool], nx: usize, ny: usize) -> Vec<f32> {
     const FAR: f64 = 1e20;
     let mut g: Vec<f32> = seeds
         .iter()
