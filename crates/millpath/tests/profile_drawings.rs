@@ -119,6 +119,40 @@ fn check_written(job: &ProfileRun) -> Toolpath {
     if drawn_arcs {
         assert!(written_arcs > 0, "the drawing has arcs, the program none");
     }
+    // The stock simulation's verdict (tabs asked for): each piece held by exactly its tabs,
+    // free where none fit.
+    for row in &job.report.outlines {
+        let Some(v) = &row.tabs else { continue };
+        if v.hold.is_empty() {
+            continue;
+        }
+        let n = job
+            .result
+            .tabs
+            .iter()
+            .filter(|t| t.target + 1 == row.index)
+            .count();
+        let want = match n {
+            0 => "falls free".to_owned(),
+            1 => "held by 1 bridge".to_owned(),
+            n => format!("held by {n} bridges"),
+        };
+        assert_eq!(v.hold, want, "outline {}", row.index);
+        assert_eq!(v.bridges - v.loose, n);
+        // A holding bridge is never narrower than the tab asked for; a square tab is that
+        // wide at the slot's middle, a ramped one widens by its 45° ramps to the floor.
+        let (w, h) = (job.options.tabs.width, job.options.tabs.height);
+        let widest = match job.options.tabs.shape {
+            millpath::strategy::profile::TabShape::Square => w,
+            millpath::strategy::profile::TabShape::Ramped => w + 2.0 * h + 1.0,
+        };
+        for neck in v.necks_mm.iter().filter(|n| **n > 0.0) {
+            assert!(
+                *neck >= w - 4.0 * v.cell_mm && *neck <= widest + 4.0 * v.cell_mm,
+                "neck {neck} for a tab {w} wide"
+            );
+        }
+    }
     // Tabs: away from corners, the tool lifted over each.
     for tab in &job.result.tabs {
         let o = &job.targets[tab.target].outline;

@@ -11,6 +11,7 @@ pub mod five_axis;
 pub mod pocket;
 pub(crate) mod pocket_report;
 pub mod profile;
+pub(crate) mod profile_check;
 pub(crate) mod program;
 pub mod sweep;
 pub(crate) mod timing;
