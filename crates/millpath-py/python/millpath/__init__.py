@@ -23,6 +23,7 @@ from ._millpath import (
     InternalError,
     Pocket,
     PocketResult,
+    ProfileResult,
     Toolpath,
     VerifyResult,
     contour,
@@ -30,6 +31,7 @@ from ._millpath import (
     five_axis,
     machines,
     pocket,
+    profile,
     read_outline,
     verify,
 )
@@ -41,6 +43,7 @@ __all__ = [
     "InternalError",
     "Pocket",
     "PocketResult",
+    "ProfileResult",
     "Toolpath",
     "VerifyResult",
     "contour",
@@ -48,6 +51,7 @@ __all__ = [
     "five_axis",
     "machines",
     "pocket",
+    "profile",
     "read_outline",
     "verify",
 ]
