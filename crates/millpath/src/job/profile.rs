@@ -28,6 +28,7 @@
 //! run.gcode  // the bytes `millpath profile part.dxf -o` writes
 //! ```
 
+pub use super::profile_check::{TabVerdict, TargetReport};
 use super::program::{ProgramSettings, program_time};
 use crate::curve::{self, ArcSeg};
 use crate::gcode::{self, rounding_error_mm};
@@ -135,50 +136,6 @@ pub enum ProfileSource<'a> {
     },
     /// The paper's die cavity (as `contour --sample`), its curve fitted by arcs.
     Sample,
-}
-
-/// One outline in the report.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct TargetReport {
-    /// 1-based index, in cutting order.
-    pub index: usize,
-    /// Side cut.
-    pub side: String,
-    /// Perimeter of the drawn outline, mm.
-    pub perimeter_mm: f64,
-    /// Nominal distance of the finished path from the outline, mm.
-    pub offset_mm: f64,
-    /// Loops cut.
-    pub loops: usize,
-    /// Arcs and lines of one finishing pass.
-    pub arcs: usize,
-    /// See `arcs`.
-    pub lines: usize,
-    /// The dense check: least and greatest distance of the finishing path from the outline.
-    pub band_min_mm: f64,
-    /// See `band_min_mm`.
-    pub band_max_mm: f64,
-    /// Samples of the dense check.
-    pub band_samples: usize,
-    /// With tabs asked for: the stock simulation's bridge verdict.
-    pub tabs: Option<TabVerdict>,
-}
-
-/// What the height-field stock simulation finds holding a profiled piece.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
-pub struct TabVerdict {
-    /// `held by N bridges` or `falls free` (empty: not simulated, the cut being on the line
-    /// or not through).
-    pub hold: String,
-    /// Bridges left in the slot.
-    pub bridges: usize,
-    /// Of these, the ones touching one side only (material in concave corners tighter than
-    /// the tool, slivers at a tab's ends): they hold nothing.
-    pub loose: usize,
-    /// Each bridge's narrowest width along the outline, mm.
-    pub necks_mm: Vec<f64>,
-    /// The simulation's cell, mm.
-    pub cell_mm: f64,
 }
 
 /// One tab in the report.

@@ -2,7 +2,6 @@
 //! the dense band check, the exact wall clearance, the tab middle lines and, when tabs were
 //! asked for, the bridge verdict of the height-field stock simulation.
 
-use super::profile::{TabVerdict, TargetReport};
 use crate::geom::{Outline, Point};
 use crate::stock::{BridgeOptions, CutSide, FieldOptions, HeightField, held_by};
 use crate::strategy::profile::{
@@ -10,6 +9,51 @@ use crate::strategy::profile::{
 };
 use crate::toolpath::{Tool, Toolpath};
 use crate::{Error, InputError};
+use serde::Serialize;
+
+/// One outline in the report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TargetReport {
+    /// 1-based index, in cutting order.
+    pub index: usize,
+    /// Side cut.
+    pub side: String,
+    /// Perimeter of the drawn outline, mm.
+    pub perimeter_mm: f64,
+    /// Nominal distance of the finished path from the outline, mm.
+    pub offset_mm: f64,
+    /// Loops cut.
+    pub loops: usize,
+    /// Arcs and lines of one finishing pass.
+    pub arcs: usize,
+    /// See `arcs`.
+    pub lines: usize,
+    /// The dense check: least and greatest distance of the finishing path from the outline.
+    pub band_min_mm: f64,
+    /// See `band_min_mm`.
+    pub band_max_mm: f64,
+    /// Samples of the dense check.
+    pub band_samples: usize,
+    /// With tabs asked for: the stock simulation's bridge verdict.
+    pub tabs: Option<TabVerdict>,
+}
+
+/// What the height-field stock simulation finds holding a profiled piece.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct TabVerdict {
+    /// `held by N bridges` or `falls free` (empty: not simulated, the cut being on the line
+    /// or not through).
+    pub hold: String,
+    /// Bridges left in the slot.
+    pub bridges: usize,
+    /// Of these, the ones touching one side only (material in concave corners tighter than
+    /// the tool, slivers at a tab's ends): they hold nothing.
+    pub loose: usize,
+    /// Each bridge's narrowest width along the outline, mm.
+    pub necks_mm: Vec<f64>,
+    /// The simulation's cell, mm.
+    pub cell_mm: f64,
+}
 
 /// Spacing of the dense check's samples, mm: an eighth of the tolerance, no finer than the
 /// outline's length over 200,000.
