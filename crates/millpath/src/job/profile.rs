@@ -6,7 +6,7 @@
 //!
 //! # Verification before writing
 //! - the finishing loops against the drawn outline by the dense independent check
-//!   ([`dense_band_check`]): within `[d, d + T]` of the outline (before rounding: within
+//!   ([`crate::strategy::profile::dense_band_check`]): within `[d, d + T]` of the outline (before rounding: within
 //!   `[d + 2ρ, d + T − ρ]`, so that the written program is in the band);
 //! - every move below the stock top against every outside and inside outline by the exact
 //!   clearance of [`crate::stock::min_clearance`]: at least the tool radius (no gouge), and

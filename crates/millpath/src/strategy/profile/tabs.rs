@@ -71,6 +71,10 @@ impl Tab {
     }
 }
 
+/// A layout of the tabs: the sum of the squared slides, the sum of the squared distances
+/// from the stretches' middles, and each tab's place and stretch.
+type Layout = (f64, f64, Vec<(f64, usize)>);
+
 /// Where an element allows a tab's centre: arc lengths `[lo, hi]` and the half lift there.
 struct Stretch {
     lo: f64,
@@ -179,7 +183,7 @@ pub(crate) fn place(
         }
     }
     // (sum of squared slides, sum of squared distances from the stretches' middles, places)
-    let layout = |phi: f64| -> (f64, f64, Vec<(f64, usize)>) {
+    let layout = |phi: f64| -> Layout {
         let (mut cost, mut centre) = (0.0, 0.0);
         let mut out = Vec::with_capacity(asked);
         for k in 0..asked {
@@ -199,7 +203,7 @@ pub(crate) fn place(
             .min_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)))
             .map_or((0.0, 0.0), |q| (q.y, q.x))
     };
-    let mut best: Option<(f64, f64, Vec<(f64, usize)>)> = None;
+    let mut best: Option<Layout> = None;
     let tol = 1e-9 * p.max(1.0) * p.max(1.0);
     for phi in phases {
         let cand = layout(phi);
