@@ -117,8 +117,10 @@ mod tests {
         assert!((outline_distance(&d, Point::new(0.0, -2.0)) - 2.0).abs() < 1e-12);
         assert!((outline_distance(&d, Point::new(0.0, 8.0)) - 3.0).abs() < 1e-12);
         assert!((outline_distance(&d, Point::new(0.0, 1.0)) - 1.0).abs() < 1e-12);
-        assert!((outline_distance(&d, Point::new(8.0, 4.0)) - 5.0).abs() < 1e-12);
-        // A clockwise arc below the chord: the same circle's lower half.
+        assert!((outline_distance(&d, Point::new(8.0, 4.0)) - (80f64.sqrt() - 5.0)).abs() < 1e-12);
+        // Beyond the arc's ends (below the diameter, off to the side): the nearest end.
+        assert!((outline_distance(&d, Point::new(8.0, -4.0)) - 5.0).abs() < 1e-12);
+        // The lower half: the same circle's arc, run counter-clockwise below the diameter.
         let up = Outline::new(
             &[(Point::new(5.0, 0.0), 0.0), (Point::new(-5.0, 0.0), 1.0)],
             "u",
