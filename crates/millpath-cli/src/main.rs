@@ -35,6 +35,8 @@ enum Command {
     Pocket(commands::pocket::Args),
     /// A drawing's circles drilled with canned cycles or helix-bored, in a short order.
     Drill(commands::drill::Args),
+    /// Cut a drawing's outlines out: outside, inside or on the line, with leads and tabs.
+    Profile(commands::profile::Args),
     /// Check a G-code program against an outline: gouges, uncut material, engagement.
     Verify(commands::verify::Args),
     /// Cycle time of the spiral against zigzag over transition ratios and feeds.
@@ -114,6 +116,7 @@ fn run(cli: Cli) -> Result<(), millpath::Error> {
         Command::Calibrate(a) => commands::calibrate::run(&a),
         Command::Pocket(a) => commands::pocket::run(&a),
         Command::Drill(a) => commands::drill::run(&a),
+        Command::Profile(a) => commands::profile::run(&a),
         Command::Verify(a) => commands::verify::run(&a),
         Command::Sweep(a) => commands::sweep::run(&a),
         Command::FiveAxis(a) => commands::five_axis::run(&a),
@@ -163,7 +166,7 @@ mod tests {
         // One shared flag name and meaning: a preset or a TOML profile (five-axis takes a
         // kinematic chain and is documented apart).
         let cmd = command();
-        for name in ["demo", "contour", "estimate", "pocket", "sweep", "drill"] {
+        for name in ["demo", "contour", "estimate", "pocket", "profile", "sweep", "drill"] {
             let sub = cmd.find_subcommand(name).unwrap();
             assert!(
                 sub.get_arguments().any(|a| a.get_long() == Some("machine")),
@@ -180,6 +183,7 @@ mod tests {
             "five-axis",
             "pocket",
             "drill",
+            "profile",
         ] {
             let sub = cmd.find_subcommand(name).unwrap();
             assert!(

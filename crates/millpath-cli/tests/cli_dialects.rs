@@ -1,4 +1,4 @@
-//! The shared G-code output flags on `contour`, `pocket` and `five-axis`: the same names on
+//! The shared G-code output flags on `contour`, `pocket`, `profile` and `five-axis`: the same names on
 //! every command, every dialect written, `millpath estimate` reading each back (its dialect
 //! found from the program) with the cycle time `pocket` planned and `millpath verify`
 //! passing it, and what a dialect cannot express refused with exit 2 and no file. Programs
@@ -33,7 +33,7 @@ const OUTPUT_FLAGS: [&str; 7] = [
 #[test]
 fn every_program_command_takes_the_same_output_flags_and_shows_a_dialect_example() {
     let dir = tempfile::tempdir().unwrap();
-    for cmd in ["contour", "pocket", "five-axis"] {
+    for cmd in ["contour", "pocket", "profile", "five-axis"] {
         let o = millpath(&[cmd, "--help"], dir.path());
         assert_eq!(o.status.code(), Some(0));
         let help = String::from_utf8_lossy(&o.stdout);

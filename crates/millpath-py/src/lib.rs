@@ -16,6 +16,7 @@ mod convert;
 mod curves;
 mod jobs;
 mod objects;
+mod profile;
 
 use pyo3::prelude::*;
 
@@ -45,9 +46,11 @@ fn _millpath(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::estimate, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::machines, m)?)?;
     m.add_function(wrap_pyfunction!(curves::contour, m)?)?;
+    m.add_function(wrap_pyfunction!(profile::profile, m)?)?;
     m.add_function(wrap_pyfunction!(curves::verify, m)?)?;
     m.add_function(wrap_pyfunction!(curves::five_axis, m)?)?;
     m.add_class::<curves::ContourResult>()?;
+    m.add_class::<profile::ProfileResult>()?;
     m.add_class::<curves::VerifyResult>()?;
     m.add_class::<objects::Toolpath>()?;
     m.add_class::<objects::PocketResult>()?;

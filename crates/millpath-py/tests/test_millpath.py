@@ -175,6 +175,30 @@ def test_input_errors_carry_the_cli_message():
     assert issubclass(millpath.InternalError, RuntimeError)
 
 
+def test_profile_equals_cli(tmp_path):
+    assert REAL.is_dir(), f"real inputs missing: {REAL}"
+    kw = dict(tabs="auto", stock_to_leave=0.3, entry="helix", tool_diameter=6, depth=6,
+              step_down=2)
+    r = millpath.profile(T_PART, **kw)
+    ngc, rep = tmp_path / "p.ngc", tmp_path / "p.json"
+    cli("profile", T_PART, *flags(kw), "-o", ngc, "--report", rep)
+    assert r.gcode.encode() == ngc.read_bytes()
+    assert r.report == json.loads(rep.read_text())
+    assert r.cycle_time_s == r.report["cycle_time_s"] > 0
+    # Each of the three outlines held by its two tabs, as the stock simulation finds.
+    assert [o["tabs"]["hold"] for o in r.report["outlines"]] == ["held by 2 bridges"] * 3
+    assert len(r.report["tabs"]) == 6
+    # The same flags in another dialect and units, and a bad flag named as the CLI names it.
+    f = millpath.profile(T_PART, side="on", depth=1, step_down=1, dialect="fanuc", units="in")
+    cli("profile", T_PART, "--side", "on", "--depth", "1", "--step-down", "1",
+        "--dialect", "fanuc", "--units", "in", "-o", ngc)
+    assert f.gcode.encode() == ngc.read_bytes()
+    with pytest.raises(millpath.InputError, match="--tabs"):
+        millpath.profile(T_PART, tabs="many")
+    bad = cli("profile", T_PART, "--tabs", "many", check=False)
+    assert bad.returncode == 2 and "--tabs" in bad.stderr
+
+
 def test_contour_equals_cli(tmp_path):
     r = millpath.contour(sample=True, tolerance=0.01, arcs=True)
     ngc, rep = tmp_path / "c.ngc", tmp_path / "c.json"

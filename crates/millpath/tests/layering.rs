@@ -443,6 +443,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "job::estimate",
     "job::five_axis",
     "job::pocket",
+    "job::profile",
     "job::sweep",
     "job::verify",
     "machine",
@@ -460,6 +461,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "strategy::drill",
     "strategy::pocket",
     "strategy::pocket::builtin",
+    "strategy::profile",
     "toolpath",
 ];
 

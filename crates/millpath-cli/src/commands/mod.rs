@@ -11,6 +11,7 @@ pub mod machines;
 pub mod outline_input;
 pub mod output;
 pub mod pocket;
+pub mod profile;
 pub mod sweep;
 pub mod verify;
 

@@ -1,5 +1,5 @@
 //! The G-code output flags every program-writing command shares (`contour`, `pocket`,
-//! `five-axis`): one definition, flattened into each command's arguments
+//! `profile`, `five-axis`): one definition, flattened into each command's arguments
 //! (`#[command(flatten)]`), so that `--dialect`, `--units`, `--decimals`, `--tool-number`,
 //! `--spindle`, `--coolant` and `--line-numbers` are spelled, defaulted and checked alike.
 //!

@@ -24,6 +24,7 @@ from ._millpath import (
     InternalError,
     Pocket,
     PocketResult,
+    ProfileResult,
     Toolpath,
     VerifyResult,
     contour,
@@ -32,6 +33,7 @@ from ._millpath import (
     five_axis,
     machines,
     pocket,
+    profile,
     read_outline,
     verify,
 )
@@ -44,6 +46,7 @@ __all__ = [
     "InternalError",
     "Pocket",
     "PocketResult",
+    "ProfileResult",
     "Toolpath",
     "VerifyResult",
     "contour",
@@ -52,6 +55,7 @@ __all__ = [
     "five_axis",
     "machines",
     "pocket",
+    "profile",
     "read_outline",
     "verify",
 ]

@@ -60,6 +60,15 @@ class DrillResult:
     """The holes cut, in cutting order: N x 3 (x, y, diameter), mm."""
     note: Optional[str]
 
+class ProfileResult:
+    gcode: str
+    """Byte for byte the file `millpath profile ... -o FILE` writes."""
+    cycle_time_s: float
+    report: Dict[str, Any]
+    """The `--report` JSON: outlines, tabs, the dense check, the bridge verdict."""
+    toolpath: Toolpath
+    notes: List[str]
+
 class ContourResult:
     gcode: str
     cycle_time_s: float
@@ -198,6 +207,45 @@ def contour(
     line_numbers: bool = False,
 ) -> ContourResult:
     """A free-form contour through points, as `millpath contour` makes it."""
+
+def profile(
+    drawing: Union[PathLike, Points, Sequence[Points], None] = None,
+    *,
+    sample: bool = False,
+    layer: Optional[str] = None,
+    join_tolerance: float = 0.01,
+    drawing_units: Optional[str] = None,
+    side: str = "auto",
+    tool_diameter: Optional[float] = None,
+    depth: Optional[float] = None,
+    stock_thickness: Optional[float] = None,
+    step_down: Optional[float] = None,
+    stock_to_leave: Optional[float] = None,
+    conventional: bool = False,
+    lead_radius: float = 2.0,
+    entry: str = "ramp",
+    helix_radius: float = 2.0,
+    ramp_angle: float = 3.0,
+    tolerance: Optional[float] = None,
+    feed: Union[str, float] = "1000",
+    plunge_feed: float = 300.0,
+    safe_height: float = 10.0,
+    clearance_height: float = 2.0,
+    tabs: Union[str, int] = "0",
+    tab_width: float = 6.0,
+    tab_height: float = 2.0,
+    tab_shape: str = "square",
+    machine: str = "hsm",
+    dialect: str = "linuxcnc",
+    units: str = "mm",
+    decimals: Optional[int] = None,
+    tool_number: int = 1,
+    spindle: float = 10000.0,
+    coolant: str = "flood",
+    line_numbers: bool = False,
+) -> ProfileResult:
+    """A drawing's outlines cut out (parts outside, holes inside, or as `side` says), with
+    lead arcs, ramp or helix entries and holding tabs, as `millpath profile` does."""
 
 def estimate(
     program: PathLike,

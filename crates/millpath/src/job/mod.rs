@@ -11,6 +11,8 @@ pub mod estimate;
 pub mod five_axis;
 pub mod pocket;
 pub(crate) mod pocket_report;
+pub mod profile;
+pub(crate) mod profile_check;
 pub(crate) mod program;
 pub mod sweep;
 pub(crate) mod timing;
@@ -29,6 +31,7 @@ pub use pocket_report::{
     AutoEntry, PocketEntry, REPORT_TIME_MODEL, Report as PocketReport, auto_entries, auto_line,
     pocket_line,
 };
+pub use profile::{ProfileRun, ProfileSettings};
 pub use program::{ProgramSettings, program_time};
 pub use timing::time_and_verify;
 

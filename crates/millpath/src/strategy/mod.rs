@@ -6,5 +6,6 @@ pub mod drill;
 pub mod face;
 pub(crate) mod order;
 pub mod pocket;
+pub mod profile;
 
 pub use order::{MULTI_START_MAX, TWO_OPT_MAX, order_tour, tour_length};

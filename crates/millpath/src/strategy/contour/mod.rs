@@ -35,10 +35,13 @@
 //! raw offset loops; those loops are trimmed and reported in [`ContourResult::warnings`]
 //! with their position on the outline. The library never prints.
 
+pub(crate) mod leads;
 pub(crate) mod offset;
 mod pass;
 pub(crate) mod report;
 
+pub use leads::layer_depths;
+use leads::{Lead, loop_moves};
 pub use pass::{Pass, offset_pass};
 pub use report::{ContourReport, LayerReport};
 
@@ -339,14 +342,6 @@ fn signed_offset(side: Side, d: f64) -> f64 {
     }
 }
 
-/// The Z levels: roughing at each step-down, the last at full depth.
-pub fn layer_depths(top_z: f64, depth: f64, step: f64) -> Vec<f64> {
-    let n = (depth / step - 1e-9).ceil().max(1.0) as usize;
-    (1..=n)
-        .map(|k| top_z - (k as f64 * step).min(depth))
-        .collect()
-}
-
 /// Runs the contour strategy on a closed curve.
 pub fn contour(
     curve: &CompositeCurve,
@@ -378,11 +373,17 @@ pub fn contour(
     let safe = opt.top_z + opt.safe_height;
     let clear = opt.top_z + opt.clearance_height;
     tp.start = Point3::new(tp.start.x, tp.start.y, safe);
+    // The free side: left of travel inside (towards the cavity's middle), right outside.
+    let lead = Lead {
+        radius: opt.lead_radius,
+        left: opt.side != Side::Outside,
+        feed: opt.feed,
+    };
     for (li, (z, pass, kind)) in plan.iter().enumerate() {
         let start = tp.moves.len();
         for (k, lp) in pass.loops.iter().enumerate() {
             let arcs = pass.arcs.get(k).map(Vec::as_slice);
-            let (entry, path) = pass::loop_moves(lp, arcs, *z, opt, curve.len());
+            let (entry, path) = loop_moves(lp, arcs, *z, &lead, curve.len());
             let here = tp.end();
             // The first approach comes down from the safe height; between passes the tool
             // stays at the clearance height (above the stock top) to reach the next entry.

@@ -7,8 +7,7 @@ use crate::curve::biarc::{self, ArcSeg};
 use crate::curve::flatten::{self, FlattenOptions};
 use crate::curve::{CompositeCurve, Lobe, PlanarCurve};
 use crate::error::{Error, InputError};
-use crate::geom::{Point, Point3, Vec2};
-use crate::toolpath::Move;
+use crate::geom::{Point, Vec2};
 use std::f64::consts::{PI, TAU};
 
 /// A trimmed, flattened offset pass.
@@ -353,80 +352,4 @@ fn measure(curve: &CompositeCurve, pass: &Pass) -> f64 {
         }
     }
     worst
-}
-
-/// The moves of one closed loop at depth `z`: the XY entry point (start of the lead-in) and
-/// the feed moves (lead-in arc, the loop tagged with the curve parameter, lead-out arc).
-pub fn loop_moves(
-    lp: &[OffsetVertex],
-    arcs: Option<&[ArcSeg]>,
-    z: f64,
-    opt: &ContourOptions,
-    pieces: usize,
-) -> (Point, Vec<Move>) {
-    let tag = |m: Move, s: f64| {
-        let w = s.rem_euclid(pieces as f64);
-        let i = w.floor();
-        m.with_tag(i as u32, w - i)
-    };
-    let v0 = lp[0];
-    let first_dir = match arcs.and_then(|a| a.first()) {
-        Some(a) => a.at(0.001) - a.start,
-        None => lp.get(1).map_or(Vec2::new(1.0, 0.0), |v1| v1.p - v0.p),
-    };
-    let dir = first_dir.normalize().unwrap_or(Vec2::new(1.0, 0.0));
-    // The free side: left of travel inside (towards the cavity's middle), right outside.
-    let left = opt.side != Side::Outside;
-    let nrm = if left { dir.perp() } else { -dir.perp() };
-    let rl = opt.lead_radius;
-    let p3 = |p: Point| Point3::from_xy(p, z);
-    let mut moves = Vec::new();
-    let entry;
-    if rl > 0.0 {
-        let c = v0.p + nrm * rl;
-        entry = c - dir * rl;
-        moves.push(Move::arc_xy(p3(v0.p), p3(c), left, opt.feed));
-    } else {
-        entry = v0.p;
-    }
-    let mut last_dir = None;
-    match arcs {
-        Some(arcs) if !arcs.is_empty() => {
-            for a in arcs {
-                let m = match a.center {
-                    Some(c) => Move::arc_xy(p3(a.end), p3(c), a.ccw, opt.feed),
-                    None => Move::line(p3(a.end), opt.feed),
-                };
-                moves.push(tag(m, a.s_end));
-            }
-            if let Some(a) = arcs.last() {
-                last_dir = (a.end - a.at(0.999)).normalize();
-            }
-            let end = arcs.last().map_or(v0.p, |a| a.end);
-            if end.distance(v0.p) > 0.0 {
-                moves.push(tag(Move::line(p3(v0.p), opt.feed), v0.s));
-            }
-        }
-        _ => {
-            for v in lp.iter().skip(1) {
-                moves.push(tag(Move::line(p3(v.p), opt.feed), v.s));
-            }
-            moves.push(tag(Move::line(p3(v0.p), opt.feed), v0.s));
-        }
-    }
-    if rl > 0.0 {
-        let m = lp.len();
-        let last = lp[m - 1];
-        let dir_end = last_dir
-            .or_else(|| (v0.p - last.p).normalize())
-            .unwrap_or(dir);
-        let nrm_end = if left {
-            dir_end.perp()
-        } else {
-            -dir_end.perp()
-        };
-        let c = v0.p + nrm_end * rl;
-        moves.push(Move::arc_xy(p3(c + dir_end * rl), p3(c), left, opt.feed));
-    }
-    (entry, moves)
 }

@@ -1,0 +1,723 @@
+//! The moves of a profile: per target, its offset loops, their levels (entry, loop with the
+//! tabs lifted over, lead-out), then the finishing pass.
+//!
+//! # Z along a loop
+//! At a level of depth `z` the tool's height along the loop is, by arc length `σ`,
+//! `max(base(σ), tab₁(σ), …)`: `base` is `z`, or for the ramp entry the line from the level
+//! above down to `z` over the ramp's length; a square tab is its top over its lift (straight
+//! up and down at the ends); a ramped tab adds 45° ramps outside its lift. All of these are
+//! linear between breakpoints (element ends, ramp end, tab ends, where the ramp crosses a
+//! tab), so each element is cut at them and each piece is a line or a helical arc.
+//!
+//! # Entries and leads
+//! Ramp entry: the tool feeds down to the level above at the point the ramp length before the
+//! loop's start, descends along the loop to its start, cuts the loop and leaves by the
+//! lead-out arc (the ramp's stretch is cut again at full depth at the end of the loop).
+//! Helix entry: a helix of the helix radius beside the lead-in arc's start on the free side,
+//! then the lead-in arc, the loop and the lead-out. The finishing pass enters and leaves
+//! along half circles of diameter the stock left, from and to the roughing loop (cleared to
+//! full depth), tangent to the finishing loop.
+
+use super::elements::Loop;
+use super::tabs::{self, Tab};
+use super::{
+    PlacedTab, ProfileEntry, ProfileNote, ProfileOptions, ProfileResult, ProfileSide,
+    ProfileTarget, TabShape, TargetCut,
+};
+use crate::error::Error;
+use crate::geom::{Outline, Point, Point3, Vec2, Winding};
+use crate::strategy::contour::layer_depths;
+use crate::strategy::contour::leads::{Lead, loop_moves};
+use crate::strategy::contour::offset::OffsetVertex;
+use crate::strategy::pocket::Direction;
+use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
+use std::f64::consts::PI;
+
+/// A loop ready to cut: its elements from its start, its free side and its tabs' lifts.
+#[derive(Clone)]
+struct Cut {
+    lp: Loop,
+    left: bool,
+    /// Tab lifts as (centre arc length, half lift, top z).
+    lifts: Vec<(f64, f64, f64)>,
+}
+
+/// The offset loops of `outline` on `side` at distance `d`, counter-clockwise.
+fn offset_loops(outline: &Outline, side: ProfileSide, d: f64) -> Vec<Loop> {
+    let ccw = outline.clone().with_winding(Winding::CounterClockwise);
+    let raw = match side {
+        ProfileSide::Inside => ccw.offset(d),
+        ProfileSide::Outside => ccw.offset(-d),
+        ProfileSide::On => vec![ccw],
+    };
+    raw.iter()
+        .map(Loop::of_outline)
+        .filter(|l| l.elems.len() >= 2 && l.signed_area() > 0.0)
+        .collect()
+}
+
+/// True when the loop runs clockwise for this side and direction (module docs of `profile`).
+fn clockwise(side: ProfileSide, direction: Direction) -> bool {
+    let climb_cw = side == ProfileSide::Outside;
+    climb_cw == (direction == Direction::Climb)
+}
+
+/// The free side is left of travel: inside a hole running counter-clockwise, outside a part
+/// (or a line) running clockwise.
+fn free_left(side: ProfileSide, cw: bool) -> bool {
+    match side {
+        ProfileSide::Inside => !cw,
+        _ => cw,
+    }
+}
+
+/// The loop's tab lifts at offset `d`: each tab whose path point lies on this loop.
+fn lifts_on(lp: &Loop, tabs: &[Tab], d: f64) -> Vec<(f64, f64, f64)> {
+    let eps = 1e-6 * (1.0 + d);
+    tabs.iter()
+        .filter_map(|t| {
+            let q = t.placed.at + t.free_normal * d;
+            let (s, dist) = lp.project(q);
+            (dist <= eps).then(|| (s, t.half_lift(d), t.placed.top_z))
+        })
+        .collect()
+}
+
+/// The arc length where the loop starts: the middle of its longest element stretch clear of
+/// every lift (ties: the lowest, then leftmost, point).
+fn start_of(lp: &Loop, lifts: &[(f64, f64, f64)], ramp_extra: f64) -> f64 {
+    let len = lp.length;
+    let mut best = (f64::NEG_INFINITY, 0.0, Point::ORIGIN);
+    for (i, e) in lp.elems.iter().enumerate() {
+        let (a, b) = (lp.starts[i], lp.starts[i] + e.length());
+        let mut cuts: Vec<(f64, f64)> = Vec::new();
+        for &(c, h, _) in lifts {
+            let h = h + ramp_extra;
+            for shift in [-len, 0.0, len] {
+                let (lo, hi) = (c - h + shift, c + h + shift);
+                if hi > a && lo < b {
+                    cuts.push((lo.max(a), hi.min(b)));
+                }
+            }
+        }
+        cuts.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut at = a;
+        let mut free = Vec::new();
+        for (lo, hi) in cuts {
+            if lo > at {
+                free.push((at, lo));
+            }
+            at = at.max(hi);
+        }
+        if b > at {
+            free.push((at, b));
+        }
+        for (lo, hi) in free {
+            let mid = 0.5 * (lo + hi);
+            let p = lp.point(mid);
+            let l = hi - lo;
+            let tol = 1e-9 * (1.0 + len);
+            let better = l > best.0 + tol
+                || (l >= best.0 - tol
+                    && (p.y < best.2.y - 1e-9
+                        || (p.y - best.2.y).abs() <= 1e-9 && p.x < best.2.x - 1e-9));
+            if better {
+                best = (l, mid, p);
+            }
+        }
+    }
+    best.1
+}
+
+/// Z components along a loop: the base (level, or ramp) and the lifts.
+struct ZProfile<'a> {
+    z: f64,
+    /// Ramp: (from arc length, over length, from z); `None`: flat at `z`.
+    ramp: Option<(f64, f64, f64)>,
+    lifts: &'a [(f64, f64, f64)],
+    shape: TabShape,
+    bottom_z: f64,
+    len: f64,
+}
+
+impl ZProfile<'_> {
+    fn base(&self, s: f64) -> f64 {
+        match self.ramp {
+            Some((a, l, z0)) if l > 0.0 => self.z.max(z0 + (self.z - z0) * ((s - a) / l)),
+            _ => self.z,
+        }
+    }
+
+    /// The highest tab at `s`, in the region that `mid` (a point inside the piece) is in.
+    fn tab(&self, s: f64, mid: f64) -> f64 {
+        let mut out = f64::NEG_INFINITY;
+        for &(c, h, top) in self.lifts {
+            if top <= self.z {
+                continue;
+            }
+            let off =
+                |x: f64| ((x - c + 0.5 * self.len).rem_euclid(self.len) - 0.5 * self.len).abs();
+            let (dm, ds) = (off(mid), off(s));
+            let v = match self.shape {
+                TabShape::Square if dm < h => top,
+                TabShape::Ramped if dm <= h => top,
+                TabShape::Ramped if dm < h + (top - self.bottom_z) => top - (ds - h),
+                _ => continue,
+            };
+            out = out.max(v);
+        }
+        out
+    }
+
+    fn breaks(&self, a: f64, b: f64) -> Vec<f64> {
+        let mut v = vec![a, b];
+        if let Some((s0, l, _)) = self.ramp {
+            v.push(s0 + l);
+        }
+        for &(c, h, top) in self.lifts.iter().filter(|l| l.2 > self.z) {
+            let mut ends = vec![h];
+            if self.shape == TabShape::Ramped {
+                ends.push(h + (top - self.bottom_z));
+            }
+            for e in ends {
+                for shift in [-self.len, 0.0, self.len] {
+                    v.extend([c - e + shift, c + e + shift]);
+                }
+            }
+        }
+        v.retain(|s| *s >= a && *s <= b);
+        v.sort_by(f64::total_cmp);
+        v.dedup_by(|x, y| (*x - *y).abs() <= 1e-9);
+        v
+    }
+}
+
+/// Appends the moves along `lp` from arc length `a` to `b` (`0 ≤ a < b ≤ len`), heights as
+/// `zp` says; `at` is the tool's position, updated.
+fn along(
+    lp: &Loop,
+    a: f64,
+    b: f64,
+    zp: &ZProfile<'_>,
+    opts: &ProfileOptions,
+    at: &mut Point3,
+    out: &mut Vec<Move>,
+) {
+    let mut ks = zp.breaks(a, b);
+    ks.extend(lp.starts.iter().copied().filter(|s| *s > a && *s < b));
+    ks.sort_by(f64::total_cmp);
+    ks.dedup_by(|x, y| (*x - *y).abs() <= 1e-9);
+    let mut pieces: Vec<(f64, f64)> = Vec::new();
+    for w in ks.windows(2) {
+        let (s0, s1) = (w[0], w[1]);
+        let mid = 0.5 * (s0 + s1);
+        // Split where the ramp crosses a tab (the higher of the two changes there).
+        let g = |s: f64| zp.base(s) - zp.tab(s, mid);
+        let (g0, g1) = (g(s0), g(s1));
+        if g0.is_finite() && g1.is_finite() && g0 * g1 < 0.0 {
+            let x = s0 + (s1 - s0) * g0 / (g0 - g1);
+            pieces.push((s0, x));
+            pieces.push((x, s1));
+        } else {
+            pieces.push((s0, s1));
+        }
+    }
+    for (s0, s1) in pieces {
+        if s1 - s0 <= 1e-9 {
+            continue;
+        }
+        let mid = 0.5 * (s0 + s1);
+        let z = |s: f64| zp.base(s).max(zp.tab(s, mid));
+        let (z0, z1) = (z(s0), z(s1));
+        if (at.z - z0).abs() > 1e-12 {
+            let feed = if z0 < at.z {
+                opts.plunge_feed
+            } else {
+                opts.feed
+            };
+            *at = Point3::from_xy(at.xy(), z0);
+            out.push(Move::line(*at, feed));
+        }
+        let (i, _) = lp.locate(mid);
+        let e = &lp.elems[i];
+        let len = e.length();
+        let f1 = if len > 0.0 {
+            ((s1 - lp.starts[i]) / len).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let end = if f1 >= 1.0 { e.end } else { e.at(f1) };
+        let to = Point3::from_xy(end, z1);
+        let m = match e.center {
+            Some(c) => Move::arc_xy(to, Point3::from_xy(c, z1), e.ccw, opts.feed),
+            None => Move::line(to, opts.feed),
+        };
+        out.push(m.with_tag(i as u32, f1));
+        *at = to;
+    }
+}
+
+/// Samples of a circle of radius `rad` about `c`.
+fn circle(c: Point, rad: f64) -> impl Iterator<Item = Point> {
+    (0..32).map(move |k| c + Vec2::from_angle(f64::from(k) * PI / 16.0) * rad)
+}
+
+/// The walls of every target cut outside or inside: what the tool must keep clear of.
+struct Walls<'a> {
+    all: Vec<(usize, &'a Outline, ProfileSide)>,
+}
+
+impl<'a> Walls<'a> {
+    fn new(targets: &'a [ProfileTarget]) -> Self {
+        let all = targets
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| t.side != ProfileSide::On)
+            .map(|(i, t)| (i, &t.outline, t.side))
+            .collect();
+        Walls { all }
+    }
+
+    /// Inside more parts than holes: the part's material.
+    fn material(&self, p: Point) -> bool {
+        let count = |s: ProfileSide| {
+            self.all
+                .iter()
+                .filter(|(_, o, side)| *side == s && o.contains(p))
+                .count()
+        };
+        count(ProfileSide::Outside) > count(ProfileSide::Inside)
+    }
+
+    /// Least distance from `p` to a wall other than target `own`'s.
+    fn others(&self, own: usize, p: Point) -> f64 {
+        self.all
+            .iter()
+            .filter(|(i, _, _)| *i != own)
+            .map(|(_, o, _)| o.distance_to(p))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// True when every point lies on target `own`'s free side, out of the material, and keeps
+    /// `d` from every wall.
+    fn clear(
+        &self,
+        own: (usize, &Outline, ProfileSide),
+        d: f64,
+        pts: impl IntoIterator<Item = Point>,
+    ) -> bool {
+        let (i, outline, side) = own;
+        pts.into_iter().all(|p| {
+            let free = match side {
+                ProfileSide::Inside => outline.contains(p),
+                ProfileSide::Outside => !outline.contains(p),
+                ProfileSide::On => true,
+            };
+            free && !self.material(p)
+                && (side == ProfileSide::On || outline.distance_to(p) >= d - 1e-9)
+                && self.others(i, p) >= d - 1e-9
+        })
+    }
+}
+
+/// Goes to `p` (XY) at the clearance height (up first if lower), then feeds down to `z`.
+fn approach(tp: &mut Toolpath, p: Point, z: f64, opts: &ProfileOptions) {
+    let clear = opts.top_z + opts.clearance_height;
+    let here = tp.end();
+    let high = here.z.max(clear);
+    if here.z < high {
+        tp.push(Move::rapid(Point3::from_xy(here.xy(), high)));
+    }
+    if here.xy().distance(p) > 1e-9 {
+        tp.push(Move::rapid(Point3::from_xy(p, high)));
+    }
+    if high > clear {
+        tp.push(Move::rapid(Point3::from_xy(p, clear)));
+    }
+    tp.push(Move::line(Point3::from_xy(p, z), opts.plunge_feed));
+}
+
+/// The lead arc radius (`want`, halved up to four times, else 0) whose arcs keep `d` from
+/// the outline on the free side.
+fn lead_radius(
+    cut: &Cut,
+    walls: &Walls<'_>,
+    own: (usize, &Outline, ProfileSide),
+    d: f64,
+    want: f64,
+) -> f64 {
+    let v0 = cut.lp.elems[0].start;
+    let lp = [OffsetVertex { p: v0, s: 0.0 }];
+    let mut rl = want;
+    for _ in 0..5 {
+        if rl <= 0.0 {
+            break;
+        }
+        let lead = Lead {
+            radius: rl,
+            left: cut.left,
+            feed: 1.0,
+        };
+        let (entry, moves) = loop_moves(&lp, Some(&cut.lp.elems), 0.0, &lead, 1);
+        let mut pts = Vec::new();
+        for (m, from) in [(moves.first(), entry), (moves.last(), v0)] {
+            if let Some(m) = m {
+                let from = Point3::from_xy(from, 0.0);
+                let l = m.length_from(from);
+                pts.extend((0..=8).map(|k| m.point_at(from, l * f64::from(k) / 8.0).xy()));
+            }
+        }
+        if walls.clear(own, d, pts) {
+            return rl;
+        }
+        rl *= 0.5;
+    }
+    0.0
+}
+
+/// A move of `plain` (made at z = 0) at height `z`.
+fn at_z(m: &Move, z: f64) -> Move {
+    let mut m = *m;
+    m.to.z = z;
+    if let crate::toolpath::MoveKind::Arc { ref mut center, .. } = m.kind {
+        center.z = z;
+    }
+    m
+}
+
+/// Plans every target.
+pub(super) fn generate(
+    targets: &[ProfileTarget],
+    tool: &Tool,
+    opts: &ProfileOptions,
+) -> Result<ProfileResult, Error> {
+    let r = tool.radius();
+    let safe = opts.top_z + opts.safe_height;
+    let mut tp = Toolpath::new(*tool, Point3::new(0.0, 0.0, safe));
+    let mut notes = Vec::new();
+    let mut placed: Vec<PlacedTab> = Vec::new();
+    let mut cuts_out = Vec::new();
+    let zs = layer_depths(opts.top_z, opts.depth, opts.step_down);
+    let bottom = opts.top_z - opts.depth;
+    let walls = Walls::new(targets);
+    for (ti, t) in targets.iter().enumerate() {
+        let side = t.side;
+        let own = (ti, &t.outline, side);
+        let band = if side == ProfileSide::On {
+            0.0
+        } else {
+            0.5 * opts.tolerance
+        };
+        let nominal = if side == ProfileSide::On { 0.0 } else { r };
+        let d_fin = nominal + band;
+        let stock = if side == ProfileSide::On {
+            0.0
+        } else {
+            opts.stock_to_leave
+        };
+        let d_rough = d_fin + stock;
+        let tab_top = opts.bottom_z() + opts.tabs.height;
+        let mut tab_note = None;
+        let tabs_here: Vec<Tab> = if opts.tabs.count == super::TabCount::None {
+            Vec::new()
+        } else if side == ProfileSide::On {
+            notes.push(ProfileNote::NoTabs {
+                target: ti,
+                reason: "the cut is on the line",
+            });
+            Vec::new()
+        } else if !opts.cuts_through() {
+            notes.push(ProfileNote::NoTabs {
+                target: ti,
+                reason: "the cut does not reach the stock's bottom",
+            });
+            Vec::new()
+        } else {
+            let (mut v, asked) = tabs::place(
+                ti,
+                &t.outline,
+                side,
+                d_fin,
+                r,
+                &opts.tabs,
+                (tab_top, opts.bottom_z()),
+            );
+            // Not where another outline's cut (its path, leads and helix) passes near.
+            let reach = d_rough + r + 2.0 * opts.lead_radius + 2.0 * opts.helix_radius;
+            v.retain(|tab| {
+                let w = 0.5 * tab.placed.width;
+                walls.others(ti, tab.placed.at + tab.free_normal * d_fin) >= reach + w
+            });
+            if v.len() < asked {
+                tab_note = Some(ProfileNote::FewerTabs {
+                    target: ti,
+                    asked,
+                    placed: v.len(),
+                });
+            }
+            v
+        };
+        let cw = clockwise(side, opts.direction);
+        let left = free_left(side, cw);
+        let make = |d: f64| -> Vec<Cut> {
+            offset_loops(&t.outline, side, d)
+                .into_iter()
+                .map(|l| {
+                    let l = if cw { l.reversed() } else { l };
+                    let lifts = lifts_on(&l, &tabs_here, d);
+                    let extra = if opts.tabs.shape == TabShape::Ramped {
+                        opts.tabs.height
+                    } else {
+                        0.0
+                    };
+                    let s0 = start_of(&l, &lifts, extra);
+                    let l = l.rotated(s0);
+                    let lifts = lifts_on(&l, &tabs_here, d);
+                    Cut { lp: l, left, lifts }
+                })
+                .collect()
+        };
+        let fin = make(d_fin);
+        if fin.is_empty() {
+            notes.push(ProfileNote::NoRoom {
+                target: ti,
+                offset_mm: d_rough,
+            });
+            continue;
+        }
+        let rough = if stock > 0.0 {
+            make(d_rough)
+        } else {
+            fin.clone()
+        };
+        if rough.is_empty() {
+            notes.push(ProfileNote::NoRoom {
+                target: ti,
+                offset_mm: d_rough,
+            });
+            continue;
+        }
+        notes.extend(tab_note);
+        if fin.len() > 1 {
+            notes.push(ProfileNote::SplitLoops {
+                target: ti,
+                loops: fin.len(),
+            });
+        }
+        placed.extend(tabs_here.iter().map(|t| t.placed));
+        let first_move = tp.moves.len();
+        let mut finish_moves = Vec::new();
+        let mut entry_note = false;
+        let mut lead_note = false;
+        let mut steep_note = false;
+        for cut in &rough {
+            let rl = lead_radius(cut, &walls, own, d_rough - band, opts.lead_radius);
+            if rl < opts.lead_radius && !lead_note {
+                lead_note = true;
+                notes.push(ProfileNote::LeadReduced {
+                    target: ti,
+                    radius: rl,
+                });
+            }
+            let lead = Lead {
+                radius: rl,
+                left: cut.left,
+                feed: opts.feed,
+            };
+            let lp0 = [OffsetVertex {
+                p: cut.lp.elems[0].start,
+                s: 0.0,
+            }];
+            let n = cut.lp.elems.len();
+            let (lead_entry, plain) = loop_moves(&lp0, Some(&cut.lp.elems), 0.0, &lead, n);
+            // The helix beside the lead-in's start, on the free side, where it fits.
+            let mut entry = opts.entry;
+            let mut helix_c = Point::ORIGIN;
+            if entry == ProfileEntry::Helix {
+                // Centred `helix radius` ahead of the lead-in's start along the loop's start
+                // tangent: the helix leaves tangent to the lead-in arc (the same circle when
+                // the two radii are equal).
+                helix_c = lead_entry + cut.lp.tangent(0.0) * opts.helix_radius;
+                let pts = circle(helix_c, opts.helix_radius);
+                if rl <= 0.0 || !walls.clear(own, d_rough - band, pts) {
+                    entry = ProfileEntry::Ramp;
+                    if !entry_note {
+                        entry_note = true;
+                        notes.push(ProfileNote::HelixToRamp { target: ti });
+                    }
+                }
+            }
+            let len = cut.lp.length;
+            let mut z_prev = opts.top_z;
+            for (li, &z) in zs.iter().enumerate() {
+                let last = li + 1 == zs.len();
+                let start = tp.moves.len();
+                let mut at;
+                match entry {
+                    ProfileEntry::Ramp => {
+                        let want = (z_prev - z) / opts.ramp_angle.tan();
+                        let l = want.min(len);
+                        if want > len && !steep_note {
+                            steep_note = true;
+                            notes.push(ProfileNote::SteepRamp {
+                                target: ti,
+                                angle_deg: ((z_prev - z) / len).atan().to_degrees(),
+                            });
+                        }
+                        let s_from = len - l;
+                        let p = cut.lp.point(s_from);
+                        approach(&mut tp, p, z_prev, opts);
+                        at = tp.end();
+                        let zp = ZProfile {
+                            z,
+                            ramp: Some((s_from, l, z_prev)),
+                            lifts: &cut.lifts,
+                            shape: opts.tabs.shape,
+                            bottom_z: opts.bottom_z(),
+                            len,
+                        };
+                        let mut mv = Vec::new();
+                        along(&cut.lp, s_from, len, &zp, opts, &mut at, &mut mv);
+                        tp.moves.extend(mv);
+                    }
+                    ProfileEntry::Helix => {
+                        approach(&mut tp, lead_entry, z_prev, opts);
+                        // Whole half turns at the ramp angle, about the helix centre.
+                        let pitch = 2.0 * PI * opts.helix_radius * opts.ramp_angle.tan();
+                        let halves = 2 * ((z_prev - z) / pitch).ceil().max(1.0) as usize;
+                        let ang0 = (lead_entry - helix_c).angle();
+                        for k in 1..=halves {
+                            let a = ang0 + if cut.left { 1.0 } else { -1.0 } * PI * k as f64;
+                            let zk = z_prev + (z - z_prev) * k as f64 / halves as f64;
+                            let p = helix_c + Vec2::from_angle(a) * opts.helix_radius;
+                            let p = if k % 2 == 0 { lead_entry } else { p };
+                            tp.push(Move::arc_xy(
+                                Point3::from_xy(p, zk),
+                                Point3::from_xy(helix_c, zk),
+                                cut.left,
+                                opts.feed,
+                            ));
+                        }
+                        // The lead-in arc at the level.
+                        if let Some(m) = plain.first() {
+                            tp.push(at_z(m, z));
+                        }
+                        at = tp.end();
+                    }
+                }
+                let zp = ZProfile {
+                    z,
+                    ramp: None,
+                    lifts: &cut.lifts,
+                    shape: opts.tabs.shape,
+                    bottom_z: opts.bottom_z(),
+                    len,
+                };
+                let loop_start = tp.moves.len();
+                let mut mv = Vec::new();
+                along(&cut.lp, 0.0, len, &zp, opts, &mut at, &mut mv);
+                tp.moves.extend(mv);
+                let loop_end = tp.moves.len();
+                if rl > 0.0 {
+                    if let Some(m) = plain.last() {
+                        tp.push(at_z(m, z));
+                    }
+                }
+                tp.push(Move::rapid(Point3::from_xy(
+                    tp.end().xy(),
+                    opts.top_z + opts.clearance_height,
+                )));
+                tp.levels.push(Level {
+                    z,
+                    kind: if stock > 0.0 || !last {
+                        LevelKind::Roughing
+                    } else {
+                        LevelKind::Finishing
+                    },
+                    start,
+                    end: tp.moves.len(),
+                });
+                if stock <= 0.0 && last {
+                    finish_moves.push(loop_start..loop_end);
+                }
+                z_prev = z;
+            }
+        }
+        if stock > 0.0 {
+            for cut in &fin {
+                let start = tp.moves.len();
+                let v0 = cut.lp.elems[0].start;
+                let t0 = cut.lp.tangent(0.0);
+                let n0 = if cut.left { t0.perp() } else { -t0.perp() };
+                let entry = v0 + n0 * stock;
+                approach(&mut tp, entry, bottom, opts);
+                tp.push(Move::arc_xy(
+                    Point3::from_xy(v0, bottom),
+                    Point3::from_xy(v0 + n0 * (0.5 * stock), bottom),
+                    cut.left,
+                    opts.feed,
+                ));
+                let mut at = tp.end();
+                let zp = ZProfile {
+                    z: bottom,
+                    ramp: None,
+                    lifts: &cut.lifts,
+                    shape: opts.tabs.shape,
+                    bottom_z: opts.bottom_z(),
+                    len: cut.lp.length,
+                };
+                let loop_start = tp.moves.len();
+                let mut mv = Vec::new();
+                along(&cut.lp, 0.0, cut.lp.length, &zp, opts, &mut at, &mut mv);
+                tp.moves.extend(mv);
+                finish_moves.push(loop_start..tp.moves.len());
+                let t1 = super::elements::tangent_at(&cut.lp.elems[cut.lp.elems.len() - 1], 1.0);
+                let n1 = if cut.left { t1.perp() } else { -t1.perp() };
+                tp.push(Move::arc_xy(
+                    Point3::from_xy(v0 + n1 * stock, bottom),
+                    Point3::from_xy(v0 + n1 * (0.5 * stock), bottom),
+                    cut.left,
+                    opts.feed,
+                ));
+                tp.push(Move::rapid(Point3::from_xy(
+                    tp.end().xy(),
+                    opts.top_z + opts.clearance_height,
+                )));
+                tp.levels.push(Level {
+                    z: bottom,
+                    kind: LevelKind::Finishing,
+                    start,
+                    end: tp.moves.len(),
+                });
+            }
+        }
+        tp.push(Move::rapid(Point3::from_xy(tp.end().xy(), safe)));
+        let (arcs, lines) = fin
+            .iter()
+            .flat_map(|c| c.lp.elems.iter())
+            .fold((0, 0), |(a, l), e| {
+                if e.center.is_some() {
+                    (a + 1, l)
+                } else {
+                    (a, l + 1)
+                }
+            });
+        cuts_out.push(TargetCut {
+            target: ti,
+            side,
+            offset_mm: nominal,
+            offset_used_mm: d_fin,
+            loops: fin.len(),
+            arcs,
+            lines,
+            moves: first_move..tp.moves.len(),
+            finish_moves,
+        });
+    }
+    Ok(ProfileResult {
+        toolpath: tp,
+        tabs: placed,
+        cuts: cuts_out,
+        notes,
+    })
+}

@@ -1,0 +1,301 @@
+//! Holding tabs: where on a drawn outline they go.
+//!
+//! # Where a tab may sit
+//! A tab of top width `w` centred at arc length `s` of the outline is the material the tool
+//! leaves where it lifts: on the path beside a line the tool is lifted over `w/2 + r` either
+//! side of the tab's centre (`r` the tool radius), so the material left at every depth of the
+//! slot is `w` wide. Beside an arc of radius `R` the path is the concentric arc of radius
+//! `R_p = R ± d` (`d` the offset; `+` where the path runs on the arc's outer side), and the
+//! tool disc clears a radial face of the tab once its centre is `asin(r/R_p)` away in angle,
+//! so the lift spans `R_p·(w/(2R) + asin(r/R_p))` of path either side. A tab is placed only
+//! where that whole span lies on one element of the outline (a line, or an arc with
+//! `R_p ≥ 2r` long enough), away from its ends by `0.05` mm plus, at a corner that cuts the
+//! path back (the path on the inside of the turn), `d·tan(|τ|/2)` for a turn of `τ`: never on
+//! a corner nor on a short or tight arc.
+//!
+//! # Even spacing
+//! With the perimeter `P` and `N` tabs the ideal places are `φ + kP/N`. Each is slid to the
+//! nearest allowed place (arc length, cyclically); the phase `φ` minimises the sum of the
+//! squared slides over the candidates that put one ideal place on the middle or an end of an
+//! allowed stretch, then (among equal slides) the sum of the squared distances of the tabs
+//! from the middles of their stretches. The candidates and the costs depend only on the outline's shape, not on
+//! where it starts, which way it runs or where it lies, so the tabs move with the outline
+//! (ties, which only symmetric outlines have, go to the lowest, then leftmost, first tab).
+//! Tabs whose lifts would overlap are dropped (a note says how many fit).
+//!
+//! # Count
+//! [`auto_tab_count`]: one tab per started 150 mm of perimeter, at least 2 and at most 16.
+
+use super::elements::{Loop, tangent_at};
+use super::{PlacedTab, ProfileSide, TabCount, TabOptions};
+use crate::geom::Outline;
+
+/// The most tabs per outline.
+pub const MAX_TABS: usize = 1000;
+
+/// Perimeter per automatic tab, mm.
+pub const PERIMETER_PER_TAB: f64 = 150.0;
+
+/// Distance kept between a tab's lift and the end of its element, mm.
+const GUARD: f64 = 0.05;
+
+/// The tab count `auto` gives an outline of `perimeter` mm: `⌈P / 150⌉`, from 2 to 16.
+pub fn auto_tab_count(perimeter: f64) -> usize {
+    ((perimeter / PERIMETER_PER_TAB).ceil().max(0.0) as usize).clamp(2, 16)
+}
+
+/// A tab and its lift on the path.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Tab {
+    /// The tab.
+    pub placed: PlacedTab,
+    /// The unit normal at the tab's centre towards the free side.
+    pub free_normal: crate::geom::Vec2,
+    /// On an arc: its radius and whether its centre lies on the free side.
+    arc: Option<(f64, bool)>,
+    /// The tool radius, mm.
+    r: f64,
+}
+
+impl Tab {
+    /// Half the length of the path at offset `d` that the tool lifts over, mm (module docs).
+    pub fn half_lift(&self, d: f64) -> f64 {
+        let (w, r) = (self.placed.width, self.r);
+        match self.arc {
+            None => 0.5 * w + r,
+            Some((rad, centre_free)) => {
+                let rp = if centre_free { rad - d } else { rad + d };
+                rp * (0.5 * w / rad + (r / rp).min(1.0).asin())
+            }
+        }
+    }
+}
+
+/// A layout of the tabs: the sum of the squared slides, the sum of the squared distances
+/// from the stretches' middles, and each tab's place and stretch.
+type Layout = (f64, f64, Vec<(f64, usize)>);
+
+/// Where an element allows a tab's centre: arc lengths `[lo, hi]` and the half lift there.
+struct Stretch {
+    lo: f64,
+    hi: f64,
+    half_lift: f64,
+    arc: Option<(f64, bool)>,
+}
+
+/// The tabs of `outline` cut on `side` at offset `d` by a tool of radius `r`, or the count
+/// asked and placed when fewer fit.
+pub(crate) fn place(
+    target: usize,
+    outline: &Outline,
+    side: ProfileSide,
+    d: f64,
+    r: f64,
+    opts: &TabOptions,
+    (top_z, bottom_z): (f64, f64),
+) -> (Vec<Tab>, usize) {
+    let lp = Loop::of_outline(outline);
+    let p = lp.length;
+    let asked = match opts.count {
+        TabCount::None => 0,
+        TabCount::Count(n) => n,
+        TabCount::Auto => auto_tab_count(p),
+    };
+    if asked == 0 || side == ProfileSide::On {
+        return (Vec::new(), asked);
+    }
+    let ccw = lp.signed_area() > 0.0;
+    // The free side is left of the outline's travel for a hole drawn counter-clockwise and
+    // for a part drawn clockwise.
+    let free_left = match side {
+        ProfileSide::Inside => ccw,
+        _ => !ccw,
+    };
+    let w = opts.width;
+    let n = lp.elems.len();
+    let turn = |k: usize| {
+        let a = tangent_at(&lp.elems[(k + n - 1) % n], 1.0);
+        let b = tangent_at(&lp.elems[k], 0.0);
+        a.cross(b).atan2(a.dot(b))
+    };
+    let cutback = |tau: f64| {
+        if tau.abs() > 1e-9 && (tau > 0.0) == free_left {
+            if tau.abs() >= std::f64::consts::PI - 1e-6 {
+                f64::INFINITY
+            } else {
+                d * (0.5 * tau.abs()).tan()
+            }
+        } else {
+            0.0
+        }
+    };
+    let mut stretches = Vec::new();
+    for (k, e) in lp.elems.iter().enumerate() {
+        let len = e.length();
+        let (half_outline, half_lift, arc) = match e.center {
+            None => (0.5 * w + r, 0.5 * w + r, None),
+            Some(c) => {
+                let rad = (e.start - c).length();
+                // The centre lies on the free side when the arc turns towards it.
+                let centre_free = e.ccw == free_left;
+                let rp = if centre_free { rad - d } else { rad + d };
+                if !(rp >= 2.0 * r && rp > 0.0) {
+                    continue;
+                }
+                let phi = (r / rp).asin();
+                let ang = 0.5 * w / rad + phi;
+                (rad * ang, rp * ang, Some((rad, centre_free)))
+            }
+        };
+        let lo = lp.starts[k] + half_outline + GUARD + cutback(turn(k));
+        let hi = lp.starts[k] + len - half_outline - GUARD - cutback(turn((k + 1) % n));
+        if hi >= lo {
+            stretches.push(Stretch {
+                lo,
+                hi,
+                half_lift,
+                arc,
+            });
+        }
+    }
+    if stretches.is_empty() {
+        return (Vec::new(), asked);
+    }
+    let gap = p / asked as f64;
+    // The nearest allowed place to `s` (cyclically): (place, stretch index, slide).
+    let nearest = |s: f64| -> (f64, usize, f64) {
+        let mut best = (s, 0, f64::INFINITY);
+        for (j, st) in stretches.iter().enumerate() {
+            for shift in [-p, 0.0, p] {
+                let q = s.clamp(st.lo + shift, st.hi + shift);
+                let slide = (q - s).abs();
+                if slide < best.2 {
+                    best = (q.rem_euclid(p), j, slide);
+                }
+            }
+        }
+        best
+    };
+    let mut phases = Vec::new();
+    for st in &stretches {
+        for s in [st.lo, 0.5 * (st.lo + st.hi), st.hi] {
+            phases.push(s.rem_euclid(gap));
+        }
+    }
+    // (sum of squared slides, sum of squared distances from the stretches' middles, places)
+    let layout = |phi: f64| -> Layout {
+        let (mut cost, mut centre) = (0.0, 0.0);
+        let mut out = Vec::with_capacity(asked);
+        for k in 0..asked {
+            let (q, j, slide) = nearest(phi + k as f64 * gap);
+            cost += slide * slide;
+            let st = &stretches[j];
+            let off = (q - 0.5 * (st.lo + st.hi) + 0.5 * p).rem_euclid(p) - 0.5 * p;
+            centre += off * off;
+            out.push((q, j));
+        }
+        (cost, centre, out)
+    };
+    // The lowest, then leftmost, tab of a layout (to break ties between equal costs).
+    let key = |v: &[(f64, usize)]| {
+        v.iter()
+            .map(|(s, _)| lp.point(*s))
+            .min_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)))
+            .map_or((0.0, 0.0), |q| (q.y, q.x))
+    };
+    let mut best: Option<Layout> = None;
+    let tol = 1e-9 * p.max(1.0) * p.max(1.0);
+    for phi in phases {
+        let cand = layout(phi);
+        let better = match &best {
+            None => true,
+            Some(b) if cand.0 < b.0 - tol => true,
+            Some(b) if cand.0 > b.0 + tol => false,
+            Some(b) if cand.1 < b.1 - tol => true,
+            Some(b) if cand.1 > b.1 + tol => false,
+            Some(b) => {
+                let (x, y) = (key(&cand.2), key(&b.2));
+                x.0 < y.0 - 1e-9 || ((x.0 - y.0).abs() <= 1e-9 && x.1 < y.1 - 1e-9)
+            }
+        };
+        if better {
+            best = Some(cand);
+        }
+    }
+    let Some((_, _, mut chosen)) = best else {
+        return (Vec::new(), asked);
+    };
+    chosen.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Drop tabs whose lifts overlap the previous kept one's (cyclically).
+    let mut kept: Vec<(f64, usize)> = Vec::new();
+    for c in chosen {
+        let clash = |a: &(f64, usize), b: &(f64, usize)| {
+            let gap_ab = (b.0 - a.0).rem_euclid(p).min((a.0 - b.0).rem_euclid(p));
+            gap_ab < stretches[a.1].half_lift + stretches[b.1].half_lift + 2.0 * GUARD
+        };
+        if kept.iter().all(|k| !clash(k, &c)) {
+            kept.push(c);
+        }
+    }
+    let tabs = kept
+        .into_iter()
+        .map(|(s, j)| {
+            let t = lp.tangent(s);
+            let free_normal = if free_left { t.perp() } else { -t.perp() };
+            Tab {
+                placed: PlacedTab {
+                    target,
+                    s,
+                    at: lp.point(s),
+                    width: w,
+                    top_z,
+                    bottom_z,
+                },
+                free_normal,
+                arc: stretches[j].arc,
+                r,
+            }
+        })
+        .collect();
+    (tabs, asked)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Point;
+
+    #[test]
+    fn auto_count_follows_the_perimeter() {
+        assert_eq!(auto_tab_count(40.0), 2);
+        assert_eq!(auto_tab_count(400.0), 3);
+        assert_eq!(auto_tab_count(451.0), 4);
+        assert_eq!(auto_tab_count(1e5), 16);
+    }
+
+    /// Four tabs on a 100 × 60 rectangle: each on a side, its lift clear of the corners.
+    #[test]
+    fn tabs_sit_on_the_sides_away_from_corners() {
+        let o = Outline::from_points(
+            &[
+                Point::new(0.0, 0.0),
+                Point::new(100.0, 0.0),
+                Point::new(100.0, 60.0),
+                Point::new(0.0, 60.0),
+            ],
+            "r",
+        )
+        .unwrap();
+        let opts = TabOptions::default().with_count(TabCount::Count(4));
+        let (tabs, asked) = place(0, &o, ProfileSide::Outside, 3.0, 3.0, &opts, (-4.0, -6.0));
+        assert_eq!((tabs.len(), asked), (4, 4));
+        for t in &tabs {
+            let a = t.placed.at;
+            let off_x = a.x.min(100.0 - a.x);
+            let off_y = a.y.min(60.0 - a.y);
+            // On a side, at least half the width plus the tool radius from its corners.
+            assert!(off_x.min(off_y) < 1e-9, "{a:?}");
+            assert!(off_x.max(off_y) >= 3.0 + 3.0 + GUARD - 1e-9, "{a:?}");
+        }
+    }
+}
