@@ -37,6 +37,8 @@ enum Command {
     Drill(commands::drill::Args),
     /// Cut a drawing's outlines out: outside, inside or on the line, with leads and tabs.
     Profile(commands::profile::Args),
+    /// A whole part from a job file: face, pockets, holes, profile with tabs, several tools.
+    Job(commands::job::Args),
     /// Check a G-code program against an outline: gouges, uncut material, engagement.
     Verify(commands::verify::Args),
     /// Cycle time of the spiral against zigzag over transition ratios and feeds.
@@ -117,6 +119,7 @@ fn run(cli: Cli) -> Result<(), millpath::Error> {
         Command::Pocket(a) => commands::pocket::run(&a),
         Command::Drill(a) => commands::drill::run(&a),
         Command::Profile(a) => commands::profile::run(&a),
+        Command::Job(a) => commands::job::run(&a),
         Command::Verify(a) => commands::verify::run(&a),
         Command::Sweep(a) => commands::sweep::run(&a),
         Command::FiveAxis(a) => commands::five_axis::run(&a),
@@ -166,7 +169,9 @@ mod tests {
         // One shared flag name and meaning: a preset or a TOML profile (five-axis takes a
         // kinematic chain and is documented apart).
         let cmd = command();
-        for name in ["demo", "contour", "estimate", "pocket", "profile", "sweep", "drill"] {
+        for name in [
+            "demo", "contour", "estimate", "pocket", "profile", "sweep", "drill",
+        ] {
             let sub = cmd.find_subcommand(name).unwrap();
             assert!(
                 sub.get_arguments().any(|a| a.get_long() == Some("machine")),

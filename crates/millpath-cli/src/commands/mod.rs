@@ -7,6 +7,7 @@ pub mod drill;
 pub mod estimate;
 pub mod five_axis;
 pub mod html;
+pub mod job;
 pub mod machines;
 pub mod outline_input;
 pub mod output;

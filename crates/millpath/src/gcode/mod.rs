@@ -129,7 +129,8 @@ pub use params::ParamFile;
 pub use reader::{MAX_LINE_BYTES, MAX_WARNINGS, Reader, Warning, read_str, read_toolpath};
 pub use tools::{ToolEntry, ToolTable};
 pub use writer::{
-    MIN_ARC_RADIUS_MM, ProgramSection, WriteSummary, WriterOptions, write_program, write_sections,
+    MIN_ARC_RADIUS_MM, ProgramSection, SectionsSummary, WriteSummary, WriterOptions, write_program,
+    write_sections,
 };
 
 /// Writes `tp` into a `String` (convenience for tests and small programs).

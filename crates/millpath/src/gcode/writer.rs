@@ -17,7 +17,7 @@ use std::io::{BufWriter, Write};
 mod options;
 mod sections;
 pub use options::WriterOptions;
-pub use sections::{ProgramSection, write_sections};
+pub use sections::{ProgramSection, SectionsSummary, write_sections};
 
 /// Largest `N` number written; numbering wraps around after it (LinuxCNC refuses N > 99999,
 /// Fanuc 0i accepts five digits).

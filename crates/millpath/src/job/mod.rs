@@ -9,6 +9,7 @@ pub mod contour;
 pub mod drill;
 pub mod estimate;
 pub mod five_axis;
+pub mod part;
 pub mod pocket;
 pub(crate) mod pocket_report;
 pub mod profile;
@@ -73,6 +74,38 @@ pub fn sample_part_drawing(
         part.push((format!("pocket {}", i + 1), shape));
     }
     Ok((dxf, part))
+}
+
+/// The built-in sample part as a whole drawing, for `millpath job` and the demo: the sample
+/// part's six pockets ([`builtin::structural_part`]) inside a plate outline (290 × 280 mm,
+/// corner radius 15 mm) with four 6 mm holes at its corners and two larger holes (16 and
+/// 20 mm) between the pockets, written as a DXF (LWPOLYLINEs with bulges, the holes as two
+/// half arcs), the way a drawing reaches a job.
+pub fn sample_part_job_drawing() -> String {
+    let mut outlines: Vec<crate::geom::Outline> =
+        vec![builtin::rounded_rectangle(-15.0, -15.0, 290.0, 280.0, 15.0)];
+    outlines.extend(builtin::structural_part().into_iter().map(|(_, s)| s.outer));
+    let holes = [
+        (-6.0, -6.0, 6.0),
+        (266.0, -6.0, 6.0),
+        (266.0, 256.0, 6.0),
+        (-6.0, 256.0, 6.0),
+        (250.0, 215.0, 16.0),
+        (85.0, 215.0, 20.0),
+    ];
+    for (x, y, d) in holes {
+        let r = 0.5 * d;
+        if let Ok(o) = crate::geom::Outline::new(
+            &[
+                (crate::geom::Point::new(x + r, y), 1.0),
+                (crate::geom::Point::new(x - r, y), 1.0),
+            ],
+            "the sample part's holes",
+        ) {
+            outlines.push(o);
+        }
+    }
+    crate::io::dxf_out::write_outlines(outlines.iter(), "PART")
 }
 
 /// The machine named by `spec`: a preset name (see `Machine::presets`) or the path of a

@@ -55,6 +55,19 @@ pub struct Section {
     pub rows: Vec<(String, String)>,
 }
 
+/// A titled table of columns (the setup sheet's operations and tools).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Table {
+    /// Heading.
+    pub title: String,
+    /// An `id` for the table element (letters, digits and `-`), for links and tests.
+    pub id: String,
+    /// Column headings.
+    pub columns: Vec<String>,
+    /// Rows of cells, as text.
+    pub rows: Vec<Vec<String>>,
+}
+
 #[derive(Debug, Clone, PartialEq)]
 struct Viewer {
     svg: String,
@@ -67,6 +80,7 @@ struct Viewer {
 pub struct HtmlReport {
     title: String,
     sections: Vec<Section>,
+    tables: Vec<Table>,
     plots: Vec<(String, String)>,
     viewers: Vec<(String, Viewer)>,
 }
@@ -149,6 +163,17 @@ impl HtmlReport {
             title: title.into(),
             rows: rows.into_iter().collect(),
         });
+        self
+    }
+
+    /// Adds a table of columns; `id` keeps only ASCII letters, digits and `-`.
+    pub fn table(&mut self, table: Table) -> &mut Self {
+        let id = table
+            .id
+            .chars()
+            .filter(|c| c.is_ascii_alphanumeric() || *c == '-')
+            .collect();
+        self.tables.push(Table { id, ..table });
         self
     }
 
@@ -250,6 +275,26 @@ impl HtmlReport {
                 h.push_str("</table>\n");
             }
             h.push_str("</section>\n");
+        }
+        for t in &self.tables {
+            let _ = write!(
+                h,
+                "<section class=\"mp-table\">\n<table id=\"{}\">\n<caption>{}</caption>\n<tr>",
+                t.id,
+                escape_html(&t.title)
+            );
+            for c in &t.columns {
+                let _ = write!(h, "<th>{}</th>", escape_html(c));
+            }
+            h.push_str("</tr>\n");
+            for r in &t.rows {
+                h.push_str("<tr>");
+                for c in r {
+                    let _ = write!(h, "<td>{}</td>", escape_html(c));
+                }
+                h.push_str("</tr>\n");
+            }
+            h.push_str("</table>\n</section>\n");
         }
         for (i, (name, v)) in self.viewers.iter().enumerate() {
             let _ = write!(

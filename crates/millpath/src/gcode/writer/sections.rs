@@ -2,8 +2,9 @@
 //! speed and coolant, written one after the other into one program.
 //!
 //! The header is written once (the tools listed in comments, units, safety block, work
-//! offset, path tolerance). Each section then stops the previous section's coolant and
-//! spindle (`M9`, `M5`), names itself in a comment, changes the tool (`T n M6`; a comment and
+//! offset, path tolerance). Each section then names itself in a comment; unless it keeps
+//! the previous section's tool, spindle speed and coolant, it first stops the previous
+//! section's coolant and spindle (`M9`, `M5`), then changes the tool (`T n M6`; a comment and
 //! an `M0` pause on Grbl, which has no tool changer), starts the spindle and the coolant, and
 //! writes its moves; its first motion block carries the tool length compensation (`G43` on
 //! LinuxCNC, `G43 H n` on Fanuc; Sinumerik's `D1` is active with the tool) and every axis,
@@ -36,6 +37,17 @@ pub struct ProgramSection<'a> {
     pub title: &'a str,
 }
 
+/// What [`write_sections`] wrote.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct SectionsSummary {
+    /// The whole program's summary.
+    pub summary: WriteSummary,
+    /// The 1-based line each section begins on (its coolant and spindle stop, title and tool
+    /// change): a move read back from a line at or after it and before the next section's is
+    /// the section's.
+    pub section_lines: Vec<usize>,
+}
+
 /// Writes `sections` in order as one program to `out` (see the module docs). `opts` gives
 /// the dialect, units, decimals, numbering, work offset, path tolerance and header; its
 /// tool number, spindle and coolant are the sections'. Each section's tool change is written
@@ -47,7 +59,7 @@ pub fn write_sections(
     sections: &[ProgramSection<'_>],
     opts: &WriterOptions,
     out: &mut dyn Write,
-) -> Result<WriteSummary, Error> {
+) -> Result<SectionsSummary, Error> {
     opts.validate()?;
     if sections.is_empty() {
         return Err(InputError::new("program sections", 0)
@@ -74,12 +86,26 @@ pub fn write_sections(
         }
     }
     w.header_common(&tools)?;
-    for s in sections {
-        w.tool_stop()?;
-        w.comment(s.title)?;
-        w.tool_start(s.tool_number, s.spindle_rpm, s.coolant)?;
+    let mut section_lines = Vec::with_capacity(sections.len());
+    for (k, s) in sections.iter().enumerate() {
+        section_lines.push(w.summary.lines + 1);
+        let same = k > 0
+            && w.tool == s.tool_number
+            && w.spindle_on.to_bits() == s.spindle_rpm.to_bits()
+            && w.coolant_on == s.coolant;
+        if same {
+            // The same tool, turning and cooled alike: no stop, no tool change.
+            w.comment(s.title)?;
+        } else {
+            w.tool_stop()?;
+            w.comment(s.title)?;
+            w.tool_start(s.tool_number, s.spindle_rpm, s.coolant)?;
+        }
         w.moves(s.toolpath)?;
     }
     w.footer()?;
-    w.finish()
+    Ok(SectionsSummary {
+        summary: w.finish()?,
+        section_lines,
+    })
 }

@@ -50,6 +50,7 @@ mod passes;
 mod tabs;
 
 pub use check::{BandCheck, dense_band_check, outline_distance};
+pub use passes::TAB_RAMP_RUN;
 pub use tabs::{MAX_TABS, PERIMETER_PER_TAB, auto_tab_count};
 
 use super::pocket::Direction;
@@ -135,7 +136,7 @@ pub enum TabShape {
     /// The tool goes straight up before the tab and straight down after it.
     #[default]
     Square,
-    /// The tool ramps up and down at 45° outside the tab's top width.
+    /// The tool ramps up and down at 26.6° (1 in 2) outside the tab's top width: a ramp, not a plunge.
     Ramped,
 }
 

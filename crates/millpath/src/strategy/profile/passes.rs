@@ -5,7 +5,7 @@
 //! At a level of depth `z` the tool's height along the loop is, by arc length `σ`,
 //! `max(base(σ), tab₁(σ), …)`: `base` is `z`, or for the ramp entry the line from the level
 //! above down to `z` over the ramp's length; a square tab is its top over its lift (straight
-//! up and down at the ends); a ramped tab adds 45° ramps outside its lift. All of these are
+//! up and down at the ends); a ramped tab adds 1-in-2 ramps (26.6°, `TAB_RAMP_RUN`) outside its lift. All of these are
 //! linear between breakpoints (element ends, ramp end, tab ends, where the ramp crosses a
 //! tab), so each element is cut at them and each piece is a line or a helical arc.
 //!
@@ -32,6 +32,10 @@ use crate::strategy::contour::offset::OffsetVertex;
 use crate::strategy::pocket::Direction;
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
 use std::f64::consts::PI;
+
+/// A ramped tab's ramps run this far along the path per unit of height (a 1-in-2 ramp,
+/// 26.6°): shallower than the 45° beyond which a flat end mill's way down is a plunge.
+pub const TAB_RAMP_RUN: f64 = 2.0;
 
 /// A loop ready to cut: its elements from its start, its free side and its tabs' lifts.
 #[derive(Clone)]
@@ -161,7 +165,9 @@ impl ZProfile<'_> {
             let v = match self.shape {
                 TabShape::Square if dm < h => top,
                 TabShape::Ramped if dm <= h => top,
-                TabShape::Ramped if dm < h + (top - self.bottom_z) => top - (ds - h),
+                TabShape::Ramped if dm < h + TAB_RAMP_RUN * (top - self.bottom_z) => {
+                    top - (ds - h) / TAB_RAMP_RUN
+                }
                 _ => continue,
             };
             out = out.max(v);
@@ -177,7 +183,7 @@ impl ZProfile<'_> {
         for &(c, h, top) in self.lifts.iter().filter(|l| l.2 > self.z) {
             let mut ends = vec![h];
             if self.shape == TabShape::Ramped {
-                ends.push(h + (top - self.bottom_z));
+                ends.push(h + TAB_RAMP_RUN * (top - self.bottom_z));
             }
             for e in ends {
                 for shift in [-self.len, 0.0, self.len] {
@@ -466,7 +472,7 @@ pub(super) fn generate(
                     let l = if cw { l.reversed() } else { l };
                     let lifts = lifts_on(&l, &tabs_here, d);
                     let extra = if opts.tabs.shape == TabShape::Ramped {
-                        opts.tabs.height
+                        TAB_RAMP_RUN * opts.tabs.height
                     } else {
                         0.0
                     };

@@ -1,0 +1,300 @@
+//! The whole job verified on one stock: the height field of the stock block cut by every
+//! section of the program in order, each tool on what the previous ones left
+//! (`stock::HeightField`), with per section the rapids through material and the plunges
+//! (none allowed: a drill's plunges are its work), and at the end:
+//!
+//! * every outline a profile cuts through held by exactly its tabs: the bridges its slot
+//!   leaves (`stock::held_by`) that join the piece to the stock are its tabs and nothing
+//!   else, and without them it falls free (every path from the piece to the stock crosses
+//!   the slot). A bridge is a tab when its top is at most the tab height above the stock's
+//!   bottom and its neck no wider than the tab's top and ramps; when the tabs' places are known (the job's own plan) each tab must have exactly
+//!   one bridge centred on it along the outline (within half its width and two cells), and
+//!   when they are not (a program verified against its job file) their number must be the
+//!   one asked for (at least one for `auto`);
+//! * the drawn part left ([`super::design::JobDesign::compare`]).
+//!
+//! It reads only the toolpaths' moves and the job's design, never the strategies' results.
+
+use super::design::{JobDesign, ProfiledOutline, TabsAsked};
+use super::model::PartModel;
+use super::run::StockBlock;
+use super::spec::{JobTool, ToolKind};
+use crate::Error;
+use crate::geom::Point3;
+use crate::stock::{
+    BridgeOptions, CutOptions, Cutter, FieldOptions, HeightField, OperationCut, held_by,
+};
+use crate::strategy::profile::PlacedTab;
+use crate::toolpath::Toolpath;
+
+/// One section of a program: the moves of one operation (or of one tool, for a program read
+/// back) and the tool that cuts them.
+#[derive(Debug, Clone, Copy)]
+pub struct Section<'a> {
+    /// A name for messages.
+    pub name: &'a str,
+    /// The moves.
+    pub toolpath: &'a Toolpath,
+    /// The tool.
+    pub tool: &'a JobTool,
+}
+
+/// One section's cut, and where its first rapid through material or plunge ends (the move's
+/// index and end point).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SectionCut {
+    /// The section's name.
+    pub name: String,
+    /// What it did to the stock.
+    pub cut: OperationCut,
+    /// The first bad move, if any.
+    pub first_bad: Option<(usize, Point3)>,
+}
+
+/// How a profiled outline is held after the job.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HoldCheck {
+    /// The profile operation's index in the job.
+    pub operation: usize,
+    /// The outline's index among the operation's targets.
+    pub target: usize,
+    /// Tabs expected: placed by the plan, or asked for by the job file (`None`: `auto`).
+    pub tabs: Option<usize>,
+    /// Bridges holding the piece to the stock that look like tabs.
+    pub holding: usize,
+    /// With known places: the tabs with exactly one bridge on them.
+    pub matched: Option<usize>,
+    /// Holding bridges that are not tabs (too high, or off every tab): their centroids.
+    pub stray: Vec<crate::geom::Point>,
+}
+
+impl HoldCheck {
+    /// Held by exactly its tabs (with none, free).
+    pub fn ok(&self) -> bool {
+        self.stray.is_empty()
+            && match (self.tabs, self.matched) {
+                (Some(n), Some(m)) => m == n && self.holding == n,
+                (Some(n), None) => self.holding == n,
+                (None, _) => self.holding >= 1,
+            }
+    }
+}
+
+/// The whole job's check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JobCheck {
+    /// The field's cell, mm.
+    pub cell_mm: f64,
+    /// Each section's cut, in order.
+    pub cuts: Vec<SectionCut>,
+    /// Each through-profiled outline's hold.
+    pub holds: Vec<HoldCheck>,
+    /// The comparison with the drawn part.
+    pub design: super::design::DesignCheck,
+}
+
+impl JobCheck {
+    /// What went wrong, as sentences; empty when the job passes.
+    pub fn problems(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for c in &self.cuts {
+            for p in c.cut.problems() {
+                let at = c.first_bad.map_or(String::new(), |(k, q)| {
+                    format!(
+                        " (the first: move {k}, ending at ({:.3}, {:.3}, {:.3}))",
+                        q.x, q.y, q.z
+                    )
+                });
+                out.push(format!("{}: {p}{at}", c.name));
+            }
+        }
+        for h in &self.holds {
+            if !h.ok() {
+                out.push(format!(
+                    "profile {} outline {}: held by {} tab bridge(s) for {} tab(s){}{}",
+                    h.operation + 1,
+                    h.target + 1,
+                    h.holding,
+                    h.tabs.map_or("auto".to_owned(), |n| n.to_string()),
+                    h.matched
+                        .map(|m| format!(", {m} on their places"))
+                        .unwrap_or_default(),
+                    h.stray
+                        .first()
+                        .map(|p| format!(", material left joining it at ({:.3}, {:.3})", p.x, p.y))
+                        .unwrap_or_default()
+                ));
+            }
+        }
+        out.extend(self.design.problems());
+        out
+    }
+
+    /// The figures, for the report.
+    pub fn rows(&self) -> Vec<(String, String)> {
+        let mut rows = vec![(
+            "stock simulation cell".to_owned(),
+            format!("{:.4} mm", self.cell_mm),
+        )];
+        for c in &self.cuts {
+            rows.push((c.name.clone(), c.cut.to_string()));
+        }
+        for h in &self.holds {
+            rows.push((
+                format!("profile {} outline {} held", h.operation + 1, h.target + 1),
+                if h.tabs == Some(0) && h.holding == 0 {
+                    "falls free (no tabs asked for)".to_owned()
+                } else {
+                    format!("by {} tab(s); free without them", h.holding)
+                },
+            ));
+        }
+        rows.extend(self.design.rows());
+        let p = self.problems();
+        rows.push((
+            "verdict".to_owned(),
+            if p.is_empty() {
+                "the drawn part, held by its tabs".to_owned()
+            } else {
+                p.join("; ")
+            },
+        ));
+        rows
+    }
+}
+
+/// Cuts `sections` into the stock in order and checks the result against `design`;
+/// `placed` gives, per operation index, the tabs its plan placed (the job's own check), or
+/// `None` (a program verified against its job file).
+pub fn check_sections(
+    model: &PartModel,
+    stock: StockBlock,
+    design: &JobDesign,
+    sections: &[Section<'_>],
+    placed: Option<&[Vec<PlacedTab>]>,
+) -> Result<JobCheck, Error> {
+    let smallest = sections
+        .iter()
+        .map(|s| s.tool.diameter)
+        .fold(f64::INFINITY, f64::min);
+    let fopts = FieldOptions::default().with_tool_diameter(if smallest.is_finite() {
+        smallest
+    } else {
+        1.0
+    });
+    let mut field = HeightField::new(stock.bounds, stock.bottom, stock.top, &fopts)
+        .map_err(|e| Error::from(e).engine_made("making the job's stock"))?;
+    let mut cuts = Vec::with_capacity(sections.len());
+    for s in sections {
+        let cutter = if s.tool.kind == ToolKind::Drill {
+            Cutter::Drill
+        } else {
+            Cutter::EndMill
+        };
+        let cut = field.cut_with(s.toolpath, &CutOptions::default().with_cutter(cutter));
+        let first_bad = cut
+            .rapids_through_material
+            .iter()
+            .chain(&cut.plunges)
+            .min()
+            .and_then(|&k| s.toolpath.moves.get(k).map(|m| (k, m.to)));
+        cuts.push(SectionCut {
+            name: s.name.to_owned(),
+            cut,
+            first_bad,
+        });
+    }
+    let mut holds = Vec::new();
+    for p in design.profiles.iter().filter(|p| p.through) {
+        let tabs = placed.map(|all| {
+            all.get(p.operation)
+                .map(|t| {
+                    t.iter()
+                        .filter(|t| t.target == p.target)
+                        .cloned()
+                        .collect::<Vec<PlacedTab>>()
+                })
+                .unwrap_or_default()
+        });
+        holds.push(hold(&field, p, stock.bottom, tabs.as_deref())?);
+    }
+    let design_check = design.compare(model, &field, stock.bottom);
+    Ok(JobCheck {
+        cell_mm: field.cell(),
+        cuts,
+        holds,
+        design: design_check,
+    })
+}
+
+/// The hold of one through-profiled outline.
+fn hold(
+    field: &HeightField,
+    p: &ProfiledOutline,
+    bottom: f64,
+    placed: Option<&[PlacedTab]>,
+) -> Result<HoldCheck, Error> {
+    let verdict = held_by(
+        field,
+        &p.outline,
+        bottom,
+        p.tool_radius,
+        &BridgeOptions::default().with_side(p.side),
+    )
+    .map_err(|e| Error::from(e).engine_made("reading the bridges of a profile"))?;
+    // A tab's top is at most its height above the bottom (and the z rounding), and it is no
+    // wider at its neck than its top and its ramps.
+    let tab_top = bottom + p.tab_height + 0.01;
+    let widest = p.tab_width
+        + 2.0 * crate::strategy::profile::TAB_RAMP_RUN * p.tab_height
+        + 4.0 * verdict.cell_mm;
+    let holding: Vec<_> = verdict.holding().collect();
+    let (tabs, low): (Vec<&crate::stock::Bridge>, Vec<&crate::stock::Bridge>) = holding
+        .iter()
+        .copied()
+        .partition(|b| b.top_max <= tab_top && b.neck_mm <= widest);
+    let mut stray: Vec<_> = low.iter().map(|b| b.centroid).collect();
+    let perimeter = verdict.perimeter_mm;
+    let along = |a: f64, b: f64| {
+        let d = (a - b).rem_euclid(perimeter);
+        d.min(perimeter - d)
+    };
+    let slack = 2.0 * verdict.cell_mm;
+    let matched = placed.map(|placed| {
+        let mut used = vec![false; tabs.len()];
+        let mut matched = 0;
+        for t in placed {
+            let on: Vec<usize> = tabs
+                .iter()
+                .enumerate()
+                .filter(|(_, b)| along(b.middle_mm(), t.s) <= 0.5 * t.width + slack)
+                .map(|(k, _)| k)
+                .collect();
+            if let [k] = on[..] {
+                matched += 1;
+                used[k] = true;
+            }
+        }
+        stray.extend(
+            tabs.iter()
+                .zip(&used)
+                .filter(|(_, u)| !**u)
+                .map(|(b, _)| b.centroid),
+        );
+        matched
+    });
+    let expected = match (placed, p.tabs) {
+        (Some(t), _) => Some(t.len()),
+        (None, TabsAsked::None) => Some(0),
+        (None, TabsAsked::Count(n)) => Some(n),
+        (None, TabsAsked::Auto) => None,
+    };
+    Ok(HoldCheck {
+        operation: p.operation,
+        target: p.target,
+        tabs: expected,
+        holding: tabs.len(),
+        matched,
+        stray,
+    })
+}
