@@ -440,7 +440,8 @@ pub enum ProfileNote {
         /// Why.
         reason: &'static str,
     },
-    /// The helix entry did not fit beside the loop: ramp entry instead.
+    /// The helix entry did not fit beside the loop (or would take more than 1000 turns a
+    /// level): ramp entry instead.
     HelixToRamp {
         /// The target.
         target: usize,

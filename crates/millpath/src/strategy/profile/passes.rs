@@ -33,6 +33,9 @@ use crate::strategy::pocket::Direction;
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
 use std::f64::consts::PI;
 
+/// The most helix turns per level; beyond it the entry is a ramp.
+const MAX_HELIX_TURNS: f64 = 1000.0;
+
 /// A loop ready to cut: its elements from its start, its free side and its tabs' lifts.
 #[derive(Clone)]
 struct Cut {
@@ -539,7 +542,10 @@ pub(super) fn generate(
                 // the two radii are equal).
                 helix_c = lead_entry + cut.lp.tangent(0.0) * opts.helix_radius;
                 let pts = circle(helix_c, opts.helix_radius);
-                if rl <= 0.0 || !walls.clear(own, d_rough - band, pts) {
+                // Turns per level, bounded (a ramp angle of 1e-7 rad asked for 10⁸).
+                let pitch = 2.0 * PI * opts.helix_radius * opts.ramp_angle.tan();
+                let turns = opts.step_down.min(opts.depth) / pitch;
+                if rl <= 0.0 || turns > MAX_HELIX_TURNS || !walls.clear(own, d_rough - band, pts) {
                     entry = ProfileEntry::Ramp;
                     if !entry_note {
                         entry_note = true;
