@@ -490,7 +490,7 @@ impl std::fmt::Display for ProfileNote {
             }
             ProfileNote::HelixToRamp { target } => write!(
                 f,
-                "outline {}: no room for the helix beside the loop; ramp entry along the loop",
+                "outline {}: no room for the helix beside the loop (or over 1000 turns a level); ramp entry along the loop",
                 target + 1
             ),
             ProfileNote::SteepRamp { target, angle_deg } => write!(
