@@ -33,6 +33,8 @@ enum Command {
     Calibrate(commands::calibrate::Args),
     /// 2.5D pocket roughing: zigzag, contour-offset or adaptive spiral.
     Pocket(commands::pocket::Args),
+    /// A drawing's circles drilled with canned cycles or helix-bored, in a short order.
+    Drill(commands::drill::Args),
     /// Cut a drawing's outlines out: outside, inside or on the line, with leads and tabs.
     Profile(commands::profile::Args),
     /// Check a G-code program against an outline: gouges, uncut material, engagement.
@@ -113,6 +115,7 @@ fn run(cli: Cli) -> Result<(), millpath::Error> {
         Command::Machines(a) => commands::machines::run(&a),
         Command::Calibrate(a) => commands::calibrate::run(&a),
         Command::Pocket(a) => commands::pocket::run(&a),
+        Command::Drill(a) => commands::drill::run(&a),
         Command::Profile(a) => commands::profile::run(&a),
         Command::Verify(a) => commands::verify::run(&a),
         Command::Sweep(a) => commands::sweep::run(&a),
@@ -163,7 +166,7 @@ mod tests {
         // One shared flag name and meaning: a preset or a TOML profile (five-axis takes a
         // kinematic chain and is documented apart).
         let cmd = command();
-        for name in ["demo", "contour", "estimate", "pocket", "profile", "sweep"] {
+        for name in ["demo", "contour", "estimate", "pocket", "profile", "sweep", "drill"] {
             let sub = cmd.find_subcommand(name).unwrap();
             assert!(
                 sub.get_arguments().any(|a| a.get_long() == Some("machine")),
@@ -179,6 +182,7 @@ mod tests {
             "sweep",
             "five-axis",
             "pocket",
+            "drill",
             "profile",
         ] {
             let sub = cmd.find_subcommand(name).unwrap();

@@ -1,8 +1,8 @@
 //! The module's functions, each a thin call of the engine's job of the same name.
 
 use crate::convert::{Kwargs, err, input_err, outline_arg, path_text, to_py};
-use crate::objects::{Estimate, Pocket, PocketResult, Toolpath};
-use millpath::job::{self, PocketSettings};
+use crate::objects::{DrillResult, Estimate, Pocket, PocketResult, Toolpath};
+use millpath::job::{self, DrillSettings, PocketSettings};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
@@ -100,6 +100,86 @@ pub fn pocket(
                 tp: run.part.toolpath,
             },
         )?,
+        note: (!notes.is_empty()).then(|| notes.join("\n")),
+    })
+}
+
+/// Drill and bore a drawing's circles: `millpath drill DRAWING --flags` as a function (see
+/// the stub for every keyword).
+#[pyfunction]
+#[pyo3(signature = (drawing, **kwargs))]
+pub fn drill(
+    py: Python<'_>,
+    drawing: &Bound<'_, PyAny>,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<DrillResult> {
+    let name = path_text(drawing)?.ok_or_else(|| {
+        crate::InputError::new_err(format!(
+            "invalid drawing = {drawing} (from drill(drawing)): expected the path of a .dxf, \
+             .svg or .json drawing"
+        ))
+    })?;
+    let mut k = Kwargs::new(kwargs, "drill")?;
+    let mut s = DrillSettings {
+        import: k.import()?,
+        ..DrillSettings::default()
+    };
+    k.f64("tool_diameter", &mut s.tool_diameter)?;
+    k.f64("depth", &mut s.depth)?;
+    k.bool("through", &mut s.through)?;
+    k.f64("breakthrough", &mut s.breakthrough)?;
+    k.opt_f64("min_diameter", &mut s.min_diameter)?;
+    k.opt_f64("max_diameter", &mut s.max_diameter)?;
+    k.opt_f64("peck", &mut s.peck)?;
+    k.opt_f64("chip_break", &mut s.chip_break)?;
+    k.opt_f64("dwell", &mut s.dwell)?;
+    k.f64("retract", &mut s.retract)?;
+    k.f64("clearance_height", &mut s.clearance_height)?;
+    k.bool("stay_at_retract", &mut s.stay_at_retract)?;
+    k.text("feed", &mut s.feed)?;
+    k.text("bore_feed", &mut s.bore_feed)?;
+    k.f64("pitch", &mut s.pitch)?;
+    k.bool("conventional", &mut s.conventional)?;
+    k.f64("stepover", &mut s.stepover)?;
+    k.f64("finish_allowance", &mut s.finish_allowance)?;
+    k.f64("tolerance", &mut s.tolerance)?;
+    k.f64("diameter_tolerance", &mut s.diameter_tolerance)?;
+    k.bool("drill_only", &mut s.drill_only)?;
+    k.text("machine", &mut s.machine)?;
+    let program = k.program()?;
+    k.finish()?;
+    s.check_before_loading(&program).map_err(err)?;
+    let mut notes: Vec<String> = Vec::new();
+    let run = py
+        .allow_threads(|| job::drill::run(&name, &s, &program, &mut |n| notes.push(n)))
+        .map_err(err)?;
+    let gcode = String::from_utf8(run.gcode).map_err(|e| {
+        crate::InternalError::new_err(format!("the drilling program is not UTF-8: {e}"))
+    })?;
+    let rows: Vec<Vec<f64>> = run
+        .result
+        .holes
+        .iter()
+        .filter(|p| p.op.is_cut())
+        .map(|p| vec![p.hole.center.x, p.hole.center.y, p.hole.diameter])
+        .collect();
+    let holes = if rows.is_empty() {
+        numpy::PyArray2::zeros(py, [0, 3], false)
+    } else {
+        numpy::PyArray2::from_vec2(py, &rows)
+            .map_err(|e| crate::InternalError::new_err(format!("the holes array: {e}")))?
+    };
+    Ok(DrillResult {
+        gcode,
+        cycle_time_s: run.report.cycle_time_s,
+        report: to_py(py, &run.report)?,
+        toolpath: Py::new(
+            py,
+            Toolpath {
+                tp: run.result.toolpath,
+            },
+        )?,
+        holes: holes.unbind(),
         note: (!notes.is_empty()).then(|| notes.join("\n")),
     })
 }

@@ -8,6 +8,8 @@
 //! r = millpath.pocket("part.dxf", strategy="spiral", tool_diameter=6, depth=3, step_down=3)
 //! r.gcode           # the bytes `millpath pocket part.dxf … -o` writes, as a str
 //! r.toolpath.points # N × 3 numpy array
+//! d = millpath.drill("plate.dxf", tool_diameter=3, depth=5, peck=2)
+//! d.holes           # N × 3 numpy array: x, y, diameter of each hole cut
 //! ```
 
 mod convert;
@@ -39,6 +41,7 @@ fn _millpath(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InputError", py.get_type::<InputError>())?;
     m.add("InternalError", py.get_type::<InternalError>())?;
     m.add_function(wrap_pyfunction!(jobs::pocket, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::drill, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::read_outline, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::estimate, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::machines, m)?)?;
@@ -51,6 +54,7 @@ fn _millpath(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<curves::VerifyResult>()?;
     m.add_class::<objects::Toolpath>()?;
     m.add_class::<objects::PocketResult>()?;
+    m.add_class::<objects::DrillResult>()?;
     m.add_class::<objects::Estimate>()?;
     m.add_class::<objects::Pocket>()?;
     Ok(())

@@ -164,6 +164,36 @@ impl PocketResult {
     }
 }
 
+/// What `millpath.drill` made.
+#[pyclass(module = "millpath", frozen, get_all)]
+#[derive(Debug)]
+pub struct DrillResult {
+    /// The program text, byte for byte what `millpath drill … -o FILE` writes.
+    pub gcode: String,
+    /// Cycle time of the written program on the machine, s.
+    pub cycle_time_s: f64,
+    /// The report, as `--report` writes it (a dict).
+    pub report: PyObject,
+    /// The toolpath.
+    pub toolpath: Py<Toolpath>,
+    /// The holes cut, in cutting order: N × 3 (x, y, diameter), mm.
+    pub holes: Py<PyArray2<f64>>,
+    /// What the drawing held, when it was a DXF or SVG file.
+    pub note: Option<String>,
+}
+
+#[pymethods]
+impl DrillResult {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "DrillResult({} holes, cycle_time_s={:.3}, {} bytes of G-code)",
+            numpy::PyUntypedArrayMethods::shape(self.holes.bind(py))[0],
+            self.cycle_time_s,
+            self.gcode.len()
+        )
+    }
+}
+
 /// What `millpath.estimate` found.
 #[pyclass(module = "millpath", frozen, get_all)]
 #[derive(Debug)]

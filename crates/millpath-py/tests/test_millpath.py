@@ -72,6 +72,51 @@ def test_pocket_real_drawing_other_dialect_equals_cli(tmp_path):
     assert [e["strategy"] for e in tried] == ["spiral", "offset", "zigzag"]
 
 
+PLATE = REAL / "wro_Plate_3.DXF"
+
+
+def cli_drill(tmp_path, drawing, **kwargs):
+    ngc, rep = tmp_path / "cli.ngc", tmp_path / "cli.json"
+    cli("drill", drawing, *flags(kwargs), "-o", ngc, "--report", rep)
+    return ngc.read_bytes(), json.loads(rep.read_text())
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        dict(tool_diameter=3, depth=5, through=True, peck=2),
+        dict(tool_diameter=4, depth=4, dialect="sinumerik", stay_at_retract=True),
+        dict(tool_diameter=3, depth=3, chip_break=1, dialect="fanuc", units="in", drill_only=True),
+        dict(tool_diameter=2, depth=2, dialect="grbl", min_diameter=3.5, feed="8ipm"),
+    ],
+)
+def test_drill_equals_cli(tmp_path, kw):
+    assert REAL.is_dir(), f"real inputs missing: {REAL}"
+    r = millpath.drill(PLATE, **kw)
+    gcode, report = cli_drill(tmp_path, PLATE, **kw)
+    assert r.gcode.encode() == gcode
+    assert r.report == report
+    assert r.cycle_time_s == report["cycle_time_s"] > 0
+    assert r.note and "wro_Plate_3.DXF" in r.note
+    # The holes cut, in cutting order, as the report lists them.
+    cut = [h for h in report["holes"] if h["operation"] != "skipped"]
+    assert r.holes.shape == (len(cut), 3)
+    np.testing.assert_allclose(r.holes, [[h["x"], h["y"], h["diameter_mm"]] for h in cut])
+    assert report["max_center_error_mm"] <= 0.01 and report["max_diameter_error_mm"] <= 0.01
+    # `estimate` of the written program (its dialect found from the text) is the report's.
+    e = millpath.estimate(r.gcode, machine="hsm")
+    assert e.cycle_time_s == pytest.approx(r.cycle_time_s, rel=1e-9)
+
+
+def test_drill_bad_input_names_the_flag():
+    with pytest.raises(millpath.InputError, match="--peck"):
+        millpath.drill(PLATE, peck=0)
+    with pytest.raises(millpath.InputError, match="--min-diameter"):
+        millpath.drill(PLATE, min_diameter=40)
+    with pytest.raises(TypeError):
+        millpath.drill(PLATE, no_such_flag=1)
+
+
 def test_toolpath_arrays_and_trajectory():
     r = millpath.pocket("sample:aerospace", **POCKET_ARGS)
     tp = r.toolpath

@@ -290,3 +290,36 @@ fn bad_blocks_are_refused_by_name() {
     );
     assert!(big.cell() < 0.09, "{}", big.cell());
 }
+
+/// Below the block's bottom there is nothing: a slot cut 2 mm through the bottom removes
+/// the block's 10 mm and leaves its cells at the bottom, and going down into it again is no
+/// plunge.
+#[test]
+fn a_cut_through_the_bottom_takes_only_the_block() {
+    let opts = FieldOptions::default().with_cell(0.1);
+    let mut field =
+        HeightField::new(block(0.0, 0.0, 40.0, 40.0), -10.0, 0.0, &opts).expect("a block");
+    let mut tp = Toolpath::new(tool(6.0), Point3::new(10.0, 20.0, 5.0));
+    tp.push(Move::rapid(Point3::new(10.0, 20.0, 1.0))); // 0
+    tp.push(Move::line(Point3::new(10.0, 20.0, -12.0), 1.0)); // 1: plunge
+    tp.push(Move::line(Point3::new(30.0, 20.0, -12.0), 1.0)); // 2
+    tp.push(Move::rapid(Point3::new(30.0, 20.0, 5.0))); // 3
+    tp.push(Move::rapid(Point3::new(10.0, 20.0, 1.0))); // 4
+    tp.push(Move::line(Point3::new(10.0, 20.0, -12.0), 1.0)); // 5: into the slot
+    tp.push(Move::rapid(Point3::new(10.0, 20.0, 5.0))); // 6
+    let cut = field.cut(&tp);
+    assert_eq!(cut.plunges, vec![1], "{cut}");
+    assert!(cut.rapids_through_material.is_empty(), "{cut}");
+    let area = 2.0 * 3.0 * 20.0 + PI * 9.0;
+    let rim = (2.0 * 20.0 + TAU * 3.0) * field.cell();
+    assert!(
+        (cut.removed_volume_mm3 - 10.0 * area).abs() < 10.0 * rim,
+        "{cut}: want {}",
+        10.0 * area
+    );
+    let (nx, ny) = field.dims();
+    let lowest = (0..nx * ny)
+        .filter_map(|k| field.height(k % nx, k / nx))
+        .fold(f64::INFINITY, f64::min);
+    assert!((lowest + 10.0).abs() < 1e-6, "{lowest}");
+}

@@ -3,6 +3,7 @@
 pub mod calibrate;
 pub mod contour;
 pub mod demo;
+pub mod drill;
 pub mod estimate;
 pub mod five_axis;
 pub mod html;

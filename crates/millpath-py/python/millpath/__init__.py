@@ -18,6 +18,7 @@ plan several parts at once.
 
 from ._millpath import (
     ContourResult,
+    DrillResult,
     Estimate,
     InputError,
     InternalError,
@@ -27,6 +28,7 @@ from ._millpath import (
     Toolpath,
     VerifyResult,
     contour,
+    drill,
     estimate,
     five_axis,
     machines,
@@ -38,6 +40,7 @@ from ._millpath import (
 
 __all__ = [
     "ContourResult",
+    "DrillResult",
     "Estimate",
     "InputError",
     "InternalError",
@@ -47,6 +50,7 @@ __all__ = [
     "Toolpath",
     "VerifyResult",
     "contour",
+    "drill",
     "estimate",
     "five_axis",
     "machines",

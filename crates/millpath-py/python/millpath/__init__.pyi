@@ -49,6 +49,17 @@ class PocketResult:
     toolpath: Toolpath
     note: Optional[str]
 
+class DrillResult:
+    gcode: str
+    """Byte for byte the file `millpath drill ... -o FILE` writes."""
+    cycle_time_s: float
+    report: Dict[str, Any]
+    """The `--report` JSON."""
+    toolpath: Toolpath
+    holes: npt.NDArray[np.float64]
+    """The holes cut, in cutting order: N x 3 (x, y, diameter), mm."""
+    note: Optional[str]
+
 class ProfileResult:
     gcode: str
     """Byte for byte the file `millpath profile ... -o FILE` writes."""
@@ -129,6 +140,45 @@ def pocket(
 ) -> PocketResult:
     """Rough a pocket (an outline file, `"sample:aerospace"`, an N x 2 array or a list of
     arrays: boundary and islands) as `millpath pocket` does."""
+
+def drill(
+    drawing: PathLike,
+    *,
+    tool_diameter: float = 6.0,
+    depth: float = 10.0,
+    through: bool = False,
+    breakthrough: float = 1.0,
+    min_diameter: Optional[float] = None,
+    max_diameter: Optional[float] = None,
+    peck: Optional[float] = None,
+    chip_break: Optional[float] = None,
+    dwell: Optional[float] = None,
+    retract: float = 1.0,
+    clearance_height: float = 5.0,
+    stay_at_retract: bool = False,
+    feed: Union[str, float] = "200",
+    bore_feed: Union[str, float] = "800",
+    pitch: float = 1.0,
+    conventional: bool = False,
+    stepover: float = 0.5,
+    finish_allowance: float = 0.1,
+    tolerance: float = 0.01,
+    diameter_tolerance: float = 0.01,
+    drill_only: bool = False,
+    machine: str = "hsm",
+    layer: Optional[str] = None,
+    join_tolerance: float = 0.01,
+    drawing_units: Optional[str] = None,
+    dialect: str = "linuxcnc",
+    units: str = "mm",
+    decimals: Optional[int] = None,
+    tool_number: int = 1,
+    spindle: float = 10000.0,
+    coolant: str = "flood",
+    line_numbers: bool = False,
+) -> DrillResult:
+    """Drill (canned cycles) and helix-bore the circles of a drawing (`.dxf`, `.svg`,
+    `.json`) as `millpath drill` does."""
 
 def contour(
     points: Union[PathLike, Points, None] = None,

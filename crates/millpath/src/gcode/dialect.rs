@@ -23,6 +23,7 @@ use std::str::FromStr;
 /// | exact stop / exact path | `G61.1` / `G61` | `G61` / `G61` (no exact-path mode) | `G60` / `G64` (continuous path without rounding) | – (grbl has only its planner) |
 /// | blend / machine | `G64 P`t / `G64 P`path or `G64` | `G64` / `G64` | `CYCLE832(t,_FINISH,1)` / CYCLE832 with the path tolerance, or `G642` | – |
 /// | multi-turn arcs | `P`turns+1 | split into full turns | `TURN=`n | split into full turns |
+/// | canned drilling cycles (`toolpath::Cycle`, writer module `cycles`) | `G98`/`G99` `G81`, `G82 P`s, `G83 Q`, `G73 Q`; `G80` after a run | the same; `G82 P` in ms | `G0 X Y`, then `CYCLE81`, `CYCLE82` or `CYCLE83` (chip removal) per hole; chip breaking as its moves | the moves (no cycles) |
 /// | arc radii (rounded start and end) | LinuxCNC's rule (`arc`) | LinuxCNC's rule | LinuxCNC's rule | and Grbl 1.1's: 0.005 mm, or 0.1 % and 0.5 mm |
 /// | five-axis ([`five_axis`](super::five_axis)) | `G93`, `A`/`B` `C` words | the same, decimal points | the same | refused: no rotary axes |
 /// | end | `M2` | `M30` | `M30` | `M2` |

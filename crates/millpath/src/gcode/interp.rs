@@ -44,8 +44,9 @@
 //!   H, M0/M1, M3–M9, G40 (other dialects), G80, `G05.1 Q`, comments, `%`, and `/` lines (skipped only when
 //!   [`ReaderOptions::block_delete`] is on); in LinuxCNC programs also G7/G8, G96/G97,
 //!   M48–M53, M61–M66 (module `machine_codes`) and M70–M73 (module `modal_save`).
-//! * LinuxCNC's canned cycles (module `cycles`), polar words, rotated systems (module
-//!   `rotation`), splines G5, G5.1, G5.2 (module `nurbs`) and LinuxCNC master's G6.2 NURBS
+//! * LinuxCNC's and Fanuc's canned cycles G73, G81, G82, G83 (LinuxCNC also G85, G89;
+//!   module `cycles`), Sinumerik's CYCLE81, CYCLE82, CYCLE83 (module `sinumerik_cycles`),
+//!   polar words, rotated systems (module `rotation`), splines G5, G5.1, G5.2 (module `nurbs`) and LinuxCNC master's G6.2 NURBS
 //!   (module `g6_nurbs`) expand into ordinary moves.
 //! * LinuxCNC's spindle-synchronised G33, G33.1 and feed per revolution G95 (module
 //!   `spindle_sync`: speed = pitch or F × the commanded S) and straight probes G38.2–G38.5
@@ -486,6 +487,9 @@ impl State {
         } else {
             self.motion(b, block_f, line, opts, out)?;
         }
+        if let Some((name, args)) = b.drill_cycle.take() {
+            self.sinumerik_drill(&name, &args, line, out)?;
+        }
         if let Some(p) = self.probed.take() {
             self.set_probe_parameters(p, store);
         }
@@ -655,6 +659,7 @@ mod nurbs;
 mod offsets;
 mod probe;
 mod rotation;
+mod sinumerik_cycles;
 mod spindle_sync;
 pub use block::MAX_WORD_VALUE;
 pub(crate) use block::{Block, BlockError, letter_index};

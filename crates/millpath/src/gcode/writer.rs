@@ -44,22 +44,30 @@ pub struct WriteSummary {
     /// Multi-turn arcs split into single turns (dialects without a turn count).
     pub split_turns: usize,
     /// A rapid to the toolpath's start was written before the first motion, an arc (whose
-    /// centre offsets need a known start).
+    /// centre offsets need a known start) or a canned cycle.
     pub start_rapid: bool,
+    /// Canned cycles written as cycles (G81…, CYCLE81…); those a dialect lacks are written
+    /// as their moves and not counted.
+    pub cycles: usize,
 }
 
 /// Writes `tp` as a G-code program to `out`, streaming (nothing but one line is buffered
 /// beyond [`BufWriter`]'s buffer).
 ///
+/// The toolpath's canned cycles ([`Toolpath::cycles`]) are written as the dialect's cycles
+/// (module `cycles`), their moves where it has none.
+///
 /// Errors: an [`InputError`] naming the move index for non-finite coordinates, a feed move
 /// without a positive finite feed, a negative or non-finite dwell, or an arc that rounding to
-/// the chosen decimals would make unreadable; a failing output (I/O error) as an input error.
+/// the chosen decimals would make unreadable; a canned cycle whose moves are not its own
+/// ([`Toolpath::check_cycles`]); a failing output (I/O error) as an input error.
 pub fn write_program(
     tp: &Toolpath,
     opts: &WriterOptions,
     out: &mut dyn Write,
 ) -> Result<WriteSummary, Error> {
     opts.validate()?;
+    tp.check_cycles()?;
     let mut w = Emitter::new(opts, out);
     w.header(Some(&tp.tool))?;
     w.moves(tp)?;
@@ -155,6 +163,8 @@ pub(super) struct Emitter<'a> {
     /// Spindle speed and coolant the last tool start turned on (stopped by the footer).
     spindle_on: f64,
     coolant_on: Coolant,
+    /// The run of canned cycles being written (LinuxCNC, Fanuc), until `G80`.
+    cycle_run: Option<cycles::CycleRun>,
 }
 
 impl<'a> Emitter<'a> {
@@ -183,6 +193,7 @@ impl<'a> Emitter<'a> {
             tool: 0,
             spindle_on: 0.0,
             coolant_on: Coolant::Off,
+            cycle_run: None,
         }
     }
 
@@ -578,11 +589,23 @@ impl<'a> Emitter<'a> {
     /// Every move of `tp`, checked ([`check_move`]) as it is written.
     pub(super) fn moves(&mut self, tp: &Toolpath) -> Result<(), Error> {
         let mut from = tp.start;
-        for (i, m) in tp.moves.iter().enumerate() {
+        let mut cycles = tp.cycles.iter().peekable();
+        let mut i = 0;
+        while let Some(m) = tp.moves.get(i) {
+            if let Some(c) = cycles.next_if(|c| c.start == i) {
+                let run = tp.moves.get(c.start..c.end).unwrap_or_default();
+                self.canned_cycle(i, c, run, from)?;
+                from = run.last().map_or(from, |m| m.to);
+                i = c.end.max(i + 1);
+                continue;
+            }
+            self.end_cycle_run()?;
             check_move(i, m, from)?;
             self.motion(i, m, from)?;
             from = m.to;
+            i += 1;
         }
+        self.end_cycle_run()?;
         Ok(())
     }
 
@@ -650,6 +673,7 @@ impl<'a> Emitter<'a> {
 }
 
 mod arcs;
+mod cycles;
 
 /// `v` rounded to `decimals` as a reader of the printed value gets it.
 fn round(v: f64, decimals: u32) -> f64 {

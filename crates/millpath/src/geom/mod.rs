@@ -1,9 +1,11 @@
-//! Geometry: positions and directions, bounding boxes, outlines as arc polylines.
+//! Geometry: positions and directions, bounding boxes, outlines as arc polylines, holes
+//! (circles recognised among outlines).
 //!
 //! Positions ([`Point`], [`Point3`]) and directions ([`Vec2`], [`Vec3`]) are separate types:
 //! `Point - Point = Vec2`, `Point + Vec2 = Point`, and there is no `Point + Point`.
 
 mod aabb;
+mod hole;
 mod loops;
 pub(crate) mod nesting;
 mod outline;
@@ -13,6 +15,7 @@ pub(crate) mod region;
 mod vec3;
 
 pub use aabb::Aabb;
+pub use hole::{CIRCLE_TOLERANCE, Hole};
 pub use nesting::{Pocket, nest};
 pub use outline::{MAX_BULGE, MAX_COORDINATE_MM, Outline, Winding, area_less_islands};
 pub use point::{Point, Vec2};

@@ -11,7 +11,9 @@ pub mod points;
 
 pub use atomic::{write_atomic, write_atomic_with};
 pub use drawing::{Drawing, ReadOptions};
-pub use outline_source::{ImportSettings, mm_per_unit, read_outline_file, read_text};
+pub use outline_source::{
+    ImportSettings, mm_per_unit, read_outline_file, read_outlines, read_text,
+};
 pub mod dxf;
 pub(crate) mod dxf_out;
 pub mod outline_json;

@@ -81,25 +81,54 @@ pub fn read_text(path: &Path) -> Result<String, Error> {
     })
 }
 
-/// Reads an outline file (by extension); returns the loops and, for a drawing, the note of
-/// what it held (`NAME: summary`).
-pub fn read_outline_file(
+/// Every closed outline of an outline file (by extension), as drawn (windings as in the
+/// file; nothing merged or nested): a JSON outline's boundary and islands, a DXF's or SVG's
+/// closed outlines (refused when it has none, with what it holds). Returns them and, for a
+/// drawing, the note of what it held (`NAME: summary`).
+pub fn read_outlines(
     name: &str,
     import: &ImportSettings,
-) -> Result<(Loops, Option<String>), Error> {
+) -> Result<(Vec<crate::geom::Outline>, Option<String>), Error> {
+    let drawing = match read_drawing(name, import)? {
+        Read::Loops(loops) => {
+            let all = loops
+                .pockets()
+                .into_iter()
+                .flat_map(|p| std::iter::once(p.outer).chain(p.islands))
+                .collect();
+            return Ok((all, None));
+        }
+        Read::Drawing(d) => d,
+    };
+    if drawing.outlines.is_empty() {
+        return Err(drawing.nothing_closed(name).into());
+    }
+    let summary = drawing.summary();
+    Ok((drawing.outlines, Some(format!("{name}: {summary}"))))
+}
+
+/// What reading a file by its extension gave.
+enum Read {
+    /// A JSON outline.
+    Loops(Loops),
+    /// A DXF or SVG drawing.
+    Drawing(super::Drawing),
+}
+
+fn read_drawing(name: &str, import: &ImportSettings) -> Result<Read, Error> {
     let path = Path::new(name);
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let drawing = match ext.as_deref() {
+    Ok(Read::Drawing(match ext.as_deref() {
         Some("json") => {
             if import.layer.is_some() {
                 return Err(InputError::new("--layer", name)
                     .expected("a .dxf or .svg drawing (the flag does not apply to this input)")
                     .into());
             }
-            return Ok((outline_json::parse(&read_text(path)?, name)?, None));
+            return Ok(Read::Loops(outline_json::parse(&read_text(path)?, name)?));
         }
         Some("svg") => svg::read_loops(&read_text(path)?, name, &import.options()?)?,
         Some("dxf") => {
@@ -116,6 +145,18 @@ pub fn read_outline_file(
                 .expected("a .json, .dxf or .svg file, or sample:aerospace")
                 .into());
         }
+    }))
+}
+
+/// Reads an outline file (by extension); returns the loops and, for a drawing, the note of
+/// what it held (`NAME: summary`).
+pub fn read_outline_file(
+    name: &str,
+    import: &ImportSettings,
+) -> Result<(Loops, Option<String>), Error> {
+    let drawing = match read_drawing(name, import)? {
+        Read::Loops(loops) => return Ok((loops, None)),
+        Read::Drawing(d) => d,
     };
     // The note only for a drawing that reads: a refusal's message already holds it, on
     // its one line.

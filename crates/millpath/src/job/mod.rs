@@ -6,6 +6,7 @@
 //! This is the top layer: it may use every other module, and none uses it.
 
 pub mod contour;
+pub mod drill;
 pub mod estimate;
 pub mod five_axis;
 pub mod pocket;
@@ -24,6 +25,7 @@ use crate::machine::Machine;
 use crate::strategy::pocket::builtin;
 use std::path::Path;
 
+pub use drill::{DrillReport, DrillRun, DrillSettings};
 pub use pocket::{PocketRun, PocketSettings};
 pub use pocket_report::{
     AutoEntry, PocketEntry, REPORT_TIME_MODEL, Report as PocketReport, auto_entries, auto_line,

@@ -33,14 +33,16 @@
 //! extent over the layers of its cells one cell thick across the slot (cells at the same
 //! distance from the outline, by the transform). A tab a program leaves by lifting over a
 //! stretch `w + 2r` of its path is `w` wide at the slot's middle (its neck) and wider towards
-//! the walls (its extent, within the band). At a cell of `c` both are within about `2c`.
+//! the walls (its extent, within the band). At a cell of `c` both are within about `2c`
+//! (a bridge of more than 50 000 cells, a stretch of slot left uncut, is measured on every
+//! k-th of its cells, as finely as they lie).
 
 use super::heightfield::{DEFAULT_Z_TOLERANCE, HeightField};
+use super::nearest::IndexedWall;
 use super::raster::Raster;
 use super::reach::edt;
 use crate::error::{InputError, require_finite, require_positive};
 use crate::geom::{Aabb, Outline, Point};
-use cavalier_contours::core::math::Vector2;
 use cavalier_contours::polyline::{PlineSource, seg_arc_radius_and_center};
 use std::fmt;
 
@@ -404,8 +406,10 @@ pub fn held_by(
             (lo.min(h), hi.max(h))
         });
         // The extent of all its cells, and of each layer one cell thick across the slot.
+        let stride = cells.len().div_ceil(MAX_MEASURED_CELLS).max(1);
         let arcs: Vec<(f64, usize)> = cells
             .iter()
+            .step_by(stride)
             .map(|&k| {
                 let layer = (f64::from(d2[k]).sqrt()) as usize;
                 (lengths.at(centre(k)), layer)
@@ -441,6 +445,10 @@ pub fn held_by(
     })
 }
 
+/// Most cells of one bridge whose nearest outline point is found for its extent and neck; a
+/// larger bridge (a stretch of the slot left uncut) is measured on every k-th cell.
+const MAX_MEASURED_CELLS: usize = 50_000;
+
 /// The eight neighbours of a cell.
 const NEIGHBOURS: [(isize, isize); 8] = [
     (-1, -1),
@@ -456,6 +464,7 @@ const NEIGHBOURS: [(isize, isize); 8] = [
 /// Arc length along an outline of the nearest point to a point.
 struct SegmentLengths<'a> {
     outline: &'a Outline,
+    wall: IndexedWall<'a>,
     /// Arc length at the start of each segment, mm.
     before: Vec<f64>,
     total: f64,
@@ -476,6 +485,7 @@ impl<'a> SegmentLengths<'a> {
         }
         SegmentLengths {
             outline,
+            wall: IndexedWall::new(outline.polyline()),
             before,
             total,
         }
@@ -484,13 +494,11 @@ impl<'a> SegmentLengths<'a> {
     /// Arc length of the outline's point nearest to `p`, mm.
     fn at(&self, p: Point) -> f64 {
         let pl = self.outline.polyline();
-        let Some(hit) = pl.closest_point(Vector2::new(p.x, p.y), 1e-12) else {
+        let Some((i, q)) = self.wall.closest(p) else {
             return 0.0;
         };
-        let i = hit.seg_start_index;
         let v1 = pl.at(i);
         let v2 = pl.at(pl.next_wrapping_index(i));
-        let q = hit.seg_point;
         let part = if v1.bulge_is_zero() {
             (q.x - v1.x).hypot(q.y - v1.y)
         } else {

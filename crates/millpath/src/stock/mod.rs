@@ -37,6 +37,10 @@
 //!   ([`Verification::raster_cells`], [`Verification::tool_positions`] count them). A cell,
 //!   step or window given ([`SimOptions::with_cell`]) is used as given. The gouge verdict's
 //!   [`GOUGE_RESOLUTION`] stays the written program's resolution at every scale.
+//! * Holes ([`verify_holes`], module `holes`): a drilling or boring program against its
+//!   holes, with exact geometry on the moves rather than the raster: nothing cut outside a
+//!   hole, no rapid through material, each hole's envelope at its bottom on the drawn centre
+//!   and diameter, its bottom cleared.
 //! * Inclined walls ([`verify_levels`]): each level has its own section of the pocket; a
 //!   slab's material is its level's section, and a level's moves are checked against its
 //!   section and the section of the slab's top (the tool is a cylinder through the slab).
@@ -44,11 +48,14 @@
 //!   cut by one operation after another (each tool on what the previous ones left), with
 //!   each operation's volume and area removed, rapids through material and plunges
 //!   ([`OperationCut`]); the material a profile leaves standing in its slot, as bridges
-//!   holding the piece or not ([`held_by`]).
+//!   holding the piece or not ([`held_by`]); and at the end what is left against the floors
+//!   the job meant to cut and the part it meant to keep ([`check_field`]).
 
 pub(crate) mod bridges;
+pub(crate) mod field_check;
 pub(crate) mod gouge;
 pub(crate) mod heightfield;
+pub(crate) mod holes;
 pub(crate) mod nearest;
 pub(crate) mod part;
 mod problem;
@@ -57,11 +64,13 @@ pub(crate) mod reach;
 pub(crate) mod simulate;
 
 pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
+pub use field_check::{CheckOptions, Deviation, FieldCheck, Floor, PartTop, check_field};
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use heightfield::{
     ARC_SAGITTA, CutOptions, Cutter, DEFAULT_FIELD_MAX_CELLS, DEFAULT_Z_TOLERANCE, FieldOptions,
     HeightField, OperationCut,
 };
+pub use holes::{HoleCheck, HoleProblem, HoleVerification, verify_holes};
 pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
 pub use simulate::{

@@ -89,6 +89,42 @@ impl<'a> IndexedWall<'a> {
 }
 
 impl IndexedWall<'_> {
+    /// The segment of the loop nearest to `p` (the index of its start vertex) and the
+    /// nearest point on it; `None` for a loop without segments.
+    pub fn closest(&self, p: Point) -> Option<(usize, Point)> {
+        let n = self.pl.vertex_count();
+        if n < 2 {
+            return None;
+        }
+        let q = Vector2::new(p.x, p.y);
+        type Best = Option<(f64, usize, Vector2<f64>)>;
+        let mut best: Best = None;
+        let seg = |i: usize, best: &mut Best| {
+            let c = seg_closest_point(self.pl.at(i), self.pl.at((i + 1) % n), q, 1e-12);
+            let d = (c - q).length();
+            if best.is_none_or(|b| d < b.0) {
+                *best = Some((d, i, c));
+            }
+        };
+        match &self.index {
+            None => (0..n).for_each(|i| seg(i, &mut best)),
+            Some(index) => {
+                let mut visit = |i: usize, box_d2: f64| -> Control<()> {
+                    if best.is_some_and(|b| box_d2 > b.0 * b.0) {
+                        return Control::Break(());
+                    }
+                    seg(i, &mut best);
+                    Control::Continue
+                };
+                let mut queue = self.queue.borrow_mut();
+                index.visit_neighbors_with_queue(p.x, p.y, &mut visit, &mut queue);
+            }
+        }
+        best.map(|(_, i, c)| (i, Point::new(c.x, c.y)))
+    }
+}
+
+impl IndexedWall<'_> {
     /// Exact distance from the segment `a`–`b` to the loop, and the point of the segment
     /// where it is reached (see the module docs).
     pub fn distance_to_segment(&self, a: Point, b: Point) -> (f64, Point) {
@@ -321,6 +357,29 @@ mod tests {
             })
             .collect();
         Outline::new(&pts, "t").expect("outline")
+    }
+
+    /// The nearest segment and point through the index against a scan of every segment.
+    #[test]
+    fn indexed_closest_point_equals_the_scan() {
+        let o = wavy_outline();
+        let pl = o.polyline();
+        let wall = IndexedWall::new(pl);
+        assert!(wall.index.is_some());
+        let n = pl.vertex_count();
+        for k in 0..400 {
+            let a = k as f64 * 0.37;
+            let rr = 5.0 + (k % 23) as f64;
+            let p = Point::new(rr * a.cos(), rr * a.sin());
+            let q = Vector2::new(p.x, p.y);
+            let want = (0..n)
+                .map(|i| (seg_closest_point(pl.at(i), pl.at((i + 1) % n), q, 1e-12) - q).length())
+                .fold(f64::INFINITY, f64::min);
+            let (i, c) = wall.closest(p).expect("segments");
+            let on_seg = seg_closest_point(pl.at(i), pl.at((i + 1) % n), q, 1e-12);
+            assert!((p.distance(c) - want).abs() < 1e-9, "{p:?}");
+            assert!(Point::new(on_seg.x, on_seg.y).distance(c) < 1e-9, "{p:?}");
+        }
     }
 
     #[test]

@@ -5,9 +5,14 @@
 //! them into mm/min or in/min).
 
 pub(crate) mod arc_rule;
+mod cycle;
 mod moves;
 mod tool;
 
+pub use cycle::{
+    Cycle, CycleKind, CycleRetract, LEVEL_EPS as CYCLE_LEVEL_EPS, MAX_PECKS, PECK_CLEARANCE,
+    expand as expand_cycle,
+};
 pub use moves::{Corner, CurveTag, Move, MoveKind, Plane};
 pub use tool::{REFERENCE_DIAMETER, Tool, tolerance_scale};
 
@@ -39,7 +44,8 @@ pub struct Level {
     pub end: usize,
 }
 
-/// An ordered list of moves, grouped by level, with the tool it was made for.
+/// An ordered list of moves, grouped by level, with the tool it was made for; runs of moves
+/// that are canned drilling cycles are marked in [`Toolpath::cycles`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Toolpath {
     /// The tool.
@@ -50,6 +56,10 @@ pub struct Toolpath {
     pub moves: Vec<Move>,
     /// Levels: ranges of `moves`, in order, not overlapping.
     pub levels: Vec<Level>,
+    /// Canned cycles: ranges of `moves`, in order, not overlapping, each exactly the moves
+    /// its cycle expands to ([`expand_cycle`]); see [`Toolpath::check_cycles`].
+    #[serde(default)]
+    pub cycles: Vec<Cycle>,
 }
 
 impl Toolpath {
@@ -60,12 +70,84 @@ impl Toolpath {
             start,
             moves: Vec::new(),
             levels: Vec::new(),
+            cycles: Vec::new(),
         }
     }
 
     /// Appends a move.
     pub fn push(&mut self, m: Move) {
         self.moves.push(m);
+    }
+
+    /// Appends canned cycle `cycle` (its `start` and `end` are set here) from where the tool
+    /// is: its moves ([`expand_cycle`]) and its annotation.
+    pub fn push_cycle(&mut self, mut cycle: Cycle) {
+        let moves = expand_cycle(&cycle, self.end());
+        cycle.start = self.moves.len();
+        cycle.end = cycle.start + moves.len();
+        self.moves.extend(moves);
+        self.cycles.push(cycle);
+    }
+
+    /// Appends `other`'s moves, levels and cycles (their ranges shifted); `other` is taken to
+    /// start where this toolpath ends.
+    pub fn append(&mut self, other: &Toolpath) {
+        let base = self.moves.len();
+        self.moves.extend_from_slice(&other.moves);
+        self.levels.extend(other.levels.iter().map(|l| Level {
+            start: l.start + base,
+            end: l.end + base,
+            ..*l
+        }));
+        self.cycles.extend(other.cycles.iter().map(|c| Cycle {
+            start: c.start + base,
+            end: c.end + base,
+            ..*c
+        }));
+    }
+
+    /// Checks the canned cycles: in order, not overlapping, within the moves, their numbers
+    /// valid ([`Cycle::check`]), and each one's moves those it expands to from where the tool
+    /// is when it begins (within `1e-9` mm and s).
+    pub fn check_cycles(&self) -> Result<(), crate::error::InputError> {
+        let mut next = 0;
+        for (k, c) in self.cycles.iter().enumerate() {
+            let at = format!("canned cycle {k} (moves {}..{})", c.start, c.end);
+            c.check(&at)?;
+            let Some(run) = self.moves.get(c.start..c.end).filter(|_| c.start >= next) else {
+                return Err(crate::error::InputError::new("canned cycle range", &at)
+                    .at("toolpath")
+                    .expected(format!(
+                        "ranges in order, not overlapping, within the {} moves",
+                        self.moves.len()
+                    )));
+            };
+            let from = match c.start.checked_sub(1) {
+                Some(i) => self.moves.get(i).map_or(self.start, |m| m.to),
+                None => self.start,
+            };
+            let want = expand_cycle(c, from);
+            let same = want.len() == run.len()
+                && want.iter().zip(run).all(|(a, b)| {
+                    a.kind_matches(b, 1e-9)
+                        && a.to.distance(b.to) <= 1e-9
+                        && (!a.is_feed() || (a.feed - b.feed).abs() <= 1e-9)
+                });
+            if !same {
+                return Err(crate::error::InputError::new("canned cycle", &at)
+                    .at("toolpath")
+                    .expected(format!(
+                        "the {} moves its {} expands to, from ({:.4}, {:.4}, {:.4})",
+                        want.len(),
+                        c.kind,
+                        from.x,
+                        from.y,
+                        from.z
+                    )));
+            }
+            next = c.end;
+        }
+        Ok(())
     }
 
     /// Where the tool is after the last move (the start if there is none).
@@ -130,6 +212,16 @@ impl Toolpath {
             end: out.moves.len(),
             ..l.clone()
         }];
+        out.cycles = self
+            .cycles
+            .iter()
+            .filter(|c| c.start >= l.start && c.end <= l.end)
+            .map(|c| Cycle {
+                start: c.start - l.start,
+                end: c.end - l.start,
+                ..*c
+            })
+            .collect();
         out
     }
 

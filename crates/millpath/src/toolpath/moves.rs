@@ -197,6 +197,37 @@ impl Move {
         self
     }
 
+    /// True when `other` is the same kind of move: both rapids, both lines, both dwells of
+    /// the same time (within `eps` s), or both arcs about the same centre (within `eps` mm)
+    /// in the same plane, direction and turns (the centre's coordinate along the plane's
+    /// normal aside).
+    pub fn kind_matches(&self, other: &Move, eps: f64) -> bool {
+        match (self.kind, other.kind) {
+            (MoveKind::Rapid, MoveKind::Rapid) | (MoveKind::Line, MoveKind::Line) => true,
+            (MoveKind::Dwell { seconds: a }, MoveKind::Dwell { seconds: b }) => {
+                (a - b).abs() <= eps
+            }
+            (
+                MoveKind::Arc {
+                    center: c0,
+                    plane: p0,
+                    ccw: w0,
+                    turns: t0,
+                },
+                MoveKind::Arc {
+                    center: c1,
+                    plane: p1,
+                    ccw: w1,
+                    turns: t1,
+                },
+            ) => {
+                let (u, v, _) = p0.split(c1 - c0);
+                p0 == p1 && w0 == w1 && t0 == t1 && u.hypot(v) <= eps
+            }
+            _ => false,
+        }
+    }
+
     /// True for lines and arcs (moves that cut at the feed).
     pub fn is_feed(&self) -> bool {
         matches!(self.kind, MoveKind::Line | MoveKind::Arc { .. })

@@ -24,7 +24,9 @@
 //!   `;` comments (no parentheses outside a call); G0–G3, G4 (`F` s or `S` revolutions, in a
 //!   block of its own), G17–G19, G40, G53, G54–G57, G500, G60, G64, G641/G642, G70/G71,
 //!   G700/G710, G90/G91, G93/G94/G95; `TURN=n` on G2/G3; `CYCLE832(tol, _FINISH, 1)` in a
-//!   block of its own; `T n M6` (D1 default); arc radii within `MD21000
+//!   block of its own; the drilling cycles `CYCLE81(RTP, RFP, SDIS, DP, DPR)`, `CYCLE82(…,
+//!   DTB)` and `CYCLE83(…)` (Cycles programming manual: at most 5, 6 and 17 parameters,
+//!   numbers or empty, RTP at or above RFP + SDIS above DP) in a block of their own; `T n M6` (D1 default); arc radii within `MD21000
 //!   CIRCLE_ERROR_CONST` (0.01 mm) or `MD21010 CIRCLE_ERROR_FACTOR` (0.1 %) of the radius.
 #![allow(dead_code)]
 
@@ -50,8 +52,8 @@ fn g_allowed(d: Dialect, g: &str) -> bool {
         Dialect::Fanuc => &[
             "0", "1", "2", "3", "4", "5.1", "9", "10", "15", "16", "17", "18", "19", "20", "21",
             "28", "40", "41", "42", "43", "43.4", "44", "49", "52", "53", "54", "55", "56", "57",
-            "58", "59", "61", "62", "63", "64", "68", "69", "80", "81", "82", "83", "84", "85",
-            "86", "87", "88", "89", "90", "91", "92", "93", "94", "95", "98", "99",
+            "58", "59", "61", "62", "63", "64", "68", "69", "73", "80", "81", "82", "83", "84",
+            "85", "86", "87", "88", "89", "90", "91", "92", "93", "94", "95", "98", "99",
         ],
         Dialect::Sinumerik => &[
             "0", "1", "2", "3", "4", "9", "17", "18", "19", "40", "41", "42", "53", "54", "55",
@@ -185,7 +187,9 @@ fn strip_comments(raw: &str, d: Dialect) -> Result<String, String> {
         Dialect::Sinumerik | Dialect::Grbl => {
             let code = raw.split(';').next().unwrap_or("");
             if d == Dialect::Sinumerik {
-                let without_call = code.replace("CYCLE832(", "");
+                let without_call = ["CYCLE832(", "CYCLE81(", "CYCLE82(", "CYCLE83("]
+                    .iter()
+                    .fold(code.to_string(), |c, name| c.replace(name, ""));
                 if without_call.contains('(') {
                     return Err("parentheses outside a call (sinumerik comments are ;)".into());
                 }
@@ -257,6 +261,9 @@ fn line(raw: &str, d: Dialect, st: &mut State) -> Result<(), String> {
             }
             return Ok(());
         }
+        if let Some(at) = code.find("CYCLE8").filter(|_| !code.contains("CYCLE832(")) {
+            return sinumerik_drilling(&code, at);
+        }
         if let Some(at) = code.find("TURN=") {
             let tail = &code[at + 5..];
             let end = tail.find(char::is_whitespace).unwrap_or(tail.len());
@@ -318,7 +325,8 @@ fn line(raw: &str, d: Dialect, st: &mut State) -> Result<(), String> {
             "17" | "18" | "19" => st.plane = g.clone(),
             "93" => st.inverse_time = true,
             "94" => st.inverse_time = false,
-            "0" | "1" | "2" | "3" => st.motion = Some(g.clone()),
+            "0" | "1" | "2" | "3" | "73" | "81" | "82" | "83" => st.motion = Some(g.clone()),
+            "80" => st.motion = None,
             "5.1"
                 if !(ws.len() == 2 + usize::from(has('N'))
                     && ws
@@ -373,12 +381,90 @@ fn line(raw: &str, d: Dialect, st: &mut State) -> Result<(), String> {
             return Err("a feed move without a feed".into());
         }
     }
+    if ["73", "81", "82", "83"].contains(&motion.as_str()) {
+        return drilling(st, &ws, &motion, end);
+    }
     if motion == "2" || motion == "3" {
         arc(d, st, &ws, start, end, unit, turn)?;
     } else if has('I') || has('J') || has('K') || has('R') || has('P') || turn.is_some() {
         return Err(format!("arc words on a G{motion} block"));
     }
     st.pos = end;
+    Ok(())
+}
+
+/// A Fanuc drilling cycle block: X Y the hole, Z the bottom, R at or above it, Q > 0 on
+/// G73/G83, P in ms (no point) on G82, nothing else but F, G, N; the tool ends above the hole
+/// at a level the block does not say.
+fn drilling(st: &mut State, ws: &[W], motion: &str, end: [Option<f64>; 3]) -> Result<(), String> {
+    let get = |l: char| ws.iter().find(|w| w.letter == l);
+    let (Some(z), Some(r)) = (get('Z'), get('R')) else {
+        return Err(format!("G{motion} without Z and R"));
+    };
+    if r.value < z.value {
+        return Err(format!("G{motion}: R below Z"));
+    }
+    match motion {
+        "73" | "83" if !get('Q').is_some_and(|q| q.value > 0.0) => {
+            return Err(format!("G{motion} without Q > 0"));
+        }
+        "82" if !get('P').is_some_and(|p| !p.text.contains('.') && p.value >= 0.0) => {
+            return Err("G82 without P milliseconds".into());
+        }
+        _ => {}
+    }
+    if let Some(w) = ws.iter().find(|w| !"GNXYZRQPF".contains(w.letter)) {
+        return Err(format!("{}{} in a drilling cycle", w.letter, w.text));
+    }
+    if st.feed.is_none() {
+        return Err("a drilling cycle without a feed".into());
+    }
+    st.pos = [end[0], end[1], None];
+    Ok(())
+}
+
+/// A Sinumerik `CYCLE81/82/83(…)` block (module docs).
+fn sinumerik_drilling(code: &str, at: usize) -> Result<(), String> {
+    let open = code.find('(').ok_or("a cycle without (")?;
+    let close = code.rfind(')').ok_or("a cycle without )")?;
+    let name = &code[at..open];
+    let max = match name {
+        "CYCLE81" => 5,
+        "CYCLE82" => 6,
+        "CYCLE83" => 17,
+        _ => return Err(format!("{name}: not a drilling cycle of the 840D")),
+    };
+    let params: Vec<Option<f64>> = code[open + 1..close]
+        .split(',')
+        .map(|p| {
+            let t = p.trim();
+            if t.is_empty() {
+                Ok(None)
+            } else {
+                t.parse()
+                    .map(Some)
+                    .map_err(|_| format!("{name}: {t} is not a number"))
+            }
+        })
+        .collect::<Result<_, _>>()?;
+    if params.len() > max {
+        return Err(format!("{name}: more than {max} parameters"));
+    }
+    let p = |k: usize| params.get(k).copied().flatten();
+    let (Some(rtp), Some(rfp)) = (p(0), p(1)) else {
+        return Err(format!("{name} without RTP and RFP"));
+    };
+    let r = rfp + p(2).unwrap_or(0.0);
+    let dp = p(3)
+        .or(p(4).map(|dpr| rfp - dpr))
+        .ok_or("a cycle without DP or DPR")?;
+    if !(rtp >= r && r > dp) {
+        return Err(format!("{name}: RTP at or above RFP + SDIS above DP"));
+    }
+    let rest = format!("{}{}", &code[..at], &code[close + 1..]);
+    if words(&rest)?.iter().any(|w| w.letter != 'N') {
+        return Err(format!("{name} in a block of its own"));
+    }
     Ok(())
 }
 
@@ -513,4 +599,36 @@ pub fn self_test() {
             "sinumerik accepted {bad}"
         );
     }
+    // Drilling cycles.
+    let fanuc_drill = "%\nO0001\nG17 G21 G90\nG0 X0. Y0. Z5.\n\
+                       G98 G83 X10. Y5. Z-8. R1. Q2. F200.\nG82 X20. Z-8. R1. P500\nG80\nM30\n%\n";
+    assert_eq!(check(fanuc_drill, Dialect::Fanuc), Ok(()));
+    for bad in [
+        fanuc_drill.replace(" R1. Q2.", " Q2."),
+        fanuc_drill.replace("Q2.", "Q0."),
+        fanuc_drill.replace("P500", "P0.5"),
+        fanuc_drill.replace("R1. Q2.", "R-9. Q2."),
+    ] {
+        assert!(check(&bad, Dialect::Fanuc).is_err(), "fanuc accepted {bad}");
+    }
+    let sin_drill = "; a\nG17 G710 G90\nG0 X0 Y0 Z5\nF200\nCYCLE81(5,1,0,-8)\n\
+                     CYCLE83(5,1,0,-8,,-1,,2,0,0,1,1,,,,,0.254)\nM30\n";
+    assert_eq!(check(sin_drill, Dialect::Sinumerik), Ok(()));
+    for bad in [
+        sin_drill.replace("CYCLE81(5,1,0,-8)", "CYCLE81(0,1,0,-8)"),
+        sin_drill.replace("CYCLE81(5,1,0,-8)", "CYCLE81(5,1,0,-8,,1)"),
+        sin_drill.replace("CYCLE81(5,1,0,-8)", "G0 X1 CYCLE81(5,1,0,-8)"),
+    ] {
+        assert!(
+            check(&bad, Dialect::Sinumerik).is_err(),
+            "sinumerik accepted {bad}"
+        );
+    }
+    assert!(
+        check(
+            "G17 G21 G90\nG0 X0 Y0 Z5\nG81 X1 Y1 Z-1 R1 F100\nM2\n",
+            Dialect::Grbl
+        )
+        .is_err()
+    );
 }

@@ -13,6 +13,8 @@ pub(crate) struct Block {
     pub(crate) words: [Option<f64>; 26],
     pub(crate) turn: Option<f64>,
     pub(crate) cycle832: Option<String>,
+    /// A Sinumerik drilling cycle call: its name and arguments.
+    pub(crate) drill_cycle: Option<(String, String)>,
     /// LinuxCNC's polar words `@` (radius) and `^` (angle, degrees).
     pub(crate) polar: [Option<f64>; 2],
 }
@@ -117,6 +119,7 @@ impl Block {
         self.words = [None; 26];
         self.turn = None;
         self.cycle832 = None;
+        self.drill_cycle = None;
         self.polar = [None; 2];
         for t in tokens {
             let r = self.gather_one(t, line, dialect);
@@ -224,6 +227,19 @@ impl Block {
             Token::Call { name, args } if name == "CYCLE832" && dialect == Dialect::Sinumerik => {
                 self.cycle832 = Some(args.clone());
             }
+            Token::Call { name, args }
+                if matches!(name.as_str(), "CYCLE81" | "CYCLE82" | "CYCLE83")
+                    && dialect == Dialect::Sinumerik =>
+            {
+                if self.drill_cycle.is_some() {
+                    return Err(BlockError::new(
+                        "Sinumerik cycle",
+                        format!("{name}({args})"),
+                        "one drilling cycle per block",
+                    ));
+                }
+                self.drill_cycle = Some((name.clone(), args.clone()));
+            }
             Token::Assign { name, value } => {
                 return Err(BlockError::unsupported(
                     format!("{name}={value}"),
@@ -233,7 +249,7 @@ impl Block {
             Token::Call { name, args } => {
                 return Err(BlockError::unsupported(
                     format!("{name}({args})"),
-                    "CYCLE832 (sinumerik)",
+                    "CYCLE832, CYCLE81, CYCLE82 or CYCLE83 (sinumerik)",
                 ));
             }
         }
@@ -259,7 +275,10 @@ pub(crate) fn g_supported(code: u16, dialect: Dialect) -> bool {
         || match dialect {
             Dialect::LinuxCnc => LINUXCNC.contains(&code),
             Dialect::Grbl => matches!(code, 200 | 210 | 911),
-            Dialect::Fanuc => matches!(code, 200 | 210 | 51 | 90),
+            Dialect::Fanuc => matches!(
+                code,
+                200 | 210 | 51 | 90 | 730 | 810 | 820 | 830 | 980 | 990
+            ),
             Dialect::Sinumerik => matches!(code, 90 | 600 | 6420 | 700 | 710 | 7000 | 7100),
         }
 }

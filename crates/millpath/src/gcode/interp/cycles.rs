@@ -21,6 +21,12 @@
 //!
 //! G74, G84 (tapping), G86, G87, G88 (spindle stops, manual retract) and G76 are refused.
 //!
+//! **Fanuc** programs get the same expansion (G73, G81, G82, G83 with G98/G99; the initial
+//! level and the R and Z words mean the same on a Fanuc mill), with two differences of
+//! notation: G82's P is in milliseconds, and the peck clearance of G73/G83 is a machine
+//! parameter (5114, 5115) the reader takes as LinuxCNC's 0.254 mm. Sinumerik's CYCLE81,
+//! CYCLE82 and CYCLE83 are read by `sinumerik_cycles`.
+//!
 //! ```text
 //!      initial ──┐            ┌── G98
 //!   R ─ ─ ─ ─ ─ ─│─ ─ ─ ─ ─ ─ │─ G99
@@ -29,6 +35,7 @@
 //! ```
 
 use super::{Block, BlockError, FeedMode, ReadMove, State, plane_axes};
+use crate::gcode::Dialect;
 use crate::geom::Point3;
 use crate::toolpath::{Corner, Move};
 
@@ -112,7 +119,8 @@ impl Emit<'_> {
 
 impl State {
     /// Expands canned cycle `m` (×10) for block `b`; `axes` are its X Y Z words (program
-    /// units), `polar` its `@ ^` words, `same` whether the previous motion mode was `m`.
+    /// units), `polar` its `@ ^` words, `same` whether the previous motion mode was `m`;
+    /// `dialect` says what P means in G82 (s; Fanuc: ms).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn cycle(
         &mut self,
@@ -122,9 +130,11 @@ impl State {
         axes: [Option<f64>; 3],
         polar: [Option<f64>; 2],
         line: usize,
+        dialect: Dialect,
         out: &mut Vec<ReadMove>,
     ) -> Result<(), BlockError> {
         let name = format!("G{}", m / 10);
+        let p_scale = if dialect == Dialect::Fanuc { 1e-3 } else { 1.0 };
         if self.modal.feed_mode != FeedMode::PerMinute {
             return Err(BlockError::new(
                 "canned cycle",
@@ -188,7 +198,7 @@ impl State {
         let mut dwell = 0.0;
         if matches!(m, 820 | 890) {
             dwell = match b.take(b'P') {
-                Some(p) if p >= 0.0 => p,
+                Some(p) if p >= 0.0 => p * p_scale,
                 Some(p) => return Err(BlockError::new("dwell", format!("P{p}"), "P >= 0 s")),
                 None if same => self.cyc.p,
                 None => {

@@ -119,7 +119,16 @@ impl State {
                     "canned cycles in systems without rotation (G10 L2 R0)",
                 ));
             }
-            return self.cycle(m, previous == Some(m), b, axes, polar, line, out);
+            return self.cycle(
+                m,
+                previous == Some(m),
+                b,
+                axes,
+                polar,
+                line,
+                opts.dialect,
+                out,
+            );
         }
         if code.is_some() {
             self.cyc.end_run();

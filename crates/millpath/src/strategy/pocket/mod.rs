@@ -67,6 +67,7 @@ pub(crate) mod spiral;
 pub(crate) mod walls;
 pub(crate) mod zigzag;
 
+pub use crate::strategy::order::{order_tour as order_pockets, tour_length};
 pub use auto::{Candidate, ORDER as AUTO_ORDER, Outcome, arcs_or_chords, choose, plan_all};
 pub use feed::{FeedProfile, factor as feed_factor};
 pub use levels::level_depths;
@@ -74,7 +75,7 @@ pub use options::{
     Direction, Entry, PocketOptions, SpiralMorph, SpiralOptions, Stepover, StrategyKind,
     ZigzagOptions,
 };
-pub use part::{PartPocket, PartResult, PartStrategy, generate_part, order_pockets, tour_length};
+pub use part::{PartPocket, PartResult, PartStrategy, generate_part};
 pub use segments::ARC_AS_LINE_SAGITTA;
 pub use shape::PocketShape;
 pub use spiral::{

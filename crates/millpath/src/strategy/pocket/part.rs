@@ -14,22 +14,17 @@
 //! pocket is refused the first pocket's error is returned.
 //!
 //! **Order.** The cost of going from pocket `i` to pocket `j` is the rapid from the end of
-//! `i`'s toolpath to the start of `j`'s (`d(e_i, s_j)`, not symmetric). The tour starts at
-//! the pocket whose start is nearest the origin (where the program starts) and goes each time
-//! to the nearest pocket not yet cut (nearest neighbour); then 2-opt: a stretch of the tour is
-//! reversed when the whole tour gets shorter (the costs being asymmetric, each candidate is
-//! costed over the whole tour, `O(n)`), until no reversal helps (2-opt runs up to
-//! [`TWO_OPT_MAX`] pockets; beyond that the nearest-neighbour tour is kept).
+//! `i`'s toolpath to the start of `j`'s (`d(e_i, s_j)`, not symmetric); the tour starts at the
+//! origin (where the program starts) and is made short by [`crate::strategy::order_tour`]
+//! (nearest neighbour, then 2-opt and segment moves).
 
 use super::auto;
 use super::{PocketOptions, PocketResult, PocketShape, StrategyKind};
 use crate::error::{Error, Result};
 use crate::geom::{Point, Point3};
 use crate::stock::{self, PartVerification, SimOptions, StockSpec};
-use crate::toolpath::{Level, Move, Tool, Toolpath};
-
-/// Most pockets 2-opt improves the order of (`O(n³)` per pass).
-pub const TWO_OPT_MAX: usize = 200;
+use crate::strategy::order::order_tour;
+use crate::toolpath::{Move, Tool, Toolpath};
 
 /// One pocket of a part.
 #[derive(Debug, Clone)]
@@ -143,7 +138,7 @@ pub fn generate_part(
         .filter_map(|p| p.result.as_ref())
         .map(|r| (r.toolpath.start.xy(), r.toolpath.end().xy()))
         .collect();
-    let order = order_pockets(&ends, Point::ORIGIN);
+    let order = order_tour(&ends, Point::ORIGIN);
     let mut slots: Vec<Option<PartPocket>> = cut.into_iter().map(Some).collect();
     let mut ordered: Vec<PartPocket> = order.iter().filter_map(|&i| slots[i].take()).collect();
     let toolpath = join(
@@ -191,7 +186,8 @@ pub fn generate_part(
 }
 
 /// Joins toolpaths that each start and end at the clearance height `clear`: a rapid at that
-/// height from the end of one to the start of the next; levels kept, renumbered.
+/// height from the end of one to the start of the next; levels and canned cycles kept,
+/// renumbered.
 pub fn join<'a>(paths: impl IntoIterator<Item = &'a Toolpath>, tool: Tool, clear: f64) -> Toolpath {
     let mut out: Option<Toolpath> = None;
     for tp in paths {
@@ -210,85 +206,7 @@ pub fn join<'a>(paths: impl IntoIterator<Item = &'a Toolpath>, tool: Tool, clear
                 joined.push(Move::rapid(tp.start));
             }
         }
-        let base = joined.moves.len();
-        joined.moves.extend_from_slice(&tp.moves);
-        joined.levels.extend(tp.levels.iter().map(|l| Level {
-            start: l.start + base,
-            end: l.end + base,
-            ..*l
-        }));
+        joined.append(tp);
     }
     out.unwrap_or_else(|| Toolpath::new(tool, Point3::new(0.0, 0.0, clear)))
-}
-
-/// The order to cut pockets in, given each one's (start, end) in the plane and where the
-/// tool starts (see the module docs: nearest neighbour, then 2-opt).
-pub fn order_pockets(ends: &[(Point, Point)], home: Point) -> Vec<usize> {
-    let n = ends.len();
-    let mut tour: Vec<usize> = Vec::with_capacity(n);
-    let mut left: Vec<usize> = (0..n).collect();
-    let mut at = home;
-    while !left.is_empty() {
-        let (k, _) = left
-            .iter()
-            .enumerate()
-            .map(|(k, &i)| (k, at.distance(ends[i].0)))
-            .fold((0, f64::INFINITY), |b, c| if c.1 < b.1 { c } else { b });
-        let i = left.remove(k);
-        at = ends[i].1;
-        tour.push(i);
-    }
-    if n <= TWO_OPT_MAX {
-        let cost = |t: &[usize]| tour_length(ends, home, t);
-        let mut best = cost(&tour);
-        let mut improved = true;
-        while improved {
-            improved = false;
-            for i in 0..n {
-                for j in i + 1..n {
-                    tour[i..=j].reverse();
-                    let c = cost(&tour);
-                    if c < best - 1e-9 {
-                        best = c;
-                        improved = true;
-                    } else {
-                        tour[i..=j].reverse();
-                    }
-                }
-            }
-        }
-    }
-    tour
-}
-
-/// Length of the rapids of a tour: from `home` to the first start, then end to start.
-pub fn tour_length(ends: &[(Point, Point)], home: Point, tour: &[usize]) -> f64 {
-    let mut at = home;
-    let mut sum = 0.0;
-    for &i in tour {
-        sum += at.distance(ends[i].0);
-        at = ends[i].1;
-    }
-    sum
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn two_opt_untangles_a_crossed_tour() {
-        // Pockets on a line, each starting and ending at its own point: the best tour visits
-        // them in order from the origin.
-        let xs = [0.0, 40.0, 10.0, 30.0, 20.0];
-        let ends: Vec<(Point, Point)> = xs
-            .iter()
-            .map(|&x| (Point::new(x, 5.0), Point::new(x, 5.0)))
-            .collect();
-        let t = order_pockets(&ends, Point::ORIGIN);
-        let visited: Vec<f64> = t.iter().map(|&i| xs[i]).collect();
-        assert_eq!(visited, vec![0.0, 10.0, 20.0, 30.0, 40.0]);
-        let worst = tour_length(&ends, Point::ORIGIN, &[0, 1, 2, 3, 4]);
-        assert!(tour_length(&ends, Point::ORIGIN, &t) < worst);
-    }
 }

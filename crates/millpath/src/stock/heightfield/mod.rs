@@ -15,19 +15,27 @@
 //! √(r² − s²)`, `s` its distance across the move), and since z is linear in `t` the lowest
 //! tip over that interval is at one of its two ends: the cell gets exactly that height, with
 //! no samples and no scallops between samples. The cells visited are those of each row
-//! within `r` of the segment (the capsule's interval on the row). An arc or a helix is
-//! swept as chords of at most [`ARC_SAGITTA`] sagitta, each a straight move whose radius is
-//! widened by its sagitta, so that it holds the arc's own sweep: along arcs the field cuts at
-//! most that much wider than the tool did. Where z changes along a chord the bound is the
-//! same exact interval rule (the chord's z is linear in its travel, as the helix's is in its
-//! angle): the tip over the chord differs from the tip over the arc only by the chord's
-//! lateral offset, not in z.
+//! within `r` of the segment (the capsule's interval on the row). A helix (an XY arc whose
+//! z changes) is swept the same way in its angle: the axis on the circle of radius `R`
+//! about the centre passes within `r` of a cell at distance `ρ` and angle `φ` from it for
+//! the angles `|θ − φ| ≤ arccos((R² + ρ² − r²) / (2Rρ))` (modulo full turns), z is linear in
+//! the angle turned, and the cell gets the tip at the end of those intervals that lies
+//! lowest (an arc whose end is off its start circle by the program's rounding is taken on
+//! the mean circle, the tool widened by half the difference). An arc at one z is swept as
+//! chords of at most [`ARC_SAGITTA`] sagitta, each a straight move whose radius is widened
+//! by its sagitta, so that it holds the arc's own sweep: along such arcs the field cuts at
+//! most that much wider than the tool did (arcs in the other planes likewise, their
+//! chords' z linear in their travel).
 //!
 //! A move that starts where the previous one ended, at the same or a higher z, and does not
 //! descend leaves the cells within the previous stamp's radius of its start alone: they were
 //! lowered to the previous end's z or below, and the move's lowest tip over them is its start
 //! z. So a chain of short moves costs the area it sweeps, `2r` per unit of travel, not a disc
-//! per move.
+//! per move. Going down, the cells within `r` of the move's end get the end's z outright
+//! (their interval reaches the end), and a move wholly at or above the block's top cuts
+//! nothing.
+//!
+//! Nothing lies below the block's bottom: a through cut leaves the cells at the bottom.
 //!
 //! **Per operation** ([`OperationCut`]): the volume and the area the operation lowered, the
 //! **rapids through material** (a rapid that lowers some cell by more than the z tolerance;
@@ -46,10 +54,12 @@
 //! when the block would need more than [`FieldOptions::max_cells`] cells (16 M, 64 MB: a
 //! 400 × 300 mm block gets cells of 0.087 mm).
 
+mod helix;
+
 use super::problem::Problem;
 use crate::error::InputError;
 use crate::geom::{Aabb, Point, Point3};
-use crate::toolpath::{MoveKind, Toolpath, tolerance_scale};
+use crate::toolpath::{MoveKind, Plane, Toolpath, tolerance_scale};
 use std::fmt;
 
 /// The largest sagitta of the chords an arc is swept as, mm; each chord's sweep is widened
@@ -378,13 +388,9 @@ impl HeightField {
         };
         let mut out = OperationCut::default();
         let rim = self.cell * std::f64::consts::FRAC_1_SQRT_2 + super::GOUGE_RESOLUTION;
-        let start = tp.start;
-        self.sweep(start, start, r, None, &mut tally);
-        let mut last = Some(Stamp {
-            at: start.xy(),
-            z: start.z,
-            r,
-        });
+        // Where the tool stands before the first move is not a cut (how it got there is not
+        // in this program).
+        let mut last: Option<Stamp> = None;
         for (k, (from, m)) in tp.segments().enumerate() {
             match m.kind {
                 MoveKind::Dwell { .. } => {}
@@ -405,11 +411,24 @@ impl HeightField {
                         r,
                     });
                 }
-                MoveKind::Arc { .. } => {
+                MoveKind::Arc { center, plane, .. } => {
                     if opts.cutter == Cutter::EndMill
                         && self.plunges(from, m.to, r - rim, ztol, m.length_from(from))
                     {
                         out.plunges.push(k);
+                    }
+                    if let (Plane::Xy, Some((r0, sweep))) = (plane, m.sweep_from(from))
+                        && (m.to.z - from.z).abs() > 1e-12
+                        && r0 > ARC_SAGITTA
+                    {
+                        // A helix: each cell's lowest tip over the angles that pass over it.
+                        self.sweep_helix(from, m.to, center.xy(), sweep, r, &mut tally);
+                        last = Some(Stamp {
+                            at: m.to.xy(),
+                            z: m.to.z,
+                            r,
+                        });
+                        continue;
                     }
                     let len = m.length_from(from);
                     let (n, sagitta) = arc_pieces(m.sweep_from(from));
@@ -452,7 +471,7 @@ impl HeightField {
             return false;
         }
         let c = to.xy();
-        let limit = to.z + ztol;
+        let limit = to.z.max(self.bottom) + ztol;
         let mut found = false;
         self.for_rows(c.y - reach, c.y + reach, |j, y| {
             if found {
@@ -495,6 +514,25 @@ impl HeightField {
         (i0 <= i1).then_some((i0, i1))
     }
 
+    /// Lowers cell `k` to `z` (not below the block's bottom: there is no material to cut
+    /// there), counting it in `tally`; returns how much it lowered it, mm (0 within the z
+    /// tolerance).
+    fn lower(&mut self, k: usize, z: f64, tally: &mut Tally) -> f64 {
+        let z = z.max(self.bottom);
+        let old = f64::from(self.h[k]);
+        if old <= z {
+            return 0.0;
+        }
+        let cut = old - z;
+        tally.volume += cut;
+        self.h[k] = z as f32;
+        if cut <= tally.ztol {
+            return 0.0;
+        }
+        tally.touched[k / 64] |= 1 << (k % 64);
+        cut
+    }
+
     /// Sweeps the tool of radius `r` from `a` to `b` (module docs); `last` is the disc the
     /// previous move stamped, whose cells a non-descending move from its centre leaves alone.
     fn sweep(
@@ -513,6 +551,10 @@ impl HeightField {
         let flat = dz.abs() <= 1e-12;
         let skip = last.filter(|s| s.at.distance(pa) <= 1e-9 && s.z <= a.z + 1e-12 && dz >= 0.0);
         let mut swept = Swept::default();
+        // Nothing stands above the block's top.
+        if a.z.min(b.z) >= self.top {
+            return swept;
+        }
         let nx = self.nx;
         let (cell, origin) = (self.cell, self.origin);
         let (ylo, yhi) = (pa.y.min(pb.y) - r, pa.y.max(pb.y) + r);
@@ -536,6 +578,16 @@ impl HeightField {
                 Some((h0, h1)) => [(i0, h0.min(i1 + 1)), ((h1 + 1).max(i0), i1 + 1)],
                 None => [(i0, i1 + 1), (0, 0)],
             };
+            // Going down, the cells within r of the end get its z: their travel interval
+            // reaches the end (`t_c + w ≥ L`).
+            let end_disc = if dz < 0.0 {
+                let w2 = r * r - (y - pb.y) * (y - pb.y);
+                (w2 >= 0.0)
+                    .then(|| self.columns(pb.x - w2.sqrt(), pb.x + w2.sqrt()))
+                    .flatten()
+            } else {
+                None
+            };
             let ay = y - pa.y;
             for (s0, s1) in ranges {
                 for i in s0..s1 {
@@ -543,6 +595,8 @@ impl HeightField {
                         a.z
                     } else if len <= 1e-12 {
                         a.z.min(b.z)
+                    } else if end_disc.is_some_and(|(e0, e1)| (e0..=e1).contains(&i)) {
+                        b.z
                     } else {
                         let x = origin.x + (i as f64 + 0.5) * cell;
                         let (wx, wy) = (x - pa.x, ay);
@@ -554,17 +608,8 @@ impl HeightField {
                         let t = if dz < 0.0 { t1 } else { t0 };
                         a.z + dz * t / len
                     };
-                    let k = j * nx + i;
-                    let old = f64::from(self.h[k]);
-                    if old > z {
-                        let cut = old - z;
-                        tally.volume += cut;
-                        if cut > tally.ztol {
-                            tally.touched[k / 64] |= 1 << (k % 64);
-                            swept.max_cut = swept.max_cut.max(cut);
-                        }
-                        self.h[k] = z as f32;
-                    }
+                    let cut = self.lower(j * nx + i, z, tally);
+                    swept.max_cut = swept.max_cut.max(cut);
                 }
             }
         }
