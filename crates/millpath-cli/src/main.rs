@@ -166,7 +166,9 @@ mod tests {
         // One shared flag name and meaning: a preset or a TOML profile (five-axis takes a
         // kinematic chain and is documented apart).
         let cmd = command();
-        for name in ["demo", "contour", "estimate", "pocket", "profile", "sweep", "drill"] {
+        for name in [
+            "demo", "contour", "estimate", "pocket", "profile", "sweep", "drill",
+        ] {
             let sub = cmd.find_subcommand(name).unwrap();
             assert!(
                 sub.get_arguments().any(|a| a.get_long() == Some("machine")),
