@@ -225,11 +225,16 @@ fn check_tabs(targets: &[ProfileTarget], res: &ProfileResult, r: f64) -> Result<
             .find(|c| c.target == tab.target)
             .map_or(r, |c| c.offset_used_mm);
         let line = tab_line(o, tab.s, tab.width, d, targets[tab.target].side);
+        // Nothing of a move is nearer the tab than its start less its length.
+        let reach = 0.5 * tab.width + d + r + 1.0;
         for (k, (from, m)) in tp.segments().enumerate() {
             if !m.is_feed() || (from.z >= tab.top_z - 1e-9 && m.to.z >= tab.top_z - 1e-9) {
                 continue;
             }
             let len = m.length_from(from);
+            if from.xy().distance(tab.at) - len > reach {
+                continue;
+            }
             let n = (len / 0.01).ceil().max(1.0) as usize;
             for j in 0..=n {
                 let q = m.point_at(from, len * j as f64 / n as f64);

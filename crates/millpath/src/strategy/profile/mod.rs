@@ -441,7 +441,8 @@ pub enum ProfileNote {
         /// Why.
         reason: &'static str,
     },
-    /// The helix entry did not fit beside the loop: ramp entry instead.
+    /// The helix entry did not fit beside the loop (or would take more than 1000 turns a
+    /// level): ramp entry instead.
     HelixToRamp {
         /// The target.
         target: usize,
@@ -490,7 +491,7 @@ impl std::fmt::Display for ProfileNote {
             }
             ProfileNote::HelixToRamp { target } => write!(
                 f,
-                "outline {}: no room for the helix beside the loop; ramp entry along the loop",
+                "outline {}: no room for the helix beside the loop (or over 1000 turns a level); ramp entry along the loop",
                 target + 1
             ),
             ProfileNote::SteepRamp { target, angle_deg } => write!(

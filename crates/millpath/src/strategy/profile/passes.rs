@@ -37,6 +37,9 @@ use std::f64::consts::PI;
 /// 26.6°): shallower than the 45° beyond which a flat end mill's way down is a plunge.
 pub const TAB_RAMP_RUN: f64 = 2.0;
 
+/// The most helix turns per level; beyond it the entry is a ramp.
+const MAX_HELIX_TURNS: f64 = 1000.0;
+
 /// A loop ready to cut: its elements from its start, its free side and its tabs' lifts.
 #[derive(Clone)]
 struct Cut {
@@ -391,6 +394,47 @@ fn at_z(m: &Move, z: f64) -> Move {
     m
 }
 
+/// True when the loops `cuts` (at offset `d`) keep the tool radius, with a quarter of a
+/// millimetre to spare for their sampling every 0.25 mm, from the tab's middle line (the
+/// drawn outline under it moved `d` to the free side) and from the line just beyond the
+/// slot, except over the tab's own lift and a millimetre either side.
+fn clear_of_own_path(tab: &Tab, drawn: &Loop, cuts: &[Cut], d: f64, r: f64) -> bool {
+    let (s, w) = (tab.placed.s, tab.placed.width);
+    let left = tab.free_normal.dot(drawn.tangent(s).perp()) > 0.0;
+    let n = ((w / 0.5).ceil() as usize).max(2);
+    // The middle line, and the line just beyond the slot's far wall: the material the tab
+    // joins there must stand too (a pass across a narrow channel can take it away).
+    let line: Vec<Point> = [d, d + r + 0.5]
+        .into_iter()
+        .flat_map(|off| {
+            (0..=n).map(move |k| {
+                let sk = s - 0.5 * w + w * k as f64 / n as f64;
+                let t = drawn.tangent(sk);
+                drawn.point(sk) + if left { t.perp() } else { -t.perp() } * off
+            })
+        })
+        .collect();
+    let mid = tab.placed.at + tab.free_normal * d;
+    cuts.iter().all(|cut| {
+        let (c, dist) = cut.lp.project(mid);
+        let skip = if dist <= 1e-6 * (1.0 + d) {
+            tab.half_lift(d) + 1.0
+        } else {
+            -1.0
+        };
+        let len = cut.lp.length;
+        let m = ((len / 0.25).ceil() as usize).max(1);
+        (0..m).all(|k| {
+            let sk = len * k as f64 / m as f64;
+            let off = ((sk - c + 0.5 * len).rem_euclid(len) - 0.5 * len).abs();
+            off <= skip || {
+                let q = cut.lp.point(sk);
+                line.iter().all(|p| p.distance(q) >= r + 0.25)
+            }
+        })
+    })
+}
+
 /// Plans every target.
 pub(super) fn generate(
     targets: &[ProfileTarget],
@@ -423,8 +467,8 @@ pub(super) fn generate(
         };
         let d_rough = d_fin + stock;
         let tab_top = opts.bottom_z() + opts.tabs.height;
-        let mut tab_note = None;
-        let tabs_here: Vec<Tab> = if opts.tabs.count == super::TabCount::None {
+        let mut asked_tabs = 0;
+        let mut tabs_here: Vec<Tab> = if opts.tabs.count == super::TabCount::None {
             Vec::new()
         } else if side == ProfileSide::On {
             notes.push(ProfileNote::NoTabs {
@@ -454,23 +498,17 @@ pub(super) fn generate(
                 let w = 0.5 * tab.placed.width;
                 walls.others(ti, tab.placed.at + tab.free_normal * d_fin) >= reach + w
             });
-            if v.len() < asked {
-                tab_note = Some(ProfileNote::FewerTabs {
-                    target: ti,
-                    asked,
-                    placed: v.len(),
-                });
-            }
+            asked_tabs = asked;
             v
         };
         let cw = clockwise(side, opts.direction);
         let left = free_left(side, cw);
-        let make = |d: f64| -> Vec<Cut> {
+        let make = |d: f64, tabs_here: &[Tab]| -> Vec<Cut> {
             offset_loops(&t.outline, side, d)
                 .into_iter()
                 .map(|l| {
                     let l = if cw { l.reversed() } else { l };
-                    let lifts = lifts_on(&l, &tabs_here, d);
+                    let lifts = lifts_on(&l, tabs_here, d);
                     let extra = if opts.tabs.shape == TabShape::Ramped {
                         TAB_RAMP_RUN * opts.tabs.height
                     } else {
@@ -478,12 +516,12 @@ pub(super) fn generate(
                     };
                     let s0 = start_of(&l, &lifts, extra);
                     let l = l.rotated(s0);
-                    let lifts = lifts_on(&l, &tabs_here, d);
+                    let lifts = lifts_on(&l, tabs_here, d);
                     Cut { lp: l, left, lifts }
                 })
                 .collect()
         };
-        let fin = make(d_fin);
+        let mut fin = make(d_fin, &tabs_here);
         if fin.is_empty() {
             notes.push(ProfileNote::NoRoom {
                 target: ti,
@@ -491,8 +529,8 @@ pub(super) fn generate(
             });
             continue;
         }
-        let rough = if stock > 0.0 {
-            make(d_rough)
+        let mut rough = if stock > 0.0 {
+            make(d_rough, &tabs_here)
         } else {
             fin.clone()
         };
@@ -503,7 +541,30 @@ pub(super) fn generate(
             });
             continue;
         }
-        notes.extend(tab_note);
+        // Not where the outline's own cut passes near elsewhere (across a narrow channel).
+        if !tabs_here.is_empty() {
+            let drawn = Loop::of_outline(&t.outline);
+            let n0 = tabs_here.len();
+            tabs_here.retain(|tab| {
+                clear_of_own_path(tab, &drawn, &fin, d_fin, r)
+                    && clear_of_own_path(tab, &drawn, &rough, d_rough, r)
+            });
+            if tabs_here.len() < n0 {
+                fin = make(d_fin, &tabs_here);
+                rough = if stock > 0.0 {
+                    make(d_rough, &tabs_here)
+                } else {
+                    fin.clone()
+                };
+            }
+        }
+        if tabs_here.len() < asked_tabs {
+            notes.push(ProfileNote::FewerTabs {
+                target: ti,
+                asked: asked_tabs,
+                placed: tabs_here.len(),
+            });
+        }
         if fin.len() > 1 {
             notes.push(ProfileNote::SplitLoops {
                 target: ti,
@@ -545,7 +606,10 @@ pub(super) fn generate(
                 // the two radii are equal).
                 helix_c = lead_entry + cut.lp.tangent(0.0) * opts.helix_radius;
                 let pts = circle(helix_c, opts.helix_radius);
-                if rl <= 0.0 || !walls.clear(own, d_rough - band, pts) {
+                // Turns per level, bounded (a ramp angle of 1e-7 rad asked for 10⁸).
+                let pitch = 2.0 * PI * opts.helix_radius * opts.ramp_angle.tan();
+                let turns = opts.step_down.min(opts.depth) / pitch;
+                if rl <= 0.0 || turns > MAX_HELIX_TURNS || !walls.clear(own, d_rough - band, pts) {
                     entry = ProfileEntry::Ramp;
                     if !entry_note {
                         entry_note = true;
