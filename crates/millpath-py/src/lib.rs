@@ -10,10 +10,13 @@
 //! r.toolpath.points # N × 3 numpy array
 //! d = millpath.drill("plate.dxf", tool_diameter=3, depth=5, peck=2)
 //! d.holes           # N × 3 numpy array: x, y, diameter of each hole cut
+//! j = millpath.job("part.toml")  # a whole part: face, pockets, holes, profile with tabs
+//! j.report["operations"]         # each operation's tool, cut, time and checks
 //! ```
 
 mod convert;
 mod curves;
+mod job;
 mod jobs;
 mod objects;
 mod profile;
@@ -47,10 +50,13 @@ fn _millpath(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::machines, m)?)?;
     m.add_function(wrap_pyfunction!(curves::contour, m)?)?;
     m.add_function(wrap_pyfunction!(profile::profile, m)?)?;
+    m.add_function(wrap_pyfunction!(job::job, m)?)?;
+    m.add_function(wrap_pyfunction!(job::job_init, m)?)?;
     m.add_function(wrap_pyfunction!(curves::verify, m)?)?;
     m.add_function(wrap_pyfunction!(curves::five_axis, m)?)?;
     m.add_class::<curves::ContourResult>()?;
     m.add_class::<profile::ProfileResult>()?;
+    m.add_class::<job::JobResult>()?;
     m.add_class::<curves::VerifyResult>()?;
     m.add_class::<objects::Toolpath>()?;
     m.add_class::<objects::PocketResult>()?;

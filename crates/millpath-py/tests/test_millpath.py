@@ -370,3 +370,48 @@ def test_missing_files_are_named():
                  lambda: millpath.pocket("missing.dxf")):
         with pytest.raises(millpath.InputError, match="missing|no/such"):
             call()
+
+
+JOB = """
+drawing = "{drawing}"
+machine = "hsm"
+[stock]
+thickness = 3.0
+[[tool]]
+number = 2
+diameter = 6.0
+feed = 1200
+spindle = 12000
+[[operation]]
+type = "profile"
+tool = 2
+select = "3"
+step_down = 3.0
+tabs = 2
+"""
+
+
+def test_job_equals_cli(tmp_path):
+    job = tmp_path / "part.toml"
+    job.write_text(JOB.format(drawing=T_PART))
+    ngc, rep = tmp_path / "cli.ngc", tmp_path / "cli.json"
+    cli("job", job, "-o", ngc, "--report", rep)
+    r = millpath.job(job)
+    assert r.gcode.encode() == ngc.read_bytes()
+    report = json.loads(rep.read_text())
+    assert r.report == report
+    assert r.cycle_time_s == report["cycle_time_s"] > 0
+    assert report["check"][-1] == ["verdict", "the drawn part, held by its tabs"]
+    assert len(r.toolpath.points) > 10
+    # The program the CLI wrote passes `verify --job`.
+    assert cli("verify", ngc, "--job", job).returncode == 0
+    with pytest.raises(millpath.InputError, match="unknown key = tabz"):
+        bad = tmp_path / "bad.toml"
+        bad.write_text(JOB.format(drawing=T_PART).replace("tabs = 2", "tabz = 2"))
+        millpath.job(bad)
+
+
+def test_job_init_equals_cli(tmp_path):
+    out = tmp_path / "t.toml"
+    cli("job", "--init", T_PART, "-o", out)
+    assert millpath.job_init(T_PART, out) == out.read_text()

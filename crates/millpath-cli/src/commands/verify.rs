@@ -22,14 +22,18 @@ pub struct Args {
     #[command(flatten)]
     pub files: super::ProgramFiles,
     /// The pocket outline (.json, .dxf, .svg or sample:aerospace).
-    #[arg(long)]
-    pub outline: String,
+    #[arg(long, required_unless_present = "job")]
+    pub outline: Option<String>,
+    /// Check the program against a job file instead (`millpath job`): the part it means to
+    /// make, cut section by section (one per tool) into one stock, held by its tabs.
+    #[arg(long, conflicts_with_all = ["outline", "tool_diameter", "select", "svg"])]
+    pub job: Option<PathBuf>,
     /// How a DXF or SVG drawing is read.
     #[command(flatten)]
     pub import: super::outline_input::ImportArgs,
     /// Tool diameter, mm.
-    #[arg(long)]
-    pub tool_diameter: f64,
+    #[arg(long, required_unless_present = "job")]
+    pub tool_diameter: Option<f64>,
     /// Wall stock the program must leave, mm.
     #[arg(long, default_value_t = 0.0)]
     pub wall_stock: f64,
@@ -65,8 +69,16 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
+    if let Some(job) = &args.job {
+        return run_job(args, job);
+    }
+    let (Some(outline), Some(tool_diameter)) = (&args.outline, args.tool_diameter) else {
+        return Err(InputError::new("outline and tool diameter", "missing")
+            .expected("--outline and --tool-diameter, or --job")
+            .into());
+    };
     let settings = VerifySettings {
-        tool_diameter: args.tool_diameter,
+        tool_diameter,
         wall_stock: args.wall_stock,
         stepover: args.stepover.clone(),
         cell: args.cell,
@@ -78,7 +90,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         dialect: args.dialect.clone(),
     };
     settings.check()?;
-    let loops = super::pocket::load_outline(&args.outline, &args.import)?;
+    let loops = super::pocket::load_outline(outline, &args.import)?;
     let text = super::read_text(&args.program)?;
     let job = millpath::job::verify::run(
         &loops,
@@ -109,7 +121,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
             &millpath::report::PreviewOptions::default().with_title(Some(format!(
                 "{} over {}",
                 args.program.display(),
-                args.outline
+                outline
             ))),
             args.per_level,
         )?;
@@ -139,6 +151,46 @@ pub fn run(args: &Args) -> Result<(), Error> {
             .expected(format!(
                 "a program that passes verification: {}",
                 stock::problems_text(problems)
+            ))
+            .into())
+    }
+}
+
+/// `--job`: the program against the part a job file means to make.
+fn run_job(args: &Args, job: &std::path::Path) -> Result<(), Error> {
+    let spec = millpath::job::part::read_file(job)?;
+    let text = super::read_text(&args.program)?;
+    let run = millpath::job::part::verify_program(
+        &spec,
+        &text,
+        &args.program.display().to_string(),
+        &args.dialect,
+    )?;
+    super::dialect_note(&run.dialect);
+    let problems = run.problems();
+    if let Some(path) = &args.report {
+        let text = serde_json::to_string_pretty(&run.json())
+            .map_err(|e| Error::internal(format!("report: {e}")))?;
+        millpath::io::write_atomic(path, text.as_bytes())?;
+    }
+    if args.json {
+        super::print_json(&run.json())?;
+    } else {
+        for (k, v) in run.check.rows() {
+            super::print(&format!("{k}: {v}"));
+        }
+    }
+    if problems.is_empty() {
+        if !args.json {
+            super::print("verification passed");
+        }
+        Ok(())
+    } else {
+        Err(InputError::new("program", args.program.display())
+            .expected(format!(
+                "a program that makes the part {} means: {}",
+                job.display(),
+                problems.join("; ")
             ))
             .into())
     }

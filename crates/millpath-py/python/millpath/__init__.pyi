@@ -69,6 +69,17 @@ class ProfileResult:
     toolpath: Toolpath
     notes: List[str]
 
+class JobResult:
+    gcode: str
+    """Byte for byte the file `millpath job FILE -o OUT` writes."""
+    cycle_time_s: float
+    """Of the written program on the machine, tool changes included, s."""
+    report: Dict[str, Any]
+    """The `--report` JSON: tools, operations (tool, cut, time, checks), the stock check."""
+    toolpath: Toolpath
+    """Every operation's toolpath joined."""
+    notes: List[str]
+
 class ContourResult:
     gcode: str
     cycle_time_s: float
@@ -310,6 +321,28 @@ def read_outline(
     drawing_units: Optional[str] = None,
 ) -> List[Pocket]:
     """The pockets of an outline file or sample, as `millpath pocket FILE --list` numbers them."""
+
+def job(
+    path: Union[str, "os.PathLike[str]"],
+    *,
+    dialect: Optional[str] = None,
+    machine: Optional[str] = None,
+) -> JobResult:
+    """A whole part from a job file (`millpath job FILE`); `dialect` and `machine` override
+    the file's."""
+
+def job_init(
+    drawing: Union[str, "os.PathLike[str]"],
+    output: Optional[Union[str, "os.PathLike[str]"]] = None,
+    *,
+    dialect: str = "linuxcnc",
+    machine: str = "hsm",
+    layer: Optional[str] = None,
+    join_tolerance: float = 0.01,
+    drawing_units: Optional[str] = None,
+) -> str:
+    """The starting job file `millpath job --init DRAWING -o OUTPUT` writes (nothing is
+    written: `output` only decides how the file names the drawing)."""
 
 def machines() -> List[Dict[str, Any]]:
     """The built-in machine presets (as `millpath machines --json`)."""

@@ -178,7 +178,9 @@ impl JobDesign {
                             outer: circle(&Hole::new(h.center, h.diameter))?,
                             islands: Vec::new(),
                             z: -spec.depth_mm(s.depth),
-                            reach_radius: 0.5 * h.diameter.max(tool.diameter),
+                            // A drill of the hole's size leaves nothing in it; taking half
+                            // its radius for the reach asks for the hole's disc less 2 cells.
+                            reach_radius: 0.25 * h.diameter,
                         });
                     }
                 }

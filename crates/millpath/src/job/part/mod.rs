@@ -27,6 +27,7 @@ mod report;
 mod run;
 pub mod spec;
 mod timing;
+mod verify;
 
 pub use check::{HoldCheck, JobCheck};
 pub use ops::OpResult;
@@ -36,6 +37,7 @@ pub use spec::{
     BoreSettings, Depth, DrillSettings, FaceSettings, JobOperation, JobSpec, JobTool,
     OperationKind, ProfileSettings, StockSettings, ToolKind, parse,
 };
+pub use verify::{JobVerifyRun, verify_program};
 
 use crate::Error;
 use crate::gcode::Dialect;
@@ -62,9 +64,7 @@ pub fn run_file(
     machine: Option<&str>,
     note: &mut dyn FnMut(String),
 ) -> Result<FileRun, Error> {
-    let text = crate::io::read_text(path)?;
-    let origin = path.display().to_string();
-    let mut spec = parse(&text, &origin, path.parent())?;
+    let mut spec = read_file(path)?;
     if let Some(d) = dialect {
         spec.dialect = d;
     }
@@ -72,6 +72,12 @@ pub fn run_file(
         spec.machine = m.to_owned();
     }
     run_spec(spec, note)
+}
+
+/// Reads the job file `path` (its drawing relative to its folder).
+pub fn read_file(path: &Path) -> Result<JobSpec, Error> {
+    let text = crate::io::read_text(path)?;
+    Ok(parse(&text, &path.display().to_string(), path.parent())?)
 }
 
 /// Runs a job already read.

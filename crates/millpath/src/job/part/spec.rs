@@ -620,9 +620,7 @@ fn operations(top: &Keys<'_, '_>, tools: &[JobTool]) -> Result<Vec<JobOperation>
             _ => unreachable_kind()?,
         };
         out.push(JobOperation {
-            name: k
-                .str("name")?
-                .unwrap_or_else(|| format!("{} {}", i + 1, kind.name())),
+            name: k.str("name")?.unwrap_or_else(|| kind.name().to_owned()),
             tool: tool_n,
             feed: feed_of(&k, "feed")?,
             plunge_feed: feed_of(&k, "plunge_feed")?,

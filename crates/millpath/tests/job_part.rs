@@ -1,0 +1,244 @@
+//! A whole part from a job file (`job::part`): a plate with a pocket, two drilled holes, a
+//! bored hole, faced and cut out with two tabs. Every dialect's program passes the job's own
+//! whole-stock check and `verify_program` (which reads the program back and shares nothing
+//! with the plan), is timed as `estimate` times it, and LinuxCNC's `rs274` reads it; programs
+//! with a section left out or cut too deep fail; the job file's mistakes are refused naming
+//! the key, the line and the file.
+
+mod rs274_common;
+
+use millpath::Error;
+use millpath::gcode::Dialect;
+use millpath::job::part::{self, JobSpec};
+use millpath::job::program_time;
+use std::path::Path;
+
+const PLATE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60">
+  <rect x="0" y="0" width="80" height="60" rx="4"/>
+  <rect x="10" y="10" width="30" height="25" rx="3"/>
+  <circle cx="60" cy="15" r="2"/>
+  <circle cx="60" cy="45" r="2"/>
+  <circle cx="25" cy="48" r="5"/>
+</svg>
+"#;
+
+const JOB: &str = r#"drawing = "plate.svg"
+machine = "hsm"
+
+[stock]
+margin = 10.0
+thickness = 4.0
+top = 0.3
+
+[[tool]]
+number = 1
+diameter = 6.0
+feed = 1200
+spindle = 12000
+
+[[tool]]
+number = 2
+type = "drill"
+diameter = 4.0
+feed = 300
+spindle = 6000
+
+[[operation]]
+type = "face"
+tool = 1
+
+[[operation]]
+type = "pocket"
+tool = 1
+depth = 2.0
+step_down = 2.0
+
+[[operation]]
+type = "bore"
+tool = 1
+min_diameter = 9
+
+[[operation]]
+type = "drill"
+tool = 2
+max_diameter = 5
+
+[[operation]]
+type = "profile"
+tool = 1
+step_down = 2.25
+tabs = 2
+"#;
+
+/// The job file (with `edit` applied to its text) in a folder beside the plate's drawing.
+fn spec(dir: &Path, edit: impl Fn(&str) -> String) -> Result<JobSpec, Error> {
+    std::fs::write(dir.join("plate.svg"), PLATE).unwrap();
+    let path = dir.join("plate.toml");
+    std::fs::write(&path, edit(JOB)).unwrap();
+    part::read_file(&path)
+}
+
+fn same(s: &str) -> String {
+    s.to_owned()
+}
+
+#[test]
+fn the_plate_is_made_in_every_dialect_and_verified_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    for dialect in [
+        Dialect::LinuxCnc,
+        Dialect::Fanuc,
+        Dialect::Sinumerik,
+        Dialect::Grbl,
+    ] {
+        let mut s = spec(dir.path(), same).unwrap();
+        s.dialect = dialect;
+        let run = part::run_spec(s.clone(), &mut |_| {}).unwrap();
+        let rep = &run.report;
+        assert_eq!(rep.operations.len(), 5);
+        assert_eq!(rep.features, [1, 1, 3], "{rep:?}");
+        assert_eq!(
+            rep.check.last().map(|(_, v)| v.as_str()),
+            Some("the drawn part, held by its tabs"),
+            "{dialect}: {:?}",
+            rep.check
+        );
+        assert!(
+            rep.check
+                .iter()
+                .any(|(k, v)| k.contains("outline 1 held") && v.starts_with("by 2 tab"))
+        );
+        // The per-operation times add up to the program's, which is what `estimate` reads.
+        let sum: f64 = rep.operations.iter().map(|o| o.time_s).sum();
+        assert!(
+            (sum - rep.cycle_time_s).abs() < 1e-6 * rep.cycle_time_s,
+            "{sum} vs {}",
+            rep.cycle_time_s
+        );
+        let t = program_time(&run.run.gcode, dialect, "plate", &run.run.machine).unwrap();
+        assert!(
+            (t - rep.cycle_time_s).abs() <= 1e-9 * t,
+            "{dialect}: {t} vs {}",
+            rep.cycle_time_s
+        );
+        // The written program, read back and checked against the job file alone.
+        let text = String::from_utf8(run.run.gcode.clone()).unwrap();
+        let v = part::verify_program(&s, &text, "plate.nc", "auto").unwrap();
+        assert_eq!(v.dialect.dialect, dialect);
+        assert!(v.problems().is_empty(), "{dialect}: {:?}", v.problems());
+        let tools: Vec<u32> = v.sections.iter().map(|(t, _)| *t).collect();
+        assert_eq!(tools, [1, 2, 1], "{dialect}");
+        if dialect == Dialect::LinuxCnc {
+            let canon = rs274_common::rs274(&text).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(canon.matches("CHANGE_TOOL").count(), 3, "{canon}");
+        }
+    }
+}
+
+/// A program missing its drilling, missing its profile, or with its pocket 0.2 mm too deep
+/// is not the part: `verify_program` says which region and how.
+#[test]
+fn programs_that_do_not_make_the_part_fail() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = spec(dir.path(), same).unwrap();
+    let run = part::run_spec(s.clone(), &mut |_| {}).unwrap();
+    let text = String::from_utf8(run.run.gcode).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let at: Vec<usize> = lines
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.starts_with("(operation"))
+        .map(|(i, _)| i)
+        .collect();
+    assert_eq!(at.len(), 5);
+    let without = |a: usize, b: usize| -> String {
+        let mut v: Vec<&str> = lines[..a].to_vec();
+        v.extend(&lines[b..]);
+        v.join("\n")
+    };
+    let check = |program: &str| {
+        part::verify_program(&s, program, "x.ngc", "linuxcnc")
+            .unwrap()
+            .problems()
+    };
+    let no_drill = check(&without(at[3], at[4]));
+    assert!(
+        no_drill.iter().any(|p| p.contains("uncut material")),
+        "{no_drill:?}"
+    );
+    let no_profile = check(&(without(at[4], lines.len()) + "\nM2\n"));
+    assert!(
+        no_profile
+            .iter()
+            .any(|p| p.contains("0 tab bridge(s) for 2 tab(s)")),
+        "{no_profile:?}"
+    );
+    let deep: Vec<String> = lines
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            if i > at[1] && i < at[2] {
+                l.split(' ')
+                    .map(|w| if w == "Z-2" { "Z-2.2" } else { w })
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            } else {
+                (*l).to_owned()
+            }
+        })
+        .collect();
+    let deep = check(&deep.join("\n"));
+    assert!(
+        deep.iter().any(|p| p.contains("below its floor")),
+        "{deep:?}"
+    );
+}
+
+fn message(e: &Error) -> String {
+    assert_eq!(e.exit_code(), 2, "{e}");
+    e.to_string()
+}
+
+/// The job file's mistakes are input errors naming the key, its line and the file.
+#[test]
+fn job_file_mistakes_name_the_key_line_and_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = message(&spec(dir.path(), |j| j.replace("tabs = 2", "tabz = 2")).unwrap_err());
+    assert!(
+        e.contains("unknown key = tabz") && e.contains("plate.toml line 46"),
+        "{e}"
+    );
+    let e =
+        message(&spec(dir.path(), |j| j.replace("tool = 2\nmax", "tool = 7\nmax")).unwrap_err());
+    assert!(e.contains("tool = 7") && e.contains("T1, T2"), "{e}");
+    let e =
+        message(&spec(dir.path(), |j| j.replace("diameter = 4.0", "diameter = -4")).unwrap_err());
+    assert!(e.contains("diameter = -4") && e.contains("line 18"), "{e}");
+    let e = message(
+        &spec(dir.path(), |j| {
+            j.replace("thickness = 4.0", "thickness = [4")
+        })
+        .unwrap_err(),
+    );
+    assert!(e.contains("plate.toml line"), "{e}");
+    // Read, but not doable: a drill with no hole in its range; material above the part's
+    // top and no facing first.
+    let s = spec(dir.path(), |j| {
+        j.replace("max_diameter = 5", "max_diameter = 3")
+    })
+    .unwrap();
+    let e = message(&part::run_spec(s, &mut |_| {}).unwrap_err());
+    assert!(
+        e.contains("line 37") && e.contains("drill") && e.contains("max_diameter 3"),
+        "{e}"
+    );
+    let s = spec(dir.path(), |j| {
+        j.replacen("[[operation]]\ntype = \"face\"\ntool = 1\n", "", 1)
+    })
+    .unwrap();
+    let e = message(&part::run_spec(s, &mut |_| {}).unwrap_err());
+    assert!(
+        e.contains("[stock] top") && e.contains("face operation first"),
+        "{e}"
+    );
+}
