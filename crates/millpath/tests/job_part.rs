@@ -5,82 +5,14 @@
 //! with a section left out or cut too deep fail; the job file's mistakes are refused naming
 //! the key, the line and the file.
 
+mod job_common;
 mod rs274_common;
 
+use job_common::{same, spec};
 use millpath::Error;
 use millpath::gcode::Dialect;
-use millpath::job::part::{self, JobSpec};
+use millpath::job::part;
 use millpath::job::program_time;
-use std::path::Path;
-
-const PLATE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="60mm" viewBox="0 0 80 60">
-  <rect x="0" y="0" width="80" height="60" rx="4"/>
-  <rect x="10" y="10" width="30" height="25" rx="3"/>
-  <circle cx="60" cy="15" r="2"/>
-  <circle cx="60" cy="45" r="2"/>
-  <circle cx="25" cy="48" r="5"/>
-</svg>
-"#;
-
-const JOB: &str = r#"drawing = "plate.svg"
-machine = "hsm"
-
-[stock]
-margin = 10.0
-thickness = 4.0
-top = 0.3
-
-[[tool]]
-number = 1
-diameter = 6.0
-feed = 1200
-spindle = 12000
-
-[[tool]]
-number = 2
-type = "drill"
-diameter = 4.0
-feed = 300
-spindle = 6000
-
-[[operation]]
-type = "face"
-tool = 1
-
-[[operation]]
-type = "pocket"
-tool = 1
-depth = 2.0
-step_down = 2.0
-
-[[operation]]
-type = "bore"
-tool = 1
-min_diameter = 9
-
-[[operation]]
-type = "drill"
-tool = 2
-max_diameter = 5
-
-[[operation]]
-type = "profile"
-tool = 1
-step_down = 2.25
-tabs = 2
-"#;
-
-/// The job file (with `edit` applied to its text) in a folder beside the plate's drawing.
-fn spec(dir: &Path, edit: impl Fn(&str) -> String) -> Result<JobSpec, Error> {
-    std::fs::write(dir.join("plate.svg"), PLATE).unwrap();
-    let path = dir.join("plate.toml");
-    std::fs::write(&path, edit(JOB)).unwrap();
-    part::read_file(&path)
-}
-
-fn same(s: &str) -> String {
-    s.to_owned()
-}
 
 #[test]
 fn the_plate_is_made_in_every_dialect_and_verified_apart() {

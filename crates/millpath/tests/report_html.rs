@@ -12,6 +12,8 @@ use millpath::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod job_common;
+
 /// A 40 × 30 mm rectangle cut on two levels, each entered by a helix.
 fn sample_job() -> (Toolpath, Vec<Outline>) {
     let outline = Outline::from_points(
@@ -301,4 +303,69 @@ fn report_works_in_headless_chromium() {
     if let Ok(keep) = std::env::var("MILLPATH_KEEP_SCREENSHOT") {
         std::fs::copy(&shot, keep).unwrap();
     }
+}
+
+/// The rows of the table with `id` in a DOM dump (its header row left out).
+fn table_rows(dom: &str, id: &str) -> Vec<String> {
+    let start = dom
+        .find(&format!("<table id=\"{id}\">"))
+        .unwrap_or_else(|| panic!("no table {id} in the page"));
+    let table = &dom[start..];
+    let table = &table[..table.find("</table>").expect("table closed")];
+    table
+        .split("<tr>")
+        .skip(2)
+        .map(|r| r.split("</tr>").next().unwrap_or("").to_owned())
+        .collect()
+}
+
+/// A job's report in a real browser: the setup sheet (the tools to load, the operations in
+/// order with their tools, what they cut, their times and verdicts) renders with the viewer of
+/// the whole job, and the page's self-test runs without errors.
+#[test]
+fn setup_sheet_renders_in_headless_chromium() {
+    let bin = chromium();
+    let dir = tempfile::tempdir().unwrap();
+    let spec = job_common::spec(dir.path(), job_common::same).unwrap();
+    let run = millpath::job::part::run_spec(spec, &mut |_| {}).unwrap();
+    let mut html = HtmlReport::new("plate job");
+    millpath::job::part::setup_sheet(&mut html, &run.report);
+    let plan = run.run.plan().unwrap();
+    html.toolpath_viewer(
+        "the whole job",
+        &run.run.toolpath(),
+        &run.run.model.parts,
+        &plan,
+    )
+    .unwrap();
+    let page = dir.path().join("job.html");
+    std::fs::write(&page, html.to_html()).unwrap();
+    let url = format!("file://{}#selftest", page.display());
+    let (dom, stderr) = run_chromium(&bin, &dir.path().join("p"), &["--dump-dom"], &url);
+    assert!(!stderr.contains("Uncaught"), "script error: {stderr}");
+    assert!(dom.contains("data-mp-errors=\"0\""), "page recorded errors");
+    assert!(dom.contains("<title>MP-SELFTEST-OK"), "self-test failed");
+    let ops = table_rows(&dom, "setup-operations");
+    assert_eq!(ops.len(), 5, "{ops:?}");
+    for (row, (kind, tool)) in ops.iter().zip([
+        ("face", "T1"),
+        ("pocket", "T1"),
+        ("bore", "T1"),
+        ("drill", "T2"),
+        ("profile", "T1"),
+    ]) {
+        assert!(
+            row.contains(&format!("<td>{kind}</td>")) && row.contains(&format!("<td>{tool}</td>")),
+            "{row}"
+        );
+    }
+    assert!(ops[4].contains("2 tab(s)"), "{}", ops[4]);
+    let tools = table_rows(&dom, "setup-tools");
+    assert_eq!(tools.len(), 2, "{tools:?}");
+    assert!(
+        tools[1].contains("drill") && tools[1].contains("4 mm"),
+        "{}",
+        tools[1]
+    );
+    assert!(dom.contains("the drawn part, held by its tabs"));
 }

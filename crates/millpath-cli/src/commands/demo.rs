@@ -8,7 +8,12 @@
 //!    on its aerospace pocket, one level, 6 values of C × 4 feeds, zigzag as reference
 //!    (28 toolpaths, about a second);
 //! 4. the adaptive-spiral paper's Table 2 (square against circle) with the `hsm` preset;
-//! 5. the five-axis paper's quarter circle: our minimum-time plan against the paper's method.
+//! 5. the five-axis paper's quarter circle: our minimum-time plan against the paper's method;
+//! 6. the sample part as a whole part: its drawing (`whole_part.dxf`: the plate, its six
+//!    pockets, four drilled and two bored holes), a job file made from it as `millpath job
+//!    --init` makes one (`whole_part.toml`), and the job: faced, pocketed, drilled, bored and
+//!    cut out with its tabs, with four tools in one program, verified as one job, its setup
+//!    sheet in the report.
 //!
 //! Every program it writes gets the planner's cycle time on the `--machine` (default `hsm`),
 //! and the motion plan is checked by the independent limit verifier.
@@ -92,6 +97,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     transition_sweep(&args.out, &machine, &mut html, &print)?;
     table_two(&args.out, &mut html, &print)?;
     rows.push(five_axis(&args.out, &mut html, &print)?);
+    rows.push(whole_part(&args.out, &args.machine, &mut html, &print)?);
     let mut summary = vec![super::html::machine_row(&machine)];
     summary.extend(rows.iter().map(|r| {
         (
@@ -127,6 +133,94 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }))?;
     }
     Ok(())
+}
+
+/// The sample part made whole: the drawing, a job file from it, the job (module docs, 6).
+fn whole_part(
+    out: &Path,
+    machine: &str,
+    html: &mut HtmlReport,
+    print: Say<'_>,
+) -> Result<Row, Error> {
+    use millpath::job::part;
+    let pb = spinner("whole part: face, pockets, holes, profile with tabs, four tools");
+    let drawing = out.join("whole_part.dxf");
+    millpath::io::write_atomic(
+        &drawing,
+        millpath::job::sample_part_job_drawing().as_bytes(),
+    )?;
+    let job_path = out.join("whole_part.toml");
+    let text = part::init_file(
+        &drawing,
+        &job_path,
+        &millpath::io::ImportSettings::default(),
+        Dialect::LinuxCnc,
+        machine,
+        &mut |_| {},
+    )?;
+    millpath::io::write_atomic(&job_path, text.as_bytes())?;
+    let run = part::run_file(&job_path, None, None, &mut |n| {
+        pb.println(format!("note: {n}"));
+    })?;
+    millpath::io::write_atomic(&out.join("whole_part.ngc"), &run.run.gcode)?;
+    let json = serde_json::to_string_pretty(&run.report)
+        .map_err(|e| Error::internal(format!("report serialisation: {e}")))?;
+    millpath::io::write_atomic(&out.join("whole_part.json"), json.as_bytes())?;
+    let tp = run.run.toolpath();
+    let plan = run.run.plan()?;
+    let model = &run.run.model;
+    let mut outlines: Vec<Outline> = model.parts.clone();
+    outlines.extend(model.pockets.iter().map(|p| p.outer.clone()));
+    for h in &model.holes {
+        outlines.push(part::hole_outline(h.center, h.diameter)?);
+    }
+    let rep = &run.report;
+    super::write_previews(
+        &out.join("whole_part.svg"),
+        &tp,
+        &outlines,
+        &PreviewOptions::default()
+            .with_title(Some(format!(
+                "sample part made whole: {} operations, {} tools, {:.0} s on {}",
+                rep.operations.len(),
+                rep.tools.len(),
+                rep.cycle_time_s,
+                rep.machine
+            )))
+            .with_achieved_feed(Some(plan.peak_feed_by_move(tp.moves.len()))),
+        false,
+    )?;
+    part::setup_sheet(html, rep);
+    html.toolpath_viewer(
+        "sample part made whole: every operation (colour: achieved feed)",
+        &tp,
+        &outlines,
+        &plan,
+    )?;
+    pb.finish_and_clear();
+    let verdict = rep.check.last().map_or(String::new(), |(_, v)| v.clone());
+    print(&format!(
+        "whole part: {} operations, {} tools, {:.1} s with the tool changes; {verdict}",
+        rep.operations.len(),
+        rep.tools.len(),
+        rep.cycle_time_s
+    ));
+    let blocks = String::from_utf8_lossy(&run.run.gcode)
+        .lines()
+        .filter(|l| {
+            l.starts_with('G') || l.starts_with('X') || l.starts_with('Y') || l.starts_with('Z')
+        })
+        .count();
+    Ok(Row {
+        what: format!(
+            "whole part, {} operations, {} tools",
+            rep.operations.len(),
+            rep.tools.len()
+        ),
+        cycle_s: rep.cycle_time_s,
+        blocks,
+        check: verdict,
+    })
 }
 
 /// Prints a progress line (nothing under `--json`).

@@ -138,6 +138,14 @@ pub fn init_file(
     Ok(text)
 }
 
+/// A hole's circle as an outline (two half arcs), for pictures.
+pub fn hole_outline(
+    center: crate::geom::Point,
+    diameter: f64,
+) -> Result<crate::geom::Outline, Error> {
+    design::circle(&crate::geom::Hole::new(center, diameter))
+}
+
 /// The built-in sample part's drawing name (`crate::job::sample_part_job_drawing`).
 pub const SAMPLE_PART: &str = "sample:part";
 
