@@ -1,0 +1,138 @@
+//! Real drawings (`../shared/real-inputs/files/`) on which pocketing once failed, each as
+//! small as the failure allows: what the sweep of every drawing × five tools × three
+//! strategies (`millpath-cli/tests/cli_real_files.rs`, `full_sweep`) found.
+//!
+//! * The region's offsets hold the whole eroded region (`pb_latch_test.dxf`, pocket 2:
+//!   cavalier_contours' shape offset returned loops of no area at two epsilons where a
+//!   37 mm arm ends, near 17.4 mm from the walls). The verifier is pointwise and shares
+//!   nothing with the offset: on a grid over the pocket, every point farther than
+//!   `d + 1 µm` from the walls (the outline's exact distance) must lie inside the offset's
+//!   loops, and every point nearer than `d − 1 µm` outside them.
+//! * The pockets below are generated and held to the stock simulation's verdict
+//!   (`Verification::problems`: no gouge beyond the written program's resolution, nothing
+//!   uncut the tool could reach), as `millpath verify` holds the written program.
+
+use millpath::geom::{Outline, Point};
+use millpath::io::ImportSettings;
+use millpath::strategy::pocket::{PocketOptions, PocketShape, StrategyKind, generate};
+use millpath::toolpath::Tool;
+
+/// Pocket `n` (1-based, largest first) of a real drawing in `../shared/real-inputs/files/`.
+fn real_pocket(name: &str, n: usize) -> PocketShape {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/real-inputs/files")
+        .join(name);
+    let (loops, _) =
+        millpath::job::load_outline(&path.display().to_string(), &ImportSettings::default())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let p = loops.pockets().into_iter().nth(n - 1).expect("the pocket");
+    PocketShape::new(p.outer, p.islands, name).expect("a valid pocket")
+}
+
+/// Inside the offset's loops: inside an outer (counter-clockwise) loop, outside every island.
+fn inside(loops: &[Outline], p: Point) -> bool {
+    let (outers, islands): (Vec<&Outline>, Vec<&Outline>) =
+        loops.iter().partition(|o| o.signed_area() > 0.0);
+    outers.iter().any(|o| o.contains(p)) && islands.iter().all(|o| !o.contains(p))
+}
+
+/// The grid points (spacing `step`) misplaced by the offset at `d`, and how many points were
+/// farther than `d + 1 µm` from the walls.
+fn misplaced(shape: &PocketShape, d: f64, step: f64) -> (Vec<Point>, usize) {
+    let loops = shape.offset_loops(d);
+    let b = shape.outer.bounds();
+    let (nx, ny) = (
+        ((b.max.x - b.min.x) / step) as usize,
+        ((b.max.y - b.min.y) / step) as usize,
+    );
+    let mut wrong = Vec::new();
+    let mut deep = 0;
+    for i in 0..=nx {
+        for j in 0..=ny {
+            let p = Point::new(b.min.x + step * i as f64, b.min.y + step * j as f64);
+            if !shape.contains(p) {
+                continue;
+            }
+            let w = shape.distance_to(p);
+            if w > d + 1e-3 {
+                deep += 1;
+                if !inside(&loops, p) {
+                    wrong.push(p);
+                }
+            } else if w < d - 1e-3 && inside(&loops, p) {
+                wrong.push(p);
+            }
+        }
+    }
+    (wrong, deep)
+}
+
+/// Pocket 2 of `pb_latch_test.dxf` at the offset strategy's loop distances for a 6 mm tool
+/// (3 + 2.4·k mm) and at the last ones before the region vanishes: every grid point is on
+/// the right side of the offset, and the points beyond 17.4 mm exist (the arm's end).
+#[test]
+fn pb_latch_offsets_hold_the_whole_eroded_region() {
+    let shape = real_pocket("pb_latch_test.dxf", 2);
+    let mut checked = 0;
+    for d in [3.0, 12.6, 15.0, 17.4, 19.8, 29.4, 38.5] {
+        let (wrong, deep) = misplaced(&shape, d, 1.0);
+        assert!(
+            wrong.is_empty(),
+            "offset {d} mm: {} grid points on the wrong side, e.g. {:?}",
+            wrong.len(),
+            &wrong[..wrong.len().min(3)]
+        );
+        if d == 17.4 {
+            assert!(deep > 2000, "17.4 mm: {deep} grid points beyond it");
+        }
+        checked += deep;
+    }
+    assert!(checked > 10_000, "{checked} points checked inside");
+}
+
+/// Generates every pocket of `name` with `kind` and a `diameter` mm tool, one level
+/// `min(3, diameter)` deep, every other option at its default, and asserts the verifier's
+/// verdict on each: no problem (gouge or uncut material), and the uncut area within the
+/// tolerance.
+fn assert_verified(name: &str, diameter: f64, kind: StrategyKind) {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/real-inputs/files")
+        .join(name);
+    let (loops, _) =
+        millpath::job::load_outline(&path.display().to_string(), &ImportSettings::default())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let tool = Tool::flat(diameter).expect("tool");
+    let depth = diameter.min(3.0);
+    let opts = PocketOptions::default()
+        .with_depth(depth)
+        .with_step_down(depth);
+    let sim = millpath::job::pocket::sim_options(None, diameter);
+    let pockets = loops.pockets();
+    assert!(!pockets.is_empty());
+    for (i, p) in pockets.into_iter().enumerate() {
+        let shape = PocketShape::new(p.outer, p.islands, name).expect("pocket");
+        let r = generate(kind, &shape, &tool, &opts, &sim)
+            .unwrap_or_else(|e| panic!("{name} pocket {} {kind:?}: {e}", i + 1));
+        let v = &r.verification;
+        assert!(
+            v.problems().is_empty(),
+            "{name} pocket {} {kind:?}: {:?} (clearance {} mm, needs {})",
+            i + 1,
+            v.problems(),
+            v.min_clearance_mm,
+            v.required_clearance_mm
+        );
+        assert!(v.uncut_area_mm2 <= v.uncut_tolerance_mm2);
+    }
+}
+
+/// `wro_Plate_2.DXF` with a 4.09 mm tool: a rectangular island's corner and a round island
+/// are exactly one tool diameter apart, so their loops in the tool-centre region touch at a
+/// point. The spiral moved the rectangle's loop 5 µm into the region (its last-loop margin),
+/// which ran 0.0048 mm into the round island's clearance over 0.4 mm, between the samples
+/// that checked it (0.5 mm apart): the program was written and `verify` refused it as a
+/// gouge. The moved loop must now cross none of the region's loops.
+#[test]
+fn wro_plate_2_spiral_keeps_clear_where_two_islands_loops_touch() {
+    assert_verified("wro_Plate_2.DXF", 4.09, StrategyKind::Spiral);
+}
