@@ -136,3 +136,24 @@ fn assert_verified(name: &str, diameter: f64, kind: StrategyKind) {
 fn wro_plate_2_spiral_keeps_clear_where_two_islands_loops_touch() {
     assert_verified("wro_Plate_2.DXF", 4.09, StrategyKind::Spiral);
 }
+
+/// `s2g_smooth_curves.svg` with a 0.9855 mm tool: cavalier_contours' shape offset of pocket
+/// 1 (ten islands) by the tool radius came back without the loop of one island, every loop
+/// it did return at the right distance; the zigzag's rows ran across that island and every
+/// strategy was refused as gouging (internal error, exit 1). The wall samples of
+/// `offset_check` now lie outside every accepted offset.
+#[test]
+fn smooth_curves_offset_keeps_every_islands_loop() {
+    let shape = real_pocket("s2g_smooth_curves.svg", 1);
+    let loops = shape.offset_loops(0.49275);
+    assert_eq!(loops.len(), 1 + shape.islands.len(), "one loop per wall");
+    let (wrong, deep) = misplaced(&shape, 0.49275, 0.25);
+    assert!(
+        wrong.is_empty(),
+        "{} grid points misplaced: {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(3)]
+    );
+    assert!(deep > 800, "{deep} grid points inside");
+    assert_verified("s2g_smooth_curves.svg", 0.9855, StrategyKind::Zigzag);
+}

@@ -17,8 +17,10 @@
 //! eroded region whose boundary touches the level set away from the medial axis has such a
 //! `q` near its boundary, so a missing part is found unless it is narrower than the probes'
 //! spacing and depth (`δ = max(|d|/100, 1 µm)`): a part the stock simulation would measure
-//! as at most a sliver. An outward offset (`d < 0`) holds the region itself: the probes are
-//! the wall samples, at distance `|d|` inside it.
+//! as at most a sliver. The wall samples themselves lie outside every inward offset: a
+//! result missing an island's loop holds them (checked for `d` above ten times `δ`). An
+//! outward offset (`d < 0`) holds the region itself: the probes are the wall samples, at
+//! distance `|d|` inside it.
 //!
 //! **Tolerances.** `δ` keeps the probes clear of the returned loops' own tolerance
 //! (1e-4 mm at most against `δ/2 ≥ 5e-4 mm` for offsets above 0.1 mm); below that the probes
@@ -35,40 +37,54 @@ pub const MAX_PROBES: usize = 20_000;
 /// Largest angle between two probes of a corner's fan, rad.
 const FAN_STEP: f64 = 0.5;
 
-/// The points every faithful offset by `d` of the region bounded by `walls` must contain (see
-/// the module docs); `dist` is the distance to the walls.
-pub fn must_cover(walls: &[&Polyline<f64>], d: f64, dist: impl Fn(Point) -> f64) -> Vec<Point> {
+/// The points every faithful offset by `d` of the region bounded by `walls` must contain, and
+/// those it must not (see the module docs); `dist` is the distance to the walls.
+pub fn probes(walls: &[&Polyline<f64>], d: f64, dist: impl Fn(Point) -> f64) -> Probes {
+    let mut out = Probes::default();
     if d == 0.0 || !d.is_finite() {
-        return Vec::new();
+        return out;
     }
     let length: f64 = walls.iter().map(|w| w.path_length()).sum();
     let spacing = (0.5 * d.abs()).max(length / MAX_PROBES as f64);
     if spacing <= 0.0 || !spacing.is_finite() {
-        return Vec::new();
+        return out;
     }
     let delta = (0.01 * d.abs()).max(1e-3);
-    let mut out = Vec::new();
     for wall in walls {
         for (w, n) in samples(wall, spacing) {
             if d < 0.0 {
-                out.push(w);
+                out.inside.push(w);
                 continue;
+            }
+            if d > 10.0 * delta {
+                out.outside.push(w);
             }
             let q = w + n * (d + delta);
             if dist(q) >= d + 0.5 * delta {
-                out.push(q);
+                out.inside.push(q);
             }
         }
     }
     out
 }
 
-/// The first of `points` that the region of counter-clockwise `outers` less clockwise
-/// `islands` does not contain, if any.
-pub fn first_uncovered(
+/// What [`probes`] found: points an offset must hold, and points it must not.
+#[derive(Debug, Clone, Default)]
+pub struct Probes {
+    /// Points farther than the offset distance from the walls (inward offsets), or on the
+    /// walls (outward ones).
+    pub inside: Vec<Point>,
+    /// Points on the walls, for inward offsets by more than ten times the probes' depth.
+    pub outside: Vec<Point>,
+}
+
+/// The first probe the region of counter-clockwise `outers` less clockwise `islands` has on
+/// the wrong side, if any: a point of `probes.inside` it does not contain, or one of
+/// `probes.outside` it does.
+pub fn first_misplaced(
     outers: &[Polyline<f64>],
     islands: &[Polyline<f64>],
-    points: &[Point],
+    probes: &Probes,
 ) -> Option<Point> {
     let (outers, islands) = (boxed(outers), boxed(islands));
     let inside = |loops: &[(&Polyline<f64>, [f64; 4])], p: Point| {
@@ -80,10 +96,13 @@ pub fn first_uncovered(
                 && pl.winding_number(Vector2::new(p.x, p.y)) != 0
         })
     };
-    points
+    let held = |p: Point| inside(&outers, p) && !inside(&islands, p);
+    probes
+        .inside
         .iter()
         .copied()
-        .find(|&p| !inside(&outers, p) || inside(&islands, p))
+        .find(|&p| !held(p))
+        .or_else(|| probes.outside.iter().copied().find(|&p| held(p)))
 }
 
 /// Each loop with its extents `[min x, min y, max x, max y]`.
@@ -182,23 +201,24 @@ mod tests {
         let wall = rect(0.0, 0.0, 40.0, 10.0);
         let walls = [&wall];
         let d = 3.0;
-        let must = must_cover(&walls, d, |p| brute_distance(&walls, p));
-        assert!(must.len() > 20, "{} probes", must.len());
-        for p in &must {
+        let must = probes(&walls, d, |p| brute_distance(&walls, p));
+        assert!(must.inside.len() > 20, "{} probes", must.inside.len());
+        for p in &must.inside {
             let depth = brute_distance(&walls, *p) - d;
             assert!(depth >= 0.5 * 0.03 - 1e-12, "{p:?} only {depth} inside");
         }
-        assert!(first_uncovered(&[], &[], &must).is_some());
+        assert!(first_misplaced(&[], &[], &must).is_some());
         let exact = rect(3.0, 3.0, 37.0, 7.0);
-        assert_eq!(first_uncovered(&[exact], &[], &must), None);
+        assert_eq!(first_misplaced(&[exact], &[], &must), None);
         let half = rect(3.0, 3.0, 20.0, 7.0);
-        let miss = first_uncovered(&[half], &[], &must).expect("the right half is missing");
+        let miss = first_misplaced(&[half], &[], &must).expect("the right half is missing");
         assert!(miss.x > 20.0);
     }
 
     /// An island's probes: outside the island grown by `d`, inside the outer loop eroded; a
     /// result with the grown island as a hole covers them (its corners cut by chords, inside
-    /// the true rounded ones), one with a larger hole across the probes does not.
+    /// the true rounded ones), one with a larger hole across the probes does not, and one
+    /// without the hole holds the island's walls.
     #[test]
     fn island_probes_lie_around_the_grown_island() {
         let outer = rect(0.0, 0.0, 60.0, 60.0);
@@ -206,10 +226,11 @@ mod tests {
         island.invert_direction_mut();
         let walls = [&outer, &island];
         let d = 4.0;
-        let must = must_cover(&walls, d, |p| brute_distance(&walls, p));
+        let must = probes(&walls, d, |p| brute_distance(&walls, p));
         // The right turns at the island's corners give fans: probes diagonal from a corner.
         assert!(
-            must.iter()
+            must.inside
+                .iter()
                 .any(|p| p.x > 35.0 + 2.0 && p.y > 35.0 + 2.0 && p.x < 40.0 && p.y < 40.0),
             "a probe in the corner's fan"
         );
@@ -229,10 +250,13 @@ mod tests {
             hole.add(x, y, 0.0);
         }
         hole.invert_direction_mut();
-        assert_eq!(first_uncovered(&[out.clone()], &[hole], &must), None);
+        assert_eq!(first_misplaced(&[out.clone()], &[hole], &must), None);
         let mut big_hole = rect(15.0, 15.0, 45.0, 45.0);
         big_hole.invert_direction_mut();
-        assert!(first_uncovered(&[out], &[big_hole], &must).is_some());
+        assert!(first_misplaced(&[out.clone()], &[big_hole], &must).is_some());
+        // Without the island's loop, the island's own wall lies inside the result.
+        let miss = first_misplaced(&[out], &[], &must).expect("the island's loop is missing");
+        assert!(brute_distance(&walls, miss) < 1e-9, "{miss:?} on a wall");
     }
 
     /// Arcs: a circle of radius 10 offset inward by 4; the probes lie at radius 6 − δ and the
@@ -243,14 +267,14 @@ mod tests {
         circle.add(10.0, 0.0, 1.0);
         circle.add(-10.0, 0.0, 1.0);
         let walls = [&circle];
-        let must = must_cover(&walls, 4.0, |p| brute_distance(&walls, p));
-        assert!(must.len() >= 8);
-        for p in &must {
+        let must = probes(&walls, 4.0, |p| brute_distance(&walls, p));
+        assert!(must.inside.len() >= 8);
+        for p in &must.inside {
             let r = (p.x * p.x + p.y * p.y).sqrt();
             assert!((r - (6.0 - 0.04)).abs() < 1e-9, "probe at radius {r}");
         }
-        let out = must_cover(&walls, -4.0, |p| brute_distance(&walls, p));
-        for p in &out {
+        let out = probes(&walls, -4.0, |p| brute_distance(&walls, p));
+        for p in &out.inside {
             assert!(((p.x * p.x + p.y * p.y).sqrt() - 10.0).abs() < 1e-9);
         }
     }

@@ -5,7 +5,7 @@
 //! `d = r + stock` and the islands outward by the same `d` (cavalier_contours' shape offset,
 //! exact arcs). Its loops are where the last pass runs.
 
-use super::offset_check::{first_uncovered, must_cover};
+use super::offset_check::{first_misplaced, probes};
 use crate::error::InputError;
 use crate::geom::{Outline, Point, Winding};
 use cavalier_contours::core::math::Vector2;
@@ -110,8 +110,9 @@ impl PocketShape {
     /// 1e-8 mm, then in two steps (erosion composes: `(X ⊖ B_a) ⊖ B_b = X ⊖ B_{a+b}`) at
     /// splits 1/2, 1/3 and 2/3, then at distances a hair larger (1 µm, 10 µm: never closer to
     /// the walls); the first faithful result is taken. Faithful also means complete: a result
-    /// must hold the points every offset by `d` holds (`offset_check`), or a region whose
-    /// loops all come back empty passes. If none is faithful, the largest result whose loops
+    /// must hold the points every offset by `d` holds and leave out the walls
+    /// (`offset_check`), or a region whose loops all come back empty, or one missing an
+    /// island's loop, passes. If none is faithful, the largest result whose loops
     /// lie at `d` stands (else the first), and the verification of the toolpath refuses what
     /// it would gouge or leave.
     pub(crate) fn offset(&self, d: f64) -> OffsetRegion {
@@ -136,8 +137,8 @@ impl PocketShape {
 /// islands) by `d` (inwards; negative: outwards), checked as [`PocketShape::offset`] says:
 /// cavalier_contours' shape offset with its default epsilons and with epsilons 1e-6 mm, the
 /// larger region of those that are faithful — all their loops lie at `|d|` from the walls,
-/// and they hold every point the offset must hold (`offset_check`: a result that misses a
-/// loop is smaller: on `c3df108e…` the default offset at the tool radius was empty where the
+/// they hold every point the offset must hold and none of the walls (`offset_check`: a
+/// result that misses a loop is smaller: on `c3df108e…` the default offset at the tool radius was empty where the
 /// finer one has 6.7 mm²; on `bc4af3dc…` each of the two misses a loop the other has at some
 /// distance; on a real drawing's pocket both returned loops of no area for the whole region
 /// at 17.4 mm); where neither is faithful, epsilons 1e-8 mm, two steps, a hair farther out.
@@ -162,9 +163,11 @@ pub fn checked_offset(walls: &[&Polyline<f64>], d: f64) -> OffsetRegion {
         reg.loops()
             .all(|l| loop_checkpoints(l).all(|p| (dist(p) - d.abs()).abs() <= OFFSET_TOLERANCE))
     };
-    // The points a faithful offset by `d` holds, found once (a hair farther out holds them too).
-    let must = must_cover(walls, d, dist);
-    let complete = |reg: &OffsetRegion| first_uncovered(&reg.outers, &reg.islands, &must).is_none();
+    // The points a faithful offset by `d` holds and those it does not, found once (a hair
+    // farther out places them alike).
+    let probes = probes(walls, d, dist);
+    let complete =
+        |reg: &OffsetRegion| first_misplaced(&reg.outers, &reg.islands, &probes).is_none();
     let mut partial: Option<OffsetRegion> = None;
     let mut faithful = |reg: &OffsetRegion, d: f64| {
         if !on_level(reg, d) {
