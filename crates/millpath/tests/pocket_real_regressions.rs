@@ -157,3 +157,59 @@ fn smooth_curves_offset_keeps_every_islands_loop() {
     assert!(deep > 800, "{deep} grid points inside");
     assert_verified("s2g_smooth_curves.svg", 0.9855, StrategyKind::Zigzag);
 }
+
+/// Every move that ends within 1 µm of its level's height ends exactly at it, so that the
+/// written program (3 decimals) has one depth per level: `wro_Braking_Arm.DXF` with a
+/// 0.2245 mm tool one tool deep had ramps ending a few ulps above `z = -0.2245` (written
+/// `Z-0.224`, the cuts `Z-0.225`), and `verify` found nine levels and 780 mm² uncut on the
+/// program `pocket` wrote; `s2g_shapes.svg` at 0.8355 mm likewise. Helix and ramp entries
+/// (`levels::emit_cut`, shared by every strategy), by zigzag and offset.
+#[test]
+fn entries_end_at_their_levels_height() {
+    for (name, diameter) in [("wro_Braking_Arm.DXF", 0.2245), ("s2g_shapes.svg", 0.8355)] {
+        let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../../../shared/real-inputs/files")
+            .join(name);
+        let (loops, _) =
+            millpath::job::load_outline(&path.display().to_string(), &ImportSettings::default())
+                .expect("drawing");
+        let tool = Tool::flat(diameter).expect("tool");
+        let mut checked = 0;
+        for entry in [
+            millpath::strategy::pocket::Entry::Helix {
+                radius: 2.5,
+                ramp_angle: 3f64.to_radians(),
+            },
+            millpath::strategy::pocket::Entry::Ramp {
+                ramp_angle: 3f64.to_radians(),
+            },
+        ] {
+            let opts = PocketOptions::default()
+                .with_depth(diameter)
+                .with_step_down(diameter)
+                .with_entry(entry);
+            for kind in [
+                StrategyKind::Zigzag,
+                StrategyKind::Offset,
+                StrategyKind::Spiral,
+            ] {
+                for p in loops.pockets() {
+                    let shape = PocketShape::new(p.outer, p.islands, name).expect("pocket");
+                    let Ok(tp) = millpath::strategy::pocket::toolpath(kind, &shape, &tool, &opts)
+                    else {
+                        continue;
+                    };
+                    for lv in &tp.levels {
+                        for m in &tp.moves[lv.start..lv.end] {
+                            if (m.to.z - lv.z).abs() < 1e-6 {
+                                assert_eq!(m.to.z, lv.z, "{name} {kind:?} {entry:?}: {m:?}");
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 1000, "{name}: {checked} moves at their level");
+    }
+}

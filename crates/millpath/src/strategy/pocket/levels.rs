@@ -224,7 +224,13 @@ fn emit_cut(
             }
             let turns = turns as usize;
             for k in 1..=turns {
-                let h = safe - (safe - z) * k as f64 / turns as f64;
+                // The last turn ends at the level's own height (`safe − (safe − z)` can differ
+                // from `z` in its last bit, and round to another written depth).
+                let h = if k == turns {
+                    z
+                } else {
+                    safe - (safe - z) * k as f64 / turns as f64
+                };
                 tp.push(Move::arc_xy(
                     Point3::from_xy(approach, h),
                     c(h),
@@ -274,7 +280,7 @@ fn emit_cut(
                     head.iter().rev().map(Seg::reversed).collect()
                 };
                 for s in &segs {
-                    h = (h - slope * s.length()).max(z);
+                    h = snap_to_level(h - slope * s.length(), z);
                     tp.push(seg_move(s, h, opts.plunge_feed));
                 }
             }
@@ -287,6 +293,19 @@ fn emit_cut(
         tp.push(seg_move(s, z, opts.feed));
     }
     Ok(())
+}
+
+/// The height `h` of a ramp descending to the level `z`: `z` itself once `h` is within
+/// `1e-9·(1 + |z|)` mm of it or below. The ramp's heights are sums of slopes times lengths,
+/// and one a few ulps above `z` was written at another depth than the level (`-0.224` and
+/// `-0.225` for `z = -0.2245`): the verifier then saw two levels, and the material between
+/// them uncut.
+pub fn snap_to_level(h: f64, z: f64) -> f64 {
+    if h - z <= 1e-9 * (1.0 + z.abs()) {
+        z
+    } else {
+        h
+    }
 }
 
 /// Where a helix about `center` of `radius` starts and ends: on the ray from the centre to the
