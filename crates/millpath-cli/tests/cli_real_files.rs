@@ -288,6 +288,8 @@ enum SweepOutcome {
     Refused(String),
     /// The drawing holds no closed outline (exit 2 at `--list`, saying what it read).
     NoOutline,
+    /// Exit 1, a refusal without a message or unconfirmed, or a program `verify` refuses.
+    Failed(String),
 }
 
 /// One run of the sweep: the drawing, the tool's index in [`SWEEP_FRACTIONS`], its diameter,
@@ -315,7 +317,8 @@ fn error_line(out: &str) -> String {
 }
 
 /// One drawing through the sweep: for each tool index in `ks` and each strategy, `pocket`
-/// with that tool (every other setting at its default; with `coarse`, the stock raster at
+/// with that tool, one level `min(3 mm, tool)` deep (within the default flute length of
+/// three diameters), every other setting at its default (with `coarse`, the stock raster at
 /// `tool / 40`, never finer than 0.05 mm) and then `verify` on the program it wrote. A
 /// refusal must be exit 2 with a message; one saying no pocket fits the tool is checked
 /// against the verifier's own reach map (`verify` of an empty program lists every pocket as
@@ -364,6 +367,7 @@ fn sweep_file(
             let ngc = work.join(format!("{stem}.{k}.{s}.ngc"));
             let ngc = ngc.to_str().expect("path");
             let started = std::time::Instant::now();
+            let depth = format!("{}", tool.min(3.0));
             let args = [
                 "pocket",
                 path,
@@ -371,6 +375,10 @@ fn sweep_file(
                 s,
                 "--tool-diameter",
                 &t,
+                "--depth",
+                &depth,
+                "--step-down",
+                &depth,
                 "-o",
                 ngc,
             ];
@@ -400,18 +408,18 @@ fn sweep_file(
                         work,
                     );
                     let vj = json(&v.stdout, "verify");
-                    if v.status.code() != Some(0) || vj["passed"] != true {
-                        return Err(format!("{what}: verify refuses the program: {}", text(&v)));
-                    }
                     let _ = std::fs::remove_file(ngc);
-                    SweepOutcome::Written
+                    if v.status.code() != Some(0) || vj["passed"] != true {
+                        SweepOutcome::Failed(format!("verify refuses the program: {}", text(&v)))
+                    } else {
+                        SweepOutcome::Written
+                    }
                 }
                 Some(2) => {
                     let line = error_line(&out);
                     if line.len() < "error: ".len() + 10 {
-                        return Err(format!("{what}: exit 2 without a message: {out}"));
-                    }
-                    if line.contains("fits inside the pocket") {
+                        SweepOutcome::Failed(format!("exit 2 without a message: {out}"))
+                    } else if line.contains("fits inside the pocket") {
                         // The verifier's reach map must agree: no pocket has a place for the tool.
                         let empty = work.join(format!("{stem}.{k}.{s}.empty.ngc"));
                         std::fs::write(&empty, "G21 G90\nM2\n").expect("empty program");
@@ -436,16 +444,27 @@ fn sweep_file(
                         let pockets = vj["pockets"].as_array().map_or(0, Vec::len);
                         let unreachable = vj["unreachable_pockets"].as_array().map_or(0, Vec::len);
                         if vj["passed"] != true || unreachable != pockets {
-                            return Err(format!(
-                                "{what}: refused as fitting no pocket, but the verifier finds \
+                            SweepOutcome::Failed(format!(
+                                "refused as fitting no pocket, but the verifier finds \
                                  {unreachable} of {pockets} pockets unreachable: {line}"
-                            ));
+                            ))
+                        } else {
+                            SweepOutcome::Refused(line)
                         }
+                    } else {
+                        SweepOutcome::Refused(line)
                     }
-                    SweepOutcome::Refused(line)
                 }
-                c => return Err(format!("{what}: pocket exit {c:?}: {out}")),
+                c => SweepOutcome::Failed(format!("pocket exit {c:?}: {out}")),
             };
+            if std::env::var_os("MILLPATH_SWEEP_PROGRESS").is_some() {
+                let o = format!("{outcome:?}");
+                eprintln!(
+                    "{what}: {} ({:.1} s)",
+                    &o[..o.len().min(400)],
+                    started.elapsed().as_secs_f64()
+                );
+            }
             rows.push(SweepRow {
                 file: name.into(),
                 k,
@@ -501,12 +520,18 @@ fn sweep(jobs: Vec<(String, Vec<usize>)>, coarse: bool) {
             Err(e) => failures.push(format!("{f}: {e}")),
         }
     }
+    for r in &rows {
+        if let SweepOutcome::Failed(e) = &r.outcome {
+            failures.push(format!("{} {} tool {} mm: {e}", r.file, r.strategy, r.tool));
+        }
+    }
     eprintln!("file | tool | strategy | outcome | s |");
     for r in &rows {
         let o = match &r.outcome {
             SweepOutcome::Written => "written, verified".to_string(),
             SweepOutcome::Refused(l) => format!("exit 2: {}", l.trim_start_matches("error: ")),
             SweepOutcome::NoOutline => "no closed outline (exit 2)".to_string(),
+            SweepOutcome::Failed(e) => format!("FAILED: {}", e.lines().next().unwrap_or("")),
         };
         eprintln!(
             "{} | {} mm (k {}) | {} | {} | {:.1} |",

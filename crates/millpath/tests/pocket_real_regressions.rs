@@ -163,7 +163,7 @@ fn smooth_curves_offset_keeps_every_islands_loop() {
 /// 0.2245 mm tool one tool deep had ramps ending a few ulps above `z = -0.2245` (written
 /// `Z-0.224`, the cuts `Z-0.225`), and `verify` found nine levels and 780 mm² uncut on the
 /// program `pocket` wrote; `s2g_shapes.svg` at 0.8355 mm likewise. Helix and ramp entries
-/// (`levels::emit_cut`, shared by every strategy), by zigzag and offset.
+/// (`levels::emit_cut`, shared by every strategy), by zigzag.
 #[test]
 fn entries_end_at_their_levels_height() {
     for (name, diameter) in [("wro_Braking_Arm.DXF", 0.2245), ("s2g_shapes.svg", 0.8355)] {
