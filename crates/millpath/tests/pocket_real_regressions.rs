@@ -213,3 +213,119 @@ fn entries_end_at_their_levels_height() {
         assert!(checked > 1000, "{name}: {checked} moves at their level");
     }
 }
+
+/// Every pocket of a drawing, in the drawing's order.
+fn all_pockets(name: &str) -> Vec<(usize, PocketShape)> {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/real-inputs/files")
+        .join(name);
+    let (loops, _) =
+        millpath::job::load_outline(&path.display().to_string(), &ImportSettings::default())
+            .expect("drawing");
+    loops
+        .pockets()
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            (
+                i + 1,
+                PocketShape::new(p.outer, p.islands, name).expect("pocket"),
+            )
+        })
+        .collect()
+}
+
+/// `pb_screw_plate.dxf` with a 0.7029 mm tool: pocket 2 (6.6 mm², five islands) is at most
+/// 0.299 mm from its walls (a 0.01 mm grid of exact distances), so no centre of the tool
+/// (radius 0.351) fits, and the offset strategy left it out; the verifier's reach map counted
+/// it reachable from its transform's bound (within 2 cells of fitting) and refused the
+/// program for 6.634 mm² uncut. Its exact search now agrees; it still finds room for the
+/// 0.2223 mm tool, and the part planned with it is verified.
+#[test]
+fn the_verifier_agrees_a_pocket_narrower_than_the_tool_is_out_of_reach() {
+    let pockets = all_pockets("pb_screw_plate.dxf");
+    let p2 = &pockets[1].1;
+    let spec = |wall_stock| millpath::stock::StockSpec {
+        outer: &p2.outer,
+        islands: &p2.islands,
+        wall_stock,
+    };
+    let b = p2.outer.bounds();
+    let mut widest: f64 = 0.0;
+    let step = 0.01;
+    for i in 0..=((b.max.x - b.min.x) / step) as usize {
+        for j in 0..=((b.max.y - b.min.y) / step) as usize {
+            let p = Point::new(b.min.x + step * i as f64, b.min.y + step * j as f64);
+            if p2.contains(p) {
+                widest = widest.max(p2.distance_to(p));
+            }
+        }
+    }
+    assert!((0.29..0.30).contains(&widest), "{widest}");
+    assert!(!millpath::stock::reachable(spec(0.0), 0.7029 / 2.0, 0.05));
+    assert!(millpath::stock::reachable(spec(0.0), 0.2223 / 2.0, 0.05));
+    // Within a grid step of the widest point: still room (the search is exact).
+    assert!(millpath::stock::reachable(spec(0.0), widest - step, 0.05));
+}
+
+/// `s2g_vanderbilt_logo.svg` with a 0.7482 mm tool by offset: pocket 1's region has a
+/// piece 0.03 mm long cut off from the rest, with no room to ramp into and no cleared
+/// material beside it. The part planner left the whole pocket out and wrote a program
+/// `verify` refused (80 mm² uncut); the pocket is reachable, so the part is refused as bad
+/// input naming the cut. `s2g_smooth_curves.svg` at 1.753 mm by zigzag: a row 0.04 mm long
+/// beside the clean-up pass far from that pass's segment ends; now entered from the nearest
+/// point of the pass, and every pocket is cut and verified.
+#[test]
+fn a_cut_only_a_plunge_reaches_refuses_the_part_and_one_beside_a_pass_is_entered() {
+    use millpath::strategy::pocket::{PartStrategy, generate_part};
+    let time = |tp: &millpath::toolpath::Toolpath| Ok(tp.cut_length());
+    let pockets = all_pockets("s2g_vanderbilt_logo.svg");
+    let tool = Tool::flat(0.7482).expect("tool");
+    let opts = PocketOptions::default()
+        .with_depth(0.7482)
+        .with_step_down(0.7482);
+    let sim = millpath::job::pocket::sim_options(None, 0.7482);
+    match generate_part(
+        &pockets,
+        PartStrategy::One(StrategyKind::Offset),
+        &tool,
+        &opts,
+        &sim,
+        &time,
+    ) {
+        Err(millpath::Error::Input(e)) => {
+            let m = e.to_string();
+            assert!(m.contains("only a plunge reaches"), "{m}");
+        }
+        other => panic!(
+            "expected a refusal: {:?}",
+            other.map(|p| p.verification.total.uncut_area_mm2)
+        ),
+    }
+    let pockets = all_pockets("s2g_smooth_curves.svg");
+    let tool = Tool::flat(1.753).expect("tool");
+    let opts = PocketOptions::default()
+        .with_depth(1.753)
+        .with_step_down(1.753);
+    let sim = millpath::job::pocket::sim_options(None, 1.753);
+    let part = generate_part(
+        &pockets,
+        PartStrategy::One(StrategyKind::Zigzag),
+        &tool,
+        &opts,
+        &sim,
+        &time,
+    )
+    .expect("planned");
+    assert!(part.pockets.iter().all(|p| p.skipped.is_none()));
+    let v = &part.verification;
+    assert!(v.total.problems().is_empty(), "{:?}", v.total.problems());
+    assert!(v.unreachable.is_empty());
+    for pv in &v.pockets {
+        assert!(
+            pv.uncut_area_mm2 <= pv.uncut_tolerance_mm2,
+            "{}",
+            pv.uncut_area_mm2
+        );
+    }
+}

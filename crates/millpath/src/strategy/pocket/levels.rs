@@ -132,8 +132,8 @@ pub fn assemble(
 }
 
 /// Replaces the ramp of every cut after the first by a direct entry over cleared material
-/// where one is at hand: `from` is the end point of a segment of an earlier cut of the same
-/// level (the tool disc there was swept at this depth, and the tool is a cylinder, so the
+/// where one is at hand: `from` is a point of a segment of an earlier cut of the same
+/// level (the nearest one, or an end) (the tool disc there was swept at this depth, and the tool is a cylinder, so the
 /// whole column above it is air: feeding down there is no plunge into material), at most
 /// `max_link` from the cut's start, joined to it by a straight feed move that crosses no loop
 /// of `region` (the tool-centre region: the move cannot gouge). A direct entry costs a feed
@@ -155,24 +155,36 @@ pub fn direct_entries(
         .partition(|c| !matches!(c.entry, CutEntry::Ramp) || path_length(&c.path) >= min_ramp_path);
     plan.cuts = long;
     plan.cuts.extend(short);
-    let mut cleared: Vec<Point> = Vec::new();
+    let mut cleared: Vec<Seg> = Vec::new();
     for cut in &mut plan.cuts {
         if let (CutEntry::Ramp, Some(first)) = (cut.entry, cut.path.first()) {
             let start = first.a;
-            let best = cleared
+            // Every point of an earlier cut's path was swept at this depth; the nearest
+            // first (a row grazing an island beside a long straight of the clean-up pass is
+            // far from that straight's ends), then the ends, the first whose link stays
+            // inside the region.
+            let mut candidates: Vec<(Point, f64)> = cleared
                 .iter()
-                .map(|&q| (q, q.distance(start)))
+                .flat_map(|sg| [sg.closest_point(start), sg.b])
+                .map(|q| (q, q.distance(start)))
                 .filter(|&(_, d)| d <= max_link)
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some((q, _)) = best
-                && !super::shape::crosses(region, q, start)
+                .collect();
+            candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some(&(q, _)) = candidates
+                .iter()
+                .take(MAX_ENTRY_CANDIDATES)
+                .find(|&&(q, _)| !super::shape::crosses(region, q, start))
             {
                 cut.entry = CutEntry::Direct { from: q };
             }
         }
-        cleared.extend(cut.path.iter().map(|sg| sg.b));
+        cleared.extend(cut.path.iter().copied());
     }
 }
+
+/// How many points of earlier cuts, nearest first, [`direct_entries`] tries as a direct
+/// entry's start before leaving a cut to its ramp.
+const MAX_ENTRY_CANDIDATES: usize = 16;
 
 /// Emits one cut with its entry (see the module docs).
 fn emit_cut(
@@ -265,9 +277,17 @@ fn emit_cut(
                 // µm long) has no room to ramp along, and no cleared point was at hand for a
                 // direct entry ([`direct_entries`]): entering it would take a plunge into
                 // material, which we never do.
-                return Err(InputError::new("pocket entry", format!("{:.4} mm of path", total))
-                    .at(format!("level at z = {z:.3}"))
-                    .expected("a cut long enough to ramp into (a smaller tool, or a pre-drilled entry)"));
+                return Err(
+                    InputError::new("pocket entry", format!("{:.4} mm of path", total))
+                        .at(format!(
+                            "the cut from ({:.3}, {:.3}), level at z = {z:.3}",
+                            first.a.x, first.a.y
+                        ))
+                        .expected(
+                            "a cut long enough to ramp into, or beside cleared material: only a \
+                         plunge reaches this one (a smaller tool, or a pre-drilled entry)",
+                        ),
+                );
             }
             let passes = passes as usize;
             let passes = passes + passes % 2; // end back at the start
@@ -372,24 +392,24 @@ mod tests {
         };
         let opts = PocketOptions::default().with_depth(4.0).with_step_down(4.0);
         let tool = Tool::flat(4.0).unwrap();
-        // The sliver first: it is moved after the big cut and entered from its nearest point.
+        // The sliver first: it is moved after the big cut and entered from the big cut's
+        // point nearest to it.
         let mut plan = LevelPlan {
             cuts: vec![sliver.clone(), big],
         };
         direct_entries(&mut plan, &square_region(), 12.0, min_ramp_path(&opts));
         assert_eq!(plan.cuts[0].entry, CutEntry::Ramp);
-        assert_eq!(
-            plan.cuts[1].entry,
-            CutEntry::Direct {
-                from: p(18.0, 18.0)
-            }
-        );
+        // The nearest point of the big cut's diagonal, (12.25, 12.25), not a segment's end.
+        let CutEntry::Direct { from } = plan.cuts[1].entry else {
+            panic!("{:?}", plan.cuts[1].entry);
+        };
+        assert!(from.distance(p(12.25, 12.25)) < 1e-12, "{from:?}");
         let tp = assemble(tool, &opts, &[plan], None).unwrap();
-        // No move steeper than 45° ends below the top except the feed down at (18, 18).
+        // No move steeper than 45° ends below the top except the feed down there.
         for (from, m) in tp.segments() {
             let dz = from.z - m.to.z;
             if m.is_feed() && m.to.z < 0.0 && dz > from.xy().distance(m.to.xy()) {
-                assert!(m.to.xy().distance(p(18.0, 18.0)) < 1e-12, "{m:?}");
+                assert!(m.to.xy().distance(p(12.25, 12.25)) < 1e-12, "{m:?}");
             }
         }
         // Alone, the sliver cannot be entered.
