@@ -329,3 +329,12 @@ fn a_cut_only_a_plunge_reaches_refuses_the_part_and_one_beside_a_pass_is_entered
         );
     }
 }
+
+/// `ma_Part.dxf` with a 5 mm tool by offset: an island's loop at one level touches its outer
+/// loop at the island loop's first vertex, whose winding number then said "outside"; the
+/// island's loop belonged to no node and was never cut (0.24 mm² left, an internal error).
+/// A loop's owner is now the region holding most of its points.
+#[test]
+fn ma_part_offset_cuts_an_islands_loop_touching_its_outer_loop() {
+    assert_verified("ma_Part.dxf", 5.0, StrategyKind::Offset);
+}
