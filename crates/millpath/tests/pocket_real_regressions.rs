@@ -91,7 +91,8 @@ fn pb_latch_offsets_hold_the_whole_eroded_region() {
 }
 
 /// Generates every pocket of `name` with `kind` and a `diameter` mm tool, one level
-/// `min(3, diameter)` deep, every other option at its default, and asserts the verifier's
+/// `min(3, diameter)` deep, every other option at its default (the stock raster at
+/// `diameter / 40`, at least 0.05 mm), and asserts the verifier's
 /// verdict on each: no problem (gouge or uncut material), and the uncut area within the
 /// tolerance.
 fn assert_verified(name: &str, diameter: f64, kind: StrategyKind) {
@@ -106,7 +107,9 @@ fn assert_verified(name: &str, diameter: f64, kind: StrategyKind) {
     let opts = PocketOptions::default()
         .with_depth(depth)
         .with_step_down(depth);
-    let sim = millpath::job::pocket::sim_options(None, diameter);
+    // The raster at a fortieth of the tool (twenty cells to the radius), never finer than
+    // the default 0.05 mm.
+    let sim = millpath::job::pocket::sim_options(Some((diameter / 40.0).max(0.05)), diameter);
     let pockets = loops.pockets();
     assert!(!pockets.is_empty());
     for (i, p) in pockets.into_iter().enumerate() {
