@@ -363,7 +363,7 @@ fn sweep_file(
     }
     let b = largest_bounds(&listed);
     let side = (b[2] - b[0]).abs().min((b[3] - b[1]).abs());
-    let stem = format!("{}", name.replace('.', "_"));
+    let stem = name.replace('.', "_");
     for &k in ks {
         let t = sig4(side * SWEEP_FRACTIONS[k]);
         let tool: f64 = t.parse().expect("tool");
@@ -497,11 +497,15 @@ fn reason(line: &str) -> String {
 /// Runs `jobs` (drawing, tool indices) over two threads and prints the table: every run, then
 /// per strategy the programs written and verified, the refusals by reason, the drawings
 /// without a closed outline, and the failures (exit 1, or a program `verify` refuses).
-fn sweep(jobs: Vec<(String, Vec<usize>)>, coarse: bool) {
+fn sweep(jobs: &[(String, Vec<usize>)], coarse: bool) {
     let work = std::env::temp_dir().join(format!("millpath-sweep-{}", std::process::id()));
     std::fs::create_dir_all(&work).expect("work dir");
     // In order: the drawings at building scale (`ez_…`), the longest runs, start first.
-    let queue = Mutex::new(std::collections::VecDeque::from(jobs.clone()));
+    let queue = Mutex::new(
+        jobs.iter()
+            .cloned()
+            .collect::<std::collections::VecDeque<_>>(),
+    );
     let results = Mutex::new(Vec::new());
     std::thread::scope(|sc| {
         for _ in 0..2 {
@@ -619,11 +623,11 @@ const SMALLEST_TOOL_FILES: &[&str] = &[
 #[test]
 #[ignore = "half an hour in release: run by name (see the doc)"]
 fn full_sweep() {
-    let jobs = real_files()
+    let jobs: Vec<(String, Vec<usize>)> = real_files()
         .into_iter()
         .map(|f| (f, (0..SWEEP_FRACTIONS.len()).collect()))
         .collect();
-    sweep(jobs, false);
+    sweep(&jobs, false);
 }
 
 /// The sweep bounded for the test command: the largest tool on every drawing and the
@@ -632,7 +636,7 @@ fn full_sweep() {
 #[test]
 #[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
 fn bounded_sweep() {
-    let jobs = real_files()
+    let jobs: Vec<(String, Vec<usize>)> = real_files()
         .into_iter()
         .map(|f| {
             let mut ks = vec![4];
@@ -642,7 +646,7 @@ fn bounded_sweep() {
             (f, ks)
         })
         .collect();
-    sweep(jobs, true);
+    sweep(&jobs, true);
 }
 
 /// The command: `pb_latch_test.dxf` with a 6 mm tool, 3 mm deep in one level, by

@@ -250,10 +250,13 @@ mod tests {
             hole.add(x, y, 0.0);
         }
         hole.invert_direction_mut();
-        assert_eq!(first_misplaced(&[out.clone()], &[hole], &must), None);
+        assert_eq!(
+            first_misplaced(std::slice::from_ref(&out), &[hole], &must),
+            None
+        );
         let mut big_hole = rect(15.0, 15.0, 45.0, 45.0);
         big_hole.invert_direction_mut();
-        assert!(first_misplaced(&[out.clone()], &[big_hole], &must).is_some());
+        assert!(first_misplaced(std::slice::from_ref(&out), &[big_hole], &must).is_some());
         // Without the island's loop, the island's own wall lies inside the result.
         let miss = first_misplaced(&[out], &[], &must).expect("the island's loop is missing");
         assert!(brute_distance(&walls, miss) < 1e-9, "{miss:?} on a wall");
