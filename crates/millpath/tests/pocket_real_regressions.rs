@@ -348,3 +348,14 @@ fn a_cut_only_a_plunge_reaches_refuses_the_part_and_one_beside_a_pass_is_entered
 fn ma_part_offset_cuts_an_islands_loop_touching_its_outer_loop() {
     assert_verified("ma_Part.dxf", 5.0, StrategyKind::Offset);
 }
+
+/// `ez_clockwise_arcs_hatch.dxf` (metres: 56 × 70 m, 2·10⁵–6·10⁵ mm from the origin) with
+/// a 4427 mm tool by spiral: the spiral's loops were sliced into arc pieces a few ulps long
+/// (1e-11 mm), and a move keeps only an arc's end and centre, so such a piece read back as a
+/// full circle of 2 m through the walls (an internal error, "within 0.0000 mm of a wall").
+/// Flatness is now judged by the piece's own sweep and slices drop pieces below 1e-12 of the
+/// loop's length.
+#[test]
+fn metre_scale_spiral_slices_become_no_full_circles() {
+    assert_verified("ez_clockwise_arcs_hatch.dxf", 4427.0, StrategyKind::Spiral);
+}

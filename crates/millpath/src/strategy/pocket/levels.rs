@@ -30,6 +30,7 @@ use super::shape::OffsetRegion;
 use crate::error::InputError;
 use crate::geom::{Point, Point3, Vec2};
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
+use std::f64::consts::TAU;
 
 /// How a cut is entered.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,12 +75,19 @@ pub fn level_depths(opts: &PocketOptions) -> Vec<f64> {
 }
 
 /// Emits `seg` at height `z` (a line for an arc flatter than [`ARC_AS_LINE_SAGITTA`]).
+///
+/// An arc is judged flat by its own sweep, `r·(1 − cos(θ/2))` at most [`ARC_AS_LINE_SAGITTA`]:
+/// a `Move` keeps only the arc's end and centre, and one whose ends lie a few ulps apart (a
+/// slice of a loop 2·10⁵ mm from the origin, 1e-11 mm long) reads back as a full circle.
 fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
     let to = Point3::from_xy(seg.b, z);
     match seg.arc {
-        None => Move::line(to, feed),
-        Some(arc) => Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed)
-            .line_if_flat(Point3::from_xy(seg.a, z), ARC_AS_LINE_SAGITTA),
+        Some(arc)
+            if arc.radius * (1.0 - (0.5 * arc.sweep.min(TAU)).cos()) > ARC_AS_LINE_SAGITTA =>
+        {
+            Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed)
+        }
+        _ => Move::line(to, feed),
     }
 }
 
@@ -219,7 +227,7 @@ fn emit_cut(
     match cut.entry {
         CutEntry::Helix { center, radius } => {
             let c = |h: f64| Point3::from_xy(center, h);
-            let per_turn = std::f64::consts::TAU * radius * ramp_angle.tan();
+            let per_turn = TAU * radius * ramp_angle.tan();
             let turns = ((safe - z) / per_turn).ceil().max(1.0);
             // Bounded like the ramp's passes: a helix of millions of turns (a safe height of
             // 1e300 mm, found by the `pocket` fuzzer, asked for 3.5 GB of moves) is no entry.
@@ -416,6 +424,40 @@ mod tests {
         let alone = LevelPlan { cuts: vec![sliver] };
         let e = assemble(tool, &opts, &[alone], None).unwrap_err();
         assert!(e.to_string().contains("entry"), "{e}");
+    }
+
+    /// An arc piece whose ends lie a few ulps apart is written as a line, not read back as
+    /// the full circle its end and centre alone describe; a true arc stays an arc.
+    #[test]
+    fn an_arc_piece_of_no_sweep_is_a_line() {
+        use super::super::segments::Arc;
+        let c = Point::new(-240_000.0, 600_000.0);
+        let a = c + Vec2::new(2000.0, 0.0);
+        let sweep = 5e-15;
+        let b = c + Vec2::from_angle(sweep) * 2000.0;
+        let tiny = Seg {
+            a,
+            b,
+            arc: Some(Arc {
+                center: c,
+                radius: 2000.0,
+                ccw: true,
+                sweep,
+            }),
+        };
+        let m = seg_move(&tiny, -3.0, 10.0);
+        assert!(matches!(m.kind, crate::toolpath::MoveKind::Line), "{m:?}");
+        assert!(m.length_from(Point3::from_xy(a, -3.0)) < 1e-9);
+        let quarter = Seg::from_bulge(
+            Point::new(10.0, 0.0),
+            Point::new(0.0, 10.0),
+            (0.25f64 * std::f64::consts::FRAC_PI_2).tan(),
+        );
+        let m = seg_move(&quarter, 0.0, 10.0);
+        assert!(
+            matches!(m.kind, crate::toolpath::MoveKind::Arc { .. }),
+            "{m:?}"
+        );
     }
 
     #[test]
