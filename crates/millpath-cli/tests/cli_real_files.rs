@@ -500,18 +500,14 @@ fn reason(line: &str) -> String {
 fn sweep(jobs: &[(String, Vec<usize>)], coarse: bool) {
     let work = std::env::temp_dir().join(format!("millpath-sweep-{}", std::process::id()));
     std::fs::create_dir_all(&work).expect("work dir");
-    // In order: the drawings at building scale (`ez_…`), the longest runs, start first.
-    let queue = Mutex::new(
-        jobs.iter()
-            .cloned()
-            .collect::<std::collections::VecDeque<_>>(),
-    );
+    // Last to first: the drawings at building scale (`ez_…`), the longest runs, come last.
+    let queue = Mutex::new(jobs.to_vec());
     let results = Mutex::new(Vec::new());
     std::thread::scope(|sc| {
         for _ in 0..2 {
             sc.spawn(|| {
                 loop {
-                    let Some((f, ks)) = queue.lock().expect("queue").pop_front() else {
+                    let Some((f, ks)) = queue.lock().expect("queue").pop() else {
                         break;
                     };
                     let r = sweep_file(&f, &ks, coarse, &work);

@@ -478,7 +478,7 @@ pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
 
 /// False only when no tool position of radius `r` can fit in the pocket: no point of the
 /// pocket lies `r + wall stock` from its walls, by the reach map on a raster of `cell`
-/// ([`ReachMap::fits`]: its distance transform bounds the cells to search, the exact
+/// (`ReachMap::fits`: its distance transform bounds the cells to search, the exact
 /// distance decides). A pocket narrower than the tool leaves no such position, and no program
 /// can cut it.
 pub fn reachable(spec: StockSpec<'_>, r: f64, cell: f64) -> bool {
