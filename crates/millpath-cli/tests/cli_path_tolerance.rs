@@ -45,40 +45,54 @@ const ZERO_TOLERANCE_MACHINE: &str = "name = \"exact\"\nunits = \"mm\"\nmax_feed
     max_jerk = \"unlimited\"\n[axes.z]\nmax_velocity = 500.0\nmax_acceleration = 2000.0\n\
     max_jerk = \"unlimited\"\n";
 
+/// The pocket program's path tolerance: `--tolerance` where given (0: exact stop), else the
+/// machine's where above 0, else 0.01 mm (a machine of tolerance 0 read by the LinuxCNC model
+/// as `G64` without `P`, exact stop at every corner, ran `sample:aerospace` 4× longer).
 #[test]
 fn pocket_programs_state_the_machines_path_tolerance() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("exact.toml"), ZERO_TOLERANCE_MACHINE).unwrap();
-    for (machine, line, corner) in [
-        ("hsm", "G64 P0.01", Corner::Blend(0.01)),
-        ("linuxcnc-sim", "G64 P0.0254", Corner::Blend(0.0254)),
-        ("exact.toml", "G61.1", Corner::ExactStop),
+    for (machine, tolerance, line, corner) in [
+        ("hsm", None, "G64 P0.01", Corner::Blend(0.01)),
+        ("linuxcnc-sim", None, "G64 P0.0254", Corner::Blend(0.0254)),
+        ("exact.toml", None, "G64 P0.01", Corner::Blend(0.01)),
+        ("exact.toml", Some("0"), "G61.1", Corner::ExactStop),
+        ("hsm", Some("0"), "G61.1", Corner::ExactStop),
+        ("hsm", Some("0.05"), "G64 P0.05", Corner::Blend(0.05)),
+        (
+            "linuxcnc-sim",
+            Some("0.002"),
+            "G64 P0.002",
+            Corner::Blend(0.002),
+        ),
     ] {
-        let rep = ok(&millpath(
-            &[
-                "pocket",
-                "sample:aerospace",
-                "--strategy",
-                "offset",
-                "--depth",
-                "5",
-                "--step-down",
-                "5",
-                "--machine",
-                machine,
-                "-o",
-                "p.ngc",
-                "--json",
-            ],
-            dir.path(),
-        ));
+        let mut args = vec![
+            "pocket",
+            "sample:aerospace",
+            "--strategy",
+            "offset",
+            "--depth",
+            "5",
+            "--step-down",
+            "5",
+            "--machine",
+            machine,
+            "-o",
+            "p.ngc",
+            "--json",
+        ];
+        if let Some(t) = tolerance {
+            args.extend(["--tolerance", t]);
+        }
+        let rep = ok(&millpath(&args, dir.path()));
         let text = std::fs::read_to_string(dir.path().join("p.ngc")).unwrap();
         assert!(
             header(&text).contains(&line),
             "{machine}: {line} in\n{text}"
         );
         corners_read_back(&text, corner);
-        rs274_common::rs274(&text).unwrap_or_else(|e| panic!("{machine}: rs274: {e}"));
+        rs274_common::rs274(&text)
+            .unwrap_or_else(|e| panic!("{machine} {tolerance:?}: rs274: {e}"));
         // The estimate of the program read back times it with that tolerance: the pocket's
         // own figure within the rounding of the written coordinates and feeds.
         let est = ok(&millpath(
@@ -93,6 +107,24 @@ fn pocket_programs_state_the_machines_path_tolerance() {
             (a - b).abs() <= 0.01 * a,
             "{machine}: pocket {a} s, estimate {b} s"
         );
+    }
+}
+
+/// A tolerance that is not a length ≥ 0 is refused before anything is read or written
+/// (exit 2, naming `--tolerance` and what it accepts).
+#[test]
+fn a_negative_or_unreadable_tolerance_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    for t in ["-0.01", "NaN", "inf"] {
+        let flag = format!("--tolerance={t}");
+        let o = millpath(
+            &["pocket", "sample:aerospace", &flag, "-o", "p.ngc"],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{t}");
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(e.contains("--tolerance") && e.contains("≥ 0"), "{t}: {e}");
+        assert!(!dir.path().join("p.ngc").exists());
     }
 }
 

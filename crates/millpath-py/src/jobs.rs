@@ -74,6 +74,7 @@ pub fn pocket(
     k.opt_f64("cell", &mut s.cell)?;
     k.opt_f64("draft", &mut s.draft)?;
     k.opt_text("bottom_outline", &mut s.bottom_outline)?;
+    k.opt_f64("tolerance", &mut s.tolerance)?;
     let program = k.program()?;
     k.finish()?;
     s.check_before_loading(&program).map_err(err)?;

@@ -40,6 +40,11 @@ pub struct Args {
     /// List the drawing's pockets (index, area, islands, bounds) and exit.
     #[arg(long)]
     pub list: bool,
+    /// The program's path tolerance, mm: how far the controller may round a corner (`G64 P`
+    /// on LinuxCNC); 0 asks for exact stop at every corner [default: the machine's where
+    /// above 0, else 0.01]
+    #[arg(long)]
+    pub tolerance: Option<f64>,
 }
 
 /// Options shared by `pocket` and `sweep`.
@@ -168,6 +173,7 @@ impl CommonArgs {
             cell: self.cell,
             draft: self.draft,
             bottom_outline: self.bottom_outline.clone(),
+            tolerance: None,
         }
     }
 
@@ -211,7 +217,8 @@ use millpath::job::{auto_line, pocket_line};
 
 /// Runs the command.
 pub fn run(args: &Args) -> Result<(), Error> {
-    let settings = args.common.settings();
+    let mut settings = args.common.settings();
+    settings.tolerance = args.tolerance;
     let program = args.program.settings();
     // The output flags are checked before the pocket is planned (exit 2 at once).
     settings.check_before_loading(&program)?;

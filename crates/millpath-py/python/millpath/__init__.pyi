@@ -137,6 +137,7 @@ def pocket(
     cell: Optional[float] = None,
     draft: Optional[float] = None,
     bottom_outline: Optional[PathLike] = None,
+    tolerance: Optional[float] = None,
     select: Union[None, str, int, Sequence[int]] = None,
     layer: Optional[str] = None,
     join_tolerance: float = 0.01,

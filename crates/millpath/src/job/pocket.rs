@@ -88,7 +88,15 @@ pub struct PocketSettings {
     pub draft: Option<f64>,
     /// Outline of the pocket's bottom (same vertex count and islands as the top).
     pub bottom_outline: Option<String>,
+    /// The program's path tolerance, mm (`--tolerance`): the largest deviation the
+    /// controller may blend corners by (`G64 P`), `0` for exact stop; `None`: the machine's
+    /// where above 0, else [`DEFAULT_PATH_TOLERANCE`] ([`PocketSettings::program_machine`]).
+    pub tolerance: Option<f64>,
 }
+
+/// The path tolerance of a pocket program for a machine whose own is 0 (exact stop at every
+/// corner, which the LinuxCNC model reads as `G64` without `P`), mm: the `hsm` preset's.
+pub const DEFAULT_PATH_TOLERANCE: f64 = 0.01;
 
 impl Default for PocketSettings {
     fn default() -> Self {
@@ -120,6 +128,7 @@ impl Default for PocketSettings {
             cell: None,
             draft: None,
             bottom_outline: None,
+            tolerance: None,
         }
     }
 }
@@ -277,8 +286,30 @@ impl PocketSettings {
     /// parsed): the strategy, the machine and the output settings.
     pub fn check_before_loading(&self, program: &ProgramSettings) -> Result<(), Error> {
         parse_choice(&self.strategy)?;
-        program_options("spiral", &super::load_machine(&self.machine)?, program)?;
+        let machine = self.program_machine(&super::load_machine(&self.machine)?)?;
+        program_options("spiral", &machine, program)?;
         Ok(())
+    }
+
+    /// `machine` with the program's path tolerance: [`PocketSettings::tolerance`] where
+    /// given (a length ≥ 0, `--tolerance`), else the machine's where above 0, else
+    /// [`DEFAULT_PATH_TOLERANCE`]. The program states it (`G64 P t`; exact stop for 0) and
+    /// its cycle time is planned with it.
+    pub fn program_machine(&self, machine: &Machine) -> Result<Machine, InputError> {
+        let t = match self.tolerance {
+            Some(t) if !(t.is_finite() && t >= 0.0) => {
+                return Err(InputError::new("path tolerance", t)
+                    .at("--tolerance")
+                    .expected("a path tolerance ≥ 0 mm (0: exact stop at every corner)"));
+            }
+            Some(t) => t,
+            None if machine.path_tolerance > 0.0 => machine.path_tolerance,
+            None => DEFAULT_PATH_TOLERANCE,
+        };
+        Ok(Machine {
+            path_tolerance: t,
+            ..machine.clone()
+        })
     }
 }
 
@@ -409,7 +440,7 @@ pub fn run(
     note: &mut dyn FnMut(String),
 ) -> Result<PocketRun, Error> {
     let choice = parse_choice(&settings.strategy)?;
-    let machine = super::load_machine(&settings.machine)?;
+    let machine = settings.program_machine(&super::load_machine(&settings.machine)?)?;
     program_options("spiral", &machine, program)?;
     let (tool, opts) = settings.options()?;
     let selected = parse_select(select, loops.len())?;

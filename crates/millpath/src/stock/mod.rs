@@ -75,7 +75,7 @@ pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
 pub use simulate::{
     DEFAULT_CELL, DEFAULT_STEP, DEFAULT_WINDOW, EngagementSample, MAX_CELL_RADII, MoveEngagement,
-    SimOptions, Simulation, simulate, simulate_levels,
+    SimOptions, Simulation, reachable, simulate, simulate_levels,
 };
 
 use crate::geom::Outline;

@@ -24,6 +24,12 @@
 //! alarm); a part of `R` thinner than a cell may hold no cell centre and go unseen, and the
 //! material within a cell of `R`'s edge counts from the cell centres inside it.
 //!
+//! **Whether the tool fits at all** ([`ReachMap::fits`]): yes with a reach cell; without one,
+//! every cell whose transform allows a point at `d` (`D̃ + 2c ≥ d`) is searched by branch and
+//! bound on the exact distance (1-Lipschitz: a square of half-side `h` about `p` holds no
+//! point farther than `D(p) + h·√2`), down to squares of `c/2^20`. A pocket then counts as out
+//! of the tool's reach only where the exact distance rules it out, not within a cell of it.
+//!
 //! Cost: two transforms over the raster, `O(cells)` each (`f32` distances: 4 bytes a cell),
 //! and an exact distance query per cell of the band.
 
@@ -42,8 +48,55 @@ pub struct ReachMap {
     ny: usize,
     /// Squared distance to the nearest reach cell, in cells².
     d2: Vec<f32>,
-    /// An upper bound on the largest distance from a point of the pocket to its walls, mm.
-    max_wall: f64,
+    /// Whether a tool centre fits somewhere ([`ReachMap::fits`]).
+    fits: bool,
+}
+
+/// Deepest subdivision of [`fits_near`]: squares of `c / 2^20`.
+const MAX_DEPTH: u32 = 20;
+
+/// True when the square of centre `p` and half-side `h` holds a point of the pocket at least
+/// `d` from the walls, by branch and bound on the exact distance `exact` (1-Lipschitz: no
+/// point of the square is farther than `exact(p) + h·√2`): found at `p`, ruled out by the
+/// bound (or, outside the pocket, by the disc of radius `exact(p)` about `p` holding no wall),
+/// else the four quarters. A square still undecided after [`MAX_DEPTH`] halvings counts as
+/// fitting (within `c / 2^20` of it).
+fn fits_near(
+    p: Point,
+    h: f64,
+    d: f64,
+    exact: &dyn Fn(Point) -> f64,
+    inside: &dyn Fn(Point) -> bool,
+    depth: u32,
+) -> bool {
+    let e = exact(p);
+    let reach = h * std::f64::consts::SQRT_2;
+    if e + reach < d {
+        return false;
+    }
+    let within = inside(p);
+    if within && e >= d {
+        return true;
+    }
+    if !within && reach <= e {
+        return false;
+    }
+    if depth >= MAX_DEPTH {
+        return true;
+    }
+    let q = 0.5 * h;
+    [(-q, -q), (q, -q), (-q, q), (q, q)]
+        .iter()
+        .any(|&(dx, dy)| {
+            fits_near(
+                Point::new(p.x + dx, p.y + dy),
+                q,
+                d,
+                exact,
+                inside,
+                depth + 1,
+            )
+        })
 }
 
 impl ReachMap {
@@ -95,6 +148,31 @@ impl ReachMap {
             .map(|k| f64::from(wall_d2[k]).sqrt() * c)
             .fold(0.0, f64::max)
             + 2.0 * c;
+        // Whether a tool centre fits: a reach cell says so; without one, the cells whose
+        // bound allows it are searched with the exact distance (`fits_near`).
+        let fits = reach.iter().any(|&b| b)
+            || (max_wall >= d && {
+                let inside = |p: Point| {
+                    walls
+                        .iter()
+                        .map(|w| {
+                            w.winding_number(cavalier_contours::core::math::Vector2::new(p.x, p.y))
+                        })
+                        .sum::<i32>()
+                        != 0
+                };
+                let exact = |p: Point| {
+                    indexed
+                        .iter()
+                        .map(|w| w.distance(p))
+                        .fold(f64::INFINITY, f64::min)
+                };
+                (0..nx * ny).any(|k| {
+                    let (i, j) = (k % nx, k / nx);
+                    f64::from(wall_d2[k]).sqrt() * c + 2.0 * c >= d
+                        && fits_near(pristine.centre(i, j), 0.5 * c, d, &exact, &inside, 0)
+                })
+            });
         drop(wall_d2);
         ReachMap {
             origin,
@@ -102,14 +180,15 @@ impl ReachMap {
             nx,
             ny,
             d2: edt(&reach, nx, ny),
-            max_wall,
+            fits,
         }
     }
 
-    /// An upper bound on the largest distance from a point of the pocket to its walls, mm: a
-    /// tool centre `d` from every wall fits somewhere only if this is at least `d`.
-    pub fn max_wall_distance(&self) -> f64 {
-        self.max_wall
+    /// True when some point of the pocket lies at least `d` from its walls (a tool centre
+    /// fits): a reach cell, or a point the exact search finds (`fits_near`). False only when
+    /// the exact distance's bound rules out every cell.
+    pub fn fits(&self) -> bool {
+        self.fits
     }
 
     /// Distance from `p` (a cell centre of the raster) to the nearest reach cell centre, mm;

@@ -476,11 +476,11 @@ pub(crate) fn same_spec(a: StockSpec<'_>, b: StockSpec<'_>) -> bool {
         && a.islands.iter().zip(b.islands).all(|(x, y)| eq(x, y))
 }
 
-/// False only when no tool position of radius `r` can fit in the pocket: the largest
-/// distance from a point of the pocket to its walls is below `r + wall stock`, by the reach
-/// map's own distance transform on a raster of `cell` ([`ReachMap::max_wall_distance`], an
-/// upper bound). A pocket narrower than the tool leaves no such position, and no program can
-/// cut it; one within a cell of fitting counts as reachable.
+/// False only when no tool position of radius `r` can fit in the pocket: no point of the
+/// pocket lies `r + wall stock` from its walls, by the reach map on a raster of `cell`
+/// (`ReachMap::fits`: its distance transform bounds the cells to search, the exact
+/// distance decides). A pocket narrower than the tool leaves no such position, and no program
+/// can cut it.
 pub fn reachable(spec: StockSpec<'_>, r: f64, cell: f64) -> bool {
     let loops: Vec<&Polyline<f64>> = std::iter::once(spec.outer.polyline())
         .chain(spec.islands.iter().map(|i| i.polyline()))
@@ -495,7 +495,7 @@ pub fn reachable(spec: StockSpec<'_>, r: f64, cell: f64) -> bool {
     let mut ras = Raster::new(spec.outer.bounds().inflate(cell), cell);
     ras.fill(&loops);
     let d = r + spec.wall_stock;
-    ReachMap::new(&ras, &loops, d).max_wall_distance() >= d
+    ReachMap::new(&ras, &loops, d).fits()
 }
 
 /// The densest cluster of uncut cells seen so far, over the slabs.

@@ -30,6 +30,7 @@ use super::shape::OffsetRegion;
 use crate::error::InputError;
 use crate::geom::{Point, Point3, Vec2};
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
+use std::f64::consts::TAU;
 
 /// How a cut is entered.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,12 +75,19 @@ pub fn level_depths(opts: &PocketOptions) -> Vec<f64> {
 }
 
 /// Emits `seg` at height `z` (a line for an arc flatter than [`ARC_AS_LINE_SAGITTA`]).
+///
+/// An arc is judged flat by its own sweep, `r·(1 − cos(θ/2))` at most [`ARC_AS_LINE_SAGITTA`]:
+/// a `Move` keeps only the arc's end and centre, and one whose ends lie a few ulps apart (a
+/// slice of a loop 2·10⁵ mm from the origin, 1e-11 mm long) reads back as a full circle.
 fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
     let to = Point3::from_xy(seg.b, z);
     match seg.arc {
-        None => Move::line(to, feed),
-        Some(arc) => Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed)
-            .line_if_flat(Point3::from_xy(seg.a, z), ARC_AS_LINE_SAGITTA),
+        Some(arc)
+            if arc.radius * (1.0 - (0.5 * arc.sweep.min(TAU)).cos()) > ARC_AS_LINE_SAGITTA =>
+        {
+            Move::arc_xy(to, Point3::from_xy(arc.center, z), arc.ccw, feed)
+        }
+        _ => Move::line(to, feed),
     }
 }
 
@@ -132,8 +140,8 @@ pub fn assemble(
 }
 
 /// Replaces the ramp of every cut after the first by a direct entry over cleared material
-/// where one is at hand: `from` is the end point of a segment of an earlier cut of the same
-/// level (the tool disc there was swept at this depth, and the tool is a cylinder, so the
+/// where one is at hand: `from` is a point of a segment of an earlier cut of the same
+/// level (the nearest one, or an end) (the tool disc there was swept at this depth, and the tool is a cylinder, so the
 /// whole column above it is air: feeding down there is no plunge into material), at most
 /// `max_link` from the cut's start, joined to it by a straight feed move that crosses no loop
 /// of `region` (the tool-centre region: the move cannot gouge). A direct entry costs a feed
@@ -155,24 +163,36 @@ pub fn direct_entries(
         .partition(|c| !matches!(c.entry, CutEntry::Ramp) || path_length(&c.path) >= min_ramp_path);
     plan.cuts = long;
     plan.cuts.extend(short);
-    let mut cleared: Vec<Point> = Vec::new();
+    let mut cleared: Vec<Seg> = Vec::new();
     for cut in &mut plan.cuts {
         if let (CutEntry::Ramp, Some(first)) = (cut.entry, cut.path.first()) {
             let start = first.a;
-            let best = cleared
+            // Every point of an earlier cut's path was swept at this depth; the nearest
+            // first (a row grazing an island beside a long straight of the clean-up pass is
+            // far from that straight's ends), then the ends, the first whose link stays
+            // inside the region.
+            let mut candidates: Vec<(Point, f64)> = cleared
                 .iter()
-                .map(|&q| (q, q.distance(start)))
+                .flat_map(|sg| [sg.closest_point(start), sg.b])
+                .map(|q| (q, q.distance(start)))
                 .filter(|&(_, d)| d <= max_link)
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some((q, _)) = best
-                && !super::shape::crosses(region, q, start)
+                .collect();
+            candidates.sort_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some(&(q, _)) = candidates
+                .iter()
+                .take(MAX_ENTRY_CANDIDATES)
+                .find(|&&(q, _)| !super::shape::crosses(region, q, start))
             {
                 cut.entry = CutEntry::Direct { from: q };
             }
         }
-        cleared.extend(cut.path.iter().map(|sg| sg.b));
+        cleared.extend(cut.path.iter().copied());
     }
 }
+
+/// How many points of earlier cuts, nearest first, [`direct_entries`] tries as a direct
+/// entry's start before leaving a cut to its ramp.
+const MAX_ENTRY_CANDIDATES: usize = 16;
 
 /// Emits one cut with its entry (see the module docs).
 fn emit_cut(
@@ -207,7 +227,7 @@ fn emit_cut(
     match cut.entry {
         CutEntry::Helix { center, radius } => {
             let c = |h: f64| Point3::from_xy(center, h);
-            let per_turn = std::f64::consts::TAU * radius * ramp_angle.tan();
+            let per_turn = TAU * radius * ramp_angle.tan();
             let turns = ((safe - z) / per_turn).ceil().max(1.0);
             // Bounded like the ramp's passes: a helix of millions of turns (a safe height of
             // 1e300 mm, found by the `pocket` fuzzer, asked for 3.5 GB of moves) is no entry.
@@ -224,7 +244,13 @@ fn emit_cut(
             }
             let turns = turns as usize;
             for k in 1..=turns {
-                let h = safe - (safe - z) * k as f64 / turns as f64;
+                // The last turn ends at the level's own height (`safe − (safe − z)` can differ
+                // from `z` in its last bit, and round to another written depth).
+                let h = if k == turns {
+                    z
+                } else {
+                    safe - (safe - z) * k as f64 / turns as f64
+                };
                 tp.push(Move::arc_xy(
                     Point3::from_xy(approach, h),
                     c(h),
@@ -259,9 +285,17 @@ fn emit_cut(
                 // µm long) has no room to ramp along, and no cleared point was at hand for a
                 // direct entry ([`direct_entries`]): entering it would take a plunge into
                 // material, which we never do.
-                return Err(InputError::new("pocket entry", format!("{:.4} mm of path", total))
-                    .at(format!("level at z = {z:.3}"))
-                    .expected("a cut long enough to ramp into (a smaller tool, or a pre-drilled entry)"));
+                return Err(
+                    InputError::new("pocket entry", format!("{:.4} mm of path", total))
+                        .at(format!(
+                            "the cut from ({:.3}, {:.3}), level at z = {z:.3}",
+                            first.a.x, first.a.y
+                        ))
+                        .expected(
+                            "a cut long enough to ramp into, or beside cleared material: only a \
+                         plunge reaches this one (a smaller tool, or a pre-drilled entry)",
+                        ),
+                );
             }
             let passes = passes as usize;
             let passes = passes + passes % 2; // end back at the start
@@ -274,7 +308,7 @@ fn emit_cut(
                     head.iter().rev().map(Seg::reversed).collect()
                 };
                 for s in &segs {
-                    h = (h - slope * s.length()).max(z);
+                    h = snap_to_level(h - slope * s.length(), z);
                     tp.push(seg_move(s, h, opts.plunge_feed));
                 }
             }
@@ -287,6 +321,19 @@ fn emit_cut(
         tp.push(seg_move(s, z, opts.feed));
     }
     Ok(())
+}
+
+/// The height `h` of a ramp descending to the level `z`: `z` itself once `h` is within
+/// `1e-9·(1 + |z|)` mm of it or below. The ramp's heights are sums of slopes times lengths,
+/// and one a few ulps above `z` was written at another depth than the level (`-0.224` and
+/// `-0.225` for `z = -0.2245`): the verifier then saw two levels, and the material between
+/// them uncut.
+pub fn snap_to_level(h: f64, z: f64) -> f64 {
+    if h - z <= 1e-9 * (1.0 + z.abs()) {
+        z
+    } else {
+        h
+    }
 }
 
 /// Where a helix about `center` of `radius` starts and ends: on the ray from the centre to the
@@ -353,30 +400,64 @@ mod tests {
         };
         let opts = PocketOptions::default().with_depth(4.0).with_step_down(4.0);
         let tool = Tool::flat(4.0).unwrap();
-        // The sliver first: it is moved after the big cut and entered from its nearest point.
+        // The sliver first: it is moved after the big cut and entered from the big cut's
+        // point nearest to it.
         let mut plan = LevelPlan {
             cuts: vec![sliver.clone(), big],
         };
         direct_entries(&mut plan, &square_region(), 12.0, min_ramp_path(&opts));
         assert_eq!(plan.cuts[0].entry, CutEntry::Ramp);
-        assert_eq!(
-            plan.cuts[1].entry,
-            CutEntry::Direct {
-                from: p(18.0, 18.0)
-            }
-        );
+        // The nearest point of the big cut's diagonal, (12.25, 12.25), not a segment's end.
+        let CutEntry::Direct { from } = plan.cuts[1].entry else {
+            panic!("{:?}", plan.cuts[1].entry);
+        };
+        assert!(from.distance(p(12.25, 12.25)) < 1e-12, "{from:?}");
         let tp = assemble(tool, &opts, &[plan], None).unwrap();
-        // No move steeper than 45° ends below the top except the feed down at (18, 18).
+        // No move steeper than 45° ends below the top except the feed down there.
         for (from, m) in tp.segments() {
             let dz = from.z - m.to.z;
             if m.is_feed() && m.to.z < 0.0 && dz > from.xy().distance(m.to.xy()) {
-                assert!(m.to.xy().distance(p(18.0, 18.0)) < 1e-12, "{m:?}");
+                assert!(m.to.xy().distance(p(12.25, 12.25)) < 1e-12, "{m:?}");
             }
         }
         // Alone, the sliver cannot be entered.
         let alone = LevelPlan { cuts: vec![sliver] };
         let e = assemble(tool, &opts, &[alone], None).unwrap_err();
         assert!(e.to_string().contains("entry"), "{e}");
+    }
+
+    /// An arc piece whose ends lie a few ulps apart is written as a line, not read back as
+    /// the full circle its end and centre alone describe; a true arc stays an arc.
+    #[test]
+    fn an_arc_piece_of_no_sweep_is_a_line() {
+        use super::super::segments::Arc;
+        let c = Point::new(-240_000.0, 600_000.0);
+        let a = c + Vec2::new(2000.0, 0.0);
+        let sweep = 5e-15;
+        let b = c + Vec2::from_angle(sweep) * 2000.0;
+        let tiny = Seg {
+            a,
+            b,
+            arc: Some(Arc {
+                center: c,
+                radius: 2000.0,
+                ccw: true,
+                sweep,
+            }),
+        };
+        let m = seg_move(&tiny, -3.0, 10.0);
+        assert!(matches!(m.kind, crate::toolpath::MoveKind::Line), "{m:?}");
+        assert!(m.length_from(Point3::from_xy(a, -3.0)) < 1e-9);
+        let quarter = Seg::from_bulge(
+            Point::new(10.0, 0.0),
+            Point::new(0.0, 10.0),
+            (0.25f64 * std::f64::consts::FRAC_PI_2).tan(),
+        );
+        let m = seg_move(&quarter, 0.0, 10.0);
+        assert!(
+            matches!(m.kind, crate::toolpath::MoveKind::Arc { .. }),
+            "{m:?}"
+        );
     }
 
     #[test]

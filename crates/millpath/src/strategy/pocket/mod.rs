@@ -59,6 +59,7 @@ pub(crate) mod gouge_retry;
 pub(crate) mod levels;
 pub(crate) mod loops;
 pub(crate) mod offset;
+pub(crate) mod offset_check;
 pub(crate) mod options;
 pub(crate) mod part;
 pub(crate) mod segments;

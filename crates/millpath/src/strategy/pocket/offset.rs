@@ -84,27 +84,43 @@ pub fn plan(
     }
     // The nesting tree: a node is an outer loop of a level with the island loops inside it;
     // its parent is the node of the level below that contains it.
+    // Ownership by the majority of a loop's points (vertices and segment midpoints): a loop
+    // may touch the one that holds it (an island's loop meeting its outer loop at a vertex),
+    // where one point's winding number says nothing.
     let mut nodes: Vec<Node> = Vec::new();
     for (k, level) in levels.iter().enumerate() {
+        let island_owner: Vec<Option<usize>> = level
+            .islands
+            .iter()
+            .map(|i| majority_owner(i, level.outers.iter().map(|o| (o, &[][..]))))
+            .collect();
+        // The nodes of the level below, with their islands.
+        let below: Vec<(usize, Vec<Polyline<f64>>)> = nodes
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| n.level + 1 == k)
+            .map(|(ni, n)| {
+                let isl = n
+                    .islands
+                    .iter()
+                    .map(|&ii| levels[n.level].islands[ii].clone());
+                (ni, isl.collect())
+            })
+            .collect();
         for (oi, outer) in level.outers.iter().enumerate() {
-            let islands: Vec<usize> = level
-                .islands
-                .iter()
-                .enumerate()
-                .filter(|(_, i)| i.vertex_count() > 0 && outer.winding_number(i.at(0).pos()) != 0)
-                .map(|(ii, _)| ii)
+            let islands: Vec<usize> = (0..level.islands.len())
+                .filter(|&ii| island_owner[ii] == Some(oi))
                 .collect();
-            let p = outer.at(0).pos();
             let parent = if k == 0 {
                 None
             } else {
-                nodes.iter().position(|n| {
-                    n.level + 1 == k
-                        && levels[n.level].outers[n.outer].winding_number(p) != 0
-                        && n.islands
-                            .iter()
-                            .all(|&ii| levels[n.level].islands[ii].winding_number(p) == 0)
-                })
+                majority_owner(
+                    outer,
+                    below.iter().map(|(ni, isl)| {
+                        (&levels[nodes[*ni].level].outers[nodes[*ni].outer], &isl[..])
+                    }),
+                )
+                .map(|j| below[j].0)
             };
             nodes.push(Node {
                 level: k,
@@ -139,6 +155,34 @@ pub fn plan(
         visit(root, &levels, &nodes, &mut em);
     }
     Ok(LevelPlan { cuts: em.cuts })
+}
+
+/// The index of the region (an outer loop less its islands) of `regions` holding most of
+/// the points of `lp` (its vertices and segment midpoints), if any holds one; ties go to the
+/// first.
+fn majority_owner<'a>(
+    lp: &Polyline<f64>,
+    regions: impl Iterator<Item = (&'a Polyline<f64>, &'a [Polyline<f64>])>,
+) -> Option<usize> {
+    let n = lp.vertex_count();
+    let pts: Vec<Vector2<f64>> = (0..n)
+        .flat_map(|i| {
+            let (a, b) = (lp.at(i), lp.at((i + 1) % n));
+            [a.pos(), cavalier_contours::polyline::seg_midpoint(a, b)]
+        })
+        .collect();
+    regions
+        .map(|(outer, islands)| {
+            pts.iter()
+                .filter(|&&p| {
+                    outer.winding_number(p) != 0 && islands.iter().all(|i| i.winding_number(p) == 0)
+                })
+                .count()
+        })
+        .enumerate()
+        .filter(|&(_, c)| c > 0)
+        .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)))
+        .map(|(i, _)| i)
 }
 
 /// An outer loop of one offset level and the island loops inside it.

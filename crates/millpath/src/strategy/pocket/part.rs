@@ -9,9 +9,11 @@
 //! by [`crate::stock::verify_part`], which finds from the geometry alone which moves cut
 //! which pocket (a single pocket's program is its toolpath, verified by `generate` already).
 //!
-//! A pocket a strategy refuses as bad input (narrower than the tool, say) is left out with
-//! a [`PartPocket::skipped`] reason, so the rest of the part is still cut; when every
-//! pocket is refused the first pocket's error is returned.
+//! A pocket a strategy refuses as bad input is left out with a [`PartPocket::skipped`]
+//! reason, so the rest of the part is still cut, when the verifier's reach map
+//! ([`stock::reachable`]) finds no place in it for the tool (narrower than the tool, say);
+//! otherwise the refusal is the part's (its program would leave material `verify` finds).
+//! When every pocket is refused the first pocket's error is returned.
 //!
 //! **Order.** The cost of going from pocket `i` to pocket `j` is the rapid from the end of
 //! `i`'s toolpath to the start of `j`'s (`d(e_i, s_j)`, not symmetric); the tour starts at the
@@ -111,7 +113,20 @@ pub fn generate_part(
                     auto: cands,
                 });
             }
-            Err(Error::Input(e)) if shapes.len() > 1 => {
+            // Left out only where the verifier's reach map finds no place for the tool: a
+            // pocket the tool could cut and the strategy refused is the whole part's refusal.
+            Err(Error::Input(e))
+                if shapes.len() > 1
+                    && !stock::reachable(
+                        StockSpec {
+                            outer: &shape.outer,
+                            islands: &shape.islands,
+                            wall_stock: if opts.finish { 0.0 } else { opts.wall_stock },
+                        },
+                        tool.radius(),
+                        sim.cell_for(tool),
+                    ) =>
+            {
                 skipped.push(PartPocket {
                     index: *index,
                     area_mm2: area,

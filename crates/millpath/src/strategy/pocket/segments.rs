@@ -110,6 +110,45 @@ impl Seg {
         }
     }
 
+    /// The point of the segment nearest to `p`: the foot of the perpendicular on a line, the
+    /// radial projection on an arc where it falls within the sweep; else the nearer end.
+    pub fn closest_point(&self, p: Point) -> Point {
+        let nearer_end = || {
+            if p.distance(self.a) <= p.distance(self.b) {
+                self.a
+            } else {
+                self.b
+            }
+        };
+        match self.arc {
+            None => {
+                let d = self.b - self.a;
+                let l2 = d.length_squared();
+                if l2 <= 0.0 {
+                    return self.a;
+                }
+                self.a
+                    .lerp(self.b, ((p - self.a).dot(d) / l2).clamp(0.0, 1.0))
+            }
+            Some(arc) => {
+                let Some(u) = (p - arc.center).normalize() else {
+                    return self.a;
+                };
+                let a0 = (self.a - arc.center).angle();
+                let turn = if arc.ccw {
+                    u.angle() - a0
+                } else {
+                    a0 - u.angle()
+                };
+                if turn.rem_euclid(std::f64::consts::TAU) <= arc.sweep {
+                    arc.center + u * arc.radius
+                } else {
+                    nearer_end()
+                }
+            }
+        }
+    }
+
     /// Unit tangent at arc length `t` (zero for a degenerate segment).
     pub fn tangent_at(&self, t: f64) -> Vec2 {
         match self.arc {
@@ -273,6 +312,42 @@ pub fn path_head(path: &[Seg], len: f64) -> Vec<Seg> {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    /// The closest point is the nearest of dense samples along lines and arcs (both
+    /// directions, sweeps beyond a half turn), within the samples' spacing.
+    #[test]
+    fn closest_point_matches_dense_samples() {
+        let segs = [
+            Seg::line(Point::new(-3.0, 1.0), Point::new(4.0, -2.0)),
+            Seg::from_bulge(Point::new(-5.0, 0.0), Point::new(5.0, 0.0), 1.0),
+            Seg::from_bulge(Point::new(-5.0, 0.0), Point::new(5.0, 0.0), -2.5),
+            Seg::from_bulge(Point::new(0.0, 3.0), Point::new(2.0, 1.0), 0.3).reversed(),
+        ];
+        let mut checked = 0;
+        for s in &segs {
+            let n = 20_000;
+            let dense: Vec<Point> = (0..=n)
+                .map(|k| s.point_at(s.length() * k as f64 / n as f64))
+                .collect();
+            for i in -8..=8 {
+                for j in -8..=8 {
+                    let p = Point::new(1.1 * i as f64, 0.9 * j as f64 + 0.05);
+                    let c = s.closest_point(p);
+                    let best = dense
+                        .iter()
+                        .map(|q| q.distance(p))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        (c.distance(p) - best).abs() < 2.0 * s.length() / n as f64,
+                        "{s:?} {p:?}: {c:?} at {} vs {best}",
+                        c.distance(p)
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 4 * 17 * 17);
+    }
 
     #[test]
     fn bulge_one_is_a_half_circle() {

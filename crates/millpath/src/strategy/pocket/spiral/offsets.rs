@@ -273,12 +273,19 @@ impl Emitter<'_> {
             let moved = last_loop(pl, self.margin);
             let idx = IndexedLoop::new(&moved);
             let sample = FAITHFUL_SAMPLE * self.scale;
+            // Inside the region: its samples, and no crossing of any of the region's loops
+            // (where two loops of the region touch, an island's loop moved in runs into the
+            // other's clearance over a stretch shorter than the samples' spacing).
             let faithful = samples(pl, sample)
                 .into_iter()
                 .all(|p| idx.distance(p) <= 2.0 * self.margin)
                 && samples(&moved, sample)
                     .into_iter()
-                    .all(|p| self.in_boundary(p));
+                    .all(|p| self.in_boundary(p))
+                && self.boundary.loops().all(|b| {
+                    let x = moved.find_intersects(b);
+                    x.basic_intersects.is_empty() && x.overlapping_intersects.is_empty()
+                });
             let b_eps = if self.ccw {
                 Ring::new(&moved)
             } else {

@@ -122,11 +122,14 @@ impl Ring {
         let mut left = len;
         let n = self.segs.len();
         let mut guard = 0;
-        while left > 1e-12 && guard <= 2 * n + 2 {
+        // Pieces shorter than this are rounding (1e-11 mm at 2·10⁵ mm from the origin), left
+        // out: the next piece starts where they end within it.
+        let tiny = 1e-12 * self.len.max(1.0);
+        while left > tiny && guard <= 2 * n + 2 {
             let g = &self.segs[i % n];
             let l = g.length();
             let take = (l - t).min(left);
-            if take > 1e-12 {
+            if take > tiny {
                 out.push(sub(g, t, t + take));
             }
             left -= take;
