@@ -15,9 +15,9 @@
 //!
 //! It reads only the toolpaths' moves and the job's design, never the strategies' results.
 
+use super::block::StockBlock;
 use super::design::{JobDesign, ProfiledOutline, TabsAsked};
 use super::model::PartModel;
-use super::run::StockBlock;
 use super::spec::{JobTool, ToolKind};
 use crate::Error;
 use crate::geom::Point3;

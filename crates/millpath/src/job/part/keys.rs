@@ -229,6 +229,16 @@ impl<'a, 'i> Keys<'a, 'i> {
             .map(Some)
     }
 
+    /// A fraction of the tool's diameter in (0, 1], if given.
+    pub(crate) fn fraction(&self, key: &str) -> Result<Option<f64>, InputError> {
+        match self.f64(key)? {
+            Some(x) if !(x > 0.0 && x <= 1.0) => Err(self
+                .error(key, x)
+                .expected("a fraction of the tool's diameter in (0, 1]")),
+            x => Ok(x),
+        }
+    }
+
     /// A sub-table, if given (`[stock]`).
     pub(crate) fn table(&self, key: &str) -> Result<Option<(&'a DeTable<'i>, usize)>, InputError> {
         let Some(v) = self.entry(key) else {

@@ -12,11 +12,13 @@
 //! A program is returned only when every operation passed its own verifier and the whole
 //! job passed the stock check: the drawn part left, held by exactly its tabs.
 
+mod block;
 mod check;
+mod context;
 mod design;
-pub mod init;
+mod init;
 mod keys;
-pub mod model;
+mod model;
 mod op_face;
 mod op_holes;
 mod op_pocket;
@@ -25,14 +27,17 @@ mod ops;
 mod pocket_keys;
 mod report;
 mod run;
-pub mod spec;
+mod spec;
 mod timing;
 mod verify;
 
+pub use block::{StockBlock, stock_block};
 pub use check::{HoldCheck, JobCheck};
-pub use ops::OpResult;
+pub use context::OpResult;
+pub use init::{DRILL_MAX, END_MILLS, end_mill_at_most};
+pub use model::{ModelHole, ModelPocket, PartModel};
 pub use report::{JobReport, OperationRow, ToolRow, report, setup_sheet};
-pub use run::{JobRun, OperationRun, StockBlock, run, stock_block};
+pub use run::{JobRun, OperationRun, run};
 pub use spec::{
     BoreSettings, Depth, DrillSettings, FaceSettings, JobOperation, JobSpec, JobTool,
     OperationKind, ProfileSettings, StockSettings, ToolKind, parse,
@@ -113,7 +118,7 @@ pub fn init_file(
         note(n);
     }
     let pockets = loops.pockets();
-    let model = model::PartModel::new(&pockets, &|o| {
+    let model = PartModel::new(&pockets, &|o| {
         crate::geom::Hole::from_outline(o, crate::geom::CIRCLE_TOLERANCE)
             .map(|h| (h.center, h.diameter))
     });

@@ -1,7 +1,7 @@
 //! A job's face operation: the stock's top rectangle cut down to the part's top (z = 0) with
 //! `strategy::face`; the whole job's stock check verifies it (the part's top as drawn).
 
-use super::ops::{OpContext, OpResult, end_mill};
+use super::context::{OpContext, OpResult, end_mill};
 use super::spec::{FaceSettings, JobOperation, JobTool};
 use crate::Error;
 use crate::error::InputError;

@@ -6,7 +6,7 @@
 //! A drilled hole "through" goes the stock's thickness, the breakthrough and the drill's
 //! point (0.3 of its diameter, a 118° point) deep, so that its full diameter runs through.
 
-use super::ops::{OpContext, OpResult};
+use super::context::{OpContext, OpResult};
 use super::spec::{BoreSettings, Depth, DrillSettings, JobOperation, JobTool};
 use crate::Error;
 use crate::error::InputError;
@@ -29,7 +29,7 @@ fn holes_in(cx: &OpContext<'_>, min: f64, max: f64) -> Vec<(usize, Hole)> {
 }
 
 fn tool_of(tool: &JobTool) -> Result<Tool, InputError> {
-    super::ops::end_mill(tool)
+    super::context::end_mill(tool)
 }
 
 fn none_in_range(min: f64, max: f64, what: &str) -> Error {

@@ -1,7 +1,7 @@
 //! A job's pocket operation: the selected pockets of the part model cut with the pocket
 //! strategies (`strategy::pocket::part`), verified by the pocket verifier.
 
-use super::ops::{OpContext, OpResult, end_mill};
+use super::context::{OpContext, OpResult, end_mill};
 use super::spec::{JobOperation, JobTool};
 use crate::Error;
 use crate::job::pocket::{Choice, PocketSettings, parse_choice, parse_select};

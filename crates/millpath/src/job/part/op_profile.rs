@@ -3,7 +3,7 @@
 //! the profile's own checks (the dense band against the drawn outline, the exact clearance,
 //! the tabs' middle lines) before the whole job's stock check reads the tabs' bridges.
 
-use super::ops::{OpContext, OpResult, end_mill};
+use super::context::{OpContext, OpResult, end_mill};
 use super::spec::{Depth, JobOperation, JobTool, ProfileSettings};
 use crate::Error;
 use crate::error::InputError;

@@ -2,7 +2,6 @@
 //! `-`), read into [`PocketSettings`]; the tool's diameter and feed come from the tool table.
 
 use super::keys::Keys;
-use super::spec::{JobTool, fraction};
 use crate::error::InputError;
 use crate::job::pocket::PocketSettings;
 
@@ -30,11 +29,19 @@ pub(crate) const KEYS: &[&str] = &[
     "cell",
 ];
 
+/// What a pocket operation takes from its tool: diameter and flute length (mm), feed (mm/s).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ToolSize {
+    pub(crate) diameter: f64,
+    pub(crate) flute_length: f64,
+    pub(crate) feed: f64,
+}
+
 /// Reads a pocket operation's settings (checked later by the pocket job, with these keys'
 /// names) and its `select`.
 pub(crate) fn read(
     k: &Keys<'_, '_>,
-    tool: &JobTool,
+    tool: ToolSize,
 ) -> Result<(PocketSettings, Option<String>), InputError> {
     let mut s = PocketSettings {
         tool_diameter: tool.diameter,
@@ -64,7 +71,7 @@ pub(crate) fn read(
     set(&mut s.floor_stock, k.non_negative("floor_stock", "mm")?);
     set(&mut s.helix_radius, k.positive("helix_radius", "mm")?);
     set(&mut s.ramp_angle, k.positive("ramp_angle", "degrees")?);
-    set(&mut s.slowdown, fraction(k, "slowdown")?);
+    set(&mut s.slowdown, k.fraction("slowdown")?);
     set(&mut s.angle, k.f64("angle")?);
     set(&mut s.min_radius, k.non_negative("min_radius", "mm")?);
     s.transition = k.f64("transition")?;

@@ -2,27 +2,18 @@
 //! verified by its own verifier, the whole stock simulated operation after operation, one
 //! program written with the tool changes, and its cycle time read back from that program.
 
+use super::block::{StockBlock, stock_block};
+use super::context::{OpContext, OpResult};
 use super::model::PartModel;
-use super::ops::{self, OpContext, OpResult};
+use super::ops;
 use super::spec::{JobSpec, JobTool, OperationKind};
 use crate::Error;
 use crate::error::InputError;
 use crate::gcode::{ProgramSection, WriterOptions, write_sections};
-use crate::geom::{Aabb, Hole, Point};
+use crate::geom::Hole;
 use crate::io::outline_json::Loops;
 use crate::machine::Machine;
 use crate::toolpath::Toolpath;
-
-/// The stock block, as the job places it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StockBlock {
-    /// Its extent in XY, mm.
-    pub bounds: Aabb,
-    /// Its bottom, mm (`-thickness`).
-    pub bottom: f64,
-    /// Its top, mm (the material above the part's top, z = 0).
-    pub top: f64,
-}
 
 /// One operation as planned.
 #[derive(Debug, Clone)]
@@ -57,51 +48,6 @@ pub struct JobRun {
     pub stock: StockBlock,
     /// The whole job's check on the stock simulation.
     pub check: super::check::JobCheck,
-}
-
-/// The stock block of `spec` around `model`.
-pub fn stock_block(spec: &JobSpec, model: &PartModel) -> Result<StockBlock, InputError> {
-    let s = &spec.stock;
-    let extents = model.bounds().ok_or_else(|| {
-        InputError::new("parts", 0)
-            .at(spec.drawing.clone())
-            .expected("a drawing with at least one closed outline")
-    })?;
-    let size = s.size.unwrap_or([
-        extents.width() + 2.0 * s.margin,
-        extents.height() + 2.0 * s.margin,
-    ]);
-    let origin = s.origin.unwrap_or_else(|| {
-        let c = extents.center();
-        [c.x - 0.5 * size[0], c.y - 0.5 * size[1]]
-    });
-    let bounds = Aabb::from_points([
-        Point::new(origin[0], origin[1]),
-        Point::new(origin[0] + size[0], origin[1] + size[1]),
-    ]);
-    if !(bounds.min.x <= extents.min.x
-        && bounds.min.y <= extents.min.y
-        && bounds.max.x >= extents.max.x
-        && bounds.max.y >= extents.max.y)
-    {
-        return Err(InputError::new(
-            "stock",
-            format_args!(
-                "{:.3} × {:.3} mm from ({:.3}, {:.3})",
-                size[0], size[1], origin[0], origin[1]
-            ),
-        )
-        .at(format!("{} [stock]", spec.origin))
-        .expected(format!(
-            "a block around the drawing's parts, ({:.3}, {:.3}) to ({:.3}, {:.3})",
-            extents.min.x, extents.min.y, extents.max.x, extents.max.y
-        )));
-    }
-    Ok(StockBlock {
-        bounds,
-        bottom: -s.thickness,
-        top: s.top,
-    })
 }
 
 /// Runs `spec` on the drawing's outlines `loops`; `note` receives what the user should know

@@ -569,10 +569,17 @@ fn operations(top: &Keys<'_, '_>, tools: &[JobTool]) -> Result<Vec<JobOperation>
         let kind = match kind.as_str() {
             "face" => OperationKind::Face(FaceSettings {
                 step_down: k.positive("step_down", "mm")?,
-                stepover: fraction(&k, "stepover")?.unwrap_or(0.7),
+                stepover: k.fraction("stepover")?.unwrap_or(0.7),
             }),
             "pocket" => {
-                let (s, select) = super::pocket_keys::read(&k, tool)?;
+                let (s, select) = super::pocket_keys::read(
+                    &k,
+                    super::pocket_keys::ToolSize {
+                        diameter: tool.diameter,
+                        flute_length: tool.flute_length,
+                        feed: tool.feed,
+                    },
+                )?;
                 OperationKind::Pocket(Box::new(s), select)
             }
             "profile" => OperationKind::Profile(ProfileSettings {
@@ -634,14 +641,4 @@ fn operations(top: &Keys<'_, '_>, tools: &[JobTool]) -> Result<Vec<JobOperation>
 fn unreachable_kind() -> Result<OperationKind, InputError> {
     Err(InputError::new("operation type", "unknown")
         .expected("face, pocket, profile, drill or bore"))
-}
-
-/// A fraction in (0, 1], if given.
-pub(crate) fn fraction(k: &Keys<'_, '_>, key: &str) -> Result<Option<f64>, InputError> {
-    match k.f64(key)? {
-        Some(x) if !(x > 0.0 && x <= 1.0) => Err(k
-            .error(key, x)
-            .expected("a fraction of the tool's diameter in (0, 1]")),
-        x => Ok(x),
-    }
 }

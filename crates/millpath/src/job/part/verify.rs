@@ -10,10 +10,10 @@
 //! height over the origin, so that the program's first rapid is not read as one through the
 //! stock.
 
+use super::block::stock_block;
 use super::check::{JobCheck, Section, check_sections};
 use super::design::JobDesign;
 use super::model::PartModel;
-use super::run::stock_block;
 use super::spec::JobSpec;
 use crate::Error;
 use crate::error::InputError;
@@ -142,7 +142,7 @@ pub fn verify_program(
                     ))
                     .into());
             };
-            let tp = Toolpath::new(super::ops::end_mill(tool)?, from);
+            let tp = Toolpath::new(super::context::end_mill(tool)?, from);
             runs.push((t, m.line, tp));
         }
         if let Some((_, _, tp)) = runs.last_mut() {
