@@ -139,3 +139,34 @@ fn tool_changes_cost_the_machine_s_tool_change_time() {
     assert!((7.5..7.55).contains(&extra), "{t_two} vs {t0_two}");
     assert!((t_same - t0_same).abs() < 1e-6, "{t_same} vs {t0_same}");
 }
+
+/// A section that keeps the tool, spindle speed and coolant of the one before goes on
+/// without a stop or a tool change; the moves still read back in order.
+#[test]
+fn a_section_keeping_its_tool_changes_nothing() {
+    let paths = [square(3, 0.0, 20.0, -1.0), square(3, 40.0, 10.0, -2.0)];
+    let sections: Vec<ProgramSection<'_>> = paths
+        .iter()
+        .map(|tp| ProgramSection {
+            toolpath: tp,
+            tool_number: 3,
+            tool_description: "flat end mill D6 mm, 3 flutes",
+            spindle_rpm: 8000.0,
+            coolant: Coolant::Flood,
+            title: "pass",
+        })
+        .collect();
+    let mut out = Vec::new();
+    let summary = write_sections(&sections, &WriterOptions::default(), &mut out).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert_eq!(text.matches("M6").count(), 1, "{text}");
+    assert_eq!(text.matches("M5").count(), 1, "{text}");
+    assert_eq!(summary.section_lines.len(), 2);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[summary.section_lines[1] - 1], "(pass)", "{text}");
+    let read: Vec<ReadMove> = Reader::new(text.as_bytes(), ReaderOptions::default())
+        .collect::<Result<_, _>>()
+        .unwrap();
+    let n: usize = paths.iter().map(|tp| tp.moves.len()).sum();
+    assert_eq!(read.len(), n);
+}
