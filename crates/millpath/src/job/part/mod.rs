@@ -101,7 +101,7 @@ pub fn run_spec(spec: JobSpec, note: &mut dyn FnMut(String)) -> Result<FileRun, 
     Ok(FileRun { spec, run, report })
 }
 
-/// The starting job file for `drawing` (module [`init`]), naming the drawing relative to
+/// The starting job file for `drawing` (the sizing rules of `job --init`), naming the drawing relative to
 /// where the job file `out` goes.
 pub fn init_file(
     drawing: &Path,
