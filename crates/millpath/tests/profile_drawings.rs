@@ -140,16 +140,38 @@ fn check_written(job: &ProfileRun) -> Toolpath {
         assert_eq!(v.hold, want, "outline {}", row.index);
         assert_eq!(v.bridges - v.loose, n);
         // A holding bridge is never narrower than the tab asked for; a square tab is that
-        // wide at the slot's middle, a ramped one widens by its 45° ramps to the floor.
+        // wide at the slot's middle, a ramped one widens by its ramps (`TAB_RAMP_RUN` mm
+        // along the path per mm of height) to the floor. The neck is measured along the
+        // drawn outline: inside an arc of radius R the slot's middle (R − r) is shorter by
+        // (R − r) / R, so the bridge measures up to R / (R − r) times its width there.
         let (w, h) = (job.options.tabs.width, job.options.tabs.height);
-        let widest = match job.options.tabs.shape {
-            millpath::strategy::profile::TabShape::Square => w,
-            millpath::strategy::profile::TabShape::Ramped => w + 2.0 * h + 1.0,
+        let target = &job.targets[row.index - 1];
+        let stretch = if target.side == ProfileSide::Inside {
+            let pts: Vec<(millpath::geom::Point, f64)> = target.outline.vertices().collect();
+            (0..pts.len())
+                .filter(|&i| pts[i].1 != 0.0)
+                .map(|i| {
+                    let (a, b) = (pts[i].0, pts[(i + 1) % pts.len()].0);
+                    let bulge = pts[i].1.abs();
+                    let radius = a.distance(b) * (1.0 + bulge * bulge) / (4.0 * bulge);
+                    radius / (radius - r)
+                })
+                .fold(1.0, f64::max)
+        } else {
+            1.0
         };
+        let widest = stretch
+            * match job.options.tabs.shape {
+                millpath::strategy::profile::TabShape::Square => w,
+                millpath::strategy::profile::TabShape::Ramped => {
+                    w + 2.0 * millpath::strategy::profile::TAB_RAMP_RUN * h + 1.0
+                }
+            };
         for neck in v.necks_mm.iter().filter(|n| **n > 0.0) {
             assert!(
                 *neck >= w - 4.0 * v.cell_mm && *neck <= widest + 4.0 * v.cell_mm,
-                "neck {neck} for a tab {w} wide"
+                "neck {neck} for a tab {w} wide, {h} high (cell {})",
+                v.cell_mm
             );
         }
     }
