@@ -21,6 +21,8 @@
 //! * `holes` checks the program against the drawing's circles of diameter `d` (within
 //!   `--tolerance`, 0.01 mm by default) with `stock::verify_holes`: nothing cut outside a hole,
 //!   no rapid through material, each hole's envelope at `Z` on the drawn centre and diameter.
+//! * Both first print the program's feed path and rapid lengths as read back (canned cycles
+//!   expanded into their moves, arcs and helices by their length).
 //!
 //! Exit code 0 when every check passes, 1 when one fails, 2 for bad arguments or input.
 #![allow(clippy::print_stdout, clippy::print_stderr)]
@@ -76,6 +78,12 @@ fn program(path: &str, tool: Tool) -> Res<Toolpath> {
     let opts = millpath::gcode::ReaderOptions::default().with_origin(path);
     let (mut tp, _) = millpath::gcode::read_str(&text, opts).map_err(|e| e.to_string())?;
     tp.tool = tool;
+    println!(
+        "program: feed path {:.1} mm, rapids {:.1} mm, {} moves",
+        tp.cut_length(),
+        tp.rapid_length(),
+        tp.moves.len()
+    );
     Ok(tp)
 }
 
@@ -144,7 +152,10 @@ fn profile(drawing: &str, path: &str, args: &[String]) -> Res<bool> {
         .map_err(|e| e.to_string())?;
         println!("part {}: {verdict}", k + 1);
         ok &= verdict.holding().count() > 0
-            && verdict.bridges.iter().all(|b| b.holds() || b.area_mm2 < 1.0);
+            && verdict
+                .bridges
+                .iter()
+                .all(|b| b.holds() || b.area_mm2 < 1.0);
         let windows: Vec<&Outline> = m
             .pockets
             .iter()
