@@ -220,6 +220,7 @@ fn profile(drawing: &str, path: &str, args: &[String]) -> Res<bool> {
             &field,
             Some(PartTop {
                 outline: part,
+                windows: &[],
                 top_z: 0.0,
             }),
             &floors,
