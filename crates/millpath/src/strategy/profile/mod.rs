@@ -51,7 +51,7 @@ mod tabs;
 
 pub use check::{BandCheck, dense_band_check, outline_distance};
 pub use passes::TAB_RAMP_RUN;
-pub use tabs::{MAX_TABS, PERIMETER_PER_TAB, auto_tab_count};
+pub use tabs::{MAX_TABS, PERIMETER_PER_TAB, auto_tab_count, tab_places};
 
 use super::pocket::Direction;
 use crate::error::{Error, InputError, require_positive};
