@@ -289,10 +289,8 @@ const SWEEP_FRACTIONS: [f64; 5] = [
 
 /// Sweep runs still refused as an internal error (exit 1), each a known fault to fix: (file,
 /// strategy, tool index in [`SWEEP_FRACTIONS`]). Listed in the table, not failing the sweep.
-/// * `ma_Part.dxf` zigzag with a quarter (50 mm): a direct entry's 62 mm link at y = 75 runs
-///   1.76 mm into the walls' clearance near (103, 75), a neck of the tool-centre region that
-///   `shape::crosses` does not see on the region the checked offset now returns.
-const KNOWN_FAULTS: &[(&str, &str, usize)] = &[("ma_Part.dxf", "zigzag", 4)];
+/// None now.
+const KNOWN_FAULTS: &[(&str, &str, usize)] = &[];
 
 /// What one sweep run gave.
 #[derive(Debug, Clone, PartialEq)]

@@ -67,6 +67,72 @@ fn the_plate_is_made_in_every_dialect_and_verified_apart() {
     }
 }
 
+/// The plate's pocket cut through as a window by an inside profile with two tabs, before the
+/// plate is cut out: the window's slug is not the part (its slot, leads and entry may cut
+/// it), its walls are; the job's check and `verify_program` find the part as drawn, the slug
+/// held by its two tabs and the plate by its own.
+#[test]
+fn a_window_cut_through_with_tabs_is_not_the_part() {
+    let dir = tempfile::tempdir().unwrap();
+    let window = |t: &str| {
+        t.replace(
+            "type = \"pocket\"\ntool = 1\ndepth = 2.0\nstep_down = 2.0",
+            "type = \"profile\"\ntool = 1\nside = \"inside\"\nstep_down = 2.25\ntabs = 2",
+        )
+    };
+    let s = spec(dir.path(), window).unwrap();
+    let run = part::run_spec(s.clone(), &mut |_| {}).unwrap();
+    let rep = &run.report;
+    assert_eq!(
+        rep.check.last().map(|(_, v)| v.as_str()),
+        Some("the drawn part, held by its tabs"),
+        "{:?}",
+        rep.check
+    );
+    let held: Vec<&str> = rep
+        .check
+        .iter()
+        .filter(|(k, _)| k.contains(" held"))
+        .map(|(_, v)| v.as_str())
+        .collect();
+    assert_eq!(held.len(), 2, "{:?}", rep.check);
+    assert!(held.iter().all(|v| v.starts_with("by 2 tab")), "{held:?}");
+    let text = String::from_utf8(run.run.gcode.clone()).unwrap();
+    let v = part::verify_program(&s, &text, "plate.ngc", "auto").unwrap();
+    assert!(v.problems().is_empty(), "{:?}", v.problems());
+}
+
+/// Square tabs: the tool goes straight down at each tab's end by the tab's height, which the
+/// whole-stock check counts apart from the plunges it refuses; the plate is made, held by its
+/// two tabs, and `verify_program` accepts the program read back.
+#[test]
+fn square_tabs_plunge_only_at_their_ends() {
+    let dir = tempfile::tempdir().unwrap();
+    let square = |t: &str| format!("{t}tab_shape = \"square\"\n");
+    let s = spec(dir.path(), square).unwrap();
+    let run = part::run_spec(s.clone(), &mut |_| {}).unwrap();
+    let rep = &run.report;
+    assert_eq!(
+        rep.check.last().map(|(_, v)| v.as_str()),
+        Some("the drawn part, held by its tabs"),
+        "{:?}",
+        rep.check
+    );
+    let profile = rep
+        .check
+        .iter()
+        .find(|(k, _)| k == "profile")
+        .map(|(_, v)| v.as_str())
+        .unwrap_or_default();
+    assert!(
+        profile.contains("0 plunges") && profile.contains("at square tabs' ends"),
+        "{profile}"
+    );
+    let text = String::from_utf8(run.run.gcode.clone()).unwrap();
+    let v = part::verify_program(&s, &text, "plate.ngc", "auto").unwrap();
+    assert!(v.problems().is_empty(), "{:?}", v.problems());
+}
+
 /// A program missing its drilling, missing its profile, or with its pocket 0.2 mm too deep
 /// is not the part: `verify_program` says which region and how.
 #[test]

@@ -11,8 +11,9 @@ use millpath::gcode::{self, ReaderOptions};
 use millpath::io::ImportSettings;
 use millpath::job::ProgramSettings;
 use millpath::job::profile::{self, ProfileRun, ProfileSettings, ProfileSource};
+use millpath::stock::{BridgeOptions, FieldOptions, HeightField, Hold, held_by};
 use millpath::strategy::profile::ProfileSide;
-use millpath::toolpath::{MoveKind, Toolpath};
+use millpath::toolpath::{MoveKind, Tool, Toolpath};
 use rs274_common::rs274;
 use std::path::PathBuf;
 
@@ -140,16 +141,38 @@ fn check_written(job: &ProfileRun) -> Toolpath {
         assert_eq!(v.hold, want, "outline {}", row.index);
         assert_eq!(v.bridges - v.loose, n);
         // A holding bridge is never narrower than the tab asked for; a square tab is that
-        // wide at the slot's middle, a ramped one widens by its 45° ramps to the floor.
+        // wide at the slot's middle, a ramped one widens by its ramps (`TAB_RAMP_RUN` mm
+        // along the path per mm of height) to the floor. The neck is measured along the
+        // drawn outline: inside an arc of radius R the slot's middle (R − r) is shorter by
+        // (R − r) / R, so the bridge measures up to R / (R − r) times its width there.
         let (w, h) = (job.options.tabs.width, job.options.tabs.height);
-        let widest = match job.options.tabs.shape {
-            millpath::strategy::profile::TabShape::Square => w,
-            millpath::strategy::profile::TabShape::Ramped => w + 2.0 * h + 1.0,
+        let target = &job.targets[row.index - 1];
+        let stretch = if target.side == ProfileSide::Inside {
+            let pts: Vec<(millpath::geom::Point, f64)> = target.outline.vertices().collect();
+            (0..pts.len())
+                .filter(|&i| pts[i].1 != 0.0)
+                .map(|i| {
+                    let (a, b) = (pts[i].0, pts[(i + 1) % pts.len()].0);
+                    let bulge = pts[i].1.abs();
+                    let radius = a.distance(b) * (1.0 + bulge * bulge) / (4.0 * bulge);
+                    radius / (radius - r)
+                })
+                .fold(1.0, f64::max)
+        } else {
+            1.0
         };
+        let widest = stretch
+            * match job.options.tabs.shape {
+                millpath::strategy::profile::TabShape::Square => w,
+                millpath::strategy::profile::TabShape::Ramped => {
+                    w + 2.0 * millpath::strategy::profile::TAB_RAMP_RUN * h + 1.0
+                }
+            };
         for neck in v.necks_mm.iter().filter(|n| **n > 0.0) {
             assert!(
                 *neck >= w - 4.0 * v.cell_mm && *neck <= widest + 4.0 * v.cell_mm,
-                "neck {neck} for a tab {w} wide"
+                "neck {neck} for a tab {w} wide, {h} high (cell {})",
+                v.cell_mm
             );
         }
     }
@@ -224,6 +247,41 @@ fn ma_part_conventional_with_ramped_tabs() {
     let job = run("ma_Part.dxf", &s).unwrap();
     assert!(!job.result.tabs.is_empty());
     check_written(&job);
+}
+
+/// A plate whose edges pass holes smaller than the tool (left for a drill, never cut): they
+/// keep no tab off the plate's outline. `wro_Plate_2.DXF` has 3 mm holes 1 mm from its sides
+/// and its top; before, they kept every tab off the plate and it fell free. Its windows, 12 mm
+/// and 8 mm inside its edges, still keep the tabs off all but one stretch (the neighbour rule
+/// of `generate`). The program read back, cut into a height field, holds the plate by as many
+/// bridges as tabs were placed, at least one.
+#[test]
+fn holes_left_for_a_drill_keep_no_tab_off_the_plate() {
+    let s = ProfileSettings {
+        tabs: "4".into(),
+        ..ProfileSettings::default()
+    };
+    let job = run("wro_Plate_2.DXF", &s).unwrap();
+    let (mut back, _) = gcode::read_str(&job.gcode, ReaderOptions::default()).unwrap();
+    let outer = job
+        .targets
+        .iter()
+        .position(|t| t.side == ProfileSide::Outside)
+        .unwrap();
+    let placed = job.result.tabs.iter().filter(|t| t.target == outer).count();
+    assert!(placed >= 1, "{:?}", job.report.notes);
+    back.tool = Tool::flat(6.0).unwrap();
+    let o = &job.targets[outer].outline;
+    let mut field = HeightField::new(
+        o.bounds().inflate(30.0),
+        -6.0,
+        0.0,
+        &FieldOptions::default().with_tool_diameter(6.0),
+    )
+    .unwrap();
+    field.cut(&back);
+    let v = held_by(&field, o, -6.0, 3.0, &BridgeOptions::default()).unwrap();
+    assert_eq!(v.hold(), Hold::Held { bridges: placed }, "{v}");
 }
 
 #[test]

@@ -75,6 +75,7 @@ fn check(tp: &Toolpath) -> millpath::stock::FieldCheck {
     }];
     let part = PartTop {
         outline: &outline,
+        windows: &[],
         top_z: 0.0,
     };
     check_field(&field, Some(part), &floors, &CheckOptions::default())

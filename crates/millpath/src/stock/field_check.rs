@@ -3,9 +3,10 @@
 //!
 //! The job says where the material should go down to: regions ([`Floor`]: a boundary, its
 //! islands, the floor z and the radius of the tool that finished it), and the part's
-//! material ([`PartTop`]: inside its outline, outside every region, the part's top). Every
-//! cell of the field is compared with the height it should have (the lowest floor of the
-//! regions holding its centre; the part's top elsewhere in the part; unchecked outside):
+//! material ([`PartTop`]: inside its outline, outside its windows and every region, the
+//! part's top). Every cell of the field is compared with the height it should have (the
+//! lowest floor of the regions holding its centre; the part's top elsewhere in the part;
+//! unchecked outside and in the windows):
 //!
 //! * **Cut into the part / below a floor**: a cell lower than its height by more than the z
 //!   tolerance, unless its centre lies within the lateral tolerance of a wall (a boundary,
@@ -40,11 +41,15 @@ pub struct Floor<'a> {
     pub tool_radius: f64,
 }
 
-/// The part's material: inside `outline` and outside every [`Floor`], at `top_z`.
+/// The part's material: inside `outline`, outside its `windows` and every [`Floor`], at
+/// `top_z`.
 #[derive(Debug, Clone, Copy)]
 pub struct PartTop<'a> {
     /// The part's outline.
     pub outline: &'a Outline,
+    /// Outlines inside it that are not the part's (windows an inside profile cuts free:
+    /// their slug may stay, held by tabs, or fall out); their walls are the part's.
+    pub windows: &'a [Outline],
     /// Its top z (the faced top, or the stock's), mm.
     pub top_z: f64,
 }
@@ -297,6 +302,7 @@ pub fn check_field(
     let mut walls: Vec<&Polyline<f64>> = floors.iter().flat_map(|f| loops_of(f)).collect();
     if let Some(p) = part {
         walls.push(p.outline.polyline());
+        walls.extend(p.windows.iter().map(Outline::polyline));
     }
     let indexed: Vec<IndexedWall<'_>> = walls.iter().map(|w| IndexedWall::new(w)).collect();
     let near_wall = |p: Point| indexed.iter().any(|w| w.distance(p) <= opts.wall_tolerance);
@@ -362,7 +368,11 @@ pub fn check_field(
         }
     }
     if let Some(p) = part {
-        if let Some(mask) = Mask::new(field, &[p.outline.polyline()], p.outline.bounds()) {
+        let loops: Vec<&Polyline<f64>> = std::iter::once(p.outline)
+            .chain(p.windows)
+            .map(Outline::polyline)
+            .collect();
+        if let Some(mask) = Mask::new(field, &loops, p.outline.bounds()) {
             let mut cut = Worst::default();
             for (i, j) in mask.cells() {
                 let Some(h) = field.height(i, j) else {

@@ -1,7 +1,9 @@
 //! The whole job verified on one stock: the height field of the stock block cut by every
 //! section of the program in order, each tool on what the previous ones left
 //! (`stock::HeightField`), with per section the rapids through material and the plunges
-//! (none allowed: a drill's plunges are its work), and at the end:
+//! (none allowed: a drill's plunges are its work; a square tab's ends are counted apart: a
+//! move straight down by at most the tab's height, from no higher than its top, on a through
+//! profile's path with that profile's tool, 0.05 mm allowed on heights), and at the end:
 //!
 //! * every outline a profile cuts through held by exactly its tabs: the bridges its slot
 //!   leaves (`stock::held_by`) that join the piece to the stock are its tabs and nothing
@@ -49,6 +51,10 @@ pub struct SectionCut {
     pub cut: OperationCut,
     /// The first bad move, if any.
     pub first_bad: Option<(usize, Point3)>,
+    /// Plunges at square tabs' ends, left out of the cut's plunges: straight down by at most
+    /// a tab's height, from no higher than a tab's top, on a through profile's path (what a
+    /// square tab is; ramped tabs have none).
+    pub tab_end_plunges: usize,
 }
 
 /// How a profiled outline is held after the job.
@@ -137,7 +143,15 @@ impl JobCheck {
             format!("{:.4} mm", self.cell_mm),
         )];
         for c in &self.cuts {
-            rows.push((c.name.clone(), c.cut.to_string()));
+            let ends = if c.tab_end_plunges > 0 {
+                format!(
+                    "; {} at square tabs' ends (a tab's height)",
+                    c.tab_end_plunges
+                )
+            } else {
+                String::new()
+            };
+            rows.push((c.name.clone(), format!("{}{ends}", c.cut)));
         }
         for h in &self.holds {
             rows.push((
@@ -191,7 +205,11 @@ pub fn check_sections(
         } else {
             Cutter::EndMill
         };
-        let cut = field.cut_with(s.toolpath, &CutOptions::default().with_cutter(cutter));
+        let mut cut = field.cut_with(s.toolpath, &CutOptions::default().with_cutter(cutter));
+        let before = cut.plunges.len();
+        cut.plunges
+            .retain(|&k| !at_a_tab_end(design, stock.bottom, s.toolpath, s.tool, k));
+        let tab_end_plunges = before - cut.plunges.len();
         let first_bad = cut
             .rapids_through_material
             .iter()
@@ -202,6 +220,7 @@ pub fn check_sections(
             name: s.name.to_owned(),
             cut,
             first_bad,
+            tab_end_plunges,
         });
     }
     let mut holds = Vec::new();
@@ -296,5 +315,36 @@ fn hold(
         holding: tabs.len(),
         matched,
         stray,
+    })
+}
+
+/// Move `k` of `tp` goes straight down at a square tab's end of one of the design's through
+/// profiles cut with `tool` (module docs); below the stock's bottom there is no material.
+fn at_a_tab_end(
+    design: &JobDesign,
+    stock_bottom: f64,
+    tp: &Toolpath,
+    tool: &JobTool,
+    k: usize,
+) -> bool {
+    const TOL: f64 = 0.05;
+    let Some((from, m)) = tp.segments().nth(k) else {
+        return false;
+    };
+    let (a, b) = (from, m.to);
+    if a.xy().distance(b.xy()) > 1e-6 || b.z >= a.z {
+        return false;
+    }
+    let r = 0.5 * tool.diameter;
+    design.profiles.iter().any(|p| {
+        p.through
+            && p.tabs != TabsAsked::None
+            && (p.tool_radius - r).abs() <= 1e-9
+            && a.z - b.z.max(stock_bottom) <= p.tab_height + TOL
+            && a.z <= stock_bottom + p.tab_height + TOL
+            && {
+                let d = p.outline.distance_to(b.xy());
+                d >= r - TOL && d <= r + 1.0
+            }
     })
 }

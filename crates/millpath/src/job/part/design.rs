@@ -8,7 +8,8 @@
 //!   point below a through hole's depth is the stock's bottom: nothing is below it);
 //! * a profile operation: each outline it cuts, outside (the parts) or inside (their pockets
 //!   as windows), through the stock or not, with its tabs;
-//! * the parts' material: inside each part, outside every region, at the part's top
+//! * the parts' material: inside each part, outside every region and every window an inside
+//!   profile cuts free (its slug may stay, held by tabs, or fall out), at the part's top
 //!   (z = 0).
 //!
 //! [`JobDesign::compare`] compares a height field with it, cell by cell
@@ -56,6 +57,8 @@ pub struct ProfiledOutline {
     pub operation: usize,
     /// The outline's index among the operation's targets.
     pub target: usize,
+    /// The part it is (outside) or is in (inside; index into the model's parts).
+    pub part: usize,
     /// The outline.
     pub outline: Outline,
     /// Outside (a part) or inside (a window).
@@ -213,7 +216,7 @@ impl JobDesign {
                             n => n.parse().map_or(TabsAsked::Auto, TabsAsked::Count),
                         }
                     };
-                    let mut outlines: Vec<Outline> = Vec::new();
+                    let mut outlines: Vec<(usize, Outline)> = Vec::new();
                     for &i in &selected {
                         if inside {
                             outlines.extend(
@@ -221,16 +224,17 @@ impl JobDesign {
                                     .pockets
                                     .iter()
                                     .filter(|p| p.part == i - 1)
-                                    .map(|p| p.outer.clone()),
+                                    .map(|p| (p.part, p.outer.clone())),
                             );
                         } else if !on {
-                            outlines.push(model.parts[i - 1].clone());
+                            outlines.push((i - 1, model.parts[i - 1].clone()));
                         }
                     }
-                    for (target, outline) in outlines.into_iter().enumerate() {
+                    for (target, (part, outline)) in outlines.into_iter().enumerate() {
                         profiles.push(ProfiledOutline {
                             operation: k,
                             target,
+                            part,
                             outline,
                             side: if inside {
                                 CutSide::Inside
@@ -274,10 +278,17 @@ impl JobDesign {
                         tool_radius: f.reach_radius,
                     })
                     .collect();
+                let windows: Vec<Outline> = self
+                    .profiles
+                    .iter()
+                    .filter(|p| p.part == i && p.side == CutSide::Inside)
+                    .map(|p| p.outline.clone())
+                    .collect();
                 check_field(
                     field,
                     Some(PartTop {
                         outline,
+                        windows: &windows,
                         top_z: 0.0,
                     }),
                     &floors,

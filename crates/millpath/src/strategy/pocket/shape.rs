@@ -455,6 +455,10 @@ pub fn inscribed_centre(
 /// then the segment's midpoint missed a link running along one loop's edge, across a pinched
 /// neck of the region and along the other loop's edge (the zigzag's link between two pieces of
 /// a fuzz pocket's region, 0.017 mm into the wall stock: `fuzz/regressions/pocket-link`).
+/// The loops' vertices within `NEAR_VERTEX` of the segment cut it too: the intersection's
+/// fuzzy epsilon drops a crossing at a vertex the segment passes a hair from (a link 2e-7 mm
+/// inside a straight wall, leaving the region at the vertex where the wall meets an island's
+/// arc, 1.76 mm deep across the island's clearance: `ma_Part.dxf`, 50 mm tool).
 pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
     let d = b - a;
     let len2 = d.dot(d);
@@ -473,6 +477,13 @@ pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
             ts.push(at(o.point1));
             ts.push(at(o.point2));
         }
+        for k in 0..l.vertex_count() {
+            let v = pt(l.at(k).pos());
+            let t = (v - a).dot(d) / len2;
+            if (0.0..=1.0).contains(&t) && (a + d * t).distance(v) <= NEAR_VERTEX {
+                ts.push(t);
+            }
+        }
     }
     ts.sort_by(f64::total_cmp);
     let min_piece = 1e-7 / len2.sqrt();
@@ -480,6 +491,9 @@ pub fn crosses(region: &OffsetRegion, a: Point, b: Point) -> bool {
         .filter(|w| w[1] - w[0] > min_piece)
         .any(|w| !inside_or_on(region, a + d * (0.5 * (w[0] + w[1]))))
 }
+
+/// A loop vertex this near a segment splits it in [`crosses`], mm.
+const NEAR_VERTEX: f64 = 1e-5;
 
 /// `p` is inside `region` or within 1e-7 mm of one of its loops.
 fn inside_or_on(region: &OffsetRegion, p: Point) -> bool {
@@ -570,6 +584,54 @@ mod crosses_tests {
         let (a, b) = (Point::new(0.0, 0.0), Point::new(4.5, 0.0));
         assert!(crosses(&r, a, b));
         assert!(crosses(&r, b, a));
+    }
+
+    /// `ma_Part.dxf` (450 × 200 mm, nine 30 mm circles) at a 50 mm tool: a link 2e-7 mm
+    /// inside the region's top wall leaves it where the wall meets an island's arc, crosses
+    /// the island's clearance (1.76 mm deep at x = 103) and ends in a sliver of the region
+    /// between two islands. The intersection drops the crossing at that vertex.
+    #[test]
+    fn a_link_a_hair_inside_a_wall_past_an_islands_arc_leaves_the_region() {
+        let p = |x: f64, y: f64| Point::new(x, y);
+        let rect = Outline::new(
+            &[
+                (p(-225.0, -100.0), 0.0),
+                (p(225.0, -100.0), 0.0),
+                (p(225.0, 100.0), 0.0),
+                (p(-225.0, 100.0), 0.0),
+            ],
+            "rectangle",
+        )
+        .expect("rectangle");
+        let yc = 36.760_393_530_130_39;
+        let centres = [
+            (-112.5, 0.0),
+            (175.0, yc),
+            (139.0, yc),
+            (103.0, yc),
+            (83.0, 0.0),
+            (119.0, 0.0),
+            (155.0, 0.0),
+            (-25.0, 75.0),
+            (25.0, 75.0),
+        ];
+        let islands: Vec<Outline> = centres
+            .iter()
+            .map(|&(x, y)| {
+                Outline::new(&[(p(x - 15.0, y), 1.0), (p(x + 15.0, y), 1.0)], "circle")
+                    .expect("circle")
+            })
+            .collect();
+        let shape = PocketShape::new(rect, islands, "ma_Part").expect("shape");
+        let region = shape.offset(25.0);
+        let y = 75.0 - 2e-7;
+        let (a, b) = (p(65.0, y), p(127.264_050_429_328_26, y));
+        // The independent measure: the link's middle is 1.76 mm inside the island's clearance.
+        assert!(shape.distance_to(p(103.0, y)) < 25.0 - 1.7);
+        assert!(crosses(&region, a, b));
+        assert!(crosses(&region, b, a));
+        // Along the wall up to the arc, it stays inside.
+        assert!(!crosses(&region, a, p(91.0, y)));
     }
 
     #[test]

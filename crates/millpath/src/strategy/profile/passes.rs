@@ -300,11 +300,12 @@ impl<'a> Walls<'a> {
         count(ProfileSide::Outside) > count(ProfileSide::Inside)
     }
 
-    /// Least distance from `p` to a wall other than target `own`'s.
-    fn others(&self, own: usize, p: Point) -> f64 {
+    /// Least distance from `p` to a wall other than target `own`'s, among the targets
+    /// `counted` (indexed by target) lets in.
+    fn others(&self, own: usize, p: Point, counted: &[bool]) -> f64 {
         self.all
             .iter()
-            .filter(|(i, _, _)| *i != own)
+            .filter(|(i, _, _)| *i != own && counted.get(*i).copied().unwrap_or(true))
             .map(|(_, o, _)| o.distance_to(p))
             .fold(f64::INFINITY, f64::min)
     }
@@ -326,7 +327,7 @@ impl<'a> Walls<'a> {
             };
             free && !self.material(p)
                 && (side == ProfileSide::On || outline.distance_to(p) >= d - 1e-9)
-                && self.others(i, p) >= d - 1e-9
+                && self.others(i, p, &[]) >= d - 1e-9
         })
     }
 }
@@ -456,6 +457,21 @@ pub(super) fn generate(
     let zs = layer_depths(opts.top_z, opts.depth, opts.step_down);
     let bottom = opts.top_z - opts.depth;
     let walls = Walls::new(targets);
+    // The targets the tool fits in (at the rough and the finishing offset): only their cuts
+    // can take a tab away; an outline too small for the tool (a hole left for a drill) is not
+    // cut at all and keeps no tab from its neighbour.
+    let cut: Vec<bool> = targets
+        .iter()
+        .map(|t| {
+            if t.side == ProfileSide::On {
+                return true;
+            }
+            let d_fin = r + 0.5 * opts.tolerance;
+            [d_fin, d_fin + opts.stock_to_leave]
+                .iter()
+                .all(|&d| !offset_loops(&t.outline, t.side, d).is_empty())
+        })
+        .collect();
     for (ti, t) in targets.iter().enumerate() {
         let side = t.side;
         let own = (ti, &t.outline, side);
@@ -502,7 +518,7 @@ pub(super) fn generate(
             let reach = d_rough + r + 2.0 * opts.lead_radius + 2.0 * opts.helix_radius;
             v.retain(|tab| {
                 let w = 0.5 * tab.placed.width;
-                walls.others(ti, tab.placed.at + tab.free_normal * d_fin) >= reach + w
+                walls.others(ti, tab.placed.at + tab.free_normal * d_fin, &cut) >= reach + w
             });
             asked_tabs = asked;
             v

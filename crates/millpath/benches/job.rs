@@ -1,0 +1,52 @@
+//! Criterion benchmarks: a whole job made from a real drawing alone, as `millpath job --init
+//! DRAWING` then `millpath job part.toml` make it: every operation planned (face, pockets,
+//! holes, profile with tabs), the program written and timed, and the whole job verified on
+//! the height-field stock. The job file is made once; each iteration reads the drawing and
+//! runs the job.
+//! `ez_forms.dxf` is the largest real drawing (1016 × 831 mm, 40 outlines), `pb_gear_cutout.dxf`
+//! the largest file (splines and arcs); the sample part is the reference beside them.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use millpath::gcode::Dialect;
+use millpath::io::ImportSettings;
+use millpath::job::part::{init_file, parse, run_spec};
+use std::hint::black_box;
+use std::path::PathBuf;
+
+fn job(c: &mut Criterion) {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/real-inputs/files");
+    let work = std::env::temp_dir();
+    let mut g = c.benchmark_group("whole job from the drawing alone");
+    g.sample_size(10);
+    for name in ["sample:part", "ez_forms.dxf", "pb_gear_cutout.dxf"] {
+        let drawing = if name.starts_with("sample:") {
+            PathBuf::from(name)
+        } else {
+            dir.join(name)
+        };
+        let out = work.join("millpath-bench-job.toml");
+        let Ok(text) = init_file(
+            &drawing,
+            &out,
+            &ImportSettings::default(),
+            Dialect::LinuxCnc,
+            "hsm",
+            &mut |_| {},
+        ) else {
+            continue;
+        };
+        let Ok(spec) = parse(&text, name, Some(&work)) else {
+            continue;
+        };
+        if run_spec(spec.clone(), &mut |_| {}).is_err() {
+            continue;
+        }
+        g.bench_function(format!("{name}: plan, write, time and verify"), |b| {
+            b.iter(|| run_spec(black_box(spec.clone()), &mut |_| {}).map(|r| r.report));
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, job);
+criterion_main!(benches);
