@@ -717,12 +717,11 @@ const JOB_DRAWINGS: &[&str] = &[
     "wro_Plate_3.DXF",         // 2 pockets, 26 holes
     "pb_key.dxf",              // 2 parts, a pocket, 3 holes
     "ma_hautparleur.dxf",      // 8 holes
-    "pb_4_spoke_gear.svg",     // parts cut out, two too close to cut apart (named)
+    "pb_4_spoke_gear.svg",     // 2 parts too close to cut apart, 8 pockets
     "pb_white_arrow.svg",      // an SVG arrow of 7 mm
     "s2g_square_viewport.svg", // an SVG square, a hole
     "s2g_vanderbilt_logo.svg", // an SVG logo with a pocket
     "wro_Braking_Arm.DXF",     // 2 holes
-    "pb_screw_plate.dxf",      // 4 pockets, 4 holes (inch-sized numbers)
 ];
 
 #[test]

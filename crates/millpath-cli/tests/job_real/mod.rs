@@ -248,8 +248,19 @@ pub fn job_real(name: &str, work: &Path) -> Result<JobRow, String> {
             ));
         }
         if *dialect == "linuxcnc" {
-            let gcode = std::fs::read_to_string(&program).map_err(|e| format!("{name}: {e}"))?;
-            rs274_common::rs274(&gcode).map_err(|e| format!("{name}: rs274: {e}"))?;
+            // A tool table with every number the job may use (rs274's default has three).
+            let table = work.join(format!("{name}.tbl"));
+            let rows: String = (1..=32).map(|t| format!("T{t} P{t} D1.0 ;\n")).collect();
+            std::fs::write(&table, rows).map_err(|e| format!("{name}: {e}"))?;
+            let run = rs274_common::rs274_file(
+                &program,
+                None,
+                Some(&table),
+                std::time::Duration::from_secs(300),
+            );
+            if !run.ok {
+                return Err(format!("{name}: rs274: {}", run.messages));
+            }
         }
         if k == 0 {
             row.operations = report["operations"].as_array().map_or(0, Vec::len);
