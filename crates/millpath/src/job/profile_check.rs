@@ -287,7 +287,14 @@ fn below_distance(wall: &IndexedWall<'_>, from: Point3, m: &Move, top: f64) -> (
     }
     let piece = m.piece(from, t0, t1);
     match (piece.kind, piece.sweep_from(a)) {
-        (MoveKind::Arc { center, plane, .. }, Some((radius, sweep))) if plane == Plane::Xy => {
+        (
+            MoveKind::Arc {
+                center,
+                plane: Plane::Xy,
+                ..
+            },
+            Some((radius, sweep)),
+        ) => {
             let a0 = (a.y - center.y).atan2(a.x - center.x);
             let (dist, rel) = wall.distance_to_arc(center.xy(), radius, a0, sweep);
             let f = if sweep != 0.0 {
@@ -316,6 +323,10 @@ fn below_distance(wall: &IndexedWall<'_>, from: Point3, m: &Move, top: f64) -> (
     }
 }
 
+/// An outline's line or arc: start, end, bulge, and for an arc its centre, radius and start
+/// angle.
+type Elem = (Point, Point, f64, Option<(Point, f64, f64)>);
+
 /// The tab's middle line as a closed polyline traced there and back (so that the loop's
 /// distance is the line's): the outline's stretch of `w` centred at its point nearest the
 /// tab's `centre`, each line or arc of it moved `d` to the free side (a line parallel, an arc
@@ -328,7 +339,7 @@ fn tab_middle(o: &Outline, centre: Point, w: f64, d: f64, side: ProfileSide) -> 
         _ => o.signed_area() <= 0.0,
     };
     // Each element: start, end, bulge, and for an arc its centre, radius and start angle.
-    let elems: Vec<(Point, Point, f64, Option<(Point, f64, f64)>)> = (0..n)
+    let elems: Vec<Elem> = (0..n)
         .map(|i| {
             let (a, b) = v[i];
             let e = v[(i + 1) % n].0;
@@ -341,7 +352,7 @@ fn tab_middle(o: &Outline, centre: Point, w: f64, d: f64, side: ProfileSide) -> 
             (a, e, b, Some((c, c.distance(a), (a - c).angle())))
         })
         .collect();
-    let length = |e: &(Point, Point, f64, Option<(Point, f64, f64)>)| match e.3 {
+    let length = |e: &Elem| match e.3 {
         None => e.0.distance(e.1),
         Some((_, rad, _)) => rad * 4.0 * e.2.atan().abs(),
     };

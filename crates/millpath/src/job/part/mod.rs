@@ -128,7 +128,7 @@ pub fn init_file(
         relative(drawing, out.parent().unwrap_or(Path::new("")))
     };
     let mut text = init::job_file(&named, &model, &dialect.to_string(), machine);
-    let joined = import.join_tolerance != ImportSettings::default().join_tolerance;
+    let joined = (import.join_tolerance - ImportSettings::default().join_tolerance).abs() > 1e-12;
     if import.layer.is_some() || import.drawing_units.is_some() || joined {
         let mut extra = String::new();
         if let Some(l) = &import.layer {

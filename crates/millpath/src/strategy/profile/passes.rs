@@ -20,7 +20,7 @@
 //! full depth), tangent to the finishing loop.
 
 use super::elements::Loop;
-use super::tabs::{self, Tab};
+use super::tabs::{self, TAB_RAMP_RUN, Tab};
 use super::{
     PlacedTab, ProfileEntry, ProfileNote, ProfileOptions, ProfileResult, ProfileSide,
     ProfileTarget, TabShape, TargetCut,
@@ -33,10 +33,6 @@ use crate::strategy::contour::offset::OffsetVertex;
 use crate::strategy::pocket::Direction;
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
 use std::f64::consts::PI;
-
-/// A ramped tab's ramps run this far along the path per unit of height (a 1-in-2 ramp,
-/// 26.6°): shallower than the 45° beyond which a flat end mill's way down is a plunge.
-pub const TAB_RAMP_RUN: f64 = 2.0;
 
 /// The most helix turns per level; beyond it the entry is a ramp.
 const MAX_HELIX_TURNS: f64 = 1000.0;

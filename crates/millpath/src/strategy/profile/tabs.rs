@@ -52,6 +52,10 @@ pub const PERIMETER_PER_TAB: f64 = 150.0;
 /// Distance kept between a tab's lift and the end of its element, mm.
 const GUARD: f64 = 0.05;
 
+/// A ramped tab's ramps run this far along the path per unit of height (a 1-in-2 ramp,
+/// 26.6°): shallower than the 45° beyond which a flat end mill's way down is a plunge.
+pub const TAB_RAMP_RUN: f64 = 2.0;
+
 /// The most a run of lines may turn under a tab and its lift, rad (module docs).
 pub const BEND_MAX: f64 = std::f64::consts::PI / 6.0;
 
@@ -172,7 +176,7 @@ pub(crate) fn place(
     };
     // A ramped tab's ramps run `TAB_RAMP_RUN·h` of path beyond its lift (module docs).
     let ramp = if opts.shape == TabShape::Ramped {
-        super::TAB_RAMP_RUN * opts.height
+        TAB_RAMP_RUN * opts.height
     } else {
         0.0
     };
@@ -372,7 +376,7 @@ fn run_stretches(
         let half_lift = 0.5 * w + d * bend + r / (0.5 * bend).cos();
         match out.last_mut() {
             Some(last) if (last.hi - lo).abs() < 1e-12 && (last.bend - bend).abs() < 1e-15 => {
-                last.hi = hi
+                last.hi = hi;
             }
             _ => out.push(Stretch {
                 lo,
