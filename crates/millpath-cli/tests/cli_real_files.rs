@@ -24,6 +24,8 @@
 
 #![allow(clippy::print_stderr)] // the per-run table
 
+mod job_real;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::Mutex;
@@ -711,4 +713,63 @@ fn pb_latch_offset_and_spiral_reach_the_arms_end() {
         assert!(uncut.is_some_and(|u| u <= 0.05), "{s}: uncut {uncut:?}");
     }
     let _ = std::fs::remove_dir_all(&work);
+}
+
+/// Drawings made into whole jobs in `./scripts/test` (the rest: `cli_job_real.rs`, ignored):
+/// holes drilled and bored, pockets of several tools, several parts, arcs and splines.
+const JOB_DRAWINGS: &[&str] = &[
+    "wro_Plate_2.DXF",         // 2 pockets, 13 holes in 2 sizes
+    "wro_Plate_3.DXF",         // 2 pockets, 26 holes
+    "pb_key.dxf",              // 2 parts, a pocket, 3 holes
+    "ma_hautparleur.dxf",      // 8 holes
+    "pb_4_spoke_gear.svg",     // 2 parts too close to cut apart, 8 pockets
+    "pb_white_arrow.svg",      // an SVG arrow of 7 mm
+    "s2g_square_viewport.svg", // an SVG square, a hole
+    "s2g_vanderbilt_logo.svg", // an SVG logo with a pocket
+    "wro_Braking_Arm.DXF",     // 2 holes
+];
+
+#[test]
+#[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
+fn real_drawings_are_made_into_whole_jobs_in_every_dialect() {
+    let work = tempfile::tempdir().expect("work dir");
+    let queue = Mutex::new(JOB_DRAWINGS.to_vec());
+    let results = Mutex::new(Vec::new());
+    std::thread::scope(|sc| {
+        for _ in 0..2 {
+            sc.spawn(|| {
+                loop {
+                    let Some(f) = queue.lock().expect("queue").pop() else {
+                        break;
+                    };
+                    let r = job_real::job_real(f, work.path());
+                    results.lock().expect("results").push((f, r));
+                }
+            });
+        }
+    });
+    let mut results = results.into_inner().expect("results");
+    results.sort_by(|a, b| a.0.cmp(b.0));
+    let mut failures = Vec::new();
+    let (mut holes, mut pockets, mut several) = (false, false, false);
+    for (f, r) in &results {
+        match r {
+            Ok(row) => {
+                eprintln!("{row}");
+                assert!(row.refused.is_none(), "{f}: refused");
+                several |= row.held.len() > 1;
+            }
+            Err(e) => failures.push(e.clone()),
+        }
+        let toml =
+            std::fs::read_to_string(work.path().join(format!("{f}.toml"))).unwrap_or_default();
+        holes |= toml.contains("type = \"drill\"");
+        pockets |= toml.contains("type = \"pocket\"");
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    assert_eq!(results.len(), JOB_DRAWINGS.len());
+    assert!(
+        holes && pockets && several,
+        "holes {holes}, pockets {pockets}, parts {several}"
+    );
 }

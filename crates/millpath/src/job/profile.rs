@@ -12,7 +12,8 @@
 //!   clearance of [`crate::stock::min_clearance`]: at least the tool radius (no gouge), and
 //!   every feed move's end out of the part's material (winding numbers);
 //! - every tab: no move below its top comes within the tool radius of its middle line (the
-//!   outline's stretch under the tab, moved to the path), sampled every 0.01 mm;
+//!   outline's stretch under the tab, moved to the path: lines and concentric arcs), each
+//!   move's part below the tab's top measured whole and exactly against it, at any scale;
 //! - with tabs asked for, the bridge verdict: the whole program cut into a height-field stock
 //!   ([`crate::stock::HeightField`]) and the material left in each outline's slot read as
 //!   bridges ([`crate::stock::held_by`]): each tab matched by exactly one bridge holding the

@@ -2,13 +2,15 @@
 //! the dense band check, the exact wall clearance, the tab middle lines and, when tabs were
 //! asked for, the bridge verdict of the height-field stock simulation.
 
-use crate::geom::{Outline, Point, Point3};
+use crate::geom::{Outline, Point, Point3, Vec2};
+use crate::stock::nearest::IndexedWall;
 use crate::stock::{BridgeOptions, CutSide, FieldOptions, HeightField, held_by};
 use crate::strategy::profile::{
     ProfileOptions, ProfileResult, ProfileSide, ProfileTarget, TabCount, dense_band_check,
 };
-use crate::toolpath::{Move, MoveKind, Tool, Toolpath};
+use crate::toolpath::{Move, MoveKind, Plane, Tool, Toolpath};
 use crate::{Error, InputError};
+use cavalier_contours::polyline::{PlineSourceMut, PlineVertex, Polyline};
 use serde::Serialize;
 
 /// One outline in the report.
@@ -242,7 +244,11 @@ fn shift_to_zero_top(tp: &Toolpath, top: f64) -> Toolpath {
     t
 }
 
-/// No move below a tab's top comes within the tool radius of the tab's middle line.
+/// No move below a tab's top comes within the tool radius of the tab's middle line, measured
+/// exactly: the middle line is the outline's stretch under the tab moved `d` to the free side
+/// (lines and concentric arcs, [`tab_middle`]), and each feed move's part below the tab's top
+/// (a line, or an arc in XY, cut where its z crosses the top) is measured whole against it
+/// ([`IndexedWall::distance_to_segment`], `distance_to_arc`), whatever the drawing's scale.
 fn check_tabs(targets: &[ProfileTarget], res: &ProfileResult, r: f64) -> Result<(), Error> {
     let tp = &res.toolpath;
     for tab in &res.tabs {
@@ -252,7 +258,8 @@ fn check_tabs(targets: &[ProfileTarget], res: &ProfileResult, r: f64) -> Result<
             .iter()
             .find(|c| c.target == tab.target)
             .map_or(r, |c| c.offset_used_mm);
-        let line = tab_line(o, tab.s, tab.width, d, targets[tab.target].side);
+        let line = tab_middle(o, tab.at, tab.width, d, targets[tab.target].side);
+        let wall = IndexedWall::new(&line);
         // Nothing of a move is nearer the tab than its start less its length.
         let reach = 0.5 * tab.width + d + r + 1.0;
         for (k, (from, m)) in tp.segments().enumerate() {
@@ -263,89 +270,232 @@ fn check_tabs(targets: &[ProfileTarget], res: &ProfileResult, r: f64) -> Result<
             if from.xy().distance(tab.at) - len > reach {
                 continue;
             }
-            let n = (len / 0.01).ceil().max(1.0) as usize;
-            for j in 0..=n {
-                let q = m.point_at(from, len * j as f64 / n as f64);
-                if q.z >= tab.top_z - 1e-9 {
-                    continue;
-                }
-                let near = line
-                    .iter()
-                    .map(|p| p.distance(q.xy()))
-                    .fold(f64::INFINITY, f64::min);
-                if near < r - 1e-6 {
-                    return Err(Error::internal(format!(
-                        "the profile would cut the tab at ({:.4}, {:.4}) of outline {} (move {k} at z {:.4}); not written",
-                        tab.at.x,
-                        tab.at.y,
-                        tab.target + 1,
-                        q.z
-                    )));
-                }
+            let (near, q) = below_distance(&wall, from, m, tab.top_z - 1e-9);
+            if near < r - 1e-6 {
+                return Err(Error::internal(format!(
+                    "the profile would cut the tab at ({:.4}, {:.4}) of outline {} (move {k} from ({:.4}, {:.4}, {:.4}) to ({:.4}, {:.4}, {:.4}), at ({:.4}, {:.4}, {:.4}) {near:.6} mm from the tab's middle line, below its top {:.4}); not written",
+                    tab.at.x,
+                    tab.at.y,
+                    tab.target + 1,
+                    from.x,
+                    from.y,
+                    from.z,
+                    m.to.x,
+                    m.to.y,
+                    m.to.z,
+                    q.x,
+                    q.y,
+                    q.z,
+                    tab.top_z
+                )));
             }
         }
     }
     Ok(())
 }
 
-/// The tab's middle line: the outline's stretch under it, every 0.01 mm, moved `d` to the free
-/// side (the outline's own geometry: points and normals by arc length).
-fn tab_line(o: &Outline, s: f64, w: f64, d: f64, side: ProfileSide) -> Vec<Point> {
-    let n = (w / 0.01).ceil().max(2.0) as usize;
-    let ccw = o.signed_area() > 0.0;
-    let free_left = match side {
-        ProfileSide::Inside => ccw,
-        _ => !ccw,
+/// The least XY distance from the part of move `m` (from `from`) below `top` to `wall`, and a
+/// point of the move there. The part below is the path-length interval where the move's z
+/// (linear along a line, and along a helix's sweep) is under `top`; a line and an arc in XY
+/// are measured whole and exactly, an arc in another plane every 0.01 mm (times the
+/// tool-size scale of the arc's radius), within half that.
+fn below_distance(wall: &IndexedWall<'_>, from: Point3, m: &Move, top: f64) -> (f64, Point3) {
+    let len = m.length_from(from);
+    let (z0, z1) = (from.z, m.to.z);
+    // The path-length interval [t0, t1] below the top.
+    let (t0, t1) = if z0 < top && z1 < top {
+        (0.0, len)
+    } else {
+        let t = len * ((top - z0) / (z1 - z0)).clamp(0.0, 1.0);
+        if z0 < top { (0.0, t) } else { (t, len) }
     };
-    let h = 1e-4;
-    (0..=n)
-        .map(|j| {
-            let sj = s - 0.5 * w + w * j as f64 / n as f64;
-            let p = point_at_length(o, sj);
-            let t = (point_at_length(o, sj + h) - point_at_length(o, sj - h))
-                .normalize()
-                .unwrap_or(crate::geom::Vec2::new(1.0, 0.0));
-            p + if free_left { t.perp() } else { -t.perp() } * d
-        })
-        .collect()
-}
-
-/// The point of the outline at arc length `s` from its first vertex (the outline's own
-/// sampling, [`Outline::sample`] style, by walking its segments).
-fn point_at_length(o: &Outline, s: f64) -> Point {
-    let v: Vec<(Point, f64)> = o.vertices().collect();
-    let n = v.len();
-    let total = o.length();
-    let mut s = s.rem_euclid(total);
-    for i in 0..n {
-        let (a, b) = v[i];
-        let e = v[(i + 1) % n].0;
-        let chord = e.distance(a);
-        let sweep = 4.0 * b.atan();
-        let len = if b.abs() < 1e-12 {
-            chord
-        } else {
-            chord * 0.5 * sweep.abs() / (0.5 * sweep).sin().abs()
-        };
-        if s <= len || i + 1 == n {
-            let f = if len > 0.0 {
-                (s / len).clamp(0.0, 1.0)
+    let a = m.point_at(from, t0);
+    if t1 - t0 <= 0.0 {
+        return (wall.distance(a.xy()), a);
+    }
+    let piece = m.piece(from, t0, t1);
+    match (piece.kind, piece.sweep_from(a)) {
+        (
+            MoveKind::Arc {
+                center,
+                plane: Plane::Xy,
+                ..
+            },
+            Some((radius, sweep)),
+        ) => {
+            let a0 = (a.y - center.y).atan2(a.x - center.x);
+            let (dist, rel) = wall.distance_to_arc(center.xy(), radius, a0, sweep);
+            let f = if sweep != 0.0 {
+                (rel / sweep).clamp(0.0, 1.0)
             } else {
                 0.0
             };
-            if b.abs() < 1e-12 {
-                return a.lerp(e, f);
-            }
-            // Rotate the start about the centre by the swept fraction.
-            let u = (e - a)
-                .normalize()
-                .unwrap_or(crate::geom::Vec2::new(1.0, 0.0));
-            let centre = a.lerp(e, 0.5) + u.perp() * (chord * (1.0 - b * b) / (4.0 * b));
-            return centre + (a - centre).rotate(sweep * f);
+            (dist, piece.point_at(a, f * piece.length_from(a)))
         }
-        s -= len;
+        (MoveKind::Arc { .. }, Some((radius, _))) => {
+            let step = 0.01 * crate::toolpath::tolerance_scale(2.0 * radius);
+            let n = ((t1 - t0) / step).ceil().max(1.0) as usize;
+            (0..=n)
+                .map(|j| {
+                    let q = piece.point_at(a, (t1 - t0) * j as f64 / n as f64);
+                    (wall.distance(q.xy()), q)
+                })
+                .fold((f64::INFINITY, a), |b, c| if c.0 < b.0 { c } else { b })
+        }
+        _ => {
+            let (dist, p) = wall.distance_to_segment(a.xy(), piece.to.xy());
+            let l = a.xy().distance(piece.to.xy());
+            let f = if l > 0.0 { a.xy().distance(p) / l } else { 0.0 };
+            (dist, a.lerp(piece.to, f.clamp(0.0, 1.0)))
+        }
     }
-    v[0].0
+}
+
+/// An outline's line or arc: start, end, bulge, and for an arc its centre, radius and start
+/// angle.
+type Elem = (Point, Point, f64, Option<(Point, f64, f64)>);
+
+/// The tab's middle line as a closed polyline traced there and back (so that the loop's
+/// distance is the line's): the outline's stretch of `w` centred at its point nearest the
+/// tab's `centre`, each line or arc of it moved `d` to the free side (a line parallel, an arc
+/// concentric with the same sweep), from the outline's own vertices and bulges.
+fn tab_middle(o: &Outline, centre: Point, w: f64, d: f64, side: ProfileSide) -> Polyline<f64> {
+    let v: Vec<(Point, f64)> = o.vertices().collect();
+    let n = v.len();
+    let free_left = match side {
+        ProfileSide::Inside => o.signed_area() > 0.0,
+        _ => o.signed_area() <= 0.0,
+    };
+    // Each element: start, end, bulge, and for an arc its centre, radius and start angle.
+    let elems: Vec<Elem> = (0..n)
+        .map(|i| {
+            let (a, b) = v[i];
+            let e = v[(i + 1) % n].0;
+            if b.abs() < 1e-12 {
+                return (a, e, 0.0, None);
+            }
+            let chord = e.distance(a);
+            let u = (e - a).normalize().unwrap_or(Vec2::new(1.0, 0.0));
+            let c = a.lerp(e, 0.5) + u.perp() * (chord * (1.0 - b * b) / (4.0 * b));
+            (a, e, b, Some((c, c.distance(a), (a - c).angle())))
+        })
+        .collect();
+    let length = |e: &Elem| match e.3 {
+        None => e.0.distance(e.1),
+        Some((_, rad, _)) => rad * 4.0 * e.2.atan().abs(),
+    };
+    let lens: Vec<f64> = elems.iter().map(length).collect();
+    let total: f64 = lens.iter().sum();
+    // The point and the free-side normal of element `i` at the fraction `f`.
+    let at = |i: usize, f: f64| -> (Point, Vec2) {
+        let (a, e, b, arc) = elems[i];
+        match arc {
+            None => {
+                let t = (e - a).normalize().unwrap_or(Vec2::new(1.0, 0.0));
+                (a.lerp(e, f), if free_left { t.perp() } else { -t.perp() })
+            }
+            Some((c, rad, a0)) => {
+                let phi = a0 + 4.0 * b.atan() * f;
+                let radial = Vec2::new(phi.cos(), phi.sin());
+                let t = if b > 0.0 {
+                    radial.perp()
+                } else {
+                    -radial.perp()
+                };
+                (
+                    c + radial * rad,
+                    if free_left { t.perp() } else { -t.perp() },
+                )
+            }
+        }
+    };
+    // The tab's centre: the outline's point nearest `centre` (the profile's arc lengths are its
+    // own; the outline's, from its first vertex, are found here).
+    let mut s = 0.0;
+    let mut best = f64::INFINITY;
+    let mut start = 0.0;
+    for (i, e) in elems.iter().enumerate() {
+        let (a, b, _, arc) = *e;
+        let f = match arc {
+            None => {
+                let ab = b - a;
+                let l2 = ab.dot(ab);
+                if l2 > 0.0 {
+                    ((centre - a).dot(ab) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                }
+            }
+            Some((c, _, a0)) => {
+                let sweep = 4.0 * e.2.atan();
+                let phi = (centre - c).angle() - a0;
+                // The angle from the start along the sweep's turning sense, in [0, 2π).
+                let rel = if sweep > 0.0 { phi } else { -phi }.rem_euclid(std::f64::consts::TAU);
+                (rel / sweep.abs()).min(1.0)
+            }
+        };
+        let mut cands = vec![f, 0.0, 1.0];
+        cands.dedup();
+        for f in cands {
+            let q = at(i, f).0;
+            let dist = q.distance(centre);
+            if dist < best {
+                best = dist;
+                s = start + f * lens[i];
+            }
+        }
+        start += lens[i];
+    }
+    let w = w.min(total);
+    let mut pts: Vec<(Point, f64)> = Vec::new();
+    let (mut i, mut u) = (0, (s - 0.5 * w).rem_euclid(total.max(1e-12)));
+    while i < n && u > lens[i] {
+        u -= lens[i];
+        i += 1;
+    }
+    let mut left = w;
+    for _ in 0..=n {
+        if i >= n {
+            i = 0;
+        }
+        let li = lens[i].max(1e-300);
+        let take = (li - u).min(left).max(0.0);
+        let (f0, f1) = (u / li, (u + take) / li);
+        let (p0, n0) = at(i, f0);
+        let (p1, n1) = at(i, f1);
+        let bulge = (elems[i].2.atan() * (f1 - f0)).tan();
+        let (q0, q1) = (p0 + n0 * d, p1 + n1 * d);
+        if pts.last().is_none_or(|l| l.0.distance(q0) > 1e-12) {
+            pts.push((q0, 0.0));
+        }
+        if q0.distance(q1) > 1e-12 {
+            if let Some(l) = pts.last_mut() {
+                l.1 = bulge;
+            }
+            pts.push((q1, 0.0));
+        }
+        left -= take;
+        if left <= 1e-12 {
+            break;
+        }
+        i += 1;
+        u = 0.0;
+    }
+    let mut pl = Polyline::new_closed();
+    for &(p, b) in &pts {
+        pl.add(p.x, p.y, b);
+    }
+    // Back along the same pieces: each piece reversed is the same arc with its bulge negated.
+    for k in (1..pts.len().saturating_sub(1)).rev() {
+        pl.add(pts[k].0.x, pts[k].0.y, -pts[k - 1].1);
+    }
+    if pts.len() >= 2 {
+        // The last point starts the way back: its bulge is the last piece's, negated.
+        let last = pts.len() - 1;
+        let b = -pts[last - 1].1;
+        pl.set_vertex(last, PlineVertex::new(pts[last].0.x, pts[last].0.y, b));
+    }
+    pl
 }
 
 /// The height-field stock cut by the whole program, read for the bridges left in target

@@ -7,7 +7,13 @@
 //! `L` is the smaller side of the parts' extents.
 //! * The main end mill is the largest of the usual sizes ([`END_MILLS`]) at most `L/15`
 //!   (beyond the list, `L/15` to two significant digits). It faces and profiles; the
-//!   profile's tool is smaller where two parts are closer than 1.5 diameters.
+//!   profile's tool is smaller where two parts are closer than 1.5 diameters, and smaller
+//!   again (the next usual sizes down, to a tenth of the main one) until every part it cuts
+//!   out has room for a tab and its lift (a gear's flanks, a curve drawn in short lines).
+//! * No end mill is smaller than a tenth of the main one ([`SMALLEST_TOOL`]): a pocket that
+//!   only a smaller tool could sweep, and a part closer to another than 1.5 such tools, is
+//!   left out of its operation, and the file says which and why (a tool that small would
+//!   make the job hours long, when it fits at all).
 //! * Each pocket gets the largest usual end mill, at most the main one, whose diameter is at
 //!   most the radius of the largest circle inside the pocket: the tool sweeps the pocket with
 //!   room to turn, and leaves only what its radius must leave in the corners. Pockets of the
@@ -31,6 +37,12 @@ pub const END_MILLS: &[f64] = &[
 
 /// Holes up to this diameter are drilled, larger ones bored, mm.
 pub const DRILL_MAX: f64 = 12.0;
+
+/// The smallest end mill a starting job uses, as a fraction of the main one.
+pub const SMALLEST_TOOL: f64 = 0.1;
+
+/// A profile's tool passes between two parts this many of its diameters apart.
+const PASS_BETWEEN: f64 = 1.5;
 
 /// The largest usual end mill at most `d` mm (beyond the list, `d` to two significant
 /// digits; below it, `d` itself).
@@ -72,20 +84,136 @@ fn inscribed_radius(outer: &Outline) -> f64 {
     lo
 }
 
-/// The smallest distance between two parts' outlines (infinite for one part), mm, from
-/// points sampled every tenth of a millimetre at most 4096 per outline.
-fn part_gap(parts: &[Outline]) -> f64 {
-    let mut gap = f64::INFINITY;
-    for (i, a) in parts.iter().enumerate() {
+/// The distance between two outlines (infinite when their boxes are `beyond` mm apart or
+/// more), mm, from points sampled every tenth of a millimetre at most 4096 per outline, on
+/// each outline against the other.
+fn outline_gap(a: &Outline, b: &Outline, beyond: f64) -> f64 {
+    let (ba, bb) = (a.bounds(), b.bounds());
+    let dx = (ba.min.x - bb.max.x).max(bb.min.x - ba.max.x).max(0.0);
+    let dy = (ba.min.y - bb.max.y).max(bb.min.y - ba.max.y).max(0.0);
+    if dx.hypot(dy) >= beyond {
+        return f64::INFINITY;
+    }
+    let one_way = |a: &Outline, b: &Outline| {
         let n = ((a.length() / 0.1).ceil() as usize).clamp(64, 4096);
-        let pts = a.sample(n);
-        for b in parts.iter().skip(i + 1) {
-            for p in &pts {
-                gap = gap.min(b.distance_to(*p));
-            }
+        a.sample(n)
+            .into_iter()
+            .map(|p| b.distance_to(p))
+            .fold(f64::INFINITY, f64::min)
+    };
+    one_way(a, b).min(one_way(b, a))
+}
+
+/// The parts a profile cuts out: those at least `PASS_BETWEEN` times `least` from every
+/// other part (1-based), the parts left out, each with the nearest part and their distance,
+/// and the least distance between two parts cut (infinite for one), mm. Distances of
+/// `PASS_BETWEEN` times `largest` or more are not measured.
+fn profiled_parts(
+    parts: &[Outline],
+    least: f64,
+    largest: f64,
+) -> (Vec<usize>, Vec<(usize, usize, f64)>, f64) {
+    let n = parts.len();
+    let beyond = PASS_BETWEEN * largest;
+    let mut gaps = vec![f64::INFINITY; n * n];
+    for i in 0..n {
+        for j in i + 1..n {
+            let g = outline_gap(&parts[i], &parts[j], beyond);
+            gaps[i * n + j] = g;
+            gaps[j * n + i] = g;
         }
     }
-    gap
+    let nearest = |i: usize| {
+        (0..n)
+            .filter(|&j| j != i)
+            .map(|j| (j, gaps[i * n + j]))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    };
+    let mut cut = Vec::new();
+    let mut left = Vec::new();
+    for i in 0..n {
+        match nearest(i) {
+            Some((j, g)) if g < PASS_BETWEEN * least => left.push((i + 1, j + 1, g)),
+            _ => cut.push(i + 1),
+        }
+    }
+    let mut gap = f64::INFINITY;
+    for (k, &i) in cut.iter().enumerate() {
+        for &j in &cut[k + 1..] {
+            gap = gap.min(gaps[(i - 1) * n + j - 1]);
+        }
+    }
+    (cut, left, gap)
+}
+
+/// The tab width for the parts `profiled` (1-based) cut out by an end mill of `d` mm: the
+/// widest of the job's default ([`super::design::default_tab_width`]), `2d`, `d` and `d/2`
+/// (none wider than the default) with which every part gets two tabs (one where its
+/// automatic count asks for fewer) by `strategy::profile::tab_places`, else the widest with
+/// which every part gets one, else the narrowest; and whether every part gets a tab. The
+/// tabs are the job's: ramped, as high as the job's default for a part `thickness` mm thick.
+fn tab_width(parts: &[Outline], profiled: &[usize], d: f64, thickness: f64) -> (f64, bool) {
+    use crate::strategy::profile::{ProfileSide, TabCount, TabOptions, TabShape, tab_places};
+    let default = super::design::default_tab_width(d);
+    let mut widths: Vec<f64> = vec![default, 2.0 * d, d, 0.5 * d];
+    widths.retain(|&w| w <= default);
+    widths.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    let r = 0.5 * d;
+    // The finishing offset of the job's default tolerance (half of 0.01 mm beyond r).
+    let offset = r + 0.005;
+    let counts = |w: f64| -> Vec<(usize, usize)> {
+        let opts = TabOptions::default()
+            .with_count(TabCount::Auto)
+            .with_width(w)
+            .with_height(super::design::default_tab_height(thickness, d))
+            .with_shape(TabShape::Ramped);
+        profiled
+            .iter()
+            .map(|&i| {
+                let (t, asked) = tab_places(&parts[i - 1], ProfileSide::Outside, offset, r, &opts);
+                (t.len(), asked)
+            })
+            .collect()
+    };
+    let all: Vec<(f64, Vec<(usize, usize)>)> = widths.iter().map(|&w| (w, counts(w))).collect();
+    for need in [2, 1] {
+        if let Some((w, _)) = all
+            .iter()
+            .find(|(_, c)| c.iter().all(|&(n, asked)| n >= need.min(asked)))
+        {
+            return (*w, true);
+        }
+    }
+    (widths.last().copied().unwrap_or(default), false)
+}
+
+/// The profile's end mill and tab width: the largest end mill from `d` down to `least` (the
+/// usual sizes below `d`, or halves beyond the list) with which every part cut out gets a
+/// tab ([`tab_width`]); else `d` and its narrowest tab, which the job refuses, saying why.
+fn profile_tool_and_tabs(
+    parts: &[Outline],
+    profiled: &[usize],
+    d: f64,
+    least: f64,
+    thickness: f64,
+) -> (f64, f64) {
+    let mut t = d;
+    for _ in 0..8 {
+        if t < least - 1e-12 {
+            break;
+        }
+        let (w, fits) = tab_width(parts, profiled, t, thickness);
+        if fits {
+            return (t, w);
+        }
+        let largest = END_MILLS[END_MILLS.len() - 1];
+        let below = END_MILLS.iter().rev().find(|&&s| s < t - 1e-9).copied();
+        t = match below {
+            Some(s) if t <= largest + 1e-9 => s,
+            _ => end_mill_at_most(0.5 * t),
+        };
+    }
+    (d, tab_width(parts, profiled, d, thickness).0)
 }
 
 /// A tool of the table being made.
@@ -120,9 +248,11 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
     };
     let l = ext.width().min(ext.height());
     let main = end_mill_at_most(l / 15.0);
-    let gap = part_gap(&model.parts);
-    let profile_d = end_mill_at_most(main.min(gap / 1.5));
+    let least = SMALLEST_TOOL * main;
+    let (profiled, too_close, gap) = profiled_parts(&model.parts, least, main);
+    let gap_d = end_mill_at_most(main.min(gap / PASS_BETWEEN)).max(least);
     let thickness = round_to(main, 0.5).max(0.5);
+    let (profile_d, tw) = profile_tool_and_tabs(&model.parts, &profiled, gap_d, least, thickness);
     let top = round_to((main / 20.0).max(0.2), 0.1);
     let pocket_depth = round_to(0.5 * thickness, 0.1).max(0.1);
     let margin = (2.0 * profile_d).max(5.0);
@@ -146,8 +276,14 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
     let face_tool = tool(false, main);
     // Pockets grouped by tool, largest tool first.
     let mut pocket_groups: Vec<(f64, Vec<usize>)> = Vec::new();
+    let mut narrow: Vec<(usize, f64)> = Vec::new();
     for (i, p) in model.pockets.iter().enumerate() {
-        let d = end_mill_at_most(main.min(inscribed_radius(&p.outer)));
+        let room = inscribed_radius(&p.outer);
+        let d = end_mill_at_most(main.min(room));
+        if d < least - 1e-12 {
+            narrow.push((i + 1, room));
+            continue;
+        }
         match pocket_groups.iter_mut().find(|g| (g.0 - d).abs() < 1e-9) {
             Some(g) => g.1.push(i + 1),
             None => pocket_groups.push((d, vec![i + 1])),
@@ -192,7 +328,11 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
         }
     };
     let drill_ops: Vec<(u32, f64)> = drills.into_iter().map(|d| (tool(true, d), d)).collect();
-    let profile_tool = tool(false, profile_d);
+    let profile_tool = if profiled.is_empty() {
+        0
+    } else {
+        tool(false, profile_d)
+    };
 
     let mut s = String::new();
     let mut line = |t: &str| {
@@ -209,6 +349,24 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
         num(ext.width()),
         num(ext.height())
     ));
+    for (i, room) in &narrow {
+        line(&format!(
+            "# Pocket {i} is left out: only an end mill under D{} mm (the largest circle inside \
+             it has radius {}) would sweep it, below a tenth of the main D{} mm.",
+            num(least),
+            num(*room),
+            num(main)
+        ));
+    }
+    for (i, j, g) in &too_close {
+        line(&format!(
+            "# Part {i} is not cut out: it is {} mm from part {j}, too close for an end mill of \
+             D{} mm or more to pass between; move the parts apart in the drawing, or cut them \
+             out by hand.",
+            num(*g),
+            num(least)
+        ));
+    }
     line("# Z = 0 is the finished part's top; depths are measured down from it.");
     line("# Tools, speeds and feeds are a start sized from the drawing: check them for your");
     line("# machine, material and tools.");
@@ -330,11 +488,24 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
             ));
         }
     }
+    if profiled.is_empty() {
+        return s;
+    }
     line("");
     line("[[operation]]");
     line("type = \"profile\"");
     line("name = \"cut the part out\"");
     line(&format!("tool = {profile_tool}"));
+    if !too_close.is_empty() {
+        line(&format!(
+            "select = \"{}\"        # the parts far enough apart to cut out",
+            profiled
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(",")
+        ));
+    }
     line("side = \"auto\"              # outermost outlines outside, their holes inside");
     line("depth = \"through\"");
     line(&format!(
@@ -342,6 +513,12 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
         num((0.5 * profile_d).min(thickness))
     ));
     line("tabs = \"auto\"              # a count, \"auto\" (from the perimeter) or 0");
+    if (tw - super::design::default_tab_width(profile_d)).abs() > 1e-9 {
+        line(&format!(
+            "tab_width = {}            # mm: narrower than the default, to fit the outlines",
+            num(tw)
+        ));
+    }
     s
 }
 

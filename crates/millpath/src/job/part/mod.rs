@@ -128,13 +128,17 @@ pub fn init_file(
         relative(drawing, out.parent().unwrap_or(Path::new("")))
     };
     let mut text = init::job_file(&named, &model, &dialect.to_string(), machine);
-    if import.layer.is_some() || import.drawing_units.is_some() {
+    let joined = (import.join_tolerance - ImportSettings::default().join_tolerance).abs() > 1e-12;
+    if import.layer.is_some() || import.drawing_units.is_some() || joined {
         let mut extra = String::new();
         if let Some(l) = &import.layer {
             extra.push_str(&format!("layer = \"{}\"\n", l.replace('"', "\\\"")));
         }
         if let Some(u) = &import.drawing_units {
             extra.push_str(&format!("drawing_units = \"{u}\"\n"));
+        }
+        if joined {
+            extra.push_str(&format!("join_tolerance = {:?}\n", import.join_tolerance));
         }
         if let Some(k) = text.find("machine = ") {
             text.insert_str(k, &extra);

@@ -154,6 +154,28 @@ pub(crate) fn plan(
     for n in &result.notes {
         note(format!("{}: {n}", op.name));
     }
+    // Tabs asked for and none fit: the piece would fall free as it is cut out.
+    for n in &result.notes {
+        if let profile::ProfileNote::FewerTabs {
+            target,
+            asked,
+            placed: 0,
+        } = n
+            && *asked > 0
+        {
+            let width = opts.tabs.width;
+            return Err(InputError::new("tab width", width)
+                .at("--tab-width")
+                .expected(format!(
+                    "tabs that fit on outline {} ({} of the operation's): none of the {asked} \
+                     tabs of {width} mm fits on its straight stretches and long arcs, and the \
+                     piece would fall free; a narrower tab_width, or tabs = 0 to let it fall",
+                    target + 1,
+                    targets.len()
+                ))
+                .into());
+        }
+    }
     let (rows, min_clearance) = crate::job::profile_check::verify(&targets, &result, &t, &opts)?;
     let band = rows
         .iter()

@@ -11,7 +11,8 @@
 //!
 //! # Entries and leads
 //! Ramp entry: the tool feeds down to the level above at the point the ramp length before the
-//! loop's start, descends along the loop to its start, cuts the loop and leaves by the
+//! loop's start (to a tab's top, when that point is over a tab's lift), descends along the
+//! loop to its start, cuts the loop and leaves by the
 //! lead-out arc (the ramp's stretch is cut again at full depth at the end of the loop).
 //! Helix entry: a helix of the helix radius beside the lead-in arc's start on the free side,
 //! then the lead-in arc, the loop and the lead-out. The finishing pass enters and leaves
@@ -19,7 +20,7 @@
 //! full depth), tangent to the finishing loop.
 
 use super::elements::Loop;
-use super::tabs::{self, Tab};
+use super::tabs::{self, TAB_RAMP_RUN, Tab};
 use super::{
     PlacedTab, ProfileEntry, ProfileNote, ProfileOptions, ProfileResult, ProfileSide,
     ProfileTarget, TabShape, TargetCut,
@@ -32,10 +33,6 @@ use crate::strategy::contour::offset::OffsetVertex;
 use crate::strategy::pocket::Direction;
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
 use std::f64::consts::PI;
-
-/// A ramped tab's ramps run this far along the path per unit of height (a 1-in-2 ramp,
-/// 26.6°): shallower than the 45° beyond which a flat end mill's way down is a plunge.
-pub const TAB_RAMP_RUN: f64 = 2.0;
 
 /// The most helix turns per level; beyond it the entry is a ramp.
 const MAX_HELIX_TURNS: f64 = 1000.0;
@@ -78,14 +75,15 @@ fn free_left(side: ProfileSide, cw: bool) -> bool {
     }
 }
 
-/// The loop's tab lifts at offset `d`: each tab whose path point lies on this loop.
+/// The loop's tab lifts at offset `d`: each tab whose path point lies on this loop (within
+/// what a run's inside corner cuts the path back, [`Tab::off_path`]).
 fn lifts_on(lp: &Loop, tabs: &[Tab], d: f64) -> Vec<(f64, f64, f64)> {
     let eps = 1e-6 * (1.0 + d);
     tabs.iter()
         .filter_map(|t| {
             let q = t.placed.at + t.free_normal * d;
             let (s, dist) = lp.project(q);
-            (dist <= eps).then(|| (s, t.half_lift(d), t.placed.top_z))
+            (dist <= eps + t.off_path(d)).then(|| (s, t.half_lift(d), t.placed.top_z))
         })
         .collect()
 }
@@ -397,15 +395,19 @@ fn at_z(m: &Move, z: f64) -> Move {
 
 /// True when the loops `cuts` (at offset `d`) keep the tool radius, with a quarter of a
 /// millimetre to spare for their sampling every 0.25 mm, from the tab's middle line (the
-/// drawn outline under it moved `d` to the free side) and from the line just beyond the
-/// slot, except over the tab's own lift and a millimetre either side.
+/// drawn outline under it moved `d` to the free side, sampled every 0.5 mm) and from the
+/// line just beyond the slot, except over the tab's own lift and a millimetre either side.
+/// The millimetres are those of a tool up to 12.7 mm, scaled with larger tools
+/// ([`crate::toolpath::tolerance_scale`]): a 3.7 m tool on a 56 × 70 m drawing sampled its
+/// 250 m loops every 0.25 mm against a 7.4 m tab line every 0.5 mm, for hours.
 fn clear_of_own_path(tab: &Tab, drawn: &Loop, cuts: &[Cut], d: f64, r: f64) -> bool {
     let (s, w) = (tab.placed.s, tab.placed.width);
+    let scale = crate::toolpath::tolerance_scale(2.0 * r);
     let left = tab.free_normal.dot(drawn.tangent(s).perp()) > 0.0;
-    let n = ((w / 0.5).ceil() as usize).max(2);
+    let n = ((w / (0.5 * scale)).ceil() as usize).max(2);
     // The middle line, and the line just beyond the slot's far wall: the material the tab
     // joins there must stand too (a pass across a narrow channel can take it away).
-    let line: Vec<Point> = [d, d + r + 0.5]
+    let line: Vec<Point> = [d, d + r + 0.5 * scale]
         .into_iter()
         .flat_map(|off| {
             (0..=n).map(move |k| {
@@ -418,19 +420,19 @@ fn clear_of_own_path(tab: &Tab, drawn: &Loop, cuts: &[Cut], d: f64, r: f64) -> b
     let mid = tab.placed.at + tab.free_normal * d;
     cuts.iter().all(|cut| {
         let (c, dist) = cut.lp.project(mid);
-        let skip = if dist <= 1e-6 * (1.0 + d) {
-            tab.half_lift(d) + 1.0
+        let skip = if dist <= 1e-6 * (1.0 + d) + tab.off_path(d) {
+            tab.half_lift(d) + scale
         } else {
             -1.0
         };
         let len = cut.lp.length;
-        let m = ((len / 0.25).ceil() as usize).max(1);
+        let m = ((len / (0.25 * scale)).ceil() as usize).max(1);
         (0..m).all(|k| {
             let sk = len * k as f64 / m as f64;
             let off = ((sk - c + 0.5 * len).rem_euclid(len) - 0.5 * len).abs();
             off <= skip || {
                 let q = cut.lp.point(sk);
-                line.iter().all(|p| p.distance(q) >= r + 0.25)
+                line.iter().all(|p| p.distance(q) >= r + 0.25 * scale)
             }
         })
     })
@@ -652,8 +654,6 @@ pub(super) fn generate(
                         }
                         let s_from = len - l;
                         let p = cut.lp.point(s_from);
-                        approach(&mut tp, p, z_prev, opts);
-                        at = tp.end();
                         let zp = ZProfile {
                             z,
                             ramp: Some((s_from, l, z_prev)),
@@ -662,6 +662,11 @@ pub(super) fn generate(
                             bottom_z: opts.bottom_z(),
                             len,
                         };
+                        // Down to the level above, or to a tab's top where the ramp starts
+                        // over a tab's lift (a short loop's ramp can start there).
+                        let z_start = zp.base(s_from).max(zp.tab(s_from, s_from));
+                        approach(&mut tp, p, z_start, opts);
+                        at = tp.end();
                         let mut mv = Vec::new();
                         along(&cut.lp, s_from, len, &zp, opts, &mut at, &mut mv);
                         tp.moves.extend(mv);

@@ -13,6 +13,19 @@
 //! path back (the path on the inside of the turn), `d·tan(|τ|/2)` for a turn of `τ`: never on
 //! a corner nor on a short or tight arc.
 //!
+//! A curve drawn as short lines (a spline flattened, a gear of LINEs) has no line long
+//! enough on its own, so a tab may also sit across gentle corners: over a run of lines
+//! whose turns within `h` of its centre add up to a bend `β ≤` [`BEND_MAX`] (30°), where
+//! `h = w/2 + d·B + r/cos(B/2) + 2d·tan(B/2) + 0.05` with `B = BEND_MAX` bounds the outline
+//! the lift can reach. The tool is lifted over `w/2 + d·β + r/cos(β/2)` of path either side:
+//! the tab's middle line (its stretch of outline moved `d`) runs at most `d·β` longer on the
+//! path than on the outline (the corner arcs), and beyond its end the path's chord is at
+//! least `cos(β/2)` of its length, so the tool stays a radius off the tab's ends; inside
+//! turns shorten the path by at most `2d·tan(β/2)`, which `h` allows for.
+//!
+//! A ramped tab's ramps (`TAB_RAMP_RUN·h` of path either side of the lift, `h` the tab's
+//! height) on a run stay within its reach: `h` above grows by them.
+//!
 //! # Even spacing
 //! With the perimeter `P` and `N` tabs the ideal places are `φ + kP/N`. Each is slid to the
 //! nearest allowed place (arc length, cyclically); the phase `φ` minimises the sum of the
@@ -27,7 +40,7 @@
 //! [`auto_tab_count`]: one tab per started 150 mm of perimeter, at least 2 and at most 16.
 
 use super::elements::{Loop, tangent_at};
-use super::{PlacedTab, ProfileSide, TabCount, TabOptions};
+use super::{PlacedTab, ProfileSide, TabCount, TabOptions, TabShape};
 use crate::geom::Outline;
 
 /// The most tabs per outline.
@@ -39,9 +52,31 @@ pub const PERIMETER_PER_TAB: f64 = 150.0;
 /// Distance kept between a tab's lift and the end of its element, mm.
 const GUARD: f64 = 0.05;
 
+/// A ramped tab's ramps run this far along the path per unit of height (a 1-in-2 ramp,
+/// 26.6°): shallower than the 45° beyond which a flat end mill's way down is a plunge.
+pub const TAB_RAMP_RUN: f64 = 2.0;
+
+/// The most a run of lines may turn under a tab and its lift, rad (module docs).
+pub const BEND_MAX: f64 = std::f64::consts::PI / 6.0;
+
 /// The tab count `auto` gives an outline of `perimeter` mm: `⌈P / 150⌉`, from 2 to 16.
 pub fn auto_tab_count(perimeter: f64) -> usize {
     ((perimeter / PERIMETER_PER_TAB).ceil().max(0.0) as usize).clamp(2, 16)
+}
+
+/// Where the tabs of `outline` cut on `side` at offset `d` from it by a tool of radius `r`
+/// go (module docs), and the count asked: the places alone, before a profile leaves out
+/// those that another cut, or the outline's own across a narrow channel, passes near (so at
+/// most what [`super::generate`] places). For choosing a tab width that fits.
+pub fn tab_places(
+    outline: &Outline,
+    side: ProfileSide,
+    d: f64,
+    r: f64,
+    opts: &TabOptions,
+) -> (Vec<PlacedTab>, usize) {
+    let (tabs, asked) = place(0, outline, side, d, r, opts, (0.0, 0.0));
+    (tabs.into_iter().map(|t| t.placed).collect(), asked)
 }
 
 /// A tab and its lift on the path.
@@ -53,16 +88,25 @@ pub(crate) struct Tab {
     pub free_normal: crate::geom::Vec2,
     /// On an arc: its radius and whether its centre lies on the free side.
     arc: Option<(f64, bool)>,
+    /// On a run of lines: the sum of the turns its lift may reach, rad (0 on one line).
+    bend: f64,
     /// The tool radius, mm.
     r: f64,
 }
 
 impl Tab {
+    /// How far the tab's point moved `d` along its normal may lie off the path at offset
+    /// `d`, mm: nothing on one line or arc; across a run's inside corner, the path is cut
+    /// back there by at most `d·tan(β/2)` from that point.
+    pub fn off_path(&self, d: f64) -> f64 {
+        d * (0.5 * self.bend).tan()
+    }
+
     /// Half the length of the path at offset `d` that the tool lifts over, mm (module docs).
     pub fn half_lift(&self, d: f64) -> f64 {
         let (w, r) = (self.placed.width, self.r);
         match self.arc {
-            None => 0.5 * w + r,
+            None => 0.5 * w + d * self.bend + r / (0.5 * self.bend).cos(),
             Some((rad, centre_free)) => {
                 let rp = if centre_free { rad - d } else { rad + d };
                 rp * (0.5 * w / rad + (r / rp).min(1.0).asin())
@@ -81,6 +125,7 @@ struct Stretch {
     hi: f64,
     half_lift: f64,
     arc: Option<(f64, bool)>,
+    bend: f64,
 }
 
 /// The tabs of `outline` cut on `side` at offset `d` by a tool of radius `r`, or the count
@@ -129,6 +174,12 @@ pub(crate) fn place(
             0.0
         }
     };
+    // A ramped tab's ramps run `TAB_RAMP_RUN·h` of path beyond its lift (module docs).
+    let ramp = if opts.shape == TabShape::Ramped {
+        TAB_RAMP_RUN * opts.height
+    } else {
+        0.0
+    };
     let mut stretches = Vec::new();
     for (k, e) in lp.elems.iter().enumerate() {
         let len = e.length();
@@ -155,9 +206,11 @@ pub(crate) fn place(
                 hi,
                 half_lift,
                 arc,
+                bend: 0.0,
             });
         }
     }
+    stretches.extend(run_stretches(&lp, w, d, r, ramp, &turn));
     if stretches.is_empty() {
         return (Vec::new(), asked);
     }
@@ -253,11 +306,88 @@ pub(crate) fn place(
                 },
                 free_normal,
                 arc: stretches[j].arc,
+                bend: stretches[j].bend,
                 r,
             }
         })
         .collect();
     (tabs, asked)
+}
+
+/// The stretches across gentle corners of lines (module docs): the centres whose reach `h`
+/// (with a ramped tab's `ramp`)
+/// crosses at least one corner, only corners between two lines, turning `BEND_MAX` at most
+/// in all; each interval of the same corners is one stretch with its own bend.
+fn run_stretches(
+    lp: &Loop,
+    w: f64,
+    d: f64,
+    r: f64,
+    ramp: f64,
+    turn: &dyn Fn(usize) -> f64,
+) -> Vec<Stretch> {
+    let n = lp.elems.len();
+    let p = lp.length;
+    let b = BEND_MAX;
+    let h = 0.5 * w + d * b + r / (0.5 * b).cos() + 2.0 * d * (0.5 * b).tan() + ramp + GUARD;
+    if n < 2 || p <= 2.0 * h {
+        return Vec::new();
+    }
+    // Each corner (the start of element k): its place and its weight, infinite where it
+    // turns too far or joins an arc.
+    let corner: Vec<(f64, f64)> = (0..n)
+        .map(|k| {
+            let lines = lp.elems[k].center.is_none() && lp.elems[(k + n - 1) % n].center.is_none();
+            let t = turn(k).abs();
+            (
+                lp.starts[k],
+                if lines && t <= b { t } else { f64::INFINITY },
+            )
+        })
+        .collect();
+    // The corners three times over (shifted by -p, 0, p), sorted by place.
+    let all: Vec<(f64, f64)> = [-p, 0.0, p]
+        .iter()
+        .flat_map(|&sh| corner.iter().map(move |&(s, t)| (s + sh, t)))
+        .collect();
+    let mut cuts: Vec<f64> = corner
+        .iter()
+        .flat_map(|&(s, _)| [(s - h).rem_euclid(p), (s + h).rem_euclid(p)])
+        .chain([0.0, p])
+        .collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    let mut out: Vec<Stretch> = Vec::new();
+    for win in cuts.windows(2) {
+        let (lo, hi) = (win[0], win[1]);
+        if hi - lo < 1e-12 {
+            continue;
+        }
+        let m = 0.5 * (lo + hi);
+        let i0 = all.partition_point(|c| c.0 <= m - h);
+        let i1 = all.partition_point(|c| c.0 < m + h);
+        if i1 <= i0 {
+            continue;
+        }
+        let bend: f64 = all[i0..i1].iter().map(|c| c.1).sum();
+        if bend > b {
+            continue;
+        }
+        let half_lift = 0.5 * w + d * bend + r / (0.5 * bend).cos();
+        match out.last_mut() {
+            Some(last) if (last.hi - lo).abs() < 1e-12 && (last.bend - bend).abs() < 1e-15 => {
+                last.hi = hi;
+            }
+            _ => out.push(Stretch {
+                lo,
+                hi,
+                half_lift,
+                arc: None,
+                bend,
+            }),
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -296,6 +426,44 @@ mod tests {
             // On a side, at least half the width plus the tool radius from its corners.
             assert!(off_x.min(off_y) < 1e-9, "{a:?}");
             assert!(off_x.max(off_y) >= 3.0 + 3.0 + GUARD - 1e-9, "{a:?}");
+        }
+    }
+
+    /// A circle drawn as 240 short lines (each 0.52 mm, shorter than any tab and its lift)
+    /// gets the tabs asked for, across its gentle corners, each lift long enough for the
+    /// corners its reach crosses (1.5° each) and clear of the next tab's.
+    #[test]
+    fn tabs_sit_across_gentle_corners_of_short_lines() {
+        let k = 240;
+        let pts: Vec<Point> = (0..k)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / k as f64;
+                Point::new(20.0 * a.cos(), 20.0 * a.sin())
+            })
+            .collect();
+        let o = Outline::from_points(&pts, "c").unwrap();
+        let opts = TabOptions::default()
+            .with_count(TabCount::Count(3))
+            .with_width(2.0);
+        let (tabs, asked) = place(0, &o, ProfileSide::Outside, 1.5, 1.5, &opts, (-4.0, -6.0));
+        assert_eq!((tabs.len(), asked), (3, 3));
+        let side = 2.0 * 20.0 * (std::f64::consts::PI / k as f64).sin();
+        let per_corner = std::f64::consts::TAU / k as f64;
+        for t in &tabs {
+            // The outline the lift may reach holds at most this many corners.
+            let reach = 2.0 * (1.0 + 1.5 * BEND_MAX + 1.5 / (0.5 * BEND_MAX).cos())
+                + 4.0 * 1.5 * (0.5 * BEND_MAX).tan()
+                + 2.0 * GUARD;
+            let corners = (reach / side).ceil() + 1.0;
+            assert!(
+                t.bend > 0.0 && t.bend <= corners * per_corner + 1e-9,
+                "{}",
+                t.bend
+            );
+            // The lift spans the tab and a radius either side, plus the corner arcs.
+            assert!(t.half_lift(1.5) >= 1.0 + 1.5 + 1.5 * t.bend - 1e-9);
+            assert!(t.half_lift(1.5) <= 1.0 + 1.5 + 1.5 * t.bend + 0.1);
+            assert!((t.placed.at.distance(Point::ORIGIN) - 20.0).abs() < 0.01);
         }
     }
 }
