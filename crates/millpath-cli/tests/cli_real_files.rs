@@ -628,12 +628,17 @@ const SMALLEST_TOOL_FILES: &[&str] = &[
 /// every setting but the tool at its default. Each run writes a program `verify` accepts or
 /// is refused with exit 2 and a message; none exits 1. Too long for the test command (about
 /// half an hour on two cores); run it by name:
-/// `cargo test --release -p millpath-cli --test cli_real_files full_sweep -- --ignored --nocapture`.
+/// `cargo test --release -p millpath-cli --test cli_real_files full_sweep -- --ignored --nocapture`
+/// (`MILLPATH_SWEEP_FILES=a.dxf,b.svg` sweeps only those drawings).
 #[test]
 #[ignore = "half an hour in release: run by name (see the doc)"]
 fn full_sweep() {
+    let only: Option<Vec<String>> = std::env::var("MILLPATH_SWEEP_FILES")
+        .ok()
+        .map(|v| v.split(',').map(str::to_owned).collect());
     let jobs: Vec<(String, Vec<usize>)> = real_files()
         .into_iter()
+        .filter(|f| only.as_ref().is_none_or(|o| o.contains(f)))
         .map(|f| (f, (0..SWEEP_FRACTIONS.len()).collect()))
         .collect();
     sweep(&jobs, false);

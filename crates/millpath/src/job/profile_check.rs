@@ -136,7 +136,12 @@ pub(crate) fn verify(
                     levels: Vec::new(),
                     ..shifted.clone()
                 };
-                for (j, w) in walls.iter().filter(|(j, _)| *j != cut.target) {
+                // Only the outlines whose boxes come within the tool radius of the loop's.
+                let reach = path_box(&part).inflate(r);
+                for (j, w) in walls
+                    .iter()
+                    .filter(|(j, w)| *j != cut.target && overlaps(reach, w.outline.bounds()))
+                {
                     let spec = crate::stock::StockSpec {
                         outer: &w.outline,
                         islands: &[],
@@ -155,13 +160,34 @@ pub(crate) fn verify(
                 }
             }
         }
+        // Each outline against the runs of moves whose boxes come within `NEAR` of its box:
+        // a move farther off is farther than the tool radius from it, and each outline cut
+        // has its own pass within the tool radius and its offset (the least clearance is
+        // among the runs; measured against the whole path where no run is that near).
+        let near = r + NEAR;
+        let mut clearances = Vec::with_capacity(walls.len());
         for (_, w) in &walls {
             let spec = crate::stock::StockSpec {
                 outer: &w.outline,
                 islands: &[],
                 wall_stock: 0.0,
             };
-            let c = crate::stock::min_clearance(&shifted, spec);
+            let b = w.outline.bounds().inflate(near);
+            let c = near_runs(&shifted, b)
+                .iter()
+                .map(|run| crate::stock::min_clearance(run, spec))
+                .min_by(|a, b| a.distance.total_cmp(&b.distance));
+            clearances.push((spec, c));
+        }
+        if clearances
+            .iter()
+            .all(|(_, c)| c.as_ref().is_none_or(|c| c.distance > near))
+        {
+            for (spec, c) in &mut clearances {
+                *c = Some(crate::stock::min_clearance(&shifted, *spec));
+            }
+        }
+        for c in clearances.into_iter().filter_map(|(_, c)| c) {
             min_clearance = min_clearance.min(c.distance);
             if c.distance < r - 1e-9 {
                 return Err(Error::internal(format!(
@@ -170,15 +196,17 @@ pub(crate) fn verify(
                 )));
             }
         }
+        let boxes: Vec<_> = walls.iter().map(|(_, w)| w.outline.bounds()).collect();
+        let within = |side: ProfileSide, p: Point| {
+            walls
+                .iter()
+                .zip(&boxes)
+                .filter(|((_, w), b)| w.side == side && b.contains(p) && w.outline.contains(p))
+                .count()
+        };
         let material = |p: Point| {
-            let outside = walls
-                .iter()
-                .filter(|(_, w)| w.side == ProfileSide::Outside && w.outline.contains(p))
-                .count();
-            let inside = walls
-                .iter()
-                .filter(|(_, w)| w.side == ProfileSide::Inside && w.outline.contains(p))
-                .count();
+            let outside = within(ProfileSide::Outside, p);
+            let inside = within(ProfileSide::Inside, p);
             outside > inside
         };
         for (k, m) in tp.moves.iter().enumerate() {
@@ -534,4 +562,57 @@ fn bridge_verdict(
         necks_mm: v.bridges.iter().map(|b| b.neck_mm).collect(),
         cell_mm: v.cell_mm,
     })
+}
+
+/// How far beyond the tool radius a move's box may lie from an outline's box and still be
+/// measured against it, mm (the finishing offset's tolerance and stock to leave are less).
+const NEAR: f64 = 1.0;
+
+/// True when two boxes share a point.
+fn overlaps(a: crate::geom::Aabb, b: crate::geom::Aabb) -> bool {
+    a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y
+}
+
+/// The box (in XY) of a move from `from`: its ends, and for an arc its whole circle.
+fn move_box(from: Point3, m: &Move) -> crate::geom::Aabb {
+    let b = crate::geom::Aabb::EMPTY
+        .with_point(from.xy())
+        .with_point(m.to.xy());
+    match m.kind {
+        MoveKind::Arc { center, .. } => {
+            let c = center.xy();
+            let rad = c.distance(from.xy()).max(c.distance(m.to.xy()));
+            b.union(crate::geom::Aabb::EMPTY.with_point(c).inflate(rad))
+        }
+        _ => b,
+    }
+}
+
+/// The box of a whole toolpath's moves.
+fn path_box(tp: &Toolpath) -> crate::geom::Aabb {
+    tp.segments().fold(
+        crate::geom::Aabb::EMPTY.with_point(tp.start.xy()),
+        |b, (f, m)| b.union(move_box(f, m)),
+    )
+}
+
+/// The runs of consecutive moves of `tp` whose boxes meet `near`, each a toolpath starting
+/// where its first move starts.
+fn near_runs(tp: &Toolpath, near: crate::geom::Aabb) -> Vec<Toolpath> {
+    let mut runs: Vec<Toolpath> = Vec::new();
+    let mut open = false;
+    for (from, m) in tp.segments() {
+        if overlaps(move_box(from, m), near) {
+            if !open {
+                runs.push(Toolpath::new(tp.tool, from));
+                open = true;
+            }
+            if let Some(run) = runs.last_mut() {
+                run.moves.push(*m);
+            }
+        } else {
+            open = false;
+        }
+    }
+    runs
 }

@@ -506,7 +506,7 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
                 .join(",")
         ));
     }
-    line("side = \"auto\"              # outermost outlines outside, their holes inside");
+    line("side = \"auto\"              # the parts outside (\"inside\": their pockets as windows)");
     line("depth = \"through\"");
     line(&format!(
         "step_down = {}",
