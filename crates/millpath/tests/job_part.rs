@@ -133,6 +133,23 @@ fn square_tabs_plunge_only_at_their_ends() {
     assert!(v.problems().is_empty(), "{:?}", v.problems());
 }
 
+/// A job file with no margin: the stock reaches two diameters of the largest end mill beyond
+/// the drawing, so the frame the profile's slot leaves holds the plate by its tabs (at the
+/// old 5 mm, less than the 6 mm slot, no frame was left: "held by 0 tab bridges", exit 1).
+#[test]
+fn the_default_margin_leaves_a_frame_for_the_tabs() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = spec(dir.path(), |t| t.replace("margin = 10.0\n", "")).unwrap();
+    assert!((s.stock.margin - 12.0).abs() < 1e-12, "{}", s.stock.margin);
+    let run = part::run_spec(s, &mut |_| {}).unwrap();
+    assert_eq!(
+        run.report.check.last().map(|(_, v)| v.as_str()),
+        Some("the drawn part, held by its tabs"),
+        "{:?}",
+        run.report.check
+    );
+}
+
 /// A program missing its drilling, missing its profile, or with its pocket 0.2 mm too deep
 /// is not the part: `verify_program` says which region and how.
 #[test]

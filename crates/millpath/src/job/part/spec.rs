@@ -7,7 +7,8 @@
 //! dialect = "linuxcnc"       # linuxcnc, fanuc, sinumerik or grbl
 //!
 //! [stock]
-//! margin = 5.0               # mm around the drawing's extents (or size = [x, y], origin = [x, y])
+//! margin = 12.0              # mm around the drawing's extents (or size = [x, y], origin = [x, y]);
+//!                             # default: two diameters of the largest end mill, at least 5
 //! thickness = 6.0            # mm: the part's bottom is at z = -thickness
 //! top = 0.5                  # mm of material above the part's top (z = 0), faced off
 //!
@@ -367,8 +368,8 @@ pub fn parse(
         Some("off") => Coolant::Off,
         Some(c) => return Err(top.error("coolant", c).expected("flood, mist or off")),
     };
-    let stock = stock(&top)?;
     let tools = tools(&top)?;
+    let stock = stock(&top, &tools)?;
     let operations = operations(&top, &tools)?;
     Ok(JobSpec {
         origin: origin.to_owned(),
@@ -389,7 +390,7 @@ pub fn parse(
     })
 }
 
-fn stock(top: &Keys<'_, '_>) -> Result<StockSettings, InputError> {
+fn stock(top: &Keys<'_, '_>, tools: &[JobTool]) -> Result<StockSettings, InputError> {
     let empty = DeTable::new();
     let (t, line) = top.table("stock")?.unwrap_or((&empty, 1));
     let k = Keys::new(t, top_text(top), top_origin(top), "[stock]", line);
@@ -403,13 +404,26 @@ fn stock(top: &Keys<'_, '_>) -> Result<StockSettings, InputError> {
             .expected("two lengths > 0 mm"));
     }
     Ok(StockSettings {
-        margin: k.non_negative("margin", "mm")?.unwrap_or(5.0),
+        margin: k
+            .non_negative("margin", "mm")?
+            .unwrap_or_else(|| default_margin(tools)),
         size,
         origin: k.numbers("origin", 2)?.map(|v| [v[0], v[1]]),
         thickness: k.positive("thickness", "mm")?.unwrap_or(10.0),
         top: k.non_negative("top", "mm")?.unwrap_or(0.0),
         breakthrough: k.non_negative("breakthrough", "mm")?.unwrap_or(0.5),
     })
+}
+
+/// The margin when the file gives none: two diameters of the largest end mill, at least 5 mm.
+/// A part cut out through the stock is held by tabs to the frame the profile's slot (a
+/// diameter wide) and its leads leave around it; a narrower margin leaves no frame.
+fn default_margin(tools: &[JobTool]) -> f64 {
+    tools
+        .iter()
+        .filter(|t| t.kind == ToolKind::EndMill)
+        .map(|t| 2.0 * t.diameter)
+        .fold(5.0, f64::max)
 }
 
 // `Keys` keeps its text and origin private; these read them back for sub-tables.
