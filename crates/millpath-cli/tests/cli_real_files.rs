@@ -26,8 +26,9 @@
 
 mod job_real;
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use job_real::{dir, millpath, text};
+
+use std::path::Path;
 use std::sync::Mutex;
 
 /// Files refused whatever the tool, and the words their refusal must hold (none left: a file
@@ -59,32 +60,6 @@ const HUGE: &[&str] = &[
     "ez_clockwise_arcs_hatch.dxf",
     "ez_insert_bricscad_level_1.dxf",
 ];
-
-fn dir() -> PathBuf {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/real-inputs/files");
-    assert!(
-        d.is_dir(),
-        "the real inputs are missing: {} (CI keeps ../shared beside the clone)",
-        d.display()
-    );
-    d
-}
-
-fn millpath(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the millpath binary runs")
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
 
 /// The first listed pocket's bounds (the largest), from `pocket --list`.
 fn largest_bounds(list: &str) -> [f64; 4] {

@@ -42,7 +42,8 @@ pub fn dir() -> PathBuf {
     d
 }
 
-fn millpath(args: &[&str], cwd: &Path) -> Output {
+/// Runs the CLI built with the tests in `cwd`.
+pub fn millpath(args: &[&str], cwd: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_millpath"))
         .args(args)
         .current_dir(cwd)
@@ -50,7 +51,8 @@ fn millpath(args: &[&str], cwd: &Path) -> Output {
         .expect("the millpath binary runs")
 }
 
-fn text(o: &Output) -> String {
+/// Its standard output and error, together.
+pub fn text(o: &Output) -> String {
     format!(
         "{}{}",
         String::from_utf8_lossy(&o.stdout),
