@@ -1,7 +1,8 @@
 //! Every program states its path tolerance: the pocket program carries the chosen machine's
-//! (`G64 P t` on LinuxCNC, exact stop for a machine of tolerance 0), the contour program the
+//! (`G64 P t` on LinuxCNC; 0.01 mm for a machine of tolerance 0), the contour program the
 //! machine's or the contour's where that is tighter; reading the program back gives the
-//! tolerance the command timed it with, and LinuxCNC's interpreter `rs274` accepts it.
+//! tolerance the command timed it with, and LinuxCNC's interpreter `rs274` accepts it. A
+//! machine that states none (tolerance 0) never makes a program stop at every corner.
 
 #[path = "../../millpath/tests/rs274_common/mod.rs"]
 mod rs274_common;
@@ -154,5 +155,81 @@ fn contour_programs_state_the_tighter_of_the_machine_and_contour_tolerances() {
         assert!(header(&text).contains(&line), "{line} in\n{text}");
         corners_read_back(&text, Corner::Blend(t));
         rs274_common::rs274(&text).unwrap_or_else(|e| panic!("rs274: {e}"));
+    }
+}
+
+/// A machine that states no path tolerance (the `linuxcnc-time` preset, tolerance 0: the
+/// controller's default) gets a stated one in every program, never exact stop: the profile
+/// and the contour their `--tolerance`, the drill program the pocket's 0.01 mm. Each is read
+/// back blending within it, and `rs274` accepts it.
+#[test]
+fn programs_for_a_machine_without_a_tolerance_state_their_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let runs: [(&[&str], &str, f64); 3] = [
+        (
+            &[
+                "profile",
+                "sample:part",
+                "--tool-diameter",
+                "6",
+                "--depth",
+                "6",
+                "--step-down",
+                "6",
+                "--tolerance",
+                "0.02",
+            ],
+            "G64 P0.02",
+            0.02,
+        ),
+        (
+            &["contour", "--sample", "--depth", "5", "--step-down", "5"],
+            "G64 P",
+            f64::NAN,
+        ),
+        (
+            &[
+                "drill",
+                "sample:part",
+                "--tool-diameter",
+                "6",
+                "--depth",
+                "6",
+            ],
+            "G64 P0.01",
+            0.01,
+        ),
+    ];
+    for (args, line, t) in runs {
+        let mut a = args.to_vec();
+        a.extend(["--machine", "linuxcnc-time", "-o", "p.ngc", "--json"]);
+        ok(&millpath(&a, dir.path()));
+        let text = std::fs::read_to_string(dir.path().join("p.ngc")).unwrap();
+        let head = header(&text);
+        assert!(
+            head.iter().any(|l| l.starts_with(line)) && !head.contains(&"G61.1"),
+            "{args:?}: {line} in\n{}",
+            head.join("\n")
+        );
+        let (tp, _) = read_str(&text, ReaderOptions::default()).unwrap();
+        assert!(!tp.moves.is_empty());
+        // Every move blends within the tolerance stated, the canned cycles' aside (the
+        // reader gives their moves LinuxCNC's exact path).
+        let mut blended = 0;
+        for (i, m) in tp.moves.iter().enumerate() {
+            match m.corner {
+                Corner::Blend(x) | Corner::BlendMerge { tolerance: x, .. } => {
+                    assert!(
+                        x > 0.0 && (t.is_nan() || (x - t).abs() < 1e-12),
+                        "{args:?} move {i}: blend {x}"
+                    );
+                    blended += 1;
+                }
+                Corner::ExactPath if args[0] == "drill" => {}
+                c => panic!("{args:?} move {i}: {c:?}"),
+            }
+        }
+        assert!(2 * blended > tp.moves.len(), "{args:?}: {blended} blended");
+        rs274_common::rs274(&text).unwrap_or_else(|e| panic!("{args:?}: rs274: {e}"));
     }
 }

@@ -11,7 +11,7 @@ use std::path::PathBuf;
     after_help = "Examples:\n  millpath drill plate.dxf --tool-diameter 5 --depth 6 --through -o plate.ngc --report plate.json\n  millpath drill plate.dxf --list                                   # the circles found, by index\n  millpath drill plate.dxf --tool-diameter 3 --max-diameter 3.2 --peck 2 --depth 12 -o small.ngc\n  millpath drill plate.dxf --tool-diameter 6 --min-diameter 6 --depth 8 --dialect sinumerik -o bores.mpf\n  millpath drill part.svg --layer holes --tool-diameter 4 --drill-only --stay-at-retract --dialect fanuc"
 )]
 pub struct Args {
-    /// Drawing (.dxf, .svg) or JSON outline whose circles are the holes.
+    /// Drawing (.dxf, .svg), JSON outline or `sample:part`, whose circles are the holes.
     pub drawing: String,
     /// How a DXF or SVG drawing is read.
     #[command(flatten)]

@@ -14,7 +14,7 @@ use std::path::PathBuf;
     after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket sample:aerospace --depth 5 --step-down 5 --dialect fanuc --units in --tool-number 3 -o pocket.nc\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4\n  millpath pocket sheet.dxf --list                       # the drawing's pockets, by index\n  millpath pocket sheet.dxf --select 1,3 --tool-diameter 6 --depth 3 --step-down 3 -o two.ngc"
 )]
 pub struct Args {
-    /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`.
+    /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`, `sample:part`.
     pub outline: String,
     #[command(flatten)]
     pub common: CommonArgs,

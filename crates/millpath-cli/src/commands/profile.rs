@@ -11,7 +11,8 @@ use std::path::PathBuf;
     after_help = "Examples:\n  millpath profile part.dxf --tool-diameter 6 --depth 6 --step-down 2 -o part.ngc   # parts outside, holes inside\n  millpath profile part.dxf --depth 6 --tabs auto --tab-width 6 --tab-height 2 -o part.ngc\n  millpath profile sign.svg --side on --depth 1 --step-down 1 --tool-diameter 3 -o sign.ngc\n  millpath profile part.dxf --stock-to-leave 0.2 --entry helix --conventional --report part.json\n  millpath profile part.dxf --dialect fanuc --units in --tool-number 2 -o part.nc\n  millpath profile --sample -o die.ngc      # the paper's die cavity, as contour --sample cuts it"
 )]
 pub struct Args {
-    /// Drawing (.dxf, .svg) or outline file (.json). Omit with --sample.
+    /// Drawing (.dxf, .svg), outline file (.json) or a built-in sample (`sample:part`). Omit
+    /// with --sample.
     #[arg(required_unless_present = "sample")]
     pub drawing: Option<String>,
     /// Cut the paper's die cavity (the curve of `contour --sample`, fitted by arcs within a

@@ -21,7 +21,7 @@ pub struct Args {
     /// Subroutine folders and tool table.
     #[command(flatten)]
     pub files: super::ProgramFiles,
-    /// The pocket outline (.json, .dxf, .svg or sample:aerospace).
+    /// The pocket outline (.json, .dxf, .svg, sample:aerospace or sample:part).
     #[arg(long, required_unless_present = "job")]
     pub outline: Option<String>,
     /// Check the program against a job file instead (`millpath job`): the part it means to

@@ -142,7 +142,7 @@ fn read_drawing(name: &str, import: &ImportSettings) -> Result<Read, Error> {
         }
         _ => {
             return Err(InputError::new("outline file", name)
-                .expected("a .json, .dxf or .svg file, or sample:aerospace")
+                .expected("a .json, .dxf or .svg file, or sample:aerospace or sample:part")
                 .into());
         }
     }))

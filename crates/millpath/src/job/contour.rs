@@ -125,10 +125,17 @@ impl ContourRun {
 /// The machine a contour program is timed on: `machine` with the path tolerance the
 /// program states, the machine's or the contour's tolerance `t` where that is tighter (a
 /// controller blending corners by more than `t` would cut outside the contour's budget, and
-/// LinuxCNC's `G64 P` also merges short segments within it).
+/// LinuxCNC's `G64 P` also merges short segments within it); `t` where the machine states
+/// none (path tolerance 0, as the `linuxcnc-time` preset: the controller's own default,
+/// which on LinuxCNC blends without a limit).
 pub fn program_machine(machine: &Machine, t: f64) -> Machine {
+    let path_tolerance = if machine.path_tolerance > 0.0 {
+        t.min(machine.path_tolerance)
+    } else {
+        t
+    };
     Machine {
-        path_tolerance: t.min(machine.path_tolerance),
+        path_tolerance,
         ..machine.clone()
     }
 }

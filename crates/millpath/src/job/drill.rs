@@ -191,7 +191,12 @@ pub fn program_options(
     out: &ProgramSettings,
     settings: &DrillSettings,
 ) -> Result<WriterOptions, Error> {
-    let t = machine.path_tolerance;
+    // A machine that states no path tolerance (0) gets the pocket's default, as pockets do.
+    let t = if machine.path_tolerance > 0.0 {
+        machine.path_tolerance
+    } else {
+        super::pocket::DEFAULT_PATH_TOLERANCE
+    };
     let mut max_rounding = crate::gcode::format::ROUNDING_SHARE * settings.diameter_tolerance;
     let mut why = format!(
         "10 % of the diameter tolerance {} mm",
@@ -215,7 +220,17 @@ pub fn find(
     note: &mut dyn FnMut(String),
 ) -> Result<Vec<Hole>, Error> {
     settings.options()?;
-    let (outlines, n) = crate::io::read_outlines(drawing, &settings.import)?;
+    let (outlines, n) = if super::SAMPLE_OUTLINES.contains(&drawing) {
+        let (loops, n) = super::load_outline(drawing, &settings.import)?;
+        let all = loops
+            .pockets()
+            .into_iter()
+            .flat_map(|p| std::iter::once(p.outer).chain(p.islands))
+            .collect();
+        (all, n)
+    } else {
+        crate::io::read_outlines(drawing, &settings.import)?
+    };
     if let Some(n) = n {
         note(n);
     }

@@ -37,17 +37,25 @@ pub use program::{ProgramSettings, program_time};
 pub use timing::time_and_verify;
 
 /// The built-in outline names `load_outline` takes.
-pub const SAMPLE_OUTLINES: &[&str] = &["sample:aerospace"];
+pub const SAMPLE_OUTLINES: &[&str] = &["sample:aerospace", "sample:part"];
 
-/// Reads an outline by name: a built-in sample (`sample:aerospace`) or a JSON, DXF or SVG
-/// file ([`crate::io::read_outline_file`]); returns the loops and, for a drawing, the note of
-/// what it held.
+/// Reads an outline by name: a built-in sample (`sample:aerospace`, the paper's pocket;
+/// `sample:part`, the sample part's drawing [`sample_part_job_drawing`] read through the DXF
+/// reader with `import`'s layer) or a JSON, DXF or SVG file ([`crate::io::read_outline_file`]);
+/// returns the loops and, for a drawing, the note of what it held.
 pub fn load_outline(name: &str, import: &ImportSettings) -> Result<(Loops, Option<String>), Error> {
-    if name == "sample:aerospace" {
-        let s = builtin::aerospace_pocket();
-        return Ok((Loops::single(s.outer, s.islands), None));
+    match name {
+        "sample:aerospace" => {
+            let s = builtin::aerospace_pocket();
+            Ok((Loops::single(s.outer, s.islands), None))
+        }
+        "sample:part" => {
+            let dxf = sample_part_job_drawing();
+            let opts = crate::io::dxf::DxfOptions::default().with_layer(import.layer.clone());
+            Ok((crate::io::dxf::parse(dxf.as_bytes(), name, &opts)?, None))
+        }
+        _ => crate::io::read_outline_file(name, import),
     }
-    crate::io::read_outline_file(name, import)
 }
 
 /// The built-in sample part (after the adaptive-spiral paper's Figure 17) as a drawing: its

@@ -51,7 +51,7 @@
 //! description = "…"       # optional
 //! units = "mm"            # "mm" or "in": every length below is in these units
 //! max_feed = 250.0        # units/s
-//! path_tolerance = 0.01   # units; 0 = exact stop at every corner
+//! path_tolerance = 0.01   # units; 0 = none stated (the controller's default)
 //! ipo_cycle = 0.002       # s (optional, default 0.002)
 //! curvature_accel_share = 0.75   # optional, default 0.75
 //! curvature_jerk_share = 0.75    # optional, default 0.75
@@ -143,7 +143,11 @@ pub struct Machine {
     /// Rapid velocity per axis in mm/s (G0 moves are interpolated linearly).
     pub rapid: [f64; 3],
     /// Corner blending tolerance in mm: the largest distance between the programmed corner
-    /// and the blended path. 0 means exact stop at every non-tangent corner.
+    /// and the blended path. 0 means the machine states none: a program that states no path
+    /// mode is timed at the controller's default (exact stop at every non-tangent corner;
+    /// on LinuxCNC, `G64` without P: blends without a limit), and the programs millpath
+    /// writes state their own (the pocket's and the job's 0.01 mm, a profile's or contour's
+    /// `--tolerance`); `--tolerance 0` asks for exact stop.
     pub path_tolerance: f64,
     /// The controller's interpolation cycle in s: acceleration steps at curvature jumps are
     /// spread over one cycle (see [`crate::motion`]).

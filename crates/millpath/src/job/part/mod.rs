@@ -158,18 +158,13 @@ pub fn hole_outline(
 /// The built-in sample part's drawing name (`crate::job::sample_part_job_drawing`).
 pub const SAMPLE_PART: &str = "sample:part";
 
-/// Reads a job's drawing: a DXF or SVG file, or the built-in [`SAMPLE_PART`].
+/// Reads a job's drawing: a DXF or SVG file, or a built-in sample ([`SAMPLE_PART`],
+/// [`crate::job::load_outline`]).
 pub fn load_drawing(
     name: &str,
     import: &ImportSettings,
 ) -> Result<(crate::io::outline_json::Loops, Option<String>), Error> {
-    if name == SAMPLE_PART {
-        let dxf = crate::job::sample_part_job_drawing();
-        let opts = crate::io::dxf::DxfOptions::default().with_layer(import.layer.clone());
-        let loops = crate::io::dxf::parse(dxf.as_bytes(), SAMPLE_PART, &opts)?;
-        return Ok((loops, None));
-    }
-    crate::io::read_outline_file(name, import)
+    crate::job::load_outline(name, import)
 }
 
 /// `to` as a path from the folder `from` (both made absolute against the current folder):
