@@ -150,6 +150,33 @@ fn the_default_margin_leaves_a_frame_for_the_tabs() {
     );
 }
 
+/// A margin narrower than the profile's slot (6 mm here) leaves the tabs no frame to hold
+/// to: the job is refused as bad input naming the margin and what it needs (it was an
+/// internal error, "held by 0 tab bridges"), and 6 mm, the slot exactly, is made.
+#[test]
+fn a_margin_narrower_than_the_profile_slot_is_refused_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = spec(dir.path(), |t| t.replace("margin = 10.0\n", "margin = 4.0\n")).unwrap();
+    match part::run_spec(s, &mut |_| {}) {
+        Err(millpath::Error::Input(e)) => {
+            let m = e.to_string();
+            assert!(
+                m.contains("stock margin = 4 mm") && m.contains("at least 6 mm"),
+                "{m}"
+            );
+        }
+        other => panic!("{:?}", other.map(|r| r.report.check)),
+    }
+    let s = spec(dir.path(), |t| t.replace("margin = 10.0\n", "margin = 6.0\n")).unwrap();
+    let run = part::run_spec(s, &mut |_| {}).unwrap();
+    assert_eq!(
+        run.report.check.last().map(|(_, v)| v.as_str()),
+        Some("the drawn part, held by its tabs"),
+        "{:?}",
+        run.report.check
+    );
+}
+
 /// A program missing its drilling, missing its profile, or with its pocket 0.2 mm too deep
 /// is not the part: `verify_program` says which region and how.
 #[test]

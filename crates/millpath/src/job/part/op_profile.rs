@@ -99,6 +99,9 @@ pub(crate) fn plan(
             .expected(format!("less than the stock's thickness {thickness} mm"))
             .into());
     }
+    if count != TabCount::None && side != ProfileSide::Inside {
+        frame_for_tabs(cx, &targets, &selected, tool.diameter + s.stock_to_leave)?;
+    }
     let mut opts = ProfileOptions::default()
         .with_top_z(0.0)
         .with_depth(depth)
@@ -218,4 +221,53 @@ pub(crate) fn plan(
         tabs: result.tabs,
         holes: Vec::new(),
     })
+}
+
+/// Refuses a block with no frame for the tabs to hold to: a through profile outside a part
+/// cuts a slot one tool diameter `slot` (plus the stock left) wide around it, and where
+/// that slot reaches past the block's edge the tabs join the part to nothing (the job's
+/// stock check would find the part held by fewer bridges than tabs). Names the `[stock]`
+/// key to change; `parts` numbers the targets' parts (from 1).
+fn frame_for_tabs(
+    cx: &OpContext<'_>,
+    targets: &[ProfileTarget],
+    parts: &[usize],
+    slot: f64,
+) -> Result<(), Error> {
+    let block = cx.stock.bounds;
+    // Rounding of the block's corners from the text: far below any cell the check uses.
+    let eps = 1e-9 * (1.0 + block.width().max(block.height()));
+    for (i, t) in targets.iter().enumerate() {
+        let b = t.outline.bounds();
+        let room = (b.min.x - block.min.x)
+            .min(b.min.y - block.min.y)
+            .min(block.max.x - b.max.x)
+            .min(block.max.y - b.max.y);
+        if room + eps < slot {
+            let s = &cx.spec.stock;
+            let (key, value, fix) = if s.size.is_some() || s.origin.is_some() {
+                (
+                    "stock size",
+                    format!("{:.3} × {:.3} mm", block.width(), block.height()),
+                    format!("a block reaching at least {slot} mm past every part"),
+                )
+            } else {
+                (
+                    "stock margin",
+                    format!("{} mm", s.margin),
+                    format!("a margin of at least {slot} mm"),
+                )
+            };
+            return Err(InputError::new(key, value)
+                .at("[stock]")
+                .expected(format!(
+                    "a block leaving the slot around part {} ({slot} mm: the profile tool's \
+                     diameter and the stock left) inside it, for its tabs to hold to a frame \
+                     ({room:.3} mm from the part to the block's edge): {fix}, or tabs = 0",
+                    parts.get(i).copied().unwrap_or(i + 1)
+                ))
+                .into());
+        }
+    }
+    Ok(())
 }
