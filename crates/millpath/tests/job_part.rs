@@ -156,7 +156,10 @@ fn the_default_margin_leaves_a_frame_for_the_tabs() {
 #[test]
 fn a_margin_narrower_than_the_profile_slot_is_refused_naming_it() {
     let dir = tempfile::tempdir().unwrap();
-    let s = spec(dir.path(), |t| t.replace("margin = 10.0\n", "margin = 4.0\n")).unwrap();
+    let s = spec(dir.path(), |t| {
+        t.replace("margin = 10.0\n", "margin = 4.0\n")
+    })
+    .unwrap();
     match part::run_spec(s, &mut |_| {}) {
         Err(millpath::Error::Input(e)) => {
             let m = e.to_string();
@@ -167,7 +170,10 @@ fn a_margin_narrower_than_the_profile_slot_is_refused_naming_it() {
         }
         other => panic!("{:?}", other.map(|r| r.report.check)),
     }
-    let s = spec(dir.path(), |t| t.replace("margin = 10.0\n", "margin = 6.0\n")).unwrap();
+    let s = spec(dir.path(), |t| {
+        t.replace("margin = 10.0\n", "margin = 6.0\n")
+    })
+    .unwrap();
     let run = part::run_spec(s, &mut |_| {}).unwrap();
     assert_eq!(
         run.report.check.last().map(|(_, v)| v.as_str()),
@@ -175,6 +181,39 @@ fn a_margin_narrower_than_the_profile_slot_is_refused_naming_it() {
         "{:?}",
         run.report.check
     );
+}
+
+/// The verdict says how the part is left: held by its tabs, cut free where the profile
+/// asks for none, or left in the stock where no operation cuts it out (it said "held by
+/// its tabs" then too).
+#[test]
+fn the_verdict_says_how_the_part_is_left() {
+    let dir = tempfile::tempdir().unwrap();
+    let cut = "[[operation]]\ntype = \"profile\"\ntool = 1\nstep_down = 2.25\ntabs = 2\n";
+    for (edit, want, holds) in [
+        (
+            "",
+            "the drawn part, left in the stock (no profile cuts it out)",
+            0,
+        ),
+        (
+            "[[operation]]\ntype = \"profile\"\ntool = 1\nstep_down = 2.25\ntabs = 0\n",
+            "the drawn part, cut free (no tabs asked for)",
+            1,
+        ),
+        (cut, "the drawn part, held by its tabs", 1),
+    ] {
+        let s = spec(dir.path(), |t| t.replace(cut, edit)).unwrap();
+        let run = part::run_spec(s, &mut |_| {}).unwrap();
+        let check = &run.report.check;
+        assert_eq!(
+            check.last().map(|(_, v)| v.as_str()),
+            Some(want),
+            "{check:?}"
+        );
+        let rows = check.iter().filter(|(k, _)| k.ends_with(" held")).count();
+        assert_eq!(rows, holds, "{check:?}");
+    }
 }
 
 /// A program missing its drilling, missing its profile, or with its pocket 0.2 mm too deep

@@ -136,6 +136,23 @@ impl JobCheck {
         out
     }
 
+    /// The verdict when nothing is wrong: how the drawn part is left, held by its tabs,
+    /// cut free (every profile without tabs) or still in the stock (no profile cuts it
+    /// out).
+    pub fn verdict(&self) -> &'static str {
+        if self.holds.is_empty() {
+            "the drawn part, left in the stock (no profile cuts it out)"
+        } else if self
+            .holds
+            .iter()
+            .all(|h| h.tabs == Some(0) && h.holding == 0)
+        {
+            "the drawn part, cut free (no tabs asked for)"
+        } else {
+            "the drawn part, held by its tabs"
+        }
+    }
+
     /// The figures, for the report.
     pub fn rows(&self) -> Vec<(String, String)> {
         let mut rows = vec![(
@@ -168,7 +185,7 @@ impl JobCheck {
         rows.push((
             "verdict".to_owned(),
             if p.is_empty() {
-                "the drawn part, held by its tabs".to_owned()
+                self.verdict().to_owned()
             } else {
                 p.join("; ")
             },
