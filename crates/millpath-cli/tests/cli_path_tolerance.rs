@@ -108,6 +108,22 @@ fn pocket_programs_state_the_machines_path_tolerance() {
             (a - b).abs() <= 0.01 * a,
             "{machine}: pocket {a} s, estimate {b} s"
         );
+        // The time at the programmed feeds lies between the program read back with instant
+        // rapids and with rapids at the slowest axis's speed, and below the planned time.
+        let programmed = rep["time_at_programmed_feed_s"].as_f64().unwrap();
+        if let Ok(m) = millpath::machine::Machine::preset(machine) {
+            let (tp, _) = read_str(&text, ReaderOptions::default()).unwrap();
+            let slowest = m.rapid.iter().copied().fold(f64::INFINITY, f64::min);
+            let (lo, hi) = (
+                tp.time_at_programmed_feed(f64::INFINITY),
+                tp.time_at_programmed_feed(slowest),
+            );
+            assert!(
+                programmed >= lo - 1e-6 * lo && programmed <= hi + 1e-6 * hi && programmed < a,
+                "{machine}: {programmed} s at the programmed feeds, not in [{lo}, {hi}] or not \
+                 below {a} s"
+            );
+        }
     }
 }
 

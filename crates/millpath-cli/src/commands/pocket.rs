@@ -286,7 +286,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
 /// The summary line printed without `--json`.
 fn summary_line(rep: &millpath::job::PocketReport) -> String {
     format!(
-        "{}{}: cycle time {:.2} s ({}), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
+        "{}{}: cycle time {:.2} s ({}; {:.2} s at the programmed feeds), path {:.1} mm, engagement max {:.1}° mean {:.1}° (nominal {:.1}°), \
      {:.1}% above nominal, min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm²",
         if rep.pockets.len() > 1 {
             format!(
@@ -299,6 +299,7 @@ fn summary_line(rep: &millpath::job::PocketReport) -> String {
         rep.strategy,
         rep.cycle_time_s,
         rep.cycle_time_model,
+        rep.time_at_programmed_feed_s,
         rep.path_length_mm,
         rep.max_engagement_deg,
         rep.mean_engagement_deg,

@@ -33,7 +33,7 @@ pub use pocket_report::{
     pocket_line,
 };
 pub use profile::{ProfileRun, ProfileSettings};
-pub use program::{ProgramSettings, program_time};
+pub use program::{ProgramSettings, program_time, program_times};
 pub use timing::time_and_verify;
 
 /// The built-in outline names `load_outline` takes.

@@ -13,7 +13,7 @@
 //! ```
 
 use super::pocket_report::{Report, report};
-use super::program::{ProgramSettings, program_time};
+use super::program::{ProgramSettings, program_times};
 use crate::gcode::{WriterOptions, write_program};
 use crate::io::ImportSettings;
 use crate::io::outline_json::Loops;
@@ -484,14 +484,14 @@ pub fn run(
     let mut gcode = Vec::new();
     write_program(&part.toolpath, &wopts, &mut gcode)
         .map_err(|e| e.engine_made("writing the pocket program"))?;
-    let t = program_time(
+    let (t, programmed) = program_times(
         &gcode,
         wopts.dialect,
         "the written pocket program",
         &machine,
     )
     .map_err(|e| e.engine_made("timing the written pocket program"))?;
-    let mut rep = report(&part, t);
+    let mut rep = report(&part, t, programmed);
     if part.pockets.len() == 1 {
         rep.auto = rep.pockets.first_mut().and_then(|p| p.auto.take());
     }

@@ -13,6 +13,9 @@ pub struct Report {
     pub cycle_time_s: f64,
     /// How the cycle time was computed.
     pub cycle_time_model: String,
+    /// The same program at its programmed feeds, s (rapids at the machine's rapid speed, no
+    /// acceleration): `cycle_time_s` less this is the time lost to slowing down.
+    pub time_at_programmed_feed_s: f64,
     /// Cutting path length, mm.
     pub path_length_mm: f64,
     /// Rapid length, mm.
@@ -150,9 +153,9 @@ pub fn auto_line(e: &AutoEntry) -> String {
 pub const REPORT_TIME_MODEL: &str =
     "millpath estimate on the written program (G-code reader, jerk-limited look-ahead planner)";
 
-/// Builds the report of a generated part; `cycle_time_s` is the written program's
-/// ([`super::program::program_time`]).
-pub fn report(part: &PartResult, cycle_time_s: f64) -> Report {
+/// Builds the report of a generated part; `cycle_time_s` and `time_at_programmed_feed_s`
+/// are the written program's ([`super::program::program_times`]).
+pub fn report(part: &PartResult, cycle_time_s: f64, time_at_programmed_feed_s: f64) -> Report {
     let tp = &part.toolpath;
     let v = &part.verification;
     let cut: Vec<&PartPocket> = part.pockets.iter().filter(|p| p.result.is_some()).collect();
@@ -208,6 +211,7 @@ pub fn report(part: &PartResult, cycle_time_s: f64) -> Report {
         strategy: name,
         cycle_time_s,
         cycle_time_model: REPORT_TIME_MODEL.to_owned(),
+        time_at_programmed_feed_s,
         path_length_mm: tp.cut_length(),
         rapid_length_mm: tp.rapid_length(),
         max_engagement_deg: v.total.max_engagement_deg,

@@ -120,6 +120,19 @@ pub fn program_time(
     origin: &str,
     machine: &Machine,
 ) -> Result<f64, Error> {
+    program_times(bytes, dialect, origin, machine).map(|(t, _)| t)
+}
+
+/// [`program_time`] and the same program's time at its programmed feeds (each block's
+/// length over its feed, rapids at the machine's rapid speed along them, no acceleration):
+/// the difference is the time the machine's limits cost it, slowing down for corners,
+/// curves and stops.
+pub fn program_times(
+    bytes: &[u8],
+    dialect: Dialect,
+    origin: &str,
+    machine: &Machine,
+) -> Result<(f64, f64), Error> {
     use crate::motion::stream::{StreamOptions, plan_stream};
     let opts = ReaderOptions::default()
         .with_dialect(dialect)
@@ -138,5 +151,5 @@ pub fn program_time(
         })
     });
     let sum = plan_stream(tracked, machine, &StreamOptions::default(), |_| Ok(()))?;
-    Ok(sum.total_time)
+    Ok((sum.total_time, sum.time_at_programmed_feed))
 }
