@@ -34,7 +34,8 @@
 //! from the middles of their stretches. The candidates and the costs depend only on the outline's shape, not on
 //! where it starts, which way it runs or where it lies, so the tabs move with the outline
 //! (ties, which only symmetric outlines have, go to the lowest, then leftmost, first tab).
-//! Tabs whose lifts would overlap are dropped (a note says how many fit).
+//! Tabs whose lifts or ramps would overlap are dropped (a note says how many fit): the tool
+//! comes down to the floor between two tabs, so that they stand as two bridges.
 //!
 //! # Count
 //! [`auto_tab_count`]: one tab per started 150 mm of perimeter, at least 2 and at most 16.
@@ -279,12 +280,14 @@ pub(crate) fn place(
         return (Vec::new(), asked);
     };
     chosen.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Drop tabs whose lifts overlap the previous kept one's (cyclically).
+    // Drop tabs whose lifts and ramps would overlap a kept one's (cyclically): between two
+    // tabs the tool must come down to the floor, or their ramps meet above it and the two
+    // tabs stand as one bridge.
     let mut kept: Vec<(f64, usize)> = Vec::new();
     for c in chosen {
         let clash = |a: &(f64, usize), b: &(f64, usize)| {
             let gap_ab = (b.0 - a.0).rem_euclid(p).min((a.0 - b.0).rem_euclid(p));
-            gap_ab < stretches[a.1].half_lift + stretches[b.1].half_lift + 2.0 * GUARD
+            gap_ab < stretches[a.1].half_lift + stretches[b.1].half_lift + 2.0 * (ramp + GUARD)
         };
         if kept.iter().all(|k| !clash(k, &c)) {
             kept.push(c);
