@@ -53,7 +53,7 @@ fn made_and_verified(s: &part::JobSpec) {
             run.report.check
         );
         let text = String::from_utf8(run.run.gcode.clone()).unwrap();
-        let v = part::verify_program(&s, &text, "part.ngc", "auto").unwrap();
+        let v = part::verify_program(&s, &text, "part.nc", "auto").unwrap();
         assert!(v.problems().is_empty(), "{dialect}: {:?}", v.problems());
     }
 }
@@ -143,7 +143,10 @@ fn gear_svg() -> String {
         for i in 0..4 {
             let t = i as f64 / 4.0;
             let r = tip - (tip - root) * t;
-            pts.push(polar(r, a0 + (0.76 + 0.12 * t * t) * pitch + 0.12 * pitch * t));
+            pts.push(polar(
+                r,
+                a0 + (0.76 + 0.12 * t * t) * pitch + 0.12 * pitch * t,
+            ));
         }
     }
     let points: Vec<String> = pts

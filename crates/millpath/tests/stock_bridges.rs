@@ -349,6 +349,9 @@ fn crowded_ramped_tabs_stand_apart_as_one_bridge_each() {
             .filter(|b| (t.s - b.start_mm).rem_euclid(p) <= b.length_mm)
             .count();
         assert_eq!(on, 1, "tab at {:.3} mm: {v}", t.s);
-        assert!(v.holding().all(|b| b.top_max <= bottom + height + 1e-3), "{v}");
+        assert!(
+            v.holding().all(|b| b.top_max <= bottom + height + 1e-3),
+            "{v}"
+        );
     }
 }

@@ -73,6 +73,8 @@ pub struct HoldCheck {
     pub matched: Option<usize>,
     /// Holding bridges that are not tabs (too high, or off every tab): their centroids.
     pub stray: Vec<crate::geom::Point>,
+    /// The first of them: its neck and top, and a tab's bounds, for the message.
+    pub stray_detail: Option<String>,
 }
 
 impl HoldCheck {
@@ -118,7 +120,7 @@ impl JobCheck {
         for h in &self.holds {
             if !h.ok() {
                 out.push(format!(
-                    "profile {} outline {}: held by {} tab bridge(s) for {} tab(s){}{}",
+                    "profile {} outline {}: held by {} tab bridge(s) for {} tab(s){}{}{}",
                     h.operation + 1,
                     h.target + 1,
                     h.holding,
@@ -129,6 +131,10 @@ impl JobCheck {
                     h.stray
                         .first()
                         .map(|p| format!(", material left joining it at ({:.3}, {:.3})", p.x, p.y))
+                        .unwrap_or_default(),
+                    h.stray_detail
+                        .as_ref()
+                        .map(|d| format!(" ({d})"))
                         .unwrap_or_default()
                 ));
             }
@@ -272,6 +278,13 @@ fn hold(
         .copied()
         .partition(|b| b.top_max <= tab_top && b.neck_mm <= widest);
     let mut stray: Vec<_> = low.iter().map(|b| b.centroid).collect();
+    let detail = |b: &crate::stock::Bridge| {
+        format!(
+            "neck {:.3} mm, top z {:.3}; a tab's: at most {widest:.3} mm, z {tab_top:.3}",
+            b.neck_mm, b.top_max
+        )
+    };
+    let mut stray_detail = low.first().map(|b| detail(b));
     let perimeter = verdict.perimeter_mm;
     let along = |a: f64, b: f64| {
         let d = (a - b).rem_euclid(perimeter);
@@ -293,12 +306,11 @@ fn hold(
                 used[k] = true;
             }
         }
-        stray.extend(
-            tabs.iter()
-                .zip(&used)
-                .filter(|(_, u)| !**u)
-                .map(|(b, _)| b.centroid),
-        );
+        let unused: Vec<_> = tabs.iter().zip(&used).filter(|(_, u)| !**u).collect();
+        if stray_detail.is_none() {
+            stray_detail = unused.first().map(|(b, _)| detail(b));
+        }
+        stray.extend(unused.iter().map(|(b, _)| b.centroid));
         matched
     });
     let expected = match (placed, p.tabs) {
@@ -314,6 +326,7 @@ fn hold(
         holding: tabs.len(),
         matched,
         stray,
+        stray_detail,
     })
 }
 
