@@ -22,14 +22,16 @@ const KNOWN: &[(&str, &str, &str)] = &[
     (
         "ez_1_polylines.dxf",
         "job exit Some(1)",
-        "metre scale: two tabs' ramps meet above the floor on the path beside inside arcs, \
-         shorter than the outline the tabs are spaced along: fewer bridges than tabs",
+        "metre scale: the profile's stock finds fewer bridges than tabs, each bridge on its \
+         own tab (ez_clockwise_arcs_hatch: 9 for 11; ez_1_polylines: 2 for 3): tabs left \
+         without a lift?",
     ),
     (
         "ez_clockwise_arcs_hatch.dxf",
         "job exit Some(1)",
-        "metre scale: two tabs' ramps meet above the floor on the path beside inside arcs, \
-         shorter than the outline the tabs are spaced along: fewer bridges than tabs",
+        "metre scale: the profile's stock finds fewer bridges than tabs, each bridge on its \
+         own tab (ez_clockwise_arcs_hatch: 9 for 11; ez_1_polylines: 2 for 3): tabs left \
+         without a lift?",
     ),
     (
         "kg_teeth-12.dxf",
