@@ -22,16 +22,16 @@ const KNOWN: &[(&str, &str, &str)] = &[
     (
         "ez_1_polylines.dxf",
         "job exit Some(1)",
-        "metre scale: the profile's stock finds fewer bridges than tabs, each bridge on its \
-         own tab (ez_clockwise_arcs_hatch: 9 for 11; ez_1_polylines: 2 for 3): tabs left \
-         without a lift?",
+        "metre scale: fewer bridges than tabs (ez_clockwise_arcs_hatch: 9 for 11, \
+         ez_1_polylines: 2 for 3), each on its own tab; the slot is left uncut for km along \
+         bays the tool (metres wide) cannot enter: tabs placed there, off the path, leave none?",
     ),
     (
         "ez_clockwise_arcs_hatch.dxf",
         "job exit Some(1)",
-        "metre scale: the profile's stock finds fewer bridges than tabs, each bridge on its \
-         own tab (ez_clockwise_arcs_hatch: 9 for 11; ez_1_polylines: 2 for 3): tabs left \
-         without a lift?",
+        "metre scale: fewer bridges than tabs (ez_clockwise_arcs_hatch: 9 for 11, \
+         ez_1_polylines: 2 for 3), each on its own tab; the slot is left uncut for km along \
+         bays the tool (metres wide) cannot enter: tabs placed there, off the path, leave none?",
     ),
     (
         "kg_teeth-12.dxf",

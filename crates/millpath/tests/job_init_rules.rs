@@ -5,7 +5,7 @@
 //! * holes just over a half hundredth (⌀0.2151, ⌀2.1551, ⌀4.0049 mm): each is drilled by a
 //!   drill no larger than it (beyond [`part::DRILL_OVER`]) whose operation's range holds it
 //!   (a drill rounded up cut the hole's wall 2.5 µm deep, which one check saw and the other
-//!   missed, by where the cells fell);
+//!   missed, by where the cells fell); a ⌀16.857 mm hole is bored, its range holding it;
 //! * a gear of short lines: its tabs sit across gentle corners, where the tool lifts longer
 //!   than the tab's top, and the whole-job check reads their necks as tabs.
 
@@ -31,7 +31,8 @@ fn init(dir: &Path, name: &str, svg: &str) -> (String, part::JobSpec) {
     )
     .unwrap_or_else(|e| panic!("{name}: {e}"));
     std::fs::write(&out, &text).unwrap();
-    (text.clone(), part::read_file(&out).unwrap())
+    let spec = part::read_file(&out).unwrap();
+    (text, spec)
 }
 
 /// Plans the job in every dialect: the job's own check finds the part held by its tabs and
@@ -70,14 +71,15 @@ fn value(block: &str, key: &str) -> Option<f64> {
 fn holes_just_over_a_half_hundredth_get_a_drill_no_larger() {
     let holes = [0.2151, 2.1551, 4.0049];
     let mut svg = String::from(
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="20mm" viewBox="0 0 40 20">
-  <rect x="0" y="0" width="40" height="20"/>
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="30mm" viewBox="0 0 80 30">
+  <rect x="0" y="0" width="80" height="30"/>
+  <circle cx="60" cy="15" r="8.4285"/>
 "#,
     );
     for (k, d) in holes.iter().enumerate() {
         let _ = writeln!(
             svg,
-            r#"  <circle cx="{}" cy="10" r="{}"/>"#,
+            r#"  <circle cx="{}" cy="15" r="{}"/>"#,
             8.0 + 12.0 * k as f64,
             0.5 * d
         );
@@ -92,7 +94,7 @@ fn holes_just_over_a_half_hundredth_get_a_drill_no_larger() {
             .find(|b| {
                 b.starts_with("tool]]")
                     && b.contains("type = \"drill\"")
-                    && value(b, "number") == Some(t)
+                    && value(b, "number").is_some_and(|n| (n - t).abs() < 0.5)
             })
             .and_then(|b| value(b, "diameter"))
     };
@@ -116,6 +118,14 @@ fn holes_just_over_a_half_hundredth_get_a_drill_no_larger() {
             "⌀{d}: drill {drill}\n{text}"
         );
     }
+    // Over 12 mm a hole is bored: its operation's range holds it.
+    let bore = blocks
+        .iter()
+        .filter(|b| b.starts_with("operation]]") && b.contains("type = \"bore\""))
+        .filter_map(|b| Some((value(b, "min_diameter")?, value(b, "max_diameter")?)))
+        .filter(|&(lo, hi)| lo <= 16.857 && 16.857 <= hi)
+        .count();
+    assert_eq!(bore, 1, "{text}");
     made_and_verified(&s);
 }
 

@@ -311,8 +311,9 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
     let mut drills: Vec<f64> = Vec::new();
     let mut bored: Option<(f64, f64)> = None;
     for h in &model.holes {
-        let d = drill_for(h.diameter);
+        let d = round_to(h.diameter, 0.01);
         if d <= DRILL_MAX {
+            let d = drill_for(h.diameter);
             if !drills.iter().any(|x| (x - d).abs() < 1e-9) {
                 drills.push(d);
             }
