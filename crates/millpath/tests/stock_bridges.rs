@@ -299,3 +299,59 @@ fn a_tool_too_small_for_its_rims_or_an_outline_off_the_stock_is_refused() {
     let e = held_by(&f, &far, BOTTOM, R, &BridgeOptions::default()).unwrap_err();
     assert!(e.to_string().contains("outline"), "{e}");
 }
+
+/// Ramped tabs asked for more densely than their ramps allow (24 on a 60 × 10 mm outline,
+/// 5.8 mm apart, each lift 2 mm and its ramps 2 mm either side): the strategy keeps only
+/// tabs whose lifts and ramps stay apart, so that the tool reaches the floor between any
+/// two, and the stock cut by its program holds the part by exactly one bridge per tab
+/// (before, it kept all 24, whose ramps met 0.04 mm above the floor: two tabs, one bridge).
+#[test]
+fn crowded_ramped_tabs_stand_apart_as_one_bridge_each() {
+    use millpath::strategy::profile::{
+        self, ProfileOptions, ProfileSide, ProfileTarget, TabCount, TabOptions, TabShape,
+    };
+    let pts = [(0.0, 0.0), (60.0, 0.0), (60.0, 10.0), (0.0, 10.0)];
+    let pts: Vec<Point> = pts.iter().map(|&(x, y)| Point::new(x, y)).collect();
+    let outline = Outline::from_points(&pts, "strip").expect("a strip");
+    let (bottom, height, r) = (-3.0, 1.0, 0.5);
+    let tool = Tool::flat(2.0 * r).expect("a tool");
+    let opts = ProfileOptions::default()
+        .with_depth(3.0)
+        .with_step_down(1.5)
+        .with_lead_radius(1.0)
+        .with_tabs(
+            TabOptions::default()
+                .with_count(TabCount::Count(24))
+                .with_width(1.0)
+                .with_height(height)
+                .with_shape(TabShape::Ramped),
+        );
+    let target = ProfileTarget {
+        outline: outline.clone(),
+        side: ProfileSide::Outside,
+    };
+    let res = profile::generate(&[target], &tool, &opts).expect("a profile");
+    let n = res.tabs.len();
+    assert!((2..24).contains(&n), "{n} tabs");
+    let block = Aabb {
+        min: Point::new(-6.0, -6.0),
+        max: Point::new(66.0, 16.0),
+    };
+    let fopts = FieldOptions::default().with_tool_diameter(2.0 * r);
+    let mut f = HeightField::new(block, bottom, 0.0, &fopts).expect("a block");
+    f.cut(&res.toolpath);
+    let v = held_by(&f, &outline, bottom, r, &BridgeOptions::default()).expect("a verdict");
+    assert_eq!(v.hold(), Hold::Held { bridges: n }, "{v}");
+    let p = v.perimeter_mm;
+    for t in &res.tabs {
+        let on = v
+            .holding()
+            .filter(|b| (t.s - b.start_mm).rem_euclid(p) <= b.length_mm)
+            .count();
+        assert_eq!(on, 1, "tab at {:.3} mm: {v}", t.s);
+        assert!(
+            v.holding().all(|b| b.top_max <= bottom + height + 1e-3),
+            "{v}"
+        );
+    }
+}

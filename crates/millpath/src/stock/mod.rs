@@ -68,7 +68,7 @@ pub use field_check::{CheckOptions, Deviation, FieldCheck, Floor, PartTop, check
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use heightfield::{
     ARC_SAGITTA, CutOptions, Cutter, DEFAULT_FIELD_MAX_CELLS, DEFAULT_Z_TOLERANCE, FieldOptions,
-    HeightField, OperationCut,
+    HeightField, OperationCut, PLUNGE_SLOPE_SLACK,
 };
 pub use holes::{HoleCheck, HoleProblem, HoleVerification, verify_holes};
 pub use part::{PartVerification, verify_part};

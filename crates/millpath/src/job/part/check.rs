@@ -9,7 +9,8 @@
 //!   leaves (`stock::held_by`) that join the piece to the stock are its tabs and nothing
 //!   else, and without them it falls free (every path from the piece to the stock crosses
 //!   the slot). A bridge is a tab when its top is at most the tab height above the stock's
-//!   bottom and its neck no wider than the tab's top and ramps; when the tabs' places are known (the job's own plan) each tab must have exactly
+//!   bottom and its neck no wider than the tab's top, ramps and lift across gentle corners
+//!   (`widest_neck`; measured on the grid of cell `c`, within `4c`); when the tabs' places are known (the job's own plan) each tab must have exactly
 //!   one bridge centred on it along the outline (within half its width and two cells), and
 //!   when they are not (a program verified against its job file) their number must be the
 //!   one asked for (at least one for `auto`);
@@ -26,7 +27,7 @@ use crate::geom::Point3;
 use crate::stock::{
     BridgeOptions, CutOptions, Cutter, FieldOptions, HeightField, OperationCut, held_by,
 };
-use crate::strategy::profile::PlacedTab;
+use crate::strategy::profile::{BEND_MAX, PlacedTab, TAB_RAMP_RUN};
 use crate::toolpath::Toolpath;
 
 /// One section of a program: the moves of one operation (or of one tool, for a program read
@@ -72,6 +73,8 @@ pub struct HoldCheck {
     pub matched: Option<usize>,
     /// Holding bridges that are not tabs (too high, or off every tab): their centroids.
     pub stray: Vec<crate::geom::Point>,
+    /// The first of them: its neck and top, and a tab's bounds, for the message.
+    pub stray_detail: Option<String>,
 }
 
 impl HoldCheck {
@@ -117,7 +120,7 @@ impl JobCheck {
         for h in &self.holds {
             if !h.ok() {
                 out.push(format!(
-                    "profile {} outline {}: held by {} tab bridge(s) for {} tab(s){}{}",
+                    "profile {} outline {}: held by {} tab bridge(s) for {} tab(s){}{}{}",
                     h.operation + 1,
                     h.target + 1,
                     h.holding,
@@ -128,6 +131,10 @@ impl JobCheck {
                     h.stray
                         .first()
                         .map(|p| format!(", material left joining it at ({:.3}, {:.3})", p.x, p.y))
+                        .unwrap_or_default(),
+                    h.stray_detail
+                        .as_ref()
+                        .map(|d| format!(" ({d})"))
                         .unwrap_or_default()
                 ));
             }
@@ -279,17 +286,22 @@ fn hold(
     )
     .map_err(|e| Error::from(e).engine_made("reading the bridges of a profile"))?;
     // A tab's top is at most its height above the bottom (and the z rounding), and it is no
-    // wider at its neck than its top and its ramps.
+    // wider at its neck than its top, its ramps and its lift across gentle corners.
     let tab_top = bottom + p.tab_height + 0.01;
-    let widest = p.tab_width
-        + 2.0 * crate::strategy::profile::TAB_RAMP_RUN * p.tab_height
-        + 4.0 * verdict.cell_mm;
+    let widest = widest_neck(p.tab_width, p.tab_height, p.tool_radius) + 4.0 * verdict.cell_mm;
     let holding: Vec<_> = verdict.holding().collect();
     let (tabs, low): (Vec<&crate::stock::Bridge>, Vec<&crate::stock::Bridge>) = holding
         .iter()
         .copied()
         .partition(|b| b.top_max <= tab_top && b.neck_mm <= widest);
     let mut stray: Vec<_> = low.iter().map(|b| b.centroid).collect();
+    let detail = |b: &crate::stock::Bridge| {
+        format!(
+            "neck {:.3} mm, top z {:.3}; a tab's: at most {widest:.3} mm, z {tab_top:.3}",
+            b.neck_mm, b.top_max
+        )
+    };
+    let mut stray_detail = low.first().map(|b| detail(b));
     let perimeter = verdict.perimeter_mm;
     let along = |a: f64, b: f64| {
         let d = (a - b).rem_euclid(perimeter);
@@ -311,12 +323,11 @@ fn hold(
                 used[k] = true;
             }
         }
-        stray.extend(
-            tabs.iter()
-                .zip(&used)
-                .filter(|(_, u)| !**u)
-                .map(|(b, _)| b.centroid),
-        );
+        let unused: Vec<_> = tabs.iter().zip(&used).filter(|(_, u)| !**u).collect();
+        if stray_detail.is_none() {
+            stray_detail = unused.first().map(|(b, _)| detail(b));
+        }
+        stray.extend(unused.iter().map(|(b, _)| b.centroid));
         matched
     });
     let expected = match (placed, p.tabs) {
@@ -332,7 +343,25 @@ fn hold(
         holding: tabs.len(),
         matched,
         stray,
+        stray_detail,
     })
+}
+
+/// The widest neck a tab of top width `w` and height `h` cut by a tool of radius `r` may
+/// have, mm, before the grid's error: a tab may sit across gentle corners of a run of lines
+/// turning `β ≤` [`BEND_MAX`] in all, where the tool is lifted over `w/2 + dβ + r/cos(β/2)`
+/// of path either side (`d` the path's offset, `r` here: a through profile's finishing
+/// offset is the radius and half its tolerance). At the slot's middle (the path) the tool
+/// at the lift's ends takes at least `r` of path, so at most `w + 2dβ + 2r(1/cos(β/2) − 1)`
+/// of path stands; measured along the outline, the path's outside corners shrink and its
+/// inside corners stretch it by `2d·tan(τ/2)` for a turn `τ`, at most `2d·tan(β/2)` in all
+/// (`tan` grows faster than linearly). A ramped tab adds `TAB_RAMP_RUN·h` either side.
+fn widest_neck(w: f64, h: f64, r: f64) -> f64 {
+    let b = BEND_MAX;
+    w + 2.0 * TAB_RAMP_RUN * h
+        + 2.0 * r * b
+        + 2.0 * r * (1.0 / (0.5 * b).cos() - 1.0)
+        + 2.0 * r * (0.5 * b).tan()
 }
 
 /// Move `k` of `tp` goes straight down at a square tab's end of one of the design's through

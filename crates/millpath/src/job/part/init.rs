@@ -18,7 +18,8 @@
 //!   most the radius of the largest circle inside the pocket: the tool sweeps the pocket with
 //!   room to turn, and leaves only what its radius must leave in the corners. Pockets of the
 //!   same tool go into one operation.
-//! * A hole up to [`DRILL_MAX`] (12 mm) is drilled with a drill of its diameter; a larger one
+//! * A hole up to [`DRILL_MAX`] (12 mm) is drilled with a drill of its diameter rounded down
+//!   to 0.01 mm (a larger drill would cut the part's wall; [`DRILL_OVER`]); a larger one
 //!   is bored with the largest usual end mill at most 0.6 of its diameter (and the main one).
 //! * The stock: thickness 1.5 main diameters (to 0.5 mm), pockets half as deep, `top` a
 //!   twentieth of the main diameter (at least 0.2 mm) to face off, a margin of two profile
@@ -34,6 +35,17 @@ use crate::geom::Outline;
 pub const END_MILLS: &[f64] = &[
     0.5, 0.8, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0, 16.0, 20.0, 25.0,
 ];
+
+/// How much larger than a hole its drill may be, mm: a drawing's rounding. A drill larger
+/// than its hole cuts the part's wall by half the difference, here at most 0.25 µm, below
+/// what the whole-job check reads as a cut into the part (the program's resolution).
+pub const DRILL_OVER: f64 = 0.0005;
+
+/// The drill for a hole of `diameter` mm: the diameter rounded down to 0.01 mm (at least
+/// 0.01 mm), allowing [`DRILL_OVER`]: never larger than the hole beyond that.
+fn drill_for(diameter: f64) -> f64 {
+    (((diameter + DRILL_OVER) / 0.01).floor() * 0.01).max(0.01)
+}
 
 /// Holes up to this diameter are drilled, larger ones bored, mm.
 pub const DRILL_MAX: f64 = 12.0;
@@ -301,6 +313,7 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
     for h in &model.holes {
         let d = round_to(h.diameter, 0.01);
         if d <= DRILL_MAX {
+            let d = drill_for(h.diameter);
             if !drills.iter().any(|x| (x - d).abs() < 1e-9) {
                 drills.push(d);
             }
@@ -478,8 +491,8 @@ pub fn job_file(drawing: &str, model: &PartModel, dialect: &str, machine: &str) 
         line("type = \"drill\"");
         line(&format!("name = \"drill holes D{} mm\"", num(*d)));
         line(&format!("tool = {t}"));
-        line(&format!("min_diameter = {}", num(d - 0.005)));
-        line(&format!("max_diameter = {}", num(d + 0.005)));
+        line(&format!("min_diameter = {}", num(d - DRILL_OVER)));
+        line(&format!("max_diameter = {}", num(d + 0.01 - DRILL_OVER)));
         line("depth = \"through\"");
         if thickness > 3.0 * d {
             line(&format!(

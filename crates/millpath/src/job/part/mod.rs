@@ -34,7 +34,7 @@ mod verify;
 pub use block::{StockBlock, stock_block};
 pub use check::{HoldCheck, JobCheck};
 pub use context::OpResult;
-pub use init::{DRILL_MAX, END_MILLS, end_mill_at_most};
+pub use init::{DRILL_MAX, DRILL_OVER, END_MILLS, end_mill_at_most};
 pub use model::{ModelHole, ModelPocket, PartModel};
 pub use report::{JobReport, OperationRow, ToolRow, report, setup_sheet};
 pub use run::{JobRun, OperationRun, run};

@@ -40,7 +40,8 @@
 //! **Per operation** ([`OperationCut`]): the volume and the area the operation lowered, the
 //! **rapids through material** (a rapid that lowers some cell by more than the z tolerance;
 //! a vertical retract never does: it sweeps the column the tool stands in), and the
-//! **plunges**: feed moves steeper than 45° going down that find material above their end
+//! **plunges**: feed moves steeper than 45° going down (beyond the program's rounding,
+//! [`PLUNGE_SLOPE_SLACK`]) that find material above their end
 //! within `r − rim` of their end (`rim = c/√2 +` [`super::GOUGE_RESOLUTION`]: a cell stands
 //! for its centre, and the program is written to 3 decimals). A flat end mill does not cut
 //! at its centre; a drill ([`Cutter::Drill`]) is made to plunge, and its plunges are not
@@ -69,6 +70,12 @@ pub const ARC_SAGITTA: f64 = 1e-3;
 /// The default z tolerance, mm: a cell lowered by less than this is not counted as cut
 /// (the program's rounding: coordinates written to 3 decimals).
 pub const DEFAULT_Z_TOLERANCE: f64 = 1e-3;
+
+/// How much more a move may fall than it runs across before it is steeper than 45°, mm: a
+/// written program's ends are each within half its last decimal (0.5 µm) of the planned
+/// ones, so a planned 45° move (or a shallower one a few µm long, a ramp's piece) may read
+/// up to `2·0.5 µm` deeper and `2·0.5·√2 µm` ([`super::GOUGE_RESOLUTION`]) shorter.
+pub const PLUNGE_SLOPE_SLACK: f64 = 1e-3 + super::GOUGE_RESOLUTION;
 
 /// The most cells a field has by default (64 MB of `f32` heights).
 pub const DEFAULT_FIELD_MAX_CELLS: usize = 16_000_000;
@@ -467,7 +474,7 @@ impl HeightField {
     fn plunges(&self, from: Point3, to: Point3, reach: f64, ztol: f64, len: f64) -> bool {
         let dz = from.z - to.z;
         let xy = (len * len - dz * dz).max(0.0).sqrt();
-        if dz <= xy || reach <= 0.0 {
+        if dz <= xy + PLUNGE_SLOPE_SLACK || reach <= 0.0 {
             return false;
         }
         let c = to.xy();

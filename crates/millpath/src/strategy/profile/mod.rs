@@ -50,7 +50,7 @@ mod passes;
 mod tabs;
 
 pub use check::{BandCheck, dense_band_check, outline_distance};
-pub use tabs::{MAX_TABS, PERIMETER_PER_TAB, TAB_RAMP_RUN, auto_tab_count, tab_places};
+pub use tabs::{BEND_MAX, MAX_TABS, PERIMETER_PER_TAB, TAB_RAMP_RUN, auto_tab_count, tab_places};
 
 use super::pocket::Direction;
 use crate::error::{Error, InputError, require_positive};

@@ -34,7 +34,11 @@
 //! from the middles of their stretches. The candidates and the costs depend only on the outline's shape, not on
 //! where it starts, which way it runs or where it lies, so the tabs move with the outline
 //! (ties, which only symmetric outlines have, go to the lowest, then leftmost, first tab).
-//! Tabs whose lifts would overlap are dropped (a note says how many fit).
+//! Tabs whose lifts and ramps would come within `r` of each other (by arc length along the
+//! outline) are dropped (a note says how many fit): between two tabs the tool runs on the
+//! floor, so that they stand as two bridges. Else their ramps meet above the floor (one
+//! bridge for two tabs); and the path between two tabs is shorter than the outline where it
+//! turns inside, by `d·θ` for a turn `θ`, which the `r` covers up to a radian.
 //!
 //! # Count
 //! [`auto_tab_count`]: one tab per started 150 mm of perimeter, at least 2 and at most 16.
@@ -279,12 +283,13 @@ pub(crate) fn place(
         return (Vec::new(), asked);
     };
     chosen.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Drop tabs whose lifts overlap the previous kept one's (cyclically).
+    // Drop tabs whose lifts and ramps would come within `r` of a kept one's (cyclically,
+    // module docs).
     let mut kept: Vec<(f64, usize)> = Vec::new();
     for c in chosen {
         let clash = |a: &(f64, usize), b: &(f64, usize)| {
             let gap_ab = (b.0 - a.0).rem_euclid(p).min((a.0 - b.0).rem_euclid(p));
-            gap_ab < stretches[a.1].half_lift + stretches[b.1].half_lift + 2.0 * GUARD
+            gap_ab < stretches[a.1].half_lift + stretches[b.1].half_lift + 2.0 * (ramp + GUARD) + r
         };
         if kept.iter().all(|k| !clash(k, &c)) {
             kept.push(c);
