@@ -6,7 +6,8 @@
 //! those in [`KNOWN`] still fail as listed.
 //! Minutes in release (the stock simulations of the largest drawings), so ignored:
 //! `cargo test --release -p millpath-cli --test cli_job_real -- --ignored --nocapture`
-//! prints the table. A bounded set runs in `./scripts/test` (`cli_real_files.rs`).
+//! prints the table (`MILLPATH_JOB_FILES=a.dxf,b.svg` runs only those drawings, and checks
+//! them alone). A bounded set runs in `./scripts/test` (`cli_real_files.rs`).
 
 #![allow(clippy::print_stderr)] // the per-drawing table
 
@@ -95,6 +96,13 @@ fn every_real_drawing_is_made_into_a_job_or_refused_clearly() {
         .collect();
     files.sort();
     assert!(files.len() >= 41, "{files:?}");
+    let only: Option<Vec<String>> = std::env::var("MILLPATH_JOB_FILES")
+        .ok()
+        .map(|v| v.split(',').map(str::to_owned).collect());
+    if let Some(o) = &only {
+        files.retain(|f| o.contains(f));
+        assert_eq!(files.len(), o.len(), "MILLPATH_JOB_FILES names {o:?}; found {files:?}");
+    }
     let work = tempfile::tempdir().expect("work dir");
     // Over two threads, the slowest drawings first (largest files first).
     let mut queue = files.clone();
@@ -140,6 +148,9 @@ fn every_real_drawing_is_made_into_a_job_or_refused_clearly() {
     }
     assert_eq!(results.len(), files.len());
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    if only.is_some() {
+        return;
+    }
     // The four drawings without a closed outline are the only ones refused.
     let refused = results
         .iter()
