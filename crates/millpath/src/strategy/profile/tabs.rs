@@ -458,7 +458,16 @@ mod tests {
         )
         .unwrap();
         let opts = TabOptions::default().with_count(TabCount::Count(4));
-        let (tabs, asked) = place(0, &o, ProfileSide::Outside, 3.0, 3.0, &opts, (-4.0, -6.0), None);
+        let (tabs, asked) = place(
+            0,
+            &o,
+            ProfileSide::Outside,
+            3.0,
+            3.0,
+            &opts,
+            (-4.0, -6.0),
+            None,
+        );
         assert_eq!((tabs.len(), asked), (4, 4));
         for t in &tabs {
             let a = t.placed.at;
@@ -486,7 +495,16 @@ mod tests {
         let opts = TabOptions::default()
             .with_count(TabCount::Count(3))
             .with_width(2.0);
-        let (tabs, asked) = place(0, &o, ProfileSide::Outside, 1.5, 1.5, &opts, (-4.0, -6.0), None);
+        let (tabs, asked) = place(
+            0,
+            &o,
+            ProfileSide::Outside,
+            1.5,
+            1.5,
+            &opts,
+            (-4.0, -6.0),
+            None,
+        );
         assert_eq!((tabs.len(), asked), (3, 3));
         let side = 2.0 * 20.0 * (std::f64::consts::PI / k as f64).sin();
         let per_corner = std::f64::consts::TAU / k as f64;
