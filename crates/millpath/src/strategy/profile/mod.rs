@@ -39,11 +39,13 @@
 //!
 //! # Tabs
 //! See [`TabOptions`] and the `tabs` module: tabs are placed on the drawn outline by arc
-//! length, evenly, on lines and long arcs only, and every level below a tab's top lifts over
-//! it. They are placed only where the profile cuts through the stock (outside and inside
+//! length, evenly, on lines and long arcs only, where no other outline's slot nor entry
+//! reaches the material the tab leaves across its slot (the `bridges` module), and every
+//! level below a tab's top lifts over it. They are placed only where the profile cuts through the stock (outside and inside
 //! profiles whose depth reaches the stock's thickness); elsewhere a [`ProfileNote`] says why
 //! there are none.
 
+mod bridges;
 mod check;
 mod elements;
 mod passes;

@@ -19,6 +19,7 @@
 //! along half circles of diameter the stock left, from and to the roughing loop (cleared to
 //! full depth), tangent to the finishing loop.
 
+use super::bridges::{self, Bridge, Entry};
 use super::elements::Loop;
 use super::tabs::{self, TAB_RAMP_RUN, Tab};
 use super::{
@@ -306,6 +307,16 @@ impl<'a> Walls<'a> {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// The walls of the targets `counted` lets in, other than `own`'s, within `within` of `p`.
+    fn near_others(&self, own: usize, p: Point, within: f64, counted: &[bool]) -> Vec<&'a Outline> {
+        self.all
+            .iter()
+            .filter(|(i, _, _)| *i != own && counted.get(*i).copied().unwrap_or(true))
+            .filter(|(_, o, _)| o.distance_to(p) < within)
+            .map(|(_, o, _)| *o)
+            .collect()
+    }
+
     /// True when every point lies on target `own`'s free side, out of the material, and keeps
     /// `d` from every wall.
     fn clear(
@@ -346,10 +357,11 @@ fn approach(tp: &mut Toolpath, p: Point, z: f64, opts: &ProfileOptions) {
 }
 
 /// The lead arc radius (`want`, halved up to four times, else 0) whose arcs keep `d` from
-/// the outline on the free side.
+/// the outline on the free side and whose disc (`bridges` module docs, the tool's `sweep`
+/// beyond it) reaches no other target's tab bridge.
 fn lead_radius(
     cut: &Cut,
-    walls: &Walls<'_>,
+    (walls, bridges, sweep): (&Walls<'_>, &[Bridge], f64),
     own: (usize, &Outline, ProfileSide),
     d: f64,
     want: f64,
@@ -375,7 +387,7 @@ fn lead_radius(
                 pts.extend((0..=8).map(|k| m.point_at(from, l * f64::from(k) / 8.0).xy()));
             }
         }
-        if walls.clear(own, d, pts) {
+        if walls.clear(own, d, pts) && bridges::entry_clear(bridges, own.0, v0, 2.0 * rl + sweep) {
             return rl;
         }
         rl *= 0.5;
@@ -453,6 +465,10 @@ pub(super) fn generate(
     let zs = layer_depths(opts.top_z, opts.depth, opts.step_down);
     let bottom = opts.top_z - opts.depth;
     let walls = Walls::new(targets);
+    // The tabs' bridges and the entries' discs so far, and the slack on their tests.
+    let mut bridges: Vec<Bridge> = Vec::new();
+    let mut entries: Vec<Entry> = Vec::new();
+    let m = crate::toolpath::tolerance_scale(2.0 * r);
     // The targets the tool fits in (at the rough and the finishing offset): only their cuts
     // can take a tab away; an outline too small for the tool (a hole left for a drill) is not
     // cut at all and keeps no tab from its neighbour.
@@ -486,6 +502,7 @@ pub(super) fn generate(
         let d_rough = d_fin + stock;
         let tab_top = opts.bottom_z() + opts.tabs.height;
         let mut asked_tabs = 0;
+        let drawn = Loop::of_outline(&t.outline);
         let mut tabs_here: Vec<Tab> = if opts.tabs.count == super::TabCount::None {
             Vec::new()
         } else if side == ProfileSide::On {
@@ -501,7 +518,25 @@ pub(super) fn generate(
             });
             Vec::new()
         } else {
-            let (mut v, asked) = tabs::place(
+            // Only where no other outline's slot, nor an entry made so far, reaches the
+            // tab's bridge (`bridges` module docs).
+            let slot = d_rough + r + m + 0.5 * bridges::SAMPLE;
+            let far = d_rough + r + m;
+            let keep = |tab: &Tab| -> bool {
+                let (at, w) = (tab.placed.at, tab.placed.width);
+                let within = 0.5 * w + far;
+                let near: Vec<&Outline> = walls.near_others(ti, at, within + slot, &cut);
+                let entered = entries
+                    .iter()
+                    .any(|&(c, rad): &Entry| c.distance(at) < within + rad);
+                if near.is_empty() && !entered {
+                    return true;
+                }
+                let b = Bridge::of(ti, tab, &drawn, d_rough, r, m);
+                near.iter().all(|o| b.distance_to_outline(o) >= slot)
+                    && bridges::clear_of_entries(&b, &entries)
+            };
+            let (v, asked) = tabs::place(
                 ti,
                 &t.outline,
                 side,
@@ -509,13 +544,8 @@ pub(super) fn generate(
                 r,
                 &opts.tabs,
                 (tab_top, opts.bottom_z()),
+                Some(&keep),
             );
-            // Not where another outline's cut (its path, leads and helix) passes near.
-            let reach = d_rough + r + 2.0 * opts.lead_radius + 2.0 * opts.helix_radius;
-            v.retain(|tab| {
-                let w = 0.5 * tab.placed.width;
-                walls.others(ti, tab.placed.at + tab.free_normal * d_fin, &cut) >= reach + w
-            });
             asked_tabs = asked;
             v
         };
@@ -561,7 +591,6 @@ pub(super) fn generate(
         }
         // Not where the outline's own cut passes near elsewhere (across a narrow channel).
         if !tabs_here.is_empty() {
-            let drawn = Loop::of_outline(&t.outline);
             let n0 = tabs_here.len();
             tabs_here.retain(|tab| {
                 clear_of_own_path(tab, &drawn, &fin, d_fin, r)
@@ -590,13 +619,24 @@ pub(super) fn generate(
             });
         }
         placed.extend(tabs_here.iter().map(|t| t.placed));
+        bridges.extend(
+            tabs_here
+                .iter()
+                .map(|tab| Bridge::of(ti, tab, &drawn, d_rough, r, m)),
+        );
         let first_move = tp.moves.len();
         let mut finish_moves = Vec::new();
         let mut entry_note = false;
         let mut lead_note = false;
         let mut steep_note = false;
         for cut in &rough {
-            let rl = lead_radius(cut, &walls, own, d_rough - band, opts.lead_radius);
+            let rl = lead_radius(
+                cut,
+                (&walls, &bridges, r + m),
+                own,
+                d_rough - band,
+                opts.lead_radius,
+            );
             if rl < opts.lead_radius && !lead_note {
                 lead_note = true;
                 notes.push(ProfileNote::LeadReduced {
@@ -627,13 +667,22 @@ pub(super) fn generate(
                 // Turns per level, bounded (a ramp angle of 1e-7 rad asked for 10⁸).
                 let pitch = 2.0 * PI * opts.helix_radius * opts.ramp_angle.tan();
                 let turns = opts.step_down.min(opts.depth) / pitch;
-                if rl <= 0.0 || turns > MAX_HELIX_TURNS || !walls.clear(own, d_rough - band, pts) {
+                if rl <= 0.0
+                    || turns > MAX_HELIX_TURNS
+                    || !walls.clear(own, d_rough - band, pts)
+                    || !bridges::entry_clear(&bridges, ti, helix_c, opts.helix_radius + r + m)
+                {
                     entry = ProfileEntry::Ramp;
                     if !entry_note {
                         entry_note = true;
                         notes.push(ProfileNote::HelixToRamp { target: ti });
                     }
                 }
+            }
+            // The discs this entry's lead arcs and helix sweep (`bridges` module docs).
+            entries.push((cut.lp.elems[0].start, 2.0 * rl + r + m));
+            if entry == ProfileEntry::Helix {
+                entries.push((helix_c, opts.helix_radius + r + m));
             }
             let len = cut.lp.length;
             let mut z_prev = opts.top_z;

@@ -40,6 +40,13 @@
 //! bridge for two tabs); and the path between two tabs is shorter than the outline where it
 //! turns inside, by `d·θ` for a turn `θ`, which the `r` covers up to a radian.
 //!
+//! # Where the other cuts allow a tab
+//! A profile passes a test of a tab (its bridge clear of the other outlines' slots and
+//! entries, the `bridges` module): each stretch is sampled every `w/2` and cut to the runs of
+//! samples the test accepts before the places are chosen, and each tab placed is tested
+//! again, so a tab beside another part's cut slides along its outline to where solid
+//! material is left between the slots.
+//!
 //! # Count
 //! [`auto_tab_count`]: one tab per started 150 mm of perimeter, at least 2 and at most 16.
 
@@ -79,7 +86,7 @@ pub fn tab_places(
     r: f64,
     opts: &TabOptions,
 ) -> (Vec<PlacedTab>, usize) {
-    let (tabs, asked) = place(0, outline, side, d, r, opts, (0.0, 0.0));
+    let (tabs, asked) = place(0, outline, side, d, r, opts, (0.0, 0.0), None);
     (tabs.into_iter().map(|t| t.placed).collect(), asked)
 }
 
@@ -124,6 +131,7 @@ impl Tab {
 type Layout = (f64, f64, Vec<(f64, usize)>);
 
 /// Where an element allows a tab's centre: arc lengths `[lo, hi]` and the half lift there.
+#[derive(Clone, Copy)]
 struct Stretch {
     lo: f64,
     hi: f64,
@@ -133,7 +141,8 @@ struct Stretch {
 }
 
 /// The tabs of `outline` cut on `side` at offset `d` by a tool of radius `r`, or the count
-/// asked and placed when fewer fit.
+/// asked and placed when fewer fit; with `keep`, only tabs it accepts (module docs).
+#[allow(clippy::too_many_arguments)] // the outline, its cut, the tab options and the filter
 pub(crate) fn place(
     target: usize,
     outline: &Outline,
@@ -142,6 +151,7 @@ pub(crate) fn place(
     r: f64,
     opts: &TabOptions,
     (top_z, bottom_z): (f64, f64),
+    keep: Option<&dyn Fn(&Tab) -> bool>,
 ) -> (Vec<Tab>, usize) {
     let lp = Loop::of_outline(outline);
     let p = lp.length;
@@ -215,6 +225,26 @@ pub(crate) fn place(
         }
     }
     stretches.extend(run_stretches(&lp, w, d, r, ramp, &turn));
+    let make = |s: f64, st: &Stretch| {
+        let t = lp.tangent(s);
+        Tab {
+            placed: PlacedTab {
+                target,
+                s,
+                at: lp.point(s),
+                width: w,
+                top_z,
+                bottom_z,
+            },
+            free_normal: if free_left { t.perp() } else { -t.perp() },
+            arc: st.arc,
+            bend: st.bend,
+            r,
+        }
+    };
+    if let Some(keep) = keep {
+        stretches = accepted(stretches, w, &|s, st| keep(&make(s, st)));
+    }
     if stretches.is_empty() {
         return (Vec::new(), asked);
     }
@@ -297,26 +327,37 @@ pub(crate) fn place(
     }
     let tabs = kept
         .into_iter()
-        .map(|(s, j)| {
-            let t = lp.tangent(s);
-            let free_normal = if free_left { t.perp() } else { -t.perp() };
-            Tab {
-                placed: PlacedTab {
-                    target,
-                    s,
-                    at: lp.point(s),
-                    width: w,
-                    top_z,
-                    bottom_z,
-                },
-                free_normal,
-                arc: stretches[j].arc,
-                bend: stretches[j].bend,
-                r,
-            }
-        })
+        .map(|(s, j)| make(s, &stretches[j]))
+        .filter(|t| keep.is_none_or(|k| k(t)))
         .collect();
     (tabs, asked)
+}
+
+/// The most samples [`accepted`] tests on one stretch.
+const MAX_SAMPLES: usize = 2000;
+
+/// The parts of `stretches` where `keep` accepts a tab of width `w`: each stretch sampled
+/// every `w/2` (at most [`MAX_SAMPLES`] times) and cut to its runs of accepted samples, from
+/// the first to the last of each run (a tab between two accepted samples is tested again
+/// when placed).
+fn accepted(stretches: Vec<Stretch>, w: f64, keep: &dyn Fn(f64, &Stretch) -> bool) -> Vec<Stretch> {
+    let mut out = Vec::new();
+    for st in stretches {
+        let n = (((st.hi - st.lo) / (0.5 * w)).ceil() as usize).clamp(1, MAX_SAMPLES);
+        let mut run: Option<(f64, f64)> = None;
+        for k in 0..=n {
+            let s = st.lo + (st.hi - st.lo) * k as f64 / n as f64;
+            if keep(s, &st) {
+                run = Some(run.map_or((s, s), |(a, _)| (a, s)));
+            } else if let Some((lo, hi)) = run.take() {
+                out.push(Stretch { lo, hi, ..st });
+            }
+        }
+        if let Some((lo, hi)) = run {
+            out.push(Stretch { lo, hi, ..st });
+        }
+    }
+    out
 }
 
 /// The stretches across gentle corners of lines (module docs): the centres whose reach `h`
@@ -422,7 +463,16 @@ mod tests {
         )
         .unwrap();
         let opts = TabOptions::default().with_count(TabCount::Count(4));
-        let (tabs, asked) = place(0, &o, ProfileSide::Outside, 3.0, 3.0, &opts, (-4.0, -6.0));
+        let (tabs, asked) = place(
+            0,
+            &o,
+            ProfileSide::Outside,
+            3.0,
+            3.0,
+            &opts,
+            (-4.0, -6.0),
+            None,
+        );
         assert_eq!((tabs.len(), asked), (4, 4));
         for t in &tabs {
             let a = t.placed.at;
@@ -450,7 +500,16 @@ mod tests {
         let opts = TabOptions::default()
             .with_count(TabCount::Count(3))
             .with_width(2.0);
-        let (tabs, asked) = place(0, &o, ProfileSide::Outside, 1.5, 1.5, &opts, (-4.0, -6.0));
+        let (tabs, asked) = place(
+            0,
+            &o,
+            ProfileSide::Outside,
+            1.5,
+            1.5,
+            &opts,
+            (-4.0, -6.0),
+            None,
+        );
         assert_eq!((tabs.len(), asked), (3, 3));
         let side = 2.0 * 20.0 * (std::f64::consts::PI / k as f64).sin();
         let per_corner = std::f64::consts::TAU / k as f64;
