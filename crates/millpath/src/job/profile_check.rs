@@ -11,6 +11,7 @@ use crate::strategy::profile::{
 use crate::toolpath::{Move, MoveKind, Plane, Tool, Toolpath};
 use crate::{Error, InputError};
 use cavalier_contours::polyline::{PlineSourceMut, PlineVertex, Polyline};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// One outline in the report.
@@ -220,8 +221,14 @@ pub(crate) fn verify(
     }
     check_tabs(targets, res, r)?;
     if opts.tabs.count != TabCount::None {
-        for row in &mut rows {
-            row.tabs = Some(bridge_verdict(targets, res, row.index - 1, r, opts)?);
+        // Each outline's verdict reads its own field: they run side by side, and the first
+        // failure in the outlines' order is the one reported.
+        let verdicts: Vec<Result<TabVerdict, Error>> = rows
+            .par_iter()
+            .map(|row| bridge_verdict(targets, res, row.index - 1, r, opts))
+            .collect();
+        for (row, v) in rows.iter_mut().zip(verdicts) {
+            row.tabs = Some(v?);
         }
     }
     Ok((rows, min_clearance))
@@ -526,7 +533,13 @@ fn bridge_verdict(
         opts.top_z,
         &FieldOptions::default().with_tool_diameter(2.0 * r),
     )?;
-    field.cut(&res.toolpath);
+    // Only the runs of moves whose boxes come within the tool radius (and a chord's sagitta,
+    // under 1 mm) of the field's cut it: a move farther off lowers none of its cells. Each
+    // cell ends at the least height any move gives it, in whatever order the moves come, so
+    // the field is the one the whole program leaves.
+    for run in runs_within(&res.toolpath, field.bounds().inflate(r + NEAR), swept_box) {
+        field.cut(&run);
+    }
     let side = match t.side {
         ProfileSide::Inside => CutSide::Inside,
         _ => CutSide::Outside,
@@ -599,10 +612,39 @@ fn path_box(tp: &Toolpath) -> crate::geom::Aabb {
 /// The runs of consecutive moves of `tp` whose boxes meet `near`, each a toolpath starting
 /// where its first move starts.
 fn near_runs(tp: &Toolpath, near: crate::geom::Aabb) -> Vec<Toolpath> {
+    runs_within(tp, near, move_box)
+}
+
+/// The box (in XY) of every point a move from `from` passes through, in any plane: its ends,
+/// and for an arc the ball about its centre through its farther end (the arc lies on it).
+fn swept_box(from: Point3, m: &Move) -> crate::geom::Aabb {
+    let b = crate::geom::Aabb::EMPTY
+        .with_point(from.xy())
+        .with_point(m.to.xy());
+    match m.kind {
+        MoveKind::Arc { center, .. } => {
+            let rad = (center - from).length().max((center - m.to).length());
+            b.union(
+                crate::geom::Aabb::EMPTY
+                    .with_point(center.xy())
+                    .inflate(rad),
+            )
+        }
+        _ => b,
+    }
+}
+
+/// The runs of consecutive moves of `tp` whose boxes (`box_of`) meet `near`, each a
+/// toolpath starting where its first move starts.
+fn runs_within(
+    tp: &Toolpath,
+    near: crate::geom::Aabb,
+    box_of: fn(Point3, &Move) -> crate::geom::Aabb,
+) -> Vec<Toolpath> {
     let mut runs: Vec<Toolpath> = Vec::new();
     let mut open = false;
     for (from, m) in tp.segments() {
-        if overlaps(move_box(from, m), near) {
+        if overlaps(box_of(from, m), near) {
             if !open {
                 runs.push(Toolpath::new(tp.tool, from));
                 open = true;
