@@ -658,3 +658,87 @@ fn runs_within(
     }
     runs
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The field cut by the runs of moves near it is the field the whole program leaves, cell
+    /// by cell: lines, an arc and a helix in XY, and arcs in XZ whose ends lie far off while
+    /// their middle passes over the field; moves far off are left out.
+    #[test]
+    fn the_runs_near_a_field_cut_it_as_the_whole_program_does() {
+        let p = Point3::new;
+        let xz = |to: Point3, center: Point3| Move {
+            kind: MoveKind::Arc {
+                center,
+                plane: Plane::Xz,
+                ccw: true,
+                turns: 0,
+            },
+            ..Move::line(to, 10.0)
+        };
+        let mut tp = Toolpath::new(Tool::flat(6.0).unwrap(), p(-80.0, 0.0, 5.0));
+        for m in [
+            Move::line(p(-80.0, 0.0, -2.0), 5.0),
+            Move::line(p(-60.0, 0.0, -2.0), 10.0),
+            Move::rapid(p(-60.0, 0.0, 5.0)),
+            Move::rapid(p(-20.0, 0.0, 5.0)),
+            Move::line(p(-20.0, 0.0, -2.0), 5.0),
+            Move::line(p(40.0, 0.0, -2.0), 10.0),
+            Move::arc_xy(p(40.0, 20.0, -2.0), p(40.0, 10.0, -2.0), true, 10.0),
+            Move::arc_xy(p(40.0, 0.0, -4.0), p(40.0, 10.0, -4.0), true, 10.0),
+            Move::line(p(-20.0, 10.0, -4.0), 10.0),
+            Move::rapid(p(-20.0, 10.0, 24.0)),
+            xz(p(-20.0, 10.0, -26.0), p(-20.0, 10.0, -1.0)),
+            xz(p(-20.0, 10.0, 24.0), p(-20.0, 10.0, -1.0)),
+            Move::rapid(p(-80.0, 60.0, 5.0)),
+            Move::line(p(-80.0, 60.0, -3.0), 5.0),
+            Move::line(p(-70.0, 70.0, -3.0), 10.0),
+            Move::rapid(p(-70.0, 70.0, 5.0)),
+        ] {
+            tp.push(m);
+        }
+        let block = crate::geom::Aabb {
+            min: Point::new(0.0, -5.0),
+            max: Point::new(30.0, 25.0),
+        };
+        let opts = FieldOptions::default().with_cell(0.1);
+        let mut whole = HeightField::new(block, -10.0, 0.0, &opts).unwrap();
+        whole.cut(&tp);
+        let mut near = HeightField::new(block, -10.0, 0.0, &opts).unwrap();
+        let runs = runs_within(&tp, near.bounds().inflate(3.0 + NEAR), swept_box);
+        for run in &runs {
+            near.cut(run);
+        }
+        let kept: usize = runs.iter().map(|r| r.moves.len()).sum();
+        assert!(
+            kept < tp.moves.len() - 4,
+            "{kept} of {} kept",
+            tp.moves.len()
+        );
+        let (nx, ny) = whole.dims();
+        let mut cut = 0;
+        for j in 0..ny {
+            for i in 0..nx {
+                let (a, b) = (whole.height(i, j).unwrap(), near.height(i, j).unwrap());
+                assert!((a - b).abs() < 1e-12, "cell ({i}, {j}): {a} vs {b}");
+                cut += usize::from(a < -0.5);
+            }
+        }
+        assert!(cut > nx * ny / 10, "{cut} cells cut");
+        // Only the XZ arcs (ends at x = −20, axis out to x = 5) reach (6, 12.5): the box of
+        // their ends in XY would leave them out.
+        let q = Point::new(6.0, 12.5);
+        assert!(
+            whole.height_at(q).is_some_and(|h| h < -5.0),
+            "{:?}",
+            whole.height_at(q)
+        );
+        let mut by_ends = HeightField::new(block, -10.0, 0.0, &opts).unwrap();
+        for run in runs_within(&tp, near.bounds().inflate(3.0 + NEAR), move_box) {
+            by_ends.cut(&run);
+        }
+        assert!(by_ends.height_at(q).is_some_and(|h| h > -0.5));
+    }
+}
