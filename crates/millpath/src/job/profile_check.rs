@@ -664,7 +664,7 @@ mod tests {
     use super::*;
 
     /// The field cut by the runs of moves near it is the field the whole program leaves, cell
-    /// by cell: lines, an arc and a helix in XY, and arcs in XZ whose ends lie far off while
+    /// by cell: lines, an arc and a helix in XY, and arcs in ZX whose ends lie far off while
     /// their middle passes over the field; moves far off are left out.
     #[test]
     fn the_runs_near_a_field_cut_it_as_the_whole_program_does() {
@@ -672,7 +672,7 @@ mod tests {
         let xz = |to: Point3, center: Point3| Move {
             kind: MoveKind::Arc {
                 center,
-                plane: Plane::Xz,
+                plane: Plane::Zx,
                 ccw: true,
                 turns: 0,
             },
@@ -727,7 +727,7 @@ mod tests {
             }
         }
         assert!(cut > nx * ny / 10, "{cut} cells cut");
-        // Only the XZ arcs (ends at x = −20, axis out to x = 5) reach (6, 12.5): the box of
+        // Only the ZX arcs (ends at x = −20, axis out to x = 5) reach (6, 12.5): the box of
         // their ends in XY would leave them out.
         let q = Point::new(6.0, 12.5);
         assert!(
