@@ -4,7 +4,9 @@
 //! the height-field stock. The job file is made once; each iteration reads the drawing and
 //! runs the job.
 //! `ez_forms.dxf` is the largest real drawing (1016 × 831 mm, 40 outlines), `pb_gear_cutout.dxf`
-//! the largest file (splines and arcs); the sample part is the reference beside them.
+//! the largest file (splines and arcs); the sample part is the reference beside them. A
+//! starting job whose profile is refused (no tab fits on some part) is run with the narrower
+//! tabs its row names, added after the profile's `tabs` key.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use millpath::gcode::Dialect;
@@ -18,7 +20,11 @@ fn job(c: &mut Criterion) {
     let work = std::env::temp_dir();
     let mut g = c.benchmark_group("whole job from the drawing alone");
     g.sample_size(10);
-    for name in ["sample:part", "ez_forms.dxf", "pb_gear_cutout.dxf"] {
+    for (name, edit) in [
+        ("sample:part", None),
+        ("ez_forms.dxf", Some("tab_width = 6.0")),
+        ("pb_gear_cutout.dxf", None),
+    ] {
         let drawing = if name.starts_with("sample:") {
             PathBuf::from(name)
         } else {
@@ -38,10 +44,27 @@ fn job(c: &mut Criterion) {
         let Ok(spec) = parse(&text, name, Some(&work)) else {
             continue;
         };
-        if run_spec(spec.clone(), &mut |_| {}).is_err() {
-            continue;
-        }
-        g.bench_function(format!("{name}: plan, write, time and verify"), |b| {
+        let (spec, label) = if run_spec(spec.clone(), &mut |_| {}).is_ok() {
+            (spec, name.to_owned())
+        } else {
+            let Some(edit) = edit else { continue };
+            let edited: String = text
+                .lines()
+                .flat_map(|l| {
+                    let extra = l.starts_with("tabs = ").then_some(edit);
+                    std::iter::once(l).chain(extra)
+                })
+                .map(|l| format!("{l}\n"))
+                .collect();
+            let Ok(spec) = parse(&edited, name, Some(&work)) else {
+                continue;
+            };
+            if run_spec(spec.clone(), &mut |_| {}).is_err() {
+                continue;
+            }
+            (spec, format!("{name} ({edit})"))
+        };
+        g.bench_function(format!("{label}: plan, write, time and verify"), |b| {
             b.iter(|| run_spec(black_box(spec.clone()), &mut |_| {}).map(|r| r.report));
         });
     }

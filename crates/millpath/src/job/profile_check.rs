@@ -11,6 +11,7 @@ use crate::strategy::profile::{
 use crate::toolpath::{Move, MoveKind, Plane, Tool, Toolpath};
 use crate::{Error, InputError};
 use cavalier_contours::polyline::{PlineSourceMut, PlineVertex, Polyline};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// One outline in the report.
@@ -220,8 +221,14 @@ pub(crate) fn verify(
     }
     check_tabs(targets, res, r)?;
     if opts.tabs.count != TabCount::None {
-        for row in &mut rows {
-            row.tabs = Some(bridge_verdict(targets, res, row.index - 1, r, opts)?);
+        // Each outline's verdict reads its own field: they run side by side, and the first
+        // failure in the outlines' order is the one reported.
+        let verdicts: Vec<Result<TabVerdict, Error>> = rows
+            .par_iter()
+            .map(|row| bridge_verdict(targets, res, row.index - 1, r, opts))
+            .collect();
+        for (row, v) in rows.iter_mut().zip(verdicts) {
+            row.tabs = Some(v?);
         }
     }
     Ok((rows, min_clearance))
@@ -526,7 +533,13 @@ fn bridge_verdict(
         opts.top_z,
         &FieldOptions::default().with_tool_diameter(2.0 * r),
     )?;
-    field.cut(&res.toolpath);
+    // Only the runs of moves whose boxes come within the tool radius (and a chord's sagitta,
+    // under 1 mm) of the field's cut it: a move farther off lowers none of its cells. Each
+    // cell ends at the least height any move gives it, in whatever order the moves come, so
+    // the field is the one the whole program leaves.
+    for run in runs_within(&res.toolpath, field.bounds().inflate(r + NEAR), swept_box) {
+        field.cut(&run);
+    }
     let side = match t.side {
         ProfileSide::Inside => CutSide::Inside,
         _ => CutSide::Outside,
@@ -599,10 +612,39 @@ fn path_box(tp: &Toolpath) -> crate::geom::Aabb {
 /// The runs of consecutive moves of `tp` whose boxes meet `near`, each a toolpath starting
 /// where its first move starts.
 fn near_runs(tp: &Toolpath, near: crate::geom::Aabb) -> Vec<Toolpath> {
+    runs_within(tp, near, move_box)
+}
+
+/// The box (in XY) of every point a move from `from` passes through, in any plane: its ends,
+/// and for an arc the ball about its centre through its farther end (the arc lies on it).
+fn swept_box(from: Point3, m: &Move) -> crate::geom::Aabb {
+    let b = crate::geom::Aabb::EMPTY
+        .with_point(from.xy())
+        .with_point(m.to.xy());
+    match m.kind {
+        MoveKind::Arc { center, .. } => {
+            let rad = (center - from).length().max((center - m.to).length());
+            b.union(
+                crate::geom::Aabb::EMPTY
+                    .with_point(center.xy())
+                    .inflate(rad),
+            )
+        }
+        _ => b,
+    }
+}
+
+/// The runs of consecutive moves of `tp` whose boxes (`box_of`) meet `near`, each a
+/// toolpath starting where its first move starts.
+fn runs_within(
+    tp: &Toolpath,
+    near: crate::geom::Aabb,
+    box_of: fn(Point3, &Move) -> crate::geom::Aabb,
+) -> Vec<Toolpath> {
     let mut runs: Vec<Toolpath> = Vec::new();
     let mut open = false;
     for (from, m) in tp.segments() {
-        if overlaps(move_box(from, m), near) {
+        if overlaps(box_of(from, m), near) {
             if !open {
                 runs.push(Toolpath::new(tp.tool, from));
                 open = true;
@@ -615,4 +657,88 @@ fn near_runs(tp: &Toolpath, near: crate::geom::Aabb) -> Vec<Toolpath> {
         }
     }
     runs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The field cut by the runs of moves near it is the field the whole program leaves, cell
+    /// by cell: lines, an arc and a helix in XY, and arcs in ZX whose ends lie far off while
+    /// their middle passes over the field; moves far off are left out.
+    #[test]
+    fn the_runs_near_a_field_cut_it_as_the_whole_program_does() {
+        let p = Point3::new;
+        let xz = |to: Point3, center: Point3| Move {
+            kind: MoveKind::Arc {
+                center,
+                plane: Plane::Zx,
+                ccw: true,
+                turns: 0,
+            },
+            ..Move::line(to, 10.0)
+        };
+        let mut tp = Toolpath::new(Tool::flat(6.0).unwrap(), p(-80.0, 0.0, 5.0));
+        for m in [
+            Move::line(p(-80.0, 0.0, -2.0), 5.0),
+            Move::line(p(-60.0, 0.0, -2.0), 10.0),
+            Move::rapid(p(-60.0, 0.0, 5.0)),
+            Move::rapid(p(-20.0, 0.0, 5.0)),
+            Move::line(p(-20.0, 0.0, -2.0), 5.0),
+            Move::line(p(40.0, 0.0, -2.0), 10.0),
+            Move::arc_xy(p(40.0, 20.0, -2.0), p(40.0, 10.0, -2.0), true, 10.0),
+            Move::arc_xy(p(40.0, 0.0, -4.0), p(40.0, 10.0, -4.0), true, 10.0),
+            Move::line(p(-20.0, 10.0, -4.0), 10.0),
+            Move::rapid(p(-20.0, 10.0, 24.0)),
+            xz(p(-20.0, 10.0, -26.0), p(-20.0, 10.0, -1.0)),
+            xz(p(-20.0, 10.0, 24.0), p(-20.0, 10.0, -1.0)),
+            Move::rapid(p(-80.0, 60.0, 5.0)),
+            Move::line(p(-80.0, 60.0, -3.0), 5.0),
+            Move::line(p(-70.0, 70.0, -3.0), 10.0),
+            Move::rapid(p(-70.0, 70.0, 5.0)),
+        ] {
+            tp.push(m);
+        }
+        let block = crate::geom::Aabb {
+            min: Point::new(0.0, -5.0),
+            max: Point::new(30.0, 25.0),
+        };
+        let opts = FieldOptions::default().with_cell(0.1);
+        let mut whole = HeightField::new(block, -10.0, 0.0, &opts).unwrap();
+        whole.cut(&tp);
+        let mut near = HeightField::new(block, -10.0, 0.0, &opts).unwrap();
+        let runs = runs_within(&tp, near.bounds().inflate(3.0 + NEAR), swept_box);
+        for run in &runs {
+            near.cut(run);
+        }
+        let kept: usize = runs.iter().map(|r| r.moves.len()).sum();
+        assert!(
+            kept < tp.moves.len() - 4,
+            "{kept} of {} kept",
+            tp.moves.len()
+        );
+        let (nx, ny) = whole.dims();
+        let mut cut = 0;
+        for j in 0..ny {
+            for i in 0..nx {
+                let (a, b) = (whole.height(i, j).unwrap(), near.height(i, j).unwrap());
+                assert!((a - b).abs() < 1e-12, "cell ({i}, {j}): {a} vs {b}");
+                cut += usize::from(a < -0.5);
+            }
+        }
+        assert!(cut > nx * ny / 10, "{cut} cells cut");
+        // Only the ZX arcs (ends at x = −20, axis out to x = 5) reach (6, 12.5): the box of
+        // their ends in XY would leave them out.
+        let q = Point::new(6.0, 12.5);
+        assert!(
+            whole.height_at(q).is_some_and(|h| h < -5.0),
+            "{:?}",
+            whole.height_at(q)
+        );
+        let mut by_ends = HeightField::new(block, -10.0, 0.0, &opts).unwrap();
+        for run in runs_within(&tp, near.bounds().inflate(3.0 + NEAR), move_box) {
+            by_ends.cut(&run);
+        }
+        assert!(by_ends.height_at(q).is_some_and(|h| h > -0.5));
+    }
 }

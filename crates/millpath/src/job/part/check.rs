@@ -29,6 +29,7 @@ use crate::stock::{
 };
 use crate::strategy::profile::{BEND_MAX, PlacedTab, TAB_RAMP_RUN};
 use crate::toolpath::Toolpath;
+use rayon::prelude::*;
 
 /// One section of a program: the moves of one operation (or of one tool, for a program read
 /// back) and the tool that cuts them.
@@ -247,20 +248,26 @@ pub fn check_sections(
             tab_end_plunges,
         });
     }
-    let mut holds = Vec::new();
-    for p in design.profiles.iter().filter(|p| p.through) {
-        let tabs = placed.map(|all| {
-            all.get(p.operation)
-                .map(|t| {
-                    t.iter()
-                        .filter(|t| t.target == p.target)
-                        .cloned()
-                        .collect::<Vec<PlacedTab>>()
-                })
-                .unwrap_or_default()
-        });
-        holds.push(hold(&field, p, stock.bottom, tabs.as_deref())?);
-    }
+    // Each outline's hold reads the field alone: side by side, in the design's order.
+    let holds: Vec<Result<HoldCheck, Error>> = design
+        .profiles
+        .par_iter()
+        .filter(|p| p.through)
+        .map(|p| {
+            let tabs = placed.map(|all| {
+                all.get(p.operation)
+                    .map(|t| {
+                        t.iter()
+                            .filter(|t| t.target == p.target)
+                            .cloned()
+                            .collect::<Vec<PlacedTab>>()
+                    })
+                    .unwrap_or_default()
+            });
+            hold(&field, p, stock.bottom, tabs.as_deref())
+        })
+        .collect();
+    let holds = holds.into_iter().collect::<Result<Vec<_>, _>>()?;
     let design_check = design.compare(model, &field, stock.bottom);
     Ok(JobCheck {
         cell_mm: field.cell(),

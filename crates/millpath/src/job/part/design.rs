@@ -23,6 +23,7 @@ use crate::Error;
 use crate::geom::{Hole, Outline, Point};
 use crate::job::pocket::parse_select;
 use crate::stock::{CheckOptions, CutSide, FieldCheck, Floor, HeightField, PartTop, check_field};
+use rayon::prelude::*;
 
 /// A region an operation cuts down to a floor.
 #[derive(Debug, Clone)]
@@ -262,9 +263,10 @@ impl JobDesign {
     /// stops at the stock's bottom (`bottom`), so floors below it are taken at it.
     pub fn compare(&self, model: &PartModel, field: &HeightField, bottom: f64) -> DesignCheck {
         let opts = CheckOptions::default();
+        // Each part's comparison reads the field alone: side by side, in the model's order.
         let parts = model
             .parts
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(i, outline)| {
                 let floors: Vec<Floor<'_>> = self

@@ -14,6 +14,7 @@ use crate::geom::Hole;
 use crate::io::outline_json::Loops;
 use crate::machine::Machine;
 use crate::toolpath::Toolpath;
+use rayon::prelude::*;
 
 /// One operation as planned.
 #[derive(Debug, Clone)]
@@ -85,13 +86,31 @@ pub fn run(spec: &JobSpec, loops: &Loops, note: &mut dyn FnMut(String)) -> Resul
         machine: &machine,
         rounding,
     };
+    // Each operation is planned on the part model alone, side by side; their notes and the
+    // first error come in the job's order, as if one after another.
+    let planned: Vec<(Vec<String>, Result<_, Error>)> = spec
+        .operations
+        .par_iter()
+        .map(|op| {
+            let mut notes = Vec::new();
+            let r = spec
+                .tool(op.tool)
+                .ok_or_else(|| {
+                    Error::from(
+                        InputError::new("tool", op.tool)
+                            .at(format!("{} line {}", spec.origin, op.line)),
+                    )
+                })
+                .and_then(|tool| {
+                    ops::plan(&cx, op, tool, &mut |n| notes.push(n)).map(|r| (op, tool.clone(), r))
+                });
+            (notes, r)
+        })
+        .collect();
     let mut results = Vec::with_capacity(spec.operations.len());
-    for op in &spec.operations {
-        let tool = spec.tool(op.tool).ok_or_else(|| {
-            InputError::new("tool", op.tool).at(format!("{} line {}", spec.origin, op.line))
-        })?;
-        let r = ops::plan(&cx, op, tool, note)?;
-        results.push((op, tool.clone(), r));
+    for (notes, r) in planned {
+        notes.into_iter().for_each(&mut *note);
+        results.push(r?);
     }
     let sections: Vec<(String, &Toolpath, &JobTool)> = results
         .iter()
