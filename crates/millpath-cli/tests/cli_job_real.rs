@@ -61,19 +61,9 @@ const KNOWN: &[(&str, &str, &str)] = &[
         "circles of 512 lines: a ramped tab's reach (13.9 mm) turns over 30° (BEND_MAX)",
     ),
     (
-        "s2g_shapes.svg",
-        "job exit Some(1)",
-        "ellipses: the whole-job check reads a tab's neck on a bend wider than a tab",
-    ),
-    (
         "s2g_smooth_curves.svg",
         "job exit Some(2)",
         "short curves: no stretch for a tab (outlines 11, 14), or across its own channel (7)",
-    ),
-    (
-        "ez_forms.dxf",
-        "job exit Some(1)",
-        "the whole-job check reads two tabs' necks on a bend 0.05 mm wider than a tab",
     ),
 ];
 

@@ -50,6 +50,7 @@ mod check;
 mod elements;
 mod passes;
 mod tabs;
+mod zpath;
 
 pub use check::{BandCheck, dense_band_check, outline_distance};
 pub use tabs::{BEND_MAX, MAX_TABS, PERIMETER_PER_TAB, TAB_RAMP_RUN, auto_tab_count, tab_places};
