@@ -161,7 +161,7 @@ fn a_margin_narrower_than_the_profile_slot_is_refused_naming_it() {
     })
     .unwrap();
     match part::run_spec(s, &mut |_| {}) {
-        Err(millpath::Error::Input(e)) => {
+        Err(Error::Input(e)) => {
             let m = e.to_string();
             assert!(
                 m.contains("stock margin = 4 mm") && m.contains("at least 6 mm"),
