@@ -142,12 +142,7 @@ fn the_default_margin_leaves_a_frame_for_the_tabs() {
     let s = spec(dir.path(), |t| t.replace("margin = 10.0\n", "")).unwrap();
     assert!((s.stock.margin - 12.0).abs() < 1e-12, "{}", s.stock.margin);
     let run = part::run_spec(s, &mut |_| {}).unwrap();
-    assert_eq!(
-        run.report.check.last().map(|(_, v)| v.as_str()),
-        Some("the drawn part, held by its tabs"),
-        "{:?}",
-        run.report.check
-    );
+    assert_held(&run.report.check);
 }
 
 /// A margin narrower than the profile's slot (6 mm here) leaves the tabs no frame to hold
@@ -175,12 +170,7 @@ fn a_margin_narrower_than_the_profile_slot_is_refused_naming_it() {
     })
     .unwrap();
     let run = part::run_spec(s, &mut |_| {}).unwrap();
-    assert_eq!(
-        run.report.check.last().map(|(_, v)| v.as_str()),
-        Some("the drawn part, held by its tabs"),
-        "{:?}",
-        run.report.check
-    );
+    assert_held(&run.report.check);
 }
 
 /// The verdict says how the part is left: held by its tabs, cut free where the profile
@@ -321,5 +311,14 @@ fn job_file_mistakes_name_the_key_line_and_file() {
     assert!(
         e.contains("[stock] top") && e.contains("face operation first"),
         "{e}"
+    );
+}
+
+/// The job's check ends with the verdict that the drawn part is held by its tabs.
+fn assert_held(check: &[(String, String)]) {
+    assert_eq!(
+        check.last().map(|(_, v)| v.as_str()),
+        Some("the drawn part, held by its tabs"),
+        "{check:?}"
     );
 }
