@@ -13,8 +13,6 @@
 
 mod job_real;
 
-use std::sync::Mutex;
-
 /// Drawings whose starting job is not made yet: words their failure holds (`job exit` and
 /// its code, or the check that refuses the program) and why. Each must still fail so (a fix
 /// must take it off the list); none may hang.
@@ -92,23 +90,7 @@ fn every_real_drawing_is_made_into_a_job_or_refused_clearly() {
     // Over two threads, the slowest drawings first (largest files first).
     let mut queue = files.clone();
     queue.sort_by_key(|f| std::fs::metadata(job_real::dir().join(f)).map_or(0, |m| m.len()));
-    let queue = Mutex::new(queue);
-    let results = Mutex::new(Vec::new());
-    std::thread::scope(|sc| {
-        for _ in 0..2 {
-            sc.spawn(|| {
-                loop {
-                    let Some(f) = queue.lock().expect("queue").pop() else {
-                        break;
-                    };
-                    let r = job_real::job_real(&f, work.path());
-                    results.lock().expect("results").push((f, r));
-                }
-            });
-        }
-    });
-    let mut results = results.into_inner().expect("results");
-    results.sort_by(|a, b| a.0.cmp(&b.0));
+    let results = job_real::on_two_threads(queue, |f| job_real::job_real(f, work.path()));
     let mut failures = Vec::new();
     let mut made = 0;
     for (f, r) in &results {

@@ -217,23 +217,7 @@ fn every_real_drawing_is_pocketed_verified_and_timed_or_refused_clearly() {
     let work = std::env::temp_dir().join(format!("millpath-real-files-{}", std::process::id()));
     std::fs::create_dir_all(&work).expect("work dir");
     // Over two threads.
-    let queue = Mutex::new(files.clone());
-    let results = Mutex::new(Vec::new());
-    std::thread::scope(|sc| {
-        for _ in 0..2 {
-            sc.spawn(|| {
-                loop {
-                    let Some(f) = queue.lock().expect("queue").pop() else {
-                        break;
-                    };
-                    let r = run_file(&f, &work);
-                    results.lock().expect("results").push((f, r));
-                }
-            });
-        }
-    });
-    let mut results = results.into_inner().expect("results");
-    results.sort_by(|a, b| a.0.cmp(&b.0));
+    let results = job_real::on_two_threads(files.clone(), |f| run_file(f, &work));
     let mut failures = Vec::new();
     eprintln!("file | strategy | pocket | verify | report vs estimate |");
     for (f, r) in &results {
@@ -708,23 +692,9 @@ const JOB_DRAWINGS: &[&str] = &[
 #[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
 fn real_drawings_are_made_into_whole_jobs_in_every_dialect() {
     let work = tempfile::tempdir().expect("work dir");
-    let queue = Mutex::new(JOB_DRAWINGS.to_vec());
-    let results = Mutex::new(Vec::new());
-    std::thread::scope(|sc| {
-        for _ in 0..2 {
-            sc.spawn(|| {
-                loop {
-                    let Some(f) = queue.lock().expect("queue").pop() else {
-                        break;
-                    };
-                    let r = job_real::job_real(f, work.path());
-                    results.lock().expect("results").push((f, r));
-                }
-            });
-        }
+    let results = job_real::on_two_threads(JOB_DRAWINGS.to_vec(), |f| {
+        job_real::job_real(f, work.path())
     });
-    let mut results = results.into_inner().expect("results");
-    results.sort_by(|a, b| a.0.cmp(b.0));
     let mut failures = Vec::new();
     let (mut holes, mut pockets, mut several) = (false, false, false);
     for (f, r) in &results {

@@ -14,6 +14,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::Mutex;
 use std::time::Instant;
 
 #[path = "../../../millpath/tests/rs274_common/mod.rs"]
@@ -282,4 +283,30 @@ pub fn job_real(name: &str, work: &Path) -> Result<JobRow, String> {
     }
     row.wall_s = started.elapsed().as_secs_f64();
     Ok(row)
+}
+
+/// `run` on every item over two threads, each taking the next item from the back of
+/// `items`; the results sorted by item.
+pub fn on_two_threads<T: Ord + Send, R: Send>(
+    items: Vec<T>,
+    run: impl Fn(&T) -> R + Sync,
+) -> Vec<(T, R)> {
+    let queue = Mutex::new(items);
+    let results = Mutex::new(Vec::new());
+    std::thread::scope(|sc| {
+        for _ in 0..2 {
+            sc.spawn(|| {
+                loop {
+                    let Some(f) = queue.lock().expect("queue").pop() else {
+                        break;
+                    };
+                    let r = run(&f);
+                    results.lock().expect("results").push((f, r));
+                }
+            });
+        }
+    });
+    let mut results = results.into_inner().expect("results");
+    results.sort_by(|a, b| a.0.cmp(&b.0));
+    results
 }
