@@ -73,6 +73,10 @@ const CANDIDATES: usize = 12;
 /// point is worth in the choice of the windows.
 const ENTRY_CHARGE: f64 = 0.002;
 
+/// How far along the wall's loop an inset lane change joins it, in insets (the join turns
+/// by `atan(1/JOIN_SLANT)`, 2.9°).
+const JOIN_SLANT: f64 = 20.0;
+
 /// A lane change's sample: `u` along the window, the position of the nearest point on the
 /// next loop, and the distance to it.
 type Sample = (f64, f64, f64);
@@ -329,12 +333,18 @@ fn chain_segs(
                 } else {
                     path.extend(segs_from_points(pts));
                 }
-                // An inset lane ends just short of the loop: step onto it.
+                // An inset lane ends just short of the loop: join it at a slant, `JOIN_SLANT`
+                // times the inset further on, not straight across (two right-angle turns a
+                // few µm apart, where the controller would stop twice).
                 let (end, on) = (pts.last().copied(), to.point(*land));
-                if let Some(e) = end.filter(|e| e.distance(on) > 1e-12) {
-                    path.push(Seg::line(e, on));
+                match end.filter(|e| e.distance(on) > 1e-12) {
+                    Some(e) => {
+                        let ahead = to.wrap(*land + JOIN_SLANT * e.distance(on));
+                        path.push(Seg::line(e, to.point(ahead)));
+                        ahead
+                    }
+                    None => *land,
                 }
-                *land
             }
             None => {
                 let a = from.point(*p);

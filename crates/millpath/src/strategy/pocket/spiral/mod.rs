@@ -22,7 +22,9 @@
 //!    attached are one band; L, T, U, star and crescent pockets are one chain, a neck that
 //!    pinches the loops off or islands make several, cut innermost first, linked by a
 //!    straight feed move where it is short and stays in the tool-centre region, else entered
-//!    again (helix or ramp, then direct entries over cleared material).
+//!    again (helix or ramp, then direct entries over cleared material). A leaf loop whose
+//!    inside the loops it feeds reach anyway (each of its points within
+//!    `reach − len/(2π)` of them) is not run round.
 //! 3. **Lane changes** ([`lanes`]): each loop once round, then from `P_i` on loop `R_i` onto
 //!    `R_{i+1}` over a window `D = min(6·h, L_i/4)`:
 //!    `x(u) = a(u) + σ(u/D)·(b(u) − a(u))`, `σ(t) = 10t³ − 15t⁴ + 6t⁵`, `a(u) = R_i(P_i + u)`,

@@ -378,15 +378,49 @@ impl Emitter<'_> {
         out
     }
 
+    /// Whether every point inside `ring` (loop `i`) is within the reach of the loops it feeds:
+    /// each point of the loop within `reach − len/(2π) − len/(2n)` of one of them (`n`
+    /// samples). A point inside a closed loop of length `len` is within `len/(2π)` of it (the
+    /// disc round it up to the loop lies inside, and its perimeter is no longer than the
+    /// loop), and each point of the loop within `len/(2n)` of a sample.
+    fn covered_by_next(&self, i: usize, ring: Option<&Ring>) -> bool {
+        let Some(ring) = ring else { return false };
+        const SAMPLES: usize = 32;
+        let margin =
+            self.lanes.reach - ring.len() * (0.5 / std::f64::consts::PI + 0.5 / SAMPLES as f64);
+        let next: Vec<Ring> = self.loops.nodes[i]
+            .next
+            .iter()
+            .map(|&j| self.ring(j).0)
+            .collect();
+        if margin <= 0.0 || next.is_empty() {
+            return false;
+        }
+        (0..SAMPLES).all(|k| {
+            let p = ring.point(ring.len() * k as f64 / SAMPLES as f64);
+            next.iter().any(|n| n.project(p).1 <= margin)
+        })
+    }
+
     /// Appends one chain: linked to the previous cut where the link is short and safe, else
     /// a new cut with its own entry.
     fn emit(&mut self, chain: &[usize]) {
         let Some(&first) = chain.first() else { return };
         let node = &self.loops.nodes[first];
-        let (rings, kinds): (Vec<Ring>, Vec<Outermost>) =
+        let (mut rings, kinds): (Vec<Ring>, Vec<Outermost>) =
             chain.iter().map(|&i| self.ring(i)).unzip();
         let outer = kinds.last().copied().unwrap_or(Outermost::Interior);
         let leaf = node.prev.is_empty();
+        // A leaf loop whose whole inside the loops it feeds reach is not run round (round a
+        // loop much smaller than the tool, the path is a string of sharp turns for nothing):
+        // the chain starts on the next loop, or, a chain of that loop alone, is left out.
+        if leaf && self.covered_by_next(first, rings.first()) {
+            if rings.len() > 1 {
+                rings.remove(0);
+            } else if outer == Outermost::Interior {
+                return;
+            }
+        }
         // Where the chain is entered: near the tool, or at the helix.
         let mut entry = CutEntry::Ramp;
         let enter = match self.here {

@@ -3,14 +3,16 @@
 //!
 //! The rounded loops are lines and arcs: where a line meets an arc of radius `R` the
 //! curvature jumps by `1/R`, and a jerk-limited controller must slow there (the normal
-//! acceleration `v²κ` cannot step). The path is sampled every `δ` mm and each sample replaced
-//! by the mean of the samples within `±W/2` of it (a moving average in arc length): a
+//! acceleration `v²κ` cannot step). The path is sampled every `δ` mm (equally spaced over the
+//! stretch) and each sample replaced by the mean of the samples within `±W/2` of it (a moving average in arc length): a
 //! curvature step becomes a linear ramp over `W`, the path curvature-continuous. On an arc of
 //! radius `R` the mean moves the path towards the centre by about `W²/(24·R)`; the window is
 //! therefore `W = min(W_max, √(24·ε·R))` with `R` the smallest radius of the exact segments
 //! within `W_max/2`, so that no point moves by more than `ε`
 //! ([`SmoothOptions::max_shift`]), and shrinks symmetrically at the ends of a stretch, which
-//! stay where they are.
+//! stay where they are; from one sample to the next it changes by one sample at most (a
+//! window shrinking at once moves the mean across the path by the difference of the shifts,
+//! a step back).
 //!
 //! Stretches are split at kinks (a deflection above [`SmoothOptions::kink`]: a straight step,
 //! an unrounded corner, whose material must still be reached) and nothing from the last
@@ -61,17 +63,23 @@ fn smooth_stretch(segs: &[Seg], opts: &SmoothOptions) -> Vec<Seg> {
     if segs.is_empty() || total < 4.0 * opts.spacing {
         return segs.to_vec();
     }
-    // Samples with the radius of the segment they lie on (infinite on lines).
-    let mut pts: Vec<Point> = Vec::new();
-    let mut radius: Vec<f64> = Vec::new();
-    for g in segs {
-        let len = g.length();
-        let n = ((len / opts.spacing).ceil() as usize).max(1);
-        let r = g.arc.map_or(f64::INFINITY, |a| a.radius);
-        for k in 0..n {
-            pts.push(g.point_at(len * k as f64 / n as f64));
-            radius.push(r);
+    // Samples equally spaced in arc length over the whole stretch (a mean over unevenly
+    // spaced samples would pull the path along itself, towards where they crowd), each with
+    // the radius of the segment it lies on (infinite on lines).
+    let count = ((total / opts.spacing).ceil() as usize).max(4);
+    let ds = total / count as f64;
+    let mut pts: Vec<Point> = Vec::with_capacity(count + 1);
+    let mut radius: Vec<f64> = Vec::with_capacity(count + 1);
+    let (mut j, mut start) = (0, 0.0);
+    for k in 0..count {
+        let s = ds * k as f64;
+        while j + 1 < segs.len() && s > start + segs[j].length() {
+            start += segs[j].length();
+            j += 1;
         }
+        let g = &segs[j];
+        pts.push(g.point_at((s - start).clamp(0.0, g.length())));
+        radius.push(g.arc.map_or(f64::INFINITY, |a| a.radius));
     }
     if let Some(last) = segs.last() {
         pts.push(last.b);
@@ -95,6 +103,15 @@ fn smooth_stretch(segs: &[Seg], opts: &SmoothOptions) -> Vec<Seg> {
             h.min(half_max)
         })
         .collect();
+    // Windows that change by at most one sample from one sample to the next: a window that
+    // shrinks at once moves the mean across the path by the difference of the two shifts.
+    let mut half = half;
+    for i in 1..n {
+        half[i] = half[i].min(half[i - 1] + 1);
+    }
+    for i in (0..n - 1).rev() {
+        half[i] = half[i].min(half[i + 1] + 1);
+    }
     // Prefix sums for the means.
     let mut cx = vec![0.0; n + 1];
     let mut cy = vec![0.0; n + 1];
