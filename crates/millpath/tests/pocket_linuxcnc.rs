@@ -1,8 +1,12 @@
 //! The roughing strategies judged by a real controller: the aerospace pocket's three
 //! strategies (one 5 mm level, 600 in/min, with and without feed modulation) run through
 //! LinuxCNC 2.9's own trajectory planner (`../shared/tools/linuxcnc-time`, 500 mm/s,
-//! 2000 mm/s², the programs stating `G64 P0.01`). The spiral must be the fastest, by the
-//! margins the project claims: at most 0.90 × offset's time and 0.84 × zigzag's.
+//! 2000 mm/s², the programs stating `G64 P0.01`), beside the best peer's program, FreeCAD
+//! 0.20's zigzag of the same pocket (`../shared/tools/freecad-pocket/aerospace/`, given
+//! `G64 P0.01`). The spiral takes at most 0.90 × offset's time, and our zigzag at most 0.95 ×
+//! FreeCAD's. (The zigzag, turning on half circles with no row along the walls, is now the
+//! fastest of the three here: the spiral loses a third of its time to slowing down on
+//! LinuxCNC, 16.6 s planned against 11.0 s at its feeds.)
 //!
 //! LinuxCNC runs in simulated real time (about 25 s a program; two at a time). Without
 //! `linuxcnc` on the machine the test is skipped, unless `MILLPATH_REQUIRE_LINUXCNC=1` (set by
@@ -72,7 +76,7 @@ fn time_on_linuxcnc(tool: &Path, program: &Path) -> f64 {
 
 #[test]
 #[allow(clippy::print_stderr)]
-fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
+fn linuxcnc_times_our_strategies_against_freecads_zigzag() {
     let Some(tool_path) = linuxcnc_time() else {
         eprintln!("skipped: LinuxCNC is not installed");
         return;
@@ -122,6 +126,13 @@ fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
             })
         })
         .collect();
+    let peer = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/tools/freecad-pocket/aerospace/pocket_zigzag.ngc");
+    let text = std::fs::read_to_string(&peer).expect("FreeCAD's aerospace zigzag");
+    let peer_path = dir.path().join("freecad_zigzag.ngc");
+    std::fs::write(&peer_path, text.replace("\nG21\n", "\nG21\nG64 P0.01\n"))
+        .expect("write the peer's program");
+    let fc = time_on_linuxcnc(&tool_path, &peer_path);
     for modulate in [true, false] {
         let t = |kind: StrategyKind| {
             jobs.iter()
@@ -140,8 +151,9 @@ fn linuxcnc_times_the_spiral_fastest_on_the_aerospace_pocket() {
              {o:.3} s, zigzag {z:.3} s"
         );
         assert!(
-            s <= 0.90 * o && s <= 0.84 * z,
-            "modulation {modulate}: spiral {s} s, offset {o} s, zigzag {z} s"
+            s <= 0.90 * o && z <= 0.95 * fc,
+            "modulation {modulate}: spiral {s} s, offset {o} s, zigzag {z} s, FreeCAD's \
+             zigzag {fc} s"
         );
     }
 }

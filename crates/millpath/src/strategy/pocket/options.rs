@@ -143,7 +143,8 @@ pub struct PocketOptions {
     pub clearance_height: f64,
     /// Cutting feed in mm/s.
     pub feed: f64,
-    /// Feed for helical and ramp entries, mm/s.
+    /// Feed straight down, mm/s; helical and ramp entries descend at it (along the ramp at
+    /// `plunge_feed / sin α`, at most the feed).
     pub plunge_feed: f64,
     /// Fraction of the feed at full slotting (180° engagement); see `super::feed`.
     pub slowdown: f64,

@@ -24,7 +24,8 @@
 //!
 //! In a frame rotated by −angle the passes are horizontal lines `y_j = y_min + j·h`,
 //! `h = (y_max − y_min)/n ≤ s` with `n = ⌈(y_max − y_min)/s⌉`, so neighbouring passes are at
-//! most one stepover apart. Each line is clipped to the region (even-odd rule on the crossings
+//! most one stepover apart; `j = 1 … n − 1`: the rows at `y_min` and `y_max` would run along
+//! the boundary offset, which the clean-up pass runs along anyway. Each line is clipped to the region (even-odd rule on the crossings
 //! with the loops, arcs solved exactly: `x = c_x ± √(R² − (y − c_y)²)`, kept when the angle
 //! lies within the arc's sweep). Rows whose height falls within 1e-7 mm of a vertex or an arc
 //! extreme are nudged by 2e-7 mm, so every crossing is transversal.
@@ -39,6 +40,14 @@
 //! along its first pass for the first cut of a level (the first pass runs along the
 //! boundary, where a helix has no room), over cleared material for the later ones
 //! ([`super::levels::direct_entries`]).
+//! **Turns.** Two rows joined by a straight link (row, link, row back, `2ρ ≤ s` apart) turn
+//! on a half circle of radius `ρ` instead (two quarter arcs, tangent to both rows): the rows
+//! end `ρ` short of the nearer of their ends, where the circle's apex touches it, and a
+//! controller holds `√(a·ρ)` through the turn instead of stopping at two corners. Only where
+//! the row ends lie within `ρ` of each other along the rows, both rows stay longer than `2ρ`
+//! and the whole circle lies inside the region (its centre at least `ρ` from every loop, up
+//! to `10⁻⁷·ρ` of rounding); else the link stays. What
+//! a turn leaves at the row ends lies within `2ρ ≤ s < r` of the boundary offset.
 //! After the passes, the boundary offset loops are cut once: the last pass ends on a loop,
 //! which is restarted there and appended without a retract.
 //!
@@ -114,6 +123,13 @@ pub fn plan(
     let mut ys = Vec::with_capacity(n + 1);
     for j in 0..=n {
         let y = nudge(&local, (y0 + h * j as f64).clamp(y0 + 2e-7, y1 - 2e-7));
+        // The first and last rows run along the boundary offset, which the clean-up pass
+        // runs along anyway.
+        if j == 0 || j == n {
+            rows.push(Vec::new());
+            ys.push(y);
+            continue;
+        }
         let mut xs: Vec<f64> = local
             .iter()
             .flatten()
@@ -188,7 +204,7 @@ pub fn plan(
         }
         cuts.push(Cut {
             entry: CutEntry::Ramp,
-            path,
+            path: round_turns(path, s, &region),
         });
     }
     // Clean-up along the boundary offset.
@@ -227,6 +243,97 @@ pub fn plan(
         }
     }
     Ok(LevelPlan { cuts })
+}
+
+/// `path` with each turn between two rows joined by a straight link (row, link, row the other
+/// way, the rows `2ρ ≤ s` apart) made a half circle of radius `ρ`: the rows end `ρ` short of
+/// the nearer of their two ends, where the half circle's apex touches it; a controller keeps
+/// `√(a·ρ)` through it instead of stopping at two corners. Where the row ends are more than
+/// `ρ` apart along the rows, a row is too short, or the circle would leave `region` (its
+/// centre nearer than `ρ` to a loop), the link stays. What the turns leave at the row
+/// ends lies within `2ρ ≤ s` of the boundary offset, which the clean-up pass runs along.
+fn round_turns(path: Vec<Seg>, s: f64, region: &super::shape::OffsetRegion) -> Vec<Seg> {
+    let mut out: Vec<Seg> = Vec::with_capacity(path.len() + path.len() / 2);
+    // The move at `i`, shortened when it is a row a turn has just joined.
+    let mut cur: Option<Seg> = None;
+    let mut i = 0;
+    while i < path.len() {
+        let a = cur.take().unwrap_or(path[i]);
+        let turn = match (path.get(i + 1), path.get(i + 2)) {
+            (Some(k), Some(b)) if a.arc.is_none() && k.arc.is_none() && b.arc.is_none() => {
+                half_turn(&a, k, b, s, region)
+            }
+            _ => None,
+        };
+        match turn {
+            Some([a2, q1, q2, b2]) => {
+                out.extend([a2, q1, q2]);
+                cur = Some(b2);
+                i += 2;
+            }
+            None => {
+                out.push(a);
+                i += 1;
+            }
+        }
+    }
+    out
+}
+
+/// Rows `a` and `b` joined by the link `k` as a half circle (see [`round_turns`]): the
+/// shortened `a`, two quarter arcs and the shortened `b`.
+fn half_turn(
+    a: &Seg,
+    k: &Seg,
+    b: &Seg,
+    s: f64,
+    region: &super::shape::OffsetRegion,
+) -> Option<[Seg; 4]> {
+    let u = (a.b - a.a).normalize()?;
+    let ub = (b.b - b.a).normalize()?;
+    if u.dot(ub) > -1.0 + 1e-9 || k.a.distance(a.b) > 1e-9 || k.b.distance(b.a) > 1e-9 {
+        return None;
+    }
+    let gap = b.a - a.b;
+    let across = gap.cross(u);
+    let rho = 0.5 * across.abs();
+    if rho < 1e-6 || 2.0 * rho > s * (1.0 + 1e-9) {
+        return None;
+    }
+    // Along the rows, from `a`'s end: `b` starts at `delta`; the apex at the nearer end.
+    let delta = gap.dot(u);
+    if delta.abs() > rho {
+        return None;
+    }
+    let back = delta.min(0.0) - rho;
+    let (la, lb) = (a.length() + back, b.length() - (delta - back));
+    if la <= 2.0 * rho || lb <= 2.0 * rho {
+        return None;
+    }
+    // `w` points from `a` towards `b`; the turn is to the left when `w` is `u` turned left.
+    let w = if across < 0.0 { u.perp() } else { -u.perp() };
+    let p1 = a.b + u * back;
+    let c = p1 + w * rho;
+    let p2 = p1 + w * (2.0 * rho);
+    // The whole circle inside the region: its centre at least `ρ` from every loop (less the
+    // rounding of the distances), and on the region's side of them (between the rows).
+    let slack = 1e-7 * rho + 1e-9 * (c.x.abs() + c.y.abs());
+    let room = region
+        .loops()
+        .map(|l| super::shape::loop_distance(l, c))
+        .fold(f64::INFINITY, f64::min);
+    if room < rho - slack || crosses(region, p1, p2) {
+        return None;
+    }
+    let left = w.dot(u.perp()) > 0.0;
+    let bulge = if left { 1.0 } else { -1.0 } * (std::f64::consts::PI / 8.0).tan();
+    let apex = c + u * rho;
+    Some([
+        Seg::line(a.a, p1),
+        Seg::from_bulge(p1, apex, bulge),
+        Seg::from_bulge(apex, p2, bulge),
+        Seg::line(p2, b.b),
+    ])
 }
 
 /// The shorter way from `p` to `q` along the loop of `region` both lie on (within 1e-6 mm),

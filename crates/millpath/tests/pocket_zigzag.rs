@@ -1,0 +1,135 @@
+//! The zigzag as lean as the peers': its rows turn on half circles inside the pocket, no row
+//! runs along the walls' loop that the clean-up pass cuts, and the entry ramps down once at
+//! the plunge rate. Checked on the moves and by the stock simulation, on the aerospace pocket
+//! and on rounded rectangles of aspect 1:1 to 4:1.
+
+use millpath::stock::SimOptions;
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
+use millpath::toolpath::{MoveKind, Tool, Toolpath};
+
+fn pockets() -> Vec<(&'static str, PocketShape)> {
+    let rect =
+        |w: f64, h: f64| PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, w, h, 6.0));
+    vec![
+        ("aerospace", builtin::aerospace_pocket()),
+        ("1:1", rect(100.0, 100.0)),
+        ("2:1", rect(160.0, 80.0)),
+        ("4:1", rect(200.0, 50.0)),
+    ]
+}
+
+fn opts() -> PocketOptions {
+    PocketOptions::default().with_depth(5.0).with_step_down(5.0)
+}
+
+/// The half turns at the level: two quarter arcs in a row, of one radius, turning one way.
+fn half_turns(tp: &Toolpath, z: f64) -> usize {
+    let mut from = tp.start;
+    let mut prev: Option<(f64, bool)> = None;
+    let mut n = 0;
+    for m in &tp.moves {
+        let flat = (from.z - z).abs() < 1e-9 && (m.to.z - z).abs() < 1e-9;
+        let arc = match m.kind {
+            MoveKind::Arc { center, ccw, .. } if flat => {
+                Some((from.xy().distance(center.xy()), ccw))
+            }
+            _ => None,
+        };
+        if let (Some((r0, c0)), Some((r1, c1))) = (prev, arc)
+            && (r0 - r1).abs() < 1e-6
+            && c0 == c1
+        {
+            n += 1;
+            prev = None;
+        } else {
+            prev = arc;
+        }
+        from = m.to;
+    }
+    n
+}
+
+#[test]
+fn rows_turn_on_half_circles_and_leave_nothing() {
+    let tool = Tool::flat(12.7).unwrap();
+    let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
+    for (name, shape) in pockets() {
+        let r = pocket::generate(StrategyKind::Zigzag, &shape, &tool, &opts(), &sim).unwrap();
+        assert!(
+            r.verification.problems().is_empty(),
+            "{name}: {:?}",
+            r.verification.problems()
+        );
+        let tp = &r.toolpath;
+        let z = tp.levels[0].z;
+        // Rows across the pocket's short side, a stepover apart: all but the two on the
+        // walls' loop, and a half turn between each two.
+        let b = shape.outer.bounds();
+        let short = (b.max.x - b.min.x).min(b.max.y - b.min.y) - tool.diameter;
+        let rows = (short / (0.4 * tool.diameter) - 1e-9).ceil() as usize - 1;
+        let turns = half_turns(tp, z);
+        assert_eq!(
+            turns,
+            rows - 1,
+            "{name}: {turns} half turns for {rows} rows"
+        );
+        // Cut length: the rows, the turns and the walls' loop once, not a row along it.
+        let long = (b.max.x - b.min.x).max(b.max.y - b.min.y) - tool.diameter;
+        let bound = rows as f64 * long + 2.0 * (long + short) + turns as f64 * 0.5 * tool.diameter;
+        let cut: f64 = tp
+            .segments()
+            .filter(|(f, m)| m.is_feed() && (f.z - z).abs() < 1e-9 && (m.to.z - z).abs() < 1e-9)
+            .map(|(f, m)| m.length_from(f))
+            .sum();
+        assert!(
+            cut <= bound,
+            "{name}: {cut:.1} mm cut at the level, bound {bound:.1}"
+        );
+    }
+}
+
+/// The first cut's ramp runs down the head of its first row once, from its far end back to
+/// its start, no steeper than the ramp angle, descending no faster than the plunge feed and
+/// moving no faster than the feed.
+#[test]
+fn the_ramp_runs_down_once_at_the_plunge_rate() {
+    let tool = Tool::flat(12.7).unwrap();
+    let o = opts().with_entry(pocket::Entry::Ramp {
+        ramp_angle: 3f64.to_radians(),
+    });
+    for (name, shape) in pockets() {
+        let tp = pocket::toolpath(StrategyKind::Zigzag, &shape, &tool, &o).unwrap();
+        let z = tp.levels[0].z;
+        let top = 0.0 + o.safe_height;
+        let mut ramp = 0.0;
+        for (f, m) in tp.segments() {
+            // The first cut's ramp: every feed move before the first at the level.
+            if m.is_feed() && f.z <= z + 1e-9 {
+                break;
+            }
+            if !m.is_feed() {
+                continue;
+            }
+            // Along the path in plan (arcs and lines alike): the length the ramp angle is
+            // measured on.
+            let drop = f.z - m.to.z;
+            let len = (m.length_from(f).powi(2) - drop * drop).max(0.0).sqrt();
+            assert!(drop >= -1e-9, "{name}: the ramp climbs");
+            assert!(
+                drop <= len * 3f64.to_radians().tan() + 1e-6,
+                "{name}: steeper than 3°"
+            );
+            assert!(m.feed <= o.feed + 1e-9, "{name}: ramp faster than the feed");
+            assert!(
+                m.feed * drop <= o.plunge_feed * m.length_from(f) * (1.0 + 1e-9),
+                "{name}: descends faster than the plunge feed"
+            );
+            ramp += len;
+        }
+        let once = (top - z) / 3f64.to_radians().tan();
+        assert!(
+            (ramp - once).abs() < 1e-3,
+            "{name}: ramp {ramp:.3} mm, once down is {once:.3} mm"
+        );
+    }
+}
