@@ -204,7 +204,7 @@ pub fn plan(
         }
         cuts.push(Cut {
             entry: CutEntry::Ramp,
-            path: round_turns(path, s, &region),
+            path: round_turns(&path, s, &region),
         });
     }
     // Clean-up along the boundary offset.
@@ -252,7 +252,7 @@ pub fn plan(
 /// `ρ` apart along the rows, a row is too short, or the circle would leave `region` (its
 /// centre nearer than `ρ` to a loop), the link stays. What the turns leave at the row
 /// ends lies within `2ρ ≤ s` of the boundary offset, which the clean-up pass runs along.
-fn round_turns(path: Vec<Seg>, s: f64, region: &super::shape::OffsetRegion) -> Vec<Seg> {
+fn round_turns(path: &[Seg], s: f64, region: &super::shape::OffsetRegion) -> Vec<Seg> {
     let mut out: Vec<Seg> = Vec::with_capacity(path.len() + path.len() / 2);
     // The move at `i`, shortened when it is a row a turn has just joined.
     let mut cur: Option<Seg> = None;
