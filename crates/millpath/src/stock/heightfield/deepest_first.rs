@@ -15,7 +15,7 @@
 //! not below the bottom); stored as `f32` (rounding is monotone) such a height is no lower
 //! than the `f32` of that bound, so a tile whose highest cell is at or below it keeps every
 //! height and is skipped. Where a tile's bound says otherwise and the tile is marked, its
-//! cells are read again for the exact highest one. Deepest first, a profile's deepest level
+//! cells are read again for the exact highest one, at most once per piece. Deepest first, a profile's deepest level
 //! cuts the slot down; the levels above it then find the slot's tiles at or below their tips
 //! and read only the tiles along its walls.
 
@@ -37,17 +37,36 @@ pub(super) struct Tiles {
     tx: usize,
     high: Vec<f32>,
     loose: Vec<bool>,
+    /// The piece being swept, and the last piece for which each tile was read again: a tile
+    /// is read at most once per piece (a piece lowering a tile row by row would otherwise
+    /// read it again for each row).
+    piece: u32,
+    read: Vec<u32>,
 }
 
 impl Tiles {
-    /// Tiles over `field`, every bound unknown.
+    /// Tiles over `field`, every bound exact.
     fn new(field: &HeightField) -> Self {
         let (tx, ty) = (field.nx.div_ceil(TILE), field.ny.div_ceil(TILE));
+        let mut high = vec![f32::NEG_INFINITY; tx * ty];
+        for (j, row) in field.h.chunks(field.nx).enumerate() {
+            let tiles = &mut high[(j / TILE) * tx..(j / TILE + 1) * tx];
+            for (t, cells) in tiles.iter_mut().zip(row.chunks(TILE)) {
+                *t = cells.iter().fold(*t, |m, &h| m.max(h));
+            }
+        }
         Tiles {
             tx,
-            high: vec![f32::INFINITY; tx * ty],
-            loose: vec![true; tx * ty],
+            high,
+            loose: vec![false; tx * ty],
+            piece: 0,
+            read: vec![0; tx * ty],
         }
+    }
+
+    /// Starts the next piece.
+    fn next_piece(&mut self) {
+        self.piece = self.piece.wrapping_add(1);
     }
 
     /// True when every cell of the tile holding cell `(i, j)` of `field` is at or below `z`.
@@ -56,9 +75,10 @@ impl Tiles {
         if self.high[t] <= z {
             return true;
         }
-        if !self.loose[t] {
+        if !self.loose[t] || self.read[t] == self.piece {
             return false;
         }
+        self.read[t] = self.piece;
         let (i0, j0) = (i / TILE * TILE, j / TILE * TILE);
         let (i1, j1) = ((i0 + TILE).min(field.nx), (j0 + TILE).min(field.ny));
         let high = (j0..j1)
@@ -120,6 +140,7 @@ impl HeightField {
         };
         let mut tiles = Tiles::new(self);
         for piece in &pieces {
+            tiles.next_piece();
             self.sweep_piece(piece, &mut tally, Some(&mut tiles));
         }
     }
