@@ -594,7 +594,7 @@ impl HeightField {
         let cut = old - z;
         tally.volume += cut;
         let new = z as f32;
-        tally.changed |= new != self.h[k];
+        tally.changed |= new.to_bits() != self.h[k].to_bits();
         self.h[k] = new;
         if cut <= tally.ztol {
             return 0.0;
