@@ -375,7 +375,10 @@ mod tests {
                     (a - i).powi(2) + (b - j).powi(2)
                 })
                 .fold(f64::INFINITY, f64::min);
-            assert!((f64::from(g) - want).abs() < 1e-9, "cell {k}: {g} vs {want}");
+            assert!(
+                (f64::from(g) - want).abs() < 1e-9,
+                "cell {k}: {g} vs {want}"
+            );
             zero_runs += usize::from(
                 k % nx > 0 && k % nx + 1 < nx && seeds[k - 1] && seeds[k] && seeds[k + 1],
             );

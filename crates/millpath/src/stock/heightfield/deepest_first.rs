@@ -10,14 +10,15 @@
 //!
 //! **Tiles.** The field is split into tiles of [`TILE`] × [`TILE`] cells, each with an upper
 //! bound of its highest cell (heights only go down, so a bound stays one) and a mark for a
-//! tile lowered since its bound was last made exact. A piece whose lowest tip is `z` gives no
-//! cell a height below `z` (less `10⁻⁶` mm for the rounding of the tip's interpolation, and
-//! not below the bottom); stored as `f32` (rounding is monotone) such a height is no lower
-//! than the `f32` of that bound, so a tile whose highest cell is at or below it keeps every
-//! height and is skipped. Where a tile's bound says otherwise and the tile is marked, its
-//! cells are read again for the exact highest one, at most once per piece. Deepest first, a profile's deepest level
-//! cuts the slot down; the levels above it then find the slot's tiles at or below their tips
-//! and read only the tiles along its walls.
+//! tile lowered since its bound was last made exact (the bounds start exact, from one scan of
+//! the field). A piece whose lowest tip is `z` gives no cell a height below `z` (less
+//! `10⁻⁶` mm for the rounding of the tip's interpolation, and not below the bottom); stored
+//! as `f32` (rounding is monotone) such a height is no lower than the `f32` of that bound, so
+//! a tile whose highest cell is at or below it keeps every height and is skipped. Where a
+//! tile's bound says otherwise and the tile is marked, its cells are read again for the exact
+//! highest one, at most once per piece. Deepest first, a profile's deepest level cuts the
+//! slot down; the levels above it then find the slot's tiles at or below their tips and read
+//! only the tiles along its walls.
 
 use super::{HeightField, Piece, Tally, push_pieces};
 use crate::geom::Point;
