@@ -536,10 +536,12 @@ fn bridge_verdict(
     // Only the runs of moves whose boxes come within the tool radius (and a chord's sagitta,
     // under 1 mm) of the field's cut it: a move farther off lowers none of its cells. Each
     // cell ends at the least height any move gives it, in whatever order the moves come, so
-    // the field is the one the whole program leaves.
-    for run in runs_within(&res.toolpath, field.bounds().inflate(r + NEAR), swept_box) {
-        field.cut(&run);
-    }
+    // the field is the one the whole program leaves; so they are cut deepest first.
+    field.cut_deepest_first(&runs_within(
+        &res.toolpath,
+        field.bounds().inflate(r + NEAR),
+        swept_box,
+    ));
     let side = match t.side {
         ProfileSide::Inside => CutSide::Inside,
         _ => CutSide::Outside,
@@ -708,9 +710,7 @@ mod tests {
         whole.cut(&tp);
         let mut near = HeightField::new(block, -10.0, 0.0, &opts).unwrap();
         let runs = runs_within(&tp, near.bounds().inflate(3.0 + NEAR), swept_box);
-        for run in &runs {
-            near.cut(run);
-        }
+        near.cut_deepest_first(&runs);
         let kept: usize = runs.iter().map(|r| r.moves.len()).sum();
         assert!(
             kept < tp.moves.len() - 4,

@@ -213,7 +213,8 @@ fn cell_of(origin: Point, c: f64, nx: usize, ny: usize, p: Point) -> Option<(usi
 /// seed (`f32::INFINITY` without seeds): columns, then rows, exact on the grid. On the seeds
 /// alone (0 or far) the columns' lower envelope is the squared distance to the column's
 /// nearest seed, found by a scan up and one down, row by row (rows are contiguous in memory);
-/// the rows take the lower envelope of parabolas (Felzenszwalb & Huttenlocher 2012).
+/// the rows take the lower envelope of parabolas (Felzenszwalb & Huttenlocher 2012), a run of
+/// seeds by its two ends (the cells inside it are 0).
 pub(crate) fn edt(seeds: &[bool], nx: usize, ny: usize) -> Vec<f32> {
     const FAR: f64 = 1e20;
     let far = FAR as f32;
@@ -275,6 +276,11 @@ fn envelope(f: &[f64], out: &mut [f64], v: &mut [usize], z: &mut [f64]) {
     z[0] = f64::NEG_INFINITY;
     z[1] = f64::INFINITY;
     for q in 1..n {
+        // Inside a run of zeros (seeds) a parabola is lower than both ends' only at its own
+        // cell, where the value is 0 anyway (set below): it is left out of the envelope.
+        if f[q] == 0.0 && f[q - 1] == 0.0 && f.get(q + 1) == Some(&0.0) {
+            continue;
+        }
         let fq = f[q] + (q * q) as f64;
         let cross = |p: usize| (fq - (f[p] + (p * p) as f64)) / (2.0 * (q as f64 - p as f64));
         let mut s = cross(v[k]);
@@ -290,6 +296,10 @@ fn envelope(f: &[f64], out: &mut [f64], v: &mut [usize], z: &mut [f64]) {
     }
     let mut k = 0usize;
     for (q, o) in out.iter_mut().enumerate() {
+        if f[q] == 0.0 {
+            *o = 0.0;
+            continue;
+        }
         while z[k + 1] < q as f64 {
             k += 1;
         }
@@ -340,6 +350,43 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The transform against brute force where the seeds fill a region (a ring and its
+    /// hole's island, a piece's inside): rows crossing long runs of seeds.
+    #[test]
+    fn edt_matches_brute_force_over_filled_regions() {
+        let (nx, ny) = (47, 39);
+        let seeds: Vec<bool> = (0..nx * ny)
+            .map(|k| {
+                let (x, y) = ((k % nx) as f64 - 20.0, (k / nx) as f64 - 18.0);
+                let d = x.hypot(y);
+                (9.0..=15.5).contains(&d) || d <= 3.0 || (x > 18.0 && y.abs() < 4.0)
+            })
+            .collect();
+        let got = edt(&seeds, nx, ny);
+        let mut zero_runs = 0;
+        for (k, &g) in got.iter().enumerate() {
+            let (i, j) = ((k % nx) as f64, (k / nx) as f64);
+            let want = (0..nx * ny)
+                .filter(|&s| seeds[s])
+                .map(|s| {
+                    let (a, b) = ((s % nx) as f64, (s / nx) as f64);
+                    (a - i).powi(2) + (b - j).powi(2)
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                (f64::from(g) - want).abs() < 1e-9,
+                "cell {k}: {g} vs {want}"
+            );
+            zero_runs += usize::from(
+                k % nx > 0 && k % nx + 1 < nx && seeds[k - 1] && seeds[k] && seeds[k + 1],
+            );
+        }
+        assert!(
+            zero_runs > nx * ny / 10,
+            "{zero_runs} cells inside runs of seeds"
+        );
     }
 
     /// A 20 × 10 rectangle at d = 2: the reach region is the 16 × 6 rectangle inside; a cell

@@ -55,12 +55,16 @@
 //! when the block would need more than [`FieldOptions::max_cells`] cells (16 M, 64 MB: a
 //! 400 × 300 mm block gets cells of 0.087 mm).
 
+mod deepest_first;
 mod helix;
+mod pieces;
 
 use super::problem::Problem;
 use crate::error::InputError;
 use crate::geom::{Aabb, Point, Point3};
-use crate::toolpath::{MoveKind, Plane, Toolpath, tolerance_scale};
+use crate::toolpath::{MoveKind, Toolpath, tolerance_scale};
+use deepest_first::{Tiles, tile_end};
+use pieces::{Piece, push_pieces};
 use std::fmt;
 
 /// The largest sagitta of the chords an arc is swept as, mm; each chord's sweep is widened
@@ -234,6 +238,8 @@ struct Tally {
     ztol: f64,
     touched: Vec<u64>,
     volume: f64,
+    /// Set when a cell's stored height changes.
+    changed: bool,
 }
 
 /// What one sweep found: the largest lowering of a cell and what it added up to.
@@ -392,69 +398,32 @@ impl HeightField {
             ztol,
             touched: vec![0u64; (self.nx * self.ny).div_ceil(64)],
             volume: 0.0,
+            changed: false,
         };
         let mut out = OperationCut::default();
         let rim = self.cell * std::f64::consts::FRAC_1_SQRT_2 + super::GOUGE_RESOLUTION;
         // Where the tool stands before the first move is not a cut (how it got there is not
         // in this program).
         let mut last: Option<Stamp> = None;
+        let mut pieces = Vec::new();
         for (k, (from, m)) in tp.segments().enumerate() {
-            match m.kind {
-                MoveKind::Dwell { .. } => {}
-                MoveKind::Rapid | MoveKind::Line => {
-                    if m.is_feed()
-                        && opts.cutter == Cutter::EndMill
-                        && self.plunges(from, m.to, r - rim, ztol, m.length_from(from))
-                    {
-                        out.plunges.push(k);
-                    }
-                    let s = self.sweep(from, m.to, r, last, &mut tally);
-                    if matches!(m.kind, MoveKind::Rapid) && s.max_cut > ztol {
-                        out.rapids_through_material.push(k);
-                    }
-                    last = Some(Stamp {
-                        at: m.to.xy(),
-                        z: m.to.z,
-                        r,
-                    });
-                }
-                MoveKind::Arc { center, plane, .. } => {
-                    if opts.cutter == Cutter::EndMill
-                        && self.plunges(from, m.to, r - rim, ztol, m.length_from(from))
-                    {
-                        out.plunges.push(k);
-                    }
-                    if let (Plane::Xy, Some((r0, sweep))) = (plane, m.sweep_from(from))
-                        && (m.to.z - from.z).abs() > 1e-12
-                        && r0 > ARC_SAGITTA
-                    {
-                        // A helix: each cell's lowest tip over the angles that pass over it.
-                        self.sweep_helix(from, m.to, center.xy(), sweep, r, &mut tally);
-                        last = Some(Stamp {
-                            at: m.to.xy(),
-                            z: m.to.z,
-                            r,
-                        });
-                        continue;
-                    }
-                    let len = m.length_from(from);
-                    let (n, sagitta) = arc_pieces(m.sweep_from(from));
-                    let mut a = from;
-                    for piece in 1..=n {
-                        let b = if piece == n {
-                            m.to
-                        } else {
-                            m.point_at(from, len * piece as f64 / n as f64)
-                        };
-                        let rr = r + sagitta;
-                        self.sweep(a, b, rr, last, &mut tally);
-                        last = Some(Stamp {
-                            at: b.xy(),
-                            z: b.z,
-                            r: rr,
-                        });
-                        a = b;
-                    }
+            let feed = match m.kind {
+                MoveKind::Dwell { .. } => continue,
+                MoveKind::Rapid | MoveKind::Line => m.is_feed(),
+                MoveKind::Arc { .. } => true,
+            };
+            if feed
+                && opts.cutter == Cutter::EndMill
+                && self.plunges(from, m.to, r - rim, ztol, m.length_from(from))
+            {
+                out.plunges.push(k);
+            }
+            pieces.clear();
+            push_pieces(from, m, r, &mut last, &mut pieces);
+            for piece in &pieces {
+                let s = self.sweep_piece(piece, &mut tally, None);
+                if matches!(m.kind, MoveKind::Rapid) && s.max_cut > ztol {
+                    out.rapids_through_material.push(k);
                 }
             }
         }
@@ -532,12 +501,43 @@ impl HeightField {
         }
         let cut = old - z;
         tally.volume += cut;
-        self.h[k] = z as f32;
+        let new = z as f32;
+        tally.changed |= new.to_bits() != self.h[k].to_bits();
+        self.h[k] = new;
         if cut <= tally.ztol {
             return 0.0;
         }
         tally.touched[k / 64] |= 1 << (k % 64);
         cut
+    }
+
+    /// Sweeps one piece of a move; `tiles`, when given, skips the tiles no lower than the
+    /// piece's lowest tip and records the tiles it lowers.
+    fn sweep_piece(
+        &mut self,
+        piece: &Piece,
+        tally: &mut Tally,
+        tiles: Option<&mut Tiles>,
+    ) -> Swept {
+        match *piece {
+            Piece::Line { a, b, r, last } => self.sweep(a, b, r, last, tally, tiles),
+            Piece::Helix {
+                from,
+                to,
+                centre,
+                sweep,
+                r,
+            } => {
+                self.sweep_helix(from, to, centre, sweep, r, tally);
+                if let Some(t) = tiles {
+                    // Every cell the helix reaches lies within its larger radius plus the
+                    // widened tool of its centre.
+                    let (r0, r1) = (from.xy().distance(centre), to.xy().distance(centre));
+                    t.mark_around(self, centre, r0.max(r1) + r + (r1 - r0).abs() + self.cell);
+                }
+                Swept::default()
+            }
+        }
     }
 
     /// Sweeps the tool of radius `r` from `a` to `b` (module docs); `last` is the disc the
@@ -549,6 +549,7 @@ impl HeightField {
         r: f64,
         last: Option<Stamp>,
         tally: &mut Tally,
+        mut tiles: Option<&mut Tiles>,
     ) -> Swept {
         let (pa, pb) = (a.xy(), b.xy());
         let d = pb - pa;
@@ -564,6 +565,9 @@ impl HeightField {
         }
         let nx = self.nx;
         let (cell, origin) = (self.cell, self.origin);
+        // No tip this sweep computes, stored as f32, lies below this: a tile whose highest
+        // cell is at or below it keeps every height (its z's round to no lower one).
+        let floor = ((a.z.min(b.z) - 1e-6).max(self.bottom)) as f32;
         let (ylo, yhi) = (pa.y.min(pb.y) - r, pa.y.max(pb.y) + r);
         let mut rows = Vec::new();
         self.for_rows(ylo, yhi, |j, y| rows.push((j, y)));
@@ -597,26 +601,47 @@ impl HeightField {
             };
             let ay = y - pa.y;
             for (s0, s1) in ranges {
-                for i in s0..s1 {
-                    let z = if flat {
-                        a.z
-                    } else if len <= 1e-12 {
-                        a.z.min(b.z)
-                    } else if end_disc.is_some_and(|(e0, e1)| (e0..=e1).contains(&i)) {
-                        b.z
+                let mut i0 = s0;
+                while i0 < s1 {
+                    let i1 = if tiles.is_some() {
+                        tile_end(i0, s1)
                     } else {
-                        let x = origin.x + (i as f64 + 0.5) * cell;
-                        let (wx, wy) = (x - pa.x, ay);
-                        let tc = wx * u.x + wy * u.y;
-                        let s = wx * u.y - wy * u.x;
-                        let w = (r * r - s * s).max(0.0).sqrt();
-                        let t0 = (tc - w).clamp(0.0, len);
-                        let t1 = (tc + w).clamp(0.0, len);
-                        let t = if dz < 0.0 { t1 } else { t0 };
-                        a.z + dz * t / len
+                        s1
                     };
-                    let cut = self.lower(j * nx + i, z, tally);
-                    swept.max_cut = swept.max_cut.max(cut);
+                    if let Some(t) = tiles.as_deref_mut()
+                        && t.at_or_below(self, i0, j, floor)
+                    {
+                        i0 = i1;
+                        continue;
+                    }
+                    tally.changed = false;
+                    for i in i0..i1 {
+                        let z = if flat {
+                            a.z
+                        } else if len <= 1e-12 {
+                            a.z.min(b.z)
+                        } else if end_disc.is_some_and(|(e0, e1)| (e0..=e1).contains(&i)) {
+                            b.z
+                        } else {
+                            let x = origin.x + (i as f64 + 0.5) * cell;
+                            let (wx, wy) = (x - pa.x, ay);
+                            let tc = wx * u.x + wy * u.y;
+                            let s = wx * u.y - wy * u.x;
+                            let w = (r * r - s * s).max(0.0).sqrt();
+                            let t0 = (tc - w).clamp(0.0, len);
+                            let t1 = (tc + w).clamp(0.0, len);
+                            let t = if dz < 0.0 { t1 } else { t0 };
+                            a.z + dz * t / len
+                        };
+                        let cut = self.lower(j * nx + i, z, tally);
+                        swept.max_cut = swept.max_cut.max(cut);
+                    }
+                    if tally.changed
+                        && let Some(t) = tiles.as_deref_mut()
+                    {
+                        t.mark(i0, j);
+                    }
+                    i0 = i1;
                 }
             }
         }
