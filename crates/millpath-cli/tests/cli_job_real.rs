@@ -32,18 +32,6 @@ const KNOWN: &[(&str, &str, &str)] = &[
          bays the tool (metres wide) cannot enter: tabs placed there, off the path, leave none?",
     ),
     (
-        "kg_teeth-12.dxf",
-        "job exit Some(1)",
-        "gear: a tab's neck reads wider than a tab across gentle corners \
-         (kg_teeth-12: 4.401 mm, bound 4.027 mm)",
-    ),
-    (
-        "kg_teeth-20.dxf",
-        "job exit Some(1)",
-        "gear: a tab's neck reads wider than a tab across gentle corners \
-         (kg_teeth-12: 4.401 mm, bound 4.027 mm)",
-    ),
-    (
         "ez_cc_dxflib.dxf",
         "job exit Some(1)",
         "1 mm outline: a level below a tab's top passes over it",
