@@ -18,20 +18,6 @@ mod job_real;
 /// must take it off the list); none may hang.
 const KNOWN: &[(&str, &str, &str)] = &[
     (
-        "ez_1_polylines.dxf",
-        "job exit Some(1)",
-        "metre scale: fewer bridges than tabs (ez_clockwise_arcs_hatch: 9 for 11, \
-         ez_1_polylines: 2 for 3), each on its own tab; the slot is left uncut for km along \
-         bays the tool (metres wide) cannot enter: tabs placed there, off the path, leave none?",
-    ),
-    (
-        "ez_clockwise_arcs_hatch.dxf",
-        "job exit Some(1)",
-        "metre scale: fewer bridges than tabs (ez_clockwise_arcs_hatch: 9 for 11, \
-         ez_1_polylines: 2 for 3), each on its own tab; the slot is left uncut for km along \
-         bays the tool (metres wide) cannot enter: tabs placed there, off the path, leave none?",
-    ),
-    (
         "ez_cc_dxflib.dxf",
         "job exit Some(1)",
         "1 mm outline: a level below a tab's top passes over it",

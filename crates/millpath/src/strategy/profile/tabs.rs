@@ -34,6 +34,16 @@
 //! side with `R_p < 2r`, too tight for a tab) within `TAB_RAMP_RUN·h + 0.05` of an end, the ramp stays on the element: the
 //! stretch keeps that much more from the end (on an arc, the ramp's run times `R/R_p`).
 //!
+//! # On the tool's path
+//! The tool's path is the outline's offset at `d` with the loops that would gouge trimmed:
+//! along a bay narrower than the tool it cuts across the mouth, far from the outline, and
+//! leaves the bay uncut. A tab there has no lift on the path (and no bridge of its own), so
+//! a tab is placed only where the path runs along its stretch of outline: at `2·8 + 1`
+//! samples over its lift and ramps (the path's half lift and ramp, in outline length on an
+//! arc), the point `d` off the outline on the free side lies no nearer than
+//! `d·cos β` to the outline (`β` its run's bend, 0 on one element; `1e-6·(1 + d)` allowed):
+//! the tool centred there touches the outline only at the foot of that point.
+//!
 //! # Even spacing
 //! With the perimeter `P` and `N` tabs the ideal places are `φ + kP/N`. Each is slid to the
 //! nearest allowed place (arc length, cyclically); the phase `φ` minimises the sum of the
@@ -293,9 +303,25 @@ pub(crate) fn place(
             r,
         }
     };
-    if let Some(keep) = keep {
-        stretches = accepted(stretches, w, &|s, st| keep(&make(s, st)));
-    }
+    // On the tool's path, and where `keep` accepts it (module docs).
+    let on_path = |t: &Tab| -> bool {
+        let span = match t.arc {
+            None => t.half_lift(d) + ramp,
+            Some((rad, centre_free)) => {
+                let rp = if centre_free { rad - d } else { rad + d };
+                (t.half_lift(d) + ramp) * rad / rp
+            }
+        };
+        let least = d * t.bend.cos() - 1e-6 * (1.0 + d);
+        (-ON_PATH_SAMPLES..=ON_PATH_SAMPLES).all(|k| {
+            let sk = t.placed.s + span * k as f64 / ON_PATH_SAMPLES as f64;
+            let tn = lp.tangent(sk);
+            let q = lp.point(sk) + if free_left { tn.perp() } else { -tn.perp() } * d;
+            !lp.nearer_than(q, least)
+        })
+    };
+    let wanted = |t: &Tab| on_path(t) && keep.is_none_or(|k| k(t));
+    stretches = accepted(stretches, w, &|s, st| wanted(&make(s, st)));
     if stretches.is_empty() {
         return (Vec::new(), asked);
     }
@@ -379,10 +405,13 @@ pub(crate) fn place(
     let tabs = kept
         .into_iter()
         .map(|(s, j)| make(s, &stretches[j]))
-        .filter(|t| keep.is_none_or(|k| k(t)))
+        .filter(|t| wanted(t))
         .collect();
     (tabs, asked)
 }
+
+/// Samples either side of a tab's centre on which its path is tested (module docs).
+const ON_PATH_SAMPLES: i32 = 8;
 
 /// The most samples [`accepted`] tests on one stretch.
 const MAX_SAMPLES: usize = 2000;
