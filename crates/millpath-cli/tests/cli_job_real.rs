@@ -18,37 +18,6 @@ mod job_real;
 /// must take it off the list); none may hang.
 const KNOWN: &[(&str, &str, &str)] = &[
     (
-        "ez_1_polylines.dxf",
-        "job exit Some(1)",
-        "metre scale: fewer bridges than tabs (ez_clockwise_arcs_hatch: 9 for 11, \
-         ez_1_polylines: 2 for 3), each on its own tab; the slot is left uncut for km along \
-         bays the tool (metres wide) cannot enter: tabs placed there, off the path, leave none?",
-    ),
-    (
-        "ez_clockwise_arcs_hatch.dxf",
-        "job exit Some(1)",
-        "metre scale: fewer bridges than tabs (ez_clockwise_arcs_hatch: 9 for 11, \
-         ez_1_polylines: 2 for 3), each on its own tab; the slot is left uncut for km along \
-         bays the tool (metres wide) cannot enter: tabs placed there, off the path, leave none?",
-    ),
-    (
-        "kg_teeth-12.dxf",
-        "job exit Some(1)",
-        "gear: a tab's neck reads wider than a tab across gentle corners \
-         (kg_teeth-12: 4.401 mm, bound 4.027 mm)",
-    ),
-    (
-        "kg_teeth-20.dxf",
-        "job exit Some(1)",
-        "gear: a tab's neck reads wider than a tab across gentle corners \
-         (kg_teeth-12: 4.401 mm, bound 4.027 mm)",
-    ),
-    (
-        "ez_cc_dxflib.dxf",
-        "job exit Some(1)",
-        "1 mm outline: a level below a tab's top passes over it",
-    ),
-    (
         "pb_4_spoke_gear.dxf",
         "job exit Some(2)",
         "3.5 mm gear: no flank (0.23 mm) holds a tab's lift (0.35 mm), its tips turn 65°",

@@ -179,3 +179,68 @@ fn a_gear_of_lines_is_held_by_its_tabs_across_gentle_corners() {
     let (_, s) = init(dir.path(), "gear", &gear_svg());
     made_and_verified(&s);
 }
+
+/// A 12-tooth gear drawn as a turtle of lines, like a gear exported in LINEs: each tooth a
+/// tip of two lines, flanks turning 10° and 20° at their corners, and a straight root
+/// 2.75 mm long between two inside corners of 51.6°, 35.6 mm across, with a 3 mm hole.
+fn gear_with_straight_roots_svg() -> String {
+    // (turn before the line, deg; its length, mm), one tooth from its tip; the turns add up
+    // to the tooth's 30°, so twelve close the outline.
+    let tooth: [(f64, f64); 17] = [
+        (55.9, 1.025),
+        (10.0, 1.025),
+        (55.9, 0.943),
+        (10.0, 1.211),
+        (10.0, 0.758),
+        (10.0, 0.231),
+        (20.0, 0.590),
+        (-16.4, 1.038),
+        (-27.9, 0.649),
+        (-51.6, 2.751),
+        (-51.6, 0.649),
+        (-27.9, 1.038),
+        (-16.4, 0.590),
+        (20.0, 0.231),
+        (10.0, 0.758),
+        (10.0, 1.211),
+        (10.0, 0.943),
+    ];
+    let (mut x, mut y, mut heading) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut pts = vec![(x, y)];
+    for _ in 0..12 {
+        for &(turn, len) in &tooth {
+            heading += turn.to_radians();
+            x += len * heading.cos();
+            y += len * heading.sin();
+            pts.push((x, y));
+        }
+    }
+    pts.pop();
+    let n = pts.len() as f64;
+    let (cx, cy) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+    let points: Vec<String> = pts
+        .iter()
+        .map(|(px, py)| format!("{:.4},{:.4}", px - cx + 20.0, py - cy + 20.0))
+        .collect();
+    format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="40mm" viewBox="0 0 40 40">
+  <polygon points="{}"/>
+  <circle cx="20" cy="20" r="1.5"/>
+</svg>
+"#,
+        points.join(" ")
+    )
+}
+
+/// The gear with straight roots: its only lines long enough for a tab and its lift are the
+/// roots, whose inside corners the tab's ramps would cross (the bridge then reads wider
+/// than a tab: "neck 4.401 mm, at most 4.027 mm"); the tabs keep their ramps off such
+/// corners, and the job is made and held by its tabs.
+#[test]
+fn a_gear_with_straight_roots_is_held_by_its_tabs() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, s) = init(dir.path(), "gear", &gear_with_straight_roots_svg());
+    made_and_verified(&s);
+}

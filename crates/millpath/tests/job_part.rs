@@ -322,3 +322,43 @@ fn assert_held(check: &[(String, String)]) {
         "{check:?}"
     );
 }
+
+/// A 60 × 40 mm plate with a bay 4 mm wide and 32 mm deep, cut out by a 6 mm end mill
+/// with four tabs: the tool's path cuts across the bay's mouth and never runs along its
+/// walls, so no tab goes there (one did, with no lift on the path: "held by 3 tab
+/// bridge(s) for 4 tab(s)"); the job's check and `verify_program` find the plate held by
+/// its four tabs.
+#[test]
+fn no_tab_sits_in_a_bay_the_tool_cannot_enter() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("bay.svg"),
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="40mm" viewBox="0 0 60 40">
+  <polygon points="0,0 60,0 60,40 32,40 32,8 28,8 28,40 0,40"/>
+</svg>
+"#,
+    )
+    .unwrap();
+    let path = dir.path().join("bay.toml");
+    std::fs::write(
+        &path,
+        "drawing = \"bay.svg\"\nmachine = \"hsm\"\n\n[stock]\nmargin = 10.0\nthickness = 4.0\n\n\
+         [[tool]]\nnumber = 1\ndiameter = 6.0\nfeed = 1200\nspindle = 12000\n\n\
+         [[operation]]\ntype = \"profile\"\ntool = 1\nstep_down = 2.25\ntabs = 4\n",
+    )
+    .unwrap();
+    let s = part::read_file(&path).unwrap();
+    let run = part::run_spec(s.clone(), &mut |_| {}).unwrap_or_else(|e| panic!("{e}"));
+    assert_held(&run.report.check);
+    assert!(
+        run.report
+            .check
+            .iter()
+            .any(|(k, v)| k.contains("outline 1 held") && v.starts_with("by 4 tab")),
+        "{:?}",
+        run.report.check
+    );
+    let text = String::from_utf8(run.run.gcode.clone()).unwrap();
+    let v = part::verify_program(&s, &text, "bay.ngc", "auto").unwrap();
+    assert!(v.problems().is_empty(), "{:?}", v.problems());
+}

@@ -291,10 +291,13 @@ fn seg_to_piece(a: Point, b: Point, v1: PlineVertex<f64>, v2: PlineVertex<f64>) 
     }
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     if v1.bulge_is_zero() {
-        // Proper crossing of two segments: distance 0 at the crossing.
+        // Proper crossing of two segments: distance 0 at the crossing. Segments within 1e-9
+        // rad of parallel are left to the ends' distances (within 1e-9 of either's length of
+        // the exact one): on two collinear ones the crossing's fractions are rounding noise
+        // over rounding noise.
         let (ex, ey) = (v2.x - v1.x, v2.y - v1.y);
         let den = dx * ey - dy * ex;
-        if den.abs() > 1e-300 {
+        if den.abs() > 1e-9 * dx.hypot(dy) * ex.hypot(ey) {
             let t = ((v1.x - a.x) * ey - (v1.y - a.y) * ex) / den;
             let u = ((v1.x - a.x) * dy - (v1.y - a.y) * dx) / den;
             if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
@@ -341,6 +344,7 @@ fn seg_to_piece(a: Point, b: Point, v1: PlineVertex<f64>, v2: PlineVertex<f64>) 
 mod tests {
     use super::*;
     use crate::geom::Outline;
+    use cavalier_contours::polyline::PlineSourceMut;
 
     /// A 120-gon of radius 20 ± 3 with convex and concave arcs among its lines.
     fn wavy_outline() -> Outline {
@@ -357,6 +361,27 @@ mod tests {
             })
             .collect();
         Outline::new(&pts, "t").expect("outline")
+    }
+
+    /// A move on the line of a wall segment, short of it: its distance is the gap between
+    /// the ends, not 0 (the crossing of two collinear segments was rounding over rounding:
+    /// a profile's level beside a tab's middle line on `ez_cc_dxflib.dxf` read 0 mm from it).
+    #[test]
+    fn a_collinear_move_short_of_a_segment_is_the_gap_away() {
+        let (p, q) = (
+            Point::new(0.613_482_398_873_365_8, -0.404_629_756_521_288_46),
+            Point::new(0.466_384_428_100_070_14, -0.447_077_335_891_361_6),
+        );
+        let mut pl = Polyline::new_closed();
+        pl.add(p.x, p.y, 0.0);
+        pl.add(q.x, q.y, 0.0);
+        let wall = IndexedWall::new(&pl);
+        let a = Point::new(0.090_188_259_631_340_13, -0.555_635_031_390_807_5);
+        let b = Point::new(0.417_287_718_064_044_8, -0.461_245_012_611_222_86);
+        let (d, at) = wall.distance_to_segment(a, b);
+        assert!((d - b.distance(q)).abs() < 1e-9, "{d} vs {}", b.distance(q));
+        assert!(at.distance(b) < 1e-9, "{at:?}");
+        assert!(d > 0.05);
     }
 
     /// The nearest segment and point through the index against a scan of every segment.

@@ -117,6 +117,23 @@ impl Loop {
         best
     }
 
+    /// True when some element of the loop comes nearer than `dist` to `p` (each element
+    /// first rejected by its bounding box or, for an arc, its ring).
+    pub fn nearer_than(&self, p: Point, dist: f64) -> bool {
+        self.elems.iter().any(|e| {
+            let near_box = match e.center {
+                None => {
+                    p.x >= e.start.x.min(e.end.x) - dist
+                        && p.x <= e.start.x.max(e.end.x) + dist
+                        && p.y >= e.start.y.min(e.end.y) - dist
+                        && p.y <= e.start.y.max(e.end.y) + dist
+                }
+                Some(c) => ((p - c).length() - (e.start - c).length()).abs() < dist,
+            };
+            near_box && e.at(nearest_fraction(e, p)).distance(p) < dist
+        })
+    }
+
     /// The loop started at arc length `s` (the element there cut in two).
     pub fn rotated(&self, s: f64) -> Loop {
         let (i, f) = self.locate(s);

@@ -24,7 +24,25 @@
 //! turns shorten the path by at most `2d·tan(β/2)`, which `h` allows for.
 //!
 //! A ramped tab's ramps (`TAB_RAMP_RUN·h` of path either side of the lift, `h` the tab's
-//! height) on a run stay within its reach: `h` above grows by them.
+//! height) on a run stay within its reach: `h` above grows by them. On one element they may
+//! run on past its end only where the outline turns outside within their run (a corner the
+//! path goes round on an arc, which measured along the outline adds nothing): at an inside
+//! corner of turn `τ` the path is cut back, and measured along the outline the material its
+//! ramps leave stretches by `2d·tan(τ/2)` per corner, beyond what a tab's bridge may be (a
+//! gear's straight root between two flanks: the bridge would fill the root from flank to
+//! flank). Where the outline turns inside (a corner, or an arc whose centre lies on the free
+//! side with `R_p < 2r`, too tight for a tab) within `TAB_RAMP_RUN·h + 0.05` of an end, the ramp stays on the element: the
+//! stretch keeps that much more from the end (on an arc, the ramp's run times `R/R_p`).
+//!
+//! # On the tool's path
+//! The tool's path is the outline's offset at `d` with the loops that would gouge trimmed:
+//! along a bay narrower than the tool it cuts across the mouth, far from the outline, and
+//! leaves the bay uncut. A tab there has no lift on the path (and no bridge of its own), so
+//! a tab is placed only where the path runs along its stretch of outline: at `2·8 + 1`
+//! samples over its lift and ramps (the path's half lift and ramp, in outline length on an
+//! arc), the point `d` off the outline on the free side lies no nearer than
+//! `d·cos β` to the outline (`β` its run's bend, 0 on one element; `1e-6·(1 + d)` allowed):
+//! the tool centred there touches the outline only at the foot of that point.
 //!
 //! # Even spacing
 //! With the perimeter `P` and `N` tabs the ideal places are `φ + kP/N`. Each is slid to the
@@ -194,9 +212,42 @@ pub(crate) fn place(
     } else {
         0.0
     };
+    // The outline turns inside at the start of element `k`, or along it (an arc whose centre
+    // lies on the free side, too tight for a tab: its path's radius under `2r`).
+    let inside_corner = |k: usize| cutback(turn(k)) > 0.0;
+    let inside_arc = |k: usize| {
+        let e = &lp.elems[k];
+        e.center
+            .is_some_and(|c| e.ccw == free_left && (e.start - c).length() - d < 2.0 * r)
+    };
+    // Within a ramp's run past the end (`forward`) or the start of element `k`, the
+    // outline turns inside (module docs).
+    let inside_near = |k: usize, forward: bool| -> bool {
+        let (mut j, mut run) = (k, 0.0);
+        for _ in 0..n {
+            if inside_corner(if forward { (j + 1) % n } else { j }) {
+                return true;
+            }
+            j = if forward {
+                (j + 1) % n
+            } else {
+                (j + n - 1) % n
+            };
+            if inside_arc(j) {
+                return true;
+            }
+            run += lp.elems[j].length();
+            if run >= ramp + GUARD {
+                break;
+            }
+        }
+        false
+    };
     let mut stretches = Vec::new();
     for (k, e) in lp.elems.iter().enumerate() {
         let len = e.length();
+        // Outline per unit of path along the element.
+        let mut per_path = 1.0;
         let (half_outline, half_lift, arc) = match e.center {
             None => (0.5 * w + r, 0.5 * w + r, None),
             Some(c) => {
@@ -209,11 +260,21 @@ pub(crate) fn place(
                 }
                 let phi = (r / rp).asin();
                 let ang = 0.5 * w / rad + phi;
+                per_path = rad / rp;
                 (rad * ang, rp * ang, Some((rad, centre_free)))
             }
         };
-        let lo = lp.starts[k] + half_outline + GUARD + cutback(turn(k));
-        let hi = lp.starts[k] + len - half_outline - GUARD - cutback(turn((k + 1) % n));
+        // A ramped tab's ramps stay on the element where the outline turns inside near it.
+        let ramp_on = |forward: bool| {
+            if ramp > 0.0 && inside_near(k, forward) {
+                ramp * per_path
+            } else {
+                0.0
+            }
+        };
+        let lo = lp.starts[k] + half_outline + GUARD + cutback(turn(k)) + ramp_on(false);
+        let hi =
+            lp.starts[k] + len - half_outline - GUARD - cutback(turn((k + 1) % n)) - ramp_on(true);
         if hi >= lo {
             stretches.push(Stretch {
                 lo,
@@ -242,9 +303,25 @@ pub(crate) fn place(
             r,
         }
     };
-    if let Some(keep) = keep {
-        stretches = accepted(stretches, w, &|s, st| keep(&make(s, st)));
-    }
+    // On the tool's path, and where `keep` accepts it (module docs).
+    let on_path = |t: &Tab| -> bool {
+        let span = match t.arc {
+            None => t.half_lift(d) + ramp,
+            Some((rad, centre_free)) => {
+                let rp = if centre_free { rad - d } else { rad + d };
+                (t.half_lift(d) + ramp) * rad / rp
+            }
+        };
+        let least = d * t.bend.cos() - 1e-6 * (1.0 + d);
+        (-ON_PATH_SAMPLES..=ON_PATH_SAMPLES).all(|k| {
+            let sk = t.placed.s + span * k as f64 / ON_PATH_SAMPLES as f64;
+            let tn = lp.tangent(sk);
+            let q = lp.point(sk) + if free_left { tn.perp() } else { -tn.perp() } * d;
+            !lp.nearer_than(q, least)
+        })
+    };
+    let wanted = |t: &Tab| on_path(t) && keep.is_none_or(|k| k(t));
+    stretches = accepted(stretches, w, &|s, st| wanted(&make(s, st)));
     if stretches.is_empty() {
         return (Vec::new(), asked);
     }
@@ -328,10 +405,13 @@ pub(crate) fn place(
     let tabs = kept
         .into_iter()
         .map(|(s, j)| make(s, &stretches[j]))
-        .filter(|t| keep.is_none_or(|k| k(t)))
+        .filter(|t| wanted(t))
         .collect();
     (tabs, asked)
 }
+
+/// Samples either side of a tab's centre on which its path is tested (module docs).
+const ON_PATH_SAMPLES: i32 = 8;
 
 /// The most samples [`accepted`] tests on one stretch.
 const MAX_SAMPLES: usize = 2000;
