@@ -200,6 +200,9 @@ pub struct ZigzagOptions {
     /// Pass angle in rad from the pocket's principal axis (its long direction; see
     /// `super::zigzag`).
     pub angle: f64,
+    /// Turn between rows at two corners along a straight link instead of on half circles
+    /// (`generate` plans the zigzag so again where the half circles leave material).
+    pub straight_turns: bool,
 }
 
 impl Default for PocketOptions {

@@ -204,7 +204,11 @@ pub fn plan(
         }
         cuts.push(Cut {
             entry: CutEntry::Ramp,
-            path: round_turns(&path, s, &region),
+            path: if opts.zigzag.straight_turns {
+                path
+            } else {
+                round_turns(&path, s, back, &region)
+            },
         });
     }
     // Clean-up along the boundary offset.
@@ -245,14 +249,22 @@ pub fn plan(
     Ok(LevelPlan { cuts })
 }
 
-/// `path` with each turn between two rows joined by a straight link (row, link, row the other
-/// way, the rows `2ρ ≤ s` apart) made a half circle of radius `ρ`: the rows end `ρ` short of
+/// `path` with each turn between two rows (moves along `along`) joined by a straight link
+/// (row, link, row the other way, the rows `2ρ ≤ s` apart) made a half circle of radius `ρ`: the rows end `ρ` short of
 /// the nearer of their two ends, where the half circle's apex touches it; a controller keeps
 /// `√(a·ρ)` through it instead of stopping at two corners. Where the row ends are more than
 /// `ρ` apart along the rows, a row is too short, or the circle would leave `region` (its
 /// centre nearer than `ρ` to a loop), the link stays. What the turns leave at the row
 /// ends lies within `2ρ ≤ s` of the boundary offset, which the clean-up pass runs along.
-fn round_turns(path: &[Seg], s: f64, region: &super::shape::OffsetRegion) -> Vec<Seg> {
+fn round_turns(path: &[Seg], s: f64, along: Vec2, region: &super::shape::OffsetRegion) -> Vec<Seg> {
+    // A row runs along the rows' direction (a link along a loop may too, but never at a
+    // row's height: rows are nudged off the loops' vertices); both moves of a turn must.
+    let row = |g: &Seg| {
+        g.arc.is_none()
+            && (g.b - g.a)
+                .normalize()
+                .is_some_and(|d| d.cross(along).abs() < 1e-9)
+    };
     let mut out: Vec<Seg> = Vec::with_capacity(path.len() + path.len() / 2);
     // The move at `i`, shortened when it is a row a turn has just joined.
     let mut cur: Option<Seg> = None;
@@ -260,7 +272,7 @@ fn round_turns(path: &[Seg], s: f64, region: &super::shape::OffsetRegion) -> Vec
     while i < path.len() {
         let a = cur.take().unwrap_or(path[i]);
         let turn = match (path.get(i + 1), path.get(i + 2)) {
-            (Some(k), Some(b)) if a.arc.is_none() && k.arc.is_none() && b.arc.is_none() => {
+            (Some(k), Some(b)) if row(&a) && k.arc.is_none() && row(b) => {
                 half_turn(&a, k, b, s, region)
             }
             _ => None,
