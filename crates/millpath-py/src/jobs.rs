@@ -57,7 +57,7 @@ pub fn pocket(
     k.f64("floor_stock", &mut s.floor_stock)?;
     k.bool("conventional", &mut s.conventional)?;
     k.text("entry", &mut s.entry)?;
-    k.f64("helix_radius", &mut s.helix_radius)?;
+    k.opt_f64("helix_radius", &mut s.helix_radius)?;
     k.f64("ramp_angle", &mut s.ramp_angle)?;
     k.f64("safe_height", &mut s.safe_height)?;
     k.f64("clearance_height", &mut s.clearance_height)?;

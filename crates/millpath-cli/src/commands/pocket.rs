@@ -81,9 +81,9 @@ pub struct CommonArgs {
     /// Entry: helix or ramp.
     #[arg(long, default_value = "helix")]
     pub entry: String,
-    /// Helix radius, mm.
-    #[arg(long, default_value_t = 2.5)]
-    pub helix_radius: f64,
+    /// Helix radius, mm [default: 0.45 × the tool diameter; smaller where it does not fit]
+    #[arg(long)]
+    pub helix_radius: Option<f64>,
     /// Ramp angle, degrees.
     #[arg(long, default_value_t = 3.0)]
     pub ramp_angle: f64,

@@ -120,7 +120,7 @@ def pocket(
     floor_stock: float = 0.0,
     conventional: bool = False,
     entry: str = "helix",
-    helix_radius: float = 2.5,
+    helix_radius: Optional[float] = None,
     ramp_angle: float = 3.0,
     safe_height: float = 1.0,
     clearance_height: float = 5.0,

@@ -53,8 +53,9 @@ pub struct PocketSettings {
     pub conventional: bool,
     /// Entry: helix or ramp.
     pub entry: String,
-    /// Helix radius, mm.
-    pub helix_radius: f64,
+    /// Helix radius, mm; `None`: 0.45 × the tool diameter (the largest helix that leaves no
+    /// pillar at its centre, less a tenth). The pocket shrinks it where it does not fit.
+    pub helix_radius: Option<f64>,
     /// Ramp angle, degrees.
     pub ramp_angle: f64,
     /// Safe height above the level's top, mm.
@@ -98,6 +99,11 @@ pub struct PocketSettings {
 /// corner, which the LinuxCNC model reads as `G64` without `P`), mm: the `hsm` preset's.
 pub const DEFAULT_PATH_TOLERANCE: f64 = 0.01;
 
+/// The default helix radius as a fraction of the tool's diameter: 0.45, so the helix (of
+/// diameter 0.9·D) clears a disc of 1.9·D with no pillar left at its centre. A larger helix
+/// runs faster (the feed a controller holds on a circle of radius ρ grows as √(a·ρ)).
+pub const DEFAULT_HELIX_RADIUS_PER_DIAMETER: f64 = 0.45;
+
 impl Default for PocketSettings {
     fn default() -> Self {
         PocketSettings {
@@ -111,7 +117,7 @@ impl Default for PocketSettings {
             floor_stock: 0.0,
             conventional: false,
             entry: "helix".into(),
-            helix_radius: 2.5,
+            helix_radius: None,
             ramp_angle: 3.0,
             safe_height: 1.0,
             clearance_height: 5.0,
@@ -184,7 +190,9 @@ impl PocketSettings {
         let ramp = self.ramp_angle.to_radians();
         let entry = match self.entry.as_str() {
             "helix" => Entry::Helix {
-                radius: self.helix_radius,
+                radius: self
+                    .helix_radius
+                    .unwrap_or(DEFAULT_HELIX_RADIUS_PER_DIAMETER * self.tool_diameter),
                 ramp_angle: ramp,
             },
             "ramp" => Entry::Ramp { ramp_angle: ramp },

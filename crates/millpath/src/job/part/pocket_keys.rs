@@ -69,7 +69,9 @@ pub(crate) fn read(
     };
     set(&mut s.wall_stock, k.non_negative("wall_stock", "mm")?);
     set(&mut s.floor_stock, k.non_negative("floor_stock", "mm")?);
-    set(&mut s.helix_radius, k.positive("helix_radius", "mm")?);
+    if let Some(v) = k.positive("helix_radius", "mm")? {
+        s.helix_radius = Some(v);
+    }
     set(&mut s.ramp_angle, k.positive("ramp_angle", "degrees")?);
     set(&mut s.slowdown, k.fraction("slowdown")?);
     set(&mut s.angle, k.f64("angle")?);

@@ -219,7 +219,16 @@ fn emit_cut(
         _ => None,
     };
     let approach = match (cut.entry, &ramp) {
-        (CutEntry::Helix { center, radius }, _) => helix_approach(center, radius, first.a),
+        (CutEntry::Helix { center, radius }, _) => {
+            let end = helix_approach(center, radius, first.a);
+            helix_point(
+                center,
+                end,
+                helix_sweep(safe - z, radius, ramp_angle),
+                ccw,
+                0.0,
+            )
+        }
         (CutEntry::Ramp, Some((head, passes))) if passes % 2 == 1 => {
             head.last().map_or(first.a, |g| g.b)
         }
@@ -236,43 +245,48 @@ fn emit_cut(
     match cut.entry {
         CutEntry::Helix { center, radius } => {
             let c = |h: f64| Point3::from_xy(center, h);
-            let per_turn = TAU * radius * ramp_angle.tan();
-            let turns = ((safe - z) / per_turn).ceil().max(1.0);
+            let end = helix_approach(center, radius, first.a);
+            let sweep = helix_sweep(safe - z, radius, ramp_angle);
+            let pieces = (sweep / std::f64::consts::PI).ceil().max(1.0);
             // Bounded like the ramp's passes: a helix of millions of turns (a safe height of
             // 1e300 mm, found by the `pocket` fuzzer, asked for 3.5 GB of moves) is no entry.
-            let fits = turns <= MAX_RAMP_PASSES; // false for NaN
+            let fits = pieces <= 2.0 * MAX_RAMP_PASSES; // false for NaN
             if !fits {
-                return Err(InputError::new("helix entry", format!("{turns:.3e} turns"))
-                    .at(format!(
-                        "--ramp-angle, --safe-height, --helix-radius; level at z = {z:.3}"
-                    ))
-                    .expected(format!(
-                        "at most {MAX_RAMP_PASSES} turns: a lower safe height, a steeper ramp \
-                         angle or a larger helix radius"
-                    )));
+                return Err(
+                    InputError::new("helix entry", format!("{:.3e} turns", sweep / TAU))
+                        .at(format!(
+                            "--ramp-angle, --safe-height, --helix-radius; level at z = {z:.3}"
+                        ))
+                        .expected(format!(
+                            "at most {MAX_RAMP_PASSES} turns: a lower safe height, a steeper ramp \
+                     angle or a larger helix radius"
+                        )),
+                );
             }
-            let turns = turns as usize;
-            for k in 1..=turns {
-                // The last turn ends at the level's own height (`safe − (safe − z)` can differ
-                // from `z` in its last bit, and round to another written depth).
-                let h = if k == turns {
-                    z
+            let pieces = pieces as usize;
+            for k in 1..=pieces {
+                // The last piece ends at the level's own height (`safe − (safe − z)` can
+                // differ from `z` in its last bit, and round to another written depth) and at
+                // `end` itself.
+                let (h, xy) = if k == pieces {
+                    (z, end)
                 } else {
-                    safe - (safe - z) * k as f64 / turns as f64
+                    let f = k as f64 / pieces as f64;
+                    (
+                        safe - (safe - z) * f,
+                        helix_point(center, end, sweep, ccw, sweep * f),
+                    )
                 };
-                tp.push(Move::arc_xy(
-                    Point3::from_xy(approach, h),
-                    c(h),
-                    ccw,
-                    entry_feed(opts, ramp_angle),
-                ));
+                let to = Point3::from_xy(xy, h);
+                // A piece too short to be an arc (a sweep of a few ulps) would read back as a
+                // whole circle: it is a line.
+                tp.push(if tp.end().xy().distance(xy) < 1e-6 {
+                    Move::line(to, entry_feed(opts, ramp_angle))
+                } else {
+                    Move::arc_xy(to, c(h), ccw, entry_feed(opts, ramp_angle))
+                });
             }
-            tp.push(Move::arc_xy(
-                Point3::from_xy(approach, z),
-                c(z),
-                ccw,
-                opts.feed,
-            ));
+            tp.push(Move::arc_xy(Point3::from_xy(end, z), c(z), ccw, opts.feed));
             tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
         }
         CutEntry::Direct { from } => {
@@ -375,7 +389,22 @@ pub fn snap_to_level(h: f64, z: f64) -> f64 {
     }
 }
 
-/// Where a helix about `center` of `radius` starts and ends: on the ray from the centre to the
+/// The angle a helix of `radius` turns through descending `drop` at `ramp_angle`:
+/// `drop / (ρ·tan α)` radians, not rounded to whole turns.
+fn helix_sweep(drop: f64, radius: f64, ramp_angle: f64) -> f64 {
+    drop / (radius * ramp_angle.tan())
+}
+
+/// The point of a helix about `center` that ends at `end` after turning `sweep` radians
+/// (counter-clockwise when `ccw`), `turned` radians after its start.
+fn helix_point(center: Point, end: Point, sweep: f64, ccw: bool, turned: f64) -> Point {
+    let back = if ccw { turned - sweep } else { sweep - turned };
+    let u = end - center;
+    let (s, c) = back.sin_cos();
+    center + Vec2::new(u.x * c - u.y * s, u.x * s + u.y * c)
+}
+
+/// Where a helix about `center` of `radius` ends (and, turning whole turns, starts): on the ray from the centre to the
 /// cut's start `to` (so the lead-in is radial and as short as it can be, and turns with the
 /// pocket), or at `+x` when the cut starts at the centre.
 pub fn helix_approach(center: Point, radius: f64, to: Point) -> Point {
@@ -497,6 +526,68 @@ mod tests {
             matches!(m.kind, crate::toolpath::MoveKind::Arc { .. }),
             "{m:?}"
         );
+    }
+
+    /// The helix descends at exactly the ramp angle over its whole length, `drop / tan α`
+    /// mm of it, no whole turn rounded up: each arc's descent over its length (angle about
+    /// its centre, found here from its ends) is `tan α`, and it ends on the ray to the path.
+    #[test]
+    fn a_helix_descends_at_the_ramp_angle_and_no_further() {
+        use super::super::segments::segs_from_points;
+        use crate::toolpath::MoveKind;
+        let p = Point::new;
+        let center = p(10.0, 10.0);
+        let path = segs_from_points(&[p(16.0, 10.0), p(18.0, 18.0), p(2.0, 18.0), p(16.0, 10.0)]);
+        for (angle, radius) in [(3.0f64, 3.0), (2.0, 4.1), (7.0, 1.3)] {
+            let alpha = angle.to_radians();
+            let opts = PocketOptions::default()
+                .with_depth(5.0)
+                .with_step_down(5.0)
+                .with_entry(Entry::Helix {
+                    radius,
+                    ramp_angle: alpha,
+                });
+            let plan = LevelPlan {
+                cuts: vec![Cut {
+                    entry: CutEntry::Helix { center, radius },
+                    path: path.clone(),
+                }],
+            };
+            let tool = Tool::flat(6.0).unwrap();
+            let tp = assemble(tool, &opts, &[plan], None).unwrap();
+            let mut length = 0.0;
+            let mut last = None;
+            for (from, m) in tp.segments() {
+                let MoveKind::Arc { center: c, ccw, .. } = m.kind else {
+                    continue;
+                };
+                let dz = from.z - m.to.z;
+                if dz <= 0.0 {
+                    continue;
+                }
+                let a0 = (from.y - c.y).atan2(from.x - c.x);
+                let a1 = (m.to.y - c.y).atan2(m.to.x - c.x);
+                let turn = if ccw { a1 - a0 } else { a0 - a1 }.rem_euclid(TAU);
+                let r = from.xy().distance(c.xy());
+                assert!((r - radius).abs() < 1e-9, "{r}");
+                let along = r * turn;
+                assert!(
+                    (dz / along - alpha.tan()).abs() < 1e-9,
+                    "{angle}°: {dz} over {along}"
+                );
+                length += along;
+                last = Some(m.to);
+            }
+            let drop = opts.safe_height + 5.0;
+            assert!((length - drop / alpha.tan()).abs() < 1e-6, "{length}");
+            let end = last.unwrap();
+            assert!((end.z + 5.0).abs() < 1e-12);
+            let towards = (p(16.0, 10.0) - center).normalize().unwrap();
+            assert!(
+                end.xy().distance(center + towards * radius) < 1e-9,
+                "{end:?}"
+            );
+        }
     }
 
     #[test]
