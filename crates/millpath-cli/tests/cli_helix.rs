@@ -1,6 +1,7 @@
 //! The default entry helix: 0.45 tool diameters in radius (5.715 mm for a 12.7 mm tool), the
 //! largest that leaves no pillar at its centre less a tenth, turning through exactly the angle
-//! its descent at the ramp angle takes. As a user runs it (`pocket sample:aerospace`, spiral,
+//! its descent at the ramp angle takes, placed so that it runs into the cut tangentially. As
+//! a user runs it (`pocket sample:aerospace`, spiral,
 //! defaults but the tool, stepover and level), the program's helix is read back from
 //! the G-code (the arcs that descend: their radius from `I`/`J`), `verify` accepts the program
 //! and it is faster on both judges' models (`estimate --machine hsm|linuxcnc-time`) than the
@@ -15,6 +16,60 @@ fn words(line: &str) -> impl Iterator<Item = (char, f64)> + '_ {
         let k = c.next()?;
         c.as_str().parse().ok().map(|v| (k, v))
     })
+}
+
+/// The smallest turning radius of the cutting moves in the first `span` mm after the first
+/// arc that keeps its height (the helix's flat circle), the circle's end tangent included:
+/// for each pair of consecutive directions, the shorter move's length over the angle between
+/// them.
+fn tightest_after_helix(text: &str, span: f64) -> Option<f64> {
+    let (mut x, mut y, mut z) = (0.0, 0.0, f64::INFINITY);
+    let mut g = "";
+    let mut last: Option<((f64, f64), f64)> = None; // direction, length
+    let mut walked = 0.0;
+    let mut tightest = f64::INFINITY;
+    for line in text.lines() {
+        let w: Vec<(char, f64)> = words(line).collect();
+        let get = |k: char| w.iter().find(|(c, _)| *c == k).map(|&(_, v)| v);
+        if let Some(first) = line.split_whitespace().next() {
+            if ["G0", "G1", "G2", "G3"].contains(&first) {
+                g = first;
+            }
+        }
+        if get('X').is_none() && get('Y').is_none() {
+            z = get('Z').unwrap_or(z);
+            continue;
+        }
+        let (nx, ny, nz) = (
+            get('X').unwrap_or(x),
+            get('Y').unwrap_or(y),
+            get('Z').unwrap_or(z),
+        );
+        if let Some((d, len)) = last {
+            let (dx, dy) = (nx - x, ny - y);
+            let l = dx.hypot(dy);
+            if g != "G1" || walked > span {
+                break;
+            }
+            if l > 1e-9 {
+                let cos = (d.0 * dx + d.1 * dy) / (d.0.hypot(d.1) * l);
+                let turn = cos.clamp(-1.0, 1.0).acos();
+                if turn > 1e-9 {
+                    tightest = tightest.min(l.min(len) / turn);
+                }
+                last = Some(((dx, dy), l));
+                walked += l;
+            }
+        } else if g == "G3" && (nz - z).abs() < 1e-9 && z < 0.0 {
+            let (cx, cy) = (x + get('I').unwrap_or(0.0), y + get('J').unwrap_or(0.0));
+            let r = (nx - cx).hypot(ny - cy);
+            // The circle's own tangent, as a direction with the length of a chord that
+            // turns by as much as the circle does over it.
+            last = Some(((-(ny - cy), nx - cx), r));
+        }
+        (x, y, z) = (nx, ny, nz);
+    }
+    last.map(|_| tightest)
 }
 
 #[test]
@@ -65,6 +120,15 @@ fn the_default_helix_is_045_diameters_and_faster_than_a_25_mm_one() {
                     }
                     z = nz;
                 }
+            }
+            // The default helix runs into the cut tangentially: over the first 10 mm after
+            // its flat circle the path turns no tighter than the helix itself.
+            if extra.is_none() {
+                let r = tightest_after_helix(&text, 10.0).expect("a flat circle, moves after");
+                assert!(
+                    r >= 0.9 * 0.45 * 12.7,
+                    "{machine}: turns on a {r:.3} mm radius"
+                );
             }
             let want = extra.map_or(0.45 * 12.7, |r| r.parse().unwrap());
             assert!(radii.len() >= 2, "{machine} {name}: {radii:?}");

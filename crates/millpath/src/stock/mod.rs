@@ -249,9 +249,10 @@ pub fn combine_levels(tp: &Toolpath, specs: &[StockSpec<'_>], s: &Simulation) ->
 }
 
 /// Rebuilds the levels of a toolpath read back from G-code: the moves between two retracts
-/// to or above the stock top (`z ≥ 0`) form a chunk whose depth is the lowest z of its level
-/// feed moves (start and end at the same z below 0); consecutive chunks at the same depth are
-/// one level. Chunks that cut nothing below the top are left out.
+/// (rapids going up from below the stock top, `z < 0`: to or above it, or only to the next
+/// level's safe height over the pocket just cleared) form a chunk whose depth is the lowest z
+/// of its level feed moves (start and end at the same z below 0); consecutive chunks at the
+/// same depth are one level. Chunks that cut nothing below the top are left out.
 pub fn infer_levels(tp: &mut Toolpath) {
     use crate::toolpath::{Level, LevelKind};
     let mut levels: Vec<Level> = Vec::new();
@@ -274,7 +275,10 @@ pub fn infer_levels(tp: &mut Toolpath) {
         if m.is_feed() && (m.to.z - from.z).abs() < 1e-9 && m.to.z < 0.0 {
             depth = Some(depth.map_or(m.to.z, |d: f64| d.min(m.to.z)));
         }
-        if matches!(m.kind, crate::toolpath::MoveKind::Rapid) && m.to.z >= 0.0 && from.z < 0.0 {
+        if matches!(m.kind, crate::toolpath::MoveKind::Rapid)
+            && m.to.z > from.z + 1e-9
+            && from.z < 0.0
+        {
             flush(chunk_start, k + 1, depth.take(), &mut levels);
             chunk_start = k + 1;
         }

@@ -6,7 +6,9 @@
 //!
 //! Every cut starts with an entry that never plunges into material:
 //! * **helix**: the tool centre runs on a circle of radius ρ about a point `c` of the region,
-//!   descending `2πρ·tan α` per turn from `z_{i−1} + safe` down to `z_i`, then one flat turn.
+//!   descending `2πρ·tan α` per turn from `z_{i−1} + safe` down to `z_i` (through
+//!   `(z_{i−1} + safe − z_i) / (ρ·tan α)` radians, not rounded to whole turns), then one flat
+//!   turn.
 //!   The disc of radius `ρ + r` about `c` is then clear, and the cut's path starts on it;
 //! * **ramp**: the tool descends along the first `L` mm of the cut's own path, `L·tan α` per
 //!   pass, back and forth until it reaches `z_i`, and is back at the path's start;
@@ -21,12 +23,15 @@
 //! has a cleared point and is entered directly, so the error only meets a pocket whose whole
 //! level is a sliver (a tool that barely fits).
 //!
-//! Between cuts of a level and between levels the tool retracts to the clearance height and
-//! moves in rapid; rapids go down only to `z_{i−1} + safe`, above material.
+//! Between cuts of a level the tool retracts to the clearance height and moves in rapid;
+//! rapids go down only to `z_{i−1} + safe`, above material. Between the levels of a prismatic
+//! pocket the tool rises only to `z_i + safe` and goes straight to the next level's entry when
+//! that segment stays in the region the level's tool centre swept (every point of it was
+//! cleared down to `z_i`, and the tool's bottom is `safe` above); else to the clearance height.
 
 use super::options::{Direction, Entry, PocketOptions};
 use super::segments::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length};
-use super::shape::OffsetRegion;
+use super::shape::{OffsetRegion, crosses};
 use crate::error::InputError;
 use crate::geom::{Point, Point3, Vec2};
 use crate::toolpath::{Level, LevelKind, Move, Tool, Toolpath};
@@ -93,6 +98,10 @@ fn seg_move(seg: &Seg, z: f64, feed: f64) -> Move {
 
 /// Builds the toolpath: `roughing[i]` is cut at level `i` (the last plan is repeated if
 /// there are fewer plans than levels), `finishing` (if any) once at the last level.
+/// `regions[i]` (the last repeated, none: no such link) is the region level `i`'s tool centre
+/// swept: after a level, the tool rises only to the next level's safe height and goes
+/// straight to the next entry where that way stays in the region of every level whose slab
+/// reaches that height; elsewhere it rises to the clearance height.
 ///
 /// Fails when a cut can be entered neither by its helix or ramp nor over cleared material
 /// (see `emit_cut`).
@@ -101,6 +110,7 @@ pub fn assemble(
     opts: &PocketOptions,
     roughing: &[LevelPlan],
     finishing: Option<&LevelPlan>,
+    regions: &[OffsetRegion],
 ) -> Result<Toolpath, InputError> {
     let clear = opts.clearance_height;
     let start_xy = roughing
@@ -122,13 +132,40 @@ pub fn assemble(
     if let (Some(f), Some(&z)) = (finishing, depths.last()) {
         plans.push((z, z, f, LevelKind::Finishing));
     }
-    for (top, z, plan, kind) in plans {
+    for (k, &(top, z, plan, kind)) in plans.iter().enumerate() {
         let start = tp.moves.len();
-        for cut in &plan.cuts {
-            emit_cut(&mut tp, opts, cut, top, z)?;
+        // The previous level's retract ended at this level's safe height when the way to its
+        // first entry lies over the region that level cleared.
+        let low = tp.end().z < clear - 1e-9 && k > 0;
+        for (i, cut) in plan.cuts.iter().enumerate() {
+            emit_cut(&mut tp, opts, cut, (top, z), low && i == 0)?;
         }
         let end_xy = tp.end().xy();
-        tp.push(Move::rapid(Point3::from_xy(end_xy, clear)));
+        // Over a level just cut, the next level's first entry is reached at that level's
+        // safe height (`z + safe`: the tool's bottom above the floor it cleared) when the
+        // straight way there stays in the region its tool centre swept; else at the
+        // clearance height.
+        let next = plans.get(k + 1).and_then(|&(ntop, nz, nplan, _)| {
+            let h = ntop + opts.safe_height;
+            let (to, _) = cut_approach(nplan.cuts.first()?, opts, ntop, nz).ok()?;
+            // Every level whose slab reaches up past `z` to `h` (sections need not nest: a
+            // bottom outline can reach out where the top does not) must hold the way.
+            let mut inside = false;
+            for (j, &(_, zj, _, _)) in plans[..=k].iter().enumerate().rev() {
+                if zj >= h {
+                    break;
+                }
+                let region = regions.get(j).or(regions.last())?;
+                if crosses(region, end_xy, to) {
+                    return None;
+                }
+                inside = true;
+            }
+            inside.then_some(h)
+        });
+        let up = next.filter(|&h| h < clear).unwrap_or(clear);
+
+        tp.push(Move::rapid(Point3::from_xy(end_xy, up)));
         tp.levels.push(Level {
             z,
             kind,
@@ -181,7 +218,7 @@ pub fn direct_entries(
             if let Some(&(q, _)) = candidates
                 .iter()
                 .take(MAX_ENTRY_CANDIDATES)
-                .find(|&&(q, _)| !super::shape::crosses(region, q, start))
+                .find(|&&(q, _)| !crosses(region, q, start))
             {
                 cut.entry = CutEntry::Direct { from: q };
             }
@@ -199,8 +236,8 @@ fn emit_cut(
     tp: &mut Toolpath,
     opts: &PocketOptions,
     cut: &Cut,
-    top: f64,
-    z: f64,
+    (top, z): (f64, f64),
+    low_link: bool,
 ) -> Result<(), InputError> {
     let Some(first) = cut.path.first() else {
         return Ok(());
@@ -212,36 +249,21 @@ fn emit_cut(
         Entry::Helix { ramp_angle, .. } | Entry::Ramp { ramp_angle } => ramp_angle,
     };
     let here = tp.end();
-    // A ramp: back and forth along the head of the path, descending all the way, ending at
-    // the path's start; an odd number of passes starts at the head's far end.
-    let ramp = match cut.entry {
-        CutEntry::Ramp => Some(ramp_passes(&cut.path, safe - z, ramp_angle, z)?),
-        _ => None,
-    };
-    let approach = match (cut.entry, &ramp) {
-        (CutEntry::Helix { center, radius }, _) => {
-            let end = helix_approach(center, radius, first.a);
-            helix_point(
-                center,
-                end,
-                helix_sweep(safe - z, radius, ramp_angle),
-                ccw,
-                0.0,
-            )
+    let (approach, ramp) = cut_approach(cut, opts, top, z)?;
+    if low_link && (here.z - safe).abs() <= 1e-9 {
+        // Over the level above, cleared: straight across at the safe height.
+        if here.xy().distance(approach) > 1e-9 {
+            tp.push(Move::rapid(Point3::from_xy(approach, safe)));
         }
-        (CutEntry::Ramp, Some((head, passes))) if passes % 2 == 1 => {
-            head.last().map_or(first.a, |g| g.b)
-        }
-        (CutEntry::Direct { from }, _) => from,
-        _ => first.a,
-    };
-    if here.xy().distance(approach) > 1e-9 || here.z < safe {
+    } else if here.xy().distance(approach) > 1e-9 || here.z < safe {
         if here.z < clear {
             tp.push(Move::rapid(Point3::from_xy(here.xy(), clear)));
         }
         tp.push(Move::rapid(Point3::from_xy(approach, clear)));
     }
-    tp.push(Move::rapid(Point3::from_xy(approach, safe)));
+    if tp.end().distance(Point3::from_xy(approach, safe)) > 1e-9 {
+        tp.push(Move::rapid(Point3::from_xy(approach, safe)));
+    }
     match cut.entry {
         CutEntry::Helix { center, radius } => {
             let c = |h: f64| Point3::from_xy(center, h);
@@ -287,7 +309,9 @@ fn emit_cut(
                 });
             }
             tp.push(Move::arc_xy(Point3::from_xy(end, z), c(z), ccw, opts.feed));
-            tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
+            if end.distance(first.a) > 1e-9 {
+                tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
+            }
         }
         CutEntry::Direct { from } => {
             tp.push(Move::line(Point3::from_xy(from, z), opts.plunge_feed));
@@ -324,6 +348,50 @@ fn emit_cut(
         tp.push(seg_move(s, z, opts.feed));
     }
     Ok(())
+}
+
+/// Where the tool comes down for `cut` at the level from `top` to `z` (the helix's start,
+/// the ramp's first point, or the cleared point of a direct entry), and the ramp's head and
+/// passes when it ramps.
+type Ramp = (Vec<Seg>, usize);
+fn cut_approach(
+    cut: &Cut,
+    opts: &PocketOptions,
+    top: f64,
+    z: f64,
+) -> Result<(Point, Option<Ramp>), InputError> {
+    let Some(first) = cut.path.first() else {
+        return Ok((Point::ORIGIN, None));
+    };
+    let safe = top + opts.safe_height;
+    let ccw = opts.direction == Direction::Climb;
+    let ramp_angle = match opts.entry {
+        Entry::Helix { ramp_angle, .. } | Entry::Ramp { ramp_angle } => ramp_angle,
+    };
+    // A ramp: back and forth along the head of the path, descending all the way, ending at
+    // the path's start; an odd number of passes starts at the head's far end.
+    let ramp = match cut.entry {
+        CutEntry::Ramp => Some(ramp_passes(&cut.path, safe - z, ramp_angle, z)?),
+        _ => None,
+    };
+    let approach = match (cut.entry, &ramp) {
+        (CutEntry::Helix { center, radius }, _) => {
+            let end = helix_approach(center, radius, first.a);
+            helix_point(
+                center,
+                end,
+                helix_sweep(safe - z, radius, ramp_angle),
+                ccw,
+                0.0,
+            )
+        }
+        (CutEntry::Ramp, Some((head, passes))) if passes % 2 == 1 => {
+            head.last().map_or(first.a, |g| g.b)
+        }
+        (CutEntry::Direct { from }, _) => from,
+        _ => first.a,
+    };
+    Ok((approach, ramp))
 }
 
 /// The feed of a helical or ramp entry descending at `ramp_angle`: the one whose descent is
@@ -480,7 +548,7 @@ mod tests {
             panic!("{:?}", plan.cuts[1].entry);
         };
         assert!(from.distance(p(12.25, 12.25)) < 1e-12, "{from:?}");
-        let tp = assemble(tool, &opts, &[plan], None).unwrap();
+        let tp = assemble(tool, &opts, &[plan], None, &[]).unwrap();
         // No move steeper than 45° ends below the top except the feed down there.
         for (from, m) in tp.segments() {
             let dz = from.z - m.to.z;
@@ -490,7 +558,7 @@ mod tests {
         }
         // Alone, the sliver cannot be entered.
         let alone = LevelPlan { cuts: vec![sliver] };
-        let e = assemble(tool, &opts, &[alone], None).unwrap_err();
+        let e = assemble(tool, &opts, &[alone], None, &[]).unwrap_err();
         assert!(e.to_string().contains("entry"), "{e}");
     }
 
@@ -554,7 +622,7 @@ mod tests {
                 }],
             };
             let tool = Tool::flat(6.0).unwrap();
-            let tp = assemble(tool, &opts, &[plan], None).unwrap();
+            let tp = assemble(tool, &opts, &[plan], None, &[]).unwrap();
             let mut length = 0.0;
             let mut last = None;
             for (from, m) in tp.segments() {
@@ -587,6 +655,71 @@ mod tests {
                 end.xy().distance(center + towards * radius) < 1e-9,
                 "{end:?}"
             );
+        }
+    }
+
+    /// Between levels the tool rises only to the next level's safe height (`z + safe` over
+    /// the floor just cut) where the straight way to the next entry stays in the region the
+    /// level's tool centre swept; where an island of the region lies across it, to the
+    /// clearance height. Checked on the moves: the highest point between the two levels'
+    /// cutting moves, and every sampled point of a rapid below the clearance height inside
+    /// the square and outside the island (by coordinates, not by the region's loops).
+    #[test]
+    fn between_levels_the_tool_rises_only_over_cleared_ground() {
+        use super::super::segments::segs_from_points;
+        use cavalier_contours::polyline::{PlineSourceMut, Polyline};
+        let p = Point::new;
+        // A cut that ends far from where the helix of the next level starts.
+        let path = segs_from_points(&[p(10.0, 6.0), p(18.0, 2.0), p(18.0, 18.0), p(2.0, 18.0)]);
+        let plan = LevelPlan {
+            cuts: vec![Cut {
+                entry: CutEntry::Helix {
+                    center: p(10.0, 10.0),
+                    radius: 3.0,
+                },
+                path,
+            }],
+        };
+        let opts = PocketOptions::default().with_depth(8.0).with_step_down(4.0);
+        let tool = Tool::flat(4.0).unwrap();
+        let open = square_region();
+        let mut island = Polyline::new_closed();
+        for (x, y) in [(4.0, 14.0), (4.0, 8.0), (8.0, 8.0), (8.0, 14.0)] {
+            island.add(x, y, 0.0);
+        }
+        let blocked = OffsetRegion {
+            outers: open.outers.clone(),
+            islands: vec![island],
+        };
+        for (region, low) in [(open, true), (blocked, false)] {
+            let tp = assemble(tool, &opts, std::slice::from_ref(&plan), None, &[region]).unwrap();
+            let first = &tp.levels[0];
+            let second = &tp.levels[1];
+            let top = tp.moves[first.end - 1..second.start + 3]
+                .iter()
+                .take_while(|m| m.kind == crate::toolpath::MoveKind::Rapid)
+                .map(|m| m.to.z)
+                .fold(f64::NEG_INFINITY, f64::max);
+            let want = if low {
+                -4.0 + opts.safe_height
+            } else {
+                opts.clearance_height
+            };
+            assert!((top - want).abs() < 1e-12, "low {low}: {top}");
+            for (from, m) in tp.segments() {
+                if m.kind != crate::toolpath::MoveKind::Rapid || m.to.z >= opts.clearance_height {
+                    continue;
+                }
+                for k in 0..=100 {
+                    let q = from.xy().lerp(m.to.xy(), f64::from(k) / 100.0);
+                    let in_square = (0.0..=20.0).contains(&q.x) && (0.0..=20.0).contains(&q.y);
+                    let in_island = (4.0..=8.0).contains(&q.x) && (8.0..=14.0).contains(&q.y);
+                    assert!(
+                        in_square && (low || !in_island),
+                        "low {low}: {q:?} in {m:?}"
+                    );
+                }
+            }
         }
     }
 

@@ -197,7 +197,17 @@ fn toolpath_and_sections(
         }
         _ => None,
     };
-    let tp = levels::assemble(*tool, opts, &rough, finish.as_ref())?;
+    // The region a prismatic pocket's tool centre sweeps at every level: the way between
+    // levels may cross it at the safe height. Sections of a drafted pocket or one with a
+    // bottom outline change between the levels' heights, so there the tool rises to the
+    // clearance height as before.
+    let d0 = tool.radius() + opts.wall_stock.max(0.0);
+    let regions: Vec<_> = if shape.is_prismatic() {
+        sections.iter().take(1).map(|s| s.offset(d0)).collect()
+    } else {
+        Vec::new()
+    };
+    let tp = levels::assemble(*tool, opts, &rough, finish.as_ref(), &regions)?;
     Ok((tp, sections))
 }
 

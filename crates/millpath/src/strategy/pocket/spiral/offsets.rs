@@ -31,7 +31,9 @@ use super::super::loops::{OffsetLoops, samples};
 use super::super::offset::{RIDGE_SPACING, entry_for, too_large};
 use super::super::options::{Direction, PocketOptions};
 use super::super::segments::{Seg, segs_from_points};
-use super::super::shape::{IndexedLoop, OffsetRegion, PocketShape, crosses, reversed};
+use super::super::shape::{
+    IndexedLoop, OffsetRegion, PocketShape, crosses, loop_distance, reversed,
+};
 use super::common::{arc_tolerance, last_loop, last_loop_margin};
 use super::lanes::{LaneOptions, Outermost, chain_path, chorded};
 use super::ring::Ring;
@@ -234,7 +236,7 @@ impl Emitter<'_> {
             Some(p) => {
                 let mut best = (0, f64::INFINITY);
                 for (i, &c) in of.iter().enumerate() {
-                    let d = super::super::shape::loop_distance(first(c), p);
+                    let d = loop_distance(first(c), p);
                     if d < best.1 {
                         best = (i, d);
                     }
@@ -308,7 +310,7 @@ impl Emitter<'_> {
     /// True when `p` is inside the tool-centre region (the walls' loops) or on its edge.
     fn in_boundary(&self, p: Point) -> bool {
         let v = super::super::shape::v2(p);
-        let on = |l: &Polyline<f64>| super::super::shape::loop_distance(l, p) < 1e-9;
+        let on = |l: &Polyline<f64>| loop_distance(l, p) < 1e-9;
         self.boundary
             .outers
             .iter()
@@ -326,6 +328,25 @@ impl Emitter<'_> {
     /// helix's and the path's tangents (scaled by the chord) joins the two, as chords (as
     /// arcs with `--arcs`). The path then starts on the helix circle, so the entry ends there
     /// ([`super::super::levels::helix_approach`] of a point on the circle is the point).
+    /// The centre of a helix of radius `rho` that runs into `path` tangentially: the circle
+    /// through the path's start, tangent to it there, turning the way the path does (its
+    /// centre `rho` to the path's left when climbing, to its right otherwise), where that
+    /// circle lies in the region (its centre inside, at least `rho` from every loop). The
+    /// helix then ends where the cut begins, going its way: no lead, no turn sharper than
+    /// the helix. `None` where the circle does not fit.
+    fn tangent_helix(&self, path: &[Seg], rho: f64) -> Option<Point> {
+        let first = path.first()?;
+        let e = first.a;
+        let left = first.tangent_at(0.0).perp();
+        let c = e + if self.ccw { left } else { -left } * rho;
+        let room = self
+            .boundary
+            .loops()
+            .map(|l| loop_distance(l, c))
+            .fold(f64::INFINITY, f64::min);
+        (room >= rho * (1.0 + 1e-9) && !crosses(self.boundary, c, e)).then_some(c)
+    }
+
     fn helix_lead(&self, c: Point, rho: f64, path: Vec<Seg>) -> Vec<Seg> {
         let Some(first) = path.first() else {
             return path;
@@ -454,7 +475,10 @@ impl Emitter<'_> {
             None => cp.segs,
         };
         if let CutEntry::Helix { center, radius } = entry {
-            path = self.helix_lead(center, radius, path);
+            match self.tangent_helix(&path, radius) {
+                Some(c) => entry = CutEntry::Helix { center: c, radius },
+                None => path = self.helix_lead(center, radius, path),
+            }
         }
         let Some(start) = path.first().map(|g| g.a) else {
             return;
