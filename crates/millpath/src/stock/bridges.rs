@@ -310,9 +310,10 @@ pub fn held_by(
         CutSide::Inside => inside(a, b),
     };
     // Distance to the outline over the slot's side: seeds on the other side and on the walls.
-    let mut seeds: Vec<bool> = (0..sx * sy)
-        .map(|k| !on_slot_side(k % sx, k / sx))
-        .collect();
+    let mut seeds: Vec<bool> = Vec::with_capacity(sx * sy);
+    for b in 0..sy {
+        seeds.extend((0..sx).map(|a| !on_slot_side(a, b)));
+    }
     let pl = outline.polyline();
     let samples = ((pl.path_length() / (0.5 * c)).ceil() as usize).max(8);
     for p in crate::geom::region::sample_loop(pl, samples) {
