@@ -133,7 +133,7 @@ impl HeightField {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Aabb, Point3};
+    use crate::geom::{Aabb, Point, Point3};
     use crate::stock::FieldOptions;
     use crate::toolpath::{Move, Tool};
     use std::f64::consts::TAU;
