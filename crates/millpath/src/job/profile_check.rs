@@ -534,14 +534,14 @@ fn bridge_verdict(
         &FieldOptions::default().with_tool_diameter(2.0 * r),
     )?;
     // Only the runs of moves whose boxes come within the tool radius (and a chord's sagitta,
-    // under 1 mm) of the field's cut it: a move farther off lowers none of its cells. Each
-    // cell ends at the least height any move gives it, in whatever order the moves come, so
-    // the field is the one the whole program leaves; so they are cut deepest first.
-    field.cut_deepest_first(&runs_within(
-        &res.toolpath,
-        field.bounds().inflate(r + NEAR),
-        swept_box,
-    ));
+    // under 1 mm) of the field's cut it: a move farther off lowers none of its cells. Of
+    // those, only the moves that come within `3r + 4c` (and that) of the outline: the bridge
+    // verdict reads the cells within `2r + 3c` of it (the band, `2r` wide less its rims, where
+    // the transform's distance is within a cell of the exact one, and the band's neighbours),
+    // and a move lowers the cells within `r` of its path (`held_slot_reach`). Each cell ends
+    // at the least height any move gives it, in whatever order the moves come, so the field
+    // is the one the whole program leaves over those cells; so they are cut deepest first.
+    field.cut_deepest_first(&runs_for_outline(&res.toolpath, &t.outline, &field));
     let side = match t.side {
         ProfileSide::Inside => CutSide::Inside,
         _ => CutSide::Outside,
@@ -636,6 +636,58 @@ fn swept_box(from: Point3, m: &Move) -> crate::geom::Aabb {
     }
 }
 
+/// The runs of moves of `tp` (its tool's radius `r`) that may lower a cell of `field` within
+/// `2r + 3c` of `outline` (`c` the field's cell): those whose boxes come within `r` and
+/// [`NEAR`] of the field's and whose paths come within [`held_slot_reach`] of the outline.
+fn runs_for_outline(tp: &Toolpath, outline: &Outline, field: &HeightField) -> Vec<Toolpath> {
+    let r = tp.tool.radius();
+    let wall = IndexedWall::new(outline.polyline());
+    let reach = held_slot_reach(r, field.cell());
+    let near = field.bounds().inflate(r + NEAR);
+    runs_where(tp, |from, m| {
+        overlaps(swept_box(from, m), near) && !farther_than(&wall, from, m, reach)
+    })
+}
+
+/// How far from an outline a move's path may pass and still lower a cell its bridge verdict
+/// reads, mm, for a tool of radius `r` on a field of cell `c`: `r` (and [`NEAR`] for a
+/// chord's sagitta and the rounding) beyond the `2r + 3c` the verdict reads (with a cell to
+/// spare).
+fn held_slot_reach(r: f64, c: f64) -> f64 {
+    3.0 * r + 4.0 * c + NEAR
+}
+
+/// True when every point of the move `m` from `from` (in XY) is farther than `reach` from
+/// `wall`. A line: its middle's distance less half its length, else its exact distance
+/// ([`IndexedWall::distance_to_segment`]). An arc in XY (a helix too): its exact distance
+/// from its start circle ([`IndexedWall::distance_to_arc`]) less the difference of its end
+/// radii; in another plane, its centre's distance less its radius in space.
+fn farther_than(wall: &IndexedWall<'_>, from: Point3, m: &Move, reach: f64) -> bool {
+    match m.kind {
+        MoveKind::Arc { center, plane, .. } => {
+            let rad = (center - from).length().max((center - m.to).length());
+            if wall.distance(center.xy()) - rad > reach {
+                return true;
+            }
+            match (plane, m.sweep_from(from)) {
+                (Plane::Xy, Some((r0, sweep))) => {
+                    let c = center.xy();
+                    let a0 = (from.y - c.y).atan2(from.x - c.x);
+                    let spread = (m.to.xy().distance(c) - r0).abs();
+                    wall.distance_to_arc(c, r0, a0, sweep).0 - spread > reach
+                }
+                _ => false,
+            }
+        }
+        _ => {
+            let (a, b) = (from.xy(), m.to.xy());
+            let mid = wall.distance(a.lerp(b, 0.5));
+            let half = 0.5 * a.distance(b);
+            mid - half > reach || (mid > reach && wall.distance_to_segment(a, b).0 > reach)
+        }
+    }
+}
+
 /// The runs of consecutive moves of `tp` whose boxes (`box_of`) meet `near`, each a
 /// toolpath starting where its first move starts.
 fn runs_within(
@@ -643,10 +695,16 @@ fn runs_within(
     near: crate::geom::Aabb,
     box_of: fn(Point3, &Move) -> crate::geom::Aabb,
 ) -> Vec<Toolpath> {
+    runs_where(tp, |from, m| overlaps(box_of(from, m), near))
+}
+
+/// The runs of consecutive moves of `tp` that `keep` keeps, each a toolpath starting where
+/// its first move starts.
+fn runs_where(tp: &Toolpath, keep: impl Fn(Point3, &Move) -> bool) -> Vec<Toolpath> {
     let mut runs: Vec<Toolpath> = Vec::new();
     let mut open = false;
     for (from, m) in tp.segments() {
-        if overlaps(box_of(from, m), near) {
+        if keep(from, m) {
             if !open {
                 runs.push(Toolpath::new(tp.tool, from));
                 open = true;
@@ -664,6 +722,114 @@ fn runs_within(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A closed loop of lines through `pts`.
+    fn outline(pts: &[(f64, f64)]) -> Outline {
+        let v: Vec<(Point, f64)> = pts.iter().map(|&(x, y)| (Point::new(x, y), 0.0)).collect();
+        Outline::new(&v, "test").unwrap()
+    }
+
+    /// Around an L-shaped part whose box holds a neighbour's slot in its notch (13 mm off
+    /// its walls), the moves kept for its bridge field leave the neighbour's out, and the
+    /// field they cut holds the whole program's heights at every cell within `2r + 3c` of
+    /// the outline (the cells the verdict reads); the verdicts are the same.
+    #[test]
+    fn an_outlines_field_is_cut_by_the_moves_near_it() {
+        let r = 3.0;
+        let part = outline(&[
+            (0.0, 0.0),
+            (60.0, 0.0),
+            (60.0, 20.0),
+            (20.0, 20.0),
+            (20.0, 60.0),
+            (0.0, 60.0),
+        ]);
+        // A loop at `d` outside a rectangle, at each z, lifted to `tab` over x in `lift`.
+        let slot = |tp: &mut Toolpath, (x0, y0, x1, y1): (f64, f64, f64, f64), lift: (f64, f64)| {
+            let (x0, y0, x1, y1) = (x0 - r, y0 - r, x1 + r, y1 + r);
+            tp.push(Move::rapid(Point3::new(x0, y0, 5.0)));
+            for z in [-2.0, -4.0, -6.5] {
+                tp.push(Move::line(Point3::new(x0, y0, z), 5.0));
+                // Along the bottom edge, over the tab at z −4 or above.
+                tp.push(Move::line(Point3::new(lift.0, y0, z), 10.0));
+                let zt = z.max(-4.0);
+                tp.push(Move::line(Point3::new(lift.0, y0, zt), 10.0));
+                tp.push(Move::line(Point3::new(lift.1, y0, zt), 10.0));
+                tp.push(Move::line(Point3::new(lift.1, y0, z), 10.0));
+                for (x, y) in [(x1, y0), (x1, y1), (x0, y1), (x0, y0)] {
+                    tp.push(Move::line(Point3::new(x, y, z), 10.0));
+                }
+            }
+            tp.push(Move::rapid(Point3::new(x0, y0, 5.0)));
+        };
+        let mut tp = Toolpath::new(Tool::flat(2.0 * r).unwrap(), Point3::new(-10.0, -10.0, 5.0));
+        // The neighbour in the notch, then the L (its outside, square corners: the slot
+        // round the L's outside is what the rectangle's passes along x = 20, y = 20 would
+        // cut; here the L's own loop goes round its six corners).
+        slot(&mut tp, (36.0, 36.0, 55.0, 55.0), (44.0, 50.0));
+        let d = r;
+        tp.push(Move::rapid(Point3::new(-d, -d, 5.0)));
+        for z in [-2.0, -4.0, -6.5] {
+            tp.push(Move::line(Point3::new(-d, -d, z), 5.0));
+            tp.push(Move::line(Point3::new(22.0, -d, z), 10.0));
+            let zt = z.max(-4.0);
+            tp.push(Move::line(Point3::new(22.0, -d, zt), 10.0));
+            tp.push(Move::line(Point3::new(36.0, -d, zt), 10.0));
+            tp.push(Move::line(Point3::new(36.0, -d, z), 10.0));
+            for (x, y) in [
+                (60.0 + d, -d),
+                (60.0 + d, 20.0 + d),
+                (20.0 + d, 20.0 + d),
+                (20.0 + d, 60.0 + d),
+                (-d, 60.0 + d),
+                (-d, -d),
+            ] {
+                tp.push(Move::line(Point3::new(x, y, z), 10.0));
+            }
+        }
+        tp.push(Move::rapid(Point3::new(-d, -d, 5.0)));
+        let block = part.bounds().inflate(2.0 * r + 1.0);
+        let opts = FieldOptions::default().with_cell(0.1);
+        let mut whole = HeightField::new(block, -6.0, 0.0, &opts).unwrap();
+        whole.cut(&tp);
+        let mut near = HeightField::new(block, -6.0, 0.0, &opts).unwrap();
+        let runs = runs_for_outline(&tp, &part, &near);
+        near.cut_deepest_first(&runs);
+        let kept: usize = runs.iter().map(|r| r.moves.len()).sum();
+        // The neighbour's moves at and below its top (the rapids to it cross the L).
+        let neighbour = 3 * 9;
+        assert!(
+            kept + neighbour <= tp.moves.len(),
+            "{kept} of {} kept",
+            tp.moves.len()
+        );
+        // The neighbour's slot is in the whole program's field and not in this one.
+        let q = Point::new(36.0 - r, 45.0);
+        assert!(whole.height_at(q).is_some_and(|h| h < -5.0));
+        assert!(near.height_at(q).is_some_and(|h| h > -0.5));
+        let wall = IndexedWall::new(part.polyline());
+        let (c, (nx, ny)) = (near.cell(), near.dims());
+        let mut read = 0;
+        for j in 0..ny {
+            for i in 0..nx {
+                if wall.distance(near.centre(i, j)) > 2.0 * r + 3.0 * c {
+                    continue;
+                }
+                read += 1;
+                let (a, b) = (whole.height(i, j).unwrap(), near.height(i, j).unwrap());
+                assert!(a.to_bits() == b.to_bits(), "cell ({i}, {j}): {a} vs {b}");
+            }
+        }
+        assert!(read > nx * ny / 4, "{read} cells compared");
+        let verdict = |f: &HeightField| {
+            held_by(f, &part, -6.0, r, &BridgeOptions::default())
+                .unwrap()
+                .to_string()
+        };
+        let v = verdict(&near);
+        assert_eq!(v, verdict(&whole));
+        assert!(v.starts_with("held by 1 bridge"), "{v}");
+    }
 
     /// The field cut by the runs of moves near it is the field the whole program leaves, cell
     /// by cell: lines, an arc and a helix in XY, and arcs in ZX whose ends lie far off while

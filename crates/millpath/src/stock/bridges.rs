@@ -310,9 +310,10 @@ pub fn held_by(
         CutSide::Inside => inside(a, b),
     };
     // Distance to the outline over the slot's side: seeds on the other side and on the walls.
-    let mut seeds: Vec<bool> = (0..sx * sy)
-        .map(|k| !on_slot_side(k % sx, k / sx))
-        .collect();
+    let mut seeds: Vec<bool> = Vec::with_capacity(sx * sy);
+    for b in 0..sy {
+        seeds.extend((0..sx).map(|a| !on_slot_side(a, b)));
+    }
     let pl = outline.polyline();
     let samples = ((pl.path_length() / (0.5 * c)).ceil() as usize).max(8);
     for p in crate::geom::region::sample_loop(pl, samples) {
@@ -330,22 +331,21 @@ pub fn held_by(
         CutSide::Outside => (Class::Piece, Class::Stock),
         CutSide::Inside => (Class::Stock, Class::Piece),
     };
-    let class: Vec<Class> = (0..sx * sy)
-        .map(|k| {
-            if !on_slot_side(k % sx, k / sx) {
-                return near;
-            }
-            let d = f64::from(d2[k]).sqrt() * c;
-            if d < inner {
-                near
-            } else if d <= outer {
-                Class::Band
-            } else {
-                far
-            }
-        })
-        .collect();
-    let class_of = |a: usize, b: usize| class[b * sx + a];
+    // Each cell's class, from its side and its distance (read where needed: most cells of
+    // the box are far from the slot's material).
+    let class_of = |a: usize, b: usize| {
+        if !on_slot_side(a, b) {
+            return near;
+        }
+        let d = f64::from(d2[b * sx + a]).sqrt() * c;
+        if d < inner {
+            near
+        } else if d <= outer {
+            Class::Band
+        } else {
+            far
+        }
+    };
     let heights = field.heights();
     let limit = floor + opts.z_tolerance.max(0.0);
     let solid = |a: usize, b: usize| f64::from(heights[(j0 + b) * nx + i0 + a]) > limit;
@@ -355,7 +355,7 @@ pub fn held_by(
     let mut bridges = Vec::new();
     for start in 0..sx * sy {
         let (a, b) = (start % sx, start / sx);
-        if seen[start] || class_of(a, b) != Class::Band || !solid(a, b) {
+        if seen[start] || !solid(a, b) || class_of(a, b) != Class::Band {
             continue;
         }
         seen[start] = true;

@@ -218,19 +218,26 @@ fn cell_of(origin: Point, c: f64, nx: usize, ny: usize, p: Point) -> Option<(usi
 pub(crate) fn edt(seeds: &[bool], nx: usize, ny: usize) -> Vec<f32> {
     const FAR: f64 = 1e20;
     let far = FAR as f32;
-    let mut g: Vec<f32> = vec![far; nx * ny];
+    // Written once, row by row (no fill first).
+    let mut g: Vec<f32> = Vec::with_capacity(nx * ny);
     let mut near: Vec<Option<usize>> = vec![None; nx];
     for j in 0..ny {
         let row = j * nx..(j + 1) * nx;
-        for ((n, &s), o) in near.iter_mut().zip(&seeds[row.clone()]).zip(&mut g[row]) {
-            if s {
-                *n = Some(j);
-                *o = 0.0;
-            } else if let Some(p) = *n {
-                let d = (j - p) as f64;
-                *o = (d * d) as f32;
-            }
-        }
+        g.extend(
+            near.iter_mut()
+                .zip(&seeds[row])
+                .map(|(n, &s)| match (s, *n) {
+                    (true, _) => {
+                        *n = Some(j);
+                        0.0
+                    }
+                    (false, Some(p)) => {
+                        let d = (j - p) as f64;
+                        (d * d) as f32
+                    }
+                    (false, None) => far,
+                }),
+        );
     }
     near.fill(None);
     for j in (0..ny).rev() {

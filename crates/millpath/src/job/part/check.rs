@@ -248,27 +248,30 @@ pub fn check_sections(
             tab_end_plunges,
         });
     }
-    // Each outline's hold reads the field alone: side by side, in the design's order.
-    let holds: Vec<Result<HoldCheck, Error>> = design
-        .profiles
-        .par_iter()
-        .filter(|p| p.through)
-        .map(|p| {
-            let tabs = placed.map(|all| {
-                all.get(p.operation)
-                    .map(|t| {
-                        t.iter()
-                            .filter(|t| t.target == p.target)
-                            .cloned()
-                            .collect::<Vec<PlacedTab>>()
-                    })
-                    .unwrap_or_default()
-            });
-            hold(&field, p, stock.bottom, tabs.as_deref())
-        })
-        .collect();
+    // Each outline's hold reads the field alone: side by side, in the design's order, and
+    // beside the comparison with the drawn part.
+    let holds = || -> Vec<Result<HoldCheck, Error>> {
+        design
+            .profiles
+            .par_iter()
+            .filter(|p| p.through)
+            .map(|p| {
+                let tabs = placed.map(|all| {
+                    all.get(p.operation)
+                        .map(|t| {
+                            t.iter()
+                                .filter(|t| t.target == p.target)
+                                .cloned()
+                                .collect::<Vec<PlacedTab>>()
+                        })
+                        .unwrap_or_default()
+                });
+                hold(&field, p, stock.bottom, tabs.as_deref())
+            })
+            .collect()
+    };
+    let (holds, design_check) = rayon::join(holds, || design.compare(model, &field, stock.bottom));
     let holds = holds.into_iter().collect::<Result<Vec<_>, _>>()?;
-    let design_check = design.compare(model, &field, stock.bottom);
     Ok(JobCheck {
         cell_mm: field.cell(),
         cuts,

@@ -148,8 +148,6 @@ pub fn run(spec: &JobSpec, loops: &Loops, note: &mut dyn FnMut(String)) -> Resul
     let mut gcode = Vec::new();
     let written = write_sections(&program, &wopts, &mut gcode)
         .map_err(|e| e.engine_made("writing the job's program"))?;
-    let times = super::timing::section_times(&gcode, &wopts, &written.section_lines, &machine)
-        .map_err(|e| e.engine_made("timing the job's written program"))?;
     let names: Vec<String> = results.iter().map(|(op, _, _)| op.name.clone()).collect();
     let checked: Vec<super::check::Section<'_>> = results
         .iter()
@@ -162,7 +160,14 @@ pub fn run(spec: &JobSpec, loops: &Loops, note: &mut dyn FnMut(String)) -> Resul
         .collect();
     let placed: Vec<Vec<crate::strategy::profile::PlacedTab>> =
         results.iter().map(|(_, _, r)| r.tabs.clone()).collect();
-    let check = super::check::check_sections(&model, stock, &design, &checked, Some(&placed))?;
+    // The program's time (read back from its text) and the whole-job check (from the
+    // toolpaths) side by side; a failure of the timing is reported first, as before.
+    let (times, check) = rayon::join(
+        || super::timing::section_times(&gcode, &wopts, &written.section_lines, &machine),
+        || super::check::check_sections(&model, stock, &design, &checked, Some(&placed)),
+    );
+    let times = times.map_err(|e| e.engine_made("timing the job's written program"))?;
+    let check = check?;
     let problems = check.problems();
     if !problems.is_empty() {
         return Err(Error::internal(format!(

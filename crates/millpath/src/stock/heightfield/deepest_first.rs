@@ -16,12 +16,14 @@
 //! as `f32` (rounding is monotone) such a height is no lower than the `f32` of that bound, so
 //! a tile whose highest cell is at or below it keeps every height and is skipped. Where a
 //! tile's bound says otherwise and the tile is marked, its cells are read again for the exact
-//! highest one, at most once per piece. Deepest first, a profile's deepest level cuts the
-//! slot down; the levels above it then find the slot's tiles at or below their tips and read
-//! only the tiles along its walls.
+//! highest one, at most once per piece. Within a tile that is swept, a cell at or below the
+//! same bound keeps its height the same way and is passed over without its tip. Lines and
+//! helices alike (a helix's z is linear in its angle: no tip below its ends'). Deepest
+//! first, a profile's deepest level cuts the slot down; the levels above it then find the
+//! slot's tiles at or below their tips and read only the tiles along its walls. No report is
+//! kept (no bitmap of the cells cut, no volume).
 
 use super::{HeightField, Piece, Tally, push_pieces};
-use crate::geom::Point;
 use crate::toolpath::Toolpath;
 
 /// Cells along each side of a tile.
@@ -94,27 +96,6 @@ impl Tiles {
     pub(super) fn mark(&mut self, i: usize, j: usize) {
         self.loose[(j / TILE) * self.tx + i / TILE] = true;
     }
-
-    /// Marks every tile with a cell whose centre lies within `reach` of `c` (the tiles that
-    /// meet the square about it).
-    pub(super) fn mark_around(&mut self, field: &HeightField, c: Point, reach: f64) {
-        let index = |v: f64, o: f64, n: usize| {
-            ((v - o) / field.cell).floor().clamp(0.0, (n - 1) as f64) as usize
-        };
-        let (i0, i1) = (
-            index(c.x - reach, field.origin.x, field.nx),
-            index(c.x + reach, field.origin.x, field.nx),
-        );
-        let (j0, j1) = (
-            index(c.y - reach, field.origin.y, field.ny),
-            index(c.y + reach, field.origin.y, field.ny),
-        );
-        for tj in j0 / TILE..=j1 / TILE {
-            for ti in i0 / TILE..=i1 / TILE {
-                self.loose[tj * self.tx + ti] = true;
-            }
-        }
-    }
 }
 
 impl HeightField {
@@ -133,9 +114,11 @@ impl HeightField {
         }
         // Stable: pieces at one depth keep the program's order.
         pieces.sort_by(|p, q| p.lowest().total_cmp(&q.lowest()));
+        // No report: the cells lowered are not kept (a bitmap of the whole field, written
+        // wherever the pieces cut).
         let mut tally = Tally {
             ztol: super::DEFAULT_Z_TOLERANCE,
-            touched: vec![0u64; (self.nx * self.ny).div_ceil(64)],
+            touched: Vec::new(),
             volume: 0.0,
             changed: false,
         };
@@ -150,7 +133,7 @@ impl HeightField {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Aabb, Point3};
+    use crate::geom::{Aabb, Point, Point3};
     use crate::stock::FieldOptions;
     use crate::toolpath::{Move, Tool};
     use std::f64::consts::TAU;

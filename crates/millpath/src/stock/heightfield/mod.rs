@@ -231,8 +231,9 @@ struct Stamp {
     r: f64,
 }
 
-/// What an operation's sweeps add up: the cells lowered by more than `ztol` (a bit each)
-/// and the heights removed, mm (times the cell area: the volume).
+/// What an operation's sweeps add up: the cells lowered by more than `ztol` (a bit each;
+/// none kept when `touched` is empty) and the heights removed, mm (times the cell area: the
+/// volume).
 #[derive(Debug)]
 struct Tally {
     ztol: f64,
@@ -507,7 +508,9 @@ impl HeightField {
         if cut <= tally.ztol {
             return 0.0;
         }
-        tally.touched[k / 64] |= 1 << (k % 64);
+        if let Some(w) = tally.touched.get_mut(k / 64) {
+            *w |= 1 << (k % 64);
+        }
         cut
     }
 
@@ -528,13 +531,7 @@ impl HeightField {
                 sweep,
                 r,
             } => {
-                self.sweep_helix(from, to, centre, sweep, r, tally);
-                if let Some(t) = tiles {
-                    // Every cell the helix reaches lies within its larger radius plus the
-                    // widened tool of its centre.
-                    let (r0, r1) = (from.xy().distance(centre), to.xy().distance(centre));
-                    t.mark_around(self, centre, r0.max(r1) + r + (r1 - r0).abs() + self.cell);
-                }
+                self.sweep_helix((from, to), centre, sweep, r, tally, tiles);
                 Swept::default()
             }
         }
@@ -568,6 +565,9 @@ impl HeightField {
         // No tip this sweep computes, stored as f32, lies below this: a tile whose highest
         // cell is at or below it keeps every height (its z's round to no lower one).
         let floor = ((a.z.min(b.z) - 1e-6).max(self.bottom)) as f32;
+        // Deepest first, a cell at or below it is left as it is without its tip (the same
+        // bound as a tile's, cell by cell).
+        let keep = tiles.as_ref().map(|_| floor);
         let (ylo, yhi) = (pa.y.min(pb.y) - r, pa.y.max(pb.y) + r);
         let mut rows = Vec::new();
         self.for_rows(ylo, yhi, |j, y| rows.push((j, y)));
@@ -616,6 +616,9 @@ impl HeightField {
                     }
                     tally.changed = false;
                     for i in i0..i1 {
+                        if keep.is_some_and(|f| self.h[j * nx + i] <= f) {
+                            continue;
+                        }
                         let z = if flat {
                             a.z
                         } else if len <= 1e-12 {
