@@ -48,10 +48,7 @@ pub fn with_arcs(outline: Outline, tolerance: f64) -> Outline {
         let c = h.center;
         let ccw = outline.signed_area() > 0.0;
         let b = if ccw { 1.0 } else { -1.0 };
-        let circle = [
-            (Point::new(c.x + r, c.y), b),
-            (Point::new(c.x - r, c.y), b),
-        ];
+        let circle = [(Point::new(c.x + r, c.y), b), (Point::new(c.x - r, c.y), b)];
         if let Ok(o) = Outline::new(&circle, "a circle drawn as lines") {
             return o;
         }
@@ -78,11 +75,17 @@ fn fit_runs(v: &[(Point, f64)], tol: f64) -> Vec<(Point, f64)> {
     let best = match first.first() {
         Some(&(_, b)) if b != 0.0 && first.len() > 1 => {
             let again = fit_from(v, tol, first[1].0);
-            if again.len() < first.len() { again } else { first }
+            if again.len() < first.len() {
+                again
+            } else {
+                first
+            }
         }
         _ => first,
     };
-    best.into_iter().map(|(k, b)| (v[k].0, if b == 0.0 { v[k].1 } else { b })).collect()
+    best.into_iter()
+        .map(|(k, b)| (v[k].0, if b == 0.0 { v[k].1 } else { b }))
+        .collect()
 }
 
 /// The runs from vertex `start` round: each element's first vertex (index into `v`) and its
@@ -219,7 +222,10 @@ mod tests {
         assert_eq!(v.len(), 2, "{v:?}");
         assert!(v.iter().all(|x| (x.1.abs() - 1.0).abs() < 1e-12), "{v:?}");
         let (ab, ba) = (one_way(&drawn, &read), one_way(&read, &drawn));
-        assert!(ab <= CIRCLE_TOLERANCE && ba <= CIRCLE_TOLERANCE, "{ab} {ba}");
+        assert!(
+            ab <= CIRCLE_TOLERANCE && ba <= CIRCLE_TOLERANCE,
+            "{ab} {ba}"
+        );
         assert_eq!(read.signed_area() > 0.0, drawn.signed_area() > 0.0);
     }
 
@@ -251,7 +257,10 @@ mod tests {
             assert_eq!(arcs, 4, "radius {rad}: {v:?}");
             assert_eq!(v.len(), 8, "radius {rad}: {v:?}");
             let (ab, ba) = (one_way(&drawn, &read), one_way(&read, &drawn));
-            assert!(ab <= tol + 1e-9 && ba <= tol + 1e-9, "radius {rad}: {ab} {ba}");
+            assert!(
+                ab <= tol + 1e-9 && ba <= tol + 1e-9,
+                "radius {rad}: {ab} {ba}"
+            );
             checked += 1;
         }
         assert_eq!(checked, 3);
