@@ -651,7 +651,11 @@ mod tests {
                         .with_height(h)
                         .with_shape(shape);
                     let (tabs, _) = tab_places(&o, ProfileSide::Inside, d, r, &opts);
-                    let ramp = if shape == TabShape::Ramped { TAB_RAMP_RUN * h } else { 0.0 };
+                    let ramp = if shape == TabShape::Ramped {
+                        TAB_RAMP_RUN * h
+                    } else {
+                        0.0
+                    };
                     // The lift either side on the path, from the geometry alone.
                     let half_lift = rp * (0.5 * w / rad + (r / rp).asin());
                     for (i, a) in tabs.iter().enumerate() {
