@@ -180,7 +180,8 @@ fn polyline_vertices_and_hatch_paths_keep_their_bulges() {
 }
 
 /// The upper half of the ellipse with semi-axes 10 and 5 (ELLIPSE, parameters 0…π) closed
-/// by a LINE: area π·10·5/2, the flattening inside it by at most tolerance × arc length.
+/// by a LINE: area π·10·5/2, the flattening inside it by at most tolerance × arc length, its
+/// extents the ellipse's within the tolerance.
 #[test]
 fn partial_ellipse_flattened_within_tolerance() {
     let ents = [
@@ -210,7 +211,9 @@ fn partial_ellipse_flattened_within_tolerance() {
         area <= exact && exact - area <= tol * PI * 10.0,
         "{area} vs {exact}"
     );
-    assert!(close(ext, [-10.0, 0.0, 10.0, 5.0], 1e-9), "{ext:?}");
+    // Runs of the flattening's lines on one circle within the tolerance are read as arcs,
+    // which may pass beyond the vertices by as much.
+    assert!(close(ext, [-10.0, 0.0, 10.0, 5.0], tol), "{ext:?}");
 }
 
 /// Four LINEs of the square [0,10]² in mixed directions, a zero-length LINE (Inkscape

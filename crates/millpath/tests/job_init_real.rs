@@ -185,13 +185,14 @@ fn parts_too_close_to_cut_apart_are_named_and_left_uncut() {
     assert_eq!(select.len() + left.len(), parts.len());
 }
 
-/// A box side whose outlines are splines and short lines with sharp turns leaves no room
-/// for a tab on some part even with the smallest tool: the job is refused as bad input
-/// naming the tab width and what to change, and writes nothing.
+/// Small curved parts beside others leave no room for a tab clear of the other parts' slots
+/// (`s2g_smooth_curves.svg`, outlines 11 and 14; the box side of discs drawn as lines that
+/// this test read before is made now, its discs read as circles): the job is refused as bad
+/// input naming the tab width and what to change, and writes nothing.
 #[test]
 fn a_part_without_room_for_a_tab_is_refused_naming_the_tab_width() {
     let dir = tempfile::tempdir().unwrap();
-    let (path, _) = init("pb_box_shell.dxf", dir.path());
+    let (path, _) = init("s2g_smooth_curves.svg", dir.path());
     let e = made(&path).unwrap_err();
     let Error::Input(e) = &e else {
         panic!("not bad input: {e}");

@@ -126,12 +126,13 @@ impl Drawing {
             .or_default() += 1;
     }
 
-    /// Adds the closed loops `loops` as outlines; one that is not a valid outline
+    /// Adds the closed loops `loops` as outlines, runs of lines on one circle within
+    /// `tolerance` mm read back as arcs (`super::arcs`); one that is not a valid outline
     /// (self-intersecting, zero area, out of range) is skipped and the reason kept.
-    pub fn add_closed(&mut self, loops: &[super::affine::Piece], origin: &str) {
+    pub fn add_closed(&mut self, loops: &[super::affine::Piece], origin: &str, tolerance: f64) {
         for (k, lp) in loops.iter().enumerate() {
             match Outline::new(lp, &format!("{origin}, closed outline {k}")) {
-                Ok(o) => self.outlines.push(o),
+                Ok(o) => self.outlines.push(super::arcs::with_arcs(o, tolerance)),
                 Err(e) => self.skip("closed outline", &e.to_string()),
             }
         }

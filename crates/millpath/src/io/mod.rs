@@ -4,6 +4,7 @@
 //! `affine` (block and `transform` maps) and `join` (open pieces chained into outlines).
 
 pub(crate) mod affine;
+pub(crate) mod arcs;
 mod atomic;
 pub(crate) mod drawing;
 pub(crate) mod join;

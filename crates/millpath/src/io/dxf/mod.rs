@@ -203,7 +203,7 @@ pub fn read_loops(bytes: &[u8], origin: &str, opts: &ReadOptions) -> Result<Draw
     let joined = join(pieces, opts.join_tolerance);
     drawing.open = joined.open;
     drawing.degenerate = joined.degenerate;
-    drawing.add_closed(&joined.closed, origin);
+    drawing.add_closed(&joined.closed, origin, opts.tolerance);
     Ok(drawing)
 }
 

@@ -536,7 +536,7 @@ pub fn read_loops(text: &str, origin: &str, opts: &ReadOptions) -> Result<Drawin
     let joined = join(w.pieces, opts.join_tolerance);
     drawing.open = joined.open;
     drawing.degenerate = joined.degenerate;
-    drawing.add_closed(&joined.closed, origin);
+    drawing.add_closed(&joined.closed, origin, opts.tolerance);
     Ok(drawing)
 }
 

@@ -120,9 +120,10 @@ impl DesignCheck {
 }
 
 /// The default tab height of a job's profile: a third of the stock's thickness, at most
-/// the tool's radius and at least 0.2 mm.
+/// the tool's radius (so that a ramped tab's ramps, twice its height either side, run a
+/// tool diameter at most: a small tool cuts a small part, whose tabs are small too).
 pub fn default_tab_height(thickness: f64, tool_diameter: f64) -> f64 {
-    (thickness / 3.0).min(0.5 * tool_diameter).max(0.2)
+    (thickness / 3.0).min(0.5 * tool_diameter)
 }
 
 /// The default tab width of a job's profile: twice the tool's diameter, at least 3 mm.
@@ -299,5 +300,32 @@ impl JobDesign {
             })
             .collect();
         DesignCheck { parts }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tab is at most a third of the stock and the tool's radius high, so that its ramps
+    /// (twice its height either side) run a tool diameter at most: a 0.0766 mm tool on a
+    /// 0.5 mm part got 0.2 mm tabs, whose ramps no flank of a 3.5 mm gear held.
+    #[test]
+    fn tabs_are_sized_from_the_stock_and_the_tool() {
+        let mut checked = 0;
+        for t in [0.5, 1.0, 3.0, 16.0, 40.0] {
+            for d in [0.0291, 0.0766, 0.2326, 1.0, 3.0, 16.0] {
+                let h = default_tab_height(t, d);
+                assert!(
+                    h > 0.0 && h <= t / 3.0 + 1e-12 && h <= 0.5 * d + 1e-12,
+                    "{t} {d}: {h}"
+                );
+                // The larger of the two bounds is not the one that holds.
+                assert!((h - (t / 3.0).min(0.5 * d)).abs() < 1e-12, "{t} {d}: {h}");
+                assert!(crate::strategy::profile::TAB_RAMP_RUN * h <= d + 1e-12);
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 30);
     }
 }

@@ -21,6 +21,11 @@
 //! * A hole up to [`DRILL_MAX`] (12 mm) is drilled with a drill of its diameter rounded down
 //!   to 0.01 mm (a larger drill would cut the part's wall; [`DRILL_OVER`]); a larger one
 //!   is bored with the largest usual end mill at most 0.6 of its diameter (and the main one).
+//! * The tabs: a third of the stock's thickness high, at most the profile tool's radius
+//!   ([`super::design::default_tab_height`]: a ramped tab's ramps, twice its height either
+//!   side, run a tool diameter at most, so a small tool on a small part makes small tabs), and
+//!   as wide as the widest of the default ([`super::design::default_tab_width`]), `2d`, `d`
+//!   and `d/2` with which every part gets its tabs (`d` the profile tool's diameter).
 //! * The stock: thickness 1.5 main diameters (to 0.5 mm), pockets half as deep, `top` a
 //!   twentieth of the main diameter (at least 0.2 mm) to face off, a margin of two profile
 //!   tool diameters (at least 5 mm).

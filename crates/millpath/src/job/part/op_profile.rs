@@ -92,7 +92,7 @@ pub(crate) fn plan(
     };
     let tab_height = s
         .tab_height
-        .unwrap_or((thickness / 3.0).min(0.5 * tool.diameter).max(0.2));
+        .unwrap_or_else(|| super::design::default_tab_height(thickness, tool.diameter));
     if count != TabCount::None && tab_height >= thickness {
         return Err(InputError::new("tab height", tab_height)
             .at("--tab-height")

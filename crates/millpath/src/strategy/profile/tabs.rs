@@ -53,7 +53,8 @@
 //! where it starts, which way it runs or where it lies, so the tabs move with the outline
 //! (ties, which only symmetric outlines have, go to the lowest, then leftmost, first tab).
 //! Tabs whose lifts and ramps would come within `r` of each other (by arc length along the
-//! outline) are dropped (a note says how many fit): between two tabs the tool runs on the
+//! outline, path lengths on an arc whose centre lies on the free side counted `R/R_p` times:
+//! there the path is the shorter) are dropped (a note says how many fit): between two tabs the tool runs on the
 //! floor, so that they stand as two bridges. Else their ramps meet above the floor (one
 //! bridge for two tabs); and the path between two tabs is shorter than the outline where it
 //! turns inside, by `d·θ` for a turn `θ`, which the `r` covers up to a radian.
@@ -391,12 +392,23 @@ pub(crate) fn place(
     };
     chosen.sort_by(|a, b| a.0.total_cmp(&b.0));
     // Drop tabs whose lifts and ramps would come within `r` of a kept one's (cyclically,
-    // module docs).
+    // module docs). Lifts and ramps are lengths of path: on an arc whose centre lies on the
+    // free side the path is shorter than the outline by `R_p/R`, so they count `R/R_p`
+    // times along the outline there.
+    let outline_per_path = |st: &Stretch| match st.arc {
+        Some((rad, true)) if rad > d => rad / (rad - d),
+        _ => 1.0,
+    };
     let mut kept: Vec<(f64, usize)> = Vec::new();
     for c in chosen {
         let clash = |a: &(f64, usize), b: &(f64, usize)| {
             let gap_ab = (b.0 - a.0).rem_euclid(p).min((a.0 - b.0).rem_euclid(p));
-            gap_ab < stretches[a.1].half_lift + stretches[b.1].half_lift + 2.0 * (ramp + GUARD) + r
+            let (sa, sb) = (&stretches[a.1], &stretches[b.1]);
+            let (ka, kb) = (outline_per_path(sa), outline_per_path(sb));
+            gap_ab
+                < (sa.half_lift + ramp + GUARD) * ka
+                    + (sb.half_lift + ramp + GUARD) * kb
+                    + r * ka.max(kb)
         };
         if kept.iter().all(|k| !clash(k, &c)) {
             kept.push(c);
@@ -609,5 +621,60 @@ mod tests {
             assert!(t.half_lift(1.5) <= 1.0 + 1.5 + 1.5 * t.bend + 0.1);
             assert!((t.placed.at.distance(Point::ORIGIN) - 20.0).abs() < 0.01);
         }
+    }
+
+    /// Inside a round hole the path (radius `R − d`) is shorter than the outline: two tabs
+    /// whose lifts and ramps clear each other along the outline can overlap along the path
+    /// and stand as one bridge. Measured on the path (angles about the centre times its
+    /// radius, not the placement's arc lengths), every two tabs kept stand at least their
+    /// half lifts, ramps and a tool radius apart.
+    #[test]
+    fn tabs_in_a_hole_stand_apart_along_the_shorter_path() {
+        let mut pairs = 0;
+        for (rad, r) in [(5.0, 1.0), (8.0, 2.0), (20.0, 3.0)] {
+            let o = Outline::new(
+                &[(Point::new(rad, 0.0), 1.0), (Point::new(-rad, 0.0), 1.0)],
+                "hole",
+            )
+            .unwrap();
+            let d = r + 0.005;
+            let rp = rad - d;
+            for n in 2..=24 {
+                for (w, shape, h) in [
+                    (0.5, TabShape::Square, 0.5),
+                    (1.0, TabShape::Ramped, 0.3),
+                    (2.0, TabShape::Ramped, 1.0),
+                ] {
+                    let opts = TabOptions::default()
+                        .with_count(TabCount::Count(n))
+                        .with_width(w)
+                        .with_height(h)
+                        .with_shape(shape);
+                    let (tabs, _) = tab_places(&o, ProfileSide::Inside, d, r, &opts);
+                    let ramp = if shape == TabShape::Ramped {
+                        TAB_RAMP_RUN * h
+                    } else {
+                        0.0
+                    };
+                    // The lift either side on the path, from the geometry alone.
+                    let half_lift = rp * (0.5 * w / rad + (r / rp).asin());
+                    for (i, a) in tabs.iter().enumerate() {
+                        for b in &tabs[i + 1..] {
+                            let (ta, tb) = (a.at.y.atan2(a.at.x), b.at.y.atan2(b.at.x));
+                            let da = (ta - tb).rem_euclid(std::f64::consts::TAU);
+                            let on_path = rp * da.min(std::f64::consts::TAU - da);
+                            assert!(
+                                on_path >= 2.0 * (half_lift + ramp) + r - 1e-9,
+                                "R {rad}, r {r}, {n} tabs of {w} mm: {on_path} apart on the \
+                                 path, lifts and ramps {}",
+                                2.0 * (half_lift + ramp) + r
+                            );
+                            pairs += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(pairs >= 100, "{pairs} pairs");
     }
 }
