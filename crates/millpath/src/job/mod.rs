@@ -14,6 +14,7 @@ pub mod pocket;
 pub(crate) mod pocket_report;
 pub mod profile;
 pub(crate) mod profile_check;
+pub(crate) mod profile_runs;
 pub(crate) mod program;
 pub mod sweep;
 pub(crate) mod timing;
