@@ -16,12 +16,7 @@ mod job_real;
 /// Drawings whose starting job is not made yet: words their failure holds (`job exit` and
 /// its code, or the check that refuses the program) and why. Each must still fail so (a fix
 /// must take it off the list); none may hang.
-const KNOWN: &[(&str, &str, &str)] = &[(
-    "s2g_smooth_curves.svg",
-    "job exit Some(2)",
-    "outlines 11, 14: no tab clear of the other parts' slots (`--init` sizes the tabs \
-         on each outline alone); narrower and lower ones meet outline 7's own channel",
-)];
+const KNOWN: &[(&str, &str, &str)] = &[];
 
 #[test]
 #[ignore = "minutes in release: cargo test --release -p millpath-cli --test cli_job_real -- --ignored"]

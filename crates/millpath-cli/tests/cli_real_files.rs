@@ -686,6 +686,7 @@ const JOB_DRAWINGS: &[&str] = &[
     "s2g_square_viewport.svg", // an SVG square, a hole
     "s2g_vanderbilt_logo.svg", // an SVG logo with a pocket
     "wro_Braking_Arm.DXF",     // 2 holes
+    "s2g_smooth_curves.svg",   // 14 letters 0.7 mm apart, a bay behind a slit
 ];
 
 #[test]

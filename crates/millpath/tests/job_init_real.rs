@@ -185,14 +185,24 @@ fn parts_too_close_to_cut_apart_are_named_and_left_uncut() {
     assert_eq!(select.len() + left.len(), parts.len());
 }
 
-/// Small curved parts beside others leave no room for a tab clear of the other parts' slots
-/// (`s2g_smooth_curves.svg`, outlines 11 and 14; the box side of discs drawn as lines that
-/// this test read before is made now, its discs read as circles): the job is refused as bad
-/// input naming the tab width and what to change, and writes nothing.
+/// Small curved parts beside others (`s2g_smooth_curves.svg`: letters 0.7 mm apart cut by a
+/// 0.34 mm end mill) get tabs sized by the profile's own placement rule, clear of the other
+/// parts' slots; asked for tabs five times as wide as the starting file's, the job is
+/// refused as bad input naming the tab width and what to change, and writes nothing.
 #[test]
 fn a_part_without_room_for_a_tab_is_refused_naming_the_tab_width() {
     let dir = tempfile::tempdir().unwrap();
-    let (path, _) = init("s2g_smooth_curves.svg", dir.path());
+    let (path, text) = init("s2g_smooth_curves.svg", dir.path());
+    let width: f64 = text
+        .lines()
+        .find_map(|l| l.strip_prefix("tab_width = "))
+        .and_then(|l| l.split_whitespace().next()?.parse().ok())
+        .expect("a tab width");
+    let wide = text.replace(
+        &format!("tab_width = {width}"),
+        &format!("tab_width = {}", 5.0 * width),
+    );
+    std::fs::write(&path, wide).unwrap();
     let e = made(&path).unwrap_err();
     let Error::Input(e) = &e else {
         panic!("not bad input: {e}");

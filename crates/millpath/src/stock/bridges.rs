@@ -349,8 +349,17 @@ pub fn held_by(
     let heights = field.heights();
     let limit = floor + opts.z_tolerance.max(0.0);
     let solid = |a: usize, b: usize| f64::from(heights[(j0 + b) * nx + i0 + a]) > limit;
+    // The far side's material, in 8-connected components (outside cuts): only those reaching
+    // the box's border are the stock; one the band encloses is material the slot cut off
+    // from the stock (a notch narrower than the tool, left uncut), which holds nothing.
+    let far_label = if far == Class::Stock {
+        label_far(sx, sy, |a, b| solid(a, b) && class_of(a, b) == Class::Stock)
+    } else {
+        FarLabels::default()
+    };
     // 8-connected components of the band's material.
     let mut seen = vec![false; sx * sy];
+    let mut touched: Vec<(bool, Vec<u32>)> = Vec::new();
     let lengths = SegmentLengths::new(outline);
     let mut bridges = Vec::new();
     for start in 0..sx * sy {
@@ -362,6 +371,7 @@ pub fn held_by(
         let mut stack = vec![start];
         let mut cells = Vec::new();
         let (mut piece, mut stock) = (false, false);
+        let mut labels: Vec<u32> = Vec::new();
         while let Some(k) = stack.pop() {
             cells.push(k);
             let (a, b) = ((k % sx) as isize, (k / sx) as isize);
@@ -383,10 +393,19 @@ pub fn held_by(
                         }
                     }
                     Class::Piece => piece = true,
-                    Class::Stock => stock = true,
+                    Class::Stock => {
+                        stock = true;
+                        if let Some(&l) = far_label.label.get(nk)
+                            && l > 0
+                            && !labels.contains(&l)
+                        {
+                            labels.push(l);
+                        }
+                    }
                 }
             }
         }
+        touched.push((piece, labels));
         let touches = match (piece, stock) {
             (true, true) => Touches::Both,
             (true, false) => Touches::Piece,
@@ -436,6 +455,18 @@ pub fn held_by(
             top_max,
         });
     }
+    if far == Class::Stock {
+        let stock = far_label.stock_through(&touched);
+        for (bridge, (piece, labels)) in bridges.iter_mut().zip(&touched) {
+            let reaches = labels.iter().any(|&l| stock[l as usize]);
+            bridge.touches = match (*piece, reaches) {
+                (true, true) => Touches::Both,
+                (true, false) => Touches::Piece,
+                (false, true) => Touches::Stock,
+                (false, false) => Touches::Neither,
+            };
+        }
+    }
     bridges.sort_by(|x, y| x.start_mm.total_cmp(&y.start_mm));
     Ok(BridgeVerdict {
         bridges,
@@ -443,6 +474,85 @@ pub fn held_by(
         band_mm: (inner, outer),
         cell_mm: c,
     })
+}
+
+/// The far side's material cells in 8-connected components, numbered from 1 (0: not far
+/// material), and which components reach the box's border.
+#[derive(Debug, Default)]
+struct FarLabels {
+    label: Vec<u32>,
+    /// Per label (index 0 unused): reaches the border.
+    border: Vec<bool>,
+}
+
+/// Labels the cells of an `sx` × `sy` box for which `far` holds.
+fn label_far(sx: usize, sy: usize, far: impl Fn(usize, usize) -> bool) -> FarLabels {
+    let mut label = vec![0_u32; sx * sy];
+    let mut border = vec![false];
+    let mut stack = Vec::new();
+    for start in 0..sx * sy {
+        if label[start] != 0 || !far(start % sx, start / sx) {
+            continue;
+        }
+        let id = border.len() as u32;
+        let mut edge = false;
+        label[start] = id;
+        stack.push(start);
+        while let Some(k) = stack.pop() {
+            let (a, b) = ((k % sx) as isize, (k / sx) as isize);
+            edge |= a == 0 || b == 0 || a as usize == sx - 1 || b as usize == sy - 1;
+            for (da, db) in NEIGHBOURS {
+                let (na, nb) = (a + da, b + db);
+                if na < 0 || nb < 0 || na as usize >= sx || nb as usize >= sy {
+                    continue;
+                }
+                let nk = nb as usize * sx + na as usize;
+                if label[nk] == 0 && far(na as usize, nb as usize) {
+                    label[nk] = id;
+                    stack.push(nk);
+                }
+            }
+        }
+        border.push(edge);
+    }
+    FarLabels { label, border }
+}
+
+impl FarLabels {
+    /// Which components are the stock: those reaching the border, and those joined to one by
+    /// bridges that do not touch the piece (`touched`: each bridge's piece contact and far
+    /// components).
+    fn stock_through(&self, touched: &[(bool, Vec<u32>)]) -> Vec<bool> {
+        let n = self.border.len();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn root(parent: &mut [usize], mut i: usize) -> usize {
+            while parent[i] != i {
+                parent[i] = parent[parent[i]];
+                i = parent[i];
+            }
+            i
+        }
+        for (piece, labels) in touched {
+            if *piece {
+                continue;
+            }
+            for w in labels.windows(2) {
+                let (x, y) = (
+                    root(&mut parent, w[0] as usize),
+                    root(&mut parent, w[1] as usize),
+                );
+                parent[x] = y;
+            }
+        }
+        let mut stock_root = vec![false; n];
+        for (i, &b) in self.border.iter().enumerate() {
+            if b {
+                let r = root(&mut parent, i);
+                stock_root[r] = true;
+            }
+        }
+        (0..n).map(|i| stock_root[root(&mut parent, i)]).collect()
+    }
 }
 
 /// Most cells of one bridge whose nearest outline point is found for its extent and neck; a

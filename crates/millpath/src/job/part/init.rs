@@ -166,31 +166,43 @@ fn profiled_parts(
 /// The tab width for the parts `profiled` (1-based) cut out by an end mill of `d` mm: the
 /// widest of the job's default ([`super::design::default_tab_width`]), `2d`, `d` and `d/2`
 /// (none wider than the default) with which every part gets two tabs (one where its
-/// automatic count asks for fewer) by `strategy::profile::tab_places`, else the widest with
-/// which every part gets one, else the narrowest; and whether every part gets a tab. The
-/// tabs are the job's: ramped, as high as the job's default for a part `thickness` mm thick.
+/// automatic count asks for fewer) by `strategy::profile::tab_counts` (the profile's own
+/// placement rule, the other parts' slots included), else the widest with which every part
+/// gets one, else the narrowest; and whether every part gets a tab. The tabs are the job's:
+/// ramped, as high as the job's default for a part `thickness` mm thick, on a cut through
+/// at the job's default tolerance (0.01 mm) and no stock left.
 fn tab_width(parts: &[Outline], profiled: &[usize], d: f64, thickness: f64) -> (f64, bool) {
-    use crate::strategy::profile::{ProfileSide, TabCount, TabOptions, TabShape, tab_places};
+    use crate::strategy::profile::{
+        ProfileOptions, ProfileSide, ProfileTarget, TabCount, TabOptions, TabShape, tab_counts,
+    };
     let default = super::design::default_tab_width(d);
     let mut widths: Vec<f64> = vec![default, 2.0 * d, d, 0.5 * d];
     widths.retain(|&w| w <= default);
     widths.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
-    let r = 0.5 * d;
-    // The finishing offset of the job's default tolerance (half of 0.01 mm beyond r).
-    let offset = r + 0.005;
+    let targets: Vec<ProfileTarget> = profiled
+        .iter()
+        .map(|&i| ProfileTarget {
+            outline: parts[i - 1].clone(),
+            side: ProfileSide::Outside,
+        })
+        .collect();
+    let Ok(tool) = crate::toolpath::Tool::flat(d) else {
+        return (default, false);
+    };
     let counts = |w: f64| -> Vec<(usize, usize)> {
-        let opts = TabOptions::default()
-            .with_count(TabCount::Auto)
-            .with_width(w)
-            .with_height(super::design::default_tab_height(thickness, d))
-            .with_shape(TabShape::Ramped);
-        profiled
-            .iter()
-            .map(|&i| {
-                let (t, asked) = tab_places(&parts[i - 1], ProfileSide::Outside, offset, r, &opts);
-                (t.len(), asked)
-            })
-            .collect()
+        let opts = ProfileOptions::default()
+            .with_top_z(0.0)
+            .with_depth(thickness + 0.5)
+            .with_stock_thickness(Some(thickness))
+            .with_tolerance(0.01)
+            .with_tabs(
+                TabOptions::default()
+                    .with_count(TabCount::Auto)
+                    .with_width(w)
+                    .with_height(super::design::default_tab_height(thickness, d))
+                    .with_shape(TabShape::Ramped),
+            );
+        tab_counts(&targets, &tool, &opts)
     };
     let all: Vec<(f64, Vec<(usize, usize)>)> = widths.iter().map(|&w| (w, counts(w))).collect();
     for need in [2, 1] {

@@ -24,8 +24,11 @@
 //! others' entries (a later loop's lead is shortened, its helix becomes a ramp; a later tab is
 //! left out).
 //!
-//! `m` is the tool's tolerance scale (`toolpath::tolerance_scale`, 1 mm for tools up to the
-//! reference diameter): the strip of frame a bridge must keep, and the slack on every test.
+//! `m` ([`margin`]) is the tool's tolerance scale (`toolpath::tolerance_scale`, 1 mm for
+//! tools up to the reference diameter), at most the tool's diameter: the strip of frame a
+//! bridge must keep, and the slack on every test. Below 1 mm the strip is as wide as the
+//! slot: a 0.34 mm end mill cuts letters drawn 0.7 mm apart, and a 1 mm strip would keep
+//! every tab off them.
 
 use super::elements::Loop;
 use super::tabs::Tab;
@@ -33,6 +36,11 @@ use crate::geom::{Outline, Point};
 
 /// Spacing of the samples along a bridge's boundary, mm.
 pub(super) const SAMPLE: f64 = 0.25;
+
+/// The margin `m` of a tool of radius `r` (module docs), mm.
+pub(super) fn margin(r: f64) -> f64 {
+    crate::toolpath::tolerance_scale(2.0 * r).min(2.0 * r)
+}
 
 /// The material a placed tab leaves across its slot (module docs).
 pub(super) struct Bridge {

@@ -49,6 +49,7 @@ mod bridges;
 mod check;
 mod elements;
 mod passes;
+mod placing;
 mod tabs;
 mod zpath;
 
@@ -545,6 +546,18 @@ pub struct ProfileResult {
     pub cuts: Vec<TargetCut>,
     /// What was done differently from what was asked.
     pub notes: Vec<ProfileNote>,
+}
+
+/// Per target, how many tabs [`generate`] places with these options and how many were asked
+/// for: the placement rule of `generate` (spacing, corners, other targets' slots, the
+/// outline's own cut across narrow channels) before any entry is made, whose disc may still
+/// take a tab away. Cheap beside `generate`: no path is made.
+pub fn tab_counts(
+    targets: &[ProfileTarget],
+    tool: &Tool,
+    opts: &ProfileOptions,
+) -> Vec<(usize, usize)> {
+    passes::tab_counts(targets, tool, opts)
 }
 
 /// Cuts `targets` with `tool` as `opts` says (see the module docs).

@@ -13,14 +13,15 @@
 
 use super::bridges::{self, Bridge, Entry};
 use super::elements::Loop;
-use super::tabs::{self, TAB_RAMP_RUN, Tab};
+use super::placing::{TabPlan, Walls, lifts_on, offset_loops};
+use super::tabs::{TAB_RAMP_RUN, Tab};
 use super::zpath::{ZProfile, along};
 use super::{
     PlacedTab, ProfileEntry, ProfileNote, ProfileOptions, ProfileResult, ProfileSide,
     ProfileTarget, TabShape, TargetCut,
 };
 use crate::error::Error;
-use crate::geom::{Outline, Point, Point3, Vec2, Winding};
+use crate::geom::{Outline, Point, Point3, Vec2};
 use crate::strategy::contour::layer_depths;
 use crate::strategy::contour::leads::{Lead, loop_moves};
 use crate::strategy::contour::offset::OffsetVertex;
@@ -40,20 +41,6 @@ struct Cut {
     lifts: Vec<(f64, f64, f64)>,
 }
 
-/// The offset loops of `outline` on `side` at distance `d`, counter-clockwise.
-fn offset_loops(outline: &Outline, side: ProfileSide, d: f64) -> Vec<Loop> {
-    let ccw = outline.clone().with_winding(Winding::CounterClockwise);
-    let raw = match side {
-        ProfileSide::Inside => ccw.offset(d),
-        ProfileSide::Outside => ccw.offset(-d),
-        ProfileSide::On => vec![ccw],
-    };
-    raw.iter()
-        .map(Loop::of_outline)
-        .filter(|l| l.elems.len() >= 2 && l.signed_area() > 0.0)
-        .collect()
-}
-
 /// True when the loop runs clockwise for this side and direction (module docs of `profile`).
 fn clockwise(side: ProfileSide, direction: Direction) -> bool {
     let climb_cw = side == ProfileSide::Outside;
@@ -67,19 +54,6 @@ fn free_left(side: ProfileSide, cw: bool) -> bool {
         ProfileSide::Inside => !cw,
         _ => cw,
     }
-}
-
-/// The loop's tab lifts at offset `d`: each tab whose path point lies on this loop (within
-/// what a run's inside corner cuts the path back, [`Tab::off_path`]).
-fn lifts_on(lp: &Loop, tabs: &[Tab], d: f64) -> Vec<(f64, f64, f64)> {
-    let eps = 1e-6 * (1.0 + d);
-    tabs.iter()
-        .filter_map(|t| {
-            let q = t.placed.at + t.free_normal * d;
-            let (s, dist) = lp.project(q);
-            (dist <= eps + t.off_path(d)).then(|| (s, t.half_lift(d), t.placed.top_z))
-        })
-        .collect()
 }
 
 /// The arc length where the loop starts: the middle of its longest element stretch clear of
@@ -131,75 +105,6 @@ fn start_of(lp: &Loop, lifts: &[(f64, f64, f64)], ramp_extra: f64) -> f64 {
 /// Samples of a circle of radius `rad` about `c`.
 fn circle(c: Point, rad: f64) -> impl Iterator<Item = Point> {
     (0..32).map(move |k| c + Vec2::from_angle(f64::from(k) * PI / 16.0) * rad)
-}
-
-/// The walls of every target cut outside or inside: what the tool must keep clear of.
-struct Walls<'a> {
-    all: Vec<(usize, &'a Outline, ProfileSide)>,
-}
-
-impl<'a> Walls<'a> {
-    fn new(targets: &'a [ProfileTarget]) -> Self {
-        let all = targets
-            .iter()
-            .enumerate()
-            .filter(|(_, t)| t.side != ProfileSide::On)
-            .map(|(i, t)| (i, &t.outline, t.side))
-            .collect();
-        Walls { all }
-    }
-
-    /// Inside more parts than holes: the part's material.
-    fn material(&self, p: Point) -> bool {
-        let count = |s: ProfileSide| {
-            self.all
-                .iter()
-                .filter(|(_, o, side)| *side == s && o.contains(p))
-                .count()
-        };
-        count(ProfileSide::Outside) > count(ProfileSide::Inside)
-    }
-
-    /// Least distance from `p` to a wall other than target `own`'s, among the targets
-    /// `counted` (indexed by target) lets in.
-    fn others(&self, own: usize, p: Point, counted: &[bool]) -> f64 {
-        self.all
-            .iter()
-            .filter(|(i, _, _)| *i != own && counted.get(*i).copied().unwrap_or(true))
-            .map(|(_, o, _)| o.distance_to(p))
-            .fold(f64::INFINITY, f64::min)
-    }
-
-    /// The walls of the targets `counted` lets in, other than `own`'s, within `within` of `p`.
-    fn near_others(&self, own: usize, p: Point, within: f64, counted: &[bool]) -> Vec<&'a Outline> {
-        self.all
-            .iter()
-            .filter(|(i, _, _)| *i != own && counted.get(*i).copied().unwrap_or(true))
-            .filter(|(_, o, _)| o.distance_to(p) < within)
-            .map(|(_, o, _)| *o)
-            .collect()
-    }
-
-    /// True when every point lies on target `own`'s free side, out of the material, and keeps
-    /// `d` from every wall.
-    fn clear(
-        &self,
-        own: (usize, &Outline, ProfileSide),
-        d: f64,
-        pts: impl IntoIterator<Item = Point>,
-    ) -> bool {
-        let (i, outline, side) = own;
-        pts.into_iter().all(|p| {
-            let free = match side {
-                ProfileSide::Inside => outline.contains(p),
-                ProfileSide::Outside => !outline.contains(p),
-                ProfileSide::On => true,
-            };
-            free && !self.material(p)
-                && (side == ProfileSide::On || outline.distance_to(p) >= d - 1e-9)
-                && self.others(i, p, &[]) >= d - 1e-9
-        })
-    }
 }
 
 /// Goes to `p` (XY) at the clearance height (up first if lower), then feeds down to `z`.
@@ -313,6 +218,50 @@ fn clear_of_own_path(tab: &Tab, drawn: &Loop, cuts: &[Cut], d: f64, r: f64) -> b
     })
 }
 
+/// Per target, the tabs [`generate`] places (before any entry is made: an entry's disc may
+/// still take one away) and the count asked for.
+pub(super) fn tab_counts(
+    targets: &[ProfileTarget],
+    tool: &Tool,
+    opts: &ProfileOptions,
+) -> Vec<(usize, usize)> {
+    let r = tool.radius();
+    let m = bridges::margin(r);
+    let plan = TabPlan::new(targets, r, m, opts);
+    targets
+        .iter()
+        .enumerate()
+        .map(|(ti, t)| {
+            if opts.tabs.count == super::TabCount::None
+                || t.side == ProfileSide::On
+                || !opts.cuts_through()
+            {
+                return (0, 0);
+            }
+            let d_fin = r + 0.5 * opts.tolerance;
+            let d_rough = d_fin + opts.stock_to_leave;
+            let (mut tabs, asked) = plan.place(ti, d_fin, d_rough, &[]);
+            let drawn = Loop::of_outline(&t.outline);
+            let cuts = |d: f64| -> Vec<Cut> {
+                offset_loops(&t.outline, t.side, d)
+                    .into_iter()
+                    .map(|lp| Cut {
+                        lp,
+                        left: false,
+                        lifts: Vec::new(),
+                    })
+                    .collect()
+            };
+            let (fin, rough) = (cuts(d_fin), cuts(d_rough));
+            tabs.retain(|tab| {
+                clear_of_own_path(tab, &drawn, &fin, d_fin, r)
+                    && clear_of_own_path(tab, &drawn, &rough, d_rough, r)
+            });
+            (tabs.len(), asked)
+        })
+        .collect()
+}
+
 /// Plans every target.
 pub(super) fn generate(
     targets: &[ProfileTarget],
@@ -327,26 +276,12 @@ pub(super) fn generate(
     let mut cuts_out = Vec::new();
     let zs = layer_depths(opts.top_z, opts.depth, opts.step_down);
     let bottom = opts.top_z - opts.depth;
-    let walls = Walls::new(targets);
     // The tabs' bridges and the entries' discs so far, and the slack on their tests.
     let mut bridges: Vec<Bridge> = Vec::new();
     let mut entries: Vec<Entry> = Vec::new();
-    let m = crate::toolpath::tolerance_scale(2.0 * r);
-    // The targets the tool fits in (at the rough and the finishing offset): only their cuts
-    // can take a tab away; an outline too small for the tool (a hole left for a drill) is not
-    // cut at all and keeps no tab from its neighbour.
-    let cut: Vec<bool> = targets
-        .iter()
-        .map(|t| {
-            if t.side == ProfileSide::On {
-                return true;
-            }
-            let d_fin = r + 0.5 * opts.tolerance;
-            [d_fin, d_fin + opts.stock_to_leave]
-                .iter()
-                .all(|&d| !offset_loops(&t.outline, t.side, d).is_empty())
-        })
-        .collect();
+    let m = bridges::margin(r);
+    let plan = TabPlan::new(targets, r, m, opts);
+    let walls = &plan.walls;
     for (ti, t) in targets.iter().enumerate() {
         let side = t.side;
         let own = (ti, &t.outline, side);
@@ -363,7 +298,6 @@ pub(super) fn generate(
             opts.stock_to_leave
         };
         let d_rough = d_fin + stock;
-        let tab_top = opts.bottom_z() + opts.tabs.height;
         let mut asked_tabs = 0;
         let drawn = Loop::of_outline(&t.outline);
         let mut tabs_here: Vec<Tab> = if opts.tabs.count == super::TabCount::None {
@@ -381,34 +315,7 @@ pub(super) fn generate(
             });
             Vec::new()
         } else {
-            // Only where no other outline's slot, nor an entry made so far, reaches the
-            // tab's bridge (`bridges` module docs).
-            let slot = d_rough + r + m + 0.5 * bridges::SAMPLE;
-            let far = d_rough + r + m;
-            let keep = |tab: &Tab| -> bool {
-                let (at, w) = (tab.placed.at, tab.placed.width);
-                let within = 0.5 * w + far;
-                let near: Vec<&Outline> = walls.near_others(ti, at, within + slot, &cut);
-                let entered = entries
-                    .iter()
-                    .any(|&(c, rad): &Entry| c.distance(at) < within + rad);
-                if near.is_empty() && !entered {
-                    return true;
-                }
-                let b = Bridge::of(ti, tab, &drawn, d_rough, r, m);
-                near.iter().all(|o| b.distance_to_outline(o) >= slot)
-                    && bridges::clear_of_entries(&b, &entries)
-            };
-            let (v, asked) = tabs::place(
-                ti,
-                &t.outline,
-                side,
-                d_fin,
-                r,
-                &opts.tabs,
-                (tab_top, opts.bottom_z()),
-                Some(&keep),
-            );
+            let (v, asked) = plan.place(ti, d_fin, d_rough, &entries);
             asked_tabs = asked;
             v
         };
