@@ -445,6 +445,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "job::part",
     "job::pocket",
     "job::profile",
+    "job::rest",
     "job::sweep",
     "job::verify",
     "machine",
@@ -463,6 +464,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "strategy::pocket",
     "strategy::pocket::builtin",
     "strategy::profile",
+    "strategy::rest",
     "toolpath",
 ];
 

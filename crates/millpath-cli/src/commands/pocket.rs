@@ -40,6 +40,14 @@ pub struct Args {
     /// List the drawing's pockets (index, area, islands, bounds) and exit.
     #[arg(long)]
     pub list: bool,
+    /// Rest machining: cut only what this previous program (ours or another CAM's) left in
+    /// the pockets, with the smaller `--tool-diameter`; the pair is checked on the stock
+    /// simulation before anything is written.
+    #[arg(long, value_name = "PREVIOUS.ngc")]
+    pub rest_from: Option<String>,
+    /// The previous program's tool diameter, mm [default: read from its header]
+    #[arg(long, requires = "rest_from")]
+    pub rest_from_diameter: Option<f64>,
     /// The program's path tolerance, mm: how far the controller may round a corner (`G64 P`
     /// on LinuxCNC); 0 asks for exact stop at every corner [default: the machine's where
     /// above 0, else 0.01]
@@ -229,6 +237,9 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
         return Ok(());
     }
+    if let Some(from) = &args.rest_from {
+        return rest(args, &loops, &settings, &program, from);
+    }
     let job = millpath::job::pocket::run(
         &loops,
         &args.outline,
@@ -375,4 +386,40 @@ fn write_html(
         &plan,
     )?;
     super::html::write(path, &html)
+}
+
+/// `--rest-from`: the rest pass, written and summed up in one line.
+fn rest(
+    args: &Args,
+    loops: &Loops,
+    settings: &PocketSettings,
+    program: &millpath::job::ProgramSettings,
+    from: &str,
+) -> Result<(), Error> {
+    let run = millpath::job::rest::run(
+        loops,
+        &args.outline,
+        settings,
+        program,
+        args.select.as_deref(),
+        &millpath::job::rest::RestFrom {
+            program: from.to_owned(),
+            diameter: args.rest_from_diameter,
+        },
+    )?;
+    if let Some(out) = &args.output {
+        millpath::io::write_atomic(out, &run.gcode)?;
+    }
+    super::print(&format!(
+        "rest after D{} mm: {:.3} mm² left within reach of D{} mm, {} run(s), path {:.1} mm, \
+         cycle time {:.2} s; after both programs: {}",
+        run.previous_tool.diameter,
+        run.left_mm2,
+        run.toolpath.tool.diameter,
+        run.runs,
+        run.toolpath.cut_length(),
+        run.time_s,
+        run.check
+    ));
+    Ok(())
 }

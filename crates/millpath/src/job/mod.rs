@@ -16,6 +16,7 @@ pub mod profile;
 pub(crate) mod profile_check;
 pub(crate) mod profile_runs;
 pub(crate) mod program;
+pub mod rest;
 pub mod sweep;
 pub(crate) mod timing;
 pub mod verify;

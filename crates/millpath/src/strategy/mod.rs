@@ -7,5 +7,6 @@ pub mod face;
 pub(crate) mod order;
 pub mod pocket;
 pub mod profile;
+pub mod rest;
 
 pub use order::{MULTI_START_MAX, TWO_OPT_MAX, order_tour, tour_length};

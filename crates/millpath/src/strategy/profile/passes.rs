@@ -402,7 +402,7 @@ pub(super) fn generate(
         for cut in &rough {
             let rl = lead_radius(
                 cut,
-                (&walls, &bridges, r + m),
+                (walls, &bridges, r + m),
                 own,
                 d_rough - band,
                 opts.lead_radius,

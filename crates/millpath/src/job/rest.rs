@@ -1,0 +1,195 @@
+//! Rest machining for the front ends: `millpath pocket DRAWING --rest-from PREVIOUS.ngc
+//! --tool-diameter d`. The previous program (ours or another CAM's) is read as `verify` reads
+//! one; its tool's diameter comes from `--rest-from-diameter`, else from our programs' header
+//! line `(tool Tn: flat end mill Dx mm ...)`. Each selected pocket gets the rest pass of
+//! `strategy::rest` with the pocket settings' depth, step-down, stepover and feed; then the
+//! pair is judged on the whole-job height field (both programs cut one block, each with its
+//! own tool): nothing cut into the walls or below the floor, no rapid through material, no
+//! plunge, nothing left that the rest tool could reach. A pair that fails is not written.
+
+use super::pocket::{PocketSettings, program_options};
+use super::program::{ProgramSettings, program_times};
+use super::verify::VerifySettings;
+use crate::gcode::write_program;
+use crate::geom::{Aabb, Outline, Point};
+use crate::io::outline_json::Loops;
+use crate::stock::{CheckOptions, FieldOptions, Floor, HeightField, PartTop, check_field};
+use crate::strategy::pocket::PocketShape;
+use crate::strategy::rest::{self, RestOptions};
+use crate::toolpath::{Tool, Toolpath};
+use crate::{Error, InputError};
+
+/// Where the previous program comes from.
+#[derive(Debug, Clone, Default)]
+pub struct RestFrom {
+    /// The previous program's file.
+    pub program: String,
+    /// Its tool's diameter, mm (`None`: read from its header).
+    pub diameter: Option<f64>,
+}
+
+/// What a rest run made.
+#[derive(Debug, Clone)]
+pub struct RestRun {
+    /// The rest program.
+    pub gcode: Vec<u8>,
+    /// Its moves.
+    pub toolpath: Toolpath,
+    /// The previous tool.
+    pub previous_tool: Tool,
+    /// Material the previous program left within the rest tool's reach, mm².
+    pub left_mm2: f64,
+    /// Runs cut over all pockets, per level.
+    pub runs: usize,
+    /// Cycle time of the rest program on the machine, s.
+    pub time_s: f64,
+    /// The height field's verdict on the pair.
+    pub check: String,
+}
+
+/// The diameter in our programs' header line `(tool T1: flat end mill D12.7 mm, ...)`.
+pub fn header_diameter(text: &str) -> Option<f64> {
+    text.lines().take(20).find_map(|l| {
+        let rest = l.split("flat end mill D").nth(1)?;
+        rest.split(" mm").next()?.trim().parse().ok()
+    })
+}
+
+/// The rest pass after `from` in the selected pockets of `loops` (module docs).
+pub fn run(
+    loops: &Loops,
+    outline: &str,
+    settings: &PocketSettings,
+    program: &ProgramSettings,
+    select: Option<&str>,
+    from: &RestFrom,
+) -> Result<RestRun, Error> {
+    let machine = settings.program_machine(&super::load_machine(&settings.machine)?)?;
+    let wopts = program_options("rest", &machine, program)?;
+    let (tool, popts) = settings.options()?;
+    let text = std::fs::read_to_string(&from.program).map_err(|e| {
+        InputError::new("previous program", &from.program)
+            .at("--rest-from")
+            .expected(format!("a readable G-code file ({e})"))
+    })?;
+    let previous_d = match from.diameter.or_else(|| header_diameter(&text)) {
+        Some(d) => d,
+        None => {
+            return Err(InputError::new("previous tool diameter", "none")
+                .at(format!("--rest-from {}", from.program))
+                .expected(
+                    "the diameter of the tool that cut the previous program: \
+                     --rest-from-diameter D (the program's header names none)",
+                )
+                .into());
+        }
+    };
+    let vs = VerifySettings {
+        tool_diameter: previous_d,
+        select: select.map(str::to_owned),
+        ..VerifySettings::default()
+    };
+    let previous = super::verify::run(loops, &text, &from.program, &vs)?.toolpath;
+    let opts = RestOptions::default()
+        .with_depth(popts.depth)
+        .with_step_down(popts.step_down)
+        .with_stepover((popts.stepover.distance(tool.diameter) / tool.diameter).min(1.0))
+        .with_feed(popts.feed)
+        .with_plunge_feed(popts.plunge_feed)
+        .with_safe_height(popts.safe_height);
+    let selected = super::pocket::parse_select(select, loops.len())?;
+    let all = loops.pockets();
+    let mut tp = Toolpath::new(tool, crate::geom::Point3::new(0.0, 0.0, popts.safe_height));
+    let (mut left, mut runs) = (0.0, 0);
+    let mut shapes = Vec::new();
+    for &i in &selected {
+        let p = &all[i - 1];
+        let shape = PocketShape::new(p.outer.clone(), p.islands.clone(), outline)?;
+        let res = rest::generate(&shape, &previous, &tool, &opts)?;
+        left += res.left_mm2;
+        runs += res.runs;
+        tp.append(&res.toolpath);
+        shapes.push(shape);
+    }
+    let check = judge(&shapes, &previous, &tp, popts.depth)?;
+    let mut gcode = Vec::new();
+    write_program(&tp, &wopts, &mut gcode)
+        .map_err(|e| e.engine_made("writing the rest program"))?;
+    let (time_s, _) = program_times(&gcode, wopts.dialect, "the written rest program", &machine)
+        .map_err(|e| e.engine_made("timing the written rest program"))?;
+    Ok(RestRun {
+        gcode,
+        toolpath: tp,
+        previous_tool: previous.tool,
+        left_mm2: left,
+        runs,
+        time_s,
+        check,
+    })
+}
+
+/// Both programs on one block (module docs); the verdict, or an internal error.
+fn judge(
+    shapes: &[PocketShape],
+    previous: &Toolpath,
+    rest: &Toolpath,
+    depth: f64,
+) -> Result<String, Error> {
+    let mut b: Option<Aabb> = None;
+    for s in shapes {
+        let o = s.outer.bounds();
+        b = Some(b.map_or(o, |a| a.union(o)));
+    }
+    let Some(b) = b else {
+        return Ok("nothing to cut".to_owned());
+    };
+    let m = 2.0 * previous.tool.diameter + 1.0;
+    let bounds = Aabb {
+        min: Point::new(b.min.x - m, b.min.y - m),
+        max: Point::new(b.max.x + m, b.max.y + m),
+    };
+    let corners = [
+        bounds.min,
+        Point::new(bounds.max.x, bounds.min.y),
+        bounds.max,
+        Point::new(bounds.min.x, bounds.max.y),
+    ];
+    let block = Outline::from_points(&corners, "rest machining block")?;
+    let mut field = HeightField::new(
+        bounds,
+        -2.0 * depth - 1.0,
+        0.0,
+        &FieldOptions::default().with_tool_diameter(rest.tool.diameter),
+    )?;
+    field.cut(previous);
+    let cut = field.cut(rest);
+    let mut problems: Vec<String> = cut.problems().iter().map(ToString::to_string).collect();
+    let floors: Vec<Floor<'_>> = shapes
+        .iter()
+        .map(|s| Floor {
+            outer: &s.outer,
+            islands: &s.islands,
+            z: -depth,
+            tool_radius: rest.tool.radius(),
+        })
+        .collect();
+    let windows: Vec<Outline> = shapes.iter().map(|s| s.outer.clone()).collect();
+    let top = PartTop {
+        outline: &block,
+        windows: &windows,
+        top_z: 0.0,
+    };
+    let check = check_field(&field, Some(top), &floors, &CheckOptions::default());
+    if !check.passes() {
+        problems.push(check.to_string());
+    }
+    if problems.is_empty() {
+        Ok(check.to_string())
+    } else {
+        Err(Error::internal(format!(
+            "the rest program fails the stock check after the previous program: {}; nothing \
+             written",
+            problems.join("; ")
+        )))
+    }
+}
