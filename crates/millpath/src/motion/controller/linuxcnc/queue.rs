@@ -9,7 +9,7 @@ use crate::geom::{Point3, Vec3};
 use crate::machine::Machine;
 use crate::motion::path::BlockGeometry;
 use crate::motion::profile::Limits1;
-use crate::toolpath::Move;
+use crate::toolpath::{Move, Rotary};
 use std::collections::VecDeque;
 use std::f64::consts::PI;
 
@@ -67,6 +67,8 @@ pub(super) struct Tc {
     pub traverse: bool,
     pub origin: usize,
     pub mv: Move,
+    /// The rotary axes at the start and the end.
+    pub rot: (Rotary, Rotary),
 }
 
 impl Tc {
@@ -92,7 +94,20 @@ impl Tc {
             traverse: false,
             origin: 0,
             mv: Move::rapid(Point3::ORIGIN),
+            rot: (Rotary::default(), Rotary::default()),
         }
+    }
+
+    /// `tcRotaryMotionCheck`: the segment turns a rotary axis.
+    pub fn turns(&self) -> bool {
+        super::canon::turns(self.rot.0, self.rot.1)
+    }
+
+    /// `tcPureRotaryCheck`: a line that turns rotary axes only (its `target` is their
+    /// chord, rad).
+    pub fn pure_rotary(&self) -> bool {
+        matches!(self.shape, Shape::Line { start, end } if start.distance(end) < 1e-12)
+            && self.turns()
     }
 
     fn curved(&self) -> bool {
@@ -175,6 +190,10 @@ impl Tc {
     /// `tcGetStartAccelUnitVector` / `tcGetEndAccelUnitVector` (lines: the direction; circles:
     /// the start mixes the tangent with the centripetal direction).
     fn accel_dir(&self, at_start: bool) -> Vec3 {
+        if self.pure_rotary() {
+            // pmCartLineInit: the unit vector of a zero X Y Z line is (1, 0, 0).
+            return Vec3::new(1.0, 0.0, 0.0);
+        }
         match self.shape {
             Shape::Circle(c) if at_start => {
                 let start = c.point(0.0);
@@ -214,6 +233,11 @@ impl Tc {
     /// The planner geometry of the segment.
     pub fn geom(&self) -> Option<BlockGeometry> {
         match self.shape {
+            Shape::Line { start, .. } if self.pure_rotary() => Some(BlockGeometry::Line {
+                from: start,
+                dir: Vec3::ZERO,
+                length: self.target,
+            }),
             Shape::Line { start, end } => {
                 let d = end - start;
                 let length = d.length();
@@ -320,6 +344,10 @@ impl Tp {
     /// `tpGetMaxTargetVel` (feed override 1): the segment's speed limit, `[TRAJ]` limit
     /// included.
     pub fn max_target_vel(&self, tc: &Tc) -> f64 {
+        if tc.pure_rotary() {
+            // The [TRAJ] limit is a linear speed: not applied to rotary-only moves.
+            return tc.target_vel();
+        }
         tc.target_vel().min(self.v_limit)
     }
 
@@ -415,7 +443,9 @@ impl Tp {
 
     /// `tpSetupTangent`.
     fn setup_tangent(&self, prev: &mut Tc, tc: &mut Tc) -> Tangency {
-        if prev.term == Term::Stop {
+        // Rotary motion on either side: neither tangent nor a blend arc (the corner keeps its
+        // parabolic blend, exact path or stop).
+        if prev.term == Term::Stop || prev.turns() || tc.turns() {
             return Tangency::Fail;
         }
         let prev_tan = prev.end_tangent();

@@ -1,0 +1,92 @@
+//! Parabolic blends as LinuxCNC runs them (`tpDoParabolicBlending`, `tpUpdateBlend`): the
+//! segment heading into the blend decelerates towards rest at its end while the next one
+//! starts from rest, the next's target speed rising as the first one slows; the two run
+//! together until the first ends. Their speeds add up to about the blend speed `v_b` over
+//! that overlap: the first segment's last `v_b²/(2·a₁)` and the next one's first
+//! `v_b²/(2·a₂)` (`a` each segment's tangential acceleration, already halved for the blend)
+//! are run together, in `v_b/a₁` s. The next segment then heads for rest at its own end, so
+//! that a chain of short segments never runs faster than `v_b`, however long the stretch
+//! between two blends would let a continuous profile speed up.
+//!
+//! The planner is given that as pieces of the segment: a head (the overlap with the previous
+//! segment) and a tail (with the next) whose speed is at most `v_b`, and the rest between
+//! them at the segment's own limits. A line is cut into such pieces; a curve whose overlaps
+//! cover it is capped at the larger of its two blend speeds as a whole, and otherwise runs as
+//! one block (its overlaps timed at the junction's speed only).
+
+use super::super::Prepared;
+use crate::motion::path::BlockGeometry;
+
+/// One segment as it leaves the queue, before it is cut.
+pub(super) struct Leaving {
+    /// The segment as one planner block (its junction cap with the previous one in
+    /// `cap_in`).
+    pub block: Prepared,
+    /// Length of the overlap with the previous segment, and its speed.
+    pub head: (f64, f64),
+    /// Length of the overlap with the next segment, and its speed.
+    pub tail: (f64, f64),
+}
+
+/// Appends the pieces of `leaving` to `out`.
+pub(super) fn cut(leaving: Leaving, out: &mut Vec<Prepared>) {
+    let Leaving {
+        block,
+        head: (h, vh),
+        tail: (t, vt),
+    } = leaving;
+    let Some(geom) = block.geom else {
+        out.push(block);
+        return;
+    };
+    let length = geom.length();
+    let (mut h, mut t) = (h.max(0.0), t.max(0.0));
+    if h + t <= 1e-9 * length.max(1.0) {
+        out.push(block);
+        return;
+    }
+    let covered = h + t >= length;
+    let BlockGeometry::Line { from, dir, .. } = geom else {
+        let mut b = block;
+        if covered {
+            b.limits.v = b.limits.v.min(vh.max(vt));
+        }
+        out.push(b);
+        return;
+    };
+    if covered {
+        let k = length / (h + t);
+        h *= k;
+        t *= k;
+    }
+    let pieces = [
+        (0.0, h, Some(vh)),
+        (h, length - t, None),
+        (length - t, length, Some(vt)),
+    ];
+    let mut first = true;
+    let end = block.mv.to;
+    for (s0, s1, cap) in pieces {
+        if s1 - s0 <= 1e-12 {
+            continue;
+        }
+        let mut b = block;
+        b.geom = Some(BlockGeometry::Line {
+            from: from + dir * s0,
+            dir,
+            length: s1 - s0,
+        });
+        b.from = from + dir * s0;
+        b.mv.to = if s1 >= length { end } else { from + dir * s1 };
+        if let Some(v) = cap {
+            b.limits.v = b.limits.v.min(v.max(1e-9));
+        }
+        if !first {
+            // Within the segment: no junction of its own.
+            b.cap_in = f64::INFINITY;
+            b.settle_before = 0.0;
+        }
+        first = false;
+        out.push(b);
+    }
+}
