@@ -4,7 +4,10 @@
 //! together until the first ends. Their speeds add up to about the blend speed `v_b` over
 //! that overlap: the first segment's last `v_b²/(2·a₁)` and the next one's first
 //! `v_b²/(2·a₂)` (`a` each segment's tangential acceleration, already halved for the blend)
-//! are run together, in `v_b/a₁` s. The next segment then heads for rest at its own end, so
+//! are run together, in `v_b/a₁` s. The next segment gains at most `a₂·v₁/a₁` in the
+//! overlap (`v₁` the first one's speed where the blend starts), which bounds `v_b` where it
+//! accelerates more slowly than the first one slows (`queue`'s junction speed). The next
+//! segment then heads for rest at its own end, so
 //! that a chain of short segments never runs faster than `v_b`, however long the stretch
 //! between two blends would let a continuous profile speed up.
 //!

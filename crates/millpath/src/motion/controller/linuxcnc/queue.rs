@@ -621,7 +621,10 @@ impl Tp {
             Term::Tangent => tc.finalvel.min(v_this).min(v_next),
             Term::Parabolic => {
                 let (b_this, b_next, _) = blend_velocity(tc, next, v_this, v_next);
-                b_this.min(b_next)
+                // The overlap lasts while `tc` slows from `b_this` to rest; `next` reaches
+                // at most its own acceleration times that (`tpUpdateBlend`).
+                let t_blend = b_this / tc.tangential_accel();
+                b_this.min(b_next).min(next.tangential_accel() * t_blend)
             }
             Term::Stop | Term::Exact => 0.0,
         }
