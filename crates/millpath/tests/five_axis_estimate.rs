@@ -40,7 +40,11 @@ fn recorded() -> Vec<(String, String, f64)> {
         .map(|l| {
             let v: Vec<&str> = l.split(',').collect();
             assert_eq!(v.len(), 3, "{l}");
-            (v[0].to_string(), v[1].to_string(), v[2].trim().parse().unwrap())
+            (
+                v[0].to_string(),
+                v[1].to_string(),
+                v[2].trim().parse().unwrap(),
+            )
         })
         .collect()
 }
@@ -77,7 +81,10 @@ fn estimate_matches_the_recorded_linuxcnc_times() {
         let known = KNOWN_DIFFERENCES.iter().any(|(k, _)| k == name);
         if err.abs() <= 0.05 {
             within += 1;
-            assert!(!known, "{name} is within 5 % now: take it off KNOWN_DIFFERENCES");
+            assert!(
+                !known,
+                "{name} is within 5 % now: take it off KNOWN_DIFFERENCES"
+            );
         } else if !known || err.abs() > 0.10 {
             bad.push(name.clone());
         }

@@ -103,9 +103,8 @@ fn rotary_words_are_read_and_the_path_is_x_y_z() {
     assert!(close(m[1].mv.feed, 10.0));
     // Each move that turns a rotary axis carries where the axes end, in radians; the others
     // leave them where they stood.
-    let deg = |a: f64, b: f64, c: f64| {
-        Some(Rotary::new(a.to_radians(), b.to_radians(), c.to_radians()))
-    };
+    let deg =
+        |a: f64, b: f64, c: f64| Some(Rotary::new(a.to_radians(), b.to_radians(), c.to_radians()));
     let rot: Vec<Option<Rotary>> = m.iter().map(|x| x.mv.rotary).collect();
     assert_eq!(
         rot,

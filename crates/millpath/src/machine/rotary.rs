@@ -96,11 +96,20 @@ pub(super) fn read_rotary(
 }
 
 /// Checks the rotary limits (in rad), naming the key in degrees.
-pub(super) fn check_rotary(rotary: &[Option<AxisLimits>; 3], origin: &str) -> Result<(), InputError> {
+pub(super) fn check_rotary(
+    rotary: &[Option<AxisLimits>; 3],
+    origin: &str,
+) -> Result<(), InputError> {
     for (r, an) in rotary.iter().zip(ROTARY_NAMES) {
         let Some(r) = r else { continue };
         for (what, v, max, unit, jerk) in [
-            ("max_velocity", r.max_velocity, MAX_ROTARY_VELOCITY_DEG, "deg/s", false),
+            (
+                "max_velocity",
+                r.max_velocity,
+                MAX_ROTARY_VELOCITY_DEG,
+                "deg/s",
+                false,
+            ),
             (
                 "max_acceleration",
                 r.max_acceleration,
@@ -203,16 +212,24 @@ max_acceleration = 900
                 "axes.c.max_velocity",
             ),
             (
-                PROFILE.replace("max_acceleration = 900", "max_acceleration = 900\nrapid = 5"),
+                PROFILE.replace(
+                    "max_acceleration = 900",
+                    "max_acceleration = 900\nrapid = 5",
+                ),
                 "axes.c.rapid",
             ),
             (
-                PROFILE.replace("max_acceleration = 900", "max_acceleration = 900\nmax_jerk = \"no\""),
+                PROFILE.replace(
+                    "max_acceleration = 900",
+                    "max_acceleration = 900\nmax_jerk = \"no\"",
+                ),
                 "axes.c.max_jerk",
             ),
             (format!("{PROFILE}[axes.d]\nmax_velocity = 1\n"), "axes.d"),
         ] {
-            let e = Machine::from_toml_str(&bad, "m.toml").unwrap_err().to_string();
+            let e = Machine::from_toml_str(&bad, "m.toml")
+                .unwrap_err()
+                .to_string();
             assert!(e.contains(needle) && e.contains("m.toml"), "{e}");
         }
     }

@@ -46,14 +46,30 @@
 //! its tangential acceleration, jerk unlimited, and the junction cap LinuxCNC would end it at:
 //! its look-ahead final speed at tangent junctions, 0 at stops, and for a parabolic blend the
 //! speed at which the overlap starts (the overlap moves at about that speed: one segment
-//! slows from it to rest while the other speeds up to it). The planner's trapezoids between
-//! those speeds are what `tpRunCycle` runs, cycle by cycle.
+//! slows from it to rest while the other speeds up to it), the overlapping stretches of the
+//! two segments given as pieces no faster than that (`overlap.rs`). The planner's trapezoids
+//! between those speeds are what `tpRunCycle` runs, cycle by cycle.
+//!
+//! # Rotary axes (trivkins: A, B, C each its own joint)
+//! A move that turns A, B or C ([`crate::toolpath::Move::rotary`]) is a segment in the joint
+//! space X Y Z A B C, as LinuxCNC 2.9's `PmLine9` with `trivkins`: its length is the X Y Z
+//! distance, or the rotary chord (rad) when only rotary axes move; its speed and acceleration
+//! are bounded by every moving axis's limits (`canon.rs`; the machine's
+//! [`crate::machine::Machine::rotary`]); the feed is along that length (the reader gives a
+//! rotary-only move its feed in rad/s). Next to a segment that turns a rotary axis there is no
+//! tangency and no blend arc (`tcRotaryMotionCheck` in `tpSetupTangent` and
+//! `tpCheckBlendArcType`): in G64 the corner is a parabolic blend, in G61 a stop. The
+//! `[TRAJ]` speed limit does not apply to rotary-only segments (`tcPureRotaryCheck`). A
+//! rotary-only block is a [`BlockGeometry::Line`] that stays in place (`dir` zero) whose
+//! length is the rotary chord.
 //!
 //! # What is not modelled
 //! * The queue is assumed to run ahead of the motion (LinuxCNC's task feeds it one segment a
 //!   servo cycle; a program of segments shorter than one cycle at speed can starve it).
-//! * Parabolic blends are timed at their start speed, not cycle by cycle; short segments'
-//!   "ramp" acceleration (segments shorter than 10 ms) as a trapezoid.
+//! * Parabolic blends are timed as an overlap at one speed, not cycle by cycle; short
+//!   segments' "ramp" acceleration (segments shorter than 10 ms) as a trapezoid.
+//! * Rotary axes with other kinematics than trivkins (LinuxCNC's `xyzac-trt` and the like,
+//!   switched by `M428`): the tool tip's path is not the joints' path there.
 //! * Spindle, coolant and tool commands, which make LinuxCNC's task wait for motion to stop,
 //!   are not in the move stream; dwells are (they stop the queue).
 //! * The program starts at rest where the reader starts (LinuxCNC's tool is where the last
