@@ -9,13 +9,13 @@ use crate::toolpath::{Move, MoveKind, Plane};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum BlockGeometry {
     /// A straight line; with `dir` zero, a move of the rotary axes alone (the `linuxcnc`
-    /// model's), whose `length` is their chord in rad.
+    /// model's), whose `length` is their chord (in degrees, as LinuxCNC measures it).
     Line {
         /// Start point.
         from: Point3,
         /// Unit direction (zero on a rotary-only block).
         dir: Vec3,
-        /// Length in mm (rad on a rotary-only block).
+        /// Length in mm (degrees on a rotary-only block).
         length: f64,
     },
     /// A circular arc or helix.

@@ -19,10 +19,12 @@
 //! axes: a rotary axis that must turn far on a short X Y Z move bounds it. The feed caps the
 //! speed (on an angular-only move the angular feed, degrees per minute). A G1 point that
 //! turns a rotary axis is never merged: it goes alone as one line. A rotary axis the
-//! machine has no limits for does not bound anything.
+//! machine has no limits for does not bound anything. A rotary-only segment is measured in
+//! degrees here (its length, speed and acceleration), LinuxCNC's units for it: the blend
+//! rules compare its speeds with its neighbours' mm/s as LinuxCNC does.
 
 use super::circle::Circle;
-use super::queue::{Shape, Tc, Term};
+use super::queue::{ROT_FUZZ, Shape, Tc, Term, turn};
 use crate::geom::Point3;
 use crate::machine::{AxisLimits, Machine};
 use crate::motion::path::BlockGeometry;
@@ -93,20 +95,6 @@ fn rotary_time(r: [f64; 3], bounds: [Option<f64>; 3]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Rotary displacements below it (rad) do not count.
-const ROT_FUZZ: f64 = 1e-9;
-
-/// The rotary displacement from `r0` to `r1`, rad.
-pub(super) fn turn(r0: Rotary, r1: Rotary) -> [f64; 3] {
-    [r1.a - r0.a, r1.b - r0.b, r1.c - r0.c]
-}
-
-/// True when the rotary axes move between `r0` and `r1` (LinuxCNC's `tmag_zero` of the
-/// `abc` line, false).
-pub(super) fn turns(r0: Rotary, r1: Rotary) -> bool {
-    turn(r0, r1).iter().any(|x| x.abs() >= ROT_FUZZ)
-}
-
 fn rotary_bounds(m: &Machine, f: impl Fn(&AxisLimits) -> f64) -> [Option<f64>; 3] {
     m.rotary.map(|r| r.as_ref().map(&f))
 }
@@ -137,7 +125,15 @@ pub(super) fn line(
     } else {
         feed.min(ini_maxvel)
     };
-    let target = length(d, r);
+    let mut target = length(d, r);
+    let (mut vel, mut ini_maxvel, mut acc) = (vel, ini_maxvel, acc);
+    if !d.iter().any(|x| x.abs() >= CART_FUZZ) {
+        // A rotary-only segment in LinuxCNC's user units, degrees: its speeds meet its
+        // neighbours' mm/s in the blend rules as they do in LinuxCNC.
+        for x in [&mut target, &mut vel, &mut ini_maxvel, &mut acc] {
+            *x = x.to_degrees();
+        }
+    }
     if vel <= 0.0 || acc <= 0.0 || target < 1e-12 {
         return None;
     }

@@ -61,7 +61,7 @@
 //! `tpCheckBlendArcType`): in G64 the corner is a parabolic blend, in G61 a stop. The
 //! `[TRAJ]` speed limit does not apply to rotary-only segments (`tcPureRotaryCheck`). A
 //! rotary-only block is a [`BlockGeometry::Line`] that stays in place (`dir` zero) whose
-//! length is the rotary chord.
+//! length is the rotary chord, in degrees as LinuxCNC measures it (its feed in deg/s).
 //!
 //! # What is not modelled
 //! * The queue is assumed to run ahead of the motion (LinuxCNC's task feeds it one segment a
@@ -141,7 +141,7 @@ impl<'m> Queue<'m> {
         let r0 = self.rot;
         let r1 = m.rotary.unwrap_or(r0);
         self.rot = r1;
-        let turns = canon::turns(r0, r1);
+        let turns = queue::turns(r0, r1);
         match m.kind {
             MoveKind::Dwell { .. } => {
                 self.flush_chain();
@@ -299,10 +299,17 @@ impl<'m> Queue<'m> {
                 ),
                 _ => ((0.0, 0.0), (0.0, 0.0)),
             };
+            // A rotary-only segment is in degrees (module `canon`), its feed too.
+            let feed = if tc.pure_rotary() {
+                tc.mv.feed.to_degrees()
+            } else {
+                tc.mv.feed
+            };
             let block = Prepared {
                 from: tc.start(),
                 mv: Move {
                     to: tc.end(),
+                    feed,
                     ..tc.mv
                 },
                 geom: tc.geom(),
@@ -313,7 +320,7 @@ impl<'m> Queue<'m> {
                 settle_before: 0.0,
             };
             overlap::cut(
-                overlap::Leaving {
+                &overlap::Leaving {
                     block,
                     head: self.pending_head,
                     tail,

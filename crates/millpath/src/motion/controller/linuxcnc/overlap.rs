@@ -32,8 +32,8 @@ pub(super) struct Leaving {
 }
 
 /// Appends the pieces of `leaving` to `out`.
-pub(super) fn cut(leaving: Leaving, out: &mut Vec<Prepared>) {
-    let Leaving {
+pub(super) fn cut(leaving: &Leaving, out: &mut Vec<Prepared>) {
+    let &Leaving {
         block,
         head: (h, vh),
         tail: (t, vt),

@@ -28,6 +28,20 @@ const OPTIMIZATION_CUTOFF: usize = 4;
 /// Reversals within this angle stop (`SHARP_CORNER_DEG` of `tpSetupTangent`).
 const SHARP_CORNER_DEG: f64 = 2.0;
 
+/// Rotary displacements below it (rad) do not count.
+pub(super) const ROT_FUZZ: f64 = 1e-9;
+
+/// The rotary displacement from `r0` to `r1`, rad.
+pub(super) fn turn(r0: Rotary, r1: Rotary) -> [f64; 3] {
+    [r1.a - r0.a, r1.b - r0.b, r1.c - r0.c]
+}
+
+/// True when the rotary axes move between `r0` and `r1` (LinuxCNC's `tmag_zero` of the
+/// `abc` line, false).
+pub(super) fn turns(r0: Rotary, r1: Rotary) -> bool {
+    turn(r0, r1).iter().any(|x| x.abs() >= ROT_FUZZ)
+}
+
 /// `tc_term_cond_t`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Term {
@@ -100,7 +114,7 @@ impl Tc {
 
     /// `tcRotaryMotionCheck`: the segment turns a rotary axis.
     pub fn turns(&self) -> bool {
-        super::canon::turns(self.rot.0, self.rot.1)
+        turns(self.rot.0, self.rot.1)
     }
 
     /// `tcPureRotaryCheck`: a line that turns rotary axes only (its `target` is their
