@@ -93,3 +93,82 @@ pub(super) fn cut(leaving: &Leaving, out: &mut Vec<Prepared>) {
         out.push(b);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Point3, Vec3};
+    use crate::motion::profile::Limits1;
+    use crate::toolpath::Move;
+
+    fn line_block(length: f64) -> Prepared {
+        let from = Point3::new(1.0, 2.0, 3.0);
+        let dir = Vec3::new(0.6, 0.8, 0.0);
+        Prepared {
+            from,
+            mv: Move::line(from + dir * length, 10.0),
+            geom: Some(BlockGeometry::Line { from, dir, length }),
+            limits: Limits1 {
+                v: 10.0,
+                a: 100.0,
+                j: f64::INFINITY,
+            },
+            cap_in: 4.0,
+            origin: 7,
+            exact_limits: true,
+            settle_before: 0.0,
+        }
+    }
+
+    /// Pieces of a line: contiguous, summing to its length, ending where it ends, the
+    /// overlaps no faster than their speeds, the middle at the segment's own limit, the
+    /// junction cap kept on the first piece only.
+    #[test]
+    fn a_line_is_cut_into_contiguous_pieces() {
+        for (length, head, tail) in [(10.0, 1.0, 2.0), (10.0, 0.0, 3.0), (2.0, 1.5, 1.5)] {
+            let block = line_block(length);
+            let mut out = Vec::new();
+            cut(
+                &Leaving {
+                    block,
+                    head: (head, 4.0),
+                    tail: (tail, 6.0),
+                },
+                &mut out,
+            );
+            let total: f64 = out.iter().filter_map(|p| p.geom).map(|g| g.length()).sum();
+            assert!((total - length).abs() < 1e-12, "{out:?}");
+            for w in out.windows(2) {
+                assert!(w[0].mv.to.distance(w[1].from) < 1e-12);
+                assert_eq!(w[1].cap_in, f64::INFINITY);
+            }
+            assert_eq!(out[0].cap_in, 4.0);
+            assert_eq!(out[0].from, block.from);
+            assert!(out.last().unwrap().mv.to.distance(block.mv.to) < 1e-12);
+            assert!(out.iter().all(|p| p.origin == 7 && p.limits.v <= 10.0));
+            let covered = head + tail >= length;
+            assert_eq!(out.len(), if covered || head == 0.0 { 2 } else { 3 });
+            assert!(out.last().unwrap().limits.v <= 6.0);
+            if !covered && head > 0.0 {
+                assert_eq!(out[0].limits.v, 4.0);
+                assert_eq!(out[1].limits.v, 10.0);
+            }
+        }
+    }
+
+    /// No overlap: the block as it came.
+    #[test]
+    fn without_overlaps_the_block_is_kept() {
+        let block = line_block(5.0);
+        let mut out = Vec::new();
+        cut(
+            &Leaving {
+                block,
+                head: (0.0, 0.0),
+                tail: (0.0, 0.0),
+            },
+            &mut out,
+        );
+        assert_eq!(out, vec![block]);
+    }
+}
