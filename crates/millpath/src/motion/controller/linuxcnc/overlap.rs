@@ -140,18 +140,18 @@ mod tests {
             assert!((total - length).abs() < 1e-12, "{out:?}");
             for w in out.windows(2) {
                 assert!(w[0].mv.to.distance(w[1].from) < 1e-12);
-                assert_eq!(w[1].cap_in, f64::INFINITY);
+                assert!(w[1].cap_in.is_infinite());
             }
-            assert_eq!(out[0].cap_in, 4.0);
+            assert!((out[0].cap_in - 4.0).abs() < 1e-15);
             assert_eq!(out[0].from, block.from);
             assert!(out.last().unwrap().mv.to.distance(block.mv.to) < 1e-12);
             assert!(out.iter().all(|p| p.origin == 7 && p.limits.v <= 10.0));
             let covered = head + tail >= length;
-            assert_eq!(out.len(), if covered || head == 0.0 { 2 } else { 3 });
+            assert_eq!(out.len(), if covered || head <= 0.0 { 2 } else { 3 });
             assert!(out.last().unwrap().limits.v <= 6.0);
             if !covered && head > 0.0 {
-                assert_eq!(out[0].limits.v, 4.0);
-                assert_eq!(out[1].limits.v, 10.0);
+                assert!((out[0].limits.v - 4.0).abs() < 1e-15);
+                assert!((out[1].limits.v - 10.0).abs() < 1e-15);
             }
         }
     }
