@@ -7,7 +7,7 @@ mod nurbs_common;
 
 use millpath::gcode::{ReadMove, Reader, ReaderOptions};
 use millpath::geom::Point3;
-use millpath::toolpath::MoveKind;
+use millpath::toolpath::{MoveKind, Rotary};
 use nurbs_common::{read, refusal};
 
 fn close(a: f64, b: f64) -> bool {
@@ -101,6 +101,29 @@ fn rotary_words_are_read_and_the_path_is_x_y_z() {
         ]
     );
     assert!(close(m[1].mv.feed, 10.0));
+    // Each move that turns a rotary axis carries where the axes end, in radians; the others
+    // leave them where they stood.
+    let deg =
+        |a: f64, b: f64, c: f64| Some(Rotary::new(a.to_radians(), b.to_radians(), c.to_radians()));
+    let rot: Vec<Option<Rotary>> = m.iter().map(|x| x.mv.rotary).collect();
+    assert_eq!(
+        rot,
+        [
+            deg(0.0, 0.0, 0.0),
+            deg(90.0, 0.0, 0.0),
+            deg(45.0, 0.0, 0.0),
+            deg(45.0, 10.0, 20.0)
+        ]
+    );
+    // G91 turns them by the words; a rotary-only feed is F deg/min in rad/s whatever the
+    // units (G20), and in G93 the rotary chord times F/60.
+    let m = read("G20 G91\nG1 C30 F600\nG1 X1\nG93 G1 A30 C40 F2\nM2\n");
+    assert_eq!(m[0].mv.rotary, deg(0.0, 0.0, 30.0));
+    assert!(close(m[0].mv.feed, 10f64.to_radians()));
+    assert_eq!(m[1].mv.rotary, None);
+    assert!(close(m[1].mv.feed, 25.4 * 10.0));
+    assert_eq!(m[2].mv.rotary, deg(30.0, 0.0, 70.0));
+    assert!(close(m[2].mv.feed, 50f64.to_radians() * 2.0 / 60.0));
     // Other dialects have no rotary words in the reader.
     let fanuc = ReaderOptions::default().with_dialect(millpath::gcode::Dialect::Fanuc);
     let r: Result<Vec<ReadMove>, _> = Reader::new("G21\nG0 A10\nM30\n".as_bytes(), fanuc).collect();

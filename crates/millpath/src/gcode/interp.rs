@@ -52,9 +52,13 @@
 //!   `spindle_sync`: speed = pitch or F × the commanded S) and straight probes G38.2–G38.5
 //!   (module `probe`: to the target, as LinuxCNC's standalone interpreter models them) are
 //!   feed moves.
-//! * Rotary axes A, B, C (LinuxCNC): read and left out of the path, which is X Y Z (module
-//!   `motion`): a move's time is that of its X Y Z part, so a move of rotary axes alone
-//!   takes no time in G94 and G0 (the rotary axes' speeds are not known), and 60/F in G93.
+//! * Rotary axes A, B, C (LinuxCNC, in degrees, absolute in G90 and incremental in G91;
+//!   work offsets and G92 do not move them): a move that turns them carries where they end
+//!   ([`Move::rotary`], in radians) beside its X Y Z path. Feeds follow RS274/NGC
+//!   (`emccanon.cc`, `interp_inverse.cc`): F is along the X Y Z path when X Y Z move, and in
+//!   degrees per minute along the rotary chord `√(ΔA² + ΔB² + ΔC²)` when only rotary axes
+//!   move (that move's feed is in rad/s); in G93 the block takes 60/F s along whichever of
+//!   the two is its length.
 //! * Anything else is refused with its line and word, or skipped with a warning when
 //!   [`ReaderOptions::lenient`].
 
@@ -223,6 +227,8 @@ pub(crate) struct State {
     feed: Option<f64>,
     /// The last F number as written (LinuxCNC's `#<_feed>`: not converted by G20/G21).
     f_word: f64,
+    /// Where the rotary axes A, B, C stand (rad; LinuxCNC programs only).
+    rotary: crate::toolpath::Rotary,
     arc_absolute: bool,
     /// The active work coordinate system, 0..9 for G54..G59.3.
     system: usize,
@@ -275,6 +281,7 @@ impl State {
             motion: None,
             feed: None,
             f_word: 0.0,
+            rotary: crate::toolpath::Rotary::default(),
             arc_absolute: false,
             system: 0,
             origin: Vec3::ZERO,

@@ -14,6 +14,12 @@
 //! whole ([`EstimateSettings::whole`]: the plan and every move kept, for samples and
 //! pictures). The verifier samples at `rate` ≥ 1 kHz; it does not run on the `linuxcnc`
 //! controller model, whose plans follow LinuxCNC's rules and are judged against LinuxCNC.
+//!
+//! Rotary axes (LinuxCNC programs' A, B, C words) are planned by the `linuxcnc` controller
+//! model, in joint space with each axis its own joint (trivkins), with the machine's rotary
+//! limits ([`Machine::rotary`]): see `crate::motion`'s `linuxcnc` model. The `generic` and
+//! `sinumerik` models, and the limit verifier, plan and check the X Y Z path only (a move of
+//! rotary axes alone takes no time there).
 //! Streaming on two or more cores ([`EstimateSettings::parallel`]), each chunk is verified on
 //! a second thread while the next is read and planned: the verifier's work overlaps the
 //! planner's, its counts are summed in program order, and the first error is the one the

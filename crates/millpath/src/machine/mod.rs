@@ -39,7 +39,9 @@
 //!   on three axes; `max_feed` is `[TRAJ] MAX_LINEAR_VELOCITY`), servo period 1 ms, jerk
 //!   unlimited (LinuxCNC's planner is trapezoidal), planned by the `linuxcnc` controller
 //!   model. Path tolerance 0: a program's `G64` without P blends without a tolerance limit,
-//!   as LinuxCNC does (a program that gives no path mode runs in G64).
+//!   as LinuxCNC does (a program that gives no path mode runs in G64). Rotary axes A, B and
+//!   C, each its own joint, at 90 deg/s and 900 deg/s² (the tool's `LCNC_AXES=XYZAC` or
+//!   `XYZBC` defaults).
 //! * **`router`** — a low-acceleration hobby router (steel-belt or lead-screw gantry): 15 m/min
 //!   rapids in XY, 6 m/min in Z, 0.5 m/s² in XY, 0.3 m/s² in Z, jerk 10 m/s³ (XY) and
 //!   5 m/s³ (Z), the class of GRBL-based routers' `$120..$122` settings.
@@ -66,19 +68,29 @@
 //! max_jerk = 100000.0       # units/s³, or "unlimited"
 //! rapid = 500.0             # units/s (optional, default max_velocity)
 //! # [axes.y] and [axes.z] alike
+//!
+//! [axes.c]                  # optional rotary axes [axes.a], [axes.b], [axes.c]
+//! max_velocity = 90.0       # deg/s (degrees whatever `units` says)
+//! max_acceleration = 900.0  # deg/s²
+//! max_jerk = "unlimited"    # deg/s³ (optional, default "unlimited")
 //! ```
 //! Every limit must be a finite number > 0 (jerk may be `"unlimited"`); errors name the key.
 //! A key that is not one of these (a misspelt limit, which would otherwise fall back to its
 //! default without a word) is refused, naming the key and the file.
 
 pub mod kinematics;
+pub(crate) mod rotary;
 
 use crate::error::InputError;
 use serde::{Deserialize, Serialize};
 
 pub use crate::geom::MM_PER_INCH;
+pub use rotary::{
+    MAX_ROTARY_ACCELERATION_DEG, MAX_ROTARY_JERK_DEG, MAX_ROTARY_VELOCITY_DEG, ROTARY_NAMES,
+    rotary_limits,
+};
 
-/// The limits of one axis.
+/// The limits of one axis (a rotary axis's in rad/s, rad/s², rad/s³).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct AxisLimits {
     /// Maximum axis velocity in mm/s.
@@ -179,6 +191,10 @@ pub struct Machine {
     /// dwell at every `M6` ([`crate::gcode::ReaderOptions::tool_change_time`]).
     #[serde(default)]
     pub tool_change_time: f64,
+    /// The rotary axes A, B, C (limits in rad/s, rad/s², rad/s³; `None`: the machine has no
+    /// such axis, and its words take no time). See module `rotary` for the profile's tables.
+    #[serde(default)]
+    pub rotary: [Option<AxisLimits>; 3],
 }
 
 /// The `hsm` preset's tool change time, s: a chip-to-chip time of a high-speed mill's
@@ -199,6 +215,10 @@ pub const HSM_EXACT_STOP_TIME: f64 = 0.03;
 /// and 7.511 s); the wait depends on the phase of the I/O cycle (between 0 and 0.3 s seen
 /// on single commands), so a program with few of them varies by up to that from run to run.
 pub const LINUXCNC_TIME_SYNC_WAIT: f64 = 0.1;
+
+/// The `linuxcnc-time` preset's rotary axes A, B and C: 90 deg/s and 900 deg/s² (the
+/// `LCNC_ROT_VMAX` and `LCNC_ROT_AMAX` defaults of `../shared/tools/linuxcnc-time`).
+pub const LINUXCNC_TIME_ROTARY: [f64; 2] = [90.0, 900.0];
 
 /// The largest velocity (axis, rapid or feed) a machine may have: 1 km/s, in mm/s.
 pub const MAX_VELOCITY: f64 = 1e6;
@@ -235,6 +255,7 @@ impl Machine {
                 exact_stop_time: HSM_EXACT_STOP_TIME,
                 sync_wait: 0.0,
                 tool_change_time: HSM_TOOL_CHANGE_TIME,
+                rotary: [None; 3],
             }),
             "linuxcnc-sim" => {
                 let v = 4.0 * MM_PER_INCH;
@@ -253,6 +274,7 @@ impl Machine {
                     exact_stop_time: 0.0,
                     sync_wait: 0.0,
                     tool_change_time: 0.0,
+                    rotary: [None; 3],
                 })
             }
             "linuxcnc-time" => Ok(Machine {
@@ -271,6 +293,11 @@ impl Machine {
                 exact_stop_time: 0.0,
                 sync_wait: LINUXCNC_TIME_SYNC_WAIT,
                 tool_change_time: 0.0,
+                rotary: [Some(rotary_limits(
+                    LINUXCNC_TIME_ROTARY[0],
+                    LINUXCNC_TIME_ROTARY[1],
+                    f64::INFINITY,
+                )); 3],
             }),
             "router" => Ok(Machine {
                 name: "router".into(),
@@ -290,6 +317,7 @@ impl Machine {
                 exact_stop_time: 0.0,
                 sync_wait: 0.0,
                 tool_change_time: ROUTER_TOOL_CHANGE_TIME,
+                rotary: [None; 3],
             }),
             _ => Err(InputError::new("machine preset", name)
                 .expected(format!("one of {}", Self::PRESET_NAMES.join(", ")))),
@@ -367,6 +395,7 @@ impl Machine {
                     .expected("a time in [0, 10] s"));
             }
         }
+        rotary::check_rotary(&self.rotary, origin)?;
         let t = self.tool_change_time;
         if !(t.is_finite() && (0.0..=3600.0).contains(&t)) {
             return Err(InputError::new("tool_change_time", t)
@@ -438,6 +467,7 @@ impl Machine {
             at.insert("rapid".into(), Value::Float(r));
             axes.insert(name.into(), Value::Table(at));
         }
+        rotary::write_rotary(&self.rotary, &mut axes);
         t.insert("axes".into(), Value::Table(axes));
         toml::to_string(&t).unwrap_or_default()
     }
@@ -499,7 +529,8 @@ impl Machine {
             max_jerk: 0.0,
         }; 3];
         let mut rapid = [0.0; 3];
-        check_keys(axes_t, &["x", "y", "z"], "axes.", origin)?;
+        check_keys(axes_t, &["x", "y", "z", "a", "b", "c"], "axes.", origin)?;
+        let rotary = rotary::read_rotary(axes_t, origin)?;
         for (i, an) in ["x", "y", "z"].iter().enumerate() {
             let t = match axes_t.get(*an) {
                 Some(toml::Value::Table(t)) => t,
@@ -563,6 +594,7 @@ impl Machine {
             exact_stop_time: opt("exact_stop_time", 0.0)?,
             sync_wait: opt("sync_wait", 0.0)?,
             tool_change_time: opt("tool_change_time", 0.0)?,
+            rotary,
             controller: match table.get("controller") {
                 None => Controller::Generic,
                 Some(v) => v.as_str().and_then(Controller::from_name).ok_or_else(|| {

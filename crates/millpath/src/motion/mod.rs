@@ -17,6 +17,9 @@
 //!    `sinumerik`, `linuxcnc`): what the blocks are (the moves, or what LinuxCNC makes of
 //!    them: merged, trimmed, blend arcs) and which limits, corner rules and look-ahead apply.
 //!    Steps 1–2 below are the `generic` model's rules; steps 3–4 are shared by all models.
+//!    The `linuxcnc` model also plans the rotary axes A, B, C of a move
+//!    ([`crate::toolpath::Move::rotary`]) in joint space, each its own joint (trivkins), with
+//!    the machine's rotary limits; the others plan the X Y Z path.
 //! 1. **Geometry** (`path`): lines and arcs/helices exactly as programmed (no flattening),
 //!    parametrised by arc length with their first three derivatives.
 //! 2. **Limits** (`limits`): each block's path velocity, acceleration and jerk limits — the

@@ -8,13 +8,14 @@ use crate::toolpath::{Move, MoveKind, Plane};
 /// The geometry of one block.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum BlockGeometry {
-    /// A straight line.
+    /// A straight line; with `dir` zero, a move of the rotary axes alone (the `linuxcnc`
+    /// model's), whose `length` is their chord (in degrees, as LinuxCNC measures it).
     Line {
         /// Start point.
         from: Point3,
-        /// Unit direction.
+        /// Unit direction (zero on a rotary-only block).
         dir: Vec3,
-        /// Length in mm.
+        /// Length in mm (degrees on a rotary-only block).
         length: f64,
     },
     /// A circular arc or helix.

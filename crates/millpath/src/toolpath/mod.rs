@@ -13,7 +13,7 @@ pub use cycle::{
     Cycle, CycleKind, CycleRetract, LEVEL_EPS as CYCLE_LEVEL_EPS, MAX_PECKS, PECK_CLEARANCE,
     expand as expand_cycle,
 };
-pub use moves::{Corner, CurveTag, Move, MoveKind, Plane};
+pub use moves::{Corner, CurveTag, Move, MoveKind, Plane, Rotary};
 pub use tool::{REFERENCE_DIAMETER, Tool, tolerance_scale};
 
 use crate::geom::{Aabb, Point3};

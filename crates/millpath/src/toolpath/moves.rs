@@ -116,6 +116,37 @@ pub enum MoveKind {
     },
 }
 
+/// Where the rotary axes A, B and C of a machine with trivkins kinematics stand (each axis
+/// its own joint, as LinuxCNC's `trivkins` has them: the program's A/B/C words are the joints'
+/// angles, the tool tip is not transformed), in radians.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Rotary {
+    /// A (about X), rad.
+    pub a: f64,
+    /// B (about Y), rad.
+    pub b: f64,
+    /// C (about Z), rad.
+    pub c: f64,
+}
+
+impl Rotary {
+    /// A, B and C in rad.
+    pub const fn new(a: f64, b: f64, c: f64) -> Rotary {
+        Rotary { a, b, c }
+    }
+
+    /// `[a, b, c]`.
+    pub const fn to_array(self) -> [f64; 3] {
+        [self.a, self.b, self.c]
+    }
+
+    /// The length of the rotary chord from `from` to `self`, rad: `√(ΔA² + ΔB² + ΔC²)`.
+    pub fn distance(self, from: Rotary) -> f64 {
+        let d = [self.a - from.a, self.b - from.b, self.c - from.c];
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+    }
+}
+
 /// One move: where it goes, how, and at what feed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Move {
@@ -123,7 +154,8 @@ pub struct Move {
     pub kind: MoveKind,
     /// End point in mm.
     pub to: Point3,
-    /// Programmed feed in mm/s (ignored for rapids and dwells).
+    /// Programmed feed in mm/s along the X Y Z path (ignored for rapids and dwells); on a
+    /// move of the rotary axes alone, in rad/s along their chord ([`Move::rotary`]).
     pub feed: f64,
     /// How the corner at the end of this move may be blended.
     #[serde(default)]
@@ -131,6 +163,10 @@ pub struct Move {
     /// The source curve parameter this move's end point came from, if any.
     #[serde(default)]
     pub tag: Option<CurveTag>,
+    /// Where the rotary axes stand at the end of the move; `None`: where they stood (a
+    /// three-axis program never sets it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotary: Option<Rotary>,
 }
 
 impl Move {
@@ -142,6 +178,7 @@ impl Move {
             feed: 0.0,
             corner: Corner::Machine,
             tag: None,
+            rotary: None,
         }
     }
 
@@ -153,6 +190,7 @@ impl Move {
             feed,
             corner: Corner::Machine,
             tag: None,
+            rotary: None,
         }
     }
 
@@ -169,6 +207,7 @@ impl Move {
             feed,
             corner: Corner::Machine,
             tag: None,
+            rotary: None,
         }
     }
 
@@ -180,6 +219,7 @@ impl Move {
             feed: 0.0,
             corner: Corner::ExactStop,
             tag: None,
+            rotary: None,
         }
     }
 

@@ -59,6 +59,7 @@ pub fn varied_toolpath() -> Toolpath {
         feed: f,
         corner: Corner::Machine,
         tag: None,
+        rotary: None,
     });
     tp.push(Move {
         kind: MoveKind::Arc {
@@ -71,6 +72,7 @@ pub fn varied_toolpath() -> Toolpath {
         feed: 12.5,
         corner: Corner::Machine,
         tag: None,
+        rotary: None,
     });
     tp.push(Move::line(p(-3.0, 4.0, 1.0), 33.333_333_333));
     tp.push(Move::rapid(p(-3.0, 4.0, 50.0)));
@@ -253,6 +255,7 @@ pub fn build_random(steps: &[Step]) -> Toolpath {
                     feed: d.abs() * 50.0 + 0.5,
                     corner: Corner::Machine,
                     tag: None,
+                    rotary: None,
                 }
             }
             _ => Move::dwell(p, a.abs() * 5.0),

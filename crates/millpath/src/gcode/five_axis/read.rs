@@ -1,8 +1,9 @@
 //! Reading five-axis joint programs back: the words [`super::write_five_axis`] writes, in
 //! each of its dialects, to joint positions and block times.
 //!
-//! The main [`Reader`](crate::gcode::Reader) refuses rotary words (its moves are 3-axis); this
-//! one reads a table-table joint program: `G0`/`G1` with `X Y Z` and two rotary words, `G93`
+//! The main [`Reader`](crate::gcode::Reader) reads LinuxCNC's rotary words onto its moves
+//! ([`crate::toolpath::Move::rotary`]) and refuses them in the other dialects; this one reads a
+//! table-table joint program in every dialect that has rotary axes: `G0`/`G1` with `X Y Z` and two rotary words, `G93`
 //! (`F` in 1/min on every feed block, the block takes `1/F` minutes) or `G94` (the RS274NGC
 //! rule: `F` in units per minute along the XYZ chord, or along the rotary chord in degrees
 //! when only rotary axes move; Fanuc's: along the chord of all five words), dwells (`G4 P` s, Fanuc `G04 X` s, Sinumerik `G4 F` s), the

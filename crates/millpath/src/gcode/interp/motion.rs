@@ -5,7 +5,7 @@ use super::{Block, BlockError, FeedMode, ReadMove, ReaderOptions, State, arc_err
 use crate::gcode::Dialect;
 use crate::gcode::arc;
 use crate::geom::Point3;
-use crate::toolpath::{Corner, Move, MoveKind};
+use crate::toolpath::{Corner, Move, MoveKind, Rotary};
 
 fn at(a: &[f64; 3], k: usize) -> f64 {
     a.get(k).copied().unwrap_or(0.0)
@@ -274,6 +274,16 @@ impl State {
             }
         }
         let to = Point3::new(target[0], target[1], target[2]);
+        // The rotary axes (degrees in the program; offsets do not move them).
+        let turned = rotary.iter().any(Option::is_some);
+        let r0 = self.rotary.to_array();
+        let r1: [f64; 3] = std::array::from_fn(|k| match rotary.get(k).copied().flatten() {
+            Some(v) if self.modal.absolute || g53 => v.to_radians(),
+            Some(v) => at(&r0, k) + v.to_radians(),
+            None => at(&r0, k),
+        });
+        let rot_to = Rotary::new(r1[0], r1[1], r1[2]);
+        let rot_len = rot_to.distance(self.rotary);
         let corner = if b.has_g(90) {
             Corner::ExactStop
         } else {
@@ -290,11 +300,12 @@ impl State {
             feed: 0.0,
             corner,
             tag: None,
+            rotary: turned.then_some(rot_to),
         };
         if mv.is_feed() {
             mv.feed = match sync {
                 Some(s) => self.sync_feed(s)?,
-                None => self.feed_for(&mv, block_f)?,
+                None => self.feed_for(&mv, block_f, rot_len)?,
             };
         }
         let centre_ok = match mv.kind {
@@ -312,6 +323,7 @@ impl State {
             return self.probe(motion, mv, line, out);
         }
         self.pos = to;
+        self.rotary = rot_to;
         out.push(ReadMove {
             mv,
             line,
@@ -403,8 +415,21 @@ impl State {
         Ok(seconds)
     }
 
-    fn feed_for(&self, mv: &Move, block_f: Option<f64>) -> Result<f64, BlockError> {
+    /// The feed of `mv`, which also turns the rotary axes by `rot_len` rad: mm/s along its
+    /// X Y Z path, or on a move of the rotary axes alone rad/s along their chord.
+    fn feed_for(&self, mv: &Move, block_f: Option<f64>, rot_len: f64) -> Result<f64, BlockError> {
+        let xyz = mv.length_from(self.pos);
+        let rotary_only = xyz <= 0.0 && rot_len > 0.0;
         match self.modal.feed_mode {
+            // `SET_FEED_RATE`: the angular feed is F in degrees/min whatever the length units.
+            FeedMode::PerMinute if rotary_only => match self.feed {
+                Some(f) if f > 0.0 => Ok((self.f_word / 60.0).to_radians()),
+                _ => self.feed_for(mv, block_f, 0.0),
+            },
+            FeedMode::InverseTime if rotary_only => match block_f {
+                Some(f) if f > 0.0 => Ok(rot_len * f / 60.0),
+                _ => self.feed_for(mv, block_f, 0.0),
+            },
             FeedMode::PerMinute => match self.feed {
                 Some(f) if f > 0.0 => Ok(f),
                 Some(f) => Err(BlockError::new(
@@ -420,7 +445,7 @@ impl State {
             },
             FeedMode::PerRevolution => self.per_revolution_feed(),
             FeedMode::InverseTime => match block_f {
-                Some(f) if f > 0.0 => Ok(mv.length_from(self.pos).max(1e-9) * f / 60.0),
+                Some(f) if f > 0.0 => Ok(xyz.max(1e-9) * f / 60.0),
                 Some(f) => Err(BlockError::new(
                     "inverse-time feed",
                     format!("F{f}"),

@@ -46,14 +46,30 @@
 //! its tangential acceleration, jerk unlimited, and the junction cap LinuxCNC would end it at:
 //! its look-ahead final speed at tangent junctions, 0 at stops, and for a parabolic blend the
 //! speed at which the overlap starts (the overlap moves at about that speed: one segment
-//! slows from it to rest while the other speeds up to it). The planner's trapezoids between
-//! those speeds are what `tpRunCycle` runs, cycle by cycle.
+//! slows from it to rest while the other speeds up to it), the overlapping stretches of the
+//! two segments given as pieces no faster than that (`overlap.rs`). The planner's trapezoids
+//! between those speeds are what `tpRunCycle` runs, cycle by cycle.
+//!
+//! # Rotary axes (trivkins: A, B, C each its own joint)
+//! A move that turns A, B or C ([`crate::toolpath::Move::rotary`]) is a segment in the joint
+//! space X Y Z A B C, as LinuxCNC 2.9's `PmLine9` with `trivkins`: its length is the X Y Z
+//! distance, or the rotary chord (rad) when only rotary axes move; its speed and acceleration
+//! are bounded by every moving axis's limits (`canon.rs`; the machine's
+//! [`crate::machine::Machine::rotary`]); the feed is along that length (the reader gives a
+//! rotary-only move its feed in rad/s). Next to a segment that turns a rotary axis there is no
+//! tangency and no blend arc (`tcRotaryMotionCheck` in `tpSetupTangent` and
+//! `tpCheckBlendArcType`): in G64 the corner is a parabolic blend, in G61 a stop. The
+//! `[TRAJ]` speed limit does not apply to rotary-only segments (`tcPureRotaryCheck`). A
+//! rotary-only block is a [`BlockGeometry::Line`] that stays in place (`dir` zero) whose
+//! length is the rotary chord, in degrees as LinuxCNC measures it (its feed in deg/s).
 //!
 //! # What is not modelled
 //! * The queue is assumed to run ahead of the motion (LinuxCNC's task feeds it one segment a
 //!   servo cycle; a program of segments shorter than one cycle at speed can starve it).
-//! * Parabolic blends are timed at their start speed, not cycle by cycle; short segments'
-//!   "ramp" acceleration (segments shorter than 10 ms) as a trapezoid.
+//! * Parabolic blends are timed as an overlap at one speed, not cycle by cycle; short
+//!   segments' "ramp" acceleration (segments shorter than 10 ms) as a trapezoid.
+//! * Rotary axes with other kinematics than trivkins (LinuxCNC's `xyzac-trt` and the like,
+//!   switched by `M428`): the tool tip's path is not the joints' path there.
 //! * Spindle, coolant and tool commands, which make LinuxCNC's task wait for motion to stop,
 //!   are not in the move stream; dwells are (they stop the queue).
 //! * The program starts at rest where the reader starts (LinuxCNC's tool is where the last
@@ -62,6 +78,7 @@
 mod blend;
 mod canon;
 mod circle;
+mod overlap;
 mod queue;
 
 use super::Prepared;
@@ -70,7 +87,7 @@ use crate::geom::Point3;
 use crate::machine::Machine;
 use crate::motion::path::BlockGeometry;
 use crate::motion::profile::Limits1;
-use crate::toolpath::{Move, MoveKind};
+use crate::toolpath::{Move, MoveKind, Rotary};
 use canon::{Chain, Mode};
 use queue::{OPTIMIZATION_DEPTH, Term, Tp};
 
@@ -88,8 +105,12 @@ pub(crate) struct Queue<'m> {
     chain_mode: Option<Mode>,
     /// Junction cap of the next block to leave.
     pending_cap: f64,
+    /// Its overlap with the block before (a parabolic blend): length and speed.
+    pending_head: (f64, f64),
     /// Dwells waiting for the next motion.
     dwells: Vec<Prepared>,
+    /// Where the rotary axes stand after the last move (they start at 0).
+    rot: Rotary,
 }
 
 impl<'m> Queue<'m> {
@@ -101,7 +122,9 @@ impl<'m> Queue<'m> {
             chain_feed: 0.0,
             chain_mode: None,
             pending_cap: 0.0,
+            pending_head: (0.0, 0.0),
             dwells: Vec::new(),
+            rot: Rotary::default(),
         }
     }
 
@@ -115,6 +138,10 @@ impl<'m> Queue<'m> {
         out: &mut Vec<Prepared>,
     ) -> Result<(), Error> {
         let mode = Mode::of(m.corner, self.machine);
+        let r0 = self.rot;
+        let r1 = m.rotary.unwrap_or(r0);
+        self.rot = r1;
+        let turns = queue::turns(r0, r1);
         match m.kind {
             MoveKind::Dwell { .. } => {
                 self.flush_chain();
@@ -139,20 +166,23 @@ impl<'m> Queue<'m> {
             }
             MoveKind::Rapid => {
                 self.flush_chain();
-                if g.is_some() {
-                    self.add_line(from, m.to, 0.0, true, i, m, mode);
+                if g.is_some() || turns {
+                    self.add_line((from, r0), (m.to, r1), 0.0, true, i, m, mode);
                 }
             }
             MoveKind::Line => {
-                if g.is_some() {
-                    self.see(from, m.to, i, m, mode);
+                if g.is_some() || turns {
+                    self.see((from, r0), (m.to, r1), i, m, mode);
                 }
             }
             MoveKind::Arc { .. } => {
                 let merged = match canon::chord_deviation(from, m) {
                     Some((dev, mid)) if mode.term == Term::Parabolic && dev < mode.merge => {
-                        self.see(from, mid, i, m, mode);
-                        self.see(mid, m.to, i, m, mode);
+                        let half = |a: f64, b: f64| (a + b) / 2.0;
+                        let r_mid =
+                            Rotary::new(half(r0.a, r1.a), half(r0.b, r1.b), half(r0.c, r1.c));
+                        self.see((from, r0), (mid, r_mid), i, m, mode);
+                        self.see((mid, r_mid), (m.to, r1), i, m, mode);
                         true
                     }
                     _ => false,
@@ -160,7 +190,8 @@ impl<'m> Queue<'m> {
                 if !merged {
                     self.flush_chain();
                     if let Some(g) = g
-                        && let Some(mut tc) = canon::arc(&g, from, m.to, m.feed, self.machine)
+                        && let Some(mut tc) =
+                            canon::arc(&g, (from, r0), (m.to, r1), m.feed, self.machine)
                     {
                         tc.term = mode.term;
                         tc.tolerance = mode.tolerance;
@@ -186,8 +217,16 @@ impl<'m> Queue<'m> {
         Ok(())
     }
 
-    /// `see_segment`: a G1 point into the naive-CAM run.
-    fn see(&mut self, from: Point3, to: Point3, i: usize, m: &Move, mode: Mode) {
+    /// `see_segment`: a G1 point into the naive-CAM run; a point that turns the rotary axes
+    /// is sent at once, alone.
+    fn see(
+        &mut self,
+        from: (Point3, Rotary),
+        to: (Point3, Rotary),
+        i: usize,
+        m: &Move,
+        mode: Mode,
+    ) {
         // A new feed (LinuxCNC compares it exactly) or path mode sends the run first.
         let same = self.chain_mode == Some(mode) && self.chain_feed.to_bits() == m.feed.to_bits();
         let joins = same && mode.term == Term::Parabolic && self.chain.linkable(to, mode.merge);
@@ -200,6 +239,9 @@ impl<'m> Queue<'m> {
         self.chain.points.push((to, i, *m));
         self.chain_feed = m.feed;
         self.chain_mode = Some(mode);
+        if to.1 != self.chain.start.1 {
+            self.flush_chain();
+        }
     }
 
     /// `flush_segments`: the held run as one line.
@@ -217,8 +259,8 @@ impl<'m> Queue<'m> {
     #[allow(clippy::too_many_arguments)]
     fn add_line(
         &mut self,
-        from: Point3,
-        to: Point3,
+        from: (Point3, Rotary),
+        to: (Point3, Rotary),
         feed: f64,
         rapid: bool,
         i: usize,
@@ -238,6 +280,7 @@ impl<'m> Queue<'m> {
     fn drain(&mut self, out: &mut Vec<Prepared>) {
         self.emit(out, 0);
         self.pending_cap = 0.0;
+        self.pending_head = (0.0, 0.0);
     }
 
     /// Segments more than `hold` behind the newest leave the queue as planner blocks.
@@ -246,11 +289,27 @@ impl<'m> Queue<'m> {
             let Some(tc) = self.tp.queue.pop_front() else {
                 break;
             };
-            let cap_out = self.tp.junction(&tc, self.tp.queue.front());
-            out.push(Prepared {
+            let next = self.tp.queue.front();
+            let cap_out = self.tp.junction(&tc, next);
+            // A parabolic blend overlaps the two segments (module `overlap`).
+            let (tail, head_next) = match next {
+                Some(n) if tc.term == Term::Parabolic && cap_out > 0.0 => (
+                    (cap_out * cap_out / (2.0 * tc.tangential_accel()), cap_out),
+                    (cap_out * cap_out / (2.0 * n.tangential_accel()), cap_out),
+                ),
+                _ => ((0.0, 0.0), (0.0, 0.0)),
+            };
+            // A rotary-only segment is in degrees (module `canon`), its feed too.
+            let feed = if tc.pure_rotary() {
+                tc.mv.feed.to_degrees()
+            } else {
+                tc.mv.feed
+            };
+            let block = Prepared {
                 from: tc.start(),
                 mv: Move {
                     to: tc.end(),
+                    feed,
                     ..tc.mv
                 },
                 geom: tc.geom(),
@@ -259,8 +318,17 @@ impl<'m> Queue<'m> {
                 origin: tc.origin,
                 exact_limits: true,
                 settle_before: 0.0,
-            });
+            };
+            overlap::cut(
+                &overlap::Leaving {
+                    block,
+                    head: self.pending_head,
+                    tail,
+                },
+                out,
+            );
             self.pending_cap = cap_out;
+            self.pending_head = head_next;
         }
     }
 }

@@ -9,7 +9,7 @@ use crate::geom::{Point3, Vec3};
 use crate::machine::Machine;
 use crate::motion::path::BlockGeometry;
 use crate::motion::profile::Limits1;
-use crate::toolpath::Move;
+use crate::toolpath::{Move, Rotary};
 use std::collections::VecDeque;
 use std::f64::consts::PI;
 
@@ -27,6 +27,20 @@ pub(super) const KINK_RATIO: f64 = 0.1;
 const OPTIMIZATION_CUTOFF: usize = 4;
 /// Reversals within this angle stop (`SHARP_CORNER_DEG` of `tpSetupTangent`).
 const SHARP_CORNER_DEG: f64 = 2.0;
+
+/// Rotary displacements below it (rad) do not count.
+pub(super) const ROT_FUZZ: f64 = 1e-9;
+
+/// The rotary displacement from `r0` to `r1`, rad.
+pub(super) fn turn(r0: Rotary, r1: Rotary) -> [f64; 3] {
+    [r1.a - r0.a, r1.b - r0.b, r1.c - r0.c]
+}
+
+/// True when the rotary axes move between `r0` and `r1` (LinuxCNC's `tmag_zero` of the
+/// `abc` line, false).
+pub(super) fn turns(r0: Rotary, r1: Rotary) -> bool {
+    turn(r0, r1).iter().any(|x| x.abs() >= ROT_FUZZ)
+}
 
 /// `tc_term_cond_t`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,6 +81,8 @@ pub(super) struct Tc {
     pub traverse: bool,
     pub origin: usize,
     pub mv: Move,
+    /// The rotary axes at the start and the end.
+    pub rot: (Rotary, Rotary),
 }
 
 impl Tc {
@@ -92,7 +108,20 @@ impl Tc {
             traverse: false,
             origin: 0,
             mv: Move::rapid(Point3::ORIGIN),
+            rot: (Rotary::default(), Rotary::default()),
         }
+    }
+
+    /// `tcRotaryMotionCheck`: the segment turns a rotary axis.
+    pub fn turns(&self) -> bool {
+        turns(self.rot.0, self.rot.1)
+    }
+
+    /// `tcPureRotaryCheck`: a line that turns rotary axes only (its `target` is their
+    /// chord, rad).
+    pub fn pure_rotary(&self) -> bool {
+        matches!(self.shape, Shape::Line { start, end } if start.distance(end) < 1e-12)
+            && self.turns()
     }
 
     fn curved(&self) -> bool {
@@ -175,6 +204,10 @@ impl Tc {
     /// `tcGetStartAccelUnitVector` / `tcGetEndAccelUnitVector` (lines: the direction; circles:
     /// the start mixes the tangent with the centripetal direction).
     fn accel_dir(&self, at_start: bool) -> Vec3 {
+        if self.pure_rotary() {
+            // pmCartLineInit: the unit vector of a zero X Y Z line is (1, 0, 0).
+            return Vec3::new(1.0, 0.0, 0.0);
+        }
         match self.shape {
             Shape::Circle(c) if at_start => {
                 let start = c.point(0.0);
@@ -214,6 +247,11 @@ impl Tc {
     /// The planner geometry of the segment.
     pub fn geom(&self) -> Option<BlockGeometry> {
         match self.shape {
+            Shape::Line { start, .. } if self.pure_rotary() => Some(BlockGeometry::Line {
+                from: start,
+                dir: Vec3::ZERO,
+                length: self.target,
+            }),
             Shape::Line { start, end } => {
                 let d = end - start;
                 let length = d.length();
@@ -320,6 +358,10 @@ impl Tp {
     /// `tpGetMaxTargetVel` (feed override 1): the segment's speed limit, `[TRAJ]` limit
     /// included.
     pub fn max_target_vel(&self, tc: &Tc) -> f64 {
+        if tc.pure_rotary() {
+            // The [TRAJ] limit is a linear speed: not applied to rotary-only moves.
+            return tc.target_vel();
+        }
         tc.target_vel().min(self.v_limit)
     }
 
@@ -415,7 +457,9 @@ impl Tp {
 
     /// `tpSetupTangent`.
     fn setup_tangent(&self, prev: &mut Tc, tc: &mut Tc) -> Tangency {
-        if prev.term == Term::Stop {
+        // Rotary motion on either side: neither tangent nor a blend arc (the corner keeps its
+        // parabolic blend, exact path or stop).
+        if prev.term == Term::Stop || prev.turns() || tc.turns() {
             return Tangency::Fail;
         }
         let prev_tan = prev.end_tangent();
@@ -591,7 +635,10 @@ impl Tp {
             Term::Tangent => tc.finalvel.min(v_this).min(v_next),
             Term::Parabolic => {
                 let (b_this, b_next, _) = blend_velocity(tc, next, v_this, v_next);
-                b_this.min(b_next)
+                // The overlap lasts while `tc` slows from `b_this` to rest; `next` reaches
+                // at most its own acceleration times that (`tpUpdateBlend`).
+                let t_blend = b_this / tc.tangential_accel();
+                b_this.min(b_next).min(next.tangential_accel() * t_blend)
             }
             Term::Stop | Term::Exact => 0.0,
         }
