@@ -21,9 +21,10 @@
 //! offset's lines and arcs. After a pass its runs clear the raster, so that an inner pass's
 //! work is not repeated by the next.
 //!
-//! **Links.** Between runs the tool stays at its level, lifted by `lift`, and feeds straight
-//! to the next run where the segment keeps `r` from the walls and `r` from every cell of the
-//! material left (the initial rest, so at any level); else it retracts to the safe height.
+//! **Links.** Between runs at most [`LOW_LINK_MAX`] tool diameters apart the tool stays at
+//! its level, lifted by `lift`, and feeds straight to the next run where the segment keeps
+//! `r` from the walls (its exact clearance) and `r − c` from every cell of the material left
+//! (the initial rest, so at any level); else it retracts to the safe height.
 //! Each level (the step-down's, as the pocket's) repeats the runs. A run that starts in
 //! material the previous tool never reached (a slot narrower than it) is entered by a ramp
 //! at `ramp_angle`, back and forth along its first stretch, from the level above (cleared by
@@ -45,6 +46,10 @@ use cavalier_contours::polyline::{PlineSource, seg_arc_radius_and_center};
 /// How far inside its exact offset the rest tool's walls loop is cut, mm (as the pockets'
 /// walls loop: the written program's rounding never brings it closer than the tool radius).
 pub const WALL_BAND: f64 = 0.005;
+
+/// The longest link made at the lifted height, in tool diameters: farther, a retract and a
+/// rapid are quicker than the feed.
+pub const LOW_LINK_MAX: f64 = 4.0;
 
 /// How far from its distance a sample of an offset loop may lie and still be followed, mm.
 pub const LOOP_SLACK: f64 = 0.001;
@@ -513,16 +518,26 @@ pub fn generate(
     // those of the same pass is kept by their order of making (passes from the inside out).
     let safe = opts.top_z + opts.safe_height;
     let mut tp = Toolpath::new(*tool, Point3::new(0.0, 0.0, safe));
+    // A link keeps `r` from the walls (the exact clearance of the straight move) and does not
+    // meet the material left (within `r − c`, as a run's samples: sampled every `h`).
+    let spec = crate::stock::StockSpec {
+        outer: &shape.outer,
+        islands: &shape.islands,
+        wall_stock: 0.0,
+    };
     let link_clear = |a: Point, b: Point| -> bool {
         let len = a.distance(b);
+        if len > LOW_LINK_MAX * tool.diameter {
+            return false;
+        }
         let n = ((len / h).ceil() as usize).max(1);
-        (0..=n).all(|k| {
-            let p = a.lerp(b, k as f64 / n as f64);
-            // Between samples `h` apart the distance falls by `h/2` at most.
-            shape.contains(p)
-                && shape.distance_to(p) >= r + WALL_BAND + 0.5 * h
-                && initial.count_disc(p, r + c + 0.5 * h) == 0
-        })
+        let mut probe = Toolpath::new(*tool, Point3::from_xy(a, -1.0));
+        probe.push(Move::line(Point3::from_xy(b, -1.0), opts.feed));
+        crate::stock::min_clearance(&probe, spec).distance >= r + 0.5 * WALL_BAND
+            && (0..=n).all(|k| {
+                let p = a.lerp(b, k as f64 / n as f64);
+                shape.contains(p) && initial.count_disc(p, r - c) == 0
+            })
     };
     let mut run_length = 0.0;
     let mut z_prev = opts.top_z;
