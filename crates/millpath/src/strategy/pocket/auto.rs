@@ -178,12 +178,17 @@ pub fn arcs_or_chords(
         let t = time(&r.toolpath).ok();
         (r, t)
     };
-    let (arcs, t_arcs) = timed(generate(kind, shape, tool, opts, sim)?);
     if !opts.spiral.arcs {
-        return Ok((arcs, t_arcs));
+        return Ok(timed(generate(kind, shape, tool, opts, sim)?));
     }
+    // The two plans side by side (each reads only the shared inputs).
     let chord_opts = opts.clone().with_arcs(false);
-    let Ok(chords) = generate(kind, shape, tool, &chord_opts, sim) else {
+    let (arcs, chords) = rayon::join(
+        || generate(kind, shape, tool, opts, sim),
+        || generate(kind, shape, tool, &chord_opts, sim),
+    );
+    let (arcs, t_arcs) = timed(arcs?);
+    let Ok(chords) = chords else {
         return Ok((arcs, t_arcs));
     };
     let (mut chords, t_chords) = timed(chords);
