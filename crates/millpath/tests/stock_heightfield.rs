@@ -410,9 +410,9 @@ fn arcs_at_one_z_cut_their_own_sweep_whatever_their_radius() {
                     );
                     cut_cells += 1;
                 } else if near > r + 0.5 * step + 1e-9 {
-                    assert_eq!(
-                        h, top,
-                        "case {case}, cell ({i}, {j}) {near} mm from the arc: cut"
+                    assert!(
+                        h >= top - 1e-9,
+                        "case {case}, cell ({i}, {j}) {near} mm from the arc: cut to {h}"
                     );
                     kept_cells += 1;
                 }

@@ -200,12 +200,16 @@ impl Shape {
     }
 }
 
+/// The largest `|P'|`, `|P''|`, `|P'''|` per axis over a move, and the largest `|P'|`
+/// ([`Shape::bounds`]).
+type Bounds = ([[f64; 3]; 3], f64);
+
 impl Shape {
     /// The largest `|P'|`, `|P''|`, `|P'''|` per axis over the move, and the largest `|P'|`
     /// (module docs): a line's direction cosines; an arc's in its plane from its largest
     /// radius `ρ`, turn rate `w` and radial rate `q` (`√(q² + ρ²w²)`, `√(4q²w² + ρ²w⁴)`,
     /// `√(9q²w⁴ + ρ²w⁶)`), along its axis the rise rate alone.
-    fn bounds(&self) -> ([[f64; 3]; 3], f64) {
+    fn bounds(&self) -> Bounds {
         let m = &self.m;
         match (m.kind, m.sweep_from(self.from)) {
             (MoveKind::Arc { center, plane, .. }, Some((r0, sweep))) if self.len > 0.0 => {
@@ -245,7 +249,7 @@ impl Shape {
 /// `limits` the block's per-axis ones, `feed` its feed limit if any.
 fn stretch_is_quiet(
     peaks: (f64, f64, f64),
-    bounds: &([[f64; 3]; 3], f64),
+    bounds: &Bounds,
     limits: &[[(f64, f64); 3]; 3],
     feed: Option<(f64, f64)>,
 ) -> bool {
@@ -408,7 +412,7 @@ pub fn verify_plan(
     let mut prev: Option<(f64, Option<u32>, f64, f64, f64)> = None;
     let mut last_sample = None;
     // Each block's bounds, for the stretches (the last block's kept).
-    let mut block_bounds: Option<(usize, ([[f64; 3]; 3], f64))> = None;
+    let mut block_bounds: Option<(usize, Bounds)> = None;
     let quiet = |st: &super::sample::Stretch| {
         if opts.every_sample {
             return false;
