@@ -178,17 +178,12 @@ pub fn arcs_or_chords(
         let t = time(&r.toolpath).ok();
         (r, t)
     };
+    let (arcs, t_arcs) = timed(generate(kind, shape, tool, opts, sim)?);
     if !opts.spiral.arcs {
-        return Ok(timed(generate(kind, shape, tool, opts, sim)?));
+        return Ok((arcs, t_arcs));
     }
-    // The two plans side by side (each reads only the shared inputs).
     let chord_opts = opts.clone().with_arcs(false);
-    let (arcs, chords) = rayon::join(
-        || generate(kind, shape, tool, opts, sim),
-        || generate(kind, shape, tool, &chord_opts, sim),
-    );
-    let (arcs, t_arcs) = timed(arcs?);
-    let Ok(chords) = chords else {
+    let Ok(chords) = generate(kind, shape, tool, &chord_opts, sim) else {
         return Ok((arcs, t_arcs));
     };
     let (mut chords, t_chords) = timed(chords);

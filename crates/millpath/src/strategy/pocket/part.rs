@@ -27,7 +27,6 @@ use crate::geom::{Point, Point3};
 use crate::stock::{self, PartVerification, SimOptions, StockSpec};
 use crate::strategy::order::order_tour;
 use crate::toolpath::{Move, Tool, Toolpath};
-use rayon::prelude::*;
 
 /// One pocket of a part.
 #[derive(Debug, Clone)]
@@ -82,14 +81,24 @@ pub fn generate_part(
     let mut cut: Vec<PartPocket> = Vec::new();
     let mut skipped: Vec<PartPocket> = Vec::new();
     let mut first_error: Option<Error> = None;
-    // Each pocket is planned on its own, side by side; what is made of them comes in the
-    // pockets' order, as if one after another.
-    let plans: Vec<_> = shapes
-        .par_iter()
-        .map(|(_, shape)| plan_one(shape, strategy, tool, opts, sim, time))
-        .collect();
-    for ((index, shape), planned) in shapes.iter().zip(plans) {
+    for (index, shape) in shapes {
         let area = crate::geom::area_less_islands(&shape.outer, &shape.islands);
+        let planned: Result<(StrategyKind, PocketResult, Option<Vec<auto::Candidate>>)> =
+            match strategy {
+                PartStrategy::One(kind) => auto::arcs_or_chords(kind, shape, tool, opts, sim, time)
+                    .map(|(r, _)| (kind, r, None)),
+                PartStrategy::Auto => {
+                    let cands = auto::plan_all(shape, tool, opts, sim, time);
+                    match auto::choose(&cands).and_then(|i| {
+                        cands
+                            .get(i)
+                            .and_then(|c| c.result().cloned().map(|r| (c.kind, r)))
+                    }) {
+                        Some((kind, r)) => Ok((kind, r, Some(cands))),
+                        None => Err(auto::none_verified(&cands)),
+                    }
+                }
+            };
         match planned {
             Ok((kind, r, cands)) => {
                 let t = time(&r.toolpath)
@@ -189,34 +198,6 @@ pub fn generate_part(
         toolpath,
         verification,
     })
-}
-
-/// A pocket planned with `strategy`: the strategy kind, its result, and with
-/// [`PartStrategy::Auto`] every candidate.
-fn plan_one(
-    shape: &PocketShape,
-    strategy: PartStrategy,
-    tool: &Tool,
-    opts: &PocketOptions,
-    sim: &SimOptions,
-    time: &(dyn Fn(&Toolpath) -> Result<f64> + Sync),
-) -> Result<(StrategyKind, PocketResult, Option<Vec<auto::Candidate>>)> {
-    match strategy {
-        PartStrategy::One(kind) => {
-            auto::arcs_or_chords(kind, shape, tool, opts, sim, time).map(|(r, _)| (kind, r, None))
-        }
-        PartStrategy::Auto => {
-            let cands = auto::plan_all(shape, tool, opts, sim, time);
-            match auto::choose(&cands).and_then(|i| {
-                cands
-                    .get(i)
-                    .and_then(|c| c.result().cloned().map(|r| (c.kind, r)))
-            }) {
-                Some((kind, r)) => Ok((kind, r, Some(cands))),
-                None => Err(auto::none_verified(&cands)),
-            }
-        }
-    }
 }
 
 /// Joins toolpaths that each start and end at the clearance height `clear`: a rapid at that
