@@ -323,3 +323,106 @@ fn a_cut_through_the_bottom_takes_only_the_block() {
         .fold(f64::INFINITY, f64::min);
     assert!((lowest + 10.0).abs() < 1e-6, "{lowest}");
 }
+
+/// Arcs at one z swept whole: long arcs of radii up to 3 m crossing the block, arcs of more
+/// than a half turn and full circles, each way round. Every cell within `r` of a dense
+/// sampling of the arc (0.01 mm, computed here from its centre and angles) is cut to the
+/// arc's z, and every cell farther than `r` and half the sampling's spacing from all its
+/// samples keeps the top: the field cuts the arc's own sweep, no wider.
+#[test]
+fn arcs_at_one_z_cut_their_own_sweep_whatever_their_radius() {
+    let mut rng = Lcg(41);
+    let step = 0.01;
+    let (top, bottom) = (0.0, -10.0);
+    let (mut cut_cells, mut kept_cells, mut cases) = (0usize, 0usize, 0);
+    for case in 0..12 {
+        let d = rng.range(2.0, 8.0);
+        let r = 0.5 * d;
+        let z = rng.range(-6.0, -1.0);
+        let ccw = rng.next() < 0.5;
+        let (from, to, centre) = if case % 2 == 0 {
+            // A long, gentle arc through the block's middle: its centre metres off, a chord
+            // of about 30 mm.
+            let big = rng.range(200.0, 3000.0);
+            let dir = rng.range(0.0, TAU);
+            let centre = Point3::new(20.0 - big * dir.cos(), 20.0 - big * dir.sin(), 0.0);
+            let half = 15.0 / big;
+            let (a0, a1) = if ccw {
+                (dir - half, dir + half)
+            } else {
+                (dir + half, dir - half)
+            };
+            let at = |a: f64| Point3::new(centre.x + big * a.cos(), centre.y + big * a.sin(), z);
+            (at(a0), at(a1), centre)
+        } else {
+            // More than a half turn, or a full circle, about the block's middle.
+            let small = rng.range(3.0, 12.0);
+            let a0 = rng.range(0.0, TAU);
+            let turn = if case % 4 == 1 {
+                TAU
+            } else {
+                rng.range(PI + 0.1, TAU - 0.1)
+            };
+            let a1 = if ccw { a0 + turn } else { a0 - turn };
+            let centre = Point3::new(20.0, 20.0, 0.0);
+            let at = |a: f64| Point3::new(20.0 + small * a.cos(), 20.0 + small * a.sin(), z);
+            (at(a0), if turn >= TAU { at(a0) } else { at(a1) }, centre)
+        };
+        let mut tp = Toolpath::new(tool(d), Point3::new(from.x, from.y, top + 5.0));
+        tp.push(Move::rapid(Point3::new(from.x, from.y, top + 1.0)));
+        tp.push(Move::line(from, 1.0));
+        tp.push(Move::arc_xy(to, centre, ccw, 1.0));
+        tp.push(Move::rapid(Point3::new(to.x, to.y, top + 5.0)));
+        let opts = FieldOptions::default().with_cell(0.1);
+        let mut field =
+            HeightField::new(block(0.0, 0.0, 40.0, 40.0), bottom, top, &opts).expect("a block");
+        field.cut(&tp);
+        // Each cell's least distance from the samples within `r` and a cell of it.
+        let (nx, ny) = field.dims();
+        let c = field.cell();
+        let mut nearest = vec![f64::INFINITY; nx * ny];
+        for q in dense(from, &tp.moves[2], step) {
+            let reach = r + c;
+            let i0 = (((q.x - reach) / c).floor().max(0.0)) as usize;
+            let j0 = (((q.y - reach) / c).floor().max(0.0)) as usize;
+            let i1 = (((q.x + reach) / c).ceil().max(0.0) as usize).min(nx - 1);
+            let j1 = (((q.y + reach) / c).ceil().max(0.0) as usize).min(ny - 1);
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    let k = j * nx + i;
+                    nearest[k] = nearest[k].min(field.centre(i, j).distance(q.xy()));
+                }
+            }
+        }
+        for j in 0..ny {
+            for i in 0..nx {
+                let p = field.centre(i, j);
+                // The plunge at the start cuts its disc too; the rapids cut nothing.
+                if p.distance(from.xy()) <= r + step {
+                    continue;
+                }
+                let near = nearest[j * nx + i];
+                let h = field.height(i, j).expect("on the field");
+                if near <= r - 1e-9 {
+                    assert!(
+                        (h - z).abs() < 1e-4,
+                        "case {case}, cell ({i}, {j}) {near} mm from the arc: {h}, not {z}"
+                    );
+                    cut_cells += 1;
+                } else if near > r + 0.5 * step + 1e-9 {
+                    assert!(
+                        h >= top - 1e-9,
+                        "case {case}, cell ({i}, {j}) {near} mm from the arc: cut to {h}"
+                    );
+                    kept_cells += 1;
+                }
+            }
+        }
+        cases += 1;
+    }
+    assert_eq!(cases, 12);
+    assert!(
+        cut_cells > 50_000 && kept_cells > 500_000,
+        "{cut_cells}, {kept_cells}"
+    );
+}

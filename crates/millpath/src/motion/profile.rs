@@ -340,6 +340,16 @@ impl SpanProfile {
         starts[6]
     }
 
+    /// The state `tau` s into phase `p` (clamped to the phase), from the phases' start states
+    /// `starts`: at `tau = 0` the phase's own acceleration (after a jump of an unlimited
+    /// jerk), not the one the phase before ends with.
+    pub(crate) fn state_in(&self, starts: &[State1; 7], p: usize, tau: f64) -> State1 {
+        let (Some(ph), Some(st)) = (self.phases.get(p), starts.get(p)) else {
+            return State1::default();
+        };
+        advance(*st, ph, tau.clamp(0.0, ph.duration))
+    }
+
     /// The time at which the profile has covered `s` (0 ≤ s ≤ length), by a safeguarded
     /// Newton iteration within the phase that contains it.
     pub fn time_at(&self, s: f64) -> f64 {

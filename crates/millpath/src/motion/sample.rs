@@ -2,6 +2,13 @@
 //!
 //! With `P(s)` the block's geometry by arc length and `s(t)` the span's profile,
 //! `v = P'·ṡ`, `a = P''·ṡ² + P'·s̈`, `j = P'''·ṡ³ + 3P''·ṡ·s̈ + P'·s⃛`.
+//!
+//! **Stretches.** Between the knots of a plan (span starts, the phases of each span's
+//! profile, block starts, the rest after a span's profile) the block is one and `s(t)` one
+//! cubic: `s⃛` constant, `s̈` linear, `ṡ` quadratic. Over such a stretch the largest `ṡ` is at
+//! its ends or where `s̈ = 0`, the largest `|s̈|` at its ends ([`Stretch::peaks`]), so a
+//! sampler that bounds a block's geometry can tell from three states whether any sample in
+//! the stretch could exceed a limit ([`Plan::for_each_sparse_path_sample`]).
 
 use super::plan::{BlockPlan, Plan};
 use super::profile::{SpanProfile, State1};
@@ -42,6 +49,100 @@ pub(crate) struct PathSample {
     pub s: f64,
     /// The path state (s from the span start, speed, acceleration, jerk along the path).
     pub path: State1,
+}
+
+/// A stretch of a plan (module docs): one block, and one phase of its span's profile (or the
+/// rest after it), over which the path state is one cubic in time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Stretch {
+    /// The block.
+    pub block: usize,
+    /// The path samples at its start (the phase's own state there, after a jump of `s̈`) and
+    /// at its end, in the block.
+    pub ends: [PathSample; 2],
+    /// The path sample inside it where `s̈` changes sign, if it does.
+    pub turn: Option<PathSample>,
+}
+
+impl Stretch {
+    /// The largest `ṡ`, `|s̈|` and `|s⃛|` over the stretch: `ṡ` at its ends and turn, `|s̈|`
+    /// at its ends, `s⃛` constant (the largest of the three samples').
+    pub(crate) fn peaks(&self) -> (f64, f64, f64) {
+        let all = self.ends.iter().chain(self.turn.as_ref());
+        all.fold((0.0_f64, 0.0_f64, 0.0_f64), |(v, a, j), p| {
+            (
+                v.max(p.path.v.abs()),
+                a.max(p.path.a.abs()),
+                j.max(p.path.j.abs()),
+            )
+        })
+    }
+}
+
+/// How near a knot (relative to its time) a dense sample is taken whatever the stretch's
+/// bounds: the dense sampler finds a sample's phase by subtracting the phases' durations and
+/// its block by distance, which may put a sample within rounding of a knot on its other side.
+const KNOT_SLACK: f64 = 1e-9;
+
+/// [`KNOT_SLACK`] at time `t`, s.
+fn knot_slack(t: f64) -> f64 {
+    KNOT_SLACK * t.abs().max(1.0)
+}
+
+/// The samples every `dt` seconds a dense sampler takes ([`Plan::for_each_path_sample`]),
+/// taken or passed over in time order.
+struct Grid {
+    dt: f64,
+    total: f64,
+    /// The next sample's index, and the last one's.
+    next: usize,
+    last: usize,
+    /// The dense sampler's span and cursor.
+    span: usize,
+    cursor: Cursor,
+}
+
+impl Grid {
+    fn time(&self, i: usize) -> f64 {
+        (i as f64 * self.dt).min(self.total)
+    }
+
+    /// True when the next sample lies before `end` (or at it, when `at_end`).
+    fn before(&self, end: f64, at_end: bool) -> bool {
+        self.next <= self.last && {
+            let t = self.time(self.next);
+            t < end || (at_end && t <= end)
+        }
+    }
+
+    /// Takes the samples before `end` (at it too when `at_end`), as the dense sampler does.
+    fn take<F>(&mut self, plan: &Plan, end: f64, at_end: bool, f: &mut F) -> Result<(), Error>
+    where
+        F: FnMut(&PathSample) -> Result<(), Error>,
+    {
+        while self.before(end, at_end) {
+            let t = self.time(self.next);
+            while plan
+                .spans
+                .get(self.span + 1)
+                .is_some_and(|s| s.start_time <= t && s.length > 0.0 || s.start_time < t)
+            {
+                self.span += 1;
+            }
+            f(&plan.path_sample_in(self.span, t, &mut self.cursor)?)?;
+            self.next += 1;
+        }
+        Ok(())
+    }
+
+    /// Passes over the samples before `end`; how many.
+    fn pass(&mut self, end: f64) -> usize {
+        let from = self.next;
+        while self.before(end, false) {
+            self.next += 1;
+        }
+        self.next - from
+    }
 }
 
 /// Where a sampler is in a plan: the span whose profile it holds (with the state at each
@@ -230,5 +331,122 @@ impl Plan {
             f(&self.path_sample_in(k, t, &mut cursor)?)?;
         }
         Ok(())
+    }
+
+    /// [`Plan::for_each_path_sample`]'s samples, stretch by stretch (module docs): where
+    /// `quiet` finds that a stretch's ends and turn bound every sample in it, only those
+    /// (the ends, the turn between them), else the dense samples that fall in it. A dense
+    /// sample within [`KNOT_SLACK`] of a stretch's ends is always taken: there the dense
+    /// sampler may read the phase or the block on the knot's other side. Returns how many
+    /// dense samples the quiet stretches stood for.
+    pub(crate) fn for_each_sparse_path_sample<Q, F>(
+        &self,
+        dt: f64,
+        mut quiet: Q,
+        mut f: F,
+    ) -> Result<usize, Error>
+    where
+        Q: FnMut(&Stretch) -> bool,
+        F: FnMut(&PathSample) -> Result<(), Error>,
+    {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(crate::InputError::new("sample interval", dt)
+                .expected("a finite number of seconds > 0")
+                .into());
+        }
+        if self.spans.is_empty() {
+            return Ok(0);
+        }
+        if self.geometry.len() != self.blocks.len() {
+            return Err(Error::internal("plan sampled without its geometry"));
+        }
+        let mut grid = Grid {
+            dt,
+            total: self.total_time,
+            next: 0,
+            last: (self.total_time / dt).ceil() as usize,
+            span: 0,
+            cursor: Cursor::default(),
+        };
+        let mut passed = 0;
+        for (k, span) in self.spans.iter().enumerate() {
+            let end = self
+                .spans
+                .get(k + 1)
+                .map_or(self.total_time, |s| s.start_time);
+            let profile = if span.length > 0.0 {
+                span.profile()?
+            } else {
+                SpanProfile::default()
+            };
+            let starts = profile.phase_starts();
+            let blocks = self.blocks.get(span.first..span.end).unwrap_or_default();
+            // The pieces: each phase, then the rest (the last phase's end state), split at
+            // the blocks' starts.
+            let mut phase_start = span.start_time;
+            let mut at = span.start_time;
+            for p in 0..8 {
+                let (ph, phase_end) = match profile.phases.get(p) {
+                    Some(ph) => (p, phase_start + ph.duration),
+                    None => (6, end),
+                };
+                let phase_end = phase_end.min(end);
+                while at < phase_end {
+                    // The block running at `at`: the last of positive length started by it.
+                    let n = blocks
+                        .partition_point(|b| b.start_time <= at)
+                        .saturating_sub(1);
+                    let n = (0..=n)
+                        .rev()
+                        .find(|&i| blocks.get(i).is_some_and(|b| b.length > 0.0))
+                        .unwrap_or(n);
+                    let to = blocks
+                        .get(n + 1..)
+                        .unwrap_or_default()
+                        .iter()
+                        .map(|b| b.start_time)
+                        .find(|&t| t > at)
+                        .map_or(phase_end, |t| t.min(phase_end));
+                    let block = span.first + n;
+                    let offset = self.blocks.get(block).map_or(0.0, |b| b.span_offset);
+                    let tau0 = phase_start;
+                    let sample = |t: f64| {
+                        // The rest after the profile holds its end state.
+                        let tau = if p < 7 { t - tau0 } else { f64::INFINITY };
+                        let st = profile.state_in(&starts, ph, tau);
+                        PathSample {
+                            t,
+                            block,
+                            s: st.s - offset,
+                            path: st,
+                        }
+                    };
+                    let ends = [sample(at), sample(to)];
+                    let turn = profile.phases.get(ph).filter(|_| p < 7).and_then(|phase| {
+                        let t = tau0 - phase.a0 / phase.jerk;
+                        (phase.jerk != 0.0 && t > at && t < to).then(|| sample(t))
+                    });
+                    let stretch = Stretch { block, ends, turn };
+                    let (near_at, near_to) = (knot_slack(at), knot_slack(to));
+                    grid.take(self, at + near_at, true, &mut f)?;
+                    if quiet(&stretch) {
+                        f(&ends[0])?;
+                        if let Some(turn) = &turn {
+                            f(turn)?;
+                        }
+                        f(&ends[1])?;
+                        passed += grid.pass(to - near_to);
+                    } else {
+                        grid.take(self, to - near_to, false, &mut f)?;
+                    }
+                    at = to;
+                }
+                phase_start = phase_end.max(phase_start);
+                at = at.max(phase_end);
+            }
+        }
+        // Whatever the stretches left (the plan's last instant).
+        grid.take(self, f64::INFINITY, true, &mut f)?;
+        Ok(passed)
     }
 }

@@ -21,6 +21,22 @@
 //!   unless a spiral arc's `|P'| ≠ 1` meets another block) within
 //!   `min(A_i·T_ipo, J_i·T_ipo²)`.
 //!
+//! **Stretches.** The samples are the 1 kHz grid's, except over a stretch of the plan
+//! (one block, one phase of its span's profile: [`super::sample`]) whose ends and turn bound
+//! it below every limit: with `m₁, m₂, m₃` the largest `|P'|, |P''|, |P'''|` per axis over the
+//! block (a line's direction cosines and zeros; an arc's from its radius, turn rate and
+//! radial rate) and `V, A, J` the largest `ṡ, |s̈|, |s⃛|` over the stretch, every sample in it
+//! has `|vᵢ| ≤ m₁V`, `|aᵢ| ≤ m₂V² + m₁A`, `|jᵢ| ≤ m₃V³ + 3m₂VA + m₁J` and a speed within
+//! `|P'|ₘₐₓ·V`. Where all of these are within the limits (and `10⁻¹²` of them) the stretch is
+//! checked at its ends and turn alone, else at every grid sample in it: the velocity,
+//! acceleration, jerk and feed violations found are the grid's, one for one, at a cost per
+//! block where the plan keeps within its limits (a metre-scale program's hours of cruise). The
+//! consistency check between two samples of one stretch more than a grid step apart is exact
+//! (one cubic): within the rounding of `s`, `10⁻⁹·(1 + |s|)`, and of the times, four ulps of
+//! `t` at the two speeds (which every pair is allowed: at `t` of a million seconds an ulp is
+//! `10⁻¹⁰` s). [`VerifyOptions::every_sample`]
+//! samples the whole grid.
+//!
 //! Arcs whose end radius differs from the start radius (G-code rounding, tiny arcs within
 //! LinuxCNC's tolerance) are the spiral with the radius linear in the angle, parametrised by
 //! `s = u·L` with `L` = [`Move::length_from`] (mean radius); the verifier differentiates it
@@ -42,6 +58,9 @@ pub struct VerifyOptions {
     pub rate: f64,
     /// Relative tolerance on every limit.
     pub rel_tol: f64,
+    /// Every sample of the grid, even over the stretches whose bounds keep within the limits
+    /// (module docs).
+    pub every_sample: bool,
 }
 
 impl Default for VerifyOptions {
@@ -49,6 +68,7 @@ impl Default for VerifyOptions {
         VerifyOptions {
             rate: 1000.0,
             rel_tol: 1e-6,
+            every_sample: false,
         }
     }
 }
@@ -59,6 +79,8 @@ option_builders! {
     with_rate => rate: f64;
     /// Sets [`VerifyOptions::rel_tol`].
     with_rel_tol => rel_tol: f64;
+    /// Sets [`VerifyOptions::every_sample`].
+    with_every_sample => every_sample: bool;
 }
 
 /// What was violated.
@@ -99,6 +121,9 @@ pub struct Violation {
 pub struct VerifyReport {
     /// Number of time samples checked.
     pub samples: usize,
+    /// Samples of the grid not taken, their stretches' bounds within every limit (module
+    /// docs).
+    pub bounded: usize,
     /// Number of junctions checked.
     pub junctions: usize,
     /// Total number of violations.
@@ -173,6 +198,76 @@ impl Shape {
             }
         }
     }
+}
+
+/// The largest `|P'|`, `|P''|`, `|P'''|` per axis over a move, and the largest `|P'|`
+/// ([`Shape::bounds`]).
+type Bounds = ([[f64; 3]; 3], f64);
+
+impl Shape {
+    /// The largest `|P'|`, `|P''|`, `|P'''|` per axis over the move, and the largest `|P'|`
+    /// (module docs): a line's direction cosines; an arc's in its plane from its largest
+    /// radius `ρ`, turn rate `w` and radial rate `q` (`√(q² + ρ²w²)`, `√(4q²w² + ρ²w⁴)`,
+    /// `√(9q²w⁴ + ρ²w⁶)`), along its axis the rise rate alone.
+    fn bounds(&self) -> Bounds {
+        let m = &self.m;
+        match (m.kind, m.sweep_from(self.from)) {
+            (MoveKind::Arc { center, plane, .. }, Some((r0, sweep))) if self.len > 0.0 => {
+                let (tu, tv, tw) = plane.split(m.to - Point3::ORIGIN);
+                let (cu, cv, _) = plane.split(center - Point3::ORIGIN);
+                let (_, _, fw) = plane.split(self.from - Point3::ORIGIN);
+                let r1 = (tu - cu).hypot(tv - cv);
+                let rho = r0.abs().max(r1);
+                let q = (r1 - r0) / self.len;
+                let w = (sweep / self.len).abs();
+                let h = (tw - fw) / self.len;
+                let d1 = q.hypot(rho * w);
+                let d2 = (2.0 * q * w).hypot(rho * w * w);
+                let d3 = (3.0 * q * w * w).hypot(rho * w * w * w);
+                let abs = |v: Vec3| v.to_array().map(f64::abs);
+                (
+                    [
+                        abs(plane.join(d1, d1, h)),
+                        abs(plane.join(d2, d2, 0.0)),
+                        abs(plane.join(d3, d3, 0.0)),
+                    ],
+                    d1.hypot(h),
+                )
+            }
+            _ => {
+                let [_, d1, _, _] = self.eval(0.0);
+                (
+                    [d1.to_array().map(f64::abs), [0.0; 3], [0.0; 3]],
+                    d1.length(),
+                )
+            }
+        }
+    }
+}
+
+/// True when the stretch's bounds (module docs) keep every sample in it within the limits:
+/// `limits` the block's per-axis ones, `feed` its feed limit if any.
+fn stretch_is_quiet(
+    peaks: (f64, f64, f64),
+    bounds: &Bounds,
+    limits: &[[(f64, f64); 3]; 3],
+    feed: Option<(f64, f64)>,
+) -> bool {
+    let (v, a, j) = peaks;
+    let ([m1, m2, m3], speed) = bounds;
+    let within = |value: f64, over: f64| value * (1.0 + 1e-12) <= over;
+    let axes_within = (0..3).all(|i| {
+        let values = [
+            m1[i] * v,
+            m2[i] * v * v + m1[i] * a,
+            m3[i] * v * v * v + 3.0 * m2[i] * v * a + m1[i] * j,
+        ];
+        limits[i]
+            .iter()
+            .zip(values)
+            .all(|(&(lim, over), value)| !lim.is_finite() || within(value, over))
+    });
+    axes_within && feed.is_none_or(|(_, over)| within(speed * v, over))
 }
 
 /// The block being sampled and what its checks need: the limits and their thresholds
@@ -316,7 +411,30 @@ pub fn verify_plan(
     let limits = axis_limits(machine, tol);
     let mut prev: Option<(f64, Option<u32>, f64, f64, f64)> = None;
     let mut last_sample = None;
-    plan.for_each_path_sample(dt, |smp| {
+    // Each block's bounds, for the stretches (the last block's kept).
+    let mut block_bounds: Option<(usize, Bounds)> = None;
+    let quiet = |st: &super::sample::Stretch| {
+        if opts.every_sample {
+            return false;
+        }
+        let Some(sh) = shape(st.block) else {
+            return false;
+        };
+        let b = match block_bounds {
+            Some((k, b)) if k == st.block => b,
+            _ => {
+                let b = sh.bounds();
+                block_bounds = Some((st.block, b));
+                b
+            }
+        };
+        let rapid = matches!(sh.m.kind, MoveKind::Rapid);
+        let feed =
+            sh.m.is_feed()
+                .then(|| limit(sh.m.feed.min(machine.max_feed), tol));
+        stretch_is_quiet(st.peaks(), &b, &limits[usize::from(rapid)], feed)
+    };
+    let bounded = plan.for_each_sparse_path_sample(dt, quiet, |smp| {
         rep.samples += 1;
         last_sample = Some(*smp);
         if current.as_ref().is_none_or(|c| c.block != smp.block) {
@@ -394,12 +512,19 @@ pub fn verify_plan(
             if span0 == cur.span && h > 0.0 {
                 let ds = st.s - s0;
                 let pred = 0.5 * h * (v0 + st.v) + h * h * (a0 - st.a) / 12.0;
-                // Exact for a cubic; a jerk jump inside the interval adds O(Δj·h³).
-                let slack = if jmax_any.is_finite() {
+                // Exact for a cubic; a jerk jump inside the interval adds O(Δj·h³). Two
+                // samples more than a grid step apart lie on one stretch: one cubic
+                // (a grid step reads a few ulps of t longer or shorter).
+                let step = dt * (1.0 + 1e-9) + 8.0 * f64::EPSILON * smp.t.abs();
+                let slack = if h > step {
+                    0.0
+                } else if jmax_any.is_finite() {
                     4.0 * jmax_any * h.powi(3)
                 } else {
                     amax_any * h * h
                 };
+                // The rounding of the times: a few ulps of t, at the two speeds.
+                let slack = slack + 4.0 * f64::EPSILON * smp.t.abs() * (v0.abs() + st.v.abs());
                 if (ds - pred).abs() > slack + 1e-9 * (1.0 + st.s.abs()) {
                     rep.add(Violation {
                         kind: ViolationKind::Consistency,
@@ -414,6 +539,7 @@ pub fn verify_plan(
         prev = Some((smp.t, cur.span, st.s, st.v, st.a));
         Ok(())
     })?;
+    rep.bounded = bounded;
     if let Some(c) = &current {
         c.close(&mut rep);
     }

@@ -15,17 +15,20 @@
 //! √(r² − s²)`, `s` its distance across the move), and since z is linear in `t` the lowest
 //! tip over that interval is at one of its two ends: the cell gets exactly that height, with
 //! no samples and no scallops between samples. The cells visited are those of each row
-//! within `r` of the segment (the capsule's interval on the row). A helix (an XY arc whose
-//! z changes) is swept the same way in its angle: the axis on the circle of radius `R`
-//! about the centre passes within `r` of a cell at distance `ρ` and angle `φ` from it for
-//! the angles `|θ − φ| ≤ arccos((R² + ρ² − r²) / (2Rρ))` (modulo full turns), z is linear in
-//! the angle turned, and the cell gets the tip at the end of those intervals that lies
-//! lowest (an arc whose end is off its start circle by the program's rounding is taken on
-//! the mean circle, the tool widened by half the difference). An arc at one z is swept as
-//! chords of at most [`ARC_SAGITTA`] sagitta, each a straight move whose radius is widened
-//! by its sagitta, so that it holds the arc's own sweep: along such arcs the field cuts at
-//! most that much wider than the tool did (arcs in the other planes likewise, their
-//! chords' z linear in their travel).
+//! within `r` of the segment (the capsule's interval on the row). An XY arc (a helix, its z
+//! changing, or an arc at one z) is swept whole, the same way in its angle: the axis on the
+//! circle of radius `R` about the centre passes within `r` of a cell at distance `ρ` and
+//! angle `φ` from it for the angles `|θ − φ| ≤ arccos((R² + ρ² − r²) / (2Rρ))` (modulo full
+//! turns), z is linear in the angle turned, and the cell gets the tip at the end of those
+//! intervals that lies lowest (an arc whose end is off its start circle by the program's
+//! rounding is taken on the mean circle, the tool widened by half the difference). At one z
+//! the test needs no angle: a cell whose direction lies in the arc's sector is `|ρ − R|` from
+//! the arc, any other is nearest one of its ends. Only the cells of the annulus `|ρ − R| ≤ r`
+//! are read, so an arc costs its band whatever its radius. Arcs in the other planes (and
+//! arcs of a radius within [`ARC_SAGITTA`]) are swept as chords of at most [`ARC_SAGITTA`]
+//! sagitta, each a straight move whose radius is widened by its sagitta, so that it holds the
+//! arc's own sweep: along such arcs the field cuts at most that much wider than the tool did
+//! (their chords' z linear in their travel).
 //!
 //! A move that starts where the previous one ended, at the same or a higher z, and does not
 //! descend leaves the cells within the previous stamp's radius of its start alone: they were
@@ -55,8 +58,8 @@
 //! when the block would need more than [`FieldOptions::max_cells`] cells (16 M, 64 MB: a
 //! 400 × 300 mm block gets cells of 0.087 mm).
 
+mod arc;
 mod deepest_first;
-mod helix;
 mod pieces;
 
 use super::problem::Problem;
@@ -67,8 +70,9 @@ use deepest_first::{Tiles, tile_end};
 use pieces::{Piece, push_pieces};
 use std::fmt;
 
-/// The largest sagitta of the chords an arc is swept as, mm; each chord's sweep is widened
-/// by its own sagitta (at most this), so the field holds the arc's sweep.
+/// The largest sagitta of the chords an arc outside the XY plane is swept as, mm; each
+/// chord's sweep is widened by its own sagitta (at most this), so the field holds the arc's
+/// sweep. XY arcs are swept whole (module docs).
 pub const ARC_SAGITTA: f64 = 1e-3;
 
 /// The default z tolerance, mm: a cell lowered by less than this is not counted as cut
@@ -524,14 +528,14 @@ impl HeightField {
     ) -> Swept {
         match *piece {
             Piece::Line { a, b, r, last } => self.sweep(a, b, r, last, tally, tiles),
-            Piece::Helix {
+            Piece::Arc {
                 from,
                 to,
                 centre,
                 sweep,
                 r,
             } => {
-                self.sweep_helix((from, to), centre, sweep, r, tally, tiles);
+                self.sweep_arc((from, to), centre, sweep, r, tally, tiles);
                 Swept::default()
             }
         }

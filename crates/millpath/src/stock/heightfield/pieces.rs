@@ -1,12 +1,14 @@
-//! The pieces a move is swept as (see [`super`]): a line or a rapid whole, a helix whole, an
-//! arc at one z (or in another plane) as chords of at most [`ARC_SAGITTA`] sagitta.
+//! The pieces a move is swept as (see [`super`]): a line or a rapid whole, an XY arc whole
+//! (a helix, or an arc at one z), an arc in another plane (or of a radius within
+//! [`ARC_SAGITTA`]) as chords of at most [`ARC_SAGITTA`] sagitta.
 
 use super::{ARC_SAGITTA, Stamp, arc_pieces};
 use crate::geom::{Point, Point3};
 use crate::toolpath::{Move, MoveKind, Plane};
 
 /// One sweep a move is cut as: a straight piece (a line, a rapid, or one of an arc's
-/// chords, with the disc the move before it stamped) or a helix.
+/// chords, with the disc the move before it stamped) or an XY arc, its z linear in the
+/// angle turned (a helix; constant on an arc at one z).
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Piece {
     Line {
@@ -15,7 +17,7 @@ pub(super) enum Piece {
         r: f64,
         last: Option<Stamp>,
     },
-    Helix {
+    Arc {
         from: Point3,
         to: Point3,
         centre: Point,
@@ -29,7 +31,7 @@ impl Piece {
     pub(super) fn lowest(&self) -> f64 {
         match *self {
             Piece::Line { a, b, .. } => a.z.min(b.z),
-            Piece::Helix { from, to, .. } => from.z.min(to.z),
+            Piece::Arc { from, to, .. } => from.z.min(to.z),
         }
     }
 }
@@ -60,11 +62,10 @@ pub(super) fn push_pieces(
         }
         MoveKind::Arc { center, plane, .. } => {
             if let (Plane::Xy, Some((r0, sweep))) = (plane, m.sweep_from(from))
-                && (m.to.z - from.z).abs() > 1e-12
                 && r0 > ARC_SAGITTA
             {
-                // A helix: each cell's lowest tip over the angles that pass over it.
-                out.push(Piece::Helix {
+                // Whole: each cell's lowest tip over the angles that pass over it.
+                out.push(Piece::Arc {
                     from,
                     to: m.to,
                     centre: center.xy(),
