@@ -22,6 +22,12 @@
 //!    (an 8-neighbour holding material): the piece, the stock, both ([`Touches::Both`]: it
 //!    holds the piece), or neither (a loose chip).
 //!
+//!    For an outside cut the far side is the stock only where material off the piece (far or
+//!    band cells) joins it to the box's border: a bay of the outline behind a mouth narrower
+//!    than the tool, left standing, is cut off from the plate by the slot across its mouth and
+//!    holds nothing (a breadth-first search from each bridge touching both sides, its cells
+//!    remembered for the next).
+//!
 //! Every path from the piece to the stock crosses the band (it is `2r − 2ρ` wide, many cells),
 //! so the piece is held exactly by the bridges that touch both, and falls free without them:
 //! [`BridgeVerdict::hold`] is [`Hold::Free`] when no bridge touches both.
@@ -349,17 +355,14 @@ pub fn held_by(
     let heights = field.heights();
     let limit = floor + opts.z_tolerance.max(0.0);
     let solid = |a: usize, b: usize| f64::from(heights[(j0 + b) * nx + i0 + a]) > limit;
-    // The far side's material, in 8-connected components (outside cuts): only those reaching
-    // the box's border are the stock; one the band encloses is material the slot cut off
-    // from the stock (a notch narrower than the tool, left uncut), which holds nothing.
-    let far_label = if far == Class::Stock {
-        label_far(sx, sy, |a, b| solid(a, b) && class_of(a, b) == Class::Stock)
-    } else {
-        FarLabels::default()
-    };
     // 8-connected components of the band's material.
     let mut seen = vec![false; sx * sy];
-    let mut touched: Vec<(bool, Vec<u32>)> = Vec::new();
+    // Outside cuts: the far side's material is the stock only where it reaches the box's
+    // border through material off the piece (far or band cells); what the slot cut off from
+    // the plate (a bay behind a mouth narrower than the tool, left uncut) holds nothing.
+    // Searched from each bridge that touches the piece and the far side, cells cached.
+    let mut reach = ReachCache::default();
+    let off_piece = |a: usize, b: usize| solid(a, b) && class_of(a, b) != Class::Piece;
     let lengths = SegmentLengths::new(outline);
     let mut bridges = Vec::new();
     for start in 0..sx * sy {
@@ -371,7 +374,6 @@ pub fn held_by(
         let mut stack = vec![start];
         let mut cells = Vec::new();
         let (mut piece, mut stock) = (false, false);
-        let mut labels: Vec<u32> = Vec::new();
         while let Some(k) = stack.pop() {
             cells.push(k);
             let (a, b) = ((k % sx) as isize, (k / sx) as isize);
@@ -393,19 +395,13 @@ pub fn held_by(
                         }
                     }
                     Class::Piece => piece = true,
-                    Class::Stock => {
-                        stock = true;
-                        if let Some(&l) = far_label.label.get(nk)
-                            && l > 0
-                            && !labels.contains(&l)
-                        {
-                            labels.push(l);
-                        }
-                    }
+                    Class::Stock => stock = true,
                 }
             }
         }
-        touched.push((piece, labels));
+        if far == Class::Stock && piece && stock {
+            stock = reach.to_border(&cells, sx, sy, &off_piece);
+        }
         let touches = match (piece, stock) {
             (true, true) => Touches::Both,
             (true, false) => Touches::Piece,
@@ -455,18 +451,6 @@ pub fn held_by(
             top_max,
         });
     }
-    if far == Class::Stock {
-        let stock = far_label.stock_through(&touched);
-        for (bridge, (piece, labels)) in bridges.iter_mut().zip(&touched) {
-            let reaches = labels.iter().any(|&l| stock[l as usize]);
-            bridge.touches = match (*piece, reaches) {
-                (true, true) => Touches::Both,
-                (true, false) => Touches::Piece,
-                (false, true) => Touches::Stock,
-                (false, false) => Touches::Neither,
-            };
-        }
-    }
     bridges.sort_by(|x, y| x.start_mm.total_cmp(&y.start_mm));
     Ok(BridgeVerdict {
         bridges,
@@ -476,82 +460,63 @@ pub fn held_by(
     })
 }
 
-/// The far side's material cells in 8-connected components, numbered from 1 (0: not far
-/// material), and which components reach the box's border.
+/// Which material cells off the piece reach the box's border (module docs of `held_by`'s
+/// outside case): cells found by earlier searches, `true` when their search reached it.
 #[derive(Debug, Default)]
-struct FarLabels {
-    label: Vec<u32>,
-    /// Per label (index 0 unused): reaches the border.
-    border: Vec<bool>,
+struct ReachCache {
+    known: std::collections::HashMap<usize, bool>,
 }
 
-/// Labels the cells of an `sx` × `sy` box for which `far` holds.
-fn label_far(sx: usize, sy: usize, far: impl Fn(usize, usize) -> bool) -> FarLabels {
-    let mut label = vec![0_u32; sx * sy];
-    let mut border = vec![false];
-    let mut stack = Vec::new();
-    for start in 0..sx * sy {
-        if label[start] != 0 || !far(start % sx, start / sx) {
-            continue;
-        }
-        let id = border.len() as u32;
-        let mut edge = false;
-        label[start] = id;
-        stack.push(start);
-        while let Some(k) = stack.pop() {
+impl ReachCache {
+    /// Whether material off the piece joins the cells `from` (a bridge) to the border of the
+    /// `sx` × `sy` box: a breadth-first search over the cells `off` lets through, stopped at
+    /// the first border cell or cell known to reach it; every cell it visits is remembered
+    /// with the answer.
+    fn to_border(
+        &mut self,
+        from: &[usize],
+        sx: usize,
+        sy: usize,
+        off: &impl Fn(usize, usize) -> bool,
+    ) -> bool {
+        let mut seen: std::collections::HashSet<usize> = from.iter().copied().collect();
+        let mut queue: std::collections::VecDeque<usize> = from.iter().copied().collect();
+        let mut found = false;
+        'search: while let Some(k) = queue.pop_front() {
+            if let Some(&known) = self.known.get(&k) {
+                if known {
+                    found = true;
+                    break;
+                }
+                continue;
+            }
             let (a, b) = ((k % sx) as isize, (k / sx) as isize);
-            edge |= a == 0 || b == 0 || a as usize == sx - 1 || b as usize == sy - 1;
+            if a == 0 || b == 0 || a as usize == sx - 1 || b as usize == sy - 1 {
+                found = true;
+                break;
+            }
             for (da, db) in NEIGHBOURS {
                 let (na, nb) = (a + da, b + db);
                 if na < 0 || nb < 0 || na as usize >= sx || nb as usize >= sy {
                     continue;
                 }
                 let nk = nb as usize * sx + na as usize;
-                if label[nk] == 0 && far(na as usize, nb as usize) {
-                    label[nk] = id;
-                    stack.push(nk);
+                if !seen.contains(&nk) && off(na as usize, nb as usize) {
+                    seen.insert(nk);
+                    if self.known.get(&nk) == Some(&true) {
+                        found = true;
+                        break 'search;
+                    }
+                    queue.push_back(nk);
                 }
             }
         }
-        border.push(edge);
-    }
-    FarLabels { label, border }
-}
-
-impl FarLabels {
-    /// Which components are the stock: those reaching the border, and those joined to one by
-    /// bridges that do not touch the piece (`touched`: each bridge's piece contact and far
-    /// components).
-    fn stock_through(&self, touched: &[(bool, Vec<u32>)]) -> Vec<bool> {
-        let n = self.border.len();
-        let mut parent: Vec<usize> = (0..n).collect();
-        fn root(parent: &mut [usize], mut i: usize) -> usize {
-            while parent[i] != i {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
-            }
-            i
+        // A search that found the border leaves unexplored cells behind: only those it
+        // explored are known to reach it, and all of them do (each joins a start cell).
+        for k in seen {
+            self.known.insert(k, found);
         }
-        for (piece, labels) in touched {
-            if *piece {
-                continue;
-            }
-            for w in labels.windows(2) {
-                let (x, y) = (
-                    root(&mut parent, w[0] as usize),
-                    root(&mut parent, w[1] as usize),
-                );
-                parent[x] = y;
-            }
-        }
-        let mut stock_root = vec![false; n];
-        for (i, &b) in self.border.iter().enumerate() {
-            if b {
-                let r = root(&mut parent, i);
-                stock_root[r] = true;
-            }
-        }
-        (0..n).map(|i| stock_root[root(&mut parent, i)]).collect()
+        found
     }
 }
 
