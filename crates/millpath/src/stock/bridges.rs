@@ -400,7 +400,7 @@ pub fn held_by(
             }
         }
         if far == Class::Stock && piece && stock {
-            stock = reach.to_border(&cells, sx, sy, &off_piece);
+            stock = reach.reaches_border(&cells, sx, sy, &off_piece);
         }
         let touches = match (piece, stock) {
             (true, true) => Touches::Both,
@@ -472,7 +472,7 @@ impl ReachCache {
     /// `sx` × `sy` box: a breadth-first search over the cells `off` lets through, stopped at
     /// the first border cell or cell known to reach it; every cell it visits is remembered
     /// with the answer.
-    fn to_border(
+    fn reaches_border(
         &mut self,
         from: &[usize],
         sx: usize,
