@@ -3,8 +3,8 @@
 //! read from the program's header, the pair is judged on the stock simulation ("as drawn"),
 //! the rest program alone is short and `verify` (exact clearance, its own reader) finds no
 //! move closer to a wall than the small tool's radius. Without a diameter in the header and
-//! none given, the run is refused as bad input naming `--rest-from-diameter`, and nothing is
-//! written.
+//! none given, the run is refused as bad input naming `--rest-from-diameter`, and a rest tool
+//! no smaller than the previous one naming `--tool-diameter`; nothing is written.
 
 mod common;
 use common::{millpath, stderr};

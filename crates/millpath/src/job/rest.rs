@@ -84,6 +84,15 @@ pub fn run(
                 .into());
         }
     };
+    if tool.diameter >= previous_d {
+        return Err(InputError::new("tool diameter", tool.diameter)
+            .at("--tool-diameter with --rest-from")
+            .expected(format!(
+                "a tool smaller than the previous program's ({previous_d} mm), which cut \
+                 everything a tool this size reaches"
+            ))
+            .into());
+    }
     let vs = VerifySettings {
         tool_diameter: previous_d,
         select: select.map(str::to_owned),
