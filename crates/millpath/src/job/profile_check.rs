@@ -76,16 +76,25 @@ pub(crate) fn verify(
     let rho = opts.rounding;
     let tp = &res.toolpath;
     let mut rows = Vec::new();
-    for cut in &res.cuts {
+    // Each cut's dense check on its own, side by side; judged below in the cuts' order.
+    let bands: Vec<(f64, f64, f64, usize)> = res
+        .cuts
+        .par_iter()
+        .map(|cut| {
+            let t = &targets[cut.target];
+            let step = band_step(opts.tolerance, t.outline.length());
+            let (mut lo, mut hi, mut samples) = (f64::INFINITY, 0.0_f64, 0);
+            for range in &cut.finish_moves {
+                let b = dense_band_check(&t.outline, tp, range.clone(), step);
+                lo = lo.min(b.min_mm);
+                hi = hi.max(b.max_mm);
+                samples += b.samples;
+            }
+            (step, lo, hi, samples)
+        })
+        .collect();
+    for (cut, (step, lo, hi, samples)) in res.cuts.iter().zip(bands) {
         let t = &targets[cut.target];
-        let step = band_step(opts.tolerance, t.outline.length());
-        let (mut lo, mut hi, mut samples) = (f64::INFINITY, 0.0_f64, 0);
-        for range in &cut.finish_moves {
-            let b = dense_band_check(&t.outline, tp, range.clone(), step);
-            lo = lo.min(b.min_mm);
-            hi = hi.max(b.max_mm);
-            samples += b.samples;
-        }
         let d = cut.offset_mm;
         let (want_lo, want_hi) = if t.side == ProfileSide::On {
             (0.0, opts.tolerance - 2.0 * rho)
@@ -506,6 +515,17 @@ fn tab_middle(o: &Outline, centre: Point, w: f64, d: f64, side: ProfileSide) -> 
     pl
 }
 
+/// The cell of a bridge verdict's field for a tool of radius `r`, mm: the stock's default
+/// cell ([`crate::stock::DEFAULT_CELL`] scaled with the tool, at most `r/8`), but no finer
+/// than `r/16`. The band is then at least `2r − 4c − 2 µm ≥ 1.75 r` (28 cells) across and a
+/// bridge's extent and neck are measured within `2c ≤ r/4`; finer cells only multiply the
+/// field's cost (at 0.05 mm the slot of a 6 mm tool is 120 cells across).
+fn verdict_cell(r: f64) -> f64 {
+    let default = (crate::stock::DEFAULT_CELL * crate::toolpath::tolerance_scale(2.0 * r))
+        .min(crate::stock::MAX_CELL_RADII * r);
+    default.max(r / 16.0)
+}
+
 /// The height-field stock cut by the whole program, read for the bridges left in target
 /// `ti`'s slot: each of its tabs must be matched by exactly one bridge holding the piece to the
 /// stock, and every holding bridge by exactly one tab (a tab cut off, a tab missing or
@@ -532,7 +552,7 @@ fn bridge_verdict(
         block,
         opts.bottom_z(),
         opts.top_z,
-        &FieldOptions::default().with_tool_diameter(2.0 * r),
+        &FieldOptions::default().with_cell(verdict_cell(r)),
     )?;
     // Only the runs of moves whose boxes come within the tool radius (and a chord's sagitta,
     // under 1 mm) of the field's cut it: a move farther off lowers none of its cells. Of

@@ -7,7 +7,7 @@
 //! program leaves standing in it (tabs, and whatever it failed to cut) is a **bridge**.
 //!
 //! 1. **The band.** Every cell of the field near the outline gets its distance to the outline
-//!    from a Euclidean distance transform (the one [`super::reach`] uses) seeded with the
+//!    from a Euclidean distance transform (exact on the grid, computed over the band alone) seeded with the
 //!    cells on the piece's side of the outline (even-odd fill at cell centres) and the cells
 //!    holding points of the outline sampled every `c/2`: within `c` of the exact distance.
 //!    The band is the cells on the slot's side at a distance in `[ρ, 2r − ρ]`, the slot less
@@ -46,7 +46,7 @@
 use super::heightfield::{DEFAULT_Z_TOLERANCE, HeightField};
 use super::nearest::IndexedWall;
 use super::raster::Raster;
-use super::reach::edt;
+use super::reach::BandDistance;
 use crate::error::{InputError, require_finite, require_positive};
 use crate::geom::{Aabb, Outline, Point};
 use cavalier_contours::polyline::{PlineSource, seg_arc_radius_and_center};
@@ -315,21 +315,42 @@ pub fn held_by(
         CutSide::Outside => !inside(a, b),
         CutSide::Inside => inside(a, b),
     };
-    // Distance to the outline over the slot's side: seeds on the other side and on the walls.
-    let mut seeds: Vec<bool> = Vec::with_capacity(sx * sy);
-    for b in 0..sy {
-        seeds.extend((0..sx).map(|a| !on_slot_side(a, b)));
-    }
+    // Distance to the outline over the slot's side, out to just past the band: seeds on the
+    // walls (the outline sampled every `c/2`) and on the other side. Of the other side's
+    // cells only those with a 4-neighbour on the slot's side are seeds: the nearest cell of
+    // the other side to any cell of the slot's is one of them (a step from a cell whose four
+    // neighbours are all on the other side, towards the slot's cell, comes nearer), and the
+    // outline passes within a cell of each, so within two of a sample's cell.
     let pl = outline.polyline();
     let samples = ((pl.path_length() / (0.5 * c)).ceil() as usize).max(8);
+    let mut seeds: Vec<(usize, usize)> = Vec::with_capacity(2 * samples);
     for p in crate::geom::region::sample_loop(pl, samples) {
         let a = ((p.x - fb.min.x) / c - 0.5).round() - i0 as f64;
         let b = ((p.y - fb.min.y) / c - 0.5).round() - j0 as f64;
         if a >= 0.0 && b >= 0.0 && (a as usize) < sx && (b as usize) < sy {
-            seeds[b as usize * sx + a as usize] = true;
+            seeds.push((a as usize, b as usize));
         }
     }
-    let d2 = edt(&seeds, sx, sy);
+    let on_walls = seeds.len();
+    for k in 0..on_walls {
+        let (a, b) = seeds[k];
+        for na in a.saturating_sub(3)..(a + 4).min(sx) {
+            for nb in b.saturating_sub(3)..(b + 4).min(sy) {
+                let by_slot = [(1, 0), (-1, 0), (0, 1), (0, -1)].iter().any(|&(da, db)| {
+                    let (xa, xb) = (na as isize + da, nb as isize + db);
+                    xa >= 0
+                        && xb >= 0
+                        && (xa as usize) < sx
+                        && (xb as usize) < sy
+                        && on_slot_side(xa as usize, xb as usize)
+                });
+                if !on_slot_side(na, nb) && by_slot {
+                    seeds.push((na, nb));
+                }
+            }
+        }
+    }
+    let d2 = BandDistance::new(&seeds, sx, sy, outer / c + 2.0);
     drop(seeds);
     // The wall's side of the slot (the outline's other side and the near rim) and its far
     // side: the piece and the stock for an outside cut, the other way round inside.
@@ -343,13 +364,18 @@ pub fn held_by(
         if !on_slot_side(a, b) {
             return near;
         }
-        let d = f64::from(d2[b * sx + a]).sqrt() * c;
-        if d < inner {
-            near
-        } else if d <= outer {
-            Class::Band
-        } else {
-            far
+        match d2.d2(b * sx + a) {
+            Some(g) => {
+                let d = f64::from(g).sqrt() * c;
+                if d < inner {
+                    near
+                } else if d <= outer {
+                    Class::Band
+                } else {
+                    far
+                }
+            }
+            None => far,
         }
     };
     let heights = field.heights();
@@ -365,7 +391,7 @@ pub fn held_by(
     let off_piece = |a: usize, b: usize| solid(a, b) && class_of(a, b) != Class::Piece;
     let lengths = SegmentLengths::new(outline);
     let mut bridges = Vec::new();
-    for start in 0..sx * sy {
+    for &start in d2.within() {
         let (a, b) = (start % sx, start / sx);
         if seen[start] || !solid(a, b) || class_of(a, b) != Class::Band {
             continue;
@@ -426,7 +452,7 @@ pub fn held_by(
             .iter()
             .step_by(stride)
             .map(|&k| {
-                let layer = (f64::from(d2[k]).sqrt()) as usize;
+                let layer = f64::from(d2.d2(k).unwrap_or(u32::MAX)).sqrt() as usize;
                 (lengths.at(centre(k)), layer)
             })
             .collect();
@@ -461,10 +487,17 @@ pub fn held_by(
 }
 
 /// Which material cells off the piece reach the box's border (module docs of `held_by`'s
-/// outside case): cells found by earlier searches, `true` when their search reached it.
+/// outside case): cells found by earlier searches, with the answer of their search. Dense
+/// per cell of the box, allocated zeroed at the first search (pages no search reaches are
+/// never written).
 #[derive(Debug, Default)]
 struct ReachCache {
-    known: std::collections::HashMap<usize, bool>,
+    /// Per cell: 0 unknown, 1 reaches the border, 2 does not.
+    known: Vec<u8>,
+    /// Per cell: the number of the last search that visited it.
+    visited: Vec<u32>,
+    /// Searches so far.
+    searches: u32,
 }
 
 impl ReachCache {
@@ -479,16 +512,29 @@ impl ReachCache {
         sy: usize,
         off: &impl Fn(usize, usize) -> bool,
     ) -> bool {
-        let mut seen: std::collections::HashSet<usize> = from.iter().copied().collect();
-        let mut queue: std::collections::VecDeque<usize> = from.iter().copied().collect();
+        if self.known.len() != sx * sy {
+            self.known = vec![0; sx * sy];
+            self.visited = vec![0; sx * sy];
+        }
+        self.searches += 1;
+        let id = self.searches;
+        let mut seen: Vec<usize> = Vec::with_capacity(from.len());
+        for &k in from {
+            if self.visited[k] != id {
+                self.visited[k] = id;
+                seen.push(k);
+            }
+        }
+        let mut queue: std::collections::VecDeque<usize> = seen.iter().copied().collect();
         let mut found = false;
         'search: while let Some(k) = queue.pop_front() {
-            if let Some(&known) = self.known.get(&k) {
-                if known {
+            match self.known[k] {
+                1 => {
                     found = true;
                     break;
                 }
-                continue;
+                2 => continue,
+                _ => {}
             }
             let (a, b) = ((k % sx) as isize, (k / sx) as isize);
             if a == 0 || b == 0 || a as usize == sx - 1 || b as usize == sy - 1 {
@@ -501,9 +547,10 @@ impl ReachCache {
                     continue;
                 }
                 let nk = nb as usize * sx + na as usize;
-                if !seen.contains(&nk) && off(na as usize, nb as usize) {
-                    seen.insert(nk);
-                    if self.known.get(&nk) == Some(&true) {
+                if self.visited[nk] != id && off(na as usize, nb as usize) {
+                    self.visited[nk] = id;
+                    seen.push(nk);
+                    if self.known[nk] == 1 {
                         found = true;
                         break 'search;
                     }
@@ -513,8 +560,9 @@ impl ReachCache {
         }
         // A search that found the border leaves unexplored cells behind: only those it
         // explored are known to reach it, and all of them do (each joins a start cell).
+        let answer = if found { 1 } else { 2 };
         for k in seen {
-            self.known.insert(k, found);
+            self.known[k] = answer;
         }
         found
     }

@@ -25,6 +25,7 @@
 use super::{Problem, SimOptions, StockSpec, Verification, infer_levels, verify};
 use crate::geom::{Point, Point3};
 use crate::toolpath::{Move, MoveKind, Toolpath};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// What the verifier found on a whole program.
@@ -128,12 +129,23 @@ pub fn verify_part(
     let mut per = Vec::with_capacity(pockets.len());
     let mut unreachable = Vec::new();
     let mut lengths = Vec::with_capacity(pockets.len());
-    for (spec, sub) in pockets.iter().zip(subs) {
-        match sub {
-            Some(mut sub) => {
+    // Each pocket's moves are simulated on their own, side by side.
+    let checked: Vec<Option<(f64, Verification)>> = pockets
+        .par_iter()
+        .zip(subs)
+        .map(|(spec, sub)| {
+            sub.map(|mut sub| {
                 infer_levels(&mut sub);
-                lengths.push(sub.cut_length());
-                per.push(verify(&sub, *spec, nominal_deg, sim));
+                let v = verify(&sub, *spec, nominal_deg, sim);
+                (sub.cut_length(), v)
+            })
+        })
+        .collect();
+    for (spec, sub) in pockets.iter().zip(checked) {
+        match sub {
+            Some((length, v)) => {
+                lengths.push(length);
+                per.push(v);
             }
             None => {
                 lengths.push(0.0);

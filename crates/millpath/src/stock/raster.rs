@@ -45,6 +45,15 @@ impl Raster {
         )
     }
 
+    fn grid(&self) -> Grid {
+        Grid {
+            origin: self.origin,
+            cell: self.cell,
+            nx: self.nx,
+            ny: self.ny,
+        }
+    }
+
     /// Cell side in mm.
     pub fn cell(&self) -> f64 {
         self.cell
@@ -134,106 +143,27 @@ impl Raster {
         count
     }
 
-    /// Rows and column ranges of the cells whose centres lie within `r` of `c`.
-    fn disc_spans(&self, c: Point, r: f64) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
-        self.rows(c.y - r, c.y + r).filter_map(move |j| {
-            let dy = self.centre(0, j).y - c.y;
-            let w2 = r * r - dy * dy;
-            if w2 < 0.0 {
-                return None;
-            }
-            let w = w2.sqrt();
-            self.columns(c.x - w, c.x + w).map(|(i0, i1)| (j, i0, i1))
-        })
-    }
-
-    /// The rows `j0..=j1` of the cells whose centres lie between `y0` and `y1`.
-    fn rows(&self, y0: f64, y1: f64) -> std::ops::Range<usize> {
-        let j0 = ((y0 - self.origin.y) / self.cell - 0.5).ceil().max(0.0) as usize;
-        let j1 = ((y1 - self.origin.y) / self.cell - 0.5).floor();
-        if j1 < 0.0 || self.ny == 0 {
-            return 0..0;
-        }
-        let j1 = (j1 as usize).min(self.ny - 1);
-        if j0 <= j1 { j0..j1 + 1 } else { 0..0 }
-    }
-
-    /// The columns `i0..=i1` of the cells whose centres lie between `x0` and `x1`.
-    fn columns(&self, x0: f64, x1: f64) -> Option<(usize, usize)> {
-        let i0 = ((x0 - self.origin.x) / self.cell - 0.5).ceil().max(0.0) as usize;
-        let i1 = ((x1 - self.origin.x) / self.cell - 0.5).floor();
-        (i1 >= 0.0 && self.nx > 0).then(|| (i0, (i1 as usize).min(self.nx - 1)))
-    }
-
-    /// Rows and column ranges of the cells whose centres lie within `r` of the segment from
-    /// `a` to `b` (the area a disc of radius `r` sweeps along it). Each row meets this convex
-    /// region in one interval: the hull of where it meets the two end discs and the band
-    /// `0 ≤ t ≤ |b − a|`, `|s| ≤ r` (`t` along the segment, `s` across it, both linear in x).
-    fn capsule_spans(&self, a: Point, b: Point, r: f64) -> Vec<(usize, usize, usize)> {
-        let d = b - a;
-        let len = d.length();
-        let u = if len > 0.0 { d / len } else { d };
-        self.rows(a.y.min(b.y) - r, a.y.max(b.y) + r)
-            .filter_map(|j| {
-                let y = self.centre(0, j).y;
-                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-                for c in [a, b] {
-                    let w2 = r * r - (y - c.y) * (y - c.y);
-                    if w2 >= 0.0 {
-                        let w = w2.sqrt();
-                        lo = lo.min(c.x - w);
-                        hi = hi.max(c.x + w);
-                    }
-                }
-                if len > 0.0 {
-                    // t(x) = u.x·(x − a.x) + u.y·(y − a.y) ∈ [0, len];
-                    // s(x) = u.y·(x − a.x) − u.x·(y − a.y) ∈ [−r, r].
-                    let (t0, s0) = (u.y * (y - a.y), -u.x * (y - a.y));
-                    let band = [(u.x, t0, 0.0, len), (u.y, s0, -r, r)].iter().try_fold(
-                        (f64::NEG_INFINITY, f64::INFINITY),
-                        |(l, h), &(k, c0, min, max)| {
-                            if k.abs() < 1e-12 {
-                                (min..=max).contains(&c0).then_some((l, h))
-                            } else {
-                                let (x0, x1) = ((min - c0) / k + a.x, (max - c0) / k + a.x);
-                                Some((l.max(x0.min(x1)), h.min(x0.max(x1))))
-                            }
-                        },
-                    );
-                    if let Some((l, h)) = band.filter(|(l, h)| l <= h) {
-                        lo = lo.min(l);
-                        hi = hi.max(h);
-                    }
-                }
-                if lo > hi {
-                    return None;
-                }
-                self.columns(lo, hi).map(|(i0, i1)| (j, i0, i1))
-            })
-            .collect()
-    }
-
     /// Clears the cells within `r` of the segment from `a` to `b`; returns how many material
     /// cells it removed.
     pub fn clear_capsule(&mut self, a: Point, b: Point, r: f64) -> u64 {
-        self.capsule_spans(a, b, r)
-            .into_iter()
+        self.grid()
+            .capsule_spans(a, b, r)
             .map(|(j, i0, i1)| u64::from(self.set_span(j, i0, i1, false)))
             .sum()
     }
 
     /// Clears the disc of radius `r` about `c`; returns how many material cells it removed.
     pub fn clear_disc(&mut self, c: Point, r: f64) -> u64 {
-        let spans: Vec<(usize, usize, usize)> = self.disc_spans(c, r).collect();
-        spans
-            .into_iter()
+        self.grid()
+            .disc_spans(c, r)
             .map(|(j, i0, i1)| u64::from(self.set_span(j, i0, i1, false)))
             .sum()
     }
 
     /// How many material cells lie within `r` of `c`.
     pub fn count_disc(&self, c: Point, r: f64) -> u64 {
-        self.disc_spans(c, r)
+        self.grid()
+            .disc_spans(c, r)
             .map(|(j, i0, i1)| u64::from(self.span_count(j, i0, i1)))
             .sum()
     }
@@ -286,6 +216,136 @@ fn arc_crossings(
         if rel < sweep.abs() - 1e-12 {
             xs.push(x);
         }
+    }
+}
+
+/// The layout of a raster's cells, apart from its bits (so that spans can be walked while
+/// the bits change).
+#[derive(Debug, Clone, Copy)]
+struct Grid {
+    origin: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+}
+
+/// `x.floor()` without a call into libm (the baseline x86-64 target has no rounding
+/// instruction): exact for every `|x| < 2⁶³`, and what the callers clamp beyond.
+#[inline]
+fn floor(x: f64) -> f64 {
+    let t = x as i64 as f64;
+    if t > x { t - 1.0 } else { t }
+}
+
+/// `x.ceil()`, as [`floor`].
+#[inline]
+fn ceil(x: f64) -> f64 {
+    let t = x as i64 as f64;
+    if t < x { t + 1.0 } else { t }
+}
+
+impl Grid {
+    /// The y of row `j`'s cell centres.
+    fn row_y(self, j: usize) -> f64 {
+        self.origin.y + (j as f64 + 0.5) * self.cell
+    }
+
+    /// Rows and column ranges of the cells whose centres lie within `r` of `c`.
+    fn disc_spans(self, c: Point, r: f64) -> impl Iterator<Item = (usize, usize, usize)> {
+        self.rows(c.y - r, c.y + r).filter_map(move |j| {
+            let dy = self.row_y(j) - c.y;
+            let w2 = r * r - dy * dy;
+            if w2 < 0.0 {
+                return None;
+            }
+            let w = w2.sqrt();
+            self.columns(c.x - w, c.x + w).map(|(i0, i1)| (j, i0, i1))
+        })
+    }
+
+    /// The rows `j0..=j1` of the cells whose centres lie between `y0` and `y1`.
+    fn rows(self, y0: f64, y1: f64) -> std::ops::Range<usize> {
+        let j0 = ceil((y0 - self.origin.y) / self.cell - 0.5).max(0.0) as usize;
+        let j1 = floor((y1 - self.origin.y) / self.cell - 0.5);
+        if j1 < 0.0 || self.ny == 0 {
+            return 0..0;
+        }
+        let j1 = (j1 as usize).min(self.ny - 1);
+        if j0 <= j1 { j0..j1 + 1 } else { 0..0 }
+    }
+
+    /// The columns `i0..=i1` of the cells whose centres lie between `x0` and `x1`.
+    fn columns(self, x0: f64, x1: f64) -> Option<(usize, usize)> {
+        let i0 = ceil((x0 - self.origin.x) / self.cell - 0.5).max(0.0) as usize;
+        let i1 = floor((x1 - self.origin.x) / self.cell - 0.5);
+        (i1 >= 0.0 && self.nx > 0).then(|| (i0, (i1 as usize).min(self.nx - 1)))
+    }
+
+    /// Rows and column ranges of the cells whose centres lie within `r` of the segment from
+    /// `a` to `b` (the area a disc of radius `r` sweeps along it). Each row meets this convex
+    /// region in one interval: the hull of where it meets the two end discs and the band
+    /// `0 ≤ t ≤ |b − a|`, `|s| ≤ r` (`t` along the segment, `s` across it, both linear in x).
+    fn capsule_spans(
+        self,
+        a: Point,
+        b: Point,
+        r: f64,
+    ) -> impl Iterator<Item = (usize, usize, usize)> {
+        let d = b - a;
+        let len = d.length();
+        let u = if len > 0.0 { d / len } else { d };
+        // The band reaches past the discs' chords only in rows that cross a straight side
+        // (`s = ±r`, its y from `min(a.y, b.y) ± u.x·r` to `max(a.y, b.y) ± u.x·r`): elsewhere
+        // a row meets the band between points of the two diameters `t = 0` and `t = len`,
+        // inside the discs. A row a cell or more from both sides' y skips the band: its
+        // points there lie at least that far inside a disc's chord.
+        let (y_lo, y_hi) = (a.y.min(b.y), a.y.max(b.y));
+        let side = (u.x * r).abs() + self.cell;
+        let crosses_a_side = move |y: f64| {
+            (y_lo - side..=y_hi + side).contains(&y) && {
+                let (d1, d2) = (u.x * r, -u.x * r);
+                [d1, d2]
+                    .iter()
+                    .any(|&dy| (y_lo + dy - self.cell..=y_hi + dy + self.cell).contains(&y))
+            }
+        };
+        self.rows(a.y.min(b.y) - r, a.y.max(b.y) + r)
+            .filter_map(move |j| {
+                let y = self.row_y(j);
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for c in [a, b] {
+                    let w2 = r * r - (y - c.y) * (y - c.y);
+                    if w2 >= 0.0 {
+                        let w = w2.sqrt();
+                        lo = lo.min(c.x - w);
+                        hi = hi.max(c.x + w);
+                    }
+                }
+                if len > 0.0 && crosses_a_side(y) {
+                    // t(x) = u.x·(x − a.x) + u.y·(y − a.y) ∈ [0, len];
+                    // s(x) = u.y·(x − a.x) − u.x·(y − a.y) ∈ [−r, r].
+                    let (t0, s0) = (u.y * (y - a.y), -u.x * (y - a.y));
+                    let band = [(u.x, t0, 0.0, len), (u.y, s0, -r, r)].iter().try_fold(
+                        (f64::NEG_INFINITY, f64::INFINITY),
+                        |(l, h), &(k, c0, min, max)| {
+                            if k.abs() < 1e-12 {
+                                (min..=max).contains(&c0).then_some((l, h))
+                            } else {
+                                let (x0, x1) = ((min - c0) / k + a.x, (max - c0) / k + a.x);
+                                Some((l.max(x0.min(x1)), h.min(x0.max(x1))))
+                            }
+                        },
+                    );
+                    if let Some((l, h)) = band.filter(|(l, h)| l <= h) {
+                        lo = lo.min(l);
+                        hi = hi.max(h);
+                    }
+                }
+                if lo > hi {
+                    return None;
+                }
+                self.columns(lo, hi).map(|(i0, i1)| (j, i0, i1))
+            })
     }
 }
 

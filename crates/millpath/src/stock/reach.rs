@@ -271,6 +271,131 @@ pub(crate) fn edt(seeds: &[bool], nx: usize, ny: usize) -> Vec<f32> {
     g
 }
 
+/// Squared Euclidean distances, in cells², from the cells of a grid to the nearest of a set
+/// of seed cells, kept only where they are at most `radius²`: the transform of a band about
+/// the seeds. Exact on the grid like [`edt`] (the same two passes, each over the band alone):
+/// the columns give each cell within `radius` of a seed of its column the squared distance to
+/// the nearest one; each row takes the lower envelope of the parabolas of its entries, and
+/// is read at the cells within `radius` of one. A cell within `radius` of its nearest seed
+/// `s` is reached: `s`'s column has an entry in the cell's row no larger than the row offset
+/// squared, whose interval holds the cell. The cost is in the band's cells, not the grid's.
+#[derive(Debug, Clone)]
+pub(crate) struct BandDistance {
+    /// `d² + 1` per cell of the grid, 0 beyond `radius` (a zeroed allocation: pages away
+    /// from the band are never written).
+    plus_one: Vec<u32>,
+    /// The cells within `radius`, in ascending index (row by row).
+    within: Vec<usize>,
+}
+
+impl BandDistance {
+    /// The transform of `seeds` (cell `(i, j)` of an `nx × ny` grid; duplicates allowed,
+    /// cells off the grid ignored) out to `radius` cells.
+    pub(crate) fn new(seeds: &[(usize, usize)], nx: usize, ny: usize, radius: f64) -> Self {
+        let reach = radius.max(0.0).floor() as usize;
+        let r2 = radius.max(0.0).powi(2);
+        let mut columns: Vec<Vec<usize>> = vec![Vec::new(); nx];
+        for &(i, j) in seeds {
+            if i < nx && j < ny {
+                columns[i].push(j);
+            }
+        }
+        // The columns: (column, squared row offset) entries of each row, in column order.
+        let mut rows: Vec<Vec<(usize, u64)>> = vec![Vec::new(); ny];
+        for (i, col) in columns.iter_mut().enumerate() {
+            if col.is_empty() {
+                continue;
+            }
+            col.sort_unstable();
+            col.dedup();
+            let mut at = 0;
+            let mut next = 0;
+            for &s in col.iter() {
+                let lo = s.saturating_sub(reach).max(next);
+                let hi = (s + reach).min(ny - 1);
+                for (j, row) in rows.iter_mut().enumerate().take(hi + 1).skip(lo) {
+                    while at + 1 < col.len() && col[at + 1].abs_diff(j) <= col[at].abs_diff(j) {
+                        at += 1;
+                    }
+                    let d = col[at].abs_diff(j) as u64;
+                    row.push((i, d * d));
+                }
+                next = next.max(hi + 1);
+            }
+        }
+        let mut plus_one = vec![0u32; nx * ny];
+        let mut within = Vec::new();
+        let (mut v, mut z) = (Vec::new(), Vec::new());
+        let mut spans: Vec<(usize, usize)> = Vec::new();
+        for (j, row) in rows.iter().enumerate() {
+            if row.is_empty() {
+                continue;
+            }
+            // The lower envelope of `(x − a)² + g` over the row's entries.
+            let key = |e: &(usize, u64)| e.1 as f64 + (e.0 as f64).powi(2);
+            v.clear();
+            z.clear();
+            v.push(0usize);
+            z.push(f64::NEG_INFINITY);
+            for q in 1..row.len() {
+                let cross = |p: usize| {
+                    (key(&row[q]) - key(&row[p])) / (2.0 * (row[q].0 as f64 - row[p].0 as f64))
+                };
+                let mut s = cross(v[v.len() - 1]);
+                while s <= z[z.len() - 1] {
+                    v.pop();
+                    z.pop();
+                    s = cross(v[v.len() - 1]);
+                }
+                v.push(q);
+                z.push(s);
+            }
+            // The cells within `radius` of an entry, merged into spans.
+            spans.clear();
+            spans.extend(row.iter().map(|&(a, g)| {
+                let w = (r2 - g as f64).max(0.0).sqrt().floor() as usize;
+                (a.saturating_sub(w), (a + w).min(nx - 1))
+            }));
+            spans.sort_unstable();
+            let mut k = 0;
+            let mut last = None;
+            for &(lo, hi) in &spans {
+                let lo = match last {
+                    Some(l) if l >= hi => continue,
+                    Some(l) if l >= lo => l + 1,
+                    _ => lo,
+                };
+                for x in lo..=hi {
+                    while k + 1 < v.len() && z[k + 1] < x as f64 {
+                        k += 1;
+                    }
+                    let (a, g) = row[v[k]];
+                    let dx = x.abs_diff(a) as u64;
+                    let d2 = dx * dx + g;
+                    if d2 as f64 <= r2 {
+                        let cell = j * nx + x;
+                        plus_one[cell] = u32::try_from(d2 + 1).unwrap_or(u32::MAX);
+                        within.push(cell);
+                    }
+                }
+                last = Some(hi);
+            }
+        }
+        BandDistance { plus_one, within }
+    }
+
+    /// The squared distance of cell `k` (row-major index), cells², or `None` beyond the
+    /// radius.
+    pub(crate) fn d2(&self, k: usize) -> Option<u32> {
+        self.plus_one[k].checked_sub(1)
+    }
+
+    /// The cells within the radius, in ascending index.
+    pub(crate) fn within(&self) -> &[usize] {
+        &self.within
+    }
+}
+
 /// The 1-D squared distance transform of the sampled function `f`: `out[q] = min_p (q − p)² +
 /// f[p]`.
 fn envelope(f: &[f64], out: &mut [f64], v: &mut [usize], z: &mut [f64]) {
@@ -394,6 +519,57 @@ mod tests {
             zero_runs > nx * ny / 10,
             "{zero_runs} cells inside runs of seeds"
         );
+    }
+
+    /// The band transform against the full one on random grids and radii: the same squared
+    /// distance at every cell within the radius, nothing beyond it, and the cells listed in
+    /// ascending order.
+    #[test]
+    fn band_distance_matches_the_full_transform_within_its_radius() {
+        let mut state = 99u64;
+        let mut checked = 0;
+        for (nx, ny, every, radius) in [
+            (23, 17, 29, 3.5),
+            (40, 9, 7, 2.0),
+            (9, 40, 61, 6.3),
+            (31, 29, 3, 1.0),
+            (50, 44, 97, 8.9),
+            (6, 5, 0, 4.0),
+            (64, 64, 400, 30.0),
+        ] {
+            let seeds: Vec<bool> = (0..nx * ny)
+                .map(|_| {
+                    state = state
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
+                    every > 0 && (state >> 33) % every == 0
+                })
+                .collect();
+            let list: Vec<(usize, usize)> = (0..nx * ny)
+                .filter(|&k| seeds[k])
+                .flat_map(|k| [(k % nx, k / nx), (k % nx, k / nx)])
+                .collect();
+            let full = edt(&seeds, nx, ny);
+            let band = BandDistance::new(&list, nx, ny, radius);
+            let mut want_within = Vec::new();
+            for (k, &g) in full.iter().enumerate() {
+                let inside = f64::from(g) <= radius * radius;
+                if inside {
+                    want_within.push(k);
+                    checked += 1;
+                }
+                let got = band.d2(k);
+                match got {
+                    Some(d2) => assert!(
+                        inside && (f64::from(d2) - f64::from(g)).abs() < 1e-9,
+                        "{nx} × {ny} r {radius}, cell {k}: {d2} vs {g}"
+                    ),
+                    None => assert!(!inside, "{nx} × {ny} r {radius}, cell {k}: none vs {g}"),
+                }
+            }
+            assert_eq!(band.within(), &want_within[..], "{nx} × {ny} r {radius}");
+        }
+        assert!(checked > 2000, "{checked} cells within a radius");
     }
 
     /// A 20 × 10 rectangle at d = 2: the reach region is the 16 × 6 rectangle inside; a cell

@@ -27,6 +27,7 @@ use crate::geom::{Point, Point3};
 use crate::stock::{self, PartVerification, SimOptions, StockSpec};
 use crate::strategy::order::order_tour;
 use crate::toolpath::{Move, Tool, Toolpath};
+use rayon::prelude::*;
 
 /// One pocket of a part.
 #[derive(Debug, Clone)]
@@ -81,27 +82,22 @@ pub fn generate_part(
     let mut cut: Vec<PartPocket> = Vec::new();
     let mut skipped: Vec<PartPocket> = Vec::new();
     let mut first_error: Option<Error> = None;
-    for (index, shape) in shapes {
+    // Each pocket is planned and timed on its own, side by side; the results are taken in
+    // the drawing's order below (the first failure in that order is the one reported).
+    let plans: Vec<_> = shapes
+        .par_iter()
+        .map(|(_, shape)| {
+            let planned = plan_one(shape, strategy, tool, opts, sim, time);
+            let timed = planned.as_ref().ok().map(|(_, r, _)| time(&r.toolpath));
+            (planned, timed)
+        })
+        .collect();
+    for ((index, shape), (planned, timed)) in shapes.iter().zip(plans) {
         let area = crate::geom::area_less_islands(&shape.outer, &shape.islands);
-        let planned: Result<(StrategyKind, PocketResult, Option<Vec<auto::Candidate>>)> =
-            match strategy {
-                PartStrategy::One(kind) => auto::arcs_or_chords(kind, shape, tool, opts, sim, time)
-                    .map(|(r, _)| (kind, r, None)),
-                PartStrategy::Auto => {
-                    let cands = auto::plan_all(shape, tool, opts, sim, time);
-                    match auto::choose(&cands).and_then(|i| {
-                        cands
-                            .get(i)
-                            .and_then(|c| c.result().cloned().map(|r| (c.kind, r)))
-                    }) {
-                        Some((kind, r)) => Ok((kind, r, Some(cands))),
-                        None => Err(auto::none_verified(&cands)),
-                    }
-                }
-            };
         match planned {
             Ok((kind, r, cands)) => {
-                let t = time(&r.toolpath)
+                let t = timed
+                    .unwrap_or_else(|| Err(Error::internal("an untimed pocket")))
                     .map_err(|e| e.engine_made(&format!("timing pocket {index}")))?;
                 cut.push(PartPocket {
                     index: *index,
@@ -224,4 +220,31 @@ pub fn join<'a>(paths: impl IntoIterator<Item = &'a Toolpath>, tool: Tool, clear
         joined.append(tp);
     }
     out.unwrap_or_else(|| Toolpath::new(tool, Point3::new(0.0, 0.0, clear)))
+}
+
+/// One pocket planned with `strategy` (module docs of [`generate_part`]).
+fn plan_one(
+    shape: &PocketShape,
+    strategy: PartStrategy,
+    tool: &Tool,
+    opts: &PocketOptions,
+    sim: &SimOptions,
+    time: &(dyn Fn(&Toolpath) -> Result<f64> + Sync),
+) -> Result<(StrategyKind, PocketResult, Option<Vec<auto::Candidate>>)> {
+    match strategy {
+        PartStrategy::One(kind) => {
+            auto::arcs_or_chords(kind, shape, tool, opts, sim, time).map(|(r, _)| (kind, r, None))
+        }
+        PartStrategy::Auto => {
+            let cands = auto::plan_all(shape, tool, opts, sim, time);
+            match auto::choose(&cands).and_then(|i| {
+                cands
+                    .get(i)
+                    .and_then(|c| c.result().cloned().map(|r| (c.kind, r)))
+            }) {
+                Some((kind, r)) => Ok((kind, r, Some(cands))),
+                None => Err(auto::none_verified(&cands)),
+            }
+        }
+    }
 }
