@@ -75,11 +75,24 @@ pub fn pocket(
     k.opt_f64("draft", &mut s.draft)?;
     k.opt_text("bottom_outline", &mut s.bottom_outline)?;
     k.opt_f64("tolerance", &mut s.tolerance)?;
+    let (mut rest_from, mut rest_from_diameter) = (None, None);
+    k.opt_text("rest_from", &mut rest_from)?;
+    k.opt_f64("rest_from_diameter", &mut rest_from_diameter)?;
     let program = k.program()?;
     k.finish()?;
     s.check_before_loading(&program).map_err(err)?;
     let (loops, name, note) = outline_arg(py, outline, "outline", &s.import)?;
     let mut notes: Vec<String> = note.into_iter().collect();
+    if let Some(from) = rest_from {
+        let from = job::rest::RestFrom {
+            program: from,
+            diameter: rest_from_diameter,
+        };
+        let run = py
+            .allow_threads(|| job::rest::run(&loops, &name, &s, &program, select.as_deref(), &from))
+            .map_err(err)?;
+        return rest_result(py, run, notes);
+    }
     let run = py
         .allow_threads(|| {
             job::pocket::run(&loops, &name, &s, &program, select.as_deref(), &mut |n| {
@@ -290,4 +303,44 @@ pub fn estimate(
 #[pyfunction]
 pub fn machines(py: Python<'_>) -> PyResult<PyObject> {
     to_py(py, &millpath::machine::Machine::presets())
+}
+
+/// A rest pass as a [`PocketResult`]: strategy `rest`, its figures as the report (what
+/// `millpath pocket --rest-from` prints), the summary line as the note.
+fn rest_result(
+    py: Python<'_>,
+    run: job::rest::RestRun,
+    mut notes: Vec<String>,
+) -> PyResult<PocketResult> {
+    let gcode = String::from_utf8(run.gcode).map_err(|e| {
+        crate::InternalError::new_err(format!("the rest program is not UTF-8: {e}"))
+    })?;
+    let cut_mm = run.toolpath.cut_length();
+    notes.push(format!(
+        "rest after D{} mm: {:.3} mm² left within reach of D{} mm, {} run(s), path {:.1} mm, \
+         cycle time {:.2} s; after both programs: {}",
+        run.previous_tool.diameter,
+        run.left_mm2,
+        run.toolpath.tool.diameter,
+        run.runs,
+        cut_mm,
+        run.time_s,
+        run.check
+    ));
+    let report = PyDict::new(py);
+    report.set_item("previous_tool_diameter_mm", run.previous_tool.diameter)?;
+    report.set_item("tool_diameter_mm", run.toolpath.tool.diameter)?;
+    report.set_item("left_mm2", run.left_mm2)?;
+    report.set_item("runs", run.runs)?;
+    report.set_item("cut_length_mm", cut_mm)?;
+    report.set_item("cycle_time_s", run.time_s)?;
+    report.set_item("check", &run.check)?;
+    Ok(PocketResult {
+        gcode,
+        cycle_time_s: run.time_s,
+        strategy: "rest".to_owned(),
+        report: report.into_any().unbind(),
+        toolpath: Py::new(py, Toolpath { tp: run.toolpath })?,
+        note: Some(notes.join("\n")),
+    })
 }

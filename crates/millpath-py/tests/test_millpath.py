@@ -72,6 +72,28 @@ def test_pocket_real_drawing_other_dialect_equals_cli(tmp_path):
     assert [e["strategy"] for e in tried] == ["spiral", "offset", "zigzag"]
 
 
+def test_rest_pass_equals_cli_and_cuts_what_the_large_tool_left(tmp_path):
+    big = millpath.pocket("sample:aerospace", tool_diameter=12.7, **POCKET_ARGS)
+    prev = tmp_path / "big.ngc"
+    prev.write_text(big.gcode)
+    kw = dict(tool_diameter=4, rest_from=prev, **POCKET_ARGS)
+    r = millpath.pocket("sample:aerospace", **kw)
+    ngc = tmp_path / "cli.ngc"
+    out = cli("pocket", "sample:aerospace", *flags(kw), "-o", ngc)
+    assert r.gcode.encode() == ngc.read_bytes()
+    assert r.strategy == "rest"
+    assert r.report["previous_tool_diameter_mm"] == 12.7
+    # The 12.7 mm tool leaves the four r 6 corners: material within the 4 mm tool's reach,
+    # cut by a few short runs, and nothing of it left after both programs.
+    assert r.report["left_mm2"] > 1.0
+    assert 1 <= r.report["runs"] <= 8
+    assert 0 < r.report["cut_length_mm"] < 200
+    assert r.note.splitlines()[-1] in out.stdout + out.stderr
+    # An unreadable previous program is bad input, named with where it came from.
+    with pytest.raises(millpath.InputError, match="rest-from"):
+        millpath.pocket("sample:aerospace", tool_diameter=4, rest_from=tmp_path / "none.ngc")
+
+
 PLATE = REAL / "wro_Plate_3.DXF"
 
 

@@ -138,6 +138,8 @@ def pocket(
     draft: Optional[float] = None,
     bottom_outline: Optional[PathLike] = None,
     tolerance: Optional[float] = None,
+    rest_from: Optional[PathLike] = None,
+    rest_from_diameter: Optional[float] = None,
     select: Union[None, str, int, Sequence[int]] = None,
     layer: Optional[str] = None,
     join_tolerance: float = 0.01,
@@ -151,7 +153,10 @@ def pocket(
     line_numbers: bool = False,
 ) -> PocketResult:
     """Rough a pocket (an outline file, `"sample:aerospace"`, an N x 2 array or a list of
-    arrays: boundary and islands) as `millpath pocket` does."""
+    arrays: boundary and islands) as `millpath pocket` does. With `rest_from` (a previous
+    program, ours or another CAM's; its tool's diameter from `rest_from_diameter` or our
+    header), cut only what it left within this tool's reach, as `millpath pocket
+    --rest-from` does: strategy `"rest"`, its figures as the report."""
 
 def drill(
     drawing: PathLike,
