@@ -10,12 +10,17 @@
 //! the path one way only and a lane change bends both ways gently: neither is a hook. A
 //! straight step between loops (a tool's stepover long) is longer than the reach. Turns on
 //! the walls' loop (one tool radius from the walls, within [`WALL_BAND`]) are the walls' own:
-//! a notch of the drawing is followed as drawn.
+//! a notch of the drawing is followed as drawn; so are arcs meeting there at a corner of the
+//! walls' loop (a crescent's horn: the tool centre must reach the point that touches both
+//! walls). Everywhere inside, arcs meet arcs within 1° on every pocket of the suite: the
+//! interior loops' cusps (where two reflex corners' arcs meet on the medial axis) are
+//! filleted and the lane changes leave and join the loops with their tangents.
 
 mod hooks;
 
 use hooks::{arc_joints, find_hooks};
 use millpath::job::load_outline;
+use millpath::stock::SimOptions;
 use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 
@@ -66,29 +71,9 @@ fn no_spiral_of_the_suite_has_a_hook() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// Pockets whose spiral with `--arcs` has arcs meeting at more than 1°, and why: each must
-/// still have one (a fix takes it off the list).
-const KNOWN_CUSPS: &[(&str, &str)] = &[
-    ("T", SPIKE),
-    ("star", SPIKE),
-    ("dumbbell", SPIKE),
-    ("crescent", SPIKE),
-    ("two islands", SPIKE),
-    ("sample:part pocket 1", SPIKE),
-    (
-        "structural bay-5 L",
-        "6° where a rounding arc (3.16 mm) meets a reflex corner's arc (33 mm), 25 mm from the \
-         walls: the opening should be tangent there; not found why",
-    ),
-];
-
-/// The acute corners of interior loops on the medial axis, where the arcs round two reflex
-/// corners of the walls meet (the path turns 111–161° there): rounding one would widen the
-/// band to the loop outside it, already wider than the bound, so the rounding leaves it.
-const SPIKE: &str = "interior loops' acute corners where two reflex corners' arcs meet";
-
 #[test]
 fn spiral_arcs_meet_within_a_degree() {
+    let sim = SimOptions::default();
     let mut failures = Vec::new();
     let mut joints = 0;
     for (name, shape, d) in suite() {
@@ -97,15 +82,19 @@ fn spiral_arcs_meet_within_a_degree() {
             .with_depth(5.0)
             .with_step_down(5.0)
             .with_arcs(true);
-        let tp = pocket::toolpath(StrategyKind::Spiral, &shape, &tool, &opts)
+        // Verified: the fillets and the tangent lane ends gouge nothing and leave nothing.
+        let r = pocket::generate(StrategyKind::Spiral, &shape, &tool, &opts, &sim)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
-        let (worst, at, n) = arc_joints(&tp);
+        let problems = r.verification.problems();
+        if !problems.is_empty() {
+            failures.push(format!("{name} --arcs: {problems:?}"));
+        }
+        let tp = r.toolpath;
+        let (worst, at, n) = arc_joints(&tp, on_walls(&shape, 0.5 * d));
         assert!(n > 0, "{name}: no arc meets an arc");
         joints += n;
-        match (worst > 1.0, KNOWN_CUSPS.iter().any(|k| k.0 == name)) {
-            (true, false) => failures.push(format!("{name}: arcs meet at {worst:.2}° at {at:?}")),
-            (false, true) => failures.push(format!("{name}: no cusp now; take it off KNOWN_CUSPS")),
-            _ => {}
+        if worst > 1.0 {
+            failures.push(format!("{name}: arcs meet at {worst:.2}° at {at:?}"));
         }
         let (hooks, _) = find_hooks(&tp, d, on_walls(&shape, 0.5 * d));
         if let Some(h) = hooks.first() {

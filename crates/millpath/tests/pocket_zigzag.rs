@@ -1,6 +1,6 @@
 //! The zigzag as lean as the peers': its rows turn on half circles inside the pocket, no row
-//! runs along the walls' loop that the clean-up pass cuts, and the entry ramps down once at
-//! the plunge rate. Checked on the moves and by the stock simulation, on the aerospace pocket
+//! runs along the walls' loop that the clean-up pass cuts nor nearer it than that pass
+//! reaches, and the entry ramps down once at the plunge rate. Checked on the moves and by the stock simulation, on the aerospace pocket
 //! and on rounded rectangles of aspect 1:1 to 4:1.
 
 use millpath::stock::SimOptions;
@@ -62,11 +62,14 @@ fn rows_turn_on_half_circles_and_leave_nothing() {
         );
         let tp = &r.toolpath;
         let z = tp.levels[0].z;
-        // Rows across the pocket's short side, a stepover apart: all but the two on the
-        // walls' loop, and a half turn between each two.
+        // Rows across the pocket's short side, a stepover apart, the first and the last
+        // within 0.95 tool radii of the walls' loop, which the clean-up pass cuts (every
+        // point between within that of a pass): as few as that allows, and a half turn
+        // between each two.
         let b = shape.outer.bounds();
         let short = (b.max.x - b.min.x).min(b.max.y - b.min.y) - tool.diameter;
-        let rows = (short / (0.4 * tool.diameter) - 1e-9).ceil() as usize - 1;
+        let edge = 0.95 * tool.radius();
+        let rows = ((short - 2.0 * edge) / (0.4 * tool.diameter) - 1e-9).ceil() as usize + 1;
         let turns = half_turns(tp, z);
         assert_eq!(
             turns,

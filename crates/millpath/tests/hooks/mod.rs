@@ -196,8 +196,10 @@ pub fn find_hooks(tp: &Toolpath, d: f64, forced: impl Fn(Point) -> bool) -> (Vec
 }
 
 /// The largest angle (degrees) between the tangents where two arcs meet, where, and how many
-/// such joints there are.
-pub fn arc_joints(tp: &Toolpath) -> (f64, Option<Point>, usize) {
+/// such joints there are. A joint where `forced` says the walls force a corner (the walls'
+/// loop's convex corners, where the tool centre must reach the point that touches two walls
+/// to clear their corner) is counted but not measured.
+pub fn arc_joints(tp: &Toolpath, forced: impl Fn(Point) -> bool) -> (f64, Option<Point>, usize) {
     let mut worst = 0.0_f64;
     let mut at = None;
     let mut n = 0;
@@ -207,6 +209,9 @@ pub fn arc_joints(tp: &Toolpath) -> (f64, Option<Point>, usize) {
                 continue;
             }
             n += 1;
+            if forced(w[1].a) {
+                continue;
+            }
             let a = turn(w[0].t1, w[1].t0).to_degrees().abs();
             if a > worst {
                 worst = a;

@@ -227,6 +227,27 @@ pub fn fit_arcs(points: &[Point], tol: f64) -> Vec<Seg> {
 pub fn fit_arcs_where(
     points: &[Point],
     tol: f64,
+    keep: impl FnMut(&Seg) -> bool,
+) -> Option<Vec<Seg>> {
+    fit_arcs_span(points, tol, false, keep)
+}
+
+/// [`fit_arcs`] from the second point to the last but one: the first and the last point
+/// only steer the curve's end tangents (points one sample before and after on the curves
+/// the path joins make it leave and join them with their tangents, to the order of the
+/// Catmull-Rom curve's, where the chords' own ends would be a half chord's turn off).
+pub fn fit_arcs_inner(points: &[Point], tol: f64) -> Vec<Seg> {
+    fit_arcs_span(points, tol, true, |_| true).unwrap_or_else(|| match points.len() {
+        n if n > 2 => segs_from_points(&points[1..n - 1]),
+        _ => Vec::new(),
+    })
+}
+
+/// [`fit_arcs_where`], over the whole chain or (`inner`) without its first and last pieces.
+fn fit_arcs_span(
+    points: &[Point],
+    tol: f64,
+    inner: bool,
     mut keep: impl FnMut(&Seg) -> bool,
 ) -> Option<Vec<Seg>> {
     use crate::curve::biarc::fit;
@@ -240,12 +261,20 @@ pub fn fit_arcs_where(
     }
     let chain = OpenChain(open(&p));
     let n = chain.0.len();
+    if inner && n < 3 {
+        return None;
+    }
     if n == 0 {
         return Some(segs_from_points(points));
     }
+    let (lo, hi) = if inner {
+        (1.0, (n - 1) as f64)
+    } else {
+        (0.0, n as f64)
+    };
     let mut out = Vec::new();
-    let mut s0 = 0.0_f64;
-    for a in fit(&chain, 0.0, n as f64, tol) {
+    let mut s0 = lo;
+    for a in fit(&chain, lo, hi, tol) {
         let s1 = a.s_end;
         let span = (s0, s1);
         s0 = s1;

@@ -22,11 +22,18 @@
 //! offset (so it goes round an island, never across it), and the clean-up pass runs along
 //! every loop of the boundary offset: the wall and each island.
 //!
-//! In a frame rotated by −angle the passes are horizontal lines `y_j = y_min + j·h`,
-//! `h = (y_max − y_min)/n ≤ s` with `n = ⌈(y_max − y_min)/s⌉`, so neighbouring passes are at
-//! most one stepover apart; `j = 1 … n − 1`: the rows at `y_min` and `y_max` would run along
-//! the boundary offset, which the clean-up pass runs along anyway. Each line is clipped to the region (even-odd rule on the crossings
-//! with the loops, arcs solved exactly: `x = c_x ± √(R² − (y − c_y)²)`, kept when the angle
+//! In a frame rotated by −angle the passes are horizontal lines `s` apart, the first and the
+//! last `g = (span − m·s)/2 ≤ 0.95·r` from the region's lowest and highest points
+//! ([`row_heights`], `m` as small as that allows): no row runs along the boundary offset or
+//! nearer it than the clean-up pass reaches (every point between an extreme and its row
+//! lies within `g` of the one or the other along the row's normal), so a rectangle
+//! `span` high gets `⌈(span − 1.9·r)/s⌉ + 1` rows, one fewer than rows a stepover apart from
+//! extreme to extreme (`⌈span/s⌉ − 1`) on the aerospace pocket and the rectangles of
+//! `tests/pocket_zigzag.rs`; the clean-up pass then cuts up to `g` deep along the extremes,
+//! which the feed modulation charges. With a stepover above `0.95·r` the rows divide the
+//! span evenly, `h ≤ s` apart, none on the extremes.
+//!
+//! Each line is clipped to the region (even-odd rule on the crossings with the loops, arcs solved exactly: `x = c_x ± √(R² − (y − c_y)²)`, kept when the angle
 //! lies within the arc's sweep). Rows whose height falls within 1e-7 mm of a vertex or an arc
 //! extreme are nudged by 2e-7 mm, so every crossing is transversal.
 //!
@@ -78,6 +85,38 @@ use std::f64::consts::TAU;
 /// verifier's resolution (the program's rounding, and the simulation's cell).
 pub const ROW_LEFT_CUSP: f64 = 1e-4;
 
+/// Largest gap between the boundary offset's extreme and the row nearest it, in tool radii
+/// (the clean-up pass along the boundary cuts that band; see [`row_heights`]).
+const EDGE_GAP: f64 = 0.95;
+
+/// The interior rows' heights above the region's lowest point, for a region `span` mm high,
+/// stepover `s` and largest edge gap `g_max` (mm): rows `s` apart, the first and the last
+/// `g = (span − m·s)/2 ≤ g_max` from the region's extremes (`m` gaps between them, as few as
+/// that allows). The clean-up pass along the boundary offset cuts the band between an extreme
+/// and its row (every point of it within `g < r` of the one or the other, along the row's
+/// normal), so the rows need not come closer to it than that: a row fewer than rows `s`
+/// apart from extreme to extreme, and a slightly deeper cut along the boundary there. With
+/// `g_max ≤ s` (a stepover near the diameter) the rows divide the span evenly, `h ≤ s`
+/// apart, none on the extremes; a span no wider than `s` has no row (the clean-up pass alone
+/// covers it), one no wider than `2·g_max` one, in its middle.
+fn row_heights(span: f64, s: f64, g_max: f64) -> Vec<f64> {
+    // The 1e-9 keeps an exact multiple (a 40 mm span at 4 mm) from gaining a row by rounding.
+    if span <= s * (1.0 + 1e-9) {
+        return Vec::new();
+    }
+    if g_max <= s {
+        let n = (span / s - 1e-9).ceil().max(1.0) as usize;
+        let h = span / n as f64;
+        return (1..n).map(|j| h * j as f64).collect();
+    }
+    if span <= 2.0 * g_max {
+        return vec![0.5 * span];
+    }
+    let m = ((span - 2.0 * g_max) / s - 1e-9).ceil().max(1.0) as usize;
+    let g = 0.5 * (span - m as f64 * s);
+    (0..=m).map(|k| g + s * k as f64).collect()
+}
+
 /// The zigzag strategy's plan for one level.
 pub fn plan(
     shape: &PocketShape,
@@ -112,24 +151,23 @@ pub fn plan(
             y1 = y1.max(p.y);
         }
     }
-    // The 1e-9 keeps an exact multiple (a 40 mm span at 4 mm) from gaining a row by rounding.
-    let n = ((y1 - y0) / s - 1e-9).ceil().max(1.0) as usize;
-    let h = (y1 - y0) / n as f64;
+    let heights = row_heights(y1 - y0, s, EDGE_GAP * tool.radius());
     // Rows shorter than this are left to the clean-up pass (see the module docs).
     let min_row = (8.0 * tool.radius() * ROW_LEFT_CUSP * tool.tolerance_scale())
         .sqrt()
         .max(1e-9);
+    let n = heights.len() + 1;
     let mut rows: Vec<Vec<(f64, f64)>> = Vec::with_capacity(n + 1);
     let mut ys = Vec::with_capacity(n + 1);
     for j in 0..=n {
-        let y = nudge(&local, (y0 + h * j as f64).clamp(y0 + 2e-7, y1 - 2e-7));
         // The first and last rows run along the boundary offset, which the clean-up pass
-        // runs along anyway.
+        // runs along anyway: empty, they keep the rows' neighbours.
         if j == 0 || j == n {
             rows.push(Vec::new());
-            ys.push(y);
+            ys.push(if j == 0 { y0 } else { y1 });
             continue;
         }
+        let y = nudge(&local, (y0 + heights[j - 1]).clamp(y0 + 2e-7, y1 - 2e-7));
         let mut xs: Vec<f64> = local
             .iter()
             .flatten()

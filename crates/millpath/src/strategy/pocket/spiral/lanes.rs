@@ -21,15 +21,20 @@
 //! the wall's loop, or the loop the next chain starts from). Length: each loop once, plus
 //! the last window: as long as the contour-parallel loops without their links.
 //!
+//! **Arcs.** With `--arcs` a lane change is fitted with biarcs through its points and a point
+//! a chord before and after it along the loops' tangents, and its first and last arcs are
+//! replaced by the biarcs with the loops' own tangents at the ends: arcs meet arcs within
+//! 1e-4 rad where the lane leaves and joins the loops.
+//!
 //! **Where.** The windows should lie where every loop is straight: the start `P₀` is chosen
 //! among positions of `R₀` every `WINDOW_STEP` mm (times the tool's scale) to minimise the
 //! total turning of all the loops over their windows, plus a small charge for the distance
 //! run round `R₀` past the point where the chain is entered (the first loop is run whole
 //! from there).
 
-use super::super::segments::{Seg, fit_arcs, segs_from_points};
+use super::super::segments::{Seg, fit_arcs_inner, segs_from_points};
 use super::ring::Ring;
-use crate::geom::Point;
+use crate::geom::{Point, Vec2};
 
 /// What a chain's path needs.
 #[derive(Debug, Clone, Copy)]
@@ -328,8 +333,32 @@ fn chain_segs(
         // before the next change (or, on the outermost loop, to close it).
         let land = match change {
             Some((pts, land)) => {
-                if opts.arcs && !onto_wall(i) {
-                    path.extend(fit_arcs(pts, opts.arc_tolerance));
+                if opts.arcs && !onto_wall(i) && pts.len() > 1 {
+                    // A point a chord before and after, along the loops' tangents: the arcs
+                    // leave and join the loops with their tangents.
+                    let t0 = path.last().map(|g| g.tangent_at(g.length()));
+                    let t1 = to
+                        .slice(*land, 1e-6 * to.len())
+                        .first()
+                        .map(|g| g.tangent_at(0.0));
+                    let n = pts.len();
+                    let before = pts.get(1).map_or(opts.chord, |q| q.distance(pts[0]));
+                    let after = pts
+                        .get(n.saturating_sub(2))
+                        .map_or(opts.chord, |q| q.distance(pts[n - 1]));
+                    let mut ext = Vec::with_capacity(n + 2);
+                    let (first, last) = (pts[0], pts[n - 1]);
+                    let dir = |t: Option<Vec2>, a: Point, b: Point| {
+                        t.or_else(|| (b - a).normalize())
+                            .unwrap_or(Vec2::new(1.0, 0.0))
+                    };
+                    let least = 1e-3 * opts.chord;
+                    ext.push(first - dir(t0, first, pts[1]) * before.max(least));
+                    ext.extend_from_slice(pts);
+                    ext.push(last + dir(t1, pts[n - 2], last) * after.max(least));
+                    let mut arcs = fit_arcs_inner(&ext, opts.arc_tolerance);
+                    tangent_ends(&mut arcs, t0, t1);
+                    path.extend(arcs);
                 } else {
                     path.extend(segs_from_points(pts));
                 }
@@ -369,6 +398,55 @@ fn chain_segs(
     }
     path
 }
+
+/// `arcs` made to leave with tangent `t0` and arrive with `t1` (where given): the first and
+/// the last move (the only one, with both) replaced by the biarc between their ends with
+/// those tangents and the moves' own at their other ends. The fitted arcs' end tangents are
+/// the Catmull-Rom curve's, a degree or a few off the loops' where the lane turns fast; the
+/// biarc of a short move with tangents a few degrees apart stays within microns of it.
+fn tangent_ends(arcs: &mut Vec<Seg>, t0: Option<Vec2>, t1: Option<Vec2>) {
+    use crate::curve::biarc::biarc;
+    let off = |t: Option<Vec2>, u: Vec2| {
+        t.is_some_and(|t| t.cross(u).atan2(t.dot(u)).abs() > TANGENT_SLACK)
+    };
+    let swap = |g: &Seg, ta: Vec2, tb: Vec2| -> Option<Vec<Seg>> {
+        let pair = biarc(g.a, ta, g.b, tb, 0.0, 1.0)?;
+        Some(
+            pair.iter()
+                .filter(|a| a.start.distance(a.end) > 1e-9)
+                .map(|a| Seg::from_bulge(a.start, a.end, (0.25 * a.sweep()).tan()))
+                .collect(),
+        )
+    };
+    let n = arcs.len();
+    if n == 0 {
+        return;
+    }
+    let (first, last) = (arcs[0], arcs[n - 1]);
+    if n == 1 {
+        let (ta, tb) = (first.tangent_at(0.0), first.tangent_at(first.length()));
+        if (off(t0, ta) || off(t1, tb))
+            && let Some(r) = swap(&first, t0.unwrap_or(ta), t1.unwrap_or(tb))
+        {
+            *arcs = r;
+        }
+        return;
+    }
+    if let Some(t) = t1.filter(|&t| off(Some(t), last.tangent_at(last.length())))
+        && let Some(r) = swap(&last, last.tangent_at(0.0), t)
+    {
+        arcs.pop();
+        arcs.extend(r);
+    }
+    if let Some(t) = t0.filter(|&t| off(Some(t), first.tangent_at(0.0)))
+        && let Some(r) = swap(&first, t, first.tangent_at(first.length()))
+    {
+        arcs.splice(0..1, r);
+    }
+}
+
+/// Largest angle (rad) between a lane's fitted end tangent and the loop's left as it is.
+const TANGENT_SLACK: f64 = 1e-4;
 
 /// `segs` with every arc replaced by chords whose sagitta is at most `tol` and no longer
 /// than `max_chord` (for controllers that plan chords faster than arcs).

@@ -17,7 +17,9 @@
 //!    be rounded `(1.8 − √2)·h / (√2 − 1) ≈ 0.93·h` more than the loop outside it, so radii
 //!    grow towards the middle. `1.8·h ≤ 1.71·r` stays below the tool's diameter: no ridge of
 //!    material between passes. The engagement rises along the rounded corners (the feed
-//!    modulation charges that).
+//!    modulation charges that). With `--arcs`, a loop no radius keeps within the bound (a
+//!    cusp on the medial axis) gets a small fillet moving it in by at most `h/10`, so that
+//!    arcs meet arcs tangentially.
 //! 2. **Chains** ([`super::loops::OffsetLoops::chains`]): consecutive loops with nothing else
 //!    attached are one band; L, T, U, star and crescent pockets are one chain, a neck that
 //!    pinches the loops off or islands make several, cut innermost first, linked by a

@@ -51,6 +51,12 @@ pub const CORNER_GAP: f64 = 1.8;
 /// diameter by enough that the two passes' discs still meet where the loops curve (the
 /// spacing bound of the pocket's material, whatever the stepover).
 pub const COVERAGE_GAP: f64 = 1.5;
+/// How far a corner the gap bound leaves sharp may move in when filleted, in steps
+/// ([`super::rounding`]).
+const CUSP_SHIFT: f64 = 0.1;
+/// Smallest fillet at such a corner, mm (times the tool's scale): ten steps of a program's
+/// resolution.
+const CUSP_RADIUS: f64 = 0.01;
 /// Largest rounding radius, in steps.
 const MAX_RADIUS: f64 = 12.0;
 /// Least distance between a rounded loop and the loops inside it, in steps.
@@ -116,6 +122,10 @@ pub fn plan(
             min_clearance: MIN_CLEARANCE * h,
             sample: (h / 3.0).clamp(0.05 * k, 1.5 * k),
             reach: RIDGE_SPACING * r,
+            // Filleted cusps only where they are written as arcs (as chords, a fillet much
+            // shorter than a chord is still a corner).
+            cusp_shift: opts.spiral.arcs.then_some(CUSP_SHIFT * h),
+            cusp_radius: CUSP_RADIUS * k,
         },
     );
     let chains = loops.chains();

@@ -27,6 +27,17 @@
 //! loops are measured against the rounded loops outside them. At right angles with
 //! `g = 1.8·h` each loop can be rounded about `0.93·h` more than the one outside it, so the
 //! radii grow inward until the loops are as round as their size allows.
+//!
+//! **Cusps.** Where no radius keeps the bound (an acute corner whose exact gap already
+//! exceeds it: the medial axis's point where the arcs round two reflex corners of the walls
+//! meet, turning the path 110–160°), the loop would keep a corner where two arcs meet at an
+//! angle. Written as arcs (`--arcs`, [`RoundOptions::cusp_shift`] given), such a loop is
+//! filleted instead with the largest radius `step·2^-j ≥` [`RoundOptions::cusp_radius`] whose
+//! opening keeps the bound with the slack `cusp_shift` (0.1 step): the corner moves in by
+//! `ρ·(1/sin(α/2) − 1)`, at most that, and the reach of the band is checked as for any
+//! radius. A radius the bisection finds below `cusp_radius` counts as none there (an arc a few
+//! microns round is not written faithfully). Written as chords, the loops keep their
+//! corners: a fillet shorter than a chord would still be one.
 
 use super::super::loops::{OffsetLoops, samples};
 use super::super::shape::IndexedLoop;
@@ -50,6 +61,13 @@ pub struct RoundOptions {
     /// the material the exact loop would cut must stay within this of the rounded loop or of
     /// its neighbours.
     pub reach: f64,
+    /// How far a loop the bound leaves unrounded may still be filleted at its corners, mm:
+    /// the gap from the loops outside may grow by this much (`None`: such a loop keeps its
+    /// corners).
+    pub cusp_shift: Option<f64>,
+    /// Smallest such fillet's radius, mm: a smaller arc is below what a program writes
+    /// faithfully (its ends and centre a few resolution steps apart).
+    pub cusp_radius: f64,
 }
 
 /// Bisection steps on the radius.
@@ -60,6 +78,10 @@ const BISECTIONS: usize = 5;
 const GROWTH: f64 = 3.0;
 /// Slack on the exact offsets' gap, as a fraction of the step.
 const GAP_SLACK: f64 = 1e-3;
+/// A loop no radius keeps within the bound is filleted with the largest radius in
+/// `step·2^-j`, `j < CUSP_TRIES`, at least [`RoundOptions::cusp_radius`], that moves it at
+/// most [`RoundOptions::cusp_shift`].
+const CUSP_TRIES: i32 = 10;
 
 /// The rounded loops, one per loop of `loops` (same indices), and their radii.
 pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, Vec<f64>) {
@@ -121,13 +143,12 @@ pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, V
                 .chain(inner.iter().copied())
                 .filter(|&p| fixed_idx.iter().all(|l| l.distance(p) > opts.reach))
                 .collect();
-            let ok = |rho: f64| -> Option<Polyline<f64>> {
+            let ok_within = |rho: f64, slack: f64| -> Option<Polyline<f64>> {
                 let opened = open(&loops.nodes[x].pline, rho)?;
                 let idx = IndexedLoop::new(&opened);
                 if band.iter().any(|&p| idx.distance(p) > opts.reach) {
                     return None;
                 }
-                let slack = GAP_SLACK * loops.step;
                 let gap_ok = assigned
                     .iter()
                     .all(|&(p, d)| idx.distance(p) <= opts.max_gap.max(d + slack));
@@ -141,6 +162,7 @@ pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, V
                     side && inner.iter().all(|&z| idx.distance(z) >= opts.min_clearance);
                 (gap_ok && inside_ok).then_some(opened)
             };
+            let ok = |rho: f64| ok_within(rho, GAP_SLACK * loops.step);
             let outside = loops.nodes[x]
                 .next
                 .iter()
@@ -172,6 +194,19 @@ pub fn round(loops: &OffsetLoops, opts: &RoundOptions) -> (Vec<Polyline<f64>>, V
                 }
                 best
             };
+            // Cusps: where no radius keeps the gap (a corner whose exact gap is already
+            // wider than the bound, such as the medial axis's point where two reflex
+            // corners' arcs meet), the largest small fillet that moves the loop by at most
+            // the cusp shift, so that the path stays tangent-continuous there.
+            // Written as arcs, a radius below the least is no radius.
+            let best = best.filter(|b| opts.cusp_shift.is_none() || b.0 >= opts.cusp_radius);
+            let best = best.or_else(|| {
+                let shift = opts.cusp_shift?;
+                (0..CUSP_TRIES)
+                    .map(|j| loops.step * 0.5f64.powi(j))
+                    .take_while(|&rho| rho >= opts.cusp_radius)
+                    .find_map(|rho| ok_within(rho, shift).map(|p| (rho, p)))
+            });
             if let Some((rho, p)) = best {
                 radii[x] = rho;
                 out[x] = p;
