@@ -149,5 +149,7 @@ fn sweep_honours_the_draft() {
         v["zigzag_s"][0].as_f64().unwrap()
     };
     let (plain, drafted) = (zigzag(&[]), zigzag(&["--draft", "10"]));
-    assert!(drafted < plain - 0.1, "{drafted} vs {plain}");
+    // Ignoring the flag gives the same time to the last digit; the second level's section is
+    // 0.53 mm smaller all round (27.70 s against 27.79 s with rows up to 0.95 r off the walls).
+    assert!(drafted < plain - 0.02, "{drafted} vs {plain}");
 }
