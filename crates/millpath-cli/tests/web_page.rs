@@ -15,6 +15,8 @@
 //! `.wasm` cannot load from `file://`); besides the page it serves the test's cases, the
 //! drawings and the endpoints the page's `?selftest=` and `&hold=` modes post to.
 
+#![allow(clippy::print_stderr)] // the figures of BENCHMARKS.md
+
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{TcpListener, TcpStream};
@@ -305,7 +307,7 @@ fn the_page_offers_the_clis_program() {
         .output()
         .expect("gzip runs");
     assert!(gz.status.success());
-    println!(
+    eprintln!(
         "web: module {} bytes, {} gzipped",
         wasm.len(),
         gz.stdout.len()
@@ -407,7 +409,7 @@ fn the_page_offers_the_clis_program() {
                     c.id
                 );
                 let page_s = shown["planMs"].as_f64().expect("planMs") / 1000.0;
-                println!(
+                eprintln!(
                     "web: {} ({} bytes): page {page_s:.2} s, CLI {cli_s:.2} s, ratio {:.2}",
                     c.id,
                     program.len(),
@@ -427,7 +429,7 @@ fn the_page_offers_the_clis_program() {
                     "{}",
                     c.id
                 );
-                println!("web: {}: the page shows `error: {message}`", c.id);
+                eprintln!("web: {}: the page shows `error: {message}`", c.id);
             }
         }
     }
@@ -473,5 +475,5 @@ fn the_page_offers_the_clis_program() {
         lock.lock().expect("state").released,
         "the screenshot was taken before the page drew its result"
     );
-    println!("web: screenshot {}", shot.display());
+    eprintln!("web: screenshot {}", shot.display());
 }
