@@ -199,28 +199,7 @@ impl CommonArgs {
 
 pub use super::outline_input::load_outline;
 
-/// One line per pocket of the drawing, for `--list`.
-fn list_lines(loops: &Loops) -> Vec<String> {
-    loops
-        .pockets()
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let b = p.outer.bounds();
-            format!(
-                "pocket {}: area {:.3} mm², {} islands, bounds ({:.3}, {:.3}) to ({:.3}, {:.3})",
-                i + 1,
-                p.area(),
-                p.islands.len(),
-                b.min.x,
-                b.min.y,
-                b.max.x,
-                b.max.y
-            )
-        })
-        .collect()
-}
-
+use millpath::job::pocket::list_lines;
 use millpath::job::{auto_line, pocket_line};
 
 /// Runs the command.
@@ -328,64 +307,7 @@ fn write_html(
     outline: &str,
     job: &millpath::job::PocketRun,
 ) -> Result<(), Error> {
-    let (rep, name, m) = (&job.report, &job.name, &job.machine);
-    let plan = job.plan()?;
-    let mut summary = vec![
-        super::html::machine_row(m),
-        ("strategy".to_owned(), name.clone()),
-        (
-            "cycle time".to_owned(),
-            format!("{:.2} s", rep.cycle_time_s),
-        ),
-        (
-            "path length".to_owned(),
-            format!("{:.1} mm", rep.path_length_mm),
-        ),
-        (
-            "levels, moves".to_owned(),
-            format!("{}, {}", rep.levels, rep.moves),
-        ),
-        (
-            "engagement".to_owned(),
-            format!(
-                "max {:.1}°, mean {:.1}°, nominal {:.1}°, {:.1}% of the path above nominal",
-                rep.max_engagement_deg,
-                rep.mean_engagement_deg,
-                rep.nominal_engagement_deg,
-                100.0 * rep.share_above_nominal
-            ),
-        ),
-        (
-            "verifier".to_owned(),
-            format!(
-                "min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm², rapids through material {}",
-                rep.verification.min_clearance_mm,
-                rep.verification.required_clearance_mm,
-                rep.verification.uncut_area_mm2,
-                rep.verification.rapids_through_material
-            ),
-        ),
-    ];
-    summary.extend(
-        rep.problems
-            .iter()
-            .map(|p| ("problem".to_owned(), p.clone())),
-    );
-    summary.extend(
-        rep.auto
-            .iter()
-            .flatten()
-            .map(|e| ("--strategy auto".to_owned(), auto_line(e))),
-    );
-    let outlines = job.outlines();
-    let html = super::html::toolpath_report(
-        &format!("millpath pocket {outline} {name}"),
-        summary,
-        &job.part.toolpath,
-        &outlines,
-        &plan,
-    )?;
-    super::html::write(path, &html)
+    super::html::write(path, &job.html(outline)?)
 }
 
 /// `--rest-from`: the rest pass, written and summed up in one line.

@@ -13,7 +13,7 @@ pub mod points;
 pub use atomic::{write_atomic, write_atomic_with};
 pub use drawing::{Drawing, ReadOptions};
 pub use outline_source::{
-    ImportSettings, mm_per_unit, read_outline_file, read_outlines, read_text,
+    ImportSettings, mm_per_unit, read_outline_bytes, read_outline_file, read_outlines, read_text,
 };
 pub mod dxf;
 pub(crate) mod dxf_out;

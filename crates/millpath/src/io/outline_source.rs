@@ -116,45 +116,98 @@ enum Read {
 }
 
 fn read_drawing(name: &str, import: &ImportSettings) -> Result<Read, Error> {
-    let path = Path::new(name);
-    let ext = path
+    File::read(name)?.parse(name, import)
+}
+
+/// An outline file's contents by its kind (its extension, any case): JSON and SVG as text,
+/// DXF as bytes (it may be binary).
+enum File {
+    Json(String),
+    Svg(String),
+    Dxf(Vec<u8>),
+}
+
+/// The kinds of outline file.
+#[derive(Clone, Copy)]
+enum Kind {
+    Json,
+    Svg,
+    Dxf,
+}
+
+/// What the extension of `name` says the file is.
+fn kind(name: &str) -> Result<Kind, InputError> {
+    let ext = Path::new(name)
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    Ok(Read::Drawing(match ext.as_deref() {
-        Some("json") => {
-            if import.layer.is_some() {
-                return Err(InputError::new("--layer", name)
-                    .expected("a .dxf or .svg drawing (the flag does not apply to this input)")
-                    .into());
-            }
-            return Ok(Read::Loops(outline_json::parse(&read_text(path)?, name)?));
-        }
-        Some("svg") => svg::read_loops(&read_text(path)?, name, &import.options()?)?,
-        Some("dxf") => {
-            let bytes = std::fs::read(path).map_err(|e| {
+    match ext.as_deref() {
+        Some("json") => Ok(Kind::Json),
+        Some("svg") => Ok(Kind::Svg),
+        Some("dxf") => Ok(Kind::Dxf),
+        _ => Err(InputError::new("outline file", name)
+            .expected("a .json, .dxf or .svg file, or sample:aerospace or sample:part")),
+    }
+}
+
+impl File {
+    /// Reads the file at `name`.
+    fn read(name: &str) -> Result<File, Error> {
+        let path = Path::new(name);
+        Ok(match kind(name)? {
+            Kind::Json => File::Json(read_text(path)?),
+            Kind::Svg => File::Svg(read_text(path)?),
+            Kind::Dxf => File::Dxf(std::fs::read(path).map_err(|e| {
                 Error::Input(
                     InputError::new("input file", name)
                         .expected(format!("a readable DXF file ({e})")),
                 )
-            })?;
-            dxf::read_loops(&bytes, name, &import.options()?)?
-        }
-        _ => {
-            return Err(InputError::new("outline file", name)
-                .expected("a .json, .dxf or .svg file, or sample:aerospace or sample:part")
-                .into());
-        }
-    }))
+            })?),
+        })
+    }
+
+    /// The file named `name` from its contents, refused as reading it would be (JSON and
+    /// SVG must be UTF-8 text).
+    fn from_bytes(name: &str, bytes: &[u8]) -> Result<File, Error> {
+        let text = || {
+            String::from_utf8(bytes.to_vec()).map_err(|_| {
+                Error::Input(
+                    InputError::new("input file", name)
+                        .expected("a readable text file (stream did not contain valid UTF-8)"),
+                )
+            })
+        };
+        Ok(match kind(name)? {
+            Kind::Json => File::Json(text()?),
+            Kind::Svg => File::Svg(text()?),
+            Kind::Dxf => File::Dxf(bytes.to_vec()),
+        })
+    }
+
+    /// The outlines the file holds (`name` names it in messages).
+    fn parse(&self, name: &str, import: &ImportSettings) -> Result<Read, Error> {
+        Ok(Read::Drawing(match self {
+            File::Json(text) => {
+                if import.layer.is_some() {
+                    return Err(InputError::new("--layer", name)
+                        .expected("a .dxf or .svg drawing (the flag does not apply to this input)")
+                        .into());
+                }
+                return Ok(Read::Loops(outline_json::parse(text, name)?));
+            }
+            File::Svg(text) => svg::read_loops(text, name, &import.options()?)?,
+            File::Dxf(bytes) => dxf::read_loops(bytes, name, &import.options()?)?,
+        }))
+    }
 }
 
-/// Reads an outline file (by extension); returns the loops and, for a drawing, the note of
-/// what it held (`NAME: summary`).
-pub fn read_outline_file(
+/// The loops of a drawing and the note of what it held, from a read drawing.
+fn loops_of(
+    read: Read,
     name: &str,
     import: &ImportSettings,
 ) -> Result<(Loops, Option<String>), Error> {
-    let drawing = match read_drawing(name, import)? {
+    let drawing = match read {
         Read::Loops(loops) => return Ok((loops, None)),
         Read::Drawing(d) => d,
     };
@@ -163,4 +216,32 @@ pub fn read_outline_file(
     let summary = drawing.summary();
     let loops = drawing.into_loops(name, import.join_tolerance)?;
     Ok((loops, Some(format!("{name}: {summary}"))))
+}
+
+/// [`read_outline_file`] on a file's contents rather than its path, for a front end that has
+/// the bytes and no file system (the web page): `name` gives the kind by its extension and
+/// names the file in messages, which are those reading the file `name` gives.
+///
+/// ```text
+/// read_outline_bytes("part.dxf", &bytes, &ImportSettings::default()) → (Loops, Some("part.dxf: …"))
+/// ```
+pub fn read_outline_bytes(
+    name: &str,
+    bytes: &[u8],
+    import: &ImportSettings,
+) -> Result<(Loops, Option<String>), Error> {
+    loops_of(
+        File::from_bytes(name, bytes)?.parse(name, import)?,
+        name,
+        import,
+    )
+}
+
+/// Reads an outline file (by extension); returns the loops and, for a drawing, the note of
+/// what it held (`NAME: summary`).
+pub fn read_outline_file(
+    name: &str,
+    import: &ImportSettings,
+) -> Result<(Loops, Option<String>), Error> {
+    loops_of(read_drawing(name, import)?, name, import)
 }

@@ -12,7 +12,7 @@
 //! run.report       // the JSON of `--report`
 //! ```
 
-use super::pocket_report::{Report, report};
+use super::pocket_report::{Report, auto_line, report};
 use super::program::{ProgramSettings, program_times};
 use crate::gcode::{WriterOptions, write_program};
 use crate::io::ImportSettings;
@@ -403,6 +403,29 @@ pub fn parse_select(text: Option<&str>, n: usize) -> Result<Vec<usize>, InputErr
     Ok(out)
 }
 
+/// One line per pocket of the drawing (index, area, islands, bounds), as `--list` prints
+/// them.
+pub fn list_lines(loops: &Loops) -> Vec<String> {
+    loops
+        .pockets()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let b = p.outer.bounds();
+            format!(
+                "pocket {}: area {:.3} mm², {} islands, bounds ({:.3}, {:.3}) to ({:.3}, {:.3})",
+                i + 1,
+                p.area(),
+                p.islands.len(),
+                b.min.x,
+                b.min.y,
+                b.max.x,
+                b.max.y
+            )
+        })
+        .collect()
+}
+
 /// What a pocket job made.
 #[derive(Debug)]
 pub struct PocketRun {
@@ -425,6 +448,68 @@ impl PocketRun {
     pub fn plan(&self) -> Result<crate::motion::Plan, Error> {
         crate::motion::plan_toolpath(&self.part.toolpath, &self.machine)
             .map_err(|e| e.engine_made("timing the pocket toolpath"))
+    }
+
+    /// The `--html` report of the run on `outline` (the drawing's name): summary (machine,
+    /// strategy, cycle time, path, engagement, the verifier's figures, its problems, `auto`'s
+    /// table), the viewer with playback on the machine, the feed plot.
+    pub fn html(&self, outline: &str) -> Result<crate::report::html::HtmlReport, Error> {
+        let (rep, name, m) = (&self.report, &self.name, &self.machine);
+        let plan = self.plan()?;
+        let mut summary = vec![
+            crate::report::html::machine_row(m),
+            ("strategy".to_owned(), name.clone()),
+            (
+                "cycle time".to_owned(),
+                format!("{:.2} s", rep.cycle_time_s),
+            ),
+            (
+                "path length".to_owned(),
+                format!("{:.1} mm", rep.path_length_mm),
+            ),
+            (
+                "levels, moves".to_owned(),
+                format!("{}, {}", rep.levels, rep.moves),
+            ),
+            (
+                "engagement".to_owned(),
+                format!(
+                    "max {:.1}°, mean {:.1}°, nominal {:.1}°, {:.1}% of the path above nominal",
+                    rep.max_engagement_deg,
+                    rep.mean_engagement_deg,
+                    rep.nominal_engagement_deg,
+                    100.0 * rep.share_above_nominal
+                ),
+            ),
+            (
+                "verifier".to_owned(),
+                format!(
+                    "min clearance {:.6} mm (needs {:.6}), uncut {:.3} mm², rapids through material {}",
+                    rep.verification.min_clearance_mm,
+                    rep.verification.required_clearance_mm,
+                    rep.verification.uncut_area_mm2,
+                    rep.verification.rapids_through_material
+                ),
+            ),
+        ];
+        summary.extend(
+            rep.problems
+                .iter()
+                .map(|p| ("problem".to_owned(), p.clone())),
+        );
+        summary.extend(
+            rep.auto
+                .iter()
+                .flatten()
+                .map(|e| ("--strategy auto".to_owned(), auto_line(e))),
+        );
+        crate::report::html::toolpath_report(
+            &format!("millpath pocket {outline} {name}"),
+            summary,
+            &self.part.toolpath,
+            &self.outlines(),
+            &plan,
+        )
     }
 
     /// Every outline of the pockets cut: each outer outline followed by its islands.

@@ -30,6 +30,48 @@
 use crate::error::{Error, InputError};
 use std::fmt::Write;
 
+/// A report with a summary table, the toolpath viewer (preview coloured by achieved feed,
+/// playback along `plan`) and the feed-along-path plot (where the target draws plots,
+/// [`super::plots::PLOTS_DRAWN`]): what `--html` writes for a toolpath.
+pub fn toolpath_report(
+    title: &str,
+    summary: Vec<(String, String)>,
+    tp: &crate::toolpath::Toolpath,
+    outlines: &[crate::geom::Outline],
+    plan: &crate::motion::Plan,
+) -> Result<HtmlReport, Error> {
+    let mut html = HtmlReport::new(title);
+    html.section("summary", summary);
+    html.toolpath_viewer(title, tp, outlines, plan)?;
+    if super::plots::PLOTS_DRAWN {
+        html.plot(
+            "Feed along the cutting path (rapids left out): achieved by the planner against programmed",
+            &super::plots::render_svg(
+                &super::feed_chart(plan)?,
+                &super::plots::PlotOptions::default(),
+            )?,
+        )?;
+    }
+    Ok(html)
+}
+
+/// The machine's limits as one summary row.
+pub fn machine_row(m: &crate::machine::Machine) -> (String, String) {
+    let a = &m.axes[0];
+    let jerk = if a.max_jerk.is_finite() {
+        format!("{:.0}", a.max_jerk)
+    } else {
+        "unlimited".to_owned()
+    };
+    (
+        "machine".to_owned(),
+        format!(
+            "{}: X v {:.0} mm/s, a {:.0} mm/s², j {jerk} mm/s³, path tolerance {} mm",
+            m.name, a.max_velocity, a.max_acceleration, m.path_tolerance
+        ),
+    )
+}
+
 /// Escapes text for HTML element content and quoted attribute values.
 pub fn escape_html(s: &str) -> String {
     let mut out = String::with_capacity(s.len());

@@ -193,7 +193,22 @@ fn plot_err(e: impl std::fmt::Display) -> Error {
     Error::internal(format!("plot rendering failed: {e}"))
 }
 
+/// Whether this target draws plots: every target but `wasm32-unknown-unknown`, where
+/// plotters measures text only with a browser page's canvas (its `ab_glyph` text backend is
+/// native only) and a Web Worker has none; there [`render_svg`] and [`render_png`] refuse
+/// with an internal error and the HTML report leaves its plots out.
+pub const PLOTS_DRAWN: bool = !cfg!(all(target_arch = "wasm32", target_os = "unknown"));
+
+/// The refusal to draw a plot on a target that draws none ([`PLOTS_DRAWN`]).
+#[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+fn register_font() -> Result<(), Error> {
+    Err(Error::internal(
+        "plot rendering: no plots are drawn on wasm32-unknown-unknown (no text backend)",
+    ))
+}
+
 /// Registers the embedded DejaVu Sans as plotters' `sans-serif`, once per process.
+#[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
 fn register_font() -> Result<(), Error> {
     static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| {
@@ -313,8 +328,16 @@ pub fn render_svg(chart: &Chart, opts: &PlotOptions) -> Result<String, Error> {
 
 /// Renders `chart` as a PNG file at `path` (through plotters' bitmap backend).
 pub fn render_png(chart: &Chart, opts: &PlotOptions, path: &Path) -> Result<(), Error> {
-    let root = BitMapBackend::new(path, (opts.width, opts.height)).into_drawing_area();
-    draw(&root, chart)
+    #[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+    {
+        let root = BitMapBackend::new(path, (opts.width, opts.height)).into_drawing_area();
+        draw(&root, chart)
+    }
+    #[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+    {
+        let _ = (chart, opts, path);
+        register_font()
+    }
 }
 
 /// Writes `stem.svg` and `stem.png` (the SVG atomically) and returns the SVG, for a report

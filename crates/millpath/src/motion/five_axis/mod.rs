@@ -54,7 +54,20 @@ use crate::error::{Error, InputError};
 use crate::geom::Point3;
 use crate::machine::kinematics::{IkOptions, Joints, Kinematics, Pose, PoseWarning, inverse_path};
 use serde::{Deserialize, Serialize};
-use std::time::Instant;
+
+/// A clock started now: the returned function gives the wall time since, s (the compute-time
+/// figures). `wasm32-unknown-unknown` has no clock (`Instant::now` panics there): it reads 0.
+#[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+fn stopwatch() -> impl Fn() -> f64 {
+    let t0 = std::time::Instant::now();
+    move || t0.elapsed().as_secs_f64()
+}
+
+/// A clock started now: reads 0, as this target has none (see the other target's).
+#[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+fn stopwatch() -> impl Fn() -> f64 {
+    || 0.0
+}
 
 /// Options of [`plan`]. Built from [`Default`] with the `with_*` methods (the struct is
 /// `#[non_exhaustive]`: new settings do not break callers).
@@ -134,9 +147,9 @@ pub struct FiveAxisResult {
     pub max_path_deviation_mm: f64,
     /// Total time after each iteration of our optimiser, s.
     pub optimizer_history_s: Vec<f64>,
-    /// Wall time of our optimiser, s.
+    /// Wall time of our optimiser, s (0 on a target without a clock: wasm32-unknown-unknown).
     pub compute_time_s: f64,
-    /// Wall time of the baseline, s.
+    /// Wall time of the baseline, s (0 on a target without a clock).
     pub baseline_compute_time_s: Option<f64>,
     /// Inverse-kinematics warnings, by pose.
     pub ik_warnings: Vec<PoseWarning>,
@@ -195,9 +208,9 @@ pub fn plan(
     let mut candidates = Vec::new();
     if let Some(bo) = &opts.baseline {
         let states = fixed_states(&geo, kin, lim, bo);
-        let t0 = Instant::now();
+        let elapsed = stopwatch();
         let run = baseline_ga::run(&states, kin, lim, bo, mt);
-        let dt = t0.elapsed().as_secs_f64();
+        let dt = elapsed();
         if let Some((times, _)) = run {
             let segs: Vec<Segment> = states
                 .windows(2)
@@ -208,9 +221,9 @@ pub fn plan(
         }
         candidates.push(states);
     }
-    let t0 = Instant::now();
+    let elapsed = stopwatch();
     let schedule = optimize(&geo, kin, lim, &opts.knots, &candidates)?;
-    let compute = t0.elapsed().as_secs_f64();
+    let compute = elapsed();
     let segments: Vec<Segment> = schedule
         .states
         .windows(2)
