@@ -312,21 +312,11 @@ fn rest_result(
     run: job::rest::RestRun,
     mut notes: Vec<String>,
 ) -> PyResult<PocketResult> {
+    notes.push(run.summary());
     let gcode = String::from_utf8(run.gcode).map_err(|e| {
         crate::InternalError::new_err(format!("the rest program is not UTF-8: {e}"))
     })?;
     let cut_mm = run.toolpath.cut_length();
-    notes.push(format!(
-        "rest after D{} mm: {:.3} mm² left within reach of D{} mm, {} run(s), path {:.1} mm, \
-         cycle time {:.2} s; after both programs: {}",
-        run.previous_tool.diameter,
-        run.left_mm2,
-        run.toolpath.tool.diameter,
-        run.runs,
-        cut_mm,
-        run.time_s,
-        run.check
-    ));
     let report = PyDict::new(py);
     report.set_item("previous_tool_diameter_mm", run.previous_tool.diameter)?;
     report.set_item("tool_diameter_mm", run.toolpath.tool.diameter)?;

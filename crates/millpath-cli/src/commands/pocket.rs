@@ -332,16 +332,6 @@ fn rest(
     if let Some(out) = &args.output {
         millpath::io::write_atomic(out, &run.gcode)?;
     }
-    super::print(&format!(
-        "rest after D{} mm: {:.3} mm² left within reach of D{} mm, {} run(s), path {:.1} mm, \
-         cycle time {:.2} s; after both programs: {}",
-        run.previous_tool.diameter,
-        run.left_mm2,
-        run.toolpath.tool.diameter,
-        run.runs,
-        run.toolpath.cut_length(),
-        run.time_s,
-        run.check
-    ));
+    super::print(&run.summary());
     Ok(())
 }

@@ -47,6 +47,24 @@ pub struct RestRun {
     pub check: String,
 }
 
+impl RestRun {
+    /// The line the front ends print for it: what was left, the runs, the path, the time and
+    /// the height field's verdict on the pair.
+    pub fn summary(&self) -> String {
+        format!(
+            "rest after D{} mm: {:.3} mm² left within reach of D{} mm, {} run(s), path {:.1} mm, \
+             cycle time {:.2} s; after both programs: {}",
+            self.previous_tool.diameter,
+            self.left_mm2,
+            self.toolpath.tool.diameter,
+            self.runs,
+            self.toolpath.cut_length(),
+            self.time_s,
+            self.check
+        )
+    }
+}
+
 /// The diameter in our programs' header line `(tool T1: flat end mill D12.7 mm, ...)`.
 pub fn header_diameter(text: &str) -> Option<f64> {
     text.lines().take(20).find_map(|l| {

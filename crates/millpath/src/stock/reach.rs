@@ -445,6 +445,19 @@ fn envelope(f: &[f64], out: &mut [f64], v: &mut [usize], z: &mut [f64]) {
 mod tests {
     use super::*;
 
+    /// `n` cells, each a seed with chance `1/every` (none for 0), from a linear congruential
+    /// generator.
+    fn random_seeds(state: &mut u64, n: usize, every: u64) -> Vec<bool> {
+        (0..n)
+            .map(|_| {
+                *state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                every > 0 && (*state >> 33) % every == 0
+            })
+            .collect()
+    }
+
     /// The transform against brute force on random grids: sparse seeds (columns and rows
     /// without one), dense ones, thin grids and none at all.
     #[test]
@@ -457,14 +470,7 @@ mod tests {
             (31, 29, 2),
             (6, 5, 0),
         ] {
-            let seeds: Vec<bool> = (0..nx * ny)
-                .map(|_| {
-                    state = state
-                        .wrapping_mul(6364136223846793005)
-                        .wrapping_add(1442695040888963407);
-                    every > 0 && (state >> 33) % every == 0
-                })
-                .collect();
+            let seeds = random_seeds(&mut state, nx * ny, every);
             let got = edt(&seeds, nx, ny);
             assert_eq!(got.len(), nx * ny);
             for (k, &g) in got.iter().enumerate() {
@@ -537,14 +543,7 @@ mod tests {
             (6, 5, 0, 4.0),
             (64, 64, 400, 30.0),
         ] {
-            let seeds: Vec<bool> = (0..nx * ny)
-                .map(|_| {
-                    state = state
-                        .wrapping_mul(6364136223846793005)
-                        .wrapping_add(1442695040888963407);
-                    every > 0 && (state >> 33) % every == 0
-                })
-                .collect();
+            let seeds = random_seeds(&mut state, nx * ny, every);
             let list: Vec<(usize, usize)> = (0..nx * ny)
                 .filter(|&k| seeds[k])
                 .flat_map(|k| [(k % nx, k / nx), (k % nx, k / nx)])
