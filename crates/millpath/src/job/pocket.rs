@@ -176,10 +176,11 @@ pub fn parse_choice(s: &str) -> Result<Choice, InputError> {
         "spiral" => Ok(Choice::One(StrategyKind::Spiral)),
         "offset" => Ok(Choice::One(StrategyKind::Offset)),
         "zigzag" => Ok(Choice::One(StrategyKind::Zigzag)),
+        "adaptive" => Ok(Choice::One(StrategyKind::Adaptive)),
         "auto" => Ok(Choice::Auto),
         _ => Err(InputError::new("strategy", s)
             .at("--strategy")
-            .expected("spiral, offset, zigzag or auto")),
+            .expected("spiral, offset, zigzag, adaptive or auto")),
     }
 }
 

@@ -52,6 +52,7 @@
 //!   the job meant to cut and the part it meant to keep ([`check_field`]).
 
 pub(crate) mod bridges;
+pub(crate) mod engagement;
 pub(crate) mod field_check;
 pub(crate) mod gouge;
 pub(crate) mod heightfield;
@@ -63,6 +64,7 @@ pub(crate) mod raster;
 pub(crate) mod reach;
 pub(crate) mod simulate;
 
+pub use engagement::{EngagementStats, engagement_stats, entry_moves};
 pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
 pub use field_check::{CheckOptions, Deviation, FieldCheck, Floor, PartTop, check_field};
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};

@@ -315,7 +315,9 @@ fn emit_cut(
         }
         CutEntry::Direct { from } => {
             tp.push(Move::line(Point3::from_xy(from, z), opts.plunge_feed));
-            tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
+            if from.distance(first.a) > 1e-9 {
+                tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
+            }
         }
         CutEntry::Ramp => {
             let Some((head, passes)) = ramp else {

@@ -86,6 +86,9 @@ pub enum StrategyKind {
     Offset,
     /// The adaptive spiral: a central spiral morphing into the boundary offset.
     Spiral,
+    /// Adaptive clearing: the engagement held at the stepover's at every step
+    /// (`crate::strategy::adaptive`).
+    Adaptive,
 }
 
 impl StrategyKind {
@@ -95,6 +98,7 @@ impl StrategyKind {
             StrategyKind::Zigzag => "zigzag",
             StrategyKind::Offset => "offset",
             StrategyKind::Spiral => "spiral",
+            StrategyKind::Adaptive => "adaptive",
         }
     }
 }

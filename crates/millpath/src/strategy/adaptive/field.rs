@@ -1,0 +1,434 @@
+//! The adaptive planner's own picture of the stock: which cells still hold material, and how
+//! far each cell lies from the walls.
+//!
+//! A square grid of side `h` covers the pocket. A cell stands for its centre. `material` is
+//! one bit per cell (rows of 64-bit words): set while the cell's centre lies inside the
+//! pocket (inside the outer loop, outside every island) and no tool disc has covered it.
+//! `wall` is the Euclidean distance from each cell's centre to the nearest centre of a cell
+//! outside the pocket (the exact distance transform of the grid, Felzenszwalb and
+//! Huttenlocher's lower envelope of parabolas, columns then rows): within `h` of the
+//! distance from the centre to the pocket's walls.
+//!
+//! The tool at `q` covers the cells whose centres lie within `r` of `q`; a disc's cells are
+//! found row by row (the chord of the circle at the row's height), so counting or clearing
+//! them costs one word operation per row and 64 cells.
+
+use crate::geom::Point;
+use crate::strategy::pocket::segments::{Seg, segs_from_vertices};
+use crate::strategy::pocket::shape::{PocketShape, closed_chain};
+
+/// The grid: material bits and the distance to the walls.
+#[derive(Debug, Clone)]
+pub(crate) struct Field {
+    /// Centre of cell (0, 0) minus half a cell: the grid's lower-left corner.
+    x0: f64,
+    y0: f64,
+    /// Cell side, mm.
+    pub h: f64,
+    nx: usize,
+    ny: usize,
+    /// 64-bit words per row.
+    words: usize,
+    material: Vec<u64>,
+    wall: Vec<f32>,
+}
+
+impl Field {
+    /// The field of `shape` at cell `h`, the grid reaching `pad` beyond the outer loop.
+    pub(crate) fn new(shape: &PocketShape, h: f64, pad: f64) -> Field {
+        let b = shape.outer.bounds();
+        let x0 = b.min.x - pad;
+        let y0 = b.min.y - pad;
+        let nx = (((b.max.x + pad - x0) / h).ceil() as usize).max(1);
+        let ny = (((b.max.y + pad - y0) / h).ceil() as usize).max(1);
+        let words = nx.div_ceil(64);
+        let mut f = Field {
+            x0,
+            y0,
+            h,
+            nx,
+            ny,
+            words,
+            material: vec![0; words * ny],
+            wall: Vec::new(),
+        };
+        f.fill(shape);
+        f.wall = f.distance_to_outside();
+        f
+    }
+
+    /// Sets the cells whose centres lie inside the pocket: each row's crossings with the
+    /// loops (flattened to `h/8`), filled between odd and even crossings.
+    fn fill(&mut self, shape: &PocketShape) {
+        let mut crossings: Vec<Vec<f64>> = vec![Vec::new(); self.ny];
+        for outline in shape.loops() {
+            let pts = flatten_loop(&segs_from_vertices(&closed_chain(outline.polyline())), {
+                self.h / 8.0
+            });
+            for w in pts.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
+                // Rows whose centre height lies in [lo.y, hi.y): each crossing counted once.
+                let j0 = ((lo.y - self.y0) / self.h - 0.5).ceil().max(0.0) as usize;
+                let mut j = j0;
+                while j < self.ny {
+                    let y = self.y0 + (j as f64 + 0.5) * self.h;
+                    if y >= hi.y {
+                        break;
+                    }
+                    let t = (y - lo.y) / (hi.y - lo.y);
+                    crossings[j].push(lo.x + t * (hi.x - lo.x));
+                    j += 1;
+                }
+            }
+        }
+        for (j, xs) in crossings.iter_mut().enumerate() {
+            xs.sort_by(f64::total_cmp);
+            for pair in xs.chunks_exact(2) {
+                let i0 = ((pair[0] - self.x0) / self.h - 0.5).ceil().max(0.0);
+                let i1 = ((pair[1] - self.x0) / self.h - 0.5).floor();
+                if i1 >= i0 {
+                    let i1 = (i1 as usize).min(self.nx - 1);
+                    self.set_span(j, i0 as usize, i1, true);
+                }
+            }
+        }
+    }
+
+    /// The distance from every cell's centre to the nearest cell outside the pocket, mm.
+    fn distance_to_outside(&self) -> Vec<f32> {
+        let big = ((self.nx + self.ny) as f64).powi(2);
+        let mut d2: Vec<f64> = (0..self.nx * self.ny)
+            .map(|k| {
+                if self.get(k % self.nx, k / self.nx) {
+                    big
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        edt_2d(&mut d2, self.nx, self.ny);
+        d2.iter().map(|&v| (v.sqrt() * self.h) as f32).collect()
+    }
+
+    fn get(&self, i: usize, j: usize) -> bool {
+        self.material[j * self.words + i / 64] >> (i % 64) & 1 == 1
+    }
+
+    /// Sets or clears the cells `i0..=i1` of row `j`.
+    fn set_span(&mut self, j: usize, i0: usize, i1: usize, on: bool) {
+        let row = &mut self.material[j * self.words..(j + 1) * self.words];
+        for (w, m) in span_masks(i0, i1) {
+            if on {
+                row[w] |= m;
+            } else {
+                row[w] &= !m;
+            }
+        }
+    }
+
+    /// The cells of row `j` a disc about `q` of radius `r` covers, or `None`.
+    fn disc_row(&self, q: Point, r: f64, j: usize) -> Option<(usize, usize)> {
+        let y = self.y0 + (j as f64 + 0.5) * self.h;
+        let dy = y - q.y;
+        let half2 = r * r - dy * dy;
+        if half2 < 0.0 {
+            return None;
+        }
+        let half = half2.sqrt();
+        let i0 = ((q.x - half - self.x0) / self.h - 0.5).ceil().max(0.0);
+        let i1 = ((q.x + half - self.x0) / self.h - 0.5).floor();
+        if i1 < i0 || i1 < 0.0 {
+            return None;
+        }
+        let i1 = (i1 as usize).min(self.nx - 1);
+        let i0 = i0 as usize;
+        (i0 <= i1).then_some((i0, i1))
+    }
+
+    /// The rows a disc about `q` of radius `r` may touch.
+    fn disc_rows(&self, q: Point, r: f64) -> std::ops::Range<usize> {
+        let lo = ((q.y - r - self.y0) / self.h - 0.5).ceil().max(0.0) as usize;
+        let hi = ((q.y + r - self.y0) / self.h - 0.5).floor();
+        let hi = if hi < 0.0 {
+            0
+        } else {
+            (hi as usize + 1).min(self.ny)
+        };
+        lo..hi.max(lo)
+    }
+
+    /// The material cells within `r` of `q`.
+    pub(crate) fn count_disc(&self, q: Point, r: f64) -> u32 {
+        let mut n = 0;
+        for j in self.disc_rows(q, r) {
+            if let Some((i0, i1)) = self.disc_row(q, r, j) {
+                let row = &self.material[j * self.words..(j + 1) * self.words];
+                for (w, m) in span_masks(i0, i1) {
+                    n += (row[w] & m).count_ones();
+                }
+            }
+        }
+        n
+    }
+
+    /// Clears the cells within `r` of `q`; returns how many held material.
+    pub(crate) fn clear_disc(&mut self, q: Point, r: f64) -> u32 {
+        let mut n = 0;
+        for j in self.disc_rows(q, r) {
+            if let Some((i0, i1)) = self.disc_row(q, r, j) {
+                let row = &mut self.material[j * self.words..(j + 1) * self.words];
+                for (w, m) in span_masks(i0, i1) {
+                    n += (row[w] & m).count_ones();
+                    row[w] &= !m;
+                }
+            }
+        }
+        n
+    }
+
+    /// The distance from `q` to the walls as the grid knows it: the value of the cell that
+    /// holds `q` (0 off the grid).
+    pub(crate) fn wall_distance(&self, q: Point) -> f64 {
+        match self.cell_of(q) {
+            Some((i, j)) => f64::from(self.wall[j * self.nx + i]),
+            None => 0.0,
+        }
+    }
+
+    fn cell_of(&self, q: Point) -> Option<(usize, usize)> {
+        let fx = (q.x - self.x0) / self.h;
+        let fy = (q.y - self.y0) / self.h;
+        if !(fx >= 0.0 && fy >= 0.0) {
+            return None;
+        }
+        let (i, j) = (fx as usize, fy as usize);
+        (i < self.nx && j < self.ny).then_some((i, j))
+    }
+
+    /// The centre of cell `(i, j)`.
+    pub(crate) fn centre(&self, i: usize, j: usize) -> Point {
+        Point::new(
+            self.x0 + (i as f64 + 0.5) * self.h,
+            self.y0 + (j as f64 + 0.5) * self.h,
+        )
+    }
+
+    /// Grid size in cells.
+    pub(crate) fn size(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
+    /// The wall distance of cell `(i, j)`.
+    pub(crate) fn wall_at(&self, i: usize, j: usize) -> f64 {
+        f64::from(self.wall[j * self.nx + i])
+    }
+
+    /// A coarse picture of the material: `k × k` blocks of cells, a block set when any of
+    /// its cells holds material; with its distance transform in mm (from each block's
+    /// centre to the nearest set block's centre).
+    pub(crate) fn coarse_distance(&self, k: usize) -> Coarse {
+        let (cx, cy) = (self.nx.div_ceil(k), self.ny.div_ceil(k));
+        let mut d2 = vec![((cx + cy) as f64).powi(2); cx * cy];
+        for j in 0..self.ny {
+            let row = &self.material[j * self.words..(j + 1) * self.words];
+            for (w, &bits) in row.iter().enumerate() {
+                let mut b = bits;
+                while b != 0 {
+                    let i = w * 64 + b.trailing_zeros() as usize;
+                    b &= b - 1;
+                    d2[(j / k) * cx + i / k] = 0.0;
+                }
+            }
+        }
+        edt_2d(&mut d2, cx, cy);
+        Coarse {
+            k,
+            nx: cx,
+            ny: cy,
+            dist: d2.iter().map(|v| v.sqrt() * self.h * k as f64).collect(),
+        }
+    }
+
+    /// The centre of coarse block `(i, j)` of [`Field::coarse_distance`]`(k)`.
+    pub(crate) fn coarse_centre(&self, k: usize, i: usize, j: usize) -> Point {
+        Point::new(
+            self.x0 + (i as f64 + 0.5) * self.h * k as f64,
+            self.y0 + (j as f64 + 0.5) * self.h * k as f64,
+        )
+    }
+
+    /// Material cells left in the whole field.
+    pub(crate) fn material_cells(&self) -> u64 {
+        self.material.iter().map(|w| u64::from(w.count_ones())).sum()
+    }
+}
+
+/// A coarse distance-to-material map (see [`Field::coarse_distance`]).
+#[derive(Debug, Clone)]
+pub(crate) struct Coarse {
+    /// Cells per block side.
+    pub k: usize,
+    pub nx: usize,
+    pub ny: usize,
+    /// Distance from each block's centre to the nearest block holding material, mm.
+    pub dist: Vec<f64>,
+}
+
+/// The (word, mask) pairs covering bits `i0..=i1`.
+fn span_masks(i0: usize, i1: usize) -> impl Iterator<Item = (usize, u64)> {
+    let (w0, w1) = (i0 / 64, i1 / 64);
+    (w0..=w1).map(move |w| {
+        let lo = if w == w0 { i0 % 64 } else { 0 };
+        let hi = if w == w1 { i1 % 64 } else { 63 };
+        let m = if hi - lo == 63 {
+            u64::MAX
+        } else {
+            ((1u64 << (hi - lo + 1)) - 1) << lo
+        };
+        (w, m)
+    })
+}
+
+/// Points along the loop of `segs`, arcs flattened within `tol`.
+fn flatten_loop(segs: &[Seg], tol: f64) -> Vec<Point> {
+    let mut pts = Vec::new();
+    for s in segs {
+        if pts.is_empty() {
+            pts.push(s.a);
+        }
+        let n = match s.arc {
+            Some(a) if a.radius > tol => {
+                let step = 2.0 * (1.0 - tol / a.radius).clamp(-1.0, 1.0).acos();
+                ((a.sweep / step.max(1e-6)).ceil() as usize).clamp(1, 100_000)
+            }
+            _ => 1,
+        };
+        for k in 1..=n {
+            pts.push(if k == n {
+                s.b
+            } else {
+                s.point_at(k as f64 / n as f64)
+            });
+        }
+    }
+    pts
+}
+
+/// The exact squared Euclidean distance transform of a grid (in cells²): `d2` holds 0 at the
+/// sources and a large value elsewhere, and is replaced by the squared distance to the
+/// nearest source (Felzenszwalb and Huttenlocher, columns then rows).
+fn edt_2d(d2: &mut [f64], nx: usize, ny: usize) {
+    let mut buf = vec![0.0; nx.max(ny)];
+    let mut out = vec![0.0; nx.max(ny)];
+    for i in 0..nx {
+        for j in 0..ny {
+            buf[j] = d2[j * nx + i];
+        }
+        edt_1d(&buf[..ny], &mut out[..ny]);
+        for j in 0..ny {
+            d2[j * nx + i] = out[j];
+        }
+    }
+    for j in 0..ny {
+        buf[..nx].copy_from_slice(&d2[j * nx..(j + 1) * nx]);
+        edt_1d(&buf[..nx], &mut out[..nx]);
+        d2[j * nx..(j + 1) * nx].copy_from_slice(&out[..nx]);
+    }
+}
+
+/// One dimension of [`edt_2d`]: `out[q] = min_p (q − p)² + f[p]`.
+fn edt_1d(f: &[f64], out: &mut [f64]) {
+    let n = f.len();
+    if n == 0 {
+        return;
+    }
+    let mut v = vec![0usize; n];
+    let mut z = vec![0.0f64; n + 1];
+    let mut k = 0;
+    z[0] = f64::NEG_INFINITY;
+    z[1] = f64::INFINITY;
+    for q in 1..n {
+        loop {
+            let p = v[k];
+            let s = ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q - p) as f64);
+            // z[0] = −∞: a finite `s` never passes below the first parabola's start.
+            if s <= z[k] && k > 0 {
+                k -= 1;
+                continue;
+            }
+            k += 1;
+            v[k] = q;
+            z[k] = s;
+            z[k + 1] = f64::INFINITY;
+            break;
+        }
+    }
+    let mut k = 0;
+    for (q, o) in out.iter_mut().enumerate() {
+        while z[k + 1] < q as f64 {
+            k += 1;
+        }
+        let p = v[k];
+        let d = q as f64 - p as f64;
+        *o = d * d + f[p];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Outline;
+
+    #[test]
+    fn edt_matches_brute_force() {
+        let (nx, ny) = (23, 17);
+        let mut src = vec![false; nx * ny];
+        for k in [3, 40, 77, 200, 333, 390] {
+            src[k] = true;
+        }
+        let mut d2: Vec<f64> = src.iter().map(|&s| if s { 0.0 } else { 1e9 }).collect();
+        edt_2d(&mut d2, nx, ny);
+        for j in 0..ny {
+            for i in 0..nx {
+                let best = (0..nx * ny)
+                    .filter(|&k| src[k])
+                    .map(|k| {
+                        let (a, b) = ((k % nx) as f64 - i as f64, (k / nx) as f64 - j as f64);
+                        a * a + b * b
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                assert_eq!(d2[j * nx + i], best, "cell ({i}, {j})");
+            }
+        }
+    }
+
+    #[test]
+    fn disc_counts_agree_with_the_cells_one_by_one() {
+        let sq = Outline::from_points(
+            &[
+                Point::new(0.0, 0.0),
+                Point::new(30.0, 0.0),
+                Point::new(30.0, 20.0),
+                Point::new(0.0, 20.0),
+            ],
+            "t",
+        )
+        .unwrap();
+        let mut f = Field::new(&PocketShape::simple(sq), 0.25, 1.0);
+        let total = f.material_cells();
+        assert_eq!(total, 120 * 80, "every cell centre inside the square");
+        let q = Point::new(10.3, 7.9);
+        let brute = (0..f.ny)
+            .flat_map(|j| (0..f.nx).map(move |i| (i, j)))
+            .filter(|&(i, j)| f.get(i, j) && f.centre(i, j).distance(q) <= 4.0)
+            .count() as u32;
+        assert_eq!(f.count_disc(q, 4.0), brute);
+        assert_eq!(f.clear_disc(q, 4.0), brute);
+        assert_eq!(f.count_disc(q, 4.0), 0);
+        assert_eq!(f.material_cells(), total - u64::from(brute));
+        // The wall distance of a centre cell is its distance to the nearest outside centre.
+        let d = f.wall_distance(Point::new(15.1, 3.1));
+        assert!((d - 3.25).abs() < 0.26, "{d}");
+    }
+}

@@ -1,0 +1,408 @@
+//! Adaptive clearing: the tool's engagement held under a bound at every step, the pocket
+//! cleared from the inside out in passes that follow the material.
+//!
+//! The planner keeps its own picture of the stock ([`field`]: a grid of cells of side
+//! `h = r/32`, one bit per cell of material). It enters with a helix at the point of the
+//! pocket farthest from its walls (the helix clears a disc of its radius plus `r`), then
+//! runs passes ([`pass`]): each step of length `δ = r/8` is turned so that it removes
+//! `TARGET_FILL · s · δ` of material, the area a straight cut of width `s` (`--stepover`)
+//! removes, so the engagement is that of the straight cut at every step, the entry aside.
+//! Each pass starts where the tool, clear of material, touches it (a block of a coarse
+//! distance-to-material map at `r` plus one to three blocks from the nearest material,
+//! the block nearest the tool first); the tool stays down and feeds there in a straight
+//! line when the line's every position is clear of material
+//! ([`LINK_CELLS`] cells at most in the tool's disc) and inside the walls; otherwise the
+//! tool retracts and feeds down there again (a direct entry over cleared material). A region
+//! the passes cannot reach (beyond an island, past a neck narrower than the tool) gets a
+//! helix of its own. The passes keep the tool centre `3h` farther from the walls than the
+//! tool-centre region (the grid's distances hold to `h`); a last pass around each loop of the
+//! exact tool-centre region (`r` plus the wall stock from the walls) cuts the band left
+//! there, whose width is that margin plus the scallops between passes meeting a wall.
+//!
+//! Each pass's tool positions are joined by tangent-continuous arcs fitted within
+//! [`ARC_FIT`] (the positions themselves wobble by the grid's count of cells, a few
+//! hundredths of the target's area).
+//!
+//! **What is measured, and by whom.** The planner's counts are its own; the stock simulation
+//! (`crate::stock`, another grid, another sweep) measures the engagement of the written path
+//! and checks that nothing is left and nothing gouged, as for every strategy.
+
+pub(crate) mod field;
+pub(crate) mod pass;
+
+use crate::error::Result;
+use crate::geom::{Point, Vec2};
+use crate::strategy::pocket::levels::{Cut, CutEntry, LevelPlan};
+use crate::strategy::pocket::options::{Direction, Entry, PocketOptions};
+use crate::strategy::pocket::segments::{
+    Seg, fit_arcs_where, segs_from_points, segs_from_vertices,
+};
+use crate::strategy::pocket::shape::{
+    IndexedLoop, PocketShape, closed_chain, crosses, restart_near, reversed,
+};
+use crate::toolpath::Tool;
+use field::Field;
+use pass::Stepper;
+
+/// Grid cell, in tool radii.
+pub const CELL_RADII: f64 = 1.0 / 32.0;
+/// Step length, in tool radii.
+pub const STEP_RADII: f64 = 1.0 / 8.0;
+/// The share of the stepover's area each step aims at (the rest is the margin for the
+/// grid's count and the arcs' fit).
+pub const TARGET_FILL: f64 = 0.95;
+/// How far the arcs joining a pass's positions may stray from them, in tool radii.
+pub const ARC_FIT: f64 = 0.003;
+/// Most material cells a link may pass within the tool's radius of.
+pub const LINK_CELLS: u32 = 4;
+/// Coarse blocks per side, in cells.
+const BLOCK: usize = 4;
+/// Most cells in the planner's grid; a larger pocket gets larger cells.
+const MAX_CELLS: f64 = 3.0e7;
+/// Most passes in one level.
+const MAX_PASSES: usize = 100_000;
+
+/// Plans one level of adaptive clearing in the planar `shape`.
+pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<LevelPlan> {
+    let r = tool.radius();
+    let stock = opts.wall_stock.max(0.0);
+    let s = opts.stepover_mm(tool).min(tool.diameter);
+    let b = shape.outer.bounds();
+    let span = (b.max.x - b.min.x + 4.0 * r) * (b.max.y - b.min.y + 4.0 * r);
+    let h = (CELL_RADII * r).max((span / MAX_CELLS).sqrt());
+    let mut field = Field::new(shape, h, 2.0 * h);
+    let walls = Walls::new(shape, r + stock, h, 2.0 * ARC_FIT * r);
+    let delta = STEP_RADII * r;
+    let side = if opts.direction == Direction::Climb {
+        1.0
+    } else {
+        -1.0
+    };
+    let stepper = Stepper {
+        r,
+        delta,
+        target: TARGET_FILL * s * delta / (h * h),
+        s,
+        walls: &walls,
+        side,
+        max_steps: 10_000_000,
+    };
+    let region = shape.offset(r + stock);
+    let mut plan = Planner {
+        field: &mut field,
+        stepper,
+        cuts: Vec::new(),
+        pos: None,
+        tried: Vec::new(),
+        fit: ARC_FIT * r,
+    };
+    let helix = match opts.entry {
+        Entry::Helix { radius, .. } => radius,
+        Entry::Ramp { .. } => 0.0,
+    };
+    for _ in 0..MAX_PASSES {
+        if !plan.next_pass(shape, r + stock, helix) {
+            break;
+        }
+    }
+    plan.walls(&region, opts.direction);
+    Ok(LevelPlan { cuts: plan.cuts })
+}
+
+/// Where the tool centre may go: at least `clear` (plus a margin) from the pocket's loops.
+/// The grid's distance decides where it is sure (it is within `2.2·h` of the exact one),
+/// the loops' exact distance elsewhere.
+#[derive(Debug)]
+pub(crate) struct Walls<'a> {
+    loops: Vec<IndexedLoop<'a>>,
+    /// The tool-centre region's distance from the walls, mm.
+    pub clear: f64,
+    /// Beyond this grid distance a point is inside for sure.
+    sure: f64,
+    /// The exact distance a point needs: `clear` plus the margin.
+    need: f64,
+}
+
+impl<'a> Walls<'a> {
+    fn new(shape: &'a PocketShape, clear: f64, h: f64, margin: f64) -> Self {
+        Walls {
+            loops: shape.loops().map(|o| IndexedLoop::new(o.polyline())).collect(),
+            clear,
+            sure: clear + margin + 2.5 * h,
+            need: clear + margin,
+        }
+    }
+
+    /// True when the tool centre may stand at `q`.
+    pub(crate) fn allows(&self, field: &Field, q: Point) -> bool {
+        let w = field.wall_distance(q);
+        if w >= self.sure {
+            return true;
+        }
+        if w + 2.0 * field.h < self.need {
+            return false;
+        }
+        self.loops.iter().all(|l| l.distance(q) >= self.need)
+    }
+}
+
+/// The planner's state through a level.
+struct Planner<'f, 'w> {
+    field: &'f mut Field,
+    stepper: Stepper<'w>,
+    cuts: Vec<Cut>,
+    /// Where the tool is, at the level's depth.
+    pos: Option<Point>,
+    /// Coarse blocks tried as a start that cut nothing.
+    tried: Vec<bool>,
+    fit: f64,
+}
+
+impl Planner<'_, '_> {
+    /// Plans the next pass; false when nothing is left to clear.
+    fn next_pass(&mut self, shape: &PocketShape, clear: f64, helix: f64) -> bool {
+        let st = self.stepper;
+        let Some((p, theta)) = self.start() else {
+            return self.new_helix(shape, clear, helix);
+        };
+        let (p, theta) = st.upstream(self.field, p, theta).unwrap_or((p, theta));
+        let (pts, removed) = st.run(self.field, p, theta);
+        if std::env::var_os("MP_DEBUG").is_some() {
+            eprintln!("pass from ({:.2},{:.2}) th {:.2}: {} pts, removed {} -> end {:?}", p.x, p.y, theta, pts.len(), removed, pts.last());
+        }
+        if removed == 0 || pts.len() < 2 {
+            self.mark_tried(p);
+            return true;
+        }
+        self.join(&pts);
+        true
+    }
+
+    /// The positions joined by arcs, each arc kept only where every point of it (at most
+    /// `h/2` apart) is one the tool centre may stand at; chords through the positions
+    /// elsewhere (a fitted curve can swing out at a sharp turn).
+    fn fitted(&self, pts: &[Point]) -> Vec<Seg> {
+        let (field, walls) = (&*self.field, self.stepper.walls);
+        let h = field.h;
+        fit_arcs_where(pts, self.fit, |sg| {
+            let n = ((sg.length() / (0.5 * h)).ceil() as usize).max(1);
+            (0..=n).all(|k| walls.allows(field, sg.point_at(k as f64 / n as f64)))
+        })
+        .unwrap_or_else(|| segs_from_points(pts))
+    }
+
+    /// Appends a pass's positions to the plan: linked from where the tool is when the link
+    /// is clear, else as a new cut entered directly.
+    fn join(&mut self, pts: &[Point]) {
+        let path = self.fitted(pts);
+        let start = pts[0];
+        let linked = self.pos.filter(|&at| self.link_clear(at, start));
+        match (linked, self.cuts.last_mut()) {
+            (Some(at), Some(cut)) => {
+                if at.distance(start) > 1e-9 {
+                    cut.path.push(Seg::line(at, start));
+                }
+                cut.path.extend(path);
+            }
+            _ => self.cuts.push(Cut {
+                entry: CutEntry::Direct { from: start },
+                path,
+            }),
+        }
+        self.pos = pts.last().copied();
+    }
+
+    /// True when the tool may feed from `a` to `b` at depth: every position along the way
+    /// (at most `h` apart) is inside the planner's reach and meets no material.
+    fn link_clear(&self, a: Point, b: Point) -> bool {
+        let n = ((a.distance(b) / self.field.h).ceil() as usize).max(1);
+        (0..=n).all(|k| {
+            let q = a.lerp(b, k as f64 / n as f64);
+            self.stepper.walls.allows(self.field, q)
+                && self.field.count_disc(q, self.stepper.r) <= LINK_CELLS
+        })
+    }
+
+    /// The start of the next pass: the block nearest the tool that is clear of material by
+    /// one to three blocks' width beyond `r`, inside the reach, not tried before, whose
+    /// first step can cut; and the heading with the material on the cutting side.
+    fn start(&mut self) -> Option<(Point, f64)> {
+        let st = self.stepper;
+        let coarse = self.field.coarse_distance(BLOCK);
+        let hc = self.field.h * BLOCK as f64;
+        if self.tried.len() != coarse.dist.len() {
+            self.tried = vec![false; coarse.dist.len()];
+        }
+        let here = self.pos?;
+        let mut cands: Vec<(f64, usize, usize)> = Vec::new();
+        for j in 1..coarse.ny.saturating_sub(1) {
+            for i in 1..coarse.nx.saturating_sub(1) {
+                let k = j * coarse.nx + i;
+                let d = coarse.dist[k];
+                if self.tried[k] || d < st.r - hc || d > st.r + 2.0 * hc {
+                    continue;
+                }
+                let c = self.field.coarse_centre(BLOCK, i, j);
+                if !st.walls.allows(self.field, c) {
+                    continue;
+                }
+                cands.push((c.distance(here), i, j));
+            }
+        }
+        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let dbg = std::env::var_os("MP_DEBUG").is_some();
+        for &(_, i, j) in &cands {
+            let k = j * coarse.nx + i;
+            let c = self.field.coarse_centre(BLOCK, i, j);
+            // Towards the material: down the distance map's slope.
+            let at = |ii: usize, jj: usize| coarse.dist[jj * coarse.nx + ii];
+            let g = Vec2::new(at(i + 1, j) - at(i - 1, j), at(i, j + 1) - at(i, j - 1));
+            let Some(n) = (-g).normalize() else {
+                self.tried[k] = true;
+                continue;
+            };
+            // The point on the line through the block along `n` nearest the material with
+            // the tool's disc clear of it (bisection between clear and not).
+            let (mut lo, mut hi) = (-3.0 * hc, 3.0 * hc);
+            let clear_at = |t: f64| {
+                let q = c + n * t;
+                st.walls.allows(self.field, q) && self.field.count_disc(q, st.r) == 0
+            };
+            if !clear_at(lo) {
+                self.tried[k] = true;
+                continue;
+            }
+            if clear_at(hi) {
+                lo = hi;
+            } else {
+                for _ in 0..8 {
+                    let mid = 0.5 * (lo + hi);
+                    if clear_at(mid) {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+            }
+            let c = c + n * lo;
+            // The heading with `n` on the cutting side: `n` turned a quarter the other way.
+            let theta = n.y.atan2(n.x) + st.side * std::f64::consts::FRAC_PI_2;
+            let bite = st.first_bite(self.field, c, theta);
+            let deep = self.field.wall_distance(c) >= st.walls.clear + st.r;
+            if dbg {
+                eprintln!("  cand ({:.2},{:.2}) bite {:.1} target {:.1} deep {deep}", c.x, c.y, bite, st.target);
+            }
+            if bite >= pass::MIN_CUT * st.target && (deep || bite >= 0.3 * st.target) {
+                return Some((c, theta));
+            }
+            self.tried[k] = true;
+        }
+        None
+    }
+
+    fn mark_tried(&mut self, p: Point) {
+        let hc = self.field.h * BLOCK as f64;
+        let (nx, _) = self.field.size();
+        let cx = nx.div_ceil(BLOCK);
+        let o = self.field.centre(0, 0);
+        let i = ((p.x - o.x) / hc + 0.5).floor().max(0.0) as usize;
+        let j = ((p.y - o.y) / hc + 0.5).floor().max(0.0) as usize;
+        if let Some(t) = self.tried.get_mut(j * cx + i) {
+            *t = true;
+        }
+    }
+
+    /// A helix where material is left that no pass reaches: at the cell farthest from the
+    /// walls whose tool disc is at least half material; false when there is none.
+    fn new_helix(&mut self, shape: &PocketShape, clear: f64, helix: f64) -> bool {
+        let st = self.stepper;
+        let (nx, ny) = self.field.size();
+        let disc_cells = std::f64::consts::PI * (st.r / self.field.h).powi(2);
+        // Cells whose disc is at least half material, on a grid of blocks; of those within
+        // a block of the largest wall distance, the one nearest their centroid (the middle of
+        // a ridge of equal distances, not its end).
+        let mut found: Vec<(f64, Point)> = Vec::new();
+        let mut top: f64 = 0.0;
+        let hc = self.field.h * BLOCK as f64;
+        for j in (0..ny).step_by(BLOCK) {
+            for i in (0..nx).step_by(BLOCK) {
+                let w = self.field.wall_at(i, j);
+                if w < st.walls.clear || w < top - hc {
+                    continue;
+                }
+                let c = self.field.centre(i, j);
+                if f64::from(self.field.count_disc(c, st.r)) >= 0.5 * disc_cells {
+                    top = top.max(w);
+                    found.push((w, c));
+                }
+            }
+        }
+        found.retain(|f| f.0 >= top - hc);
+        if found.is_empty() {
+            return false;
+        }
+        let n = found.len() as f64;
+        let mid = found
+            .iter()
+            .fold(Point::ORIGIN, |a, f| Point::new(a.x + f.1.x / n, a.y + f.1.y / n));
+        let c = found
+            .iter()
+            .map(|f| f.1)
+            .min_by(|a, b| a.distance(mid).total_cmp(&b.distance(mid)))
+            .unwrap_or(mid);
+        // The helix must fit: the exact distance to the walls decides.
+        let room = shape.distance_to(c) - clear - 2.0 * self.field.h;
+        let rho = helix.min(room).max(0.0);
+        self.field.clear_disc(c, rho + st.r);
+        let p0 = c + Vec2::new(rho, 0.0);
+        let theta = st.side * std::f64::consts::FRAC_PI_2;
+        let (mut pts, removed) = st.run(self.field, p0, theta);
+        if std::env::var_os("MP_DEBUG").is_some() {
+            eprintln!("helix pass: {} pts removed {removed} end {:?}", pts.len(), pts.last());
+        }
+        if pts.len() < 2 {
+            pts = vec![p0, c + Vec2::new(rho, 1e-3)];
+        }
+        self.cuts.push(Cut {
+            entry: CutEntry::Helix {
+                center: c,
+                radius: rho,
+            },
+            path: self.fitted(&pts),
+        });
+        self.pos = pts.last().copied();
+        true
+    }
+
+    /// The last passes: each loop of the tool-centre region, climb or conventional, from its
+    /// point nearest the tool.
+    fn walls(&mut self, region: &crate::strategy::pocket::shape::OffsetRegion, dir: Direction) {
+        let loops: Vec<_> = region.loops().cloned().collect();
+        for lp in loops {
+            let lp = if dir == Direction::Climb {
+                lp
+            } else {
+                reversed(&lp)
+            };
+            let lp = match self.pos {
+                Some(p) => restart_near(&lp, p),
+                None => lp,
+            };
+            let path = segs_from_vertices(&closed_chain(&lp));
+            let Some(first) = path.first().map(|s| s.a) else {
+                continue;
+            };
+            let last = path.last().map_or(first, |s| s.b);
+            match (self.pos, self.cuts.last_mut()) {
+                (Some(at), Some(cut)) if !crosses(region, at, first) && at.distance(first) < 1e-3 => {
+                    cut.path.extend(path);
+                }
+                _ => self.cuts.push(Cut {
+                    entry: CutEntry::Ramp,
+                    path,
+                }),
+            }
+            self.pos = Some(last);
+        }
+    }
+}

@@ -1,0 +1,79 @@
+//! Adaptive clearing holds the engagement: on every pocket of the suite (islands, necks,
+//! slots, the structural and the sample part's pockets) the adaptive toolpath verifies
+//! (no gouge, nothing uncut: `pocket::generate` refuses otherwise), and the stock simulation,
+//! run again here with its samples recorded (another grid and another sweep than the
+//! planner's own), finds the engagement at most 1.1 × the stepover's on at least 99 % of the
+//! cutting length and never above 1.3 ×, the entries aside (`stock::engagement_stats`).
+
+use millpath::job::load_outline;
+use millpath::stock::{self, SimOptions, StockSpec, engagement_stats};
+use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
+use millpath::toolpath::Tool;
+
+/// The suite's pockets, the structural part's and the sample part's, with their tools.
+fn suite() -> Vec<(String, PocketShape, f64)> {
+    let mut out: Vec<(String, PocketShape, f64)> = builtin::shape_suite()
+        .into_iter()
+        .map(|s| (s.name.to_owned(), s.shape, s.tool_diameter))
+        .collect();
+    for (name, shape) in builtin::structural_part() {
+        out.push((format!("structural {name}"), shape, 10.0));
+    }
+    let (loops, _) = load_outline("sample:part", &Default::default()).expect("the sample part");
+    for (i, p) in loops.pockets().into_iter().enumerate() {
+        if let Ok(shape) = PocketShape::new(p.outer, p.islands, "sample:part") {
+            out.push((format!("sample:part pocket {}", i + 1), shape, 6.0));
+        }
+    }
+    out
+}
+
+/// The engagement of `tp` cutting `shape`, measured by the verifier.
+fn measured(tp: &millpath::toolpath::Toolpath, shape: &PocketShape, nominal_deg: f64) -> stock::EngagementStats {
+    let spec = StockSpec {
+        outer: &shape.outer,
+        islands: &shape.islands,
+        wall_stock: 0.0,
+    };
+    let sim = stock::simulate(tp, spec, nominal_deg, &SimOptions::default().with_record_samples(true));
+    engagement_stats(tp, &sim.samples, 1.1 * nominal_deg)
+}
+
+#[test]
+fn adaptive_holds_the_engagement_on_every_pocket_of_the_suite() {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for (name, shape, d) in suite() {
+        let tool = Tool::flat(d).unwrap();
+        let opts = PocketOptions::default().with_depth(3.0).with_step_down(3.0);
+        let r = match pocket::generate(StrategyKind::Adaptive, &shape, &tool, &opts, &SimOptions::default()) {
+            Ok(r) => r,
+            Err(e) => {
+                failures.push(format!("{name}: {e}"));
+                continue;
+            }
+        };
+        let nominal = r.nominal_engagement_deg;
+        let st = measured(&r.toolpath, &shape, nominal);
+        checked += 1;
+        eprintln!(
+            "{name}: cut {:.0} mm, mean {:.1}°, p99 {:.1}°, max {:.1}° ({:.2} ×), {:.2} % above 1.1 ×",
+            st.cutting_mm,
+            st.mean_deg,
+            st.p99_deg,
+            st.max_deg,
+            st.max_deg / nominal,
+            100.0 * st.share_above_bound
+        );
+        if st.cutting_mm <= 0.0 || st.share_above_bound > 0.01 || st.max_deg > 1.3 * nominal {
+            failures.push(format!(
+                "{name}: {:.2} % of {:.0} mm above 1.1 × {nominal:.1}°, max {:.1}°",
+                100.0 * st.share_above_bound,
+                st.cutting_mm,
+                st.max_deg
+            ));
+        }
+    }
+    assert!(checked >= 10, "{checked} pockets checked");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
