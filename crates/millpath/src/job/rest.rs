@@ -148,7 +148,7 @@ pub fn run(
 }
 
 /// Both programs on one block (module docs); the verdict, or an internal error.
-fn judge(
+pub(crate) fn judge(
     shapes: &[PocketShape],
     previous: &Toolpath,
     rest: &Toolpath,
