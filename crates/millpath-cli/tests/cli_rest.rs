@@ -228,9 +228,6 @@ step_down = 5.0
         rest_path > 0.0 && rest_path * 20.0 < full_path,
         "rest {rest_path} mm, whole pocket {full_path} mm"
     );
-    eprintln!(
-        "job rest: {left} mm² left, rest path {rest_path:.1} mm, whole pocket {full_path:.1} mm"
-    );
 }
 
 #[test]

@@ -185,7 +185,7 @@ pub const MAX_CELL_RADII: f64 = 0.125;
 /// [`sample_count`] rounds `len/step` down to `k` when it lies within `STEP_TIE·k` above `k`.
 pub const STEP_TIE: f64 = 1e-9;
 
-/// How many tool positions [`samples`] puts on a move `len` mm long, `step` mm apart:
+/// How many tool positions the simulation puts on a move `len` mm long, `step` mm apart:
 /// `⌈len/step⌉`, except that a quotient within [`STEP_TIE`] (relative) above a whole number
 /// `k` gives `k` (the positions are then up to `step·(1 + STEP_TIE)` apart); at least one.
 ///
@@ -195,8 +195,8 @@ pub const STEP_TIE: f64 = 1e-9;
 /// 1.1999999999999957 mm twelve. Those bits come from transcendental functions (the
 /// offsets' arcs, a spline's points) whose last place differs between math libraries (the
 /// platform's libm and wasm32's), and a different count moves every position of the move,
-/// the engagement measured there and so the feed the profile sets
-/// ([`crate::strategy::pocket::feed`]). The tolerance puts the decision a billionth of the
+/// the engagement measured there and so the feed the pockets' feed profile sets
+/// ([`crate::strategy::pocket::FeedProfile`]). The tolerance puts the decision a billionth of the
 /// length away from where such lengths land, so that every build counts alike.
 pub fn sample_count(len: f64, step: f64) -> usize {
     let q = len / step;
@@ -589,9 +589,10 @@ mod tests {
             }
             let mut len = 1e-6;
             while len < 500.0 {
-                let n = sample_count(len, step) as f64;
-                assert!(len / n <= step * (1.0 + STEP_TIE), "{len} / {step}: {n}");
-                assert!(n == 1.0 || len / (n - 1.0) > step, "{len} / {step}: {n}");
+                let n = sample_count(len, step);
+                let spacing = len / n as f64;
+                assert!(spacing <= step * (1.0 + STEP_TIE), "{len} / {step}: {n}");
+                assert!(n == 1 || len / (n - 1) as f64 > step, "{len} / {step}: {n}");
                 len *= 1.000_37;
             }
         }
