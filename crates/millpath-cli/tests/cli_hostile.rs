@@ -523,6 +523,16 @@ fn cases() -> Vec<Case> {
             outputs: &["keep.json"],
         },
         Case {
+            what: "no tool diameter, and a program whose header names no tool",
+            args: &["verify", "ok.ngc", "--outline", "sq.json", "--report", "keep.json"],
+            files: &[
+                ("ok.ngc", GOOD_NGC),
+                ("sq.json", SQUARE_JSON),
+                ("keep.json", KEEP),
+            ],
+            outputs: &["keep.json"],
+        },
+        Case {
             what: "outline file that does not exist",
             args: &[
                 "verify",

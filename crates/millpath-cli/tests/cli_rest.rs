@@ -5,6 +5,12 @@
 //! move closer to a wall than the small tool's radius. Without a diameter in the header and
 //! none given, the run is refused as bad input naming `--rest-from-diameter`, and a rest tool
 //! no smaller than the previous one naming `--tool-diameter`; nothing is written.
+//!
+//! In a job: the aerospace pocket in a plate, a 12.7 mm spiral then a pocket operation with
+//! `rest_from` and a 4 mm tool; `verify --job` accepts the job's program (the job means the
+//! pocket cleared within the 4 mm tool's reach), and the rest operation's path is a small
+//! part of a whole 4 mm pocket's. A `rest_from` naming no earlier pocket operation is refused
+//! naming the key and its line.
 
 mod common;
 use common::{millpath, stderr};
@@ -112,4 +118,137 @@ fn a_previous_program_without_its_tool_is_refused_naming_the_flag() {
         stderr(&o)
     );
     assert!(!dir.path().join("rest.ngc").exists());
+}
+
+/// The aerospace sample's pocket (150 × 100 mm, 6 mm corner radii) in a plate.
+const PLATE: &str = r#"<svg xmlns="http://www.w3.org/2000/svg" width="190mm" height="140mm" viewBox="0 0 190 140">
+  <rect x="0" y="0" width="190" height="140"/>
+  <rect x="20" y="20" width="150" height="100" rx="6"/>
+</svg>
+"#;
+
+/// A job on [`PLATE`]: tool 1 of 12.7 mm, tool 2 of 4 mm, and `operations`.
+fn job(operations: &str) -> String {
+    format!(
+        r#"drawing = "plate.svg"
+machine = "hsm"
+
+[stock]
+thickness = 10.0
+
+[[tool]]
+number = 1
+diameter = 12.7
+feed = 1500
+spindle = 10000
+
+[[tool]]
+number = 2
+diameter = 4.0
+feed = 1000
+spindle = 15000
+{operations}"#
+    )
+}
+
+const BIG: &str = r#"
+[[operation]]
+type = "pocket"
+name = "rough"
+tool = 1
+strategy = "spiral"
+depth = 5.0
+step_down = 5.0
+"#;
+
+#[test]
+fn a_job_cuts_what_its_earlier_pocket_left_with_a_rest_operation() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("plate.svg"), PLATE).unwrap();
+    let rest = r#"
+[[operation]]
+type = "pocket"
+name = "corners"
+tool = 2
+rest_from = "rough"
+depth = 5.0
+step_down = 5.0
+"#;
+    std::fs::write(dir.path().join("pair.toml"), job(&format!("{BIG}{rest}"))).unwrap();
+    let o = millpath(
+        &["job", "pair.toml", "-o", "pair.ngc", "--json"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let ops = report["operations"].as_array().expect("operations");
+    assert_eq!(ops.len(), 2, "{report}");
+    let rest_path = ops[1]["path_mm"].as_f64().unwrap();
+    let checks = ops[1]["checks"].to_string();
+    assert!(
+        ops[1]["cut"].as_str().unwrap().contains("rest after rough"),
+        "{report}"
+    );
+    // The spiral left material within the 4 mm tool's reach (its four corners).
+    let left: f64 = ops[1]["checks"][0][1]
+        .as_str()
+        .and_then(|s| s.split(" mm²").next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{checks}"));
+    assert!(left > 1.0, "{checks}");
+
+    // The job's own verifier on the written program: the part as the job means it, the
+    // pocket cleared to within the 4 mm tool's reach.
+    let v = millpath(
+        &["verify", "pair.ngc", "--job", "pair.toml", "--json"],
+        dir.path(),
+    );
+    assert_eq!(v.status.code(), Some(0), "{}", stderr(&v));
+    let json: serde_json::Value = serde_json::from_slice(&v.stdout).unwrap();
+    assert_eq!(json["passed"], true, "{json}");
+    assert_eq!(json["sections"].as_array().map(Vec::len), Some(2), "{json}");
+
+    // A whole pocket with the 4 mm tool cuts far more.
+    let full = r#"
+[[operation]]
+type = "pocket"
+tool = 2
+depth = 5.0
+step_down = 5.0
+"#;
+    std::fs::write(dir.path().join("full.toml"), job(full)).unwrap();
+    let o = millpath(
+        &["job", "full.toml", "-o", "full.ngc", "--json"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let report: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let full_path = report["operations"][0]["path_mm"].as_f64().unwrap();
+    assert!(
+        rest_path > 0.0 && rest_path * 20.0 < full_path,
+        "rest {rest_path} mm, whole pocket {full_path} mm"
+    );
+}
+
+#[test]
+fn a_rest_operation_must_follow_a_larger_pocket_operation() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("plate.svg"), PLATE).unwrap();
+    let rest = r#"
+[[operation]]
+type = "pocket"
+tool = 2
+rest_from = "roughing"
+depth = 5.0
+"#;
+    std::fs::write(dir.path().join("bad.toml"), job(&format!("{BIG}{rest}"))).unwrap();
+    let o = millpath(&["job", "bad.toml", "-o", "bad.ngc"], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("rest_from") && e.contains("\"roughing\"") && e.contains("\"rough\""),
+        "{e}"
+    );
+    assert!(e.contains("line 30"), "{e}");
+    assert!(!dir.path().join("bad.ngc").exists());
 }

@@ -224,3 +224,78 @@ fn offset_feed_follows_the_law_along_the_path() {
 fn zigzag_feed_follows_the_law_along_the_path() {
     check(StrategyKind::Zigzag);
 }
+
+/// `x` moved by `k` units in its last place (towards larger magnitude for `k > 0`).
+fn nudge(x: f64, k: i64) -> f64 {
+    if x == 0.0 {
+        return x;
+    }
+    f64::from_bits(x.to_bits().wrapping_add_signed(k))
+}
+
+/// The tool positions the simulation takes along a move do not follow the last bits of the
+/// move's length (`stock::sample_count`, `STEP_TIE`): a zigzag's links between rows along a
+/// straight wall are one stepover long, 1.2 mm for a 3 mm tool, twelve steps of 0.1 mm (on
+/// `pb_key.dxf`, the web page's real drawing), and the same path with every coordinate a few
+/// units in the last place off (what another platform's math library makes of the same
+/// offsets) is sampled at the same number of positions on every move, at the same places
+/// along it. The plain ceiling of `len/step` gave such a link 12 positions or 13 by its last
+/// bit, and the feed profile a different feed word in the web page than in the CLI.
+#[test]
+fn samples_do_not_follow_the_last_bits_of_a_move() {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/real-inputs/files/pb_key.dxf");
+    let (loops, _) = millpath::job::load_outline(
+        &path.display().to_string(),
+        &millpath::io::ImportSettings::default(),
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let tool = Tool::flat(3.0).unwrap();
+    let opts = PocketOptions::default().with_depth(3.0).with_step_down(3.0);
+    let step = sim().step_for(&tool);
+    let mut links = 0;
+    for (n, p) in loops.pockets().into_iter().enumerate() {
+        let shape = pocket::PocketShape::new(p.outer, p.islands, "pb_key.dxf").expect("a pocket");
+        let r = pocket::generate(StrategyKind::Zigzag, &shape, &tool, &opts, &sim()).unwrap();
+        assert!(r.verification.problems().is_empty(), "pocket {n}");
+        links += r
+            .toolpath
+            .segments()
+            .filter(|(from, m)| m.is_feed() && (m.length_from(*from) / step - 12.0).abs() < 1e-9)
+            .count();
+        let spec = StockSpec {
+            outer: &shape.outer,
+            islands: &shape.islands,
+            wall_stock: 0.0,
+        };
+        let per_move = |tp: &Toolpath| {
+            let mut v: Vec<Vec<f64>> = vec![Vec::new(); tp.moves.len()];
+            for smp in stock::simulate(tp, spec, 0.0, &sim()).samples {
+                v[smp.move_index].push(smp.at);
+            }
+            v
+        };
+        let want = per_move(&r.toolpath);
+        for k in 1..=4i64 {
+            let mut tp = r.toolpath.clone();
+            for (i, m) in tp.moves.iter_mut().enumerate() {
+                let sign = [1, -1, 0][i % 3];
+                m.to.x = nudge(m.to.x, sign * k);
+                m.to.y = nudge(m.to.y, -sign * k);
+            }
+            for (i, (a, b)) in want.iter().zip(&per_move(&tp)).enumerate() {
+                assert_eq!(a.len(), b.len(), "pocket {n}, {k} ulp: move {i}: positions");
+                for (x, y) in a.iter().zip(b) {
+                    assert!(
+                        (x - y).abs() < 1e-9,
+                        "pocket {n}, {k} ulp: move {i}: {x}, {y}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(
+        links >= 3,
+        "{links} moves of twelve steps: the case has no ties"
+    );
+}

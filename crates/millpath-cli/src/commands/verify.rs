@@ -8,7 +8,7 @@ use std::path::PathBuf;
 /// Arguments of `millpath verify`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7\n  millpath verify pocket.ngc --outline part.dxf --tool-diameter 10 --json --svg pocket.svg --per-level\n  millpath verify pocket.nc --dialect fanuc --outline sample:aerospace --tool-diameter 12.7\n\nExit code 2 when the program fails verification (the findings are printed first)."
+    after_help = "Examples:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7\n  millpath verify pocket.ngc --outline sample:aerospace   # the tool its header names (millpath's programs)\n  millpath verify pocket.ngc --outline part.dxf --tool-diameter 10 --json --svg pocket.svg --per-level\n  millpath verify pocket.nc --dialect fanuc --outline sample:aerospace --tool-diameter 12.7\n\nExit code 2 when the program fails verification (the findings are printed first)."
 )]
 pub struct Args {
     /// The G-code program.
@@ -31,8 +31,9 @@ pub struct Args {
     /// How a DXF or SVG drawing is read.
     #[command(flatten)]
     pub import: super::outline_input::ImportArgs,
-    /// Tool diameter, mm.
-    #[arg(long, required_unless_present = "job")]
+    /// Tool diameter, mm [default: the tool the program's header names, `(tool T1: flat end
+    /// mill D6 mm, ...)` in millpath's programs]
+    #[arg(long)]
     pub tool_diameter: Option<f64>,
     /// Wall stock the program must leave, mm.
     #[arg(long, default_value_t = 0.0)]
@@ -72,11 +73,14 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if let Some(job) = &args.job {
         return run_job(args, job);
     }
-    let (Some(outline), Some(tool_diameter)) = (&args.outline, args.tool_diameter) else {
-        return Err(InputError::new("outline and tool diameter", "missing")
-            .expected("--outline and --tool-diameter, or --job")
+    let Some(outline) = &args.outline else {
+        return Err(InputError::new("outline", "missing")
+            .expected("--outline, or --job")
             .into());
     };
+    let text = super::read_text(&args.program)?;
+    let origin = args.program.display().to_string();
+    let tool_diameter = millpath::job::verify::tool_diameter(args.tool_diameter, &text, &origin)?;
     let settings = VerifySettings {
         tool_diameter,
         wall_stock: args.wall_stock,
@@ -91,13 +95,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
     };
     settings.check()?;
     let loops = super::pocket::load_outline(outline, &args.import)?;
-    let text = super::read_text(&args.program)?;
-    let job = millpath::job::verify::run(
-        &loops,
-        &text,
-        &args.program.display().to_string(),
-        &settings,
-    )?;
+    let job = millpath::job::verify::run(&loops, &text, &origin, &settings)?;
     super::dialect_note(&job.dialect);
     let (tp, pv, problems) = (&job.toolpath, &job.part, &job.problems);
     let v = pv.total.clone();

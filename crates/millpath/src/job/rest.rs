@@ -1,7 +1,7 @@
 //! Rest machining for the front ends: `millpath pocket DRAWING --rest-from PREVIOUS.ngc
 //! --tool-diameter d`. The previous program (ours or another CAM's) is read as `verify` reads
 //! one; its tool's diameter comes from `--rest-from-diameter`, else from our programs' header
-//! line `(tool Tn: flat end mill Dx mm ...)`. Each selected pocket gets the rest pass of
+//! line `(tool Tn: flat end mill Dx mm ...)` ([`super::verify::header_diameter`]). Each selected pocket gets the rest pass of
 //! `strategy::rest` with the pocket settings' depth, step-down, stepover and feed; then the
 //! pair is judged on the whole-job height field (both programs cut one block, each with its
 //! own tool): nothing cut into the walls or below the floor, no rapid through material, no
@@ -9,7 +9,7 @@
 
 use super::pocket::{PocketSettings, program_options};
 use super::program::{ProgramSettings, program_times};
-use super::verify::VerifySettings;
+use super::verify::{VerifySettings, header_diameter};
 use crate::gcode::write_program;
 use crate::geom::{Aabb, Outline, Point};
 use crate::io::outline_json::Loops;
@@ -63,14 +63,6 @@ impl RestRun {
             self.check
         )
     }
-}
-
-/// The diameter in our programs' header line `(tool T1: flat end mill D12.7 mm, ...)`.
-pub fn header_diameter(text: &str) -> Option<f64> {
-    text.lines().take(20).find_map(|l| {
-        let rest = l.split("flat end mill D").nth(1)?;
-        rest.split(" mm").next()?.trim().parse().ok()
-    })
 }
 
 /// The rest pass after `from` in the selected pockets of `loops` (module docs).
@@ -156,7 +148,7 @@ pub fn run(
 }
 
 /// Both programs on one block (module docs); the verdict, or an internal error.
-fn judge(
+pub(crate) fn judge(
     shapes: &[PocketShape],
     previous: &Toolpath,
     rest: &Toolpath,

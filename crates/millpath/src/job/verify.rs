@@ -175,6 +175,65 @@ impl VerifySettings {
     }
 }
 
+/// Lines at the top of a program where its header's tool lines are looked for.
+const HEADER_LINES: usize = 40;
+
+/// The tool diameters our programs' header names, in order: the lines `(tool T1: flat end
+/// mill D12.7 mm, 3 flutes)` among the first lines (any case, as Fanuc's capitals write it;
+/// any comment form), one per tool of the program.
+pub fn header_diameters(text: &str) -> Vec<f64> {
+    text.lines()
+        .take(HEADER_LINES)
+        .filter_map(|l| {
+            let l = l.to_ascii_lowercase();
+            let rest = l.split("flat end mill d").nth(1)?;
+            rest.split(" mm").next()?.trim().parse().ok()
+        })
+        .filter(|d: &f64| d.is_finite() && *d > 0.0)
+        .collect()
+}
+
+/// The first tool diameter our programs' header names ([`header_diameters`]).
+pub fn header_diameter(text: &str) -> Option<f64> {
+    header_diameters(text).first().copied()
+}
+
+/// The diameter a program `origin` (its text `text`) is judged with: `flag`
+/// (`--tool-diameter`) when given, else the one tool its header names
+/// ([`header_diameters`]). A refusal naming `--tool-diameter` when the header names no tool,
+/// or tools of several diameters.
+pub fn tool_diameter(flag: Option<f64>, text: &str, origin: &str) -> Result<f64, Error> {
+    if let Some(d) = flag {
+        return Ok(d);
+    }
+    let mut named = header_diameters(text);
+    named.dedup_by(|a, b| (*a - *b).abs() <= 1e-9);
+    match named.as_slice() {
+        [d] => Ok(*d),
+        [] => Err(InputError::new("tool diameter", "none")
+            .at(format!("{origin}'s header"))
+            .expected(
+                "--tool-diameter D, the tool that cut the program: the header names no tool \
+                 (millpath's programs name theirs in a comment \"tool T1: flat end mill D6 mm\")",
+            )
+            .into()),
+        several => Err(InputError::new(
+            "tool diameter",
+            several
+                .iter()
+                .map(|d| format!("D{d}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+        )
+        .at(format!("{origin}'s header"))
+        .expected(
+            "--tool-diameter D, the tool whose cuts to judge: the header names several \
+             (a job's program is verified with --job)",
+        )
+        .into()),
+    }
+}
+
 /// The most decimals written in the program's coordinate words (X, Y, Z, I, J, K, R), 3 when
 /// none has any.
 pub fn program_decimals(text: &str) -> u32 {

@@ -10,7 +10,11 @@
 //!   0.1 mm apart, at most a quarter of the tool radius), clearing between consecutive
 //!   samples the cells within `r` of the segment joining them (along an arc, within `r` plus
 //!   the sagitta of the arc between them): the swept area itself, with no scallop between
-//!   samples, so that passes exactly one diameter apart leave nothing. It measures, at every
+//!   samples, so that passes exactly one diameter apart leave nothing. A move gets
+//!   `⌈len/step⌉` evenly spaced positions, a length within [`STEP_TIE`] (10⁻⁹, relative) above
+//!   a whole number of steps counting as that number ([`sample_count`]): the count is a
+//!   discrete decision, and lengths of whole steps (a zigzag's links, one stepover long) would
+//!   otherwise be decided by their last bit, which differs between math libraries. It measures, at every
 //!   sample, the **true radial depth of cut** as the area removed per unit of travel,
 //!   `a_e = ΔA / Δs`, averaged over [`DEFAULT_WINDOW`] (0.5 mm) of travel. For a straight cut
 //!   removing a band of width `a_e` this is exact; the **engagement angle** follows from the
@@ -77,7 +81,7 @@ pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
 pub use simulate::{
     DEFAULT_CELL, DEFAULT_STEP, DEFAULT_WINDOW, EngagementSample, MAX_CELL_RADII, MoveEngagement,
-    SimOptions, Simulation, reachable, simulate, simulate_levels,
+    STEP_TIE, SimOptions, Simulation, reachable, sample_count, simulate, simulate_levels,
 };
 
 use crate::geom::Outline;

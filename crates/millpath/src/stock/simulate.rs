@@ -181,10 +181,39 @@ pub const MAX_STEP_RADII: f64 = 0.25;
 /// and a disc covers about 200 cells.
 pub const MAX_CELL_RADII: f64 = 0.125;
 
-/// Positions along a move from `from`, at most `step` apart (the end included, not the start).
+/// How close to a whole number of steps a move's length counts as that number, relative:
+/// [`sample_count`] rounds `len/step` down to `k` when it lies within `STEP_TIE·k` above `k`.
+pub const STEP_TIE: f64 = 1e-9;
+
+/// How many tool positions the simulation puts on a move `len` mm long, `step` mm apart:
+/// `⌈len/step⌉`, except that a quotient within [`STEP_TIE`] (relative) above a whole number
+/// `k` gives `k` (the positions are then up to `step·(1 + STEP_TIE)` apart); at least one.
+///
+/// Lengths of a whole number of steps are common by design (a zigzag's link between rows is
+/// the stepover, 1.2 mm for a 3 mm tool at 0.4, twelve steps of 0.1 mm), and there the plain
+/// ceiling follows the last bit of the length: 1.2000000000000028 mm gives 13 positions,
+/// 1.1999999999999957 mm twelve. Those bits come from transcendental functions (the
+/// offsets' arcs, a spline's points) whose last place differs between math libraries (the
+/// platform's libm and wasm32's), and a different count moves every position of the move,
+/// the engagement measured there and so the feed the pockets' feed profile sets
+/// ([`crate::strategy::pocket::FeedProfile`]). The tolerance puts the decision a billionth of the
+/// length away from where such lengths land, so that every build counts alike.
+pub fn sample_count(len: f64, step: f64) -> usize {
+    let q = len / step;
+    let whole = q.round();
+    let q = if q > whole && q - whole <= STEP_TIE * whole {
+        whole
+    } else {
+        q
+    };
+    (q.ceil() as usize).clamp(1, 10_000_000)
+}
+
+/// Positions along a move from `from`, [`sample_count`] of them evenly spaced at most about
+/// `step` apart (the end included, not the start).
 fn samples(from: Point3, m: &Move, step: f64) -> Vec<Point3> {
     let len = m.length_from(from);
-    let n = ((len / step).ceil() as usize).clamp(1, 10_000_000);
+    let n = sample_count(len, step);
     match (m.kind, m.sweep_from(from)) {
         (MoveKind::Arc { center, .. }, Some((r, sweep))) => {
             let a0 = (from.y - center.y).atan2(from.x - center.x);
@@ -540,4 +569,32 @@ fn uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> Vec<crate::geom::Point>
             d == 0.0 || d <= limit
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A length of `k` steps a few units in the last place either side is `k` positions; any
+    /// length gets positions at most `step·(1 + STEP_TIE)` apart and fewer would be farther.
+    #[test]
+    fn whole_steps_count_alike_whatever_their_last_bits() {
+        for step in [0.1, 0.05, 0.3175, 1.0 / 3.0] {
+            for k in 1..=2000u32 {
+                let len = f64::from(k) * step;
+                for d in -8i64..=8 {
+                    let l = f64::from_bits(len.to_bits().wrapping_add_signed(d));
+                    assert_eq!(sample_count(l, step), k as usize, "{l} / {step}");
+                }
+            }
+            let mut len = 1e-6;
+            while len < 500.0 {
+                let n = sample_count(len, step);
+                let spacing = len / n as f64;
+                assert!(spacing <= step * (1.0 + STEP_TIE), "{len} / {step}: {n}");
+                assert!(n == 1 || len / (n - 1) as f64 > step, "{len} / {step}: {n}");
+                len *= 1.000_37;
+            }
+        }
+    }
 }

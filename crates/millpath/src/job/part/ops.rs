@@ -6,6 +6,7 @@
 use super::context::{OpContext, OpResult, in_op, op_at};
 use super::spec::{JobOperation, JobTool, OperationKind};
 use crate::Error;
+use crate::toolpath::Toolpath;
 
 /// Plans operation `op` with `tool`.
 pub fn plan(
@@ -24,6 +25,33 @@ pub fn plan(
         OperationKind::Bore(s) => super::op_holes::bore(cx, op, tool, s, note),
     }
     .map_err(|e| in_op(e, cx.spec, op))?;
+    at_clearance(cx, op, r)
+}
+
+/// Plans pocket operation `op`, whose `rest_from` names the earlier operation whose toolpath
+/// is `previous`, with `tool`: the rest pass.
+pub fn plan_rest(
+    cx: &OpContext<'_>,
+    op: &JobOperation,
+    tool: &JobTool,
+    previous: &Toolpath,
+) -> Result<OpResult, Error> {
+    let r = match &op.kind {
+        OperationKind::Pocket(settings, select) => {
+            super::op_pocket::plan_rest(cx, op, tool, settings, select.as_deref(), previous)
+        }
+        other => Err(Error::internal(format!(
+            "{}: rest_from on a {} operation",
+            op_at(cx.spec, op),
+            other.name()
+        ))),
+    }
+    .map_err(|e| in_op(e, cx.spec, op))?;
+    at_clearance(cx, op, r)
+}
+
+/// `r`, if its toolpath runs from and to the clearance height; else an internal error.
+fn at_clearance(cx: &OpContext<'_>, op: &JobOperation, r: OpResult) -> Result<OpResult, Error> {
     let start = r.toolpath.start;
     let end = r.toolpath.end();
     let z = cx.clearance_z();

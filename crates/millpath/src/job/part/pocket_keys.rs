@@ -27,6 +27,7 @@ pub(crate) const KEYS: &[&str] = &[
     "finish",
     "no_feed_modulation",
     "cell",
+    "rest_from",
 ];
 
 /// What a pocket operation takes from its tool: diameter and flute length (mm), feed (mm/s).

@@ -41,6 +41,8 @@ pub struct OperationRow {
     pub cut: String,
     /// Its share of the cycle time, s.
     pub time_s: f64,
+    /// The length of its cutting moves, mm.
+    pub path_mm: f64,
     /// Its verifier's figures.
     pub checks: Vec<(String, String)>,
 }
@@ -130,6 +132,7 @@ pub fn report(spec: &JobSpec, run: &JobRun) -> JobReport {
                 tool: o.tool.number,
                 cut: o.result.cut.clone(),
                 time_s: o.time_s,
+                path_mm: o.result.toolpath.cut_length(),
                 checks: o.result.checks.clone(),
             })
             .collect(),

@@ -6,7 +6,7 @@ use super::block::{StockBlock, stock_block};
 use super::context::{OpContext, OpResult};
 use super::model::PartModel;
 use super::ops;
-use super::spec::{JobSpec, JobTool, OperationKind};
+use super::spec::{JobOperation, JobSpec, JobTool, OperationKind};
 use crate::Error;
 use crate::error::InputError;
 use crate::gcode::{ProgramSection, WriterOptions, write_sections};
@@ -86,31 +86,60 @@ pub fn run(spec: &JobSpec, loops: &Loops, note: &mut dyn FnMut(String)) -> Resul
         machine: &machine,
         rounding,
     };
-    // Each operation is planned on the part model alone, side by side; their notes and the
+    // Each operation is planned on the part model alone, side by side; then each rest pass
+    // (`rest_from`) after the operation it names, in the job's order. Their notes and the
     // first error come in the job's order, as if one after another.
-    let planned: Vec<(Vec<String>, Result<_, Error>)> = spec
+    let tool_of = |op: &JobOperation| {
+        spec.tool(op.tool).ok_or_else(|| {
+            Error::from(
+                InputError::new("tool", op.tool).at(format!("{} line {}", spec.origin, op.line)),
+            )
+        })
+    };
+    let mut planned: Vec<(Vec<String>, Option<Result<_, Error>>)> = spec
         .operations
         .par_iter()
         .map(|op| {
             let mut notes = Vec::new();
-            let r = spec
-                .tool(op.tool)
-                .ok_or_else(|| {
-                    Error::from(
-                        InputError::new("tool", op.tool)
-                            .at(format!("{} line {}", spec.origin, op.line)),
-                    )
-                })
-                .and_then(|tool| {
-                    ops::plan(&cx, op, tool, &mut |n| notes.push(n)).map(|r| (op, tool.clone(), r))
-                });
-            (notes, r)
+            if op.rest_from.is_some() {
+                return (notes, None);
+            }
+            let r = tool_of(op).and_then(|tool| {
+                ops::plan(&cx, op, tool, &mut |n| notes.push(n)).map(|r| (op, tool.clone(), r))
+            });
+            (notes, Some(r))
         })
         .collect();
+    for (k, op) in spec.operations.iter().enumerate() {
+        let Some(from) = op.rest_from.as_deref() else {
+            continue;
+        };
+        // The last earlier operation of that name (checked when the file was read).
+        let previous = spec.operations[..k]
+            .iter()
+            .rposition(|o| o.name == from)
+            .and_then(|j| match &planned[j].1 {
+                Some(Ok((_, _, r))) => Some(r.toolpath.clone()),
+                _ => None,
+            });
+        // Without it (its own error comes first) the rest pass is not planned.
+        planned[k].1 = previous.map(|previous| {
+            tool_of(op).and_then(|tool| {
+                ops::plan_rest(&cx, op, tool, &previous).map(|r| (op, tool.clone(), r))
+            })
+        });
+    }
     let mut results = Vec::with_capacity(spec.operations.len());
     for (notes, r) in planned {
         notes.into_iter().for_each(&mut *note);
-        results.push(r?);
+        if let Some(r) = r {
+            results.push(r?);
+        }
+    }
+    if results.len() != spec.operations.len() {
+        return Err(Error::internal(
+            "a rest pass was left unplanned though the operation it follows was planned",
+        ));
     }
     let sections: Vec<(String, &Toolpath, &JobTool)> = results
         .iter()

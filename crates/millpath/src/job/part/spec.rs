@@ -247,6 +247,10 @@ pub struct JobOperation {
     pub kind: OperationKind,
     /// Line of its `[[operation]]` header.
     pub line: usize,
+    /// A pocket operation's `rest_from`: the name of an earlier pocket operation with a
+    /// larger tool; this one then cuts only what that one left (rest machining,
+    /// [`crate::strategy::rest`]).
+    pub rest_from: Option<String>,
 }
 
 /// The stock block.
@@ -640,16 +644,77 @@ fn operations(top: &Keys<'_, '_>, tools: &[JobTool]) -> Result<Vec<JobOperation>
             }
             _ => unreachable_kind()?,
         };
+        let name = k.str("name")?.unwrap_or_else(|| kind.name().to_owned());
+        let rest_from = match k.str("rest_from")? {
+            Some(from) => {
+                check_rest_from(&k, &from, &out, tool)?;
+                Some(from)
+            }
+            None => None,
+        };
         out.push(JobOperation {
-            name: k.str("name")?.unwrap_or_else(|| kind.name().to_owned()),
+            name,
             tool: tool_n,
             feed: feed_of(&k, "feed")?,
             plunge_feed: feed_of(&k, "plunge_feed")?,
             kind,
             line,
+            rest_from,
         });
     }
     Ok(out)
+}
+
+/// A pocket operation's `rest_from = "NAME"` (with `tool`) names the last earlier operation
+/// called `NAME`: a pocket operation, not itself a rest pass, with a larger tool.
+fn check_rest_from(
+    k: &Keys<'_, '_>,
+    from: &str,
+    earlier: &[JobOperation],
+    tool: &JobTool,
+) -> Result<(), InputError> {
+    let names: Vec<String> = earlier
+        .iter()
+        .filter(|o| matches!(o.kind, OperationKind::Pocket(..)) && o.rest_from.is_none())
+        .map(|o| format!("\"{}\"", o.name))
+        .collect();
+    let expected = || {
+        if names.is_empty() {
+            "the name of an earlier pocket operation (this job has none before this one)".to_owned()
+        } else {
+            format!(
+                "the name of an earlier pocket operation with a larger tool ({})",
+                names.join(", ")
+            )
+        }
+    };
+    let Some(op) = earlier.iter().rev().find(|o| o.name == from) else {
+        return Err(k
+            .error("rest_from", format_args!("\"{from}\""))
+            .expected(expected()));
+    };
+    if !matches!(op.kind, OperationKind::Pocket(..)) || op.rest_from.is_some() {
+        return Err(k
+            .error("rest_from", format_args!("\"{from}\" ({})", op.kind.name()))
+            .expected(format!(
+                "{}; a rest pass follows a whole pocket operation",
+                expected()
+            )));
+    }
+    let previous = match &op.kind {
+        OperationKind::Pocket(s, _) => s.tool_diameter,
+        _ => f64::NAN,
+    };
+    if tool.diameter >= previous {
+        return Err(k
+            .error("rest_from", format_args!("\"{from}\" (D{previous} mm)"))
+            .expected(format!(
+                "an operation with a tool larger than this one's (D{} mm): the smaller tool \
+                 cuts what the larger one left",
+                tool.diameter
+            )));
+    }
+    Ok(())
 }
 
 fn unreachable_kind() -> Result<OperationKind, InputError> {

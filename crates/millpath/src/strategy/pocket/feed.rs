@@ -22,7 +22,11 @@
 //!
 //! 1. **Samples.** The stock simulation ([`crate::stock`], a verifier-side measurement, with
 //!    [`crate::stock::SimOptions::record_samples`]) gives the engagement `φ_i` at tool
-//!    positions every `step` (0.1 mm) along every feed move. A *chain* is a run of feed moves
+//!    positions every `step` (0.1 mm) along every feed move (a move of a whole number of
+//!    steps, to [`crate::stock::STEP_TIE`], gets that number of positions whatever the last
+//!    bits of its length: [`crate::stock::sample_count`]; the web page's build and the
+//!    CLI's, whose math libraries differ in the last place, sample alike and write the same
+//!    feed words). A *chain* is a run of feed moves
 //!    between rapids; `s` is the path length along it. Sample `i` at `s_i` stands for the
 //!    travel from `s_{i−1}` to `s_i` (its *cell*); a move the simulation did not sample is
 //!    one cell at `f = 1`.
