@@ -1,6 +1,6 @@
 //! The zigzag as lean as the peers': its rows turn on half circles inside the pocket, no row
-//! runs along the walls' loop that the clean-up pass cuts nor nearer it than that pass
-//! reaches, and the entry ramps down once at the plunge rate. Checked on the moves and by the stock simulation, on the aerospace pocket
+//! runs along the walls' loop that the clean-up pass cuts nor nearer it than 1.5 tool radii
+//! (the pass covers the band between), and the entry ramps down once at the plunge rate. Checked on the moves and by the stock simulation, on the aerospace pocket
 //! and on rounded rectangles of aspect 1:1 to 4:1.
 
 use millpath::stock::SimOptions;
@@ -63,12 +63,12 @@ fn rows_turn_on_half_circles_and_leave_nothing() {
         let tp = &r.toolpath;
         let z = tp.levels[0].z;
         // Rows across the pocket's short side, a stepover apart, the first and the last
-        // within 0.95 tool radii of the walls' loop, which the clean-up pass cuts (every
-        // point between within that of a pass): as few as that allows, and a half turn
-        // between each two.
+        // within 1.5 tool radii of the walls' loop, which the clean-up pass cuts (every
+        // point between within 0.75 r of one of the two passes): as few as that allows, and
+        // a half turn between each two.
         let b = shape.outer.bounds();
         let short = (b.max.x - b.min.x).min(b.max.y - b.min.y) - tool.diameter;
-        let edge = 0.95 * tool.radius();
+        let edge = 1.5 * tool.radius();
         let rows = ((short - 2.0 * edge) / (0.4 * tool.diameter) - 1e-9).ceil() as usize + 1;
         let turns = half_turns(tp, z);
         assert_eq!(
@@ -76,8 +76,49 @@ fn rows_turn_on_half_circles_and_leave_nothing() {
             rows - 1,
             "{name}: {turns} half turns for {rows} rows"
         );
-        // Cut length: the rows, the turns and the walls' loop once, not a row along it.
+        // The rows (feed moves at the level along the long side, together longer than half
+        // of it at one height: the feed modulation splits a row) lie between the walls'
+        // loop's long sides, the outermost within 1.5 r of them.
+        let along_x = b.max.x - b.min.x >= b.max.y - b.min.y;
+        let (lo, hi) = if along_x {
+            (b.min.y + tool.radius(), b.max.y - tool.radius())
+        } else {
+            (b.min.x + tool.radius(), b.max.x - tool.radius())
+        };
         let long = (b.max.x - b.min.x).max(b.max.y - b.min.y) - tool.diameter;
+        let mut heights: Vec<(f64, f64)> = Vec::new();
+        for (f, m) in tp.segments() {
+            if !m.is_feed() || (f.z - z).abs() > 1e-9 || (m.to.z - z).abs() > 1e-9 {
+                continue;
+            }
+            let (c, d_along, d_across) = if along_x {
+                (f.y, (m.to.x - f.x).abs(), (m.to.y - f.y).abs())
+            } else {
+                (f.x, (m.to.y - f.y).abs(), (m.to.x - f.x).abs())
+            };
+            if d_across > 1e-9 || c < lo + 1e-6 || c > hi - 1e-6 {
+                continue;
+            }
+            match heights.iter_mut().find(|h| (h.0 - c).abs() < 1e-6) {
+                Some(h) => h.1 += d_along,
+                None => heights.push((c, d_along)),
+            }
+        }
+        let across: Vec<f64> = heights
+            .iter()
+            .filter(|h| h.1 > 0.5 * long)
+            .map(|h| h.0)
+            .collect();
+        assert_eq!(across.len(), rows, "{name}: rows at {across:?}");
+        let first = across.iter().copied().fold(f64::INFINITY, f64::min);
+        let last = across.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            first - lo <= edge + 1e-6 && hi - last <= edge + 1e-6,
+            "{name}: outermost rows {:.3} and {:.3} mm from the walls' loop, bound {edge:.3}",
+            first - lo,
+            hi - last
+        );
+        // Cut length: the rows, the turns and the walls' loop once, not a row along it.
         let bound = rows as f64 * long + 2.0 * (long + short) + turns as f64 * 0.5 * tool.diameter;
         let cut: f64 = tp
             .segments()

@@ -86,8 +86,41 @@ use std::f64::consts::TAU;
 pub const ROW_LEFT_CUSP: f64 = 1e-4;
 
 /// Largest gap between the boundary offset's extreme and the row nearest it, in tool radii
-/// (the clean-up pass along the boundary cuts that band; see [`row_heights`]).
-const EDGE_GAP: f64 = 0.95;
+/// (the clean-up pass along the boundary cuts that band; see [`row_heights`]). Below 2 (a
+/// band `2r` wide is the most two passes along its sides can cover); 1.5 is the spiral's
+/// coverage gap, and what the stock simulation verifies on the pockets of the tests.
+const EDGE_GAP: f64 = 1.5;
+
+/// Two candidate links of the chaining whose lengths differ by less than this many
+/// stepovers are a tie, broken by the order the candidates are looked at (the next row
+/// before the previous one, then along the row): a tie decided by the rounding of the
+/// coordinates would chain a pocket and its enlargement differently.
+const LINK_TIE: f64 = 1e-6;
+
+/// A point this near a loop of the boundary offset lies on it, mm, for tools up to 12.7 mm
+/// (times the tool's [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale) above): the
+/// row ends the chaining links along a loop, which the offsets place on it to within their
+/// rounding (about `10⁻⁹` of the coordinates).
+const ON_LOOP: f64 = 1e-6;
+
+/// The chaining's tolerances for one plan, scaled with the stepover and the tool (see
+/// [`LINK_TIE`] and [`ON_LOOP`]).
+#[derive(Debug, Clone, Copy)]
+struct Chaining {
+    /// Links shorter than the best by less than this are no better, mm.
+    tie: f64,
+    /// A point this near a loop lies on it, mm.
+    on_loop: f64,
+}
+
+impl Chaining {
+    fn new(s: f64, tool: &Tool) -> Self {
+        Chaining {
+            tie: LINK_TIE * s,
+            on_loop: ON_LOOP * tool.tolerance_scale(),
+        }
+    }
+}
 
 /// The interior rows' heights above the region's lowest point, for a region `span` mm high,
 /// stepover `s` and largest edge gap `g_max` (mm): rows `s` apart, the first and the last
@@ -183,6 +216,7 @@ pub fn plan(
         ys.push(y);
     }
     // Greedy chaining.
+    let tol = Chaining::new(s, tool);
     let mut used: Vec<Vec<bool>> = rows.iter().map(|r| vec![false; r.len()]).collect();
     let mut cuts: Vec<Cut> = Vec::new();
     let mut forward = opts.direction == Direction::Climb;
@@ -218,14 +252,14 @@ pub fn plan(
                     let x = if forward { a } else { b };
                     let q = to_world(Point::new(x, ys[jj]));
                     let d = q.distance(pb);
-                    if d > 3.0 * s || next.as_ref().is_some_and(|n| d >= n.2) {
+                    if d > 3.0 * s || next.as_ref().is_some_and(|n| d >= n.2 - tol.tie) {
                         continue;
                     }
                     if !crosses(&region, pb, q) {
                         next = Some((jj, ii, d, None));
-                    } else if let Some(segs) = boundary_link(&region, pb, q, 3.0 * s) {
+                    } else if let Some(segs) = boundary_link(&region, pb, q, 3.0 * s, tol) {
                         let len = super::segments::path_length(&segs);
-                        if next.as_ref().is_none_or(|n| len < n.2) {
+                        if next.as_ref().is_none_or(|n| len < n.2 - tol.tie) {
                             next = Some((jj, ii, len, Some(segs)));
                         }
                     }
@@ -270,7 +304,7 @@ pub fn plan(
         };
         let path = segs_from_vertices(&closed_chain(&lp));
         match (cuts.last_mut(), here) {
-            (Some(last), Some(p)) if dist <= 1e-6 => {
+            (Some(last), Some(p)) if dist <= tol.on_loop => {
                 if let Some(f) = path.first() {
                     if p.distance(f.a) > 1e-12 {
                         last.path.push(Seg::line(p, f.a));
@@ -347,7 +381,7 @@ fn half_turn(
     let gap = b.a - a.b;
     let across = gap.cross(u);
     let rho = 0.5 * across.abs();
-    if rho < 1e-6 || 2.0 * rho > s * (1.0 + 1e-9) {
+    if rho < 1e-6 * s || 2.0 * rho > s * (1.0 + 1e-9) {
         return None;
     }
     // Along the rows, from `a`'s end: `b` starts at `delta`; the apex at the nearer end.
@@ -386,17 +420,20 @@ fn half_turn(
     ])
 }
 
-/// The shorter way from `p` to `q` along the loop of `region` both lie on (within 1e-6 mm),
-/// if it is at most `max_len` long: a link that cannot gouge (it runs on the boundary offset)
-/// and cuts only the cusps the passes left against that loop.
+/// The shorter way from `p` to `q` along the loop of `region` both lie on (within
+/// `tol.on_loop`), if it is at most `max_len` long (two ways within `tol.tie` of each other:
+/// the loop's own direction): a link that cannot gouge (it runs on the boundary offset) and
+/// cuts only the cusps the passes left against that loop.
 fn boundary_link(
     region: &super::shape::OffsetRegion,
     p: Point,
     q: Point,
     max_len: f64,
+    tol: Chaining,
 ) -> Option<Vec<Seg>> {
+    let on = tol.on_loop;
     let lp = region.loops().find(|l| {
-        super::shape::loop_distance(l, p) < 1e-6 && super::shape::loop_distance(l, q) < 1e-6
+        super::shape::loop_distance(l, p) < on && super::shape::loop_distance(l, q) < on
     })?;
     let mut best: Option<Vec<Seg>> = None;
     for dir in [lp.clone(), reversed(lp)] {
@@ -404,15 +441,15 @@ fn boundary_link(
         let mut out = Vec::new();
         let mut total = 0.0;
         for sg in &path {
-            if let Some(t) = position_on(sg, q) {
-                if t > 1e-9 {
+            if let Some(t) = position_on(sg, q, on) {
+                if t > 1e-3 * on {
                     out.push(sg.head(t));
                 }
                 total += t;
                 if total <= max_len
                     && best
                         .as_ref()
-                        .is_none_or(|b| total < super::segments::path_length(b))
+                        .is_none_or(|b| total < super::segments::path_length(b) - tol.tie)
                 {
                     best = Some(out);
                 }
@@ -428,8 +465,8 @@ fn boundary_link(
     best
 }
 
-/// Arc length from the start of `sg` to `q`, when `q` lies on it (within 1e-6 mm).
-fn position_on(sg: &Seg, q: Point) -> Option<f64> {
+/// Arc length from the start of `sg` to `q`, when `q` lies on it (within `on` mm).
+fn position_on(sg: &Seg, q: Point, on: f64) -> Option<f64> {
     match sg.arc {
         None => {
             let d = sg.b - sg.a;
@@ -439,10 +476,10 @@ fn position_on(sg: &Seg, q: Point) -> Option<f64> {
             }
             let t = (q - sg.a).dot(d) / len;
             let off = (q - sg.a).cross(d).abs() / len;
-            (off < 1e-6 && t >= -1e-9 && t <= len + 1e-9).then_some(t.clamp(0.0, len))
+            (off < on && t >= -1e-3 * on && t <= len + 1e-3 * on).then_some(t.clamp(0.0, len))
         }
         Some(arc) => {
-            if (q.distance(arc.center) - arc.radius).abs() > 1e-6 {
+            if (q.distance(arc.center) - arc.radius).abs() > on {
                 return None;
             }
             let a0 = (sg.a - arc.center).angle();
