@@ -87,8 +87,9 @@ fn rows_turn_on_half_circles_and_leave_nothing() {
         };
         let long = (b.max.x - b.min.x).max(b.max.y - b.min.y) - tool.diameter;
         let mut heights: Vec<(f64, f64)> = Vec::new();
+        // (In plan: the first row's ramp runs along it.)
         for (f, m) in tp.segments() {
-            if !m.is_feed() || (f.z - z).abs() > 1e-9 || (m.to.z - z).abs() > 1e-9 {
+            if !m.is_feed() || f.z < z - 1e-9 || m.to.z < z - 1e-9 {
                 continue;
             }
             let (c, d_along, d_across) = if along_x {
@@ -176,4 +177,92 @@ fn the_ramp_runs_down_once_at_the_plunge_rate() {
             "{name}: ramp {ramp:.3} mm, once down is {once:.3} mm"
         );
     }
+}
+
+/// Where the walls' loop and the second row cover the first row's swath (the first row
+/// `1.9 r − s` or nearer the walls' loop, the second within `1.9 r` of it) without costing a
+/// row, the first row is ramped along as it is cut: the ramp's passes run back and forth on
+/// the first row, the last one on in the row's direction, and no feed move at the level comes
+/// back over the ramp's span (the second row, a stepover away, takes what the ramp left).
+/// Where that would cost a row (the 4:1 strip: 37.3 mm between the walls' loop's long sides,
+/// four stepovers and two gaps of at most 1.5 r without it, five with it), the ramp runs back
+/// along the row, which is cut again at the level. The stock simulation finds nothing left
+/// either way.
+#[test]
+fn the_first_row_is_ramped_along_as_it_is_cut() {
+    let tool = Tool::flat(12.7).unwrap();
+    let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
+    for (name, shape) in pockets() {
+        let r = pocket::generate(StrategyKind::Zigzag, &shape, &tool, &opts(), &sim).unwrap();
+        assert!(
+            r.verification.problems().is_empty(),
+            "{name}: {:?}",
+            r.verification.problems()
+        );
+        let tp = &r.toolpath;
+        let z = tp.levels[0].z;
+        // The ramp: the feed moves before the first at the level, in plan.
+        let mut ramp: Vec<(millpath::geom::Point, millpath::geom::Point)> = Vec::new();
+        let mut after: Option<millpath::geom::Vec2> = None;
+        let mut last: Option<millpath::geom::Vec2> = None;
+        let mut at_level: Vec<(millpath::geom::Point, millpath::geom::Point)> = Vec::new();
+        for (f, m) in tp.segments() {
+            if !m.is_feed() {
+                continue;
+            }
+            let (a, b) = (f.xy(), m.to.xy());
+            if f.z > z + 1e-9 {
+                ramp.push((a, b));
+                last = (b - a).normalize();
+            } else if (m.to.z - z).abs() < 1e-9 {
+                if after.is_none() {
+                    after = (b - a).normalize();
+                }
+                at_level.push((a, b));
+            }
+        }
+        let (lo, hi) = ramp.iter().fold(
+            (ramp[0].0, ramp[0].0),
+            |(lo, hi), &(a, b)| {
+                let lo = if a.x + a.y < lo.x + lo.y { a } else { lo };
+                let lo = if b.x + b.y < lo.x + lo.y { b } else { lo };
+                let hi = if a.x + a.y > hi.x + hi.y { a } else { hi };
+                let hi = if b.x + b.y > hi.x + hi.y { b } else { hi };
+                (lo, hi)
+            },
+        );
+        let mid = lo + (hi - lo) * 0.5;
+        let near = at_level
+            .iter()
+            .map(|&(a, b)| distance_to_segment(mid, a, b))
+            .fold(f64::INFINITY, f64::min);
+        let s = 0.4 * tool.diameter;
+        if name == "4:1" {
+            assert!(near < 1e-6, "{name}: the row is cut again ({near:.3} mm)");
+        } else {
+            // On one line: every ramp move along the first.
+            let u = (ramp[0].1 - ramp[0].0).normalize().unwrap();
+            for &(a, b) in &ramp {
+                assert!(
+                    (b - a).cross(u).abs() < 1e-6 && (a - ramp[0].0).cross(u).abs() < 1e-6,
+                    "{name}: a ramp move off the first row"
+                );
+            }
+            assert!(
+                after.unwrap().dot(last.unwrap()) > 0.999,
+                "{name}: the row turns back after the ramp"
+            );
+            assert!(
+                near > 0.25 * s,
+                "{name}: a move at the level comes {near:.3} mm from the ramp's middle"
+            );
+        }
+    }
+}
+
+fn distance_to_segment(p: millpath::geom::Point, a: millpath::geom::Point, b: millpath::geom::Point) -> f64 {
+    let d = b - a;
+    let l2 = d.dot(d);
+    let t = if l2 > 0.0 { ((p - a).dot(d) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + d * t)
 }

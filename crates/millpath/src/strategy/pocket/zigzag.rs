@@ -103,6 +103,14 @@ const LINK_TIE: f64 = 1e-6;
 /// rounding (about `10⁻⁹` of the coordinates).
 const ON_LOOP: f64 = 1e-6;
 
+/// How far apart, in tool radii, the walls' loop and the second row may be when the first
+/// row's ramp runs along it as it is cut (`CutEntry::RampAlong`): the material the ramp
+/// leaves above its slope lies in the first row's swath, which lies in the union of the
+/// walls' loop's and the second row's when these are less than `2r` apart; 1.9 leaves a
+/// tenth of the radius for the stock simulation's cells and the rows' rounding. The first
+/// row then comes `1.9·r − s` from the lowest point of the region, when that costs no row.
+const RAMP_ROW_REACH: f64 = 1.9;
+
 /// The chaining's tolerances for one plan, scaled with the stepover and the tool (see
 /// [`LINK_TIE`] and [`ON_LOOP`]).
 #[derive(Debug, Clone, Copy)]
@@ -132,22 +140,32 @@ impl Chaining {
 /// `g_max ≤ s` (a stepover near the diameter) the rows divide the span evenly, `h ≤ s`
 /// apart, none on the extremes; a span no wider than `s` has no row (the clean-up pass alone
 /// covers it), one no wider than `2·g_max` one, in its middle.
-fn row_heights(span: f64, s: f64, g_max: f64) -> Vec<f64> {
+///
+/// With `g_first` (the first row's largest gap, below `g_max`), the first row comes no
+/// farther than that from the lowest point when that costs no row: the heights and `true`;
+/// else the rows as above and `false`.
+fn row_heights(span: f64, s: f64, g_max: f64, g_first: Option<f64>) -> (Vec<f64>, bool) {
     // The 1e-9 keeps an exact multiple (a 40 mm span at 4 mm) from gaining a row by rounding.
     if span <= s * (1.0 + 1e-9) {
-        return Vec::new();
+        return (Vec::new(), false);
     }
     if g_max <= s {
         let n = (span / s - 1e-9).ceil().max(1.0) as usize;
         let h = span / n as f64;
-        return (1..n).map(|j| h * j as f64).collect();
+        return ((1..n).map(|j| h * j as f64).collect(), false);
     }
     if span <= 2.0 * g_max {
-        return vec![0.5 * span];
+        return (vec![0.5 * span], false);
     }
     let m = ((span - 2.0 * g_max) / s - 1e-9).ceil().max(1.0) as usize;
-    let g = 0.5 * (span - m as f64 * s);
-    (0..=m).map(|k| g + s * k as f64).collect()
+    let rest = span - m as f64 * s;
+    let g = match g_first {
+        Some(gf) if gf > 0.0 && ((span - gf - g_max) / s - 1e-9).ceil() <= m as f64 => {
+            (gf.min(0.5 * rest), true)
+        }
+        _ => (0.5 * rest, false),
+    };
+    ((0..=m).map(|k| g.0 + s * k as f64).collect(), g.1)
 }
 
 /// The zigzag strategy's plan for one level.
@@ -184,7 +202,10 @@ pub fn plan(
             y1 = y1.max(p.y);
         }
     }
-    let heights = row_heights(y1 - y0, s, EDGE_GAP * tool.radius());
+    // The first row's ramp runs along it as it is cut when the walls' loop and the second
+    // row cover its swath (see the module docs).
+    let g_first = (!opts.zigzag.ramp_recut).then(|| RAMP_ROW_REACH * tool.radius() - s);
+    let (heights, ramp_along) = row_heights(y1 - y0, s, EDGE_GAP * tool.radius(), g_first);
     // Rows shorter than this are left to the clean-up pass (see the module docs).
     let min_row = (8.0 * tool.radius() * ROW_LEFT_CUSP * tool.tolerance_scale())
         .sqrt()
@@ -282,6 +303,20 @@ pub fn plan(
                 round_turns(&path, s, back, &region)
             },
         });
+    }
+    // The first cut starting on the lowest row, along it: the ramp runs along that row.
+    if ramp_along
+        && let Some(first) = cuts.first_mut()
+        && let Some(row) = first.path.first()
+        && row.arc.is_none()
+    {
+        let on_first_row = (rotate(row.a, rot).y - ys[1]).abs() <= 1e-6 * s
+            && (rotate(row.b, rot).y - ys[1]).abs() <= 1e-6 * s;
+        if on_first_row && row.length() >= tool.diameter {
+            first.entry = CutEntry::RampAlong {
+                max_len: row.length(),
+            };
+        }
     }
     // Clean-up along the boundary offset.
     let ccw = opts.direction == Direction::Climb;
