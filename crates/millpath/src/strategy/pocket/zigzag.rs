@@ -23,23 +23,38 @@
 //! every loop of the boundary offset: the wall and each island.
 //!
 //! In a frame rotated by −angle the passes are horizontal lines `s` apart, the first and the
-//! last `g = (span − m·s)/2 ≤ 0.95·r` from the region's lowest and highest points
+//! last `g = (span − m·s)/2 ≤ 1.5·r` from the region's lowest and highest points
 //! ([`row_heights`], `m` as small as that allows): no row runs along the boundary offset or
-//! nearer it than the clean-up pass reaches (every point between an extreme and its row
-//! lies within `g` of the one or the other along the row's normal), so a rectangle
-//! `span` high gets `⌈(span − 1.9·r)/s⌉ + 1` rows, one fewer than rows a stepover apart from
-//! extreme to extreme (`⌈span/s⌉ − 1`) on the aerospace pocket and the rectangles of
-//! `tests/pocket_zigzag.rs`; the clean-up pass then cuts up to `g` deep along the extremes,
-//! which the feed modulation charges. With a stepover above `0.95·r` the rows divide the
-//! span evenly, `h ≤ s` apart, none on the extremes.
+//! nearer it than it need (every point between an extreme and its row lies within `g/2 <
+//! r` of the clean-up pass along the extreme or of the row, along the row's normal), so a
+//! rectangle `span` high gets `⌈(span − 3·r)/s⌉ + 1` rows, two fewer than rows a stepover
+//! apart from extreme to extreme (`⌈span/s⌉ − 1`) on the aerospace pocket and the
+//! rectangles of `tests/pocket_zigzag.rs`; the clean-up pass then cuts up to `g` deep along
+//! the extremes, which the feed modulation charges. With a stepover above `1.5·r` the rows
+//! divide the span evenly, `h ≤ s` apart, none on the extremes.
+//!
+//! **The first row's ramp.** The first cut starts on the lowest row. When that row can come
+//! within `g₁ = 1.9·r − s` of the lowest point without costing a row (`m` unchanged), it
+//! does, and the ramp runs along it as it is cut ([`CutEntry::RampAlong`]): an odd number
+//! of passes over its head, the last ending at the level, and the row goes on from there.
+//! The ramp leaves material above its slope, within the row's swath `[y₁ − r, y₁ + r]`;
+//! the clean-up pass along the extreme `y₀` and the second row at `y₁ + s` sweep `[y₀ − r,
+//! y₀ + r]` and `[y₁ + s − r, y₁ + s + r]`, which meet when `g₁ + s < 2r`: 1.9 r leaves a
+//! tenth of the radius to the simulation's cells. That saves the ramp's length (`Δz / tan
+//! α`, 114.5 mm for 6 mm at 3°) against a ramp back along the row and the row cut again,
+//! which stays where the tighter row would cost one (a rectangle 50 mm high), with
+//! [`ZigzagOptions::ramp_recut`](super::ZigzagOptions::ramp_recut), and where the stock
+//! simulation finds material left ([`super::generate`] plans again so).
 //!
 //! Each line is clipped to the region (even-odd rule on the crossings with the loops, arcs solved exactly: `x = c_x ± √(R² − (y − c_y)²)`, kept when the angle
 //! lies within the arc's sweep). Rows whose height falls within 1e-7 mm of a vertex or an arc
 //! extreme are nudged by 2e-7 mm, so every crossing is transversal.
 //!
 //! Intervals are chained greedily: from the end of the current interval, the nearest
-//! unvisited interval on a neighbouring row whose end can be reached by a link of at most
-//! `3s`: a straight one that stays inside the region, or else one along the loop both ends
+//! unvisited interval on a neighbouring row (nearer by more than [`LINK_TIE`] stepovers: a
+//! tie goes to the next row, then the first interval along it, so that rounding never
+//! decides, and a pocket and its enlargement chain alike) whose end can be reached by a
+//! link of at most `3s`: a straight one that stays inside the region, or else one along the loop both ends
 //! lie on (every interval ends on a loop of the boundary offset): round an island, the link
 //! follows the island's offset instead of breaking the chain. (Without it, every row beside
 //! an island was a cut of its own: on the L pocket of the property tests, 41 rapids and
@@ -134,9 +149,9 @@ impl Chaining {
 /// stepover `s` and largest edge gap `g_max` (mm): rows `s` apart, the first and the last
 /// `g = (span − m·s)/2 ≤ g_max` from the region's extremes (`m` gaps between them, as few as
 /// that allows). The clean-up pass along the boundary offset cuts the band between an extreme
-/// and its row (every point of it within `g < r` of the one or the other, along the row's
-/// normal), so the rows need not come closer to it than that: a row fewer than rows `s`
-/// apart from extreme to extreme, and a slightly deeper cut along the boundary there. With
+/// and its row (every point of it within `g/2 < r` of the one or the other, along the row's
+/// normal), so the rows need not come closer to it than that: fewer rows than rows `s`
+/// apart from extreme to extreme, and a deeper cut along the boundary there. With
 /// `g_max ≤ s` (a stepover near the diameter) the rows divide the span evenly, `h ≤ s`
 /// apart, none on the extremes; a span no wider than `s` has no row (the clean-up pass alone
 /// covers it), one no wider than `2·g_max` one, in its middle.
