@@ -187,13 +187,23 @@ fn the_ramp_runs_down_once_at_the_plunge_rate() {
 /// Where that would cost a row (the 4:1 strip: 37.3 mm between the walls' loop's long sides,
 /// four stepovers and two gaps of at most 1.5 r without it, five with it), the ramp runs back
 /// along the row, which is cut again at the level. The stock simulation finds nothing left
-/// either way.
+/// either way, and with `ZigzagOptions::ramp_recut` (the fallback where it does not) the
+/// ramp runs back along the row everywhere.
 #[test]
 fn the_first_row_is_ramped_along_as_it_is_cut() {
     let tool = Tool::flat(12.7).unwrap();
     let sim = SimOptions::default().with_cell(0.1).with_step(0.2);
-    for (name, shape) in pockets() {
-        let r = pocket::generate(StrategyKind::Zigzag, &shape, &tool, &opts(), &sim).unwrap();
+    let cases = pockets()
+        .into_iter()
+        .map(|(name, shape)| (name, shape, false))
+        .chain(std::iter::once((
+            "1:1 recut",
+            pockets().swap_remove(1).1,
+            true,
+        )));
+    for (name, shape, recut) in cases {
+        let o = opts().with_zigzag_ramp_recut(recut);
+        let r = pocket::generate(StrategyKind::Zigzag, &shape, &tool, &o, &sim).unwrap();
         assert!(
             r.verification.problems().is_empty(),
             "{name}: {:?}",
@@ -221,23 +231,19 @@ fn the_first_row_is_ramped_along_as_it_is_cut() {
                 at_level.push((a, b));
             }
         }
-        let (lo, hi) = ramp.iter().fold(
-            (ramp[0].0, ramp[0].0),
-            |(lo, hi), &(a, b)| {
-                let lo = if a.x + a.y < lo.x + lo.y { a } else { lo };
-                let lo = if b.x + b.y < lo.x + lo.y { b } else { lo };
-                let hi = if a.x + a.y > hi.x + hi.y { a } else { hi };
-                let hi = if b.x + b.y > hi.x + hi.y { b } else { hi };
-                (lo, hi)
-            },
-        );
-        let mid = lo + (hi - lo) * 0.5;
+        // The middle of the longest ramp move: on the first row.
+        let (a, b) = ramp
+            .iter()
+            .copied()
+            .max_by(|x, y| x.0.distance(x.1).total_cmp(&y.0.distance(y.1)))
+            .unwrap();
+        let mid = a + (b - a) * 0.5;
         let near = at_level
             .iter()
             .map(|&(a, b)| distance_to_segment(mid, a, b))
             .fold(f64::INFINITY, f64::min);
         let s = 0.4 * tool.diameter;
-        if name == "4:1" {
+        if name == "4:1" || recut {
             assert!(near < 1e-6, "{name}: the row is cut again ({near:.3} mm)");
         } else {
             // On one line: every ramp move along the first.
@@ -260,9 +266,17 @@ fn the_first_row_is_ramped_along_as_it_is_cut() {
     }
 }
 
-fn distance_to_segment(p: millpath::geom::Point, a: millpath::geom::Point, b: millpath::geom::Point) -> f64 {
+fn distance_to_segment(
+    p: millpath::geom::Point,
+    a: millpath::geom::Point,
+    b: millpath::geom::Point,
+) -> f64 {
     let d = b - a;
     let l2 = d.dot(d);
-    let t = if l2 > 0.0 { ((p - a).dot(d) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if l2 > 0.0 {
+        ((p - a).dot(d) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     p.distance(a + d * t)
 }

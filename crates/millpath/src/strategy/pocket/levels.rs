@@ -268,7 +268,10 @@ fn emit_cut(
         if here.xy().distance(approach) > 1e-9 {
             tp.push(Move::rapid(Point3::from_xy(approach, safe)));
         }
-    } else if here.xy().distance(approach) > 1e-9 || here.z < safe {
+    } else if here.xy().distance(approach) > 1e-9 || here.z < safe || tp.moves.is_empty() {
+        // (The program's first move, even where the toolpath starts above the approach: a
+        // program is read from wherever the machine is, and comes to the clearance height
+        // before it goes down to the safe height.)
         if here.z < clear {
             tp.push(Move::rapid(Point3::from_xy(here.xy(), clear)));
         }
@@ -416,9 +419,11 @@ fn cut_approach(
             let fits = passes <= MAX_RAMP_PASSES; // false for NaN
             if !fits {
                 // As for a ramp along a sliver: no room, and never a plunge.
-                return Err(InputError::new("pocket entry", format!("{max_len:.4} mm of row"))
-                    .at(format!("level at z = {z:.3}"))
-                    .expected("a first row long enough to ramp along"));
+                return Err(
+                    InputError::new("pocket entry", format!("{max_len:.4} mm of row"))
+                        .at(format!("level at z = {z:.3}"))
+                        .expected("a first row long enough to ramp along"),
+                );
             }
             Some((path_head(&cut.path, need / passes), passes as usize))
         }
