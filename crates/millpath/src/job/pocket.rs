@@ -556,7 +556,14 @@ pub fn run(
         let shape = PocketShape::new(p.outer.clone(), p.islands.clone(), &origin)?;
         shapes.push((i, settings.with_walls(shape, note)?));
     }
-    let time = |tp: &crate::toolpath::Toolpath| crate::motion::cycle_time(tp, &machine);
+    // Each toolpath timed as its program runs: from the origin, where the G-code reader
+    // (and a controller after homing at the work zero) starts, to its first move; the
+    // toolpath's own start is not written.
+    let time = |tp: &crate::toolpath::Toolpath| {
+        let mut from_origin = tp.clone();
+        from_origin.start = crate::geom::Point3::ORIGIN;
+        crate::motion::cycle_time(&from_origin, &machine)
+    };
     let strategy = match choice {
         Choice::One(kind) => PartStrategy::One(kind),
         Choice::Auto => PartStrategy::Auto,

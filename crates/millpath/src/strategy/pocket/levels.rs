@@ -12,6 +12,9 @@
 //!   The disc of radius `ρ + r` about `c` is then clear, and the cut's path starts on it;
 //! * **ramp**: the tool descends along the first `L` mm of the cut's own path, `L·tan α` per
 //!   pass, back and forth until it reaches `z_i`, and is back at the path's start;
+//! * **ramp along**: the same over at most the first row, an odd number of passes ending at
+//!   the head's far end, and the path goes on from there: the row is not cut again at the
+//!   level, the passes beside it take what the ramp left above its slope;
 //! * **direct**: the tool feeds down in the air above `from`, a point already cleared at this
 //!   depth by an earlier cut of the same level (the finishing pass; any later cut of a level
 //!   that has a cleared point nearby, see [`direct_entries`]), and leads in.
@@ -30,7 +33,7 @@
 //! cleared down to `z_i`, and the tool's bottom is `safe` above); else to the clearance height.
 
 use super::options::{Direction, Entry, PocketOptions};
-use super::segments::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length};
+use super::segments::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length, path_tail};
 use super::shape::{OffsetRegion, crosses};
 use crate::error::InputError;
 use crate::geom::{Point, Point3, Vec2};
@@ -49,6 +52,16 @@ pub enum CutEntry {
     },
     /// Ramp along the path itself.
     Ramp,
+    /// Ramp along the head of the path as it is cut: back and forth over at most
+    /// `max_len` of it an odd number of times, ending at the head's far end at the level,
+    /// then on along the rest. The material above the last pass is left to the passes
+    /// beside the head, which the strategy places to cover its swath (the zigzag's first
+    /// row); `generate` plans again with [`CutEntry::Ramp`] where the stock simulation
+    /// finds material left.
+    RampAlong {
+        /// The longest head, mm (the first row).
+        max_len: f64,
+    },
     /// Feed down above `from` (already cleared at this level) and lead in to the path.
     Direct {
         /// A cleared point.
@@ -255,7 +268,10 @@ fn emit_cut(
         if here.xy().distance(approach) > 1e-9 {
             tp.push(Move::rapid(Point3::from_xy(approach, safe)));
         }
-    } else if here.xy().distance(approach) > 1e-9 || here.z < safe {
+    } else if here.xy().distance(approach) > 1e-9 || here.z < safe || tp.moves.is_empty() {
+        // (The program's first move, even where the toolpath starts above the approach: a
+        // program is read from wherever the machine is, and comes to the clearance height
+        // before it goes down to the safe height.)
         if here.z < clear {
             tp.push(Move::rapid(Point3::from_xy(here.xy(), clear)));
         }
@@ -319,6 +335,29 @@ fn emit_cut(
                 tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
             }
         }
+        CutEntry::RampAlong { .. } => {
+            let Some((head, passes)) = ramp else {
+                return Ok(());
+            };
+            let head_len = path_length(&head);
+            let slope = (safe - z) / (head_len * passes as f64);
+            let mut h = safe;
+            for p in 0..passes {
+                let segs: Vec<Seg> = if p % 2 == 0 {
+                    head.clone()
+                } else {
+                    head.iter().rev().map(Seg::reversed).collect()
+                };
+                for s in &segs {
+                    h = snap_to_level(h - slope * s.length(), z);
+                    tp.push(seg_move(s, h, entry_feed(opts, ramp_angle)));
+                }
+            }
+            for s in path_tail(&cut.path, head_len) {
+                tp.push(seg_move(&s, z, opts.feed));
+            }
+            return Ok(());
+        }
         CutEntry::Ramp => {
             let Some((head, passes)) = ramp else {
                 return Ok(());
@@ -374,6 +413,22 @@ fn cut_approach(
     // the path's start; an odd number of passes starts at the head's far end.
     let ramp = match cut.entry {
         CutEntry::Ramp => Some(ramp_passes(&cut.path, safe - z, ramp_angle, z)?),
+        CutEntry::RampAlong { max_len } => {
+            // An odd number of passes over a head of at most `max_len`: the first from the
+            // path's start, the last ending at the head's far end.
+            let need = (safe - z) / ramp_angle.tan();
+            let passes = ((need / max_len - 1e-9).ceil().max(1.0) / 2.0).floor() * 2.0 + 1.0;
+            let fits = passes <= MAX_RAMP_PASSES; // false for NaN
+            if !fits {
+                // As for a ramp along a sliver: no room, and never a plunge.
+                return Err(
+                    InputError::new("pocket entry", format!("{max_len:.4} mm of row"))
+                        .at(format!("level at z = {z:.3}"))
+                        .expected("a first row long enough to ramp along"),
+                );
+            }
+            Some((path_head(&cut.path, need / passes), passes as usize))
+        }
         _ => None,
     };
     let approach = match (cut.entry, &ramp) {

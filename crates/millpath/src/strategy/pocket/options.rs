@@ -207,6 +207,11 @@ pub struct ZigzagOptions {
     /// Turn between rows at two corners along a straight link instead of on half circles
     /// (`generate` plans the zigzag so again where the half circles leave material).
     pub straight_turns: bool,
+    /// Enter by ramping back along the first row and cutting it again at the level, instead
+    /// of ramping along it as it is cut with the passes beside it taking what the ramp left
+    /// (`generate` plans the zigzag so again where the stock simulation finds material
+    /// left).
+    pub ramp_recut: bool,
 }
 
 impl Default for PocketOptions {
@@ -281,6 +286,8 @@ option_builders! {
     with_curvature_ramps => spiral.curvature_ramps: bool;
     /// Sets [`ZigzagOptions::angle`], rad.
     with_zigzag_angle => zigzag.angle: f64;
+    /// Sets [`ZigzagOptions::ramp_recut`].
+    with_zigzag_ramp_recut => zigzag.ramp_recut: bool;
 }
 
 fn check(what: &str, v: f64, ok: bool, flag: &str, expected: &str) -> Result<(), InputError> {

@@ -337,6 +337,26 @@ pub fn path_head(path: &[Seg], len: f64) -> Vec<Seg> {
     out
 }
 
+/// `path` after its first `len` mm (none of it if shorter).
+pub fn path_tail(path: &[Seg], len: f64) -> Vec<Seg> {
+    let mut out = Vec::new();
+    let mut left = len;
+    for s in path {
+        let l = s.length();
+        if left >= l {
+            left -= l;
+            continue;
+        }
+        if left > 1e-12 {
+            out.push(s.reversed().head(l - left).reversed());
+            left = 0.0;
+        } else {
+            out.push(*s);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

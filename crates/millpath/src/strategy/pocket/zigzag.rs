@@ -23,23 +23,38 @@
 //! every loop of the boundary offset: the wall and each island.
 //!
 //! In a frame rotated by −angle the passes are horizontal lines `s` apart, the first and the
-//! last `g = (span − m·s)/2 ≤ 0.95·r` from the region's lowest and highest points
+//! last `g = (span − m·s)/2 ≤ 1.5·r` from the region's lowest and highest points
 //! ([`row_heights`], `m` as small as that allows): no row runs along the boundary offset or
-//! nearer it than the clean-up pass reaches (every point between an extreme and its row
-//! lies within `g` of the one or the other along the row's normal), so a rectangle
-//! `span` high gets `⌈(span − 1.9·r)/s⌉ + 1` rows, one fewer than rows a stepover apart from
-//! extreme to extreme (`⌈span/s⌉ − 1`) on the aerospace pocket and the rectangles of
-//! `tests/pocket_zigzag.rs`; the clean-up pass then cuts up to `g` deep along the extremes,
-//! which the feed modulation charges. With a stepover above `0.95·r` the rows divide the
-//! span evenly, `h ≤ s` apart, none on the extremes.
+//! nearer it than it need (every point between an extreme and its row lies within `g/2 <
+//! r` of the clean-up pass along the extreme or of the row, along the row's normal), so a
+//! rectangle `span` high gets `⌈(span − 3·r)/s⌉ + 1` rows, two fewer than rows a stepover
+//! apart from extreme to extreme (`⌈span/s⌉ − 1`) on the aerospace pocket and the
+//! rectangles of `tests/pocket_zigzag.rs`; the clean-up pass then cuts up to `g` deep along
+//! the extremes, which the feed modulation charges. With a stepover above `1.5·r` the rows
+//! divide the span evenly, `h ≤ s` apart, none on the extremes.
+//!
+//! **The first row's ramp.** The first cut starts on the lowest row. When that row can come
+//! within `g₁ = 1.9·r − s` of the lowest point without costing a row (`m` unchanged), it
+//! does, and the ramp runs along it as it is cut ([`CutEntry::RampAlong`]): an odd number
+//! of passes over its head, the last ending at the level, and the row goes on from there.
+//! The ramp leaves material above its slope, within the row's swath `[y₁ − r, y₁ + r]`;
+//! the clean-up pass along the extreme `y₀` and the second row at `y₁ + s` sweep `[y₀ − r,
+//! y₀ + r]` and `[y₁ + s − r, y₁ + s + r]`, which meet when `g₁ + s < 2r`: 1.9 r leaves a
+//! tenth of the radius to the simulation's cells. That saves the ramp's length (`Δz / tan
+//! α`, 114.5 mm for 6 mm at 3°) against a ramp back along the row and the row cut again,
+//! which stays where the tighter row would cost one (a rectangle 50 mm high), with
+//! [`ZigzagOptions::ramp_recut`](super::ZigzagOptions::ramp_recut), and where the stock
+//! simulation finds material left ([`super::generate`] plans again so).
 //!
 //! Each line is clipped to the region (even-odd rule on the crossings with the loops, arcs solved exactly: `x = c_x ± √(R² − (y − c_y)²)`, kept when the angle
 //! lies within the arc's sweep). Rows whose height falls within 1e-7 mm of a vertex or an arc
 //! extreme are nudged by 2e-7 mm, so every crossing is transversal.
 //!
 //! Intervals are chained greedily: from the end of the current interval, the nearest
-//! unvisited interval on a neighbouring row whose end can be reached by a link of at most
-//! `3s`: a straight one that stays inside the region, or else one along the loop both ends
+//! unvisited interval on a neighbouring row (nearer by more than [`LINK_TIE`] stepovers: a
+//! tie goes to the next row, then the first interval along it, so that rounding never
+//! decides, and a pocket and its enlargement chain alike) whose end can be reached by a
+//! link of at most `3s`: a straight one that stays inside the region, or else one along the loop both ends
 //! lie on (every interval ends on a loop of the boundary offset): round an island, the link
 //! follows the island's offset instead of breaking the chain. (Without it, every row beside
 //! an island was a cut of its own: on the L pocket of the property tests, 41 rapids and
@@ -86,35 +101,86 @@ use std::f64::consts::TAU;
 pub const ROW_LEFT_CUSP: f64 = 1e-4;
 
 /// Largest gap between the boundary offset's extreme and the row nearest it, in tool radii
-/// (the clean-up pass along the boundary cuts that band; see [`row_heights`]).
-const EDGE_GAP: f64 = 0.95;
+/// (the clean-up pass along the boundary cuts that band; see [`row_heights`]). Below 2 (a
+/// band `2r` wide is the most two passes along its sides can cover); 1.5 is the spiral's
+/// coverage gap, and what the stock simulation verifies on the pockets of the tests.
+const EDGE_GAP: f64 = 1.5;
+
+/// Two candidate links of the chaining whose lengths differ by less than this many
+/// stepovers are a tie, broken by the order the candidates are looked at (the next row
+/// before the previous one, then along the row): a tie decided by the rounding of the
+/// coordinates would chain a pocket and its enlargement differently.
+const LINK_TIE: f64 = 1e-6;
+
+/// A point this near a loop of the boundary offset lies on it, mm, for tools up to 12.7 mm
+/// (times the tool's [`tolerance_scale`](crate::toolpath::Tool::tolerance_scale) above): the
+/// row ends the chaining links along a loop, which the offsets place on it to within their
+/// rounding (about `10⁻⁹` of the coordinates).
+const ON_LOOP: f64 = 1e-6;
+
+/// How far apart, in tool radii, the walls' loop and the second row may be when the first
+/// row's ramp runs along it as it is cut (`CutEntry::RampAlong`): the material the ramp
+/// leaves above its slope lies in the first row's swath, which lies in the union of the
+/// walls' loop's and the second row's when these are less than `2r` apart; 1.9 leaves a
+/// tenth of the radius for the stock simulation's cells and the rows' rounding. The first
+/// row then comes `1.9·r − s` from the lowest point of the region, when that costs no row.
+const RAMP_ROW_REACH: f64 = 1.9;
+
+/// The chaining's tolerances for one plan, scaled with the stepover and the tool (see
+/// [`LINK_TIE`] and [`ON_LOOP`]).
+#[derive(Debug, Clone, Copy)]
+struct Chaining {
+    /// Links shorter than the best by less than this are no better, mm.
+    tie: f64,
+    /// A point this near a loop lies on it, mm.
+    on_loop: f64,
+}
+
+impl Chaining {
+    fn new(s: f64, tool: &Tool) -> Self {
+        Chaining {
+            tie: LINK_TIE * s,
+            on_loop: ON_LOOP * tool.tolerance_scale(),
+        }
+    }
+}
 
 /// The interior rows' heights above the region's lowest point, for a region `span` mm high,
 /// stepover `s` and largest edge gap `g_max` (mm): rows `s` apart, the first and the last
 /// `g = (span − m·s)/2 ≤ g_max` from the region's extremes (`m` gaps between them, as few as
 /// that allows). The clean-up pass along the boundary offset cuts the band between an extreme
-/// and its row (every point of it within `g < r` of the one or the other, along the row's
-/// normal), so the rows need not come closer to it than that: a row fewer than rows `s`
-/// apart from extreme to extreme, and a slightly deeper cut along the boundary there. With
+/// and its row (every point of it within `g/2 < r` of the one or the other, along the row's
+/// normal), so the rows need not come closer to it than that: fewer rows than rows `s`
+/// apart from extreme to extreme, and a deeper cut along the boundary there. With
 /// `g_max ≤ s` (a stepover near the diameter) the rows divide the span evenly, `h ≤ s`
 /// apart, none on the extremes; a span no wider than `s` has no row (the clean-up pass alone
 /// covers it), one no wider than `2·g_max` one, in its middle.
-fn row_heights(span: f64, s: f64, g_max: f64) -> Vec<f64> {
+///
+/// With `g_first` (the first row's largest gap, below `g_max`), the first row comes no
+/// farther than that from the lowest point when that costs no row: the heights and `true`;
+/// else the rows as above and `false`.
+fn row_heights(span: f64, s: f64, g_max: f64, g_first: Option<f64>) -> (Vec<f64>, bool) {
     // The 1e-9 keeps an exact multiple (a 40 mm span at 4 mm) from gaining a row by rounding.
     if span <= s * (1.0 + 1e-9) {
-        return Vec::new();
+        return (Vec::new(), false);
     }
     if g_max <= s {
         let n = (span / s - 1e-9).ceil().max(1.0) as usize;
         let h = span / n as f64;
-        return (1..n).map(|j| h * j as f64).collect();
+        return ((1..n).map(|j| h * j as f64).collect(), false);
     }
     if span <= 2.0 * g_max {
-        return vec![0.5 * span];
+        return (vec![0.5 * span], false);
     }
     let m = ((span - 2.0 * g_max) / s - 1e-9).ceil().max(1.0) as usize;
-    let g = 0.5 * (span - m as f64 * s);
-    (0..=m).map(|k| g + s * k as f64).collect()
+    let rest = span - m as f64 * s;
+    let g = match g_first {
+        Some(gf) if gf > 0.0 && ((span - gf - g_max) / s - 1e-9).ceil() <= m as f64 => {
+            (gf.min(0.5 * rest), true)
+        }
+        _ => (0.5 * rest, false),
+    };
+    ((0..=m).map(|k| g.0 + s * k as f64).collect(), g.1)
 }
 
 /// The zigzag strategy's plan for one level.
@@ -151,7 +217,10 @@ pub fn plan(
             y1 = y1.max(p.y);
         }
     }
-    let heights = row_heights(y1 - y0, s, EDGE_GAP * tool.radius());
+    // The first row's ramp runs along it as it is cut when the walls' loop and the second
+    // row cover its swath (see the module docs).
+    let g_first = (!opts.zigzag.ramp_recut).then(|| RAMP_ROW_REACH * tool.radius() - s);
+    let (heights, ramp_along) = row_heights(y1 - y0, s, EDGE_GAP * tool.radius(), g_first);
     // Rows shorter than this are left to the clean-up pass (see the module docs).
     let min_row = (8.0 * tool.radius() * ROW_LEFT_CUSP * tool.tolerance_scale())
         .sqrt()
@@ -183,6 +252,7 @@ pub fn plan(
         ys.push(y);
     }
     // Greedy chaining.
+    let tol = Chaining::new(s, tool);
     let mut used: Vec<Vec<bool>> = rows.iter().map(|r| vec![false; r.len()]).collect();
     let mut cuts: Vec<Cut> = Vec::new();
     let mut forward = opts.direction == Direction::Climb;
@@ -218,14 +288,14 @@ pub fn plan(
                     let x = if forward { a } else { b };
                     let q = to_world(Point::new(x, ys[jj]));
                     let d = q.distance(pb);
-                    if d > 3.0 * s || next.as_ref().is_some_and(|n| d >= n.2) {
+                    if d > 3.0 * s || next.as_ref().is_some_and(|n| d >= n.2 - tol.tie) {
                         continue;
                     }
                     if !crosses(&region, pb, q) {
                         next = Some((jj, ii, d, None));
-                    } else if let Some(segs) = boundary_link(&region, pb, q, 3.0 * s) {
+                    } else if let Some(segs) = boundary_link(&region, pb, q, 3.0 * s, tol) {
                         let len = super::segments::path_length(&segs);
-                        if next.as_ref().is_none_or(|n| len < n.2) {
+                        if next.as_ref().is_none_or(|n| len < n.2 - tol.tie) {
                             next = Some((jj, ii, len, Some(segs)));
                         }
                     }
@@ -249,6 +319,20 @@ pub fn plan(
             },
         });
     }
+    // The first cut starting on the lowest row, along it: the ramp runs along that row.
+    if ramp_along
+        && let Some(first) = cuts.first_mut()
+        && let Some(row) = first.path.first()
+        && row.arc.is_none()
+    {
+        let on_first_row = (rotate(row.a, rot).y - ys[1]).abs() <= 1e-6 * s
+            && (rotate(row.b, rot).y - ys[1]).abs() <= 1e-6 * s;
+        if on_first_row && row.length() >= tool.diameter {
+            first.entry = CutEntry::RampAlong {
+                max_len: row.length(),
+            };
+        }
+    }
     // Clean-up along the boundary offset.
     let ccw = opts.direction == Direction::Climb;
     let mut loops: Vec<&Polyline<f64>> = region.loops().collect();
@@ -270,7 +354,7 @@ pub fn plan(
         };
         let path = segs_from_vertices(&closed_chain(&lp));
         match (cuts.last_mut(), here) {
-            (Some(last), Some(p)) if dist <= 1e-6 => {
+            (Some(last), Some(p)) if dist <= tol.on_loop => {
                 if let Some(f) = path.first() {
                     if p.distance(f.a) > 1e-12 {
                         last.path.push(Seg::line(p, f.a));
@@ -347,7 +431,7 @@ fn half_turn(
     let gap = b.a - a.b;
     let across = gap.cross(u);
     let rho = 0.5 * across.abs();
-    if rho < 1e-6 || 2.0 * rho > s * (1.0 + 1e-9) {
+    if rho < 1e-6 * s || 2.0 * rho > s * (1.0 + 1e-9) {
         return None;
     }
     // Along the rows, from `a`'s end: `b` starts at `delta`; the apex at the nearer end.
@@ -386,17 +470,20 @@ fn half_turn(
     ])
 }
 
-/// The shorter way from `p` to `q` along the loop of `region` both lie on (within 1e-6 mm),
-/// if it is at most `max_len` long: a link that cannot gouge (it runs on the boundary offset)
-/// and cuts only the cusps the passes left against that loop.
+/// The shorter way from `p` to `q` along the loop of `region` both lie on (within
+/// `tol.on_loop`), if it is at most `max_len` long (two ways within `tol.tie` of each other:
+/// the loop's own direction): a link that cannot gouge (it runs on the boundary offset) and
+/// cuts only the cusps the passes left against that loop.
 fn boundary_link(
     region: &super::shape::OffsetRegion,
     p: Point,
     q: Point,
     max_len: f64,
+    tol: Chaining,
 ) -> Option<Vec<Seg>> {
+    let on = tol.on_loop;
     let lp = region.loops().find(|l| {
-        super::shape::loop_distance(l, p) < 1e-6 && super::shape::loop_distance(l, q) < 1e-6
+        super::shape::loop_distance(l, p) < on && super::shape::loop_distance(l, q) < on
     })?;
     let mut best: Option<Vec<Seg>> = None;
     for dir in [lp.clone(), reversed(lp)] {
@@ -404,15 +491,15 @@ fn boundary_link(
         let mut out = Vec::new();
         let mut total = 0.0;
         for sg in &path {
-            if let Some(t) = position_on(sg, q) {
-                if t > 1e-9 {
+            if let Some(t) = position_on(sg, q, on) {
+                if t > 1e-3 * on {
                     out.push(sg.head(t));
                 }
                 total += t;
                 if total <= max_len
                     && best
                         .as_ref()
-                        .is_none_or(|b| total < super::segments::path_length(b))
+                        .is_none_or(|b| total < super::segments::path_length(b) - tol.tie)
                 {
                     best = Some(out);
                 }
@@ -428,8 +515,8 @@ fn boundary_link(
     best
 }
 
-/// Arc length from the start of `sg` to `q`, when `q` lies on it (within 1e-6 mm).
-fn position_on(sg: &Seg, q: Point) -> Option<f64> {
+/// Arc length from the start of `sg` to `q`, when `q` lies on it (within `on` mm).
+fn position_on(sg: &Seg, q: Point, on: f64) -> Option<f64> {
     match sg.arc {
         None => {
             let d = sg.b - sg.a;
@@ -439,10 +526,10 @@ fn position_on(sg: &Seg, q: Point) -> Option<f64> {
             }
             let t = (q - sg.a).dot(d) / len;
             let off = (q - sg.a).cross(d).abs() / len;
-            (off < 1e-6 && t >= -1e-9 && t <= len + 1e-9).then_some(t.clamp(0.0, len))
+            (off < on && t >= -1e-3 * on && t <= len + 1e-3 * on).then_some(t.clamp(0.0, len))
         }
         Some(arc) => {
-            if (q.distance(arc.center) - arc.radius).abs() > 1e-6 {
+            if (q.distance(arc.center) - arc.radius).abs() > on {
                 return None;
             }
             let a0 = (sg.a - arc.center).angle();

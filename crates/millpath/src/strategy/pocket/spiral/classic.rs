@@ -284,7 +284,7 @@ fn turn_plan(plan: &LevelPlan, a: f64) -> LevelPlan {
                         radius,
                     },
                     CutEntry::Direct { from } => CutEntry::Direct { from: turn(from) },
-                    CutEntry::Ramp => CutEntry::Ramp,
+                    e @ (CutEntry::Ramp | CutEntry::RampAlong { .. }) => e,
                 },
                 path: c
                     .path
