@@ -528,7 +528,7 @@ fn arcs_clearance_over_the_corpus() {
 #[allow(clippy::print_stderr)]
 fn uncut_over_the_corpus() {
     let mut rows = Vec::new();
-    let mut planned = [0usize; 3];
+    let mut planned = [0usize; 4];
     for (name, data) in corpus("pocket") {
         let Some((kind, shape, tool, opts, sim)) = harness::pocket_case(&data) else {
             continue;
@@ -581,6 +581,7 @@ fn strategy_index(kind: pocket::StrategyKind) -> usize {
         pocket::StrategyKind::Zigzag => 0,
         pocket::StrategyKind::Offset => 1,
         pocket::StrategyKind::Spiral => 2,
+        pocket::StrategyKind::Adaptive => 3,
     }
 }
 

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 /// Arguments of `millpath pocket`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket sample:aerospace --depth 5 --step-down 5 --dialect fanuc --units in --tool-number 3 -o pocket.nc\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4\n  millpath pocket sheet.dxf --list                       # the drawing's pockets, by index\n  millpath pocket sheet.dxf --select 1,3 --tool-diameter 6 --depth 3 --step-down 3 -o two.ngc"
+    after_help = "Examples:\n  millpath pocket sample:aerospace --strategy spiral --tool-diameter 12.7 --stepover 0.4 \\\n      --depth 25 --step-down 6.35 --feed 600ipm -o pocket.ngc --report pocket.json\n  millpath pocket sample:aerospace --strategy auto --depth 5 --step-down 5 -o best.ngc   # fastest verified of three\n  millpath pocket sample:aerospace --depth 5 --step-down 5 --dialect fanuc --units in --tool-number 3 -o pocket.nc\n  millpath pocket part.dxf --strategy offset --tool-diameter 10 --stepover 4mm --depth 12 --step-down 4\n  millpath pocket sample:aerospace --strategy adaptive --depth 25 -o adaptive.ngc   # one level, 10 % engagement\n  millpath pocket sheet.dxf --list                       # the drawing's pockets, by index\n  millpath pocket sheet.dxf --select 1,3 --tool-diameter 6 --depth 3 --step-down 3 -o two.ngc"
 )]
 pub struct Args {
     /// Outline file (.json, .dxf, .svg) or a built-in sample: `sample:aerospace`, `sample:part`.
@@ -55,28 +55,38 @@ pub struct Args {
     pub tolerance: Option<f64>,
 }
 
+/// The step-down when `--step-down` is not given (a quarter inch), mm.
+const DEFAULT_STEP_DOWN: f64 = 6.35;
+
 /// Options shared by `pocket` and `sweep`.
 #[derive(Debug, Clone, clap::Args)]
 pub struct CommonArgs {
     /// How a DXF or SVG drawing is read.
     #[command(flatten)]
     pub import: super::outline_input::ImportArgs,
-    /// Strategy: spiral, offset, zigzag, or auto (plan all three, verify and time each on
-    /// --machine, write the fastest verified one).
+    /// Strategy: spiral, offset, zigzag, adaptive (the engagement held at the stepover's at
+    /// every step, full depth), or auto (plan spiral, offset and zigzag, verify and time
+    /// each on --machine, write the fastest verified one).
     #[arg(long, default_value = "spiral")]
     pub strategy: String,
     /// Tool diameter, mm.
     #[arg(long, default_value_t = 12.7)]
     pub tool_diameter: f64,
-    /// Stepover: a fraction of the diameter (0.4) or a distance (5mm).
-    #[arg(long, default_value = "0.4")]
-    pub stepover: String,
+    /// Flute length, mm: no level is deeper [default: 3 × the tool diameter]
+    #[arg(long)]
+    pub flute_length: Option<f64>,
+    /// Stepover: a fraction of the diameter (0.4) or a distance (5mm); for adaptive, the
+    /// width of the straight cut whose engagement every step holds [default: 0.4; 0.1 for
+    /// adaptive, which cuts the whole flute length at once]
+    #[arg(long)]
+    pub stepover: Option<String>,
     /// Pocket depth, mm.
     #[arg(long, default_value_t = 25.0)]
     pub depth: f64,
-    /// Step-down per level, mm.
-    #[arg(long, default_value_t = 6.35)]
-    pub step_down: f64,
+    /// Step-down per level, mm [default: 6.35; with --strategy adaptive the flute length, one
+    /// level as deep as the tool cuts]
+    #[arg(long)]
+    pub step_down: Option<f64>,
     /// Wall stock, mm.
     #[arg(long, default_value_t = 0.0)]
     pub wall_stock: f64,
@@ -157,9 +167,23 @@ impl CommonArgs {
             import: self.import.settings(),
             strategy: self.strategy.clone(),
             tool_diameter: self.tool_diameter,
-            stepover: self.stepover.clone(),
+            stepover: self.stepover.clone().unwrap_or_else(|| {
+                if self.strategy == "adaptive" {
+                    "0.1"
+                } else {
+                    "0.4"
+                }
+                .to_owned()
+            }),
             depth: self.depth,
-            step_down: self.step_down,
+            flute_length: self.flute_length,
+            step_down: self.step_down.unwrap_or_else(|| {
+                if self.strategy == "adaptive" {
+                    self.flute_length.unwrap_or(3.0 * self.tool_diameter)
+                } else {
+                    DEFAULT_STEP_DOWN
+                }
+            }),
             wall_stock: self.wall_stock,
             floor_stock: self.floor_stock,
             conventional: self.conventional,

@@ -39,6 +39,8 @@ pub struct PocketSettings {
     pub strategy: String,
     /// Tool diameter, mm.
     pub tool_diameter: f64,
+    /// Flute length, mm; `None`: 3 × the diameter. No level is deeper.
+    pub flute_length: Option<f64>,
     /// Stepover: a fraction of the diameter (`0.4`) or a distance (`5mm`).
     pub stepover: String,
     /// Pocket depth, mm.
@@ -110,6 +112,7 @@ impl Default for PocketSettings {
             import: ImportSettings::default(),
             strategy: "spiral".into(),
             tool_diameter: 12.7,
+            flute_length: None,
             stepover: "0.4".into(),
             depth: 25.0,
             step_down: 6.35,
@@ -187,7 +190,16 @@ pub fn parse_choice(s: &str) -> Result<Choice, InputError> {
 impl PocketSettings {
     /// The tool and the pocketing options.
     pub fn options(&self) -> Result<(Tool, PocketOptions), Error> {
-        let tool = Tool::flat(self.tool_diameter).map_err(|e| e.at("--tool-diameter"))?;
+        let mut tool = Tool::flat(self.tool_diameter).map_err(|e| e.at("--tool-diameter"))?;
+        if let Some(f) = self.flute_length {
+            if !(f.is_finite() && f > 0.0 && f <= 1e6) {
+                return Err(InputError::new("flute length", f)
+                    .at("--flute-length")
+                    .expected("a flute length > 0 mm")
+                    .into());
+            }
+            tool.flute_length = f;
+        }
         let ramp = self.ramp_angle.to_radians();
         let entry = match self.entry.as_str() {
             "helix" => Entry::Helix {

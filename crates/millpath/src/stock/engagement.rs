@@ -61,9 +61,9 @@ pub fn entry_moves(tp: &Toolpath) -> Vec<bool> {
             }
             out[k] = true;
             let n = descent.len() as f64;
-            let c = descent
-                .iter()
-                .fold(Point::ORIGIN, |a, p| Point::new(a.x + p.x / n, a.y + p.y / n));
+            let c = descent.iter().fold(Point::ORIGIN, |a, p| {
+                Point::new(a.x + p.x / n, a.y + p.y / n)
+            });
             let rad = descent.iter().map(|p| p.distance(c)).fold(0.0, f64::max);
             circle = Some((c, rad + 1e-6));
         } else {
@@ -147,9 +147,24 @@ mod tests {
         let tool = Tool::flat(6.0).unwrap();
         let mut tp = Toolpath::new(tool, Point3::new(2.0, 0.0, 1.0));
         let c = |z| Point3::new(0.0, 0.0, z);
-        tp.push(Move::arc_xy(Point3::new(-2.0, 0.0, -1.0), c(-1.0), true, 10.0));
-        tp.push(Move::arc_xy(Point3::new(2.0, 0.0, -3.0), c(-3.0), true, 10.0));
-        tp.push(Move::arc_xy(Point3::new(2.0, 0.0, -3.0), c(-3.0), true, 10.0));
+        tp.push(Move::arc_xy(
+            Point3::new(-2.0, 0.0, -1.0),
+            c(-1.0),
+            true,
+            10.0,
+        ));
+        tp.push(Move::arc_xy(
+            Point3::new(2.0, 0.0, -3.0),
+            c(-3.0),
+            true,
+            10.0,
+        ));
+        tp.push(Move::arc_xy(
+            Point3::new(2.0, 0.0, -3.0),
+            c(-3.0),
+            true,
+            10.0,
+        ));
         tp.push(Move::line(Point3::new(20.0, 0.0, -3.0), 10.0));
         assert_eq!(entry_moves(&tp), vec![true, true, true, false]);
         let s = |m, at, deg: f64| EngagementSample {

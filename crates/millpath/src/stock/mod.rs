@@ -68,8 +68,8 @@ pub(crate) mod raster;
 pub(crate) mod reach;
 pub(crate) mod simulate;
 
-pub use engagement::{EngagementStats, engagement_stats, entry_moves};
 pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
+pub use engagement::{EngagementStats, engagement_stats, entry_moves};
 pub use field_check::{CheckOptions, Deviation, FieldCheck, Floor, PartTop, check_field};
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use heightfield::{

@@ -1,7 +1,7 @@
 //! Strategies: turn geometry into toolpaths (contour, pockets, facing, holes), and the order
 //! to visit a part's pockets or holes in.
 
-pub mod adaptive;
+pub(crate) mod adaptive;
 pub mod contour;
 pub mod drill;
 pub mod face;

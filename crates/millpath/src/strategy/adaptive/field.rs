@@ -243,7 +243,6 @@ impl Field {
         }
         edt_2d(&mut d2, cx, cy);
         Coarse {
-            k,
             nx: cx,
             ny: cy,
             dist: d2.iter().map(|v| v.sqrt() * self.h * k as f64).collect(),
@@ -259,16 +258,18 @@ impl Field {
     }
 
     /// Material cells left in the whole field.
+    #[cfg(test)]
     pub(crate) fn material_cells(&self) -> u64 {
-        self.material.iter().map(|w| u64::from(w.count_ones())).sum()
+        self.material
+            .iter()
+            .map(|w| u64::from(w.count_ones()))
+            .sum()
     }
 }
 
 /// A coarse distance-to-material map (see [`Field::coarse_distance`]).
 #[derive(Debug, Clone)]
 pub(crate) struct Coarse {
-    /// Cells per block side.
-    pub k: usize,
     pub nx: usize,
     pub ny: usize,
     /// Distance from each block's centre to the nearest block holding material, mm.
@@ -308,7 +309,7 @@ fn flatten_loop(segs: &[Seg], tol: f64) -> Vec<Point> {
             pts.push(if k == n {
                 s.b
             } else {
-                s.point_at(k as f64 / n as f64)
+                s.point_at(s.length() * k as f64 / n as f64)
             });
         }
     }
@@ -398,7 +399,7 @@ mod tests {
                         a * a + b * b
                     })
                     .fold(f64::INFINITY, f64::min);
-                assert_eq!(d2[j * nx + i], best, "cell ({i}, {j})");
+                assert!((d2[j * nx + i] - best).abs() < 1e-9, "cell ({i}, {j})");
             }
         }
     }

@@ -126,7 +126,10 @@ pub(crate) struct Walls<'a> {
 impl<'a> Walls<'a> {
     fn new(shape: &'a PocketShape, clear: f64, h: f64, margin: f64) -> Self {
         Walls {
-            loops: shape.loops().map(|o| IndexedLoop::new(o.polyline())).collect(),
+            loops: shape
+                .loops()
+                .map(|o| IndexedLoop::new(o.polyline()))
+                .collect(),
             clear,
             sure: clear + margin + 2.5 * h,
             need: clear + margin,
@@ -162,15 +165,13 @@ impl Planner<'_, '_> {
     /// Plans the next pass; false when nothing is left to clear.
     fn next_pass(&mut self, shape: &PocketShape, clear: f64, helix: f64) -> bool {
         let st = self.stepper;
-        let Some((p, theta)) = self.start() else {
+        let Some((p, theta, block)) = self.start() else {
             return self.new_helix(shape, clear, helix);
         };
         let (p, theta) = st.upstream(self.field, p, theta).unwrap_or((p, theta));
         let (pts, removed) = st.run(self.field, p, theta);
-        if std::env::var_os("MP_DEBUG").is_some() {
-            eprintln!("pass from ({:.2},{:.2}) th {:.2}: {} pts, removed {} -> end {:?}", p.x, p.y, theta, pts.len(), removed, pts.last());
-        }
         if removed == 0 || pts.len() < 2 {
+            self.tried[block] = true;
             self.mark_tried(p);
             return true;
         }
@@ -186,7 +187,7 @@ impl Planner<'_, '_> {
         let h = field.h;
         fit_arcs_where(pts, self.fit, |sg| {
             let n = ((sg.length() / (0.5 * h)).ceil() as usize).max(1);
-            (0..=n).all(|k| walls.allows(field, sg.point_at(k as f64 / n as f64)))
+            (0..=n).all(|k| walls.allows(field, sg.point_at(sg.length() * k as f64 / n as f64)))
         })
         .unwrap_or_else(|| segs_from_points(pts))
     }
@@ -226,7 +227,7 @@ impl Planner<'_, '_> {
     /// The start of the next pass: the block nearest the tool that is clear of material by
     /// one to three blocks' width beyond `r`, inside the reach, not tried before, whose
     /// first step can cut; and the heading with the material on the cutting side.
-    fn start(&mut self) -> Option<(Point, f64)> {
+    fn start(&mut self) -> Option<(Point, f64, usize)> {
         let st = self.stepper;
         let coarse = self.field.coarse_distance(BLOCK);
         let hc = self.field.h * BLOCK as f64;
@@ -250,7 +251,6 @@ impl Planner<'_, '_> {
             }
         }
         cands.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let dbg = std::env::var_os("MP_DEBUG").is_some();
         for &(_, i, j) in &cands {
             let k = j * coarse.nx + i;
             let c = self.field.coarse_centre(BLOCK, i, j);
@@ -289,11 +289,8 @@ impl Planner<'_, '_> {
             let theta = n.y.atan2(n.x) + st.side * std::f64::consts::FRAC_PI_2;
             let bite = st.first_bite(self.field, c, theta);
             let deep = self.field.wall_distance(c) >= st.walls.clear + st.r;
-            if dbg {
-                eprintln!("  cand ({:.2},{:.2}) bite {:.1} target {:.1} deep {deep}", c.x, c.y, bite, st.target);
-            }
             if bite >= pass::MIN_CUT * st.target && (deep || bite >= 0.3 * st.target) {
-                return Some((c, theta));
+                return Some((c, theta, k));
             }
             self.tried[k] = true;
         }
@@ -342,9 +339,9 @@ impl Planner<'_, '_> {
             return false;
         }
         let n = found.len() as f64;
-        let mid = found
-            .iter()
-            .fold(Point::ORIGIN, |a, f| Point::new(a.x + f.1.x / n, a.y + f.1.y / n));
+        let mid = found.iter().fold(Point::ORIGIN, |a, f| {
+            Point::new(a.x + f.1.x / n, a.y + f.1.y / n)
+        });
         let c = found
             .iter()
             .map(|f| f.1)
@@ -356,10 +353,7 @@ impl Planner<'_, '_> {
         self.field.clear_disc(c, rho + st.r);
         let p0 = c + Vec2::new(rho, 0.0);
         let theta = st.side * std::f64::consts::FRAC_PI_2;
-        let (mut pts, removed) = st.run(self.field, p0, theta);
-        if std::env::var_os("MP_DEBUG").is_some() {
-            eprintln!("helix pass: {} pts removed {removed} end {:?}", pts.len(), pts.last());
-        }
+        let (mut pts, _) = st.run(self.field, p0, theta);
         if pts.len() < 2 {
             pts = vec![p0, c + Vec2::new(rho, 1e-3)];
         }
@@ -394,7 +388,9 @@ impl Planner<'_, '_> {
             };
             let last = path.last().map_or(first, |s| s.b);
             match (self.pos, self.cuts.last_mut()) {
-                (Some(at), Some(cut)) if !crosses(region, at, first) && at.distance(first) < 1e-3 => {
+                (Some(at), Some(cut))
+                    if !crosses(region, at, first) && at.distance(first) < 1e-3 =>
+                {
                     cut.path.extend(path);
                 }
                 _ => self.cuts.push(Cut {

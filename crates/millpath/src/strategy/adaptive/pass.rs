@@ -19,8 +19,8 @@
 //! [`AIR_RADII`] tool radii of steps that cut less than [`MIN_CUT`] of it (the material ran
 //! out); the steps after its last cut are dropped.
 
-use super::field::Field;
 use super::Walls;
+use super::field::Field;
 use crate::geom::{Point, Vec2};
 
 /// The turns tried at each step, as fractions of the range from `−MAX_AWAY` to `MAX_INTO`.

@@ -368,16 +368,6 @@ fn generate_unchecked(
         .collect();
     let sim = sim.with_record_samples(opts.modulate_feed);
     let simulation = stock::simulate_levels(&tp, &specs, nominal.to_degrees(), &sim);
-    if std::env::var_os("MP_DEBUG").is_some() {
-        let st = stock::engagement_stats(&tp, &simulation.samples, 1.1 * nominal.to_degrees());
-        eprintln!("engagement: {st:?}");
-        let entry = stock::entry_moves(&tp);
-        let mut v: Vec<_> = simulation.samples.iter().filter(|s| !entry[s.move_index]).collect();
-        v.sort_by(|a, b| b.angle.total_cmp(&a.angle));
-        for s in v.iter().take(8) {
-            eprintln!("  {:.1}° at move {} {:?}", s.angle.to_degrees(), s.move_index, tp.moves[s.move_index].to);
-        }
-    }
     if opts.modulate_feed {
         tp = feed::modulate(&tp, &simulation.samples, nominal, opts.slowdown);
     }
