@@ -86,11 +86,17 @@ fn same_path(input: &Toolpath, out: &Toolpath, m: &Machine, name: &str) -> usize
             let len = if xyz > 1e-9 { xyz } else { rb.distance(rot_in) };
             let t = len / b.feed;
             for (x, l) in d.iter().zip(&m.axes) {
-                assert!(x.abs() / t <= l.max_velocity * (1.0 + 1e-6), "{name} move {k}");
+                assert!(
+                    x.abs() / t <= l.max_velocity * (1.0 + 1e-6),
+                    "{name} move {k}"
+                );
             }
             for (x, l) in r.iter().zip(&m.rotary) {
                 let l = l.as_ref().unwrap();
-                assert!(x.abs() / t <= l.max_velocity * (1.0 + 1e-6), "{name} move {k}");
+                assert!(
+                    x.abs() / t <= l.max_velocity * (1.0 + 1e-6),
+                    "{name} move {k}"
+                );
             }
         }
         rot_in = ra;
@@ -116,7 +122,9 @@ fn rewrite_keeps_the_path_the_feeds_and_the_joint_limits() {
             per_block: true,
             ..EstimateSettings::default()
         };
-        let est = run_text(&opt.rewrite, name, &m, &settings).unwrap().estimate;
+        let est = run_text(&opt.rewrite, name, &m, &settings)
+            .unwrap()
+            .estimate;
         let blocks = est.per_block.unwrap();
         assert!(!blocks.is_empty());
         for b in &blocks {
@@ -223,7 +231,10 @@ fn linuxcnc_runs_the_rewrite_no_slower() {
     }
     for (name, before, after) in jobs {
         eprintln!("{name}: LinuxCNC {before:.3} s, rewrite {after:.3} s");
-        assert!(after <= before + 0.002, "{name}: {after} s after {before} s");
+        assert!(
+            after <= before + 0.002,
+            "{name}: {after} s after {before} s"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

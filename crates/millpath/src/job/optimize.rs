@@ -115,7 +115,10 @@ pub fn optimize_text(text: &str, origin: &str, machine: &Machine) -> Result<Opti
         let saved_s = -difference_s;
         (OptimizeOutcome::Faster { saved_s }, rewrite.clone())
     } else {
-        (OptimizeOutcome::NothingGained { difference_s }, text.to_owned())
+        (
+            OptimizeOutcome::NothingGained { difference_s },
+            text.to_owned(),
+        )
     };
     Ok(Optimized {
         text,
@@ -137,11 +140,7 @@ fn read(text: &str, origin: &str) -> Result<Vec<ReadMove>, Error> {
 /// The block's time at constant speed under the tip feed and the joints' velocity limits.
 fn block_time(from: (Point3, Rotary), to: (Point3, Rotary), feed: f64, m: &Machine) -> f64 {
     let d = (to.0 - from.0).to_array();
-    let r = [
-        to.1.a - from.1.a,
-        to.1.b - from.1.b,
-        to.1.c - from.1.c,
-    ];
+    let r = [to.1.a - from.1.a, to.1.b - from.1.b, to.1.c - from.1.c];
     let xyz = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
     let mut t = if xyz > 1e-9 {
         xyz / feed
@@ -174,14 +173,19 @@ fn feed_mode_words(line: &str) -> Option<bool> {
                 .take_while(|c| c.is_ascii_digit() || *c == '.')
                 .collect();
             match num.parse::<f64>() {
-                Ok(v) if v == 93.0 => last = Some(true),
-                Ok(v) if v == 94.0 || v == 95.0 => last = Some(false),
+                Ok(v) if is(v, 93.0) => last = Some(true),
+                Ok(v) if is(v, 94.0) || is(v, 95.0) => last = Some(false),
                 _ => {}
             }
         }
         i += 1;
     }
     last
+}
+
+/// A G word's number is `g` (G93 and G93.0 alike).
+fn is(v: f64, g: f64) -> bool {
+    (v - g).abs() < 1e-9
 }
 
 fn strip_comments(line: &str) -> String {
@@ -217,8 +221,8 @@ fn without_feed_words(line: &str) -> String {
                 }
             }
             let value: String = word.chars().filter(|c| !c.is_whitespace()).collect();
-            let drop = up == 'F'
-                || matches!(value.parse::<f64>(), Ok(v) if v == 93.0 || v == 94.0);
+            let drop =
+                up == 'F' || matches!(value.parse::<f64>(), Ok(v) if is(v, 93.0) || is(v, 94.0));
             if !drop {
                 out.push(c);
                 out.push_str(value.as_str());
@@ -380,9 +384,9 @@ fn check_same_path(input: &[ReadMove], output: &[ReadMove], m: &Machine) -> Resu
                 .iter()
                 .zip(&m.axes)
                 .any(|(x, l)| x.abs() > l.max_velocity * t * (1.0 + 1e-9))
-                || r.iter().zip(&m.rotary).any(|(x, l)| {
-                    l.is_some_and(|l| x.abs() > l.max_velocity * t * (1.0 + 1e-9))
-                });
+                || r.iter()
+                    .zip(&m.rotary)
+                    .any(|(x, l)| l.is_some_and(|l| x.abs() > l.max_velocity * t * (1.0 + 1e-9)));
             if over && b.mv.feed < a.mv.feed * (1.0 - 1e-9) {
                 return Err(Error::internal(format!(
                     "optimize: line {} would drive a joint over its velocity limit",
