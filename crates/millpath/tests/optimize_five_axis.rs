@@ -8,8 +8,8 @@
 //!   joints within their velocity limits at the feed read back; the per-block peak feed of the
 //!   planner (`estimate --blocks`) on the rewrite never above the programmed feed; the kept
 //!   program never slower than the input on the controller model.
-//! * `loops_are_refused`: a program whose lines run more than once is refused with an
-//!   `InputError` naming the line.
+//! * `loops_are_refused`: a program whose lines run more than once, or that calls a
+//!   subroutine, is refused with an `InputError` naming the line.
 //! * `linuxcnc_runs_the_rewrite_no_slower`: LinuxCNC 2.9 itself runs two programs and their
 //!   rewrites; the rewrite is never slower (by more than a servo cycle). Skipped without
 //!   LinuxCNC unless `MILLPATH_REQUIRE_LINUXCNC=1`.
@@ -162,6 +162,17 @@ fn loops_are_refused() {
     match optimize_text(text, "loop.ngc", &machine()) {
         Err(Error::Input(e)) => assert!(e.to_string().contains("line"), "{e}"),
         other => panic!("a loop must be refused: {other:?}"),
+    }
+    let call = "o<sq> sub\nG1 X#1 A10 F100\no<sq> endsub\nG21 G90 G94\no<sq> call [5]\nM2\n";
+    match optimize_text(call, "call.ngc", &machine()) {
+        Err(Error::Input(e)) => {
+            let msg = e.to_string();
+            assert!(
+                msg.contains("line 5") && msg.contains("subroutine call"),
+                "{msg}"
+            );
+        }
+        other => panic!("a subroutine call must be refused: {other:?}"),
     }
 }
 

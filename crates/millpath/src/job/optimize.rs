@@ -252,6 +252,13 @@ fn rewrite(
     m: &Machine,
 ) -> Result<(String, usize), Error> {
     let lines: Vec<&str> = text.lines().collect();
+    // Moves of a called subroutine may come from another file's lines.
+    if let Some(n) = lines.iter().position(|l| {
+        let code = strip_comments(l).to_ascii_uppercase();
+        code.contains("CALL") || code.contains("M98") || code.contains("G65")
+    }) {
+        return Err(unsupported(origin, n + 1, "a subroutine call"));
+    }
     // The move of each line (lines make one move at most, in order).
     let mut by_line: Vec<Option<usize>> = vec![None; lines.len() + 1];
     let mut last_line = 0;
