@@ -19,9 +19,9 @@
 //! rewritten block. Coordinates, motion words and path modes are copied as written.
 //!
 //! # What it gains on LinuxCNC 2.9 (trivkins)
-//! Nothing, measured: LinuxCNC's canon already caps each straight block at
-//! `min(F, L / maxᵢ(|dᵢ|/vᵢ))` (`getStraightVelocity`), which is `L/t` above; LinuxCNC ran
-//! `alternate_3_5.ngc` rewritten so in 9.245 s, as the input. The time such programs lose is
+//! Nothing (figures in BENCHMARKS.md): LinuxCNC's canon already caps each straight block at
+//! `min(F, L / maxᵢ(|dᵢ|/vᵢ))` (`getStraightVelocity`), which is `L/t` above, so the
+//! rewrite restates the speed LinuxCNC already runs. The time such programs lose is
 //! at junctions next to a rotary axis: LinuxCNC neither blends them with an arc nor takes
 //! them as tangent (`tcRotaryMotionCheck`), so in `G64` they are parabolic blends at half
 //! acceleration and in `G61` stops; no feed word changes that. The job therefore times the
