@@ -29,6 +29,8 @@ enum Command {
     Estimate(commands::estimate::Args),
     /// List the built-in machine presets and their limits.
     Machines(commands::machines::Args),
+    /// Rewrite a LinuxCNC program's feeds to what the joints allow, kept when it runs faster.
+    Optimize(commands::optimize::Args),
     /// Fit a machine profile to cycle times measured on the machine.
     Calibrate(commands::calibrate::Args),
     /// 2.5D pocket roughing: zigzag, contour-offset or adaptive spiral.
@@ -115,6 +117,7 @@ fn run(cli: Cli) -> Result<(), millpath::Error> {
         Command::Contour(a) => commands::contour::run(&a),
         Command::Estimate(a) => commands::estimate::run(&a),
         Command::Machines(a) => commands::machines::run(&a),
+        Command::Optimize(a) => commands::optimize::run(&a),
         Command::Calibrate(a) => commands::calibrate::run(&a),
         Command::Pocket(a) => commands::pocket::run(&a),
         Command::Drill(a) => commands::drill::run(&a),

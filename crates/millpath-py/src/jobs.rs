@@ -299,6 +299,51 @@ pub fn estimate(
     })
 }
 
+/// `millpath optimize`: a LinuxCNC program (a path or its text) with its straight feed
+/// blocks rewritten in inverse time at what `machine`'s joints allow, kept only when the
+/// machine's controller model runs it faster. Returns a dict: `text` (the program to run:
+/// the input's when nothing was gained), `rewrite` (the inverse-time rewrite, kept or not),
+/// `before_s` and `after_s` (the input's and the rewrite's estimated cycle times),
+/// `rewritten_blocks`, `kept_rewrite` and `outcome` (what was done and why).
+#[pyfunction]
+#[pyo3(signature = (program, machine = "linuxcnc-time"))]
+pub fn optimize<'py>(
+    py: Python<'py>,
+    program: &Bound<'py, PyAny>,
+    machine: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let Some(p) = path_text(program)? else {
+        return Err(pyo3::exceptions::PyTypeError::new_err(
+            "optimize() takes the program as a path or its text (str)",
+        ));
+    };
+    let (text, origin) = if !p.contains('\n') && std::path::Path::new(&p).is_file() {
+        let path = std::path::Path::new(&p);
+        (millpath::io::read_text(path).map_err(err)?, p.clone())
+    } else if !program.is_instance_of::<pyo3::types::PyString>() {
+        return Err(input_err(
+            millpath::InputError::new("input file", p).expected("a readable G-code file"),
+        ));
+    } else {
+        (p, "program (text)".to_owned())
+    };
+    let opt = py
+        .allow_threads(|| -> Result<_, millpath::Error> {
+            let m = job::load_machine(machine)?;
+            job::optimize::optimize_text(&text, &origin, &m)
+        })
+        .map_err(err)?;
+    let d = PyDict::new(py);
+    d.set_item("kept_rewrite", opt.text == opt.rewrite)?;
+    d.set_item("text", opt.text)?;
+    d.set_item("rewrite", opt.rewrite)?;
+    d.set_item("before_s", opt.before.cycle_time_s)?;
+    d.set_item("after_s", opt.after.cycle_time_s)?;
+    d.set_item("rewritten_blocks", opt.rewritten_blocks)?;
+    d.set_item("outcome", opt.outcome.to_string())?;
+    Ok(d)
+}
+
 /// The built-in machine presets, as `millpath machines --json` lists them (a list of dicts).
 #[pyfunction]
 pub fn machines(py: Python<'_>) -> PyResult<PyObject> {

@@ -47,6 +47,7 @@ fn _millpath(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::drill, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::read_outline, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::estimate, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::optimize, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::machines, m)?)?;
     m.add_function(wrap_pyfunction!(curves::contour, m)?)?;
     m.add_function(wrap_pyfunction!(profile::profile, m)?)?;

@@ -278,6 +278,37 @@ def test_estimate_five_axis_equals_cli(tmp_path):
     assert abs(one.cycle_time_s - (1.5 + 60 / 900)) < 2e-3
 
 
+def test_optimize_five_axis_equals_cli(tmp_path):
+    """A five-axis program with G64 P corners turning C: the rewrite and its estimate are the
+    CLI's, read back it has the input's end points and no feed above the input's, and the
+    program to run is never slower than the input on the controller model."""
+    text = (
+        "; XYZAC\nG21 G90 G94\nG64 P0.01\nG1 X5 Y0 F2000\nG1 X7 Y0 C10\n"
+        "G1 X10 Y5 F2000\nG1 X12 Y5 C20\nG1 X0 Y0 A30 C0 F1200\nM2\n"
+    )
+    f = tmp_path / "five.ngc"
+    f.write_text(text)
+    out, rw = tmp_path / "out.ngc", tmp_path / "rw.ngc"
+    js = json.loads(
+        cli("optimize", f, "--machine", "linuxcnc-time", "-o", out, "--rewrite", rw, "--json").stdout
+    )
+    for program in (text, f):
+        r = millpath.optimize(program, machine="linuxcnc-time")
+        assert r["text"] == out.read_text()
+        assert r["rewrite"] == rw.read_text()
+        assert r["before_s"] == js["before"]["cycle_time_s"]
+        assert r["after_s"] == js["after"]["cycle_time_s"]
+        assert r["rewritten_blocks"] == js["rewritten_blocks"] == 5
+    a = millpath.estimate(text, machine="linuxcnc-time", dialect="linuxcnc")
+    b = millpath.estimate(r["rewrite"], machine="linuxcnc-time", dialect="linuxcnc")
+    np.testing.assert_allclose(a.toolpath.points, b.toolpath.points, atol=1e-9)
+    assert (b.toolpath.feeds <= a.toolpath.feeds * (1 + 1e-9)).all()
+    kept = millpath.estimate(r["text"], machine="linuxcnc-time", dialect="linuxcnc")
+    assert kept.cycle_time_s <= a.cycle_time_s + 1e-9
+    with pytest.raises(millpath.InputError, match="line"):
+        millpath.optimize("G21\n#1=0\no1 while [#1 LT 2]\nG1 X#1 F100\n#1=[#1+1]\no1 endwhile\nM2\n")
+
+
 def test_estimate_subroutines_and_tool_table_equal_cli(tmp_path):
     """A program calling a subroutine file, with a tool table: the text and the file give the
     CLI's time and blocks; the called squares are in the toolpath, offset by the tool's Z."""

@@ -442,6 +442,7 @@ const PUBLIC_MODULES: &[&str] = &[
     "job::drill",
     "job::estimate",
     "job::five_axis",
+    "job::optimize",
     "job::part",
     "job::pocket",
     "job::profile",

@@ -9,6 +9,7 @@ pub mod five_axis;
 pub mod html;
 pub mod job;
 pub mod machines;
+pub mod optimize;
 pub mod outline_input;
 pub mod output;
 pub mod pocket;

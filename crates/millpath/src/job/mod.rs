@@ -9,6 +9,7 @@ pub mod contour;
 pub mod drill;
 pub mod estimate;
 pub mod five_axis;
+pub mod optimize;
 pub mod part;
 pub mod pocket;
 pub(crate) mod pocket_report;

@@ -1,0 +1,63 @@
+//! `millpath optimize`: a LinuxCNC program's straight feed blocks rewritten in inverse time
+//! at what the machine's joints allow, kept when the machine's controller model runs it
+//! faster.
+
+use super::print;
+use millpath::job::optimize::optimize_text;
+use millpath::{Error, InputError};
+use std::path::PathBuf;
+
+/// Arguments of `millpath optimize`.
+#[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Examples:\n  millpath optimize part.ngc --machine linuxcnc-time -o faster.ngc\n  millpath optimize part.ngc --machine my_mill.toml -o faster.ngc --json"
+)]
+pub struct Args {
+    /// The LinuxCNC program.
+    pub file: PathBuf,
+    /// A preset name (see `millpath machines`) or a TOML machine profile.
+    #[arg(long, default_value = "linuxcnc-time")]
+    pub machine: String,
+    /// Where to write the program (the input's text when nothing is gained).
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// Also write the inverse-time rewrite here, kept or not (to run it on the controller).
+    #[arg(long)]
+    pub rewrite: Option<PathBuf>,
+    /// Print a JSON object (before, after, outcome) on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> Result<(), Error> {
+    let machine = super::load_machine(&args.machine)?;
+    let text = std::fs::read_to_string(&args.file).map_err(|e| {
+        Error::from(
+            InputError::new("input file", args.file.display())
+                .expected(format!("a readable G-code file ({e})")),
+        )
+    })?;
+    let origin = args.file.display().to_string();
+    let opt = optimize_text(&text, &origin, &machine)?;
+    millpath::io::write_atomic(&args.output, opt.text.as_bytes())?;
+    if let Some(path) = &args.rewrite {
+        millpath::io::write_atomic(path, opt.rewrite.as_bytes())?;
+    }
+    if args.json {
+        let v = serde_json::json!({
+            "before": opt.before,
+            "after": opt.after,
+            "rewritten_blocks": opt.rewritten_blocks,
+            "outcome": opt.outcome.to_string(),
+            "kept_rewrite": opt.text == opt.rewrite,
+        });
+        print(&serde_json::to_string_pretty(&v).map_err(|e| Error::internal(e.to_string()))?);
+    } else {
+        print(&format!(
+            "before {:.3} s, rewrite {:.3} s ({} blocks in inverse time): {}",
+            opt.before.cycle_time_s, opt.after.cycle_time_s, opt.rewritten_blocks, opt.outcome
+        ));
+    }
+    Ok(())
+}
