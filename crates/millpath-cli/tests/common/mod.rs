@@ -27,3 +27,14 @@ pub fn json_cycle_time(o: &Output) -> f64 {
         .as_f64()
         .unwrap_or_else(|| panic!("no time in {v}"))
 }
+
+/// The path of a real drawing of `../shared/real-inputs/files/` (kept beside the clone).
+pub fn real_input(name: &str) -> String {
+    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/real-inputs/files");
+    assert!(
+        d.is_dir(),
+        "the real inputs are missing: {} (CI keeps ../shared beside the clone)",
+        d.display()
+    );
+    d.join(name).to_string_lossy().into_owned()
+}

@@ -13,7 +13,10 @@ use super::verify::{VerifySettings, header_diameter};
 use crate::gcode::write_program;
 use crate::geom::{Aabb, Outline, Point};
 use crate::io::outline_json::Loops;
-use crate::stock::{CheckOptions, FieldOptions, Floor, HeightField, PartTop, check_field};
+use crate::stock::{
+    CheckOptions, FieldOptions, Floor, HeightField, PartTop, RestNeed, StockSpec, check_field,
+    floor_cut_length, rest_need,
+};
 use crate::strategy::pocket::PocketShape;
 use crate::strategy::rest::{self, RestOptions};
 use crate::toolpath::{Tool, Toolpath};
@@ -45,6 +48,30 @@ pub struct RestRun {
     pub time_s: f64,
     /// The height field's verdict on the pair.
     pub check: String,
+    /// What the material left needs of the rest tool at one level (the verifier's lower
+    /// bound, `stock::rest_need`), over all pockets.
+    pub need: Vec<RestNeed>,
+    /// The rest program's cutting at the floor, mm (`stock::floor_cut_length`).
+    pub floor_cut_mm: f64,
+}
+
+impl RestRun {
+    /// What the regions left need of cutting at one level, mm, over all pockets.
+    pub fn need_mm(&self) -> f64 {
+        self.need.iter().map(RestNeed::cut_mm).sum()
+    }
+
+    /// The floor's cutting over its need (1 when nothing is left and nothing cut).
+    pub fn need_ratio(&self) -> f64 {
+        let need = self.need_mm();
+        if need > 0.0 {
+            self.floor_cut_mm / need
+        } else if self.floor_cut_mm > 0.0 {
+            f64::INFINITY
+        } else {
+            1.0
+        }
+    }
 }
 
 impl RestRun {
@@ -53,12 +80,16 @@ impl RestRun {
     pub fn summary(&self) -> String {
         format!(
             "rest after D{} mm: {:.3} mm² left within reach of D{} mm, {} run(s), path {:.1} mm, \
-             cycle time {:.2} s; after both programs: {}",
+             cut at the floor {:.1} mm against a need of {:.1} mm (ratio {:.3}), cycle time \
+             {:.2} s; after both programs: {}",
             self.previous_tool.diameter,
             self.left_mm2,
             self.toolpath.tool.diameter,
             self.runs,
             self.toolpath.cut_length(),
+            self.floor_cut_mm,
+            self.need_mm(),
+            self.need_ratio(),
             self.time_s,
             self.check
         )
@@ -120,11 +151,28 @@ pub fn run(
     let all = loops.pockets();
     let mut tp = Toolpath::new(tool, crate::geom::Point3::new(0.0, 0.0, popts.safe_height));
     let (mut left, mut runs) = (0.0, 0);
+    let mut need = Vec::new();
     let mut shapes = Vec::new();
     for &i in &selected {
         let p = &all[i - 1];
         let shape = PocketShape::new(p.outer.clone(), p.islands.clone(), outline)?;
         let res = rest::generate(&shape, &previous, &tool, &opts)?;
+        let spec = StockSpec {
+            outer: &shape.outer,
+            islands: &shape.islands,
+            wall_stock: 0.0,
+        };
+        need.push(
+            rest_need(
+                spec,
+                &previous,
+                -popts.depth,
+                &tool,
+                opts.stepover * tool.diameter,
+                (tool.radius() / 20.0).min(0.05),
+            )
+            .map_err(|e| Error::internal(format!("the rest pass's need: {e}")))?,
+        );
         left += res.left_mm2;
         runs += res.runs;
         tp.append(&res.toolpath);
@@ -136,6 +184,7 @@ pub fn run(
         .map_err(|e| e.engine_made("writing the rest program"))?;
     let (time_s, _) = program_times(&gcode, wopts.dialect, "the written rest program", &machine)
         .map_err(|e| e.engine_made("timing the written rest program"))?;
+    let floor_cut_mm = floor_cut_length(&tp, -popts.depth);
     Ok(RestRun {
         gcode,
         toolpath: tp,
@@ -144,6 +193,8 @@ pub fn run(
         runs,
         time_s,
         check,
+        floor_cut_mm,
+        need,
     })
 }
 

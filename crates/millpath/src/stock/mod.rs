@@ -66,6 +66,7 @@ pub(crate) mod part;
 mod problem;
 pub(crate) mod raster;
 pub(crate) mod reach;
+pub(crate) mod rest_need;
 pub(crate) mod simulate;
 
 pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
@@ -79,6 +80,10 @@ pub use heightfield::{
 pub use holes::{HoleCheck, HoleProblem, HoleVerification, verify_holes};
 pub use part::{PartVerification, verify_part};
 pub use problem::{Problem, problems_text};
+pub use rest_need::{
+    CONTACT_CELLS, CONTACT_DEPTH_CELLS, CONTACT_GAP_CELLS, CONTACT_SLACK, FLOOR_Z_TOLERANCE,
+    RestNeed, UncutRegion, floor_cut_length, rest_need,
+};
 pub use simulate::{
     DEFAULT_CELL, DEFAULT_STEP, DEFAULT_WINDOW, EngagementSample, MAX_CELL_RADII, MoveEngagement,
     STEP_TIE, SimOptions, Simulation, reachable, sample_count, simulate, simulate_levels,

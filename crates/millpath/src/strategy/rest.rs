@@ -54,8 +54,10 @@ pub const LOW_LINK_MAX: f64 = 4.0;
 /// How far from its distance a sample of an offset loop may lie and still be followed, mm.
 pub const LOOP_SLACK: f64 = 0.001;
 
-/// How far each run of a pass is lengthened at either end, in tool radii.
-pub const RUN_EXTENSION: f64 = 1.0;
+/// How far each run of a pass is lengthened at either end, in tool radii: past the last
+/// sample whose disc meets material, so that the tool enters and leaves where it cuts
+/// nothing, and no farther (the pass cuts only what was left).
+pub const RUN_EXTENSION: f64 = 0.1;
 
 /// The rest pass's settings. Built from [`Default`] with the `with_*` methods; checked by
 /// [`RestOptions::validate`].
