@@ -57,7 +57,7 @@ pub const LOOP_SLACK: f64 = 0.001;
 /// How far each run of a pass is lengthened at either end, in tool radii: past the last
 /// sample whose disc meets material, so that the tool enters and leaves where it cuts
 /// nothing, and no farther (the pass cuts only what was left).
-pub const RUN_EXTENSION: f64 = 0.1;
+pub const RUN_EXTENSION: f64 = 1.0;
 
 /// The rest pass's settings. Built from [`Default`] with the `with_*` methods; checked by
 /// [`RestOptions::validate`].
