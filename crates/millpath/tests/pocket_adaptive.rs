@@ -106,3 +106,36 @@ fn adaptive_holds_the_engagement_on_every_pocket_of_the_suite() {
     assert!(checked >= 14, "{checked} pockets checked");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A tool that does not fit is the user's error, as for every strategy: not an empty program
+/// (a 12.7 mm tool in a 10 mm square).
+#[test]
+fn a_tool_that_does_not_fit_is_refused() {
+    let sq = millpath::geom::Outline::from_points(
+        &[
+            millpath::geom::Point::new(0.0, 0.0),
+            millpath::geom::Point::new(10.0, 0.0),
+            millpath::geom::Point::new(10.0, 10.0),
+            millpath::geom::Point::new(0.0, 10.0),
+        ],
+        "square",
+    )
+    .unwrap();
+    let shape = PocketShape::simple(sq);
+    let tool = Tool::flat(12.7).unwrap();
+    let opts = PocketOptions::default().with_depth(3.0).with_step_down(3.0);
+    let r = pocket::generate(
+        StrategyKind::Adaptive,
+        &shape,
+        &tool,
+        &opts,
+        &SimOptions::default(),
+    );
+    match r {
+        Err(millpath::Error::Input(e)) => assert!(e.to_string().contains("tool diameter"), "{e}"),
+        other => panic!(
+            "expected an input error, got {:?}",
+            other.map(|r| r.toolpath.moves.len())
+        ),
+    }
+}

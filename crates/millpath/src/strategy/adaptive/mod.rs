@@ -62,7 +62,8 @@ const MAX_CELLS: f64 = 3.0e7;
 /// Most passes in one level.
 const MAX_PASSES: usize = 100_000;
 
-/// Plans one level of adaptive clearing in the planar `shape`.
+/// Plans one level of adaptive clearing in the planar `shape`; a tool (plus the wall stock)
+/// that does not fit is an input error, as for every strategy.
 pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<LevelPlan> {
     let r = tool.radius();
     let stock = opts.wall_stock.max(0.0);
@@ -88,6 +89,9 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         max_steps: 10_000_000,
     };
     let region = shape.offset(r + stock);
+    if region.is_empty() {
+        return Err(crate::strategy::pocket::offset::too_large(tool).into());
+    }
     let mut plan = Planner {
         field: &mut field,
         stepper,
