@@ -241,9 +241,11 @@ pub fn generate(
             // The zigzag's half-circle turns leave material on some fuzzed outlines (the
             // cause is not found yet): its straight turns then.
             let uncut = r.verification.uncut_area_mm2 > r.verification.uncut_tolerance_mm2;
-            // Where the passes beside the zigzag's first row leave what its ramp left: the
+            // Where the passes beside the zigzag's first row leave what its ramp left, or a
+            // later entry feeds down onto it (a plunge: `ez_forms.dxf`, 10 mm tool): the
             // ramp back along the row and the row cut again.
-            if kind == StrategyKind::Zigzag && uncut && !opts.zigzag.ramp_recut {
+            let plunges = r.verification.plunges > 0;
+            if kind == StrategyKind::Zigzag && (uncut || plunges) && !opts.zigzag.ramp_recut {
                 let mut o = opts.clone();
                 o.zigzag.ramp_recut = true;
                 return generate(kind, shape, tool, &o, sim);
