@@ -30,7 +30,6 @@ const KNOWN_OVER: &[(&str, &str)] = &[
         "star",
         "1.76 × at the star's acute tips, too narrow for a pass",
     ),
-    ("dumbbell", "1.35 × where the neck meets the bells"),
 ];
 
 /// The engagement of `tp` cutting `shape`, measured by the verifier.
