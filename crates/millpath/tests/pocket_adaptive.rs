@@ -24,13 +24,10 @@ fn suite() -> Vec<(String, PocketShape, f64)> {
 /// Pockets where the walls' loop, cutting the band the passes leave, still goes above
 /// 1.3 × somewhere (max measured): the material in a corner the passes do not reach is cut
 /// head-on as the loop enters the corner. Each must still go above it: take it off when not.
-const KNOWN_OVER: &[(&str, &str)] = &[
-    ("U", "1.36 × where the loop enters the U's inner corners"),
-    (
-        "star",
-        "1.76 × at the star's acute tips, too narrow for a pass",
-    ),
-];
+const KNOWN_OVER: &[(&str, &str)] = &[(
+    "star",
+    "1.76 × at the star's acute tips, too narrow for a pass",
+)];
 
 /// The engagement of `tp` cutting `shape`, measured by the verifier.
 fn measured(

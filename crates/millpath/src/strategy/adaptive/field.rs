@@ -31,6 +31,9 @@ pub(crate) struct Field {
     words: usize,
     material: Vec<u64>,
     wall: Vec<f32>,
+    /// While a pass is tried: the words [`Field::clear_disc`] changed, with the bits it
+    /// cleared, so that [`Field::undo`] puts them back.
+    log: Option<Vec<(usize, u64)>>,
 }
 
 impl Field {
@@ -51,6 +54,7 @@ impl Field {
             words,
             material: vec![0; words * ny],
             wall: Vec::new(),
+            log: None,
         };
         f.fill(shape);
         f.wall = f.distance_to_outside();
@@ -177,14 +181,32 @@ impl Field {
         let mut n = 0;
         for j in self.disc_rows(q, r) {
             if let Some((i0, i1)) = self.disc_row(q, r, j) {
-                let row = &mut self.material[j * self.words..(j + 1) * self.words];
+                let base = j * self.words;
                 for (w, m) in span_masks(i0, i1) {
-                    n += (row[w] & m).count_ones();
-                    row[w] &= !m;
+                    let bits = self.material[base + w] & m;
+                    if bits != 0 {
+                        n += bits.count_ones();
+                        self.material[base + w] &= !m;
+                        if let Some(log) = &mut self.log {
+                            log.push((base + w, bits));
+                        }
+                    }
                 }
             }
         }
         n
+    }
+
+    /// Starts recording what [`Field::clear_disc`] clears.
+    pub(crate) fn record(&mut self) {
+        self.log = Some(Vec::new());
+    }
+
+    /// Puts back every cell cleared since [`Field::record`], and stops recording.
+    pub(crate) fn undo(&mut self) {
+        for (k, bits) in self.log.take().unwrap_or_default() {
+            self.material[k] |= bits;
+        }
     }
 
     /// The distance from `q` to the walls as the grid knows it: the value of the cell that

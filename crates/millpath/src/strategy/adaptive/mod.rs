@@ -54,13 +54,19 @@ pub const CELL_RADII: f64 = 1.0 / 32.0;
 pub const STEP_RADII: f64 = 1.0 / 8.0;
 /// The share of the stepover's area each step aims at (the rest is the margin for the
 /// grid's count and the arcs' fit).
-pub const TARGET_FILL: f64 = 0.95;
+pub const TARGET_FILL: f64 = 0.975;
 /// How far the arcs joining a pass's positions may stray from them, in tool radii.
 pub const ARC_FIT: f64 = 0.003;
 /// How far smoothing may move a pass's positions, in tool radii.
 pub const SMOOTH_RADII: f64 = 0.02;
 /// Smoothing rounds (each a shrinking and an inflating Laplacian step).
 const SMOOTH_ROUNDS: usize = 24;
+/// The smallest helix, in tool radii: where there is less room, the entry is a ramp.
+pub const MIN_HELIX_RADII: f64 = 0.1;
+/// Longest ramp line where no helix fits, in tool radii.
+pub const RAMP_REACH: f64 = 4.0;
+/// The margin of material-free cells around a descent, beyond the tool's radius.
+pub const DESCENT_CELLS: f64 = 3.0;
 /// Most material cells a link may pass within the tool's radius of.
 pub const LINK_CELLS: u32 = 4;
 /// Coarse blocks per side, in cells.
@@ -181,14 +187,41 @@ impl Planner<'_, '_> {
             return self.new_helix(shape, clear, helix);
         };
         let (p, theta) = st.upstream(self.field, p, theta).unwrap_or((p, theta));
+        self.field.record();
         let (pts, removed) = st.run(self.field, p, theta);
         if removed == 0 || pts.len() < 2 {
+            self.field.undo();
             self.tried[block] = true;
             self.mark_tried(p);
             return true;
         }
-        self.join(&pts);
+        let path = self.fitted(&pts);
+        self.field.undo();
+        let from = self.descent_near(&pts);
+        if self.cut_along(&path) == 0 {
+            self.tried[block] = true;
+            self.mark_tried(p);
+            return true;
+        }
+        self.join(&pts, path, from);
         true
+    }
+
+    /// Clears the field along the written path (tool positions at most `h` apart), where
+    /// the stepper cleared it along its own positions: the two differ by the smoothing, and
+    /// the next passes, the links and the entries must see the material the program leaves.
+    /// The cells cleared.
+    fn cut_along(&mut self, path: &[Seg]) -> u64 {
+        let (h, r) = (self.field.h, self.stepper.r);
+        let mut n = 0;
+        for sg in path {
+            let steps = ((sg.length() / h).ceil() as usize).max(1);
+            for k in 0..=steps {
+                let q = sg.point_at(sg.length() * k as f64 / steps as f64);
+                n += u64::from(self.field.clear_disc(q, r));
+            }
+        }
+        n
     }
 
     /// The positions joined by arcs: where they stand clear of the walls, smoothed
@@ -234,9 +267,8 @@ impl Planner<'_, '_> {
     }
 
     /// Appends a pass's positions to the plan: linked from where the tool is when the link
-    /// is clear, else as a new cut entered directly.
-    fn join(&mut self, pts: &[Point]) {
-        let path = self.fitted(pts);
+    /// is clear, else as a new cut entered directly, the tool feeding down at `from`.
+    fn join(&mut self, pts: &[Point], path: Vec<Seg>, from: Point) {
         let start = pts[0];
         let linked = self.pos.filter(|&at| self.link_clear(at, start));
         match (linked, self.cuts.last_mut()) {
@@ -246,12 +278,43 @@ impl Planner<'_, '_> {
                 }
                 cut.path.extend(path);
             }
-            _ => self.cuts.push(Cut {
-                entry: CutEntry::Direct { from: start },
-                path,
-            }),
+            _ => {
+                self.cuts.push(Cut {
+                    entry: CutEntry::Direct { from },
+                    path,
+                });
+            }
         }
         self.pos = pts.last().copied();
+    }
+
+    /// Where the tool feeds down for a pass that starts at `pts[0]`: there when no material
+    /// is within [`DESCENT_CELLS`] cells beyond the tool's radius (the planner's grid and the
+    /// verifier's raster count a disc's edge apart by about a cell), else the first such
+    /// point back along the pass's first heading (at most `r/2` back, every point on the way
+    /// one the tool centre may stand at), else the start.
+    fn descent_near(&self, pts: &[Point]) -> Point {
+        let (field, st) = (&*self.field, self.stepper);
+        let start = pts[0];
+        let reach = st.r + DESCENT_CELLS * field.h;
+        if field.count_disc(start, reach) == 0 {
+            return start;
+        }
+        let Some(u) = pts.get(1).and_then(|&b| (b - start).normalize()) else {
+            return start;
+        };
+        let mut t = field.h;
+        while t <= 0.5 * st.r {
+            let q = start - u * t;
+            if !st.walls.allows(field, q) {
+                break;
+            }
+            if field.count_disc(q, reach) == 0 {
+                return q;
+            }
+            t += field.h;
+        }
+        start
     }
 
     /// True when the tool may feed from `a` to `b` at depth: every position along the way
@@ -391,22 +454,103 @@ impl Planner<'_, '_> {
         // The helix must fit: the exact distance to the walls decides.
         let room = shape.distance_to(c) - clear - 2.0 * self.field.h;
         let rho = helix.min(room).max(0.0);
+        if rho < MIN_HELIX_RADII * st.r {
+            return self.new_ramp(c);
+        }
         self.field.clear_disc(c, rho + st.r);
         let p0 = c + Vec2::new(rho, 0.0);
         let theta = st.side * std::f64::consts::FRAC_PI_2;
+        self.field.record();
         let (mut pts, _) = st.run(self.field, p0, theta);
         if pts.len() < 2 {
             pts = vec![p0, c + Vec2::new(rho, 1e-3)];
         }
+        let path = self.fitted(&pts);
+        self.field.undo();
+        self.cut_along(&path);
         self.cuts.push(Cut {
             entry: CutEntry::Helix {
                 center: c,
                 radius: rho,
             },
-            path: self.fitted(&pts),
+            path,
         });
         self.pos = pts.last().copied();
         true
+    }
+
+    /// Where there is no room for a helix (a region barely wider than the tool): a ramp
+    /// along the longest straight run of positions the tool centre may stand at on a line
+    /// from `c` (16 headings, at most [`RAMP_REACH`] radii), cleared on the field. The material around `c` is marked
+    /// cleared even when no line is found, so the planner moves on (the verifier then
+    /// refuses a program that leaves it).
+    fn new_ramp(&mut self, c: Point) -> bool {
+        let (st, h) = (self.stepper, self.field.h);
+        // The longest run of allowed positions (`h` apart) along each heading from `c`.
+        let mut best: Option<(Point, Point, f64)> = None;
+        for k in 0..16 {
+            let a = std::f64::consts::TAU * f64::from(k) / 16.0;
+            let u = Vec2::new(a.cos(), a.sin());
+            let mut run: Option<(f64, f64)> = None;
+            let mut t = 0.0;
+            while t <= RAMP_REACH * st.r {
+                match (st.walls.allows(self.field, c + u * t), run) {
+                    (true, None) => run = Some((t, t)),
+                    (true, Some((t0, _))) => run = Some((t0, t)),
+                    (false, Some(_)) => break,
+                    (false, None) => {}
+                }
+                t += h;
+            }
+            if let Some((t0, t1)) = run
+                && best.is_none_or(|b| t1 - t0 > b.2)
+            {
+                best = Some((c + u * t0, c + u * t1, t1 - t0));
+            }
+        }
+        let Some((from, end, len)) = best.filter(|b| b.2 >= 4.0 * h) else {
+            self.field.clear_disc(c, st.r);
+            return true;
+        };
+        let n = (len / st.delta).ceil() as usize;
+        for k in 0..=n {
+            self.field
+                .clear_disc(from.lerp(end, k as f64 / n as f64), st.r);
+        }
+        self.cuts.push(Cut {
+            entry: CutEntry::Ramp,
+            path: vec![Seg::line(from, end)],
+        });
+        self.pos = Some(end);
+        true
+    }
+
+    /// Where the tool may feed down for a walls' loop starting at `path[0].a`: the first
+    /// point, going in from the loop's start square to it (either side, `h` apart, at most
+    /// `2r`), whose disc plus [`DESCENT_CELLS`] cells holds no material on the field and from
+    /// which every point back to the start is one the tool centre may stand at. `None`: the
+    /// loop is ramped into. (The field is the planner's own; a point of an earlier pass is
+    /// not enough, since a link may pass within `r` of a few cells of material.)
+    fn loop_descent(&self, path: &[Seg]) -> Option<Point> {
+        let (field, st) = (&*self.field, self.stepper);
+        let first = path.first()?;
+        let start = first.a;
+        let t = first.tangent_at(0.0).normalize()?;
+        let reach = st.r + DESCENT_CELLS * field.h;
+        for n in [Vec2::new(-t.y, t.x), Vec2::new(t.y, -t.x)] {
+            let mut d = field.h;
+            while d <= 2.0 * st.r {
+                let q = start + n * d;
+                if !st.walls.allows(field, q) {
+                    break;
+                }
+                if field.count_disc(q, reach) == 0 {
+                    return Some(q);
+                }
+                d += field.h;
+            }
+        }
+        None
     }
 
     /// The last passes: each loop of the tool-centre region, climb or conventional, from its
@@ -434,10 +578,13 @@ impl Planner<'_, '_> {
                 {
                     cut.path.extend(path);
                 }
-                _ => self.cuts.push(Cut {
-                    entry: CutEntry::Ramp,
-                    path,
-                }),
+                _ => {
+                    let entry = match self.loop_descent(&path) {
+                        Some(from) => CutEntry::Direct { from },
+                        None => CutEntry::Ramp,
+                    };
+                    self.cuts.push(Cut { entry, path });
+                }
             }
             self.pos = Some(last);
         }

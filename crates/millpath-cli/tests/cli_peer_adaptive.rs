@@ -1,0 +1,102 @@
+//! Our adaptive clearing against the peer's: FreeCAD 0.20's Adaptive of the aerospace pocket
+//! (`../shared/tools/freecad-pocket/aerospace/adaptive.ngc`, 150 × 100 mm, r 6, a 12.7 mm
+//! tool at the engagement of a 40 % straight cut, one 5 mm level, 600 in/min; given
+//! `G64 P0.01` after its `G21`, as it runs on LinuxCNC) and ours as a user makes it
+//! (`pocket sample:aerospace --strategy adaptive --stepover 0.4 --depth 5`), each written
+//! for and timed by `millpath estimate` on `linuxcnc-time` and on `hsm`.
+//!
+//! On `linuxcnc-time` ours must be faster (2026-11-29: 35.21 s against 37.87 s; LinuxCNC 2.9
+//! itself 35.23 against 37.94 s, BENCHMARKS.md). On `hsm`, whose controller runs FreeCAD's
+//! 0.1 mm chords well, ours is still slower (37.73 against 31.88 s): the bound here keeps
+//! that gap from growing (issue 41 asks for 0.6 × on both). Both are verified by
+//! `millpath verify`: nothing uncut, no gouge, no plunge.
+//!
+//! Also, the real drawing whose gear-tooth gaps have no room for a helix
+//! (`pb_4_spoke_gear.svg`, 6 mm tool): adaptive enters them by a ramp along a line, verified
+//! (a helix of zero radius was refused as "inf turns", and a ramp started at a point too near
+//! a wall gouged).
+
+mod common;
+use common::{json_cycle_time, millpath, real_input, stderr};
+use std::path::{Path, PathBuf};
+
+fn peer() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/tools/freecad-pocket/aerospace/adaptive.ngc")
+}
+
+fn verified(dir: &Path, program: &str, outline: &str) {
+    let v = millpath(&["verify", program, "--outline", outline, "--json"], dir);
+    assert_eq!(v.status.code(), Some(0), "{}", stderr(&v));
+    let r: serde_json::Value = serde_json::from_slice(&v.stdout).expect("JSON");
+    assert_eq!(r["passed"], true, "{r}");
+    assert_eq!(r["verification"]["plunges"], 0, "{r}");
+}
+
+#[test]
+fn our_adaptive_beats_freecads_on_linuxcnc_and_stays_near_it_on_hsm() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(peer()).expect("FreeCAD's aerospace adaptive");
+    assert!(
+        text.lines().any(|l| l == "G21"),
+        "FreeCAD's program states G21"
+    );
+    let with_tolerance = text.replace("\nG21\n", "\nG21\nG64 P0.01\n");
+    std::fs::write(dir.path().join("peer.ngc"), with_tolerance).unwrap();
+    for (machine, bound) in [("linuxcnc-time", 1.0), ("hsm", 1.25)] {
+        let ours = format!("ours-{machine}.ngc");
+        let o = millpath(
+            &[
+                "pocket",
+                "sample:aerospace",
+                "--strategy",
+                "adaptive",
+                "--stepover",
+                "0.4",
+                "--depth",
+                "5",
+                "--machine",
+                machine,
+                "-o",
+                &ours,
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let time = |file: &str| {
+            json_cycle_time(&millpath(
+                &["estimate", file, "--machine", machine, "--json"],
+                dir.path(),
+            ))
+        };
+        let (t_ours, t_peer) = (time(&ours), time("peer.ngc"));
+        assert!(
+            t_ours < bound * t_peer,
+            "{machine}: ours {t_ours:.3} s, FreeCAD's {t_peer:.3} s (bound {bound} ×)"
+        );
+        verified(dir.path(), &ours, "sample:aerospace");
+    }
+}
+
+#[test]
+fn tooth_gaps_without_room_for_a_helix_are_ramped_into_and_verified() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawing = real_input("pb_4_spoke_gear.svg");
+    let o = millpath(
+        &[
+            "pocket",
+            &drawing,
+            "--strategy",
+            "adaptive",
+            "--tool-diameter",
+            "6",
+            "--depth",
+            "5",
+            "-o",
+            "gear.ngc",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    verified(dir.path(), "gear.ngc", &drawing);
+}
