@@ -35,9 +35,14 @@
 //!    comes at the second iteration.
 //!
 //! While iterating, the feed is the fast sampled check (a lower bound of the maximum) and
-//! every limit is tightened by a relative 1e-6. The chosen states are then re-solved with the
-//! certified feed check, warm-started at the iterate (the boundary lies within about 1e-6
-//! below it), to the full tolerance; that total is the last entry of [`Schedule::history`].
+//! every limit is tightened by a relative 1e-6. The chosen states are then re-solved against
+//! the true limits, warm-started at the iterate (the boundary lies within about 1e-6 below
+//! it): the boundary with the sampled check to [`MinTimeOptions::rel_tol`], then one
+//! certified check ([`super::feed_bound`]) at a relative `4 · feed_rel_eps` (4e-9) above it —
+//! the certified check is undecided within `feed_rel_eps` of the limit — or, should that
+//! fail, the certified search itself. Every interval of the result is thus certified, at most
+//! 4e-9 (relative) above its certified minimum; that total is the last entry of
+//! [`Schedule::history`].
 //! The proof that no interval can be shortened ([`prove_minimal`]) is not part of planning:
 //! [`super::plan`] runs it on the result, as it runs the verifier.
 //!
@@ -51,7 +56,7 @@
 //! ([`super::FiveAxisOptions::end_knots`]) shorten that; the figures are in BENCHMARKS.md.
 
 use super::min_time::{
-    Check, FeedCheck, KnotState, Limits, MinTimeOptions, min_time, min_time_near,
+    Check, FeedCheck, KnotState, Limits, MinTimeOptions, Segment, min_time, min_time_near,
 };
 use crate::error::Error;
 use crate::machine::kinematics::{Joints, Kinematics};
@@ -160,12 +165,12 @@ impl Schedule {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[non_exhaustive]
 pub struct KnotOptions {
-    /// Largest number of outer iterations. Default 40.
+    /// Largest number of outer iterations. Default 12.
     pub iterations: usize,
     /// Stop after `patience` iterations in a row that gain less than `rel_gain` (relative).
-    /// Default 3.
+    /// Default 1.
     pub patience: usize,
-    /// See `patience`. Default 1e-7 (0.5 µs on the paper's case).
+    /// See `patience`. Default 1e-4 (0.5 ms on the paper's case).
     pub rel_gain: f64,
     /// Factor applied to the durations beside a knot of an infeasible interval, from which
     /// the knot's state is taken. Default 1.25.
@@ -173,7 +178,7 @@ pub struct KnotOptions {
     /// Repair rounds before the knots of a still infeasible interval are put at rest.
     /// Default 30.
     pub max_repairs: usize,
-    /// Relative bisection width used while iterating (the final schedule is re-solved with
+    /// Relative bracket width used while iterating (the final schedule is re-solved with
     /// `min_time.rel_tol`). Default 1e-7.
     pub iteration_rel_tol: f64,
     /// The starting durations' margin over each interval's moving lower bound (relative).
@@ -263,6 +268,38 @@ fn solve_all(
         .collect()
 }
 
+/// The certified minimum time of one interval near `guess` (no proof): the boundary found
+/// with the sampled feed check to the full tolerance, then certified at a relative
+/// `4 · feed_rel_eps` above it in one certified check (the certified check is undecided
+/// within `feed_rel_eps` of the limit); should that fail, the certified search itself.
+fn certified_near(
+    s0: &KnotState,
+    s1: &KnotState,
+    kin: &dyn Kinematics,
+    lim: &Limits,
+    opts: &MinTimeOptions,
+    guess: f64,
+) -> Option<(f64, Check)> {
+    let certified = MinTimeOptions {
+        scan_ratio: 1.0 + 1e-5,
+        prove_rel: 0.0,
+        feed: FeedCheck::Certified,
+        ..*opts
+    };
+    let sampled = MinTimeOptions {
+        feed: FeedCheck::Sampled,
+        ..certified
+    };
+    if let Some((t, _)) = min_time_near(s0, s1, kin, lim, &sampled, Some(guess)) {
+        let tc = t * (1.0 + 4.0 * opts.certify.feed_rel_eps.max(opts.rel_tol));
+        let c = super::min_time::check(&Segment::new(s0, s1, tc), kin, lim, &certified, false);
+        if c.margin >= 0.0 {
+            return Some((tc, c));
+        }
+    }
+    min_time_near(s0, s1, kin, lim, &certified, Some(guess))
+}
+
 /// Optimises the knot states and interval times (see the module docs).
 pub fn optimize(
     geo: &Geometry,
@@ -308,9 +345,10 @@ pub fn optimize(
         let mut sol = solve_all(&states, &times, kin, &lim_c, &coarse);
         // Repair: an interval without a feasible time slows its knots, by lengthening the
         // durations their states are taken from (`slow`), and the intervals beside a changed
-        // knot are re-solved. At rest (γ = 0, after `max_repairs` rounds) every interval is
-        // feasible.
-        for round in 0..=opts.max_repairs {
+        // knot are re-solved. After `max_repairs` rounds such knots are put at rest (γ = 0),
+        // one more each round at least, until every interval is feasible (rest to rest
+        // always is).
+        for round in 0..opts.max_repairs + n {
             let bad: Vec<usize> = (0..n - 1).filter(|&i| sol[i].is_none()).collect();
             if bad.is_empty() {
                 break;
@@ -322,7 +360,7 @@ pub fn optimize(
             }
             let mut dirty = vec![false; n - 1];
             for k in (1..n - 1).filter(|&k| knot[k]) {
-                if round == opts.max_repairs {
+                if round >= opts.max_repairs {
                     gamma[k] = 0.0;
                 } else {
                     times[k - 1] *= opts.slow;
@@ -394,12 +432,12 @@ pub fn optimize(
     // used the sampled feed, a lower bound of the maximum, so a time may grow here by the
     // certification tolerance. Should the chosen states fail, rest at every knot is always
     // feasible.
-    let fine = MinTimeOptions {
-        scan_ratio: 1.0 + 1e-5,
-        prove_rel: 0.0,
-        ..opts.min_time
-    };
-    let sol = solve_all(&best.states, &best.times, kin, lim, &fine);
+    let sol: Vec<_> = best
+        .states
+        .windows(2)
+        .zip(&best.times)
+        .map(|(w, &g)| certified_near(&w[0], &w[1], kin, lim, &opts.min_time, g))
+        .collect();
     let mut exact = if sol.iter().all(Option::is_some) {
         Schedule {
             states: best.states.clone(),

@@ -21,7 +21,7 @@
 //! With the end states fixed, feasibility is monotone in `T` when both ends are at rest (all
 //! derivatives scale as `T⁻ⁿ`) but not in general: high end velocities make a long interval
 //! overshoot (`v = α'/T + β' + γ'T` at a fixed `u`, see [`super::certify`]). So the search
-//! brackets and bisects the true predicate, then proves what it found:
+//! brackets the true predicate's boundary and shrinks the bracket, then proves what it found:
 //! 1. a proven lower bound `T_lb = max(|Δq_i| / v_max,i, |Δtip| / F)` (the mean velocity over
 //!    the interval is at most the peak, and the chord is at most the arc); between rest states
 //!    also the bang-bang times `2√(|Δq_i|/A_i)` and `(32|Δq_i|/J_i)^⅓`;
@@ -64,7 +64,7 @@ pub struct MinTimeOptions {
     pub scan_ratio: f64,
     /// Largest `T / T_lb` scanned before giving up. Default 1e3.
     pub scan_span: f64,
-    /// Relative bisection width. Default 1e-13.
+    /// Relative width of the final bracket. Default 1e-13.
     pub rel_tol: f64,
     /// How the feed limit is decided. Default [`FeedCheck::Certified`].
     pub feed: FeedCheck,

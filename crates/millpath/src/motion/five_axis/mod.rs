@@ -89,7 +89,10 @@ pub struct FiveAxisOptions {
     pub verify_samples: usize,
     /// Poses added along the jerk-limited ramp at each end ([`refine_ends`]), the optimiser
     /// then starting from the ramps' durations ([`KnotOptions::ramp_start`]); 0 plans the
-    /// poses as given. Default 0.
+    /// poses as given. It shortens the ends where the given poses are far apart against the
+    /// ramp's length (the paper's case: 5 mm against 0.4 mm); where they are close (the
+    /// 200-pose sweep, 0.5 mm) the knot optimiser does worse with it. Figures in
+    /// BENCHMARKS.md. Default 0.
     pub end_knots: usize,
 }
 
