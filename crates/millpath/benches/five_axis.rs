@@ -1,43 +1,67 @@
-//! Compute time of our five-axis minimum-time planner and of the paper's GA baseline on the
-//! paper's case (31 intervals, paper A/B machine).
+//! Compute time of our five-axis minimum-time planner (inverse kinematics and the knot
+//! optimiser, certified; the proof of minimality and the verifier are not planning) on the
+//! paper's case (31 intervals, paper A/B machine), with and without poses added along the
+//! end ramps, on the 200-pose tilting sweep through the pole (xyzac-trt), and of the paper's
+//! GA baseline.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use millpath::machine::kinematics::{PaperAb, inverse_path};
-use millpath::motion::five_axis::{self, BaselineOptions, KnotOptions, Limits};
+use millpath::job::five_axis::kinematics;
+use millpath::machine::kinematics::{Kinematics, PaperAb, Pose, inverse_path};
+use millpath::motion::five_axis::{self, BaselineOptions, KnotOptions, Limits, LimitsFile};
 use std::hint::black_box;
+
+/// Inverse kinematics, the poses added at the ends (`end_knots`), the knot optimiser.
+fn plan(kin: &dyn Kinematics, poses: &[Pose], lim: &Limits, end_knots: usize) -> f64 {
+    let ik = Default::default();
+    let (joints, _) = inverse_path(kin, poses, &ik).expect("reachable");
+    let (_, joints, _) = five_axis::refine_ends(poses, &joints, kin, lim, end_knots);
+    let geo = five_axis::Geometry::new(&joints);
+    let ko = KnotOptions::default().with_ramp_start(end_knots > 0);
+    five_axis::optimize(&geo, kin, lim, &ko, &[])
+        .expect("plan")
+        .total()
+}
 
 fn bench(c: &mut Criterion) {
     let kin = PaperAb::paper();
     let lim = Limits::paper();
     let poses = five_axis::paper_path();
+    let mut g = c.benchmark_group("five_axis_paper_case");
+    g.sample_size(10);
+    g.bench_function("ours_planner", |b| {
+        b.iter(|| plan(&kin, black_box(&poses), &lim, 0));
+    });
+    g.bench_function("ours_planner_end_knots_4", |b| {
+        b.iter(|| plan(&kin, black_box(&poses), &lim, 4));
+    });
     let (joints, _) = inverse_path(&kin, &poses, &Default::default()).expect("paper case");
     let geo = five_axis::Geometry::new(&joints);
     let bo = BaselineOptions::default();
-    let ko = KnotOptions::default();
     let fixed = five_axis::fixed_states(&geo, &kin, &lim, &bo);
-    let mut g = c.benchmark_group("five_axis_paper_case");
-    g.sample_size(10);
-    g.bench_function("ours_knot_optimiser", |b| {
-        b.iter(|| {
-            five_axis::optimize(
-                black_box(&geo),
-                &kin,
-                &lim,
-                &ko,
-                std::slice::from_ref(&fixed),
-            )
-            .expect("plan")
-            .total()
-        });
-    });
     g.bench_function("baseline_paper_ga", |b| {
         b.iter(|| {
-            five_axis::run_baseline(black_box(&fixed), &kin, &lim, &bo, &ko.min_time)
-                .expect("baseline")
-                .0
-                .iter()
-                .sum::<f64>()
+            five_axis::run_baseline(
+                black_box(&fixed),
+                &kin,
+                &lim,
+                &bo,
+                &KnotOptions::default().min_time,
+            )
+            .expect("baseline")
+            .0
+            .iter()
+            .sum::<f64>()
         });
+    });
+    g.finish();
+
+    let text = include_str!("../tests/data/five_axis/sweep.csv");
+    let sweep = five_axis::parse_path_csv(text, "sweep.csv").expect("sweep");
+    let trt = kinematics("xyzac-trt", &LimitsFile::default()).expect("machine");
+    let mut g = c.benchmark_group("five_axis_sweep_200");
+    g.sample_size(10);
+    g.bench_function("ours_planner", |b| {
+        b.iter(|| plan(trt.as_ref(), black_box(&sweep), &lim, 0));
     });
     g.finish();
 }

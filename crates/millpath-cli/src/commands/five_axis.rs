@@ -70,6 +70,10 @@ pub struct Args {
     /// Skip the baseline.
     #[arg(long)]
     pub no_baseline: bool,
+    /// Add this many poses along the jerk-limited start and stop at each end (0: plan the
+    /// poses as given).
+    #[arg(long, default_value_t = 0)]
+    pub end_knots: usize,
     /// Print the result as JSON.
     #[arg(long)]
     pub json: bool,
@@ -122,6 +126,7 @@ impl Args {
             deflection: self.deflection.clone(),
             no_deflection: self.no_deflection,
             no_baseline: self.no_baseline,
+            end_knots: self.end_knots,
             dt: self.dt,
             gcode: self
                 .gcode

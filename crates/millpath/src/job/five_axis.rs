@@ -34,6 +34,9 @@ pub struct FiveAxisSettings {
     pub no_deflection: bool,
     /// Skip the paper's GA baseline.
     pub no_baseline: bool,
+    /// Poses added along the jerk-limited ramp at each end
+    /// ([`crate::motion::five_axis::FiveAxisOptions::end_knots`]).
+    pub end_knots: usize,
     /// Sample step of [`FiveAxisRun::samples`], s.
     pub dt: f64,
     /// Write a joint program with these settings; `g94` for feeds in mm/min instead of G93.
@@ -51,6 +54,7 @@ impl Default for FiveAxisSettings {
             deflection: None,
             no_deflection: false,
             no_baseline: false,
+            end_knots: 0,
             dt: 0.005,
             gcode: None,
         }
@@ -180,6 +184,7 @@ pub fn run(s: &FiveAxisSettings) -> Result<FiveAxisRun, Error> {
     if s.no_baseline {
         opts.baseline = None;
     }
+    opts.end_knots = s.end_knots;
     let outcome = planner::plan(kin.as_ref(), &poses, &limits, &opts, deflection)?;
     let gcode = match gcode {
         Some(go) => {

@@ -21,15 +21,17 @@
 //! With the end states fixed, feasibility is monotone in `T` when both ends are at rest (all
 //! derivatives scale as `T⁻ⁿ`) but not in general: high end velocities make a long interval
 //! overshoot (`v = α'/T + β' + γ'T` at a fixed `u`, see [`super::certify`]). So the search
-//! brackets and bisects the true predicate, then proves what it found:
+//! brackets the true predicate's boundary and shrinks the bracket, then proves what it found:
 //! 1. a proven lower bound `T_lb = max(|Δq_i| / v_max,i, |Δtip| / F)` (the mean velocity over
 //!    the interval is at most the peak, and the chord is at most the arc); between rest states
 //!    also the bang-bang times `2√(|Δq_i|/A_i)` and `(32|Δq_i|/J_i)^⅓`;
 //! 2. an upward scan `T_lb·ρᵏ` (ρ = [`MinTimeOptions::scan_ratio`]) to the first feasible
-//!    `T`;
-//! 3. bisection between the last infeasible and the first feasible scan point to a relative
-//!    width of [`MinTimeOptions::rel_tol`] (1e-13). The result is feasible (exact motors,
-//!    certified feed);
+//!    `T` — or, warm-started at a guess ([`min_time_near`]), a scan from the guess down while
+//!    feasible and up while not, the ratio squaring at every step;
+//! 3. between the last infeasible and the first feasible point, the Illinois variant of
+//!    regula falsi on the margin (a bisection step whenever two steps did not halve the
+//!    bracket) to a relative width of [`MinTimeOptions::rel_tol`] (1e-13). The result is
+//!    feasible (exact motors, certified feed);
 //! 4. the proof ([`super::certify::certify_infeasible`]): witnesses whose values are explicit
 //!    in `T` exclude every duration in `[T_lb, T·(1 − prove_rel)]`, so a feasible island below
 //!    the scan cannot have been missed. [`Check::proven_below`] records how far the proof
@@ -62,7 +64,7 @@ pub struct MinTimeOptions {
     pub scan_ratio: f64,
     /// Largest `T / T_lb` scanned before giving up. Default 1e3.
     pub scan_span: f64,
-    /// Relative bisection width. Default 1e-13.
+    /// Relative width of the final bracket. Default 1e-13.
     pub rel_tol: f64,
     /// How the feed limit is decided. Default [`FeedCheck::Certified`].
     pub feed: FeedCheck,
@@ -276,6 +278,24 @@ pub fn min_time(
     lim: &Limits,
     opts: &MinTimeOptions,
 ) -> Option<(f64, Check)> {
+    min_time_near(s0, s1, kin, lim, opts, None)
+}
+
+/// [`min_time`] warm-started at `guess` (a duration near the expected result, such as the
+/// interval's time at the previous iteration): the bracket is searched from `guess`, down
+/// while feasible and up while not, the step ratio squaring at each step (from
+/// [`MinTimeOptions::scan_ratio`]), instead of scanning up from `T_lb` at a constant ratio.
+/// The result is feasible and the proof of minimality is the same; only a feasible island
+/// below the bracket (feasibility is not monotone in `T` for moving end states) could be
+/// missed, which the proof then reports as a smaller [`Check::proven_below`].
+pub fn min_time_near(
+    s0: &KnotState,
+    s1: &KnotState,
+    kin: &dyn Kinematics,
+    lim: &Limits,
+    opts: &MinTimeOptions,
+    guess: Option<f64>,
+) -> Option<(f64, Check)> {
     let feasible = |t: f64| {
         let c = check(&Segment::new(s0, s1, t), kin, lim, opts, true);
         (c.margin >= 0.0, c)
@@ -287,40 +307,126 @@ pub fn min_time(
         c0.proven_below = t_lb;
         return Some((t_lb, c0));
     }
+    let span = t_lb * opts.scan_span;
+    let ratio = if opts.scan_ratio.is_finite() && opts.scan_ratio > 1.0 {
+        opts.scan_ratio
+    } else {
+        1.01
+    };
+    // The bracket: `lo` infeasible (margin `m_lo` < 0), `hi` feasible.
     let mut lo = t_lb;
-    let mut hi = t_lb;
-    let mut hi_check: Check;
-    loop {
-        hi *= opts.scan_ratio;
-        if hi > t_lb * opts.scan_span {
-            return None;
+    let mut m_lo = c0.margin;
+    let (mut hi, mut hi_check);
+    match guess.filter(|g| g.is_finite() && *g > t_lb && *g <= span) {
+        Some(g) => {
+            let (ok, c) = feasible(g);
+            let mut r = ratio;
+            if ok {
+                hi = g;
+                hi_check = c;
+                loop {
+                    let t = hi / r;
+                    if t <= t_lb {
+                        break;
+                    }
+                    let (ok, c) = feasible(t);
+                    if !ok {
+                        lo = t;
+                        m_lo = c.margin;
+                        break;
+                    }
+                    hi = t;
+                    hi_check = c;
+                    r *= r;
+                }
+            } else {
+                lo = g;
+                m_lo = c.margin;
+                loop {
+                    let t = lo * r;
+                    if t > span {
+                        return None;
+                    }
+                    let (ok, c) = feasible(t);
+                    if ok {
+                        hi = t;
+                        hi_check = c;
+                        break;
+                    }
+                    lo = t;
+                    m_lo = c.margin;
+                    r *= r;
+                }
+            }
         }
-        let (ok, c) = feasible(hi);
-        if ok {
-            hi_check = c;
-            break;
-        }
-        lo = hi;
+        None => loop {
+            let t = lo * ratio;
+            if t > span {
+                return None;
+            }
+            let (ok, c) = feasible(t);
+            if ok {
+                hi = t;
+                hi_check = c;
+                break;
+            }
+            lo = t;
+            m_lo = c.margin;
+        },
     }
-    while hi - lo > opts.rel_tol * hi {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        let (ok, c) = feasible(mid);
-        if ok {
-            hi = mid;
-            hi_check = c;
-        } else {
-            lo = mid;
-        }
-    }
+    let (hi, mut hi_check) = refine(&feasible, (lo, m_lo), (hi, hi_check), opts.rel_tol);
     if opts.prove_rel > 0.0 {
         let to = hi * (1.0 - opts.prove_rel);
         let (reach, _) = certify_infeasible(s0, s1, kin, lim, t_lb, to, &opts.certify);
         hi_check.proven_below = if reach >= to { to } else { reach };
     }
     Some((hi, hi_check))
+}
+
+/// Shrinks the bracket `[lo, hi]` (`lo` infeasible with margin `m_lo` < 0, `hi` feasible) to
+/// a relative width `rel_tol` by the Illinois variant of regula falsi on the margin, with a
+/// bisection whenever two steps did not halve the bracket; returns the feasible end.
+fn refine(
+    feasible: &dyn Fn(f64) -> (bool, Check),
+    (mut lo, mut m_lo): (f64, f64),
+    (mut hi, mut hi_check): (f64, Check),
+    rel_tol: f64,
+) -> (f64, Check) {
+    let mut m_hi = hi_check.margin;
+    let mut last = 0i8;
+    let mut width_before = [f64::INFINITY; 2];
+    while hi - lo > rel_tol * hi {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let secant = hi - m_hi * (hi - lo) / (m_hi - m_lo);
+        let stalled = hi - lo > 0.5 * width_before[0];
+        let t = if !stalled && m_lo < 0.0 && m_hi >= 0.0 && secant > lo && secant < hi {
+            secant
+        } else {
+            mid
+        };
+        width_before = [width_before[1], hi - lo];
+        let (ok, c) = feasible(t);
+        if ok {
+            hi = t;
+            m_hi = c.margin;
+            hi_check = c;
+            if last == 1 {
+                m_lo *= 0.5;
+            }
+            last = 1;
+        } else {
+            lo = t;
+            m_lo = c.margin.min(-f64::MIN_POSITIVE);
+            if last == -1 {
+                m_hi *= 0.5;
+            }
+            last = -1;
+        }
+    }
+    (hi, hi_check)
 }
 
 #[cfg(test)]

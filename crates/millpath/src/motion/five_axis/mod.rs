@@ -16,13 +16,16 @@
 //!    bound checked exactly, and the feed — the tool-tip speed in the workpiece frame — goes
 //!    through the forward kinematics. The tip path between knots then departs from the
 //!    reference curve by a small chordal error, reported as `max_path_deviation_mm`.
-//! 3. Knot states optimised (`knots`), each interval at its minimum time ([`min_time`]):
-//!    motor limits exact (polynomial extrema), the feed certified by a rigorous upper bound,
-//!    and every shorter duration proven infeasible down to a relative 1e-8 (`certify`).
-//! 4. The paper's baseline on the same knots (`baseline_ga`); its fixed knot states are also
-//!    a starting candidate of ours, so ours is never slower than the exact optimum for them.
-//! 5. Independent verification ([`verify`]) of both.
-//! 6. Optionally, replanning around a deflection (`deflection`).
+//! 3. Optionally, poses added along the jerk-limited ramps at the two ends (`ends`,
+//!    [`FiveAxisOptions::end_knots`]).
+//! 4. Knot states derived from the interval times and iterated (`knots`), each interval at
+//!    its minimum time ([`min_time`]): motor limits exact (polynomial extrema), the feed
+//!    certified by a rigorous upper bound; then every shorter duration proven infeasible
+//!    down to a relative 1e-8 (`certify`, [`prove_minimal`]).
+//! 5. The paper's baseline on the given poses (`baseline_ga`); its fixed knot states are also
+//!    a candidate of ours when no pose was added.
+//! 6. Independent verification ([`verify`]) of both.
+//! 7. Optionally, replanning around a deflection (`deflection`).
 //!
 //! Units: mm, s, rad inside; the paper's metres are converted at the edges (`case`).
 
@@ -30,6 +33,7 @@ pub(crate) mod baseline_ga;
 pub(crate) mod case;
 pub(crate) mod certify;
 pub(crate) mod deflection;
+pub(crate) mod ends;
 pub(crate) mod knots;
 pub(crate) mod min_time;
 pub(crate) mod quintic;
@@ -43,10 +47,11 @@ pub use case::{
 };
 pub use certify::{CertifyOptions, FeedBound, FeedVerdict, certify_infeasible, feed_bound};
 pub use deflection::{Projection, RefCurve, Replan, potential_field_projection, project, replan};
-pub use knots::{Geometry, KnotOptions, Schedule, optimize, solve_fixed};
+pub use ends::refine_ends;
+pub use knots::{Geometry, KnotOptions, Schedule, optimize, prove_minimal, solve_fixed};
 pub use min_time::{
     Binding, Check, FeedCheck, KnotState, Limits, MinTimeOptions, Segment, check, lower_bound,
-    max_feed, min_time,
+    max_feed, min_time, min_time_near,
 };
 pub use verify::{VerifyReport, Violation, verify};
 
@@ -82,6 +87,13 @@ pub struct FiveAxisOptions {
     pub ik: IkOptions,
     /// Verifier samples per interval. Default 400.
     pub verify_samples: usize,
+    /// Poses added along the jerk-limited ramp at each end ([`refine_ends`]), the optimiser
+    /// then starting from the ramps' durations ([`KnotOptions::ramp_start`]); 0 plans the
+    /// poses as given. It shortens the ends where the given poses are far apart against the
+    /// ramp's length (the paper's case: 5 mm against 0.4 mm); where they are close (the
+    /// 200-pose sweep, 0.5 mm) the knot optimiser does worse with it. Figures in
+    /// BENCHMARKS.md. Default 0.
+    pub end_knots: usize,
 }
 
 impl Default for FiveAxisOptions {
@@ -91,6 +103,7 @@ impl Default for FiveAxisOptions {
             baseline: Some(BaselineOptions::default()),
             ik: IkOptions::default(),
             verify_samples: 400,
+            end_knots: 0,
         }
     }
 }
@@ -105,6 +118,8 @@ option_builders! {
     with_ik => ik: IkOptions;
     /// Sets [`FiveAxisOptions::verify_samples`].
     with_verify_samples => verify_samples: usize;
+    /// Sets [`FiveAxisOptions::end_knots`].
+    with_end_knots => end_knots: usize;
 }
 
 /// The library result (serialised as the CLI's JSON).
@@ -114,8 +129,10 @@ pub struct FiveAxisResult {
     pub machine: String,
     /// Joint names.
     pub axis_names: Vec<String>,
-    /// Number of intervals.
+    /// Number of intervals (between knots: the given poses and those added at the ends).
     pub intervals: usize,
+    /// Poses added along the ramps at the two ends ([`FiveAxisOptions::end_knots`]).
+    pub added_poses: usize,
     /// Our total time, s.
     pub total_time_s: f64,
     /// The baseline's total time, s (`None` if skipped or infeasible).
@@ -170,8 +187,11 @@ pub struct FiveAxisOutcome {
     pub schedule: Schedule,
     /// The baseline's intervals.
     pub baseline_segments: Option<Vec<Segment>>,
-    /// Reference poses.
+    /// The poses planned through, one per knot: the given poses and those added at the ends
+    /// ([`FiveAxisOptions::end_knots`]).
     pub poses: Vec<Pose>,
+    /// For every knot, its index among the given poses (`None` for an added one).
+    pub pose_index: Vec<Option<usize>>,
 }
 
 fn validate_poses(poses: &[Pose]) -> Result<(), InputError> {
@@ -200,14 +220,14 @@ pub fn plan(
         .iter()
         .map(|p| Pose::new(p.tip, p.axis))
         .collect::<Result<_, _>>()?;
-    let (joints, warnings) = inverse_path(kin, &poses, &opts.ik)?;
-    let geo = Geometry::new(&joints);
+    let (joints0, warnings) = inverse_path(kin, &poses, &opts.ik)?;
+    let geo0 = Geometry::new(&joints0);
     let mt = &opts.knots.min_time;
 
     let mut baseline = None;
     let mut candidates = Vec::new();
     if let Some(bo) = &opts.baseline {
-        let states = fixed_states(&geo, kin, lim, bo);
+        let states = fixed_states(&geo0, kin, lim, bo);
         let elapsed = stopwatch();
         let run = baseline_ga::run(&states, kin, lim, bo, mt);
         let dt = elapsed();
@@ -222,8 +242,17 @@ pub fn plan(
         candidates.push(states);
     }
     let elapsed = stopwatch();
-    let schedule = optimize(&geo, kin, lim, &opts.knots, &candidates)?;
+    let (poses, joints, pose_index) = refine_ends(&poses, &joints0, kin, lim, opts.end_knots);
+    let geo = if joints.len() == joints0.len() {
+        geo0
+    } else {
+        Geometry::new(&joints)
+    };
+    let mut knot_opts = opts.knots;
+    knot_opts.ramp_start |= poses.len() > joints0.len();
+    let mut schedule = optimize(&geo, kin, lim, &knot_opts, &candidates)?;
     let compute = elapsed();
+    prove_minimal(&mut schedule, kin, lim, mt);
     let segments: Vec<Segment> = schedule
         .states
         .windows(2)
@@ -261,6 +290,7 @@ pub fn plan(
         machine: kin.name().to_owned(),
         axis_names: kin.axis_names().iter().map(|s| (*s).to_owned()).collect(),
         intervals: segments.len(),
+        added_poses: pose_index.iter().filter(|i| i.is_none()).count(),
         total_time_s: total,
         baseline_time_s: btotal,
         speedup_vs_baseline: btotal.map(|b| b / total),
@@ -302,6 +332,7 @@ pub fn plan(
         schedule,
         baseline_segments: baseline.map(|b| b.1),
         poses,
+        pose_index,
     })
 }
 

@@ -29,7 +29,8 @@
 //! root of the jerk (a quadratic, closed form), the largest `|j|` at an end or at the root of
 //! the snap (linear). Cubic roots are isolated exactly: the roots of its derivative (closed
 //! form) split `[0, T]` into monotone pieces, and a piece whose ends differ in sign holds
-//! exactly one root, found by bisection to adjacent floating-point numbers.
+//! exactly one root, found by Newton's method safeguarded by bisection (to adjacent
+//! floating-point numbers or a step below two ulps).
 
 /// `q(t) = Σ c[n] tⁿ` on `[0, duration]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -113,6 +114,17 @@ pub fn poly_eval(p: &[f64], x: f64) -> f64 {
     p.iter().rev().fold(0.0, |acc, &c| acc * x + c)
 }
 
+/// `Σ p[n] xⁿ` and its derivative.
+fn poly_eval_d(p: &[f64], x: f64) -> (f64, f64) {
+    let mut v = 0.0;
+    let mut d = 0.0;
+    for &c in p.iter().rev() {
+        d = d * x + v;
+        v = v * x + c;
+    }
+    (v, d)
+}
+
 /// Real roots in `[lo, hi]` of a polynomial of degree ≤ 3 (`p[n]` the coefficient of `xⁿ`).
 pub fn real_roots_in(p: &[f64], lo: f64, hi: f64) -> Vec<f64> {
     let mut deg = p.len();
@@ -172,25 +184,39 @@ pub fn real_roots_in(p: &[f64], lo: f64, hi: f64) -> Vec<f64> {
                 if fa.signum() == fb.signum() {
                     continue;
                 }
+                // Safeguarded Newton: [a, b] always holds the sign change; a Newton step
+                // that leaves it is replaced by bisection. Stops at an exact zero, at adjacent
+                // floating-point numbers, or when a Newton step no longer moves the iterate
+                // by more than two ulps (quadratic convergence at a simple root).
+                let mut x = 0.5 * (a + b);
                 for _ in 0..200 {
-                    let m = 0.5 * (a + b);
-                    if m <= a || m >= b {
+                    let (fx, dfx) = poly_eval_d(p, x);
+                    if fx == 0.0 {
                         break;
                     }
-                    let fm = poly_eval(p, m);
-                    if fm == 0.0 {
-                        a = m;
-                        b = m;
-                        break;
-                    }
-                    if fm.signum() == fa.signum() {
-                        a = m;
-                        fa = fm;
+                    if fx.signum() == fa.signum() {
+                        a = x;
+                        fa = fx;
                     } else {
-                        b = m;
+                        b = x;
+                    }
+                    let mid = 0.5 * (a + b);
+                    if mid <= a || mid >= b {
+                        x = mid;
+                        break;
+                    }
+                    let newton = x - fx / dfx;
+                    if newton > a && newton < b {
+                        let done = (newton - x).abs() <= 2.0 * f64::EPSILON * x.abs();
+                        x = newton;
+                        if done {
+                            break;
+                        }
+                    } else {
+                        x = mid;
                     }
                 }
-                roots.push(0.5 * (a + b));
+                roots.push(x);
             }
             roots
         }
