@@ -154,6 +154,19 @@ impl<'a> Walls<'a> {
         }
     }
 
+    /// The distance from `q` to the walls: the grid's where it is sure to be beyond
+    /// `need` by a cell or more, else the loops' exact distance.
+    pub(crate) fn distance(&self, field: &Field, q: Point) -> f64 {
+        let w = field.wall_distance(q);
+        if w >= self.sure + field.h {
+            return w;
+        }
+        self.loops
+            .iter()
+            .map(|l| l.distance(q))
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// True when the tool centre may stand at `q`.
     pub(crate) fn allows(&self, field: &Field, q: Point) -> bool {
         let w = field.wall_distance(q);
@@ -288,31 +301,39 @@ impl Planner<'_, '_> {
         self.pos = pts.last().copied();
     }
 
-    /// Where the tool feeds down for a pass that starts at `pts[0]`: there when no material
-    /// is within [`DESCENT_CELLS`] cells beyond the tool's radius (the planner's grid and the
-    /// verifier's raster count a disc's edge apart by about a cell), else the first such
-    /// point back along the pass's first heading (at most `r/2` back, every point on the way
-    /// one the tool centre may stand at), else the start.
+    /// Where the tool feeds down for a pass that starts at `pts[0]`: the first point, at
+    /// `start` or going out from it (`h` apart, at most `r/2`; back along the pass's first
+    /// heading, then square to it either side), where no material lies within
+    /// [`DESCENT_CELLS`] cells beyond the tool's radius on the field and the walls are as far
+    /// beyond the tool-centre region: the passes come within a small margin of that region,
+    /// leaving a sliver thinner than a cell that the field does not hold and the verifier
+    /// does. Every point on the way must be one the tool centre may stand at. Else `start`.
     fn descent_near(&self, pts: &[Point]) -> Point {
         let (field, st) = (&*self.field, self.stepper);
         let start = pts[0];
         let reach = st.r + DESCENT_CELLS * field.h;
-        if field.count_disc(start, reach) == 0 {
+        let clear = |q: Point| {
+            field.count_disc(q, reach) == 0
+                && st.walls.distance(field, q) >= st.walls.clear + DESCENT_CELLS * field.h
+        };
+        if clear(start) {
             return start;
         }
         let Some(u) = pts.get(1).and_then(|&b| (b - start).normalize()) else {
             return start;
         };
-        let mut t = field.h;
-        while t <= 0.5 * st.r {
-            let q = start - u * t;
-            if !st.walls.allows(field, q) {
-                break;
+        for dir in [-u, Vec2::new(-u.y, u.x), Vec2::new(u.y, -u.x)] {
+            let mut t = field.h;
+            while t <= 0.5 * st.r {
+                let q = start + dir * t;
+                if !st.walls.allows(field, q) {
+                    break;
+                }
+                if clear(q) {
+                    return q;
+                }
+                t += field.h;
             }
-            if field.count_disc(q, reach) == 0 {
-                return q;
-            }
-            t += field.h;
         }
         start
     }
@@ -481,9 +502,9 @@ impl Planner<'_, '_> {
 
     /// Where there is no room for a helix (a region barely wider than the tool): a ramp
     /// along the longest straight run of positions the tool centre may stand at on a line
-    /// from `c` (16 headings, at most [`RAMP_REACH`] radii), cleared on the field. The material around `c` is marked
-    /// cleared even when no line is found, so the planner moves on (the verifier then
-    /// refuses a program that leaves it).
+    /// from `c` (16 headings, at most [`RAMP_REACH`] radii), cleared on the field. The
+    /// material around `c` is marked cleared whatever is found, so the planner moves on (the
+    /// verifier refuses a program that leaves it).
     fn new_ramp(&mut self, c: Point) -> bool {
         let (st, h) = (self.stepper, self.field.h);
         // The longest run of allowed positions (`h` apart) along each heading from `c`.
@@ -508,8 +529,10 @@ impl Planner<'_, '_> {
                 best = Some((c + u * t0, c + u * t1, t1 - t0));
             }
         }
+        // Marked cleared whatever is found: what a line cannot reach there is left to the
+        // walls' loops (and the verifier), not tried again.
+        self.field.clear_disc(c, st.r);
         let Some((from, end, len)) = best.filter(|b| b.2 >= 4.0 * h) else {
-            self.field.clear_disc(c, st.r);
             return true;
         };
         let n = (len / st.delta).ceil() as usize;
