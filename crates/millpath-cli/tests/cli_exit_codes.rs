@@ -101,6 +101,29 @@ fn unreadable_input_file_is_bad_input() {
     }
 }
 
+/// A number of end knots past any use is bad input, not hours of planning and gigabytes
+/// (`--end-knots 100000000` ran out of memory).
+#[test]
+fn too_many_end_knots_is_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = millpath(
+        &[
+            "five-axis",
+            "--case",
+            "paper",
+            "--no-baseline",
+            "--end-knots",
+            "100000000",
+            "--csv",
+            "f.csv",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--end-knots"), "{}", stderr(&o));
+    assert!(!dir.path().join("f.csv").exists());
+}
+
 #[test]
 fn estimate_writes_a_self_contained_html_report() {
     let dir = tempfile::tempdir().unwrap();

@@ -258,6 +258,8 @@ pub fn five_axis<'py>(
     k.bool("no_deflection", &mut no_deflection)?;
     let mut dt = 1e-3;
     k.f64("dt", &mut dt)?;
+    let mut end_knots = 0u32;
+    k.u32("end_knots", &mut end_knots)?;
     k.finish()?;
     let case = match (&case, &path) {
         (None, None) => Some("paper".to_owned()),
@@ -270,6 +272,7 @@ pub fn five_axis<'py>(
         flags: over,
         no_deflection,
         no_baseline,
+        end_knots: end_knots as usize,
         dt,
         ..FiveAxisSettings::default()
     };

@@ -398,6 +398,18 @@ def test_five_axis_equals_cli():
     assert d["feed"].max() <= 30.0 * (1 + 1e-6)  # the paper's feed limit, mm/s
 
 
+def test_five_axis_end_knots_equal_cli_and_are_bounded():
+    d = millpath.five_axis("paper", no_baseline=True, no_deflection=True, end_knots=4, dt=0.01)
+    js = json.loads(cli("five-axis", "--case", "paper", "--no-baseline", "--no-deflection",
+                        "--end-knots", "4", "--json").stdout)
+    assert d["report"]["total_time_s"] == js["total_time_s"]
+    assert d["report"]["violations"] == []
+    plain = millpath.five_axis("paper", no_baseline=True, no_deflection=True, dt=0.01)
+    assert d["report"]["total_time_s"] < plain["report"]["total_time_s"]
+    with pytest.raises(millpath.InputError, match="end-knots"):
+        millpath.five_axis("paper", no_baseline=True, end_knots=100000000)
+
+
 def test_machines_equal_cli():
     assert millpath.machines() == json.loads(cli("machines", "--json").stdout)
 

@@ -320,6 +320,7 @@ def five_axis(
     z2: Optional[float] = None,
     no_baseline: bool = False,
     no_deflection: bool = False,
+    end_knots: int = 0,
     dt: float = 0.001,
 ) -> Dict[str, Any]:
     """Five-axis minimum-time trajectory: report dict, axes, and sampled arrays t, feed
