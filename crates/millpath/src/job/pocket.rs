@@ -56,7 +56,9 @@ pub struct PocketSettings {
     /// Entry: helix or ramp.
     pub entry: String,
     /// Helix radius, mm; `None`: 0.45 × the tool diameter (the largest helix that leaves no
-    /// pillar at its centre, less a tenth). The pocket shrinks it where it does not fit.
+    /// pillar at its centre, less a tenth), and the spiral's up to 0.75 × where its path
+    /// takes the pillar ([`crate::strategy::pocket::SpiralOptions::wide_helix`]). The pocket
+    /// shrinks it where it does not fit.
     pub helix_radius: Option<f64>,
     /// Ramp angle, degrees.
     pub ramp_angle: f64,
@@ -242,9 +244,10 @@ impl PocketSettings {
             .with_curvature_ramps(true)
             .with_finish(self.finish)
             .with_modulate_feed(!self.no_feed_modulation);
-        // Shaped for the machine: curvature ramps for a jerk-limited controller.
-        let machine = super::load_machine(&self.machine)?;
-        opts.spiral.curvature_ramps = machine.axes.iter().any(|a| a.max_jerk.is_finite());
+        // A helix radius the user gives is the helix they get (where it fits).
+        if self.helix_radius.is_some() {
+            opts.spiral.wide_helix = 0.0;
+        }
         opts.validate(&tool)?;
         check_cell(self.cell)?;
         Ok((tool, opts))

@@ -493,6 +493,7 @@ impl Planner<'_, '_> {
             entry: CutEntry::Helix {
                 center: c,
                 radius: rho,
+                flat_turn: true,
             },
             path,
         });

@@ -7,9 +7,11 @@
 //! Every cut starts with an entry that never plunges into material:
 //! * **helix**: the tool centre runs on a circle of radius ρ about a point `c` of the region,
 //!   descending `2πρ·tan α` per turn from `z_{i−1} + safe` down to `z_i` (through
-//!   `(z_{i−1} + safe − z_i) / (ρ·tan α)` radians, not rounded to whole turns), then one flat
-//!   turn.
-//!   The disc of radius `ρ + r` about `c` is then clear, and the cut's path starts on it;
+//!   `(z_{i−1} + safe − z_i) / (ρ·tan α)` radians, not rounded to whole turns), then, where
+//!   the strategy asks for it, one flat turn: the disc of radius `ρ + r` about `c` is then
+//!   clear. Without it the cut's own path takes the wedge the slope leaves under the last
+//!   turn (and, for a helix wider than the tool, the pillar inside it). The path starts on
+//!   the disc;
 //! * **ramp**: the tool descends along the first `L` mm of the cut's own path, `L·tan α` per
 //!   pass, back and forth until it reaches `z_i`, and is back at the path's start;
 //! * **ramp along**: the same over at most the first row, an odd number of passes ending at
@@ -28,9 +30,10 @@
 //!
 //! Between cuts of a level the tool retracts to the clearance height and moves in rapid;
 //! rapids go down only to `z_{i−1} + safe`, above material. Between the levels of a prismatic
-//! pocket the tool rises only to `z_i + safe` and goes straight to the next level's entry when
-//! that segment stays in the region the level's tool centre swept (every point of it was
-//! cleared down to `z_i`, and the tool's bottom is `safe` above); else to the clearance height.
+//! pocket the tool goes straight to the next level's entry at `z_i + safe`, rising as it goes
+//! (one rapid), when that segment stays in the region the level's tool centre swept (every
+//! point of it was cleared down to `z_i`, and the tool's bottom is at least `z_i`); else it
+//! rises to the clearance height.
 
 use super::options::{Direction, Entry, PocketOptions};
 use super::segments::{ARC_AS_LINE_SAGITTA, Seg, path_head, path_length, path_tail};
@@ -49,6 +52,12 @@ pub enum CutEntry {
         center: Point,
         /// Helix radius (tool centre), mm.
         radius: f64,
+        /// One flat turn at the level after the descent, so that the disc of radius
+        /// `radius + r` is clear before the path starts (a strategy that plans against the
+        /// cleared material needs it). Without it the slope leaves a wedge at most one turn's
+        /// drop high under the last turn, which the cut's own path (or a later cut of the
+        /// level) takes: the pocket strategies' paths sweep their whole region.
+        flat_turn: bool,
     },
     /// Ramp along the path itself.
     Ramp,
@@ -174,11 +183,14 @@ pub fn assemble(
                 }
                 inside = true;
             }
-            inside.then_some(h)
+            inside.then_some((h, to))
         });
-        let up = next.filter(|&h| h < clear).unwrap_or(clear);
-
-        tp.push(Move::rapid(Point3::from_xy(end_xy, up)));
+        match next.filter(|&(h, _)| h < clear) {
+            // Up and across in one rapid: every height it passes lies within the slabs the
+            // way was checked through, over material cleared down to `z`.
+            Some((h, to)) => tp.push(Move::rapid(Point3::from_xy(to, h))),
+            None => tp.push(Move::rapid(Point3::from_xy(end_xy, clear))),
+        }
         tp.levels.push(Level {
             z,
             kind,
@@ -281,7 +293,11 @@ fn emit_cut(
         tp.push(Move::rapid(Point3::from_xy(approach, safe)));
     }
     match cut.entry {
-        CutEntry::Helix { center, radius } => {
+        CutEntry::Helix {
+            center,
+            radius,
+            flat_turn,
+        } => {
             let c = |h: f64| Point3::from_xy(center, h);
             let end = helix_approach(center, radius, first.a);
             let sweep = helix_sweep(safe - z, radius, ramp_angle);
@@ -324,7 +340,9 @@ fn emit_cut(
                     Move::arc_xy(to, c(h), ccw, entry_feed(opts, ramp_angle))
                 });
             }
-            tp.push(Move::arc_xy(Point3::from_xy(end, z), c(z), ccw, opts.feed));
+            if flat_turn {
+                tp.push(Move::arc_xy(Point3::from_xy(end, z), c(z), ccw, opts.feed));
+            }
             if end.distance(first.a) > 1e-9 {
                 tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
             }
@@ -432,7 +450,7 @@ fn cut_approach(
         _ => None,
     };
     let approach = match (cut.entry, &ramp) {
-        (CutEntry::Helix { center, radius }, _) => {
+        (CutEntry::Helix { center, radius, .. }, _) => {
             let end = helix_approach(center, radius, first.a);
             helix_point(
                 center,
@@ -674,7 +692,11 @@ mod tests {
                 });
             let plan = LevelPlan {
                 cuts: vec![Cut {
-                    entry: CutEntry::Helix { center, radius },
+                    entry: CutEntry::Helix {
+                        center,
+                        radius,
+                        flat_turn: true,
+                    },
                     path: path.clone(),
                 }],
             };
@@ -733,6 +755,7 @@ mod tests {
                 entry: CutEntry::Helix {
                     center: p(10.0, 10.0),
                     radius: 3.0,
+                    flat_turn: true,
                 },
                 path,
             }],

@@ -392,6 +392,7 @@ pub(super) fn entry_for(
     CutEntry::Helix {
         center: c,
         radius: rho,
+        flat_turn: false,
     }
 }
 

@@ -279,9 +279,14 @@ fn turn_plan(plan: &LevelPlan, a: f64) -> LevelPlan {
             .iter()
             .map(|c| Cut {
                 entry: match c.entry {
-                    CutEntry::Helix { center, radius } => CutEntry::Helix {
+                    CutEntry::Helix {
+                        center,
+                        radius,
+                        flat_turn,
+                    } => CutEntry::Helix {
                         center: turn(center),
                         radius,
+                        flat_turn,
                     },
                     CutEntry::Direct { from } => CutEntry::Direct { from: turn(from) },
                     e @ (CutEntry::Ramp | CutEntry::RampAlong { .. }) => e,
@@ -405,6 +410,7 @@ fn plan_in_frame(
                     entry: CutEntry::Helix {
                         center: c,
                         radius: rho_h,
+                        flat_turn: false,
                     },
                     path,
                 }],

@@ -225,6 +225,7 @@ impl FrontSpiral<'_> {
                 entry: CutEntry::Helix {
                     center: c,
                     radius: rho_h,
+                    flat_turn: false,
                 },
                 path,
             }],

@@ -81,6 +81,9 @@ const CHORD_TOLERANCE: f64 = 0.002;
 const MAX_CHORD: f64 = 1.0;
 /// Longest chord along a lane change, mm (times the tool's scale).
 const LANE_CHORD: f64 = 0.5;
+/// Grid spacing over a wide helix's pillar and the margin its points keep inside the tool,
+/// in tool radii ([`Emitter::wide_helix`]).
+const PILLAR_REACH: f64 = 0.05;
 /// Spacing of the samples that check a wall's loop moved in by the last loop's margin, mm
 /// (times the tool's scale).
 const FAITHFUL_SAMPLE: f64 = 0.5;
@@ -357,6 +360,51 @@ impl Emitter<'_> {
         (room >= rho * (1.0 + 1e-9) && !crosses(self.boundary, c, e)).then_some(c)
     }
 
+    /// The widest helix tangent to the path's start, of radius over `rho` and at most
+    /// [`SpiralOptions::wide_helix`](super::super::options::SpiralOptions::wide_helix) tool
+    /// radii, whose pillar (the disc of radius `ρ − r` about its centre, which a helix
+    /// wider than the tool leaves standing) the path itself then takes: every point of a
+    /// grid of [`PILLAR_REACH`]·r over the pillar lies within `(1 − PILLAR_REACH)·r` of the
+    /// path (the distance to the path changes by at most the grid's half-diagonal between
+    /// its points, so the whole disc lies within `r`). Radii are tried from the widest down
+    /// by tenths of `r`.
+    fn wide_helix(&self, path: &[Seg], rho: f64) -> Option<(Point, f64)> {
+        let widest = self.opts.spiral.wide_helix * self.r;
+        let step = 0.1 * self.r;
+        let mut w = widest;
+        while w > rho + 1e-9 {
+            if let Some(c) = self.tangent_helix(path, w)
+                && self.pillar_taken(path, c, w - self.r)
+            {
+                return Some((c, w));
+            }
+            w -= step;
+        }
+        None
+    }
+
+    /// Whether `path` passes over the whole disc of radius `p` about `c` (see
+    /// [`Emitter::wide_helix`]).
+    fn pillar_taken(&self, path: &[Seg], c: Point, p: f64) -> bool {
+        if p <= 0.0 {
+            return true;
+        }
+        let g = PILLAR_REACH * self.r;
+        let reach = self.r - g;
+        let n = (p / g).ceil() as i64;
+        let near: Vec<&Seg> = path
+            .iter()
+            .filter(|s| s.closest_point(c).distance(c) <= p + self.r + g)
+            .collect();
+        (-n..=n).all(|i| {
+            (-n..=n).all(|j| {
+                let q = c + crate::geom::Vec2::new(i as f64 * g, j as f64 * g);
+                q.distance(c) > p + g
+                    || near.iter().any(|s| s.closest_point(q).distance(q) <= reach)
+            })
+        })
+    }
+
     fn helix_lead(&self, c: Point, rho: f64, path: Vec<Seg>) -> Vec<Seg> {
         let Some(first) = path.first() else {
             return path;
@@ -484,9 +532,21 @@ impl Emitter<'_> {
             Some(o) => smooth(&cp.segs, cp.interior, o),
             None => cp.segs,
         };
-        if let CutEntry::Helix { center, radius } = entry {
+        if let CutEntry::Helix {
+            center,
+            radius,
+            flat_turn,
+        } = entry
+        {
             match self.tangent_helix(&path, radius) {
-                Some(c) => entry = CutEntry::Helix { center: c, radius },
+                Some(c) => {
+                    let (center, radius) = self.wide_helix(&path, radius).unwrap_or((c, radius));
+                    entry = CutEntry::Helix {
+                        center,
+                        radius,
+                        flat_turn,
+                    }
+                }
                 None => path = self.helix_lead(center, radius, path),
             }
         }
