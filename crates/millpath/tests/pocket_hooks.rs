@@ -20,8 +20,9 @@ mod hooks;
 
 use hooks::{arc_joints, find_hooks};
 use millpath::job::load_outline;
+use millpath::job::pocket::DEFAULT_HELIX_RADIUS_PER_DIAMETER;
 use millpath::stock::SimOptions;
-use millpath::strategy::pocket::{self, PocketOptions, PocketShape, StrategyKind, builtin};
+use millpath::strategy::pocket::{self, Entry, PocketOptions, PocketShape, StrategyKind, builtin};
 use millpath::toolpath::Tool;
 
 /// How near one tool radius from the walls a turn is the walls' own, mm (the walls' loop is
@@ -105,17 +106,12 @@ fn spiral_arcs_meet_within_a_degree() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// Real drawings' pockets with a hook (file, pocket), and why: each must still have one.
-const KNOWN_REAL: &[(&str, usize, &str)] = &[(
-    "ez_1_polylines.dxf",
-    4,
-    "a 6 m tool: a direct entry's straight lead-in joins a 2 m loop at 129°, which then \
-     turns 93° within 0.43 m",
-)];
-
 /// The real drawings (`../shared/real-inputs/files/`): every pocket of each, cut with a tool a
 /// tenth of the largest pocket's smaller side (0.5–10 mm; uncapped at building scale, as
-/// `millpath-cli`'s `cli_real_files` sizes it), one level.
+/// `millpath-cli`'s `cli_real_files` sizes it), one level, with the command line's default
+/// helix ([`DEFAULT_HELIX_RADIUS_PER_DIAMETER`] of the tool: the library's fixed 2.5 mm is no
+/// helix at all for `ez_1_polylines.dxf`'s 6 m tool, whose pocket 4 then had a leaf loop
+/// entered by a straight lead-in at 129°).
 #[test]
 fn no_spiral_of_the_real_drawings_has_a_hook() {
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -148,7 +144,11 @@ fn no_spiral_of_the_real_drawings_has_a_hook() {
         let tool = Tool::flat(d).unwrap();
         let opts = PocketOptions::default()
             .with_depth(d.min(3.0))
-            .with_step_down(d.min(3.0));
+            .with_step_down(d.min(3.0))
+            .with_entry(Entry::Helix {
+                radius: DEFAULT_HELIX_RADIUS_PER_DIAMETER * d,
+                ramp_angle: 3f64.to_radians(),
+            });
         for (i, p) in all.into_iter().enumerate() {
             let Ok(shape) = PocketShape::new(p.outer, p.islands, name) else {
                 continue;
@@ -159,14 +159,7 @@ fn no_spiral_of_the_real_drawings_has_a_hook() {
             };
             pockets += 1;
             let (hooks, _) = find_hooks(&tp, d, on_walls(&shape, 0.5 * d));
-            let known = KNOWN_REAL.iter().any(|k| k.0 == name && k.1 == i + 1);
-            if known && hooks.is_empty() {
-                failures.push(format!(
-                    "{name} pocket {}: no hook now; take it off KNOWN_REAL",
-                    i + 1
-                ));
-            }
-            if let (Some(h), false) = (hooks.first(), known) {
+            if let Some(h) = hooks.first() {
                 failures.push(format!(
                     "{name} pocket {}: {} hooks, first {h}",
                     i + 1,

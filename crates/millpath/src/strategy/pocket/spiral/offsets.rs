@@ -40,7 +40,7 @@ use super::ring::Ring;
 use super::rounding::{RoundOptions, round};
 use super::smooth::{SmoothOptions, smooth};
 use crate::error::InputError;
-use crate::geom::Point;
+use crate::geom::{Point, Vec2};
 use crate::toolpath::Tool;
 use cavalier_contours::polyline::{PlineSource, Polyline};
 
@@ -81,6 +81,22 @@ const CHORD_TOLERANCE: f64 = 0.002;
 const MAX_CHORD: f64 = 1.0;
 /// Longest chord along a lane change, mm (times the tool's scale).
 const LANE_CHORD: f64 = 0.5;
+/// The full circle about `c` from and to `a`, counter-clockwise when
+/// `ccw`: two half circles.
+fn circle_from(c: Point, a: Point, ccw: bool) -> Vec<Seg> {
+    let b = c - (a - c);
+    let bulge = if ccw { 1.0 } else { -1.0 };
+    vec![Seg::from_bulge(a, b, bulge), Seg::from_bulge(b, a, bulge)]
+}
+
+/// Whether every point of `ring` lies within `radius` of `c` (64 samples and the bound on
+/// the chord between them: a sample within `radius − len/128` keeps its neighbourhood in).
+fn within(ring: &Ring, c: Point, radius: f64) -> bool {
+    const N: usize = 64;
+    let slack = ring.len() / (2 * N) as f64;
+    (0..N).all(|k| ring.point(ring.len() * k as f64 / N as f64).distance(c) <= radius - slack)
+}
+
 /// Grid spacing over a wide helix's pillar and the margin its points keep inside the tool,
 /// in tool radii ([`Emitter::wide_helix`]).
 const PILLAR_REACH: f64 = 0.05;
@@ -172,6 +188,7 @@ pub fn plan(
         }),
         cuts: Vec::new(),
         here: None,
+        circle: None,
     };
     // Post-order over the chains: a chain after every chain feeding its first loop.
     let deps = |c: usize| -> Vec<usize> {
@@ -238,6 +255,9 @@ struct Emitter<'a> {
     smooth: Option<SmoothOptions>,
     cuts: Vec<Cut>,
     here: Option<Point>,
+    /// The last cut is a helix's flat circle alone (a leaf loop inside it): its centre and
+    /// radius, until the next chain is emitted.
+    circle: Option<(Point, f64)>,
 }
 
 impl Emitter<'_> {
@@ -502,6 +522,7 @@ impl Emitter<'_> {
         }
         // Where the chain is entered: near the tool, or at the helix.
         let mut entry = CutEntry::Ramp;
+        let mut swept_leaf = false;
         let enter = match self.here {
             Some(p) if !leaf => p,
             _ => {
@@ -521,6 +542,33 @@ impl Emitter<'_> {
                     };
                     entry_for(&lp, true, &level_islands, self.boundary, self.opts, self.r)
                 };
+                // A leaf loop within the helix's radius of its centre lies in the disc the
+                // helix's flat turn sweeps (radius `ρ + r`, `ρ ≤ 0.9·r`): the chain starts on
+                // the next loop, led from the helix where it is (a loop much smaller than the
+                // tool is a string of sharp turns).
+                // A chain of that loop alone is the helix's flat turn itself.
+                if let CutEntry::Helix { center, radius, .. } = entry
+                    && within(&rings[0], center, radius)
+                {
+                    if rings.len() > 1 {
+                        rings.remove(0);
+                        entry = CutEntry::Helix {
+                            center,
+                            radius,
+                            flat_turn: true,
+                        };
+                        swept_leaf = true;
+                    } else if outer == Outermost::Interior {
+                        let a = center + Vec2::new(radius, 0.0);
+                        self.cuts.push(Cut {
+                            entry,
+                            path: circle_from(center, a, self.ccw),
+                        });
+                        self.here = Some(a);
+                        self.circle = Some((center, radius));
+                        return;
+                    }
+                }
                 match entry {
                     CutEntry::Helix { center, .. } => center,
                     _ => self.here.unwrap_or_else(|| rings[0].point(0.0)),
@@ -538,7 +586,12 @@ impl Emitter<'_> {
             flat_turn,
         } = entry
         {
-            match self.tangent_helix(&path, radius) {
+            let tangent = if swept_leaf {
+                None
+            } else {
+                self.tangent_helix(&path, radius)
+            };
+            match tangent {
                 Some(c) => {
                     let (center, radius) = self.wide_helix(&path, radius).unwrap_or((c, radius));
                     entry = CutEntry::Helix {
@@ -558,7 +611,17 @@ impl Emitter<'_> {
             && self.here.is_some_and(|h| {
                 h.distance(start) <= 2.0 * self.s + 1e-9 && !crosses(self.boundary, h, start)
             });
-        if let (true, Some(last), Some(h)) = (linkable, self.cuts.last_mut(), self.here) {
+        // The last cut a helix's flat circle alone: it is left where the link to this chain
+        // turns least.
+        let exit = self.circle.take().and_then(|(c, rho)| {
+            let t = path.first()?.tangent_at(0.0);
+            Some((c, self.circle_exit(c, rho, start, t)?))
+        });
+        if let (true, Some(last), Some(mut h)) = (linkable, self.cuts.last_mut(), self.here) {
+            if let Some((c, a)) = exit {
+                last.path = circle_from(c, a, self.ccw);
+                h = a;
+            }
             if h.distance(start) > 1e-9 {
                 last.path.push(Seg::line(h, start));
             }
@@ -567,5 +630,30 @@ impl Emitter<'_> {
             self.cuts.push(Cut { entry, path });
         }
         self.here = end;
+    }
+
+    /// The point of the circle of radius `rho` about `c` (cut in the chain's sense) from which
+    /// a straight link to `start`, where the path goes on along `t`, turns least in all
+    /// (from the circle's tangent into the link, from the link into `t`), among 72 and with
+    /// the link inside the tool-centre region.
+    fn circle_exit(&self, c: Point, rho: f64, start: Point, t: Vec2) -> Option<Point> {
+        let sign = if self.ccw { 1.0 } else { -1.0 };
+        let turn = |u: Vec2, v: Vec2| u.cross(v).atan2(u.dot(v)).abs();
+        (0..72)
+            .filter_map(|k| {
+                let th = k as f64 * std::f64::consts::TAU / 72.0;
+                let u = Vec2::new(th.cos(), th.sin());
+                let a = c + u * rho;
+                let tangent = u.perp() * sign;
+                let d = start - a;
+                let cost = if d.length() <= 1e-9 {
+                    turn(tangent, t)
+                } else {
+                    turn(tangent, d) + turn(d, t)
+                };
+                (!crosses(self.boundary, a, start)).then_some((cost, a))
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0))
+            .map(|(_, a)| a)
     }
 }
