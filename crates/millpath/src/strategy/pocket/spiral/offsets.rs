@@ -418,7 +418,7 @@ impl Emitter<'_> {
             .collect();
         (-n..=n).all(|i| {
             (-n..=n).all(|j| {
-                let q = c + crate::geom::Vec2::new(i as f64 * g, j as f64 * g);
+                let q = c + Vec2::new(i as f64 * g, j as f64 * g);
                 q.distance(c) > p + g
                     || near.iter().any(|s| s.closest_point(q).distance(q) <= reach)
             })
