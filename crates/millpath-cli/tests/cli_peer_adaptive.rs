@@ -14,7 +14,7 @@
 //! Also, the real drawing whose gear-tooth gaps have no room for a helix
 //! (`pb_4_spoke_gear.svg`, 6 mm tool): adaptive enters them by a ramp along a line, verified
 //! (a helix of zero radius was refused as "inf turns", and a ramp started at a point too near
-//! a wall gouged).
+//! a wall gouged); and `kg_teeth-20.dxf` (6 mm), whose pass beside the bore plunged.
 
 mod common;
 use common::{json_cycle_time, millpath, real_input, stderr};
@@ -81,7 +81,16 @@ fn our_adaptive_beats_freecads_on_linuxcnc_and_stays_near_it_on_hsm() {
 #[test]
 fn tooth_gaps_without_room_for_a_helix_are_ramped_into_and_verified() {
     let dir = tempfile::tempdir().unwrap();
-    let drawing = real_input("pb_4_spoke_gear.svg");
+    // `kg_teeth-20.dxf`: a pass beside the bore's walls' band had no clear point to feed down
+    // at and fed down at its start anyway, onto the band (a plunge, still written); such a
+    // pass is now ramped along.
+    for name in ["pb_4_spoke_gear.svg", "kg_teeth-20.dxf"] {
+        adaptive_verified(dir.path(), name);
+    }
+}
+
+fn adaptive_verified(dir: &Path, name: &str) {
+    let drawing = real_input(name);
     let o = millpath(
         &[
             "pocket",
@@ -95,8 +104,8 @@ fn tooth_gaps_without_room_for_a_helix_are_ramped_into_and_verified() {
             "-o",
             "gear.ngc",
         ],
-        dir.path(),
+        dir,
     );
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    verified(dir.path(), "gear.ngc", &drawing);
+    assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+    verified(dir, "gear.ngc", &drawing);
 }

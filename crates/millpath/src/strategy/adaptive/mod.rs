@@ -280,8 +280,9 @@ impl Planner<'_, '_> {
     }
 
     /// Appends a pass's positions to the plan: linked from where the tool is when the link
-    /// is clear, else as a new cut entered directly, the tool feeding down at `from`.
-    fn join(&mut self, pts: &[Point], path: Vec<Seg>, from: Point) {
+    /// is clear, else as a new cut entered directly, the tool feeding down at `from`, or,
+    /// with no clear point to feed down at, ramped along the pass itself.
+    fn join(&mut self, pts: &[Point], path: Vec<Seg>, from: Option<Point>) {
         let start = pts[0];
         let linked = self.pos.filter(|&at| self.link_clear(at, start));
         match (linked, self.cuts.last_mut()) {
@@ -293,7 +294,7 @@ impl Planner<'_, '_> {
             }
             _ => {
                 self.cuts.push(Cut {
-                    entry: CutEntry::Direct { from },
+                    entry: from.map_or(CutEntry::Ramp, |from| CutEntry::Direct { from }),
                     path,
                 });
             }
@@ -307,8 +308,10 @@ impl Planner<'_, '_> {
     /// [`DESCENT_CELLS`] cells beyond the tool's radius on the field and the walls are as far
     /// beyond the tool-centre region: the passes come within a small margin of that region,
     /// leaving a sliver thinner than a cell that the field does not hold and the verifier
-    /// does. Every point on the way must be one the tool centre may stand at. Else `start`.
-    fn descent_near(&self, pts: &[Point]) -> Point {
+    /// does. Every point on the way must be one the tool centre may stand at. Else none: the
+    /// pass is ramped along (feeding down at `start` anyway plunged beside the walls' band,
+    /// `kg_teeth-20.dxf` with a 6 mm tool).
+    fn descent_near(&self, pts: &[Point]) -> Option<Point> {
         let (field, st) = (&*self.field, self.stepper);
         let start = pts[0];
         let reach = st.r + DESCENT_CELLS * field.h;
@@ -317,11 +320,9 @@ impl Planner<'_, '_> {
                 && st.walls.distance(field, q) >= st.walls.clear + DESCENT_CELLS * field.h
         };
         if clear(start) {
-            return start;
+            return Some(start);
         }
-        let Some(u) = pts.get(1).and_then(|&b| (b - start).normalize()) else {
-            return start;
-        };
+        let u = pts.get(1).and_then(|&b| (b - start).normalize())?;
         for dir in [-u, Vec2::new(-u.y, u.x), Vec2::new(u.y, -u.x)] {
             let mut t = field.h;
             while t <= 0.5 * st.r {
@@ -330,12 +331,12 @@ impl Planner<'_, '_> {
                     break;
                 }
                 if clear(q) {
-                    return q;
+                    return Some(q);
                 }
                 t += field.h;
             }
         }
-        start
+        None
     }
 
     /// True when the tool may feed from `a` to `b` at depth: every position along the way
