@@ -187,8 +187,9 @@ impl VerifyResult {
 }
 
 /// Check a G-code program against a pocket outline: `millpath verify PROGRAM --outline
-/// OUTLINE --tool-diameter D`; `program` is a path or the program's text. A failing program
-/// is a result with `passed == False`, not an exception.
+/// OUTLINE [--tool-diameter D]`; `program` is a path or the program's text; without
+/// `tool_diameter`, the tool the program's header names. A failing program is a result with
+/// `passed == False`, not an exception.
 #[pyfunction]
 #[pyo3(signature = (program, outline, **kwargs))]
 pub fn verify(
@@ -200,7 +201,8 @@ pub fn verify(
     let mut k = Kwargs::new(kwargs, "verify")?;
     let import = k.import()?;
     let mut s = VerifySettings::default();
-    k.f64("tool_diameter", &mut s.tool_diameter)?;
+    let mut tool: Option<f64> = None;
+    k.opt_f64("tool_diameter", &mut tool)?;
     k.f64("wall_stock", &mut s.wall_stock)?;
     k.text("stepover", &mut s.stepover)?;
     k.opt_f64("cell", &mut s.cell)?;
@@ -208,13 +210,15 @@ pub fn verify(
     k.opt_text("select", &mut s.select)?;
     k.text("dialect", &mut s.dialect)?;
     k.finish()?;
-    s.check().map_err(err)?;
     let (loops, _, _) = outline_arg(py, outline, "outline", &import)?;
     let Some((text, name)) = text_or_path(program, "program")? else {
         return Err(pyo3::exceptions::PyTypeError::new_err(
             "verify() takes the program as a path or its text (str)",
         ));
     };
+    // As `millpath verify`: the tool given, else the one the program's header names.
+    s.tool_diameter = millpath::job::verify::tool_diameter(tool, &text, &name).map_err(err)?;
+    s.check().map_err(err)?;
     let run = py
         .allow_threads(|| millpath::job::verify::run(&loops, &text, &name, &s))
         .map_err(err)?;

@@ -167,6 +167,11 @@ def test_pocket_from_arrays_passes_the_verifier():
     r = millpath.pocket([outer, island], tool_diameter=6, depth=3, step_down=3)
     v = millpath.verify(r.gcode, [outer, island], tool_diameter=6)
     assert v.passed, v.problems
+    # The tool the program's header names when none is given, as `millpath verify` does
+    # (it was 12.7 mm, which gouges these walls).
+    own = millpath.verify(r.gcode, [outer, island])
+    assert own.passed, own.problems
+    assert own.report == v.report
     assert v.report["verification"]["uncut_area_mm2"] < 1.0
     # The same program cut with a bigger tool than planned gouges the walls.
     bad = millpath.verify(r.gcode, [outer, island], tool_diameter=10)

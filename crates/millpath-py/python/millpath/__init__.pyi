@@ -289,7 +289,7 @@ def verify(
     program: PathLike,
     outline: Outline,
     *,
-    tool_diameter: float = 12.7,
+    tool_diameter: Optional[float] = None,
     wall_stock: float = 0.0,
     stepover: Union[str, float] = "0.4",
     cell: Optional[float] = None,
@@ -301,7 +301,8 @@ def verify(
     drawing_units: Optional[str] = None,
 ) -> VerifyResult:
     """Check a program against a pocket outline by material-removal simulation; the
-    program's dialect is found from its first lines unless `dialect` names it."""
+    program's dialect is found from its first lines unless `dialect` names it, and the tool
+    from its header (millpath's programs name it) unless `tool_diameter` is given."""
 
 def five_axis(
     case: Optional[str] = None,
