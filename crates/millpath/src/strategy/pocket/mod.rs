@@ -28,10 +28,9 @@
 //! [`spiral::LAST_LOOP_MARGIN`] inside the boundary offset, its arcs within
 //! `spiral::ARC_TOLERANCE` of the lap) and below any machining tolerance.
 //!
-//! **Plunge guard.** [`generate`] refuses, as an internal error, an adaptive toolpath the
-//! simulation finds plunging into material: `verify` would refuse it. (The other strategies'
-//! programs that plunge are still written, reported as not verified: 9 of the fuzz corpus's
-//! 1,302 pocket cases do, with the spiral or offset.)
+//! **Plunge guard.** [`generate`] refuses, as an internal error, a toolpath the simulation
+//! finds plunging into material (after the zigzag's retry with its ramp back along the
+//! row): `verify` would refuse it.
 //!
 //! **Coverage guard.** Likewise [`generate`] refuses, as an internal error naming the area and
 //! where most of it lies, a toolpath that leaves more than [`stock::UNCUT_AREA_TOLERANCE`]
@@ -328,14 +327,14 @@ fn check_path_size(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Re
     )
 }
 
-/// `r`, unless an adaptive toolpath plunges into material (an internal error: every entry
-/// is a helix, a ramp or a feed down over cleared material), or leaves material the tool could have reached (more than
+/// `r`, unless it plunges into material (an internal error: every entry is a helix, a ramp
+/// or a feed down over cleared material), or leaves material the tool could have reached (more than
 /// [`stock::uncut_area_tolerance`] of the tool, [`stock::UNCUT_AREA_TOLERANCE`] up to a
 /// 12.7 mm tool, beyond the corner cusps and wall stock the tool radius
 /// implies): then an internal error naming the area and where most of it lies, as for a
 /// gouge. A strategy that leaves such material is a bug in the strategy.
 fn refuse_uncut(kind: StrategyKind, r: PocketResult) -> Result<PocketResult> {
-    if kind == StrategyKind::Adaptive && r.verification.plunges > 0 {
+    if r.verification.plunges > 0 {
         return Err(crate::Error::internal(format!(
             "the {} toolpath plunges into material {} times (a feed move steeper than 45° \
              that lands on material); nothing written. Another strategy may avoid it; please \
@@ -453,7 +452,8 @@ fn finishing_loops(
         // The lead-in: from the nearest point of the roughed region whose straight feed move
         // to the loop's start stays inside the tool-centre region (the nearest point itself
         // can lie across a thin wall spike: a 0.09 mm gouge found by the fuzzer), else from
-        // the nearest vertex of the roughed region that qualifies, else straight down.
+        // the nearest vertex of the roughed region that qualifies, else a ramp along the
+        // loop (straight down at its start fed onto the wall stock: a plunge).
         let nearest = rough
             .loops()
             .filter_map(|l| l.closest_point(shape::v2(start), 1e-12))
@@ -463,12 +463,14 @@ fn finishing_loops(
             .flat_map(|l| (0..l.vertex_count()).map(move |i| shape::pt(l.at(i).pos())));
         let mut candidates: Vec<crate::geom::Point> = nearest.chain(vertices).collect();
         candidates.sort_by(|a, b| a.distance(start).total_cmp(&b.distance(start)));
-        let from = candidates
+        let entry = candidates
             .into_iter()
             .find(|&q| !shape::crosses(region, q, start))
-            .unwrap_or(start);
+            .map_or(levels::CutEntry::Ramp, |from| levels::CutEntry::Direct {
+                from,
+            });
         cuts.push(levels::Cut {
-            entry: levels::CutEntry::Direct { from },
+            entry,
             path: segments::segs_from_vertices(&shape::closed_chain(&lp)),
         });
     }
