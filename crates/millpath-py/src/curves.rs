@@ -264,6 +264,8 @@ pub fn five_axis<'py>(
     k.f64("dt", &mut dt)?;
     let mut end_knots = 0u32;
     k.u32("end_knots", &mut end_knots)?;
+    let mut min_interval = None;
+    k.opt_f64("min_interval", &mut min_interval)?;
     k.finish()?;
     let case = match (&case, &path) {
         (None, None) => Some("paper".to_owned()),
@@ -277,6 +279,7 @@ pub fn five_axis<'py>(
         no_deflection,
         no_baseline,
         end_knots: end_knots as usize,
+        min_interval,
         dt,
         ..FiveAxisSettings::default()
     };

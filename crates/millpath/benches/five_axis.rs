@@ -2,12 +2,16 @@
 //! optimiser, certified; the proof of minimality and the verifier are not planning) on the
 //! paper's case (31 intervals, paper A/B machine), with and without poses added along the
 //! end ramps, on the 200-pose tilting sweep through the pole (xyzac-trt), and of the paper's
-//! GA baseline.
+//! GA baseline; and the whole library call (`five_axis::plan`: merging dense poses, planning,
+//! the proof, the verifier) on the same sweep written with 100, 1,000 and 10,000 poses.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use millpath::geom::{Point3, Vec3};
 use millpath::job::five_axis::kinematics;
 use millpath::machine::kinematics::{Kinematics, PaperAb, Pose, inverse_path};
-use millpath::motion::five_axis::{self, BaselineOptions, KnotOptions, Limits, LimitsFile};
+use millpath::motion::five_axis::{
+    self, BaselineOptions, FiveAxisOptions, KnotOptions, Limits, LimitsFile,
+};
 use std::hint::black_box;
 
 /// Inverse kinematics, the poses added at the ends (`end_knots`), the knot optimiser.
@@ -20,6 +24,23 @@ fn plan(kin: &dyn Kinematics, poses: &[Pose], lim: &Limits, end_knots: usize) ->
     five_axis::optimize(&geo, kin, lim, &ko, &[])
         .expect("plan")
         .total()
+}
+
+/// The tilting sweep of `sweep.csv` with `n` poses, rounded to six decimals as the file is.
+fn sweep_of(n: usize) -> Vec<Pose> {
+    let r6 = |x: f64| (x * 1e6).round() / 1e6;
+    (0..n)
+        .map(|k| {
+            let u = k as f64 / (n - 1) as f64;
+            let t = (-30.0 + 60.0 * u).to_radians();
+            let c = std::f64::consts::FRAC_1_SQRT_2;
+            Pose::new(
+                Point3::new(r6(-50.0 + 100.0 * u), 0.0, 0.0),
+                Vec3::new(r6(t.sin() * c), r6(t.sin() * c), r6(t.cos())),
+            )
+            .expect("pose")
+        })
+        .collect()
 }
 
 fn bench(c: &mut Criterion) {
@@ -63,6 +84,22 @@ fn bench(c: &mut Criterion) {
     g.bench_function("ours_planner", |b| {
         b.iter(|| plan(trt.as_ref(), black_box(&sweep), &lim, 0));
     });
+    g.finish();
+
+    let mut g = c.benchmark_group("five_axis_sweep_poses");
+    g.sample_size(10);
+    let opts = FiveAxisOptions::default().with_baseline(None);
+    for n in [100, 1000, 10_000] {
+        let poses = sweep_of(n);
+        g.bench_function(format!("plan_{n}"), |b| {
+            b.iter(|| {
+                five_axis::plan(trt.as_ref(), black_box(&poses), &lim, &opts, None)
+                    .expect("plan")
+                    .result
+                    .total_time_s
+            });
+        });
+    }
     g.finish();
 }
 

@@ -74,6 +74,11 @@ pub struct Args {
     /// poses as given).
     #[arg(long, default_value_t = 0)]
     pub end_knots: usize,
+    /// Shortest interval to plan, s: poses closer than this (at the feed and the joints'
+    /// speeds) are merged into one interval where the path stays within 0.005 mm and 1e-4 rad
+    /// of them (0: every pose a knot) [default: 0.01].
+    #[arg(long)]
+    pub min_interval: Option<f64>,
     /// Print the result as JSON.
     #[arg(long)]
     pub json: bool,
@@ -127,6 +132,7 @@ impl Args {
             no_deflection: self.no_deflection,
             no_baseline: self.no_baseline,
             end_knots: self.end_knots,
+            min_interval: self.min_interval,
             dt: self.dt,
             gcode: self
                 .gcode

@@ -322,6 +322,7 @@ def five_axis(
     no_baseline: bool = False,
     no_deflection: bool = False,
     end_knots: int = 0,
+    min_interval: Optional[float] = None,
     dt: float = 0.001,
 ) -> Dict[str, Any]:
     """Five-axis minimum-time trajectory: report dict, axes, and sampled arrays t, feed

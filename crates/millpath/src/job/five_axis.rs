@@ -15,6 +15,9 @@ use crate::motion::five_axis::{self as planner, FiveAxisOptions, FiveAxisOutcome
 use crate::{Error, InputError};
 use std::path::PathBuf;
 
+/// The longest `--min-interval`, s: longer intervals would merge whole features.
+const MAX_MIN_INTERVAL: f64 = 1.0;
+
 /// Most poses `--end-knots` may add at each end: each is a knot of the plan, and a few
 /// already take what they can (four gain the paper's case 0.4 %; beyond eight the iteration
 /// converges badly). A number past this is a mistake, not a request for a finer plan.
@@ -42,6 +45,10 @@ pub struct FiveAxisSettings {
     /// Poses added along the jerk-limited ramp at each end
     /// ([`crate::motion::five_axis::FiveAxisOptions::end_knots`]).
     pub end_knots: usize,
+    /// Shortest interval planned, s: closer poses are merged
+    /// ([`crate::motion::five_axis::MergeOptions::min_interval_s`]); `None` for its default,
+    /// 0 to plan every pose as a knot.
+    pub min_interval: Option<f64>,
     /// Sample step of [`FiveAxisRun::samples`], s.
     pub dt: f64,
     /// Write a joint program with these settings; `g94` for feeds in mm/min instead of G93.
@@ -60,6 +67,7 @@ impl Default for FiveAxisSettings {
             no_deflection: false,
             no_baseline: false,
             end_knots: 0,
+            min_interval: None,
             dt: 0.005,
             gcode: None,
         }
@@ -197,6 +205,16 @@ pub fn run(s: &FiveAxisSettings) -> Result<FiveAxisRun, Error> {
         opts.baseline = None;
     }
     opts.end_knots = s.end_knots;
+    if let Some(t) = s.min_interval {
+        if !(t.is_finite() && (0.0..=MAX_MIN_INTERVAL).contains(&t)) {
+            return Err(InputError::new("--min-interval", t)
+                .expected(format!(
+                    "a time from 0 (every pose a knot) to {MAX_MIN_INTERVAL} s"
+                ))
+                .into());
+        }
+        opts.merge.min_interval_s = t;
+    }
     let outcome = planner::plan(kin.as_ref(), &poses, &limits, &opts, deflection)?;
     let gcode = match gcode {
         Some(go) => {

@@ -151,9 +151,18 @@ fn projection_at(curve: &RefCurve, d: [f64; 3], i: usize, u: f64) -> Projection 
 
 /// Exact closest point by Newton iteration (see the module docs).
 pub fn project(curve: &RefCurve, d: Point3) -> Option<Projection> {
+    project_within(curve, d, 0..curve.len())
+}
+
+/// [`project`] onto the pieces `pieces` of the curve only.
+pub fn project_within(
+    curve: &RefCurve,
+    d: Point3,
+    pieces: std::ops::Range<usize>,
+) -> Option<Projection> {
     let dv = [d.x, d.y, d.z];
     let mut best: Option<Projection> = None;
-    for i in 0..curve.len() {
+    for i in pieces.start..pieces.end.min(curve.len()) {
         let mut u = (0..=16)
             .map(|s| f64::from(s) / 16.0)
             .min_by(|&a, &b| {

@@ -76,6 +76,11 @@ impl Ramp {
         self.phases.iter().map(|p| p.0).sum()
     }
 
+    /// Length of the ramp, mm.
+    pub fn length(&self) -> f64 {
+        self.s_at(self.duration())
+    }
+
     /// Distance covered `t` s after the start (at the final speed after the ramp).
     pub fn s_at(&self, t: f64) -> f64 {
         let (mut s, mut v, mut a) = (0.0, 0.0, 0.0);
@@ -169,10 +174,14 @@ pub(crate) fn starting_times(
                 t = t.max((b - a).abs() / v);
             }
             t *= 1.0 + slack;
-            if let Some(r) = start {
+            if let Some(r) = start
+                && sw[0] < r.length()
+            {
                 t = t.max(r.t_at(sw[1]) - r.t_at(sw[0]));
             }
-            if let Some(r) = end {
+            if let Some(r) = end
+                && total - sw[1] < r.length()
+            {
                 t = t.max(r.t_at(total - sw[0]) - r.t_at(total - sw[1]));
             }
             t

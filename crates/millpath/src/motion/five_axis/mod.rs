@@ -16,8 +16,13 @@
 //!    bound checked exactly, and the feed — the tool-tip speed in the workpiece frame — goes
 //!    through the forward kinematics. The tip path between knots then departs from the
 //!    reference curve by a small chordal error, reported as `max_path_deviation_mm`.
-//! 3. Optionally, poses added along the jerk-limited ramps at the two ends (`ends`,
-//!    [`FiveAxisOptions::end_knots`]).
+//! 3. Dense poses merged (`merge`, [`FiveAxisOptions::merge`]): an interval shorter than
+//!    10 ms at the feed cannot follow the rounding in the poses, so closer poses are planned
+//!    through inside one interval, within 0.005 mm and 1e-4 rad of the path; the first and
+//!    last intervals are made 1.5 jerk-limited ramps long, so that the start from rest does
+//!    not back up. Every merged pose is then measured against the plan and kept as a knot if
+//!    it is out of tolerance. Optionally, poses added along the jerk-limited ramps at the two
+//!    ends (`ends`, [`FiveAxisOptions::end_knots`]).
 //! 4. Knot states derived from the interval times and iterated (`knots`), each interval at
 //!    its minimum time ([`min_time`]): motor limits exact (polynomial extrema), the feed
 //!    certified by a rigorous upper bound; then every shorter duration proven infeasible
@@ -35,6 +40,7 @@ pub(crate) mod certify;
 pub(crate) mod deflection;
 pub(crate) mod ends;
 pub(crate) mod knots;
+pub(crate) mod merge;
 pub(crate) mod min_time;
 pub(crate) mod quintic;
 pub(crate) mod segment;
@@ -49,6 +55,7 @@ pub use certify::{CertifyOptions, FeedBound, FeedVerdict, certify_infeasible, fe
 pub use deflection::{Projection, RefCurve, Replan, potential_field_projection, project, replan};
 pub use ends::refine_ends;
 pub use knots::{Geometry, KnotOptions, Schedule, optimize, prove_minimal, solve_fixed};
+pub use merge::{MergeOptions, PoseDeviation};
 pub use min_time::{
     Binding, Check, FeedCheck, KnotState, Limits, MinTimeOptions, Segment, check, lower_bound,
     max_feed, min_time, min_time_near,
@@ -94,6 +101,9 @@ pub struct FiveAxisOptions {
     /// 200-pose sweep, 0.5 mm) the knot optimiser does worse with it. Figures in
     /// BENCHMARKS.md. Default 0.
     pub end_knots: usize,
+    /// Dense poses merged into longer intervals (`merge`): rounding in the poses costs a
+    /// jerk of order `δ/T³`, so intervals shorter than about 10 ms cannot run at the feed.
+    pub merge: MergeOptions,
 }
 
 impl Default for FiveAxisOptions {
@@ -104,6 +114,7 @@ impl Default for FiveAxisOptions {
             ik: IkOptions::default(),
             verify_samples: 400,
             end_knots: 0,
+            merge: MergeOptions::default(),
         }
     }
 }
@@ -120,6 +131,8 @@ option_builders! {
     with_verify_samples => verify_samples: usize;
     /// Sets [`FiveAxisOptions::end_knots`].
     with_end_knots => end_knots: usize;
+    /// Sets [`FiveAxisOptions::merge`].
+    with_merge => merge: MergeOptions;
 }
 
 /// The library result (serialised as the CLI's JSON).
@@ -133,6 +146,13 @@ pub struct FiveAxisResult {
     pub intervals: usize,
     /// Poses added along the ramps at the two ends ([`FiveAxisOptions::end_knots`]).
     pub added_poses: usize,
+    /// Given poses planned through inside an interval rather than as its knots
+    /// ([`FiveAxisOptions::merge`]).
+    pub merged_poses: usize,
+    /// Largest distance of a merged pose's tip from the planned tip path, mm (0 if none).
+    pub max_merged_tip_deviation_mm: f64,
+    /// Largest angle between a merged pose's axis and the planned axis, rad (0 if none).
+    pub max_merged_axis_deviation_rad: f64,
     /// Our total time, s.
     pub total_time_s: f64,
     /// The baseline's total time, s (`None` if skipped or infeasible).
@@ -242,15 +262,48 @@ pub fn plan(
         candidates.push(states);
     }
     let elapsed = stopwatch();
-    let (poses, joints, pose_index) = refine_ends(&poses, &joints0, kin, lim, opts.end_knots);
-    let geo = if joints.len() == joints0.len() {
-        geo0
-    } else {
-        Geometry::new(&joints)
+    // Plan through the merged knots; a merged pose the plan misses is kept as a knot and the
+    // path planned again (the last round keeps every pose).
+    let mo = &opts.merge;
+    let mut keep = vec![false; poses.len()];
+    let mut round = 0;
+    let (poses_k, pose_index, mut schedule, devs) = loop {
+        let last = round >= 3;
+        if last {
+            keep.fill(true);
+        }
+        let kept = merge::knots(&poses, &joints0, kin, lim, mo, &keep);
+        let sub_poses: Vec<Pose> = kept.iter().map(|&i| poses[i]).collect();
+        let sub_joints: Vec<Joints> = kept.iter().map(|&i| joints0[i]).collect();
+        let (knots_p, joints, idx) = refine_ends(&sub_poses, &sub_joints, kin, lim, opts.end_knots);
+        let pose_index: Vec<Option<usize>> = idx.iter().map(|o| o.map(|i| kept[i])).collect();
+        let geo = Geometry::new(&joints);
+        let mut knot_opts = opts.knots;
+        knot_opts.ramp_start |= knots_p.len() > sub_joints.len();
+        let schedule = optimize(&geo, kin, lim, &knot_opts, &candidates)?;
+        let segs: Vec<Segment> = schedule
+            .states
+            .windows(2)
+            .zip(&schedule.times)
+            .map(|(w, &t)| Segment::new(&w[0], &w[1], t))
+            .collect();
+        let scale = mo.tip_tolerance_mm / mo.axis_tolerance_rad.max(1e-12);
+        let devs = merge::pose_deviation(&segs, &pose_index, &poses, kin, 64, scale);
+        let bad: Vec<usize> = devs
+            .iter()
+            .filter(|d| d.tip_mm > mo.tip_tolerance_mm || d.axis_rad > mo.axis_tolerance_rad)
+            .map(|d| d.pose)
+            .collect();
+        if bad.is_empty() || last {
+            break (knots_p, pose_index, schedule, devs);
+        }
+        for b in bad {
+            keep[b] = true;
+        }
+        round += 1;
     };
-    let mut knot_opts = opts.knots;
-    knot_opts.ramp_start |= poses.len() > joints0.len();
-    let mut schedule = optimize(&geo, kin, lim, &knot_opts, &candidates)?;
+    let given = poses;
+    let poses = poses_k;
     let compute = elapsed();
     prove_minimal(&mut schedule, kin, lim, mt);
     let segments: Vec<Segment> = schedule
@@ -264,7 +317,8 @@ pub fn plan(
         .as_ref()
         .map(|(_, s, _)| verify(s, kin, lim, opts.verify_samples));
     let curve = RefCurve::through(&poses.iter().map(|p| p.tip).collect::<Vec<_>>());
-    let deviation = path_deviation(&segments, kin, &curve, 16);
+    let given_curve = RefCurve::through(&given.iter().map(|p| p.tip).collect::<Vec<_>>());
+    let deviation = path_deviation(&segments, &pose_index, kin, &given_curve, 16);
 
     let (replan, dviol) = match deflection {
         Some(d) => {
@@ -291,6 +345,9 @@ pub fn plan(
         axis_names: kin.axis_names().iter().map(|s| (*s).to_owned()).collect(),
         intervals: segments.len(),
         added_poses: pose_index.iter().filter(|i| i.is_none()).count(),
+        merged_poses: devs.len(),
+        max_merged_tip_deviation_mm: devs.iter().map(|d| d.tip_mm).fold(0.0, f64::max),
+        max_merged_axis_deviation_rad: devs.iter().map(|d| d.axis_rad).fold(0.0, f64::max),
         total_time_s: total,
         baseline_time_s: btotal,
         speedup_vs_baseline: btotal.map(|b| b / total),
@@ -337,14 +394,37 @@ pub fn plan(
 }
 
 /// Largest distance from the planned tip path (`per` samples per interval) to the reference
-/// curve's piece of the same interval or its neighbours.
-fn path_deviation(segments: &[Segment], kin: &dyn Kinematics, curve: &RefCurve, per: usize) -> f64 {
+/// curve through the given poses, on the curve's pieces between the given poses around the
+/// interval and their neighbours (`pose_index`: the given pose of each knot, `None` for an
+/// added one).
+fn path_deviation(
+    segments: &[Segment],
+    pose_index: &[Option<usize>],
+    kin: &dyn Kinematics,
+    curve: &RefCurve,
+    per: usize,
+) -> f64 {
     let mut worst = 0.0f64;
-    for seg in segments {
+    let last = curve.len();
+    for (j, seg) in segments.iter().enumerate() {
+        let lo = pose_index[..=j]
+            .iter()
+            .rev()
+            .flatten()
+            .next()
+            .copied()
+            .unwrap_or(0);
+        let hi = pose_index[j + 1..]
+            .iter()
+            .flatten()
+            .next()
+            .copied()
+            .unwrap_or(last);
+        let pieces = lo.saturating_sub(1)..(hi + 1).min(last);
         for s in 0..=per {
             let [q, _, _, _] = seg.eval(seg.duration * s as f64 / per as f64);
             let tip = kin.forward(&q).tip;
-            if let Some(p) = project(curve, tip) {
+            if let Some(p) = deflection::project_within(curve, tip, pieces.clone()) {
                 worst = worst.max(p.distance);
             }
         }
