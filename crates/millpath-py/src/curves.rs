@@ -262,8 +262,8 @@ pub fn five_axis<'py>(
     k.bool("no_deflection", &mut no_deflection)?;
     let mut dt = 1e-3;
     k.f64("dt", &mut dt)?;
-    let mut end_knots = 0u32;
-    k.u32("end_knots", &mut end_knots)?;
+    let mut end_knots = None;
+    k.opt_u32("end_knots", &mut end_knots)?;
     let mut min_interval = None;
     k.opt_f64("min_interval", &mut min_interval)?;
     k.finish()?;
@@ -278,7 +278,7 @@ pub fn five_axis<'py>(
         flags: over,
         no_deflection,
         no_baseline,
-        end_knots: end_knots as usize,
+        end_knots: end_knots.map(|k| k as usize),
         min_interval,
         dt,
         ..FiveAxisSettings::default()

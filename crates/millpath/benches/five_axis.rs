@@ -52,6 +52,14 @@ fn bench(c: &mut Criterion) {
     g.bench_function("ours_planner", |b| {
         b.iter(|| plan(&kin, black_box(&poses), &lim, 0));
     });
+    g.bench_function("ours_planner_end_knots_auto", |b| {
+        b.iter(|| {
+            let (joints, _) =
+                inverse_path(&kin, black_box(&poses), &Default::default()).expect("paper case");
+            let k = five_axis::auto_end_knots(&joints, &kin, &lim);
+            plan(&kin, &poses, &lim, k)
+        });
+    });
     g.bench_function("ours_planner_end_knots_4", |b| {
         b.iter(|| plan(&kin, black_box(&poses), &lim, 4));
     });

@@ -22,7 +22,9 @@ fn paper_case_meets_every_limit_and_beats_the_baseline() {
     )
     .unwrap();
     let r = &out.result;
-    assert_eq!(r.intervals, 31);
+    // The 31 given intervals, and the knots the planner adds along each end's ramp.
+    assert_eq!(r.intervals, 31 + r.added_poses);
+    assert_eq!(r.merged_poses, 0);
     assert!(r.violations.is_empty(), "{:?}", r.violations);
     assert!(
         r.deflection_violations.is_empty(),
@@ -83,13 +85,16 @@ fn paper_case_meets_every_limit_and_beats_the_baseline() {
             v.tightest_margin
         );
     }
-    // The deflection: projection at the 19th interval (1-based), the new intervals are
+    // The deflection: projection at the paper's 19th interval (1-based: from given pose 18;
+    // the knot intervals count the knots added at the start too), the new intervals are
     // continuous with the plan at the next knot.
     let d = r.deflection.as_ref().unwrap();
-    assert_eq!(d.projection.interval, 18);
+    let i = d.projection.interval;
+    assert_eq!(out.pose_index[i], Some(18));
+    assert_eq!(out.pose_index[i + 1], Some(19));
     assert!((d.projection.distance - 1.7806).abs() < 1e-3);
     let segs = d.segments();
-    let next = out.segments[19].eval(0.0);
+    let next = out.segments[i + 1].eval(0.0);
     let end = segs[1].eval(segs[1].duration);
     for k in 0..3 {
         for a in 0..5 {

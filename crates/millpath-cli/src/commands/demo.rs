@@ -513,7 +513,9 @@ fn five_axis(out: &Path, html: &mut HtmlReport, print: Say<'_>) -> Result<Row, E
     if let Some(d) = &r.deflection {
         // The paper's Figures 9-10: the replanned path round the deflected point and the axis
         // profiles through the two new intervals.
-        let tips: Vec<_> = poses.iter().map(|p| p.tip).collect();
+        // The curve through the knots the plan went through (the replanning's intervals are
+        // theirs).
+        let tips: Vec<_> = outcome.poses.iter().map(|p| p.tip).collect();
         let curve = five_axis::RefCurve::through(&tips);
         for (file, caption, chart) in
             report::deflection_charts(&kin, &curve, &outcome.segments, d, &Limits::paper())

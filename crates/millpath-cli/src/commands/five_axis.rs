@@ -71,9 +71,9 @@ pub struct Args {
     #[arg(long)]
     pub no_baseline: bool,
     /// Add this many poses along the jerk-limited start and stop at each end (0: plan the
-    /// poses as given).
-    #[arg(long, default_value_t = 0)]
-    pub end_knots: usize,
+    /// poses as given) [default: 3 where the end intervals are at least 4 ramps long, else 0].
+    #[arg(long)]
+    pub end_knots: Option<usize>,
     /// Shortest interval to plan, s: poses closer than this (at the feed and the joints'
     /// speeds) are merged into one interval where the path stays within 0.005 mm and 1e-4 rad
     /// of them (0: every pose a knot) [default: 0.01].
@@ -163,7 +163,17 @@ pub fn run(args: &Args) -> Result<(), Error> {
     if args.json {
         print(&serde_json::to_string_pretty(r).map_err(|e| Error::internal(e.to_string()))?);
     } else {
-        print(&format!("machine {}: {} intervals", r.machine, r.intervals));
+        let mut line = format!("machine {}: {} intervals", r.machine, r.intervals);
+        if r.added_poses > 0 {
+            line += &format!(", {} poses added along the start and stop", r.added_poses);
+        }
+        if r.merged_poses > 0 {
+            line += &format!(
+                ", {} close poses merged into intervals (within {:.4} mm, {:.1e} rad of the plan)",
+                r.merged_poses, r.max_merged_tip_deviation_mm, r.max_merged_axis_deviation_rad
+            );
+        }
+        print(&line);
         print(&format!(
             "ours: {:.6} s (computed in {:.3} s), tightest margin {:.2e} ({}), max feed {:.4} mm/s, path deviation {:.4} mm",
             r.total_time_s,

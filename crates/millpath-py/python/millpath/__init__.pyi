@@ -321,7 +321,7 @@ def five_axis(
     z2: Optional[float] = None,
     no_baseline: bool = False,
     no_deflection: bool = False,
-    end_knots: int = 0,
+    end_knots: Optional[int] = None,
     min_interval: Optional[float] = None,
     dt: float = 0.001,
 ) -> Dict[str, Any]:

@@ -44,7 +44,7 @@ pub struct FiveAxisSettings {
     pub no_baseline: bool,
     /// Poses added along the jerk-limited ramp at each end
     /// ([`crate::motion::five_axis::FiveAxisOptions::end_knots`]).
-    pub end_knots: usize,
+    pub end_knots: Option<usize>,
     /// Shortest interval planned, s: closer poses are merged
     /// ([`crate::motion::five_axis::MergeOptions::min_interval_s`]); `None` for its default,
     /// 0 to plan every pose as a knot.
@@ -66,7 +66,7 @@ impl Default for FiveAxisSettings {
             deflection: None,
             no_deflection: false,
             no_baseline: false,
-            end_knots: 0,
+            end_knots: None,
             min_interval: None,
             dt: 0.005,
             gcode: None,
@@ -193,8 +193,10 @@ pub fn run(s: &FiveAxisSettings) -> Result<FiveAxisRun, Error> {
             .expected("a finite number > 0 s")
             .into());
     }
-    if s.end_knots > MAX_END_KNOTS {
-        return Err(InputError::new("--end-knots", s.end_knots)
+    if let Some(k) = s.end_knots
+        && k > MAX_END_KNOTS
+    {
+        return Err(InputError::new("--end-knots", k)
             .expected(format!(
                 "at most {MAX_END_KNOTS} poses added at each end (4 helps the paper's case)"
             ))

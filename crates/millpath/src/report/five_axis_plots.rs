@@ -382,7 +382,8 @@ mod tests {
         )
         .unwrap();
         let r = out.result.deflection.as_ref().unwrap();
-        let curve = RefCurve::through(&poses.iter().map(|p| p.tip).collect::<Vec<_>>());
+        let knots = &out.poses;
+        let curve = RefCurve::through(&knots.iter().map(|p| p.tip).collect::<Vec<_>>());
         let charts = deflection_charts(&kin, &curve, &out.segments, r, &Limits::paper());
         assert_eq!(charts.len(), 5);
         let path = &charts[0].2;

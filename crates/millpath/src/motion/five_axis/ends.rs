@@ -26,8 +26,11 @@
 //! the chord fraction. Its pose is the forward kinematics of those joints. (Poses
 //! interpolated in the workpiece frame and solved by inverse kinematics put the added knots
 //! off the smooth joint curve by up to about 1e-5 rad, which at intervals of 10 ms is a jerk
-//! of hundreds of rad/s³.) A position closer to a given pose than 0.3 of its
-//! distance to the previous ramp position, or past the middle of the path, adds nothing.
+//! of hundreds of rad/s³.) After the ramp, knots at doubling distances follow up to 0.75 of
+//! the first given pose's distance, so that no interval is much more than twice the one
+//! before it (the states come from finite differences over neighbouring intervals). A
+//! position closer to a given pose than 0.3 of its distance to the previous position, or
+//! past the middle of the path, adds nothing.
 
 use super::segment::Limits;
 use crate::machine::kinematics::{Joints, Kinematics, Pose};
@@ -189,6 +192,33 @@ pub(crate) fn starting_times(
         .collect()
 }
 
+/// An end interval at least this many ramp lengths long gets [`AUTO_END_KNOTS`] knots added
+/// along its ramp when the caller leaves the count to the planner.
+pub const AUTO_END_RATIO: f64 = 4.0;
+
+/// Knots added at each end where the end intervals are long against their ramps (the paper's
+/// case: 5 mm against 0.37 mm).
+pub const AUTO_END_KNOTS: usize = 3;
+
+/// How many knots [`refine_ends`] adds at each end when the caller does not say:
+/// [`AUTO_END_KNOTS`] where both end intervals are at least [`AUTO_END_RATIO`] times their
+/// ramp's length, else none (where the poses are close, the end intervals are already about
+/// a ramp long and added knots only crowd them; the figures are in BENCHMARKS.md).
+pub fn auto_end_knots(joints: &[Joints], kin: &dyn Kinematics, lim: &Limits) -> usize {
+    let (start, end, s) = ramps(joints, kin, lim);
+    let n = s.len();
+    match (start, end) {
+        (Some(a), Some(b))
+            if n >= 3
+                && s[1] >= AUTO_END_RATIO * a.length()
+                && s[n - 1] - s[n - 2] >= AUTO_END_RATIO * b.length() =>
+        {
+            AUTO_END_KNOTS
+        }
+        _ => 0,
+    }
+}
+
 /// The knots with `per_end` added along the ramp at each end (see the module docs):
 /// `joints` are the poses' inverse kinematics. Returns the poses (an added one is the
 /// forward kinematics of its joints), their joints, and for every pose its index among
@@ -231,12 +261,22 @@ pub fn refine_ends(
     for (ramp, from_end) in [(start, false), (end, true)] {
         let Some(r) = ramp else { continue };
         let mut before = 0.0;
-        for j in 1..=per_end {
-            let d = r.s_at(r.duration() * j as f64 / per_end as f64);
+        let mut push = |d: f64, before: f64| {
             if d < 0.5 * total {
                 at.push((if from_end { total - d } else { d }, 0.3 * (d - before)));
             }
+        };
+        for j in 1..=per_end {
+            let d = r.s_at(r.duration() * j as f64 / per_end as f64);
+            push(d, before);
             before = d;
+        }
+        // Then doubling distances up to the first given pose, so that no interval is more
+        // than about twice as long as the one before it.
+        let first = if from_end { total - s[n - 2] } else { s[1] };
+        while before > 0.0 && 2.0 * before < 0.75 * first {
+            push(2.0 * before, before);
+            before *= 2.0;
         }
     }
     at.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -53,7 +53,7 @@ pub use case::{
 };
 pub use certify::{CertifyOptions, FeedBound, FeedVerdict, certify_infeasible, feed_bound};
 pub use deflection::{Projection, RefCurve, Replan, potential_field_projection, project, replan};
-pub use ends::refine_ends;
+pub use ends::{AUTO_END_KNOTS, AUTO_END_RATIO, auto_end_knots, refine_ends};
 pub use knots::{Geometry, KnotOptions, Schedule, optimize, prove_minimal, solve_fixed};
 pub use merge::{MergeOptions, PoseDeviation};
 pub use min_time::{
@@ -95,12 +95,14 @@ pub struct FiveAxisOptions {
     /// Verifier samples per interval. Default 400.
     pub verify_samples: usize,
     /// Poses added along the jerk-limited ramp at each end ([`refine_ends`]), the optimiser
-    /// then starting from the ramps' durations ([`KnotOptions::ramp_start`]); 0 plans the
-    /// poses as given. It shortens the ends where the given poses are far apart against the
-    /// ramp's length (the paper's case: 5 mm against 0.4 mm); where they are close (the
-    /// 200-pose sweep, 0.5 mm) the knot optimiser does worse with it. Figures in
-    /// BENCHMARKS.md. Default 0.
-    pub end_knots: usize,
+    /// then starting from the ramps' durations ([`KnotOptions::ramp_start`]); `Some(0)` plans
+    /// the poses as given. It shortens the ends where the given poses are far apart against
+    /// the ramp's length (the paper's case: 5 mm against 0.37 mm); where they are close (the
+    /// tilting sweep, whose end intervals [`MergeOptions`] makes 1.5 ramps long) the knot
+    /// optimiser does worse with it. Default `None`: [`auto_end_knots`] decides, three knots
+    /// where the end intervals are at least four ramps long, else none. Figures in
+    /// BENCHMARKS.md.
+    pub end_knots: Option<usize>,
     /// Dense poses merged into longer intervals (`merge`): rounding in the poses costs a
     /// jerk of order `δ/T³`, so intervals shorter than about 10 ms cannot run at the feed.
     pub merge: MergeOptions,
@@ -113,7 +115,7 @@ impl Default for FiveAxisOptions {
             baseline: Some(BaselineOptions::default()),
             ik: IkOptions::default(),
             verify_samples: 400,
-            end_knots: 0,
+            end_knots: None,
             merge: MergeOptions::default(),
         }
     }
@@ -130,7 +132,7 @@ option_builders! {
     /// Sets [`FiveAxisOptions::verify_samples`].
     with_verify_samples => verify_samples: usize;
     /// Sets [`FiveAxisOptions::end_knots`].
-    with_end_knots => end_knots: usize;
+    with_end_knots => end_knots: Option<usize>;
     /// Sets [`FiveAxisOptions::merge`].
     with_merge => merge: MergeOptions;
 }
@@ -275,7 +277,10 @@ pub fn plan(
         let kept = merge::knots(&poses, &joints0, kin, lim, mo, &keep);
         let sub_poses: Vec<Pose> = kept.iter().map(|&i| poses[i]).collect();
         let sub_joints: Vec<Joints> = kept.iter().map(|&i| joints0[i]).collect();
-        let (knots_p, joints, idx) = refine_ends(&sub_poses, &sub_joints, kin, lim, opts.end_knots);
+        let per_end = opts
+            .end_knots
+            .unwrap_or_else(|| auto_end_knots(&sub_joints, kin, lim));
+        let (knots_p, joints, idx) = refine_ends(&sub_poses, &sub_joints, kin, lim, per_end);
         let pose_index: Vec<Option<usize>> = idx.iter().map(|o| o.map(|i| kept[i])).collect();
         let geo = Geometry::new(&joints);
         let mut knot_opts = opts.knots;
