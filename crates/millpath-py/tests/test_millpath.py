@@ -409,10 +409,31 @@ def test_five_axis_end_knots_equal_cli_and_are_bounded():
                         "--end-knots", "4", "--json").stdout)
     assert d["report"]["total_time_s"] == js["total_time_s"]
     assert d["report"]["violations"] == []
-    plain = millpath.five_axis("paper", no_baseline=True, no_deflection=True, dt=0.01)
+    plain = millpath.five_axis("paper", no_baseline=True, no_deflection=True, end_knots=0,
+                               dt=0.01)
     assert d["report"]["total_time_s"] < plain["report"]["total_time_s"]
+    assert plain["report"]["added_poses"] == 0
+    # Left to the planner (three knots at each end of the paper's case): no slower.
+    auto = millpath.five_axis("paper", no_baseline=True, no_deflection=True, dt=0.01)
+    assert auto["report"]["added_poses"] > 0
+    assert auto["report"]["total_time_s"] < plain["report"]["total_time_s"]
     with pytest.raises(millpath.InputError, match="end-knots"):
         millpath.five_axis("paper", no_baseline=True, end_knots=100000000)
+
+
+def test_five_axis_min_interval_equals_cli_and_is_bounded():
+    sweep = ROOT / "crates" / "millpath" / "tests" / "data" / "five_axis" / "sweep.csv"
+    d = millpath.five_axis(path=sweep, machine="xyzac-trt", no_baseline=True, dt=0.01)
+    js = json.loads(cli("five-axis", str(sweep), "--machine", "xyzac-trt", "--no-baseline",
+                        "--json").stdout)
+    assert d["report"]["total_time_s"] == js["total_time_s"]
+    assert d["report"]["merged_poses"] == js["merged_poses"] > 0
+    every = millpath.five_axis(path=sweep, machine="xyzac-trt", no_baseline=True,
+                               min_interval=0.0, dt=0.01)
+    assert every["report"]["merged_poses"] == 0
+    assert every["report"]["intervals"] == 199
+    with pytest.raises(millpath.InputError, match="min-interval"):
+        millpath.five_axis(path=sweep, machine="xyzac-trt", min_interval=-1.0)
 
 
 def test_machines_equal_cli():
