@@ -157,7 +157,9 @@ pub(crate) fn knots(
     let end_len = |r: Option<super::ends::Ramp>| r.map_or(0.0, |r| END_RAMPS * r.length());
     let (l0, l1) = (end_len(start), end_len(end));
     let short = |a: usize, b: usize| (a == 0 && s[b] < l0) || total - s[b] < l1;
-    let stops = |k: usize| k > 0 && k + 1 < n && (tau[k] == tau[k - 1] || tau[k + 1] == tau[k]);
+    let stops = |k: usize| {
+        k > 0 && k + 1 < n && (tau[k] - tau[k - 1] <= 1e-12 || tau[k + 1] - tau[k] <= 1e-12)
+    };
     let mut out = vec![0];
     let mut a = 0;
     let mut b = 1;
