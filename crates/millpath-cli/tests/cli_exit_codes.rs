@@ -124,6 +124,50 @@ fn too_many_end_knots_is_bad_input() {
     assert!(!dir.path().join("f.csv").exists());
 }
 
+/// `optimize`'s merge tolerances and five-axis's `--min-interval` out of range are bad input,
+/// with no file written.
+#[test]
+fn optimize_and_five_axis_tolerances_out_of_range_are_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("p.ngc"),
+        "G21 G90\nG1 X1 A1 F100\nG1 X2 A2\nM2\n",
+    )
+    .unwrap();
+    for (flag, value) in [
+        ("--tolerance", "0"),
+        ("--tolerance", "nan"),
+        ("--tolerance-deg", "-1"),
+        ("--tolerance", "5"),
+    ] {
+        let o = millpath(
+            &["optimize", "p.ngc", "-o", "o.ngc", flag, value],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{flag} {value}: {}", stderr(&o));
+        assert!(stderr(&o).contains(flag), "{}", stderr(&o));
+        assert!(!dir.path().join("o.ngc").exists());
+    }
+    for value in ["-0.1", "2", "inf"] {
+        let o = millpath(
+            &[
+                "five-axis",
+                "--case",
+                "paper",
+                "--no-baseline",
+                "--min-interval",
+                value,
+                "--csv",
+                "f.csv",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{value}: {}", stderr(&o));
+        assert!(stderr(&o).contains("--min-interval"), "{}", stderr(&o));
+        assert!(!dir.path().join("f.csv").exists());
+    }
+}
+
 #[test]
 fn estimate_writes_a_self_contained_html_report() {
     let dir = tempfile::tempdir().unwrap();

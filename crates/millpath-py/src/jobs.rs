@@ -304,13 +304,18 @@ pub fn estimate(
 /// machine's controller model runs it faster. Returns a dict: `text` (the program to run:
 /// the input's when nothing was gained), `rewrite` (the inverse-time rewrite, kept or not),
 /// `before_s` and `after_s` (the input's and the rewrite's estimated cycle times),
-/// `rewritten_blocks`, `kept_rewrite` and `outcome` (what was done and why).
+/// `rewritten_blocks`, `merged_blocks`, `kept_rewrite` and `outcome` (what was done and why).
+/// Runs of straight blocks within `tolerance` mm and `tolerance_deg` of one chord are merged
+/// first (`merge=False` keeps every block).
 #[pyfunction]
-#[pyo3(signature = (program, machine = "linuxcnc-time"))]
+#[pyo3(signature = (program, machine = "linuxcnc-time", tolerance = 0.001, tolerance_deg = 0.001, merge = true))]
 pub fn optimize<'py>(
     py: Python<'py>,
     program: &Bound<'py, PyAny>,
     machine: &str,
+    tolerance: f64,
+    tolerance_deg: f64,
+    merge: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let Some(p) = path_text(program)? else {
         return Err(pyo3::exceptions::PyTypeError::new_err(
@@ -330,7 +335,12 @@ pub fn optimize<'py>(
     let opt = py
         .allow_threads(|| -> Result<_, millpath::Error> {
             let m = job::load_machine(machine)?;
-            job::optimize::optimize_text(&text, &origin, &m)
+            let tol = merge.then(|| job::optimize::MergeTolerance {
+                mm: tolerance,
+                rad: tolerance_deg.to_radians(),
+            });
+            let opts = job::optimize::OptimizeOptions::default().with_merge(tol);
+            job::optimize::optimize_text(&text, &origin, &m, &opts)
         })
         .map_err(err)?;
     let d = PyDict::new(py);
@@ -340,6 +350,7 @@ pub fn optimize<'py>(
     d.set_item("before_s", opt.before.cycle_time_s)?;
     d.set_item("after_s", opt.after.cycle_time_s)?;
     d.set_item("rewritten_blocks", opt.rewritten_blocks)?;
+    d.set_item("merged_blocks", opt.merged_blocks)?;
     d.set_item("outcome", opt.outcome.to_string())?;
     Ok(d)
 }

@@ -1,9 +1,9 @@
-//! `millpath optimize`: a LinuxCNC program's straight feed blocks rewritten in inverse time
-//! at what the machine's joints allow, kept when the machine's controller model runs it
-//! faster.
+//! `millpath optimize`: a LinuxCNC program's runs of straight blocks merged within a
+//! tolerance and its straight feed blocks rewritten in inverse time at what the machine's
+//! joints allow, kept when the machine's controller model runs it faster.
 
 use super::print;
-use millpath::job::optimize::optimize_text;
+use millpath::job::optimize::{MergeTolerance, OptimizeOptions, optimize_text};
 use millpath::{Error, InputError};
 use std::path::PathBuf;
 
@@ -27,6 +27,16 @@ pub struct Args {
     /// Print a JSON object (before, after, outcome) on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Merge consecutive straight blocks whose end points lie within this distance of one
+    /// chord, mm (a block's `G64 P` where smaller).
+    #[arg(long, default_value_t = 0.001)]
+    pub tolerance: f64,
+    /// The same for each rotary axis, degrees.
+    #[arg(long, default_value_t = 0.001)]
+    pub tolerance_deg: f64,
+    /// Keep every block: only the feed words are rewritten.
+    #[arg(long)]
+    pub no_merge: bool,
 }
 
 /// Runs the command.
@@ -39,7 +49,22 @@ pub fn run(args: &Args) -> Result<(), Error> {
         )
     })?;
     let origin = args.file.display().to_string();
-    let opt = optimize_text(&text, &origin, &machine)?;
+    for (flag, v) in [
+        ("--tolerance", args.tolerance),
+        ("--tolerance-deg", args.tolerance_deg),
+    ] {
+        if !(v.is_finite() && v > 0.0 && v <= 1.0) {
+            return Err(InputError::new(flag, v)
+                .expected("a tolerance > 0 and at most 1 (mm or degrees)")
+                .into());
+        }
+    }
+    let merge = (!args.no_merge).then(|| MergeTolerance {
+        mm: args.tolerance,
+        rad: args.tolerance_deg.to_radians(),
+    });
+    let opts = OptimizeOptions::default().with_merge(merge);
+    let opt = optimize_text(&text, &origin, &machine, &opts)?;
     millpath::io::write_atomic(&args.output, opt.text.as_bytes())?;
     if let Some(path) = &args.rewrite {
         millpath::io::write_atomic(path, opt.rewrite.as_bytes())?;
@@ -49,14 +74,20 @@ pub fn run(args: &Args) -> Result<(), Error> {
             "before": opt.before,
             "after": opt.after,
             "rewritten_blocks": opt.rewritten_blocks,
+            "merged_blocks": opt.merged_blocks,
             "outcome": opt.outcome.to_string(),
             "kept_rewrite": opt.text == opt.rewrite,
         });
         print(&serde_json::to_string_pretty(&v).map_err(|e| Error::internal(e.to_string()))?);
     } else {
         print(&format!(
-            "before {:.3} s, rewrite {:.3} s ({} blocks in inverse time): {}",
-            opt.before.cycle_time_s, opt.after.cycle_time_s, opt.rewritten_blocks, opt.outcome
+            "before {:.3} s, rewrite {:.3} s ({} blocks in inverse time, {} merged into the \
+             block after them): {}",
+            opt.before.cycle_time_s,
+            opt.after.cycle_time_s,
+            opt.rewritten_blocks,
+            opt.merged_blocks,
+            opt.outcome
         ));
     }
     Ok(())

@@ -279,11 +279,18 @@ def estimate(
     `subroutine_path` (`--subroutine-path`), tool lengths from a LinuxCNC `tool_table`
     (`--tool-table`), the limit verifier run unless `verify=False`."""
 
-def optimize(program: PathLike, machine: str = "linuxcnc-time") -> dict:
-    """`millpath optimize`: the program's straight feed blocks rewritten in inverse time at
-    what the machine's joints allow, kept only when the controller model runs it faster.
-    Keys: `text`, `rewrite`, `before_s`, `after_s`, `rewritten_blocks`, `kept_rewrite`,
-    `outcome`."""
+def optimize(
+    program: PathLike,
+    machine: str = "linuxcnc-time",
+    tolerance: float = 0.001,
+    tolerance_deg: float = 0.001,
+    merge: bool = True,
+) -> dict:
+    """`millpath optimize`: runs of straight blocks within `tolerance` mm (`tolerance_deg`
+    for the rotary axes) of one chord merged, then the straight feed blocks rewritten in
+    inverse time at what the machine's joints allow, kept only when the controller model
+    runs it faster. Keys: `text`, `rewrite`, `before_s`, `after_s`, `rewritten_blocks`,
+    `merged_blocks`, `kept_rewrite`, `outcome`."""
 
 def verify(
     program: PathLike,

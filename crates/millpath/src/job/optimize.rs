@@ -18,21 +18,26 @@
 //! they are; `G94` and the programmed feed are restated before an arc that follows a
 //! rewritten block. Coordinates, motion words and path modes are copied as written.
 //!
-//! # What it gains on LinuxCNC 2.9 (trivkins)
-//! Nothing (figures in BENCHMARKS.md): LinuxCNC's canon already caps each straight block at
-//! `min(F, L / maxᵢ(|dᵢ|/vᵢ))` (`getStraightVelocity`), which is `L/t` above, so the
-//! rewrite restates the speed LinuxCNC already runs. The time such programs lose is
-//! at junctions next to a rotary axis: LinuxCNC neither blends them with an arc nor takes
-//! them as tangent (`tcRotaryMotionCheck`), so in `G64` they are parabolic blends at half
-//! acceleration and in `G61` stops; no feed word changes that. The job therefore times the
-//! input and the rewrite on the machine's controller model and keeps the rewrite only when
-//! it is faster by more than [`MIN_GAIN_S`]; [`OptimizeOutcome`] says which.
+//! # Merged blocks
+//! Before that, runs of straight blocks whose end points lie within the tolerance of one
+//! chord are merged into one block ([`merge`], [`OptimizeOptions::merge`]): that is where
+//! LinuxCNC gains. Its canon already caps each straight block at `min(F, L / maxᵢ(|dᵢ|/vᵢ))`
+//! (`getStraightVelocity`), which is `L/t` above, so the feed words alone restate the speed it
+//! runs; the time such programs lose is at junctions next to a rotary axis, which LinuxCNC
+//! neither blends with an arc nor takes as tangent (`tcRotaryMotionCheck`): parabolic blends
+//! at half acceleration, each block planned to end at rest, so that a block of length `L`
+//! runs at most about `√(a L / 2)`. Longer blocks run faster. The job times the input and the
+//! rewrite on the machine's controller model and keeps the rewrite only when it is faster by
+//! more than [`MIN_GAIN_S`]; [`OptimizeOutcome`] says which. Figures in BENCHMARKS.md.
 //!
 //! # Checks (independent of the rewrite)
-//! The output is read back and compared with the input move by move: the same number of
-//! moves, the same kinds (rapid, line, arc; plane and direction), every end point and rotary
-//! position within [`SAME_POINT_MM`], every feed at most the input's (relative `1e-9`), and
-//! on every straight feed block no joint over its velocity limit at the written feed.
+//! The output is read back and compared with the input: every output move is one input move
+//! or, for a straight feed block, the run of input straight feed blocks up to the one that
+//! ends where it ends, every end point in between within the tolerance of the output's chord
+//! (the least normalised distance over the chord, [`merge::chord_distance`]); the same kinds
+//! (rapid, line, arc; plane and direction), every end point and rotary position within
+//! [`SAME_POINT_MM`], every feed at most the input's (the slowest of a run, relative `1e-9`),
+//! and on every straight feed block no joint over its velocity limit at the written feed.
 
 use crate::gcode::{Dialect, FeedMode, ReadMove, Reader, ReaderOptions};
 use crate::job::estimate::{Estimate, EstimateSettings, run_text};
@@ -41,6 +46,32 @@ use crate::toolpath::{MoveKind, Rotary};
 use crate::{Error, InputError, Point3};
 use serde::Serialize;
 use std::fmt;
+
+mod merge;
+pub use merge::MergeTolerance;
+
+/// Options of [`optimize_text`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct OptimizeOptions {
+    /// Merge runs of straight blocks within this tolerance of one chord ([`merge`]); `None`
+    /// keeps every block. Default: 0.001 mm and 0.001°.
+    pub merge: Option<MergeTolerance>,
+}
+
+impl Default for OptimizeOptions {
+    fn default() -> Self {
+        OptimizeOptions {
+            merge: Some(MergeTolerance::default()),
+        }
+    }
+}
+
+option_builders! {
+    OptimizeOptions;
+    /// Sets [`OptimizeOptions::merge`].
+    with_merge => merge: Option<MergeTolerance>;
+}
 
 /// The smallest saving (s, by the controller model) for which the rewrite is kept.
 pub const MIN_GAIN_S: f64 = 1e-3;
@@ -74,9 +105,10 @@ impl fmt::Display for OptimizeOutcome {
             OptimizeOutcome::Faster { saved_s } => write!(f, "faster by {saved_s:.3} s"),
             OptimizeOutcome::NothingGained { difference_s } => write!(
                 f,
-                "nothing gained (the rewrite's time differs by {difference_s:+.3} s): the \
-                 controller already slows each block to its slowest joint; the time lost is \
-                 at junctions next to rotary motion, which feed words do not change"
+                "nothing gained (the rewrite's time differs by {difference_s:+.3} s): too few \
+                 blocks lie within the tolerance of one chord to merge, the controller already \
+                 slows each block to its slowest joint, and the time lost at junctions next to \
+                 rotary motion is not changed by feed words"
             ),
         }
     }
@@ -95,15 +127,32 @@ pub struct Optimized {
     pub after: Estimate,
     /// Straight feed blocks rewritten in inverse time.
     pub rewritten_blocks: usize,
+    /// Input blocks merged into the block after them ([`OptimizeOptions::merge`]).
+    pub merged_blocks: usize,
     /// Kept or not, and why.
     pub outcome: OptimizeOutcome,
 }
 
 /// Optimizes the LinuxCNC program `text` (named `origin` in messages) for `machine`.
-pub fn optimize_text(text: &str, origin: &str, machine: &Machine) -> Result<Optimized, Error> {
+pub fn optimize_text(
+    text: &str,
+    origin: &str,
+    machine: &Machine,
+    opts: &OptimizeOptions,
+) -> Result<Optimized, Error> {
+    if let Some(t) = opts.merge
+        && !(t.mm.is_finite() && t.mm > 0.0 && t.rad.is_finite() && t.rad > 0.0)
+    {
+        return Err(
+            InputError::new("--tolerance", format!("{} mm, {} rad", t.mm, t.rad))
+                .expected("finite tolerances > 0")
+                .into(),
+        );
+    }
     let moves = read(text, origin)?;
-    let (rewrite, rewritten_blocks) = rewrite(text, origin, &moves, machine)?;
-    check_same_path(&moves, &read(&rewrite, origin)?, machine)?;
+    let (rewrite, rewritten_blocks, merged_blocks) =
+        rewrite(text, origin, &moves, machine, opts.merge)?;
+    check_same_path(&moves, &read(&rewrite, origin)?, machine, opts.merge)?;
     let settings = EstimateSettings {
         dialect: "linuxcnc".into(),
         ..EstimateSettings::default()
@@ -126,6 +175,7 @@ pub fn optimize_text(text: &str, origin: &str, machine: &Machine) -> Result<Opti
         before,
         after,
         rewritten_blocks,
+        merged_blocks,
         outcome,
     })
 }
@@ -244,13 +294,14 @@ fn unsupported(origin: &str, line: usize, what: &str) -> Error {
         .into()
 }
 
-/// The rewritten text and the number of rewritten blocks.
+/// The rewritten text, the number of rewritten blocks and of blocks merged away.
 fn rewrite(
     text: &str,
     origin: &str,
     moves: &[ReadMove],
     m: &Machine,
-) -> Result<(String, usize), Error> {
+    tol: Option<MergeTolerance>,
+) -> Result<(String, usize, usize), Error> {
     let lines: Vec<&str> = text.lines().collect();
     // Moves of a called subroutine may come from another file's lines.
     if let Some(n) = lines.iter().position(|l| {
@@ -276,10 +327,28 @@ fn rewrite(
         last_line = rm.line;
         by_line[rm.line] = Some(k);
     }
+    // Where each move starts, and the merged runs.
+    let mut start = Vec::with_capacity(moves.len());
+    let mut at = (Point3::new(0.0, 0.0, 0.0), Rotary::default());
+    for rm in moves {
+        start.push(at);
+        at = (rm.mv.to, rm.mv.rotary.unwrap_or(at.1));
+    }
+    let groups = match tol {
+        Some(t) => merge::groups(moves, &lines, &start, t, strip_comments),
+        None => (0..moves.len())
+            .map(|k| merge::Group { first: k, last: k })
+            .collect(),
+    };
+    let mut group_of = vec![0; moves.len()];
+    for (g, grp) in groups.iter().enumerate() {
+        group_of[grp.first..=grp.last].fill(g);
+    }
     let mut out = String::with_capacity(text.len() + text.len() / 4);
     let mut pos = (Point3::new(0.0, 0.0, 0.0), Rotary::default());
     let mut in_g93 = false; // the output's feed mode
     let mut rewritten = 0;
+    let mut merged = 0;
     for (i, line) in lines.iter().enumerate() {
         let n = i + 1;
         let Some(k) = by_line[n] else {
@@ -293,14 +362,31 @@ fn rewrite(
         let rm = &moves[k];
         let orig_g93 = rm.modal.feed_mode == FeedMode::InverseTime;
         let to = (rm.mv.to, rm.mv.rotary.unwrap_or(pos.1));
+        let grp = groups[group_of[k]];
+        if k < grp.last {
+            // Merged into the run's last block: the line is left out.
+            merged += 1;
+            pos = to;
+            continue;
+        }
+        let from = start[grp.first];
+        let feed = (grp.first..=grp.last)
+            .map(|j| moves[j].mv.feed)
+            .fold(f64::INFINITY, f64::min);
+        // A merged block states every axis the run set (the lines left out set some).
+        let words = if grp.last > grp.first {
+            merge::merged_words(&lines, moves, grp, strip_comments)
+        } else {
+            without_feed_words(line)
+        };
         match rm.mv.kind {
             MoveKind::Line => {
-                let t = block_time(pos, to, rm.mv.feed, m);
+                let t = block_time(from, to, feed, m);
                 if t > 0.0 && t.is_finite() {
                     let scale = 10f64.powi(F_DECIMALS);
                     let f = ((60.0 / t) * scale).floor() / scale;
                     let prefix = if in_g93 { "" } else { "G93 " };
-                    out.push_str(&format!("{prefix}{} F{f}\n", without_feed_words(line)));
+                    out.push_str(&format!("{prefix}{words} F{f}\n"));
                     in_g93 = true;
                     rewritten += 1;
                 } else {
@@ -321,7 +407,7 @@ fn rewrite(
         }
         pos = to;
     }
-    Ok((out, rewritten))
+    Ok((out, rewritten, merged))
 }
 
 /// Before a block kept as written: the input's feed mode (and, in G94, its feed) again.
@@ -343,66 +429,123 @@ fn fmt_feed(v: f64) -> String {
     s.trim_end_matches('0').trim_end_matches('.').to_owned()
 }
 
-/// The output's moves against the input's: same kinds, same end points, feeds no higher,
-/// no joint over its velocity limit on a straight feed block.
-fn check_same_path(input: &[ReadMove], output: &[ReadMove], m: &Machine) -> Result<(), Error> {
-    if input.len() != output.len() {
-        return Err(Error::internal(format!(
-            "optimize: the rewrite has {} moves, the input {}",
-            output.len(),
-            input.len()
-        )));
-    }
+/// The output's moves against the input's: same kinds, same end points (a straight block
+/// may end a run of input blocks whose end points lie within `tol` of its chord), feeds no
+/// higher, no joint over its velocity limit on a straight feed block.
+fn check_same_path(
+    input: &[ReadMove],
+    output: &[ReadMove],
+    m: &Machine,
+    tol: Option<MergeTolerance>,
+) -> Result<(), Error> {
+    let bad = |line: usize, what: &str| {
+        Err(Error::internal(format!(
+            "optimize: line {line} of the rewrite {what}"
+        )))
+    };
+    let end = |rm: &ReadMove, rot: Rotary| (rm.mv.to, rm.mv.rotary.unwrap_or(rot));
+    let same = |p: (Point3, Rotary), q: (Point3, Rotary)| {
+        p.0.distance(q.0) <= SAME_POINT_MM && p.1.distance(q.1) <= SAME_POINT_MM
+    };
+    let mut rot_in = Rotary::default();
     let mut rot = Rotary::default();
     let mut from = Point3::new(0.0, 0.0, 0.0);
-    for (a, b) in input.iter().zip(output) {
-        let ra = a.mv.rotary.unwrap_or(rot);
+    let mut i = 0;
+    for b in output {
+        if i >= input.len() {
+            return bad(b.line, "has more moves than the input");
+        }
         let rb = b.mv.rotary.unwrap_or(rot);
+        let target = (b.mv.to, rb);
+        // The input moves this output move stands for: up to the one ending where it ends.
+        let mut j = i;
+        let mut r = rot_in;
+        let mut mids = Vec::new();
+        loop {
+            let Some(a) = input.get(j) else {
+                return bad(b.line, "ends where no input move ends");
+            };
+            let e = end(a, r);
+            if same(e, target) {
+                r = e.1;
+                break;
+            }
+            if tol.is_none()
+                || !matches!(a.mv.kind, MoveKind::Line)
+                || !matches!(b.mv.kind, MoveKind::Line)
+            {
+                return bad(b.line, &format!("is not the input's line {} move", a.line));
+            }
+            mids.push(e);
+            r = e.1;
+            j += 1;
+        }
+        let a = &input[j];
         let same_kind = std::mem::discriminant(&a.mv.kind) == std::mem::discriminant(&b.mv.kind);
         let same_arc = match (a.mv.kind, b.mv.kind) {
             (MoveKind::Arc { .. }, MoveKind::Arc { .. }) => a.mv.kind == b.mv.kind,
             _ => true,
         };
-        if !same_kind
-            || !same_arc
-            || a.mv.to.distance(b.mv.to) > SAME_POINT_MM
-            || ra.distance(rb) > SAME_POINT_MM
-            || a.mv.corner != b.mv.corner
-        {
-            return Err(Error::internal(format!(
-                "optimize: line {} of the rewrite is not the input's line {} move",
-                b.line, a.line
-            )));
+        if !same_kind || !same_arc || a.mv.corner != b.mv.corner {
+            return bad(b.line, &format!("is not the input's line {} move", a.line));
         }
-        if !matches!(a.mv.kind, MoveKind::Rapid) && b.mv.feed > a.mv.feed * (1.0 + 1e-9) {
+        if let Some(t) = tol {
+            let chord = ((from, rot), target);
+            for (k, p) in mids.iter().enumerate() {
+                if !matches!(input[i + k].mv.kind, MoveKind::Line)
+                    || merge::chord_distance(chord.0, chord.1, *p, t) > 1.0 + 1e-9
+                {
+                    return bad(
+                        b.line,
+                        &format!(
+                            "leaves line {}'s end point off its tolerance",
+                            input[i + k].line
+                        ),
+                    );
+                }
+            }
+        }
+        let slowest = input[i..=j]
+            .iter()
+            .map(|a| a.mv.feed)
+            .fold(f64::INFINITY, f64::min);
+        if !matches!(a.mv.kind, MoveKind::Rapid) && b.mv.feed > slowest * (1.0 + 1e-9) {
             return Err(Error::internal(format!(
                 "optimize: line {} would run at {} mm/s, above the programmed {} mm/s",
-                b.line, b.mv.feed, a.mv.feed
+                b.line, b.mv.feed, slowest
             )));
         }
         if matches!(b.mv.kind, MoveKind::Line) && b.mv.feed > 0.0 {
             // The block's time at the feed the reader found in the rewrite, not the rewrite's.
             let d = (b.mv.to - from).to_array();
-            let r = [rb.a - rot.a, rb.b - rot.b, rb.c - rot.c];
+            let rr = [rb.a - rot.a, rb.b - rot.b, rb.c - rot.c];
             let xyz = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
             let len = if xyz > 1e-9 { xyz } else { rb.distance(rot) };
             let t = len / b.mv.feed;
-            let over = d
-                .iter()
-                .zip(&m.axes)
-                .any(|(x, l)| x.abs() > l.max_velocity * t * (1.0 + 1e-9))
-                || r.iter()
-                    .zip(&m.rotary)
-                    .any(|(x, l)| l.is_some_and(|l| x.abs() > l.max_velocity * t * (1.0 + 1e-9)));
-            if over && b.mv.feed < a.mv.feed * (1.0 - 1e-9) {
+            let over =
+                d.iter()
+                    .zip(&m.axes)
+                    .any(|(x, l)| x.abs() > l.max_velocity * t * (1.0 + 1e-9))
+                    || rr.iter().zip(&m.rotary).any(|(x, l)| {
+                        l.is_some_and(|l| x.abs() > l.max_velocity * t * (1.0 + 1e-9))
+                    });
+            if over && b.mv.feed < slowest * (1.0 - 1e-9) {
                 return Err(Error::internal(format!(
                     "optimize: line {} would drive a joint over its velocity limit",
                     b.line
                 )));
             }
         }
+        rot_in = r;
         rot = rb;
         from = b.mv.to;
+        i = j + 1;
+    }
+    if i != input.len() {
+        return Err(Error::internal(format!(
+            "optimize: the rewrite has fewer moves than the input (it ends at the input's move {i} of {})",
+            input.len()
+        )));
     }
     Ok(())
 }

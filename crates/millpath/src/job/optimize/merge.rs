@@ -11,8 +11,9 @@
 //! # The rule
 //! A run of consecutive lines is a candidate where every line makes one straight feed move
 //! (`G1`) that moves X, Y or Z, carries no word but axis words, `F`, `G1` and `N`, and runs
-//! in absolute distance mode with the same feed mode, units and plane; in `G94` with the same
-//! feed; in a blending corner mode (`G64`, with or without `P`: not `G61` or `G61.1`, whose
+//! in absolute distance mode with the same feed mode, units and plane, at feeds (mm/s; in
+//! `G93` each block's length over its time) within 1 % of the run's first block's; in a blending
+//! corner mode (`G64`, with or without `P`: not `G61` or `G61.1`, whose
 //! path is the program's exactly). From the run's start `P₀`, the merged block's end `Pₑ`
 //! moves on while every end point `Pⱼ` in between lies within half the tolerance of the
 //! chord: at the parameter `u` of its projection on the chord's XYZ, `|xyzⱼ − xyz(u)| ≤ tol/2`
@@ -27,9 +28,13 @@
 //! every block (`t = max(L/F, maxᵢ |dᵢ|/vᵢ)`): the tool tip never faster than any of the
 //! merged blocks' feeds.
 
-use crate::gcode::{FeedMode, ReadMove};
-use crate::toolpath::{Corner, MoveKind, Rotary};
 use crate::Point3;
+use crate::gcode::ReadMove;
+use crate::toolpath::{Corner, MoveKind, Rotary};
+
+/// The largest relative difference of a block's feed (mm/s) from the run's first block's: in
+/// `G93` each block's feed is its own, and a merged block runs at the run's slowest.
+const SAME_FEED: f64 = 0.01;
 
 /// How far merged blocks' end points may be from the merged chord.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -94,6 +99,59 @@ fn plain_line(code: &str) -> bool {
     true
 }
 
+/// The axis words of a line's code, as written (`(letter, number text)`).
+fn axis_words(code: &str) -> Vec<(u8, String)> {
+    let compact: String = code
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_uppercase();
+    let b = compact.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        let letter = b[i];
+        let mut j = i + 1;
+        while j < b.len() && (b[j].is_ascii_digit() || b[j] == b'.' || b[j] == b'-' || b[j] == b'+')
+        {
+            j += 1;
+        }
+        if matches!(letter, b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C') {
+            out.push((letter, compact[i + 1..j].to_owned()));
+        }
+        i = j.max(i + 1);
+    }
+    out
+}
+
+/// The merged block's words: `G1` and, for every axis a line of the run sets, its last value
+/// there as written (so that it reads back as the run's end point, the lines left out setting
+/// some of the axes).
+pub(crate) fn merged_words(
+    lines: &[&str],
+    moves: &[ReadMove],
+    grp: Group,
+    strip: impl Fn(&str) -> String,
+) -> String {
+    let mut words = String::from("G1");
+    for axis in [b'X', b'Y', b'Z', b'A', b'B', b'C'] {
+        let found = (grp.first..=grp.last).rev().find_map(|k| {
+            let line = lines.get(moves[k].line.checked_sub(1)?)?;
+            axis_words(&strip(line))
+                .into_iter()
+                .rev()
+                .find(|(l, _)| *l == axis)
+                .map(|(_, v)| v)
+        });
+        if let Some(v) = found {
+            words.push(' ');
+            words.push(char::from(axis));
+            words.push_str(&v);
+        }
+    }
+    words
+}
+
 /// Point `(xyz, rotary)` at parameter `u` of the chord.
 fn lerp(a: (Point3, Rotary), b: (Point3, Rotary), u: f64) -> (Point3, Rotary) {
     (
@@ -107,7 +165,12 @@ fn lerp(a: (Point3, Rotary), b: (Point3, Rotary), u: f64) -> (Point3, Rotary) {
 }
 
 /// `p` within half of `tol` of the chord `a → b` at its XYZ projection.
-fn near_chord(a: (Point3, Rotary), b: (Point3, Rotary), p: (Point3, Rotary), tol: MergeTolerance) -> bool {
+fn near_chord(
+    a: (Point3, Rotary),
+    b: (Point3, Rotary),
+    p: (Point3, Rotary),
+    tol: MergeTolerance,
+) -> bool {
     let ab = b.0 - a.0;
     let l2 = ab.dot(ab);
     if l2 <= 1e-18 {
@@ -142,7 +205,9 @@ pub(crate) fn groups(
             && !matches!(rm.mv.corner, Corner::ExactStop | Corner::ExactPath)
             && rm.mv.to.distance(start[k].0) > 1e-9
             && rm.line >= 1
-            && lines.get(rm.line - 1).is_some_and(|l| plain_line(&strip(l)))
+            && lines
+                .get(rm.line - 1)
+                .is_some_and(|l| plain_line(&strip(l)))
     };
     // May move `k` join the run whose previous move is `k - 1`?
     let joins = |k: usize| {
@@ -154,8 +219,6 @@ pub(crate) fn groups(
             && a.modal.units == b.modal.units
             && a.modal.plane == b.modal.plane
             && a.mv.corner == b.mv.corner
-            && (b.modal.feed_mode == FeedMode::InverseTime
-                || (a.mv.feed - b.mv.feed).abs() <= 1e-12 * a.mv.feed.abs())
     };
     let tol_at = |k: usize| match moves[k].mv.corner {
         Corner::Blend(p) if p > 0.0 => MergeTolerance {
@@ -170,7 +233,11 @@ pub(crate) fn groups(
         let first = k;
         let mut last = k;
         let t = tol_at(k);
-        while last + 1 < moves.len() && joins(last + 1) {
+        let f0 = moves[first].mv.feed;
+        while last + 1 < moves.len()
+            && joins(last + 1)
+            && (moves[last + 1].mv.feed - f0).abs() <= SAME_FEED * f0.abs()
+        {
             let e = last + 1;
             let a = start[first];
             let b = end(e);
