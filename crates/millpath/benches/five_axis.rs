@@ -6,7 +6,6 @@
 //! the proof, the verifier) on the same sweep written with 100, 1,000 and 10,000 poses.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use millpath::geom::{Point3, Vec3};
 use millpath::job::five_axis::kinematics;
 use millpath::machine::kinematics::{Kinematics, PaperAb, Pose, inverse_path};
 use millpath::motion::five_axis::{
@@ -24,23 +23,6 @@ fn plan(kin: &dyn Kinematics, poses: &[Pose], lim: &Limits, end_knots: usize) ->
     five_axis::optimize(&geo, kin, lim, &ko, &[])
         .expect("plan")
         .total()
-}
-
-/// The tilting sweep of `sweep.csv` with `n` poses, rounded to six decimals as the file is.
-fn sweep_of(n: usize) -> Vec<Pose> {
-    let r6 = |x: f64| (x * 1e6).round() / 1e6;
-    (0..n)
-        .map(|k| {
-            let u = k as f64 / (n - 1) as f64;
-            let t = (-30.0 + 60.0 * u).to_radians();
-            let c = std::f64::consts::FRAC_1_SQRT_2;
-            Pose::new(
-                Point3::new(r6(-50.0 + 100.0 * u), 0.0, 0.0),
-                Vec3::new(r6(t.sin() * c), r6(t.sin() * c), r6(t.cos())),
-            )
-            .expect("pose")
-        })
-        .collect()
 }
 
 fn bench(c: &mut Criterion) {
@@ -98,7 +80,7 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     let opts = FiveAxisOptions::default().with_baseline(None);
     for n in [100, 1000, 10_000] {
-        let poses = sweep_of(n);
+        let poses = five_axis::tilting_sweep(n);
         g.bench_function(format!("plan_{n}"), |b| {
             b.iter(|| {
                 five_axis::plan(trt.as_ref(), black_box(&poses), &lim, &opts, None)

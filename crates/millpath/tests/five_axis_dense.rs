@@ -4,28 +4,15 @@
 //! verifier), on the given path (the planned tip path against the curve through every given
 //! pose, and every merged pose against the planned path).
 
-use millpath::geom::{Point3, Vec3};
 use millpath::job::five_axis::kinematics;
 use millpath::machine::kinematics::{Kinematics, Pose};
-use millpath::motion::five_axis::{FiveAxisOptions, Limits, LimitsFile, plan, verify};
+use millpath::motion::five_axis::{
+    FiveAxisOptions, Limits, LimitsFile, plan, tilting_sweep, verify,
+};
 
-/// The sweep of `tests/data/five_axis/sweep.csv` with `n` poses: the tip from x = −50 to 50
-/// mm, the tool tilting from −30° to 30° in the vertical plane at 45° to X, rounded to six
-/// decimals as the file is.
+/// `tilting_sweep(n)`, forwards or backwards.
 fn sweep(n: usize, reversed: bool) -> Vec<Pose> {
-    let r6 = |x: f64| (x * 1e6).round() / 1e6;
-    let mut v: Vec<Pose> = (0..n)
-        .map(|k| {
-            let u = k as f64 / (n - 1) as f64;
-            let t = (-30.0 + 60.0 * u).to_radians();
-            let c = std::f64::consts::FRAC_1_SQRT_2;
-            Pose::new(
-                Point3::new(r6(-50.0 + 100.0 * u), 0.0, 0.0),
-                Vec3::new(r6(t.sin() * c), r6(t.sin() * c), r6(t.cos())),
-            )
-            .unwrap()
-        })
-        .collect();
+    let mut v = tilting_sweep(n);
     if reversed {
         v.reverse();
     }
@@ -96,4 +83,17 @@ fn merging_nothing_plans_every_pose() {
     assert_eq!(out.result.merged_poses, 0);
     assert_eq!(out.result.intervals, 99);
     assert!(out.result.violations.is_empty());
+}
+
+#[test]
+fn the_library_sweep_is_the_file() {
+    let text = include_str!("data/five_axis/sweep.csv");
+    let file = millpath::motion::five_axis::parse_path_csv(text, "sweep.csv").unwrap();
+    let lib = tilting_sweep(200);
+    assert_eq!(file.len(), lib.len());
+    for (a, b) in file.iter().zip(&lib) {
+        assert!(a.tip.distance(b.tip) < 1e-9);
+        let (an, bn) = (a.axis.normalize().unwrap(), b.axis.normalize().unwrap());
+        assert!((an - bn).length() < 1e-9);
+    }
 }

@@ -62,45 +62,9 @@ pub(crate) struct Group {
     pub last: usize,
 }
 
-/// The line's code words are all axis words, `F`, `G1`/`G01` and `N` (comments ignored).
-fn plain_line(code: &str) -> bool {
-    let compact: String = code
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect::<String>()
-        .to_ascii_uppercase();
-    let b = compact.as_bytes();
-    let mut i = 0;
-    while i < b.len() {
-        let letter = b[i];
-        let start = i + 1;
-        let mut j = start;
-        while j < b.len() && (b[j].is_ascii_digit() || b[j] == b'.' || b[j] == b'-' || b[j] == b'+')
-        {
-            j += 1;
-        }
-        if j == start {
-            return false;
-        }
-        let value: f64 = match compact[start..j].parse() {
-            Ok(v) => v,
-            Err(_) => return false,
-        };
-        let ok = match letter {
-            b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' | b'F' | b'N' => true,
-            b'G' => (value - 1.0).abs() < 1e-9,
-            _ => false,
-        };
-        if !ok {
-            return false;
-        }
-        i = j;
-    }
-    true
-}
-
-/// The axis words of a line's code, as written (`(letter, number text)`).
-fn axis_words(code: &str) -> Vec<(u8, String)> {
+/// The words of a line's code (comments removed), upper case: `(letter, number as written)`;
+/// `None` if a letter has no number.
+fn words(code: &str) -> Option<Vec<(u8, String)>> {
     let compact: String = code
         .chars()
         .filter(|c| !c.is_whitespace())
@@ -110,18 +74,38 @@ fn axis_words(code: &str) -> Vec<(u8, String)> {
     let mut out = Vec::new();
     let mut i = 0;
     while i < b.len() {
-        let letter = b[i];
         let mut j = i + 1;
         while j < b.len() && (b[j].is_ascii_digit() || b[j] == b'.' || b[j] == b'-' || b[j] == b'+')
         {
             j += 1;
         }
-        if matches!(letter, b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C') {
-            out.push((letter, compact[i + 1..j].to_owned()));
+        if j == i + 1 {
+            return None;
         }
-        i = j.max(i + 1);
+        out.push((b[i], compact[i + 1..j].to_owned()));
+        i = j;
     }
-    out
+    Some(out)
+}
+
+/// The line's code words are all axis words, `F`, `G1`/`G01` and `N`.
+fn plain_line(code: &str) -> bool {
+    words(code).is_some_and(|w| {
+        w.iter().all(|(letter, v)| match letter {
+            b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' | b'F' | b'N' => v.parse::<f64>().is_ok(),
+            b'G' => v.parse::<f64>().is_ok_and(|g| (g - 1.0).abs() < 1e-9),
+            _ => false,
+        })
+    })
+}
+
+/// The axis words of a line's code, as written.
+fn axis_words(code: &str) -> Vec<(u8, String)> {
+    words(code)
+        .unwrap_or_default()
+        .into_iter()
+        .filter(|(l, _)| matches!(l, b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C'))
+        .collect()
 }
 
 /// The merged block's words: `G1` and, for every axis a line of the run sets, its last value

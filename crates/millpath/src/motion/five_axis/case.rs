@@ -32,6 +32,27 @@ use std::f64::consts::FRAC_PI_2;
 /// Number of intervals in the paper's case.
 pub const PAPER_INTERVALS: usize = 31;
 
+/// The tilting sweep through the pole with `n` poses (at least 2): the tool tip from
+/// x = −50 to 50 mm along X, the tool tilting evenly from −30° to 30° in the vertical plane at
+/// 45° to X, so that it passes the vertical (a table-table machine's C is undefined there);
+/// every number rounded to six decimals, as `tests/data/five_axis/sweep.csv` (its 200-pose
+/// version) writes them.
+pub fn tilting_sweep(n: usize) -> Vec<Pose> {
+    let n = n.max(2);
+    let r6 = |x: f64| (x * 1e6).round() / 1e6;
+    let c = std::f64::consts::FRAC_1_SQRT_2;
+    (0..n)
+        .map(|k| {
+            let u = k as f64 / (n - 1) as f64;
+            let t = (-30.0 + 60.0 * u).to_radians();
+            Pose {
+                tip: Point3::new(r6(-50.0 + 100.0 * u), 0.0, 0.0),
+                axis: Vec3::new(r6(t.sin() * c), r6(t.sin() * c), r6(t.cos())),
+            }
+        })
+        .collect()
+}
+
 /// The paper's 32 reference poses (mm), see the module docs.
 pub fn paper_path() -> Vec<Pose> {
     (0..=PAPER_INTERVALS)

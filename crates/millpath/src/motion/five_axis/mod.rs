@@ -49,7 +49,7 @@ pub(crate) mod verify;
 pub use baseline_ga::{BaselineOptions, fixed_states, run as run_baseline};
 pub use case::{
     LengthUnit, LimitsFile, PAPER_INTERVALS, paper_deflection, paper_path, paper_projection,
-    parse_path_csv, parse_path_csv_lines,
+    parse_path_csv, parse_path_csv_lines, tilting_sweep,
 };
 pub use certify::{CertifyOptions, FeedBound, FeedVerdict, certify_infeasible, feed_bound};
 pub use deflection::{Projection, RefCurve, Replan, potential_field_projection, project, replan};
