@@ -20,7 +20,7 @@
 //!
 //! # Merged blocks
 //! Before that, runs of straight blocks whose end points lie within the tolerance of one
-//! chord are merged into one block ([`merge`], [`OptimizeOptions::merge`]): that is where
+//! chord are merged into one block (`merge`, [`OptimizeOptions::merge`]): that is where
 //! LinuxCNC gains. Its canon already caps each straight block at `min(F, L / maxᵢ(|dᵢ|/vᵢ))`
 //! (`getStraightVelocity`), which is `L/t` above, so the feed words alone restate the speed it
 //! runs; the time such programs lose is at junctions next to a rotary axis, which LinuxCNC
@@ -34,7 +34,7 @@
 //! The output is read back and compared with the input: every output move is one input move
 //! or, for a straight feed block, the run of input straight feed blocks up to the one that
 //! ends where it ends, every end point in between within the tolerance of the output's chord
-//! (the least normalised distance over the chord, [`merge::chord_distance`]); the same kinds
+//! (the least normalised distance over the chord, `merge::chord_distance`); the same kinds
 //! (rapid, line, arc; plane and direction), every end point and rotary position within
 //! [`SAME_POINT_MM`], every feed at most the input's (the slowest of a run, relative `1e-9`),
 //! and on every straight feed block no joint over its velocity limit at the written feed.
@@ -54,7 +54,7 @@ pub use merge::MergeTolerance;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct OptimizeOptions {
-    /// Merge runs of straight blocks within this tolerance of one chord ([`merge`]); `None`
+    /// Merge runs of straight blocks within this tolerance of one chord (the module docs); `None`
     /// keeps every block. Default: 0.001 mm and 0.001°.
     pub merge: Option<MergeTolerance>,
 }
