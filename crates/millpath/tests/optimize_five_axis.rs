@@ -402,3 +402,90 @@ fn merging_follows_the_tolerance() {
     let opt = optimize_text(&text, "m8.ngc", &m, &OptimizeOptions::default()).unwrap();
     assert_eq!(opt.merged_blocks, 8, "{}", opt.rewrite);
 }
+
+/// A program of `n` G1 blocks along a slowly turning direction with A and C turning, each end
+/// point off the smooth curve by up to `noise` mm (and degrees); Y or A left out where they
+/// do not change, feeds switching, a coolant line or a path mode change now and then.
+fn random_program(
+    n: usize,
+    turn: f64,
+    noise: f64,
+    flat_y: bool,
+    seeds: &[f64],
+    breaks: &[usize],
+) -> String {
+    let mut s = String::from("G21 G90 G94 G64\nG0 X0 Y0 Z1 A0 C0\nG1 Z0 F300\n");
+    let (mut x, mut y, mut a, mut c) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut dir = 0.0f64;
+    for k in 0..n {
+        let r = |j: usize| seeds[(k * 4 + j) % seeds.len()] - 0.5;
+        dir += turn;
+        x += 0.3 * dir.cos() + noise * r(0);
+        if !flat_y {
+            y += 0.3 * dir.sin() + noise * r(1);
+        }
+        let turn_a = k % 7 != 3;
+        if turn_a {
+            a += 0.2 + noise * r(2);
+        }
+        c += 0.5 + noise * r(3);
+        match breaks.iter().position(|&b| b == k) {
+            Some(0) => s += "M8\n",
+            Some(1) => s += "G61\n",
+            Some(2) => s += "G64 P0.0005\n",
+            _ => {}
+        }
+        let f = if k % 11 < 6 { 1500 } else { 900 };
+        let mut line = format!("G1 X{x:.4}");
+        if !flat_y {
+            line += &format!(" Y{y:.4}");
+        }
+        if turn_a {
+            line += &format!(" A{a:.4}");
+        }
+        line += &format!(" C{c:.4} F{f}\n");
+        s += &line;
+    }
+    s + "G0 Z5\nM2\n"
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 48,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(39),
+        failure_persistence: None,
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// Whatever the program, the merge keeps the path within the tolerance (this file's own
+    /// check), never raises a feed, and the kept program is never slower on the model.
+    #[test]
+    fn merged_programs_keep_their_path(
+        n in 10usize..60,
+        turn in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.0f64..0.05],
+        noise in proptest::prop_oneof![
+            proptest::strategy::Just(0.0),
+            proptest::strategy::Just(0.0004),
+            proptest::strategy::Just(0.01)
+        ],
+        flat_y in proptest::bool::ANY,
+        seeds in proptest::collection::vec(0.0f64..1.0, 16),
+        breaks in proptest::collection::vec(0usize..60, 0..3),
+    ) {
+        let text = random_program(n, turn, noise, flat_y, &seeds, &breaks);
+        let m = machine();
+        let opt = optimize_text(&text, "random.ngc", &m, &OptimizeOptions::default());
+        proptest::prop_assert!(opt.is_ok(), "{:?}\n{text}", opt.err());
+        let opt = opt.unwrap();
+        let input = read(&text);
+        let (ranges, _) = same_path(&input, &read(&opt.rewrite), &m, "random");
+        proptest::prop_assert_eq!(input.moves.len() - ranges.len(), opt.merged_blocks);
+        same_path(&input, &read(&opt.text), &m, "random kept");
+        proptest::prop_assert!(opt.after.cycle_time_s.is_finite());
+        proptest::prop_assert!(model_time(&opt.text) <= model_time(&text) + 1e-9);
+        // On a straight, noiseless line every plain block of a feed merges.
+        if turn == 0.0 && noise == 0.0 && breaks.is_empty() {
+            proptest::prop_assert!(opt.merged_blocks > 0, "{text}");
+        }
+    }
+}

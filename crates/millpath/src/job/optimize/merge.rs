@@ -266,3 +266,52 @@ pub(crate) fn chord_distance(
     }
     f(0.5 * (lo + hi))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: f64, y: f64, c_deg: f64) -> (Point3, Rotary) {
+        (
+            Point3::new(x, y, 0.0),
+            Rotary::new(0.0, 0.0, c_deg.to_radians()),
+        )
+    }
+
+    #[test]
+    fn chord_distance_is_the_normalised_distance_to_the_chord() {
+        let tol = MergeTolerance::default();
+        let (a, b) = (p(0.0, 0.0, 0.0), p(10.0, 0.0, 10.0));
+        // On the chord (C in step with X): 0.
+        assert!(chord_distance(a, b, p(4.0, 0.0, 4.0), tol) < 1e-6);
+        // 0.001 mm off in Y: 1; 0.002 mm: 2.
+        assert!((chord_distance(a, b, p(4.0, 0.001, 4.0), tol) - 1.0).abs() < 1e-6);
+        assert!((chord_distance(a, b, p(4.0, 0.002, 4.0), tol) - 2.0).abs() < 1e-6);
+        // C off by 0.002° where X is: the nearest point of the chord trades the two.
+        let d = chord_distance(a, b, p(4.0, 0.0, 4.002), tol);
+        assert!(d > 0.1 && d < 2.0, "{d}");
+        // The merge's own rule is stricter: half the tolerance at the XYZ projection.
+        assert!(near_chord(a, b, p(4.0, 0.0004, 4.0), tol));
+        assert!(!near_chord(a, b, p(4.0, 0.0006, 4.0), tol));
+        assert!(!near_chord(a, b, p(4.0, 0.0, 4.0006), tol));
+    }
+
+    #[test]
+    fn only_plain_lines_merge() {
+        assert!(plain_line("G1 X1.5 Y-2 A3 F1500"));
+        assert!(plain_line("N10 X1 C2"));
+        assert!(plain_line("g01 x1"));
+        assert!(!plain_line("G1 X1 M8"));
+        assert!(!plain_line("G2 X1 Y1 I1 J0"));
+        assert!(!plain_line("G1 X#1"));
+        assert!(!plain_line("G1 X1 S1000"));
+        assert_eq!(
+            axis_words("G1 X1.50 Y-2 F100 C3"),
+            vec![
+                (b'X', "1.50".to_owned()),
+                (b'Y', "-2".to_owned()),
+                (b'C', "3".to_owned())
+            ]
+        );
+    }
+}
