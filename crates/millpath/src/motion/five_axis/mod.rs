@@ -269,7 +269,7 @@ pub fn plan(
     let mo = &opts.merge;
     let mut keep = vec![false; poses.len()];
     let mut round = 0;
-    let (poses_k, pose_index, mut schedule, devs) = loop {
+    let (poses_k, pose_index, mut schedule, segments, devs) = loop {
         let last = round >= 3;
         if last {
             keep.fill(true);
@@ -300,7 +300,7 @@ pub fn plan(
             .map(|d| d.pose)
             .collect();
         if bad.is_empty() || last {
-            break (knots_p, pose_index, schedule, devs);
+            break (knots_p, pose_index, schedule, segs, devs);
         }
         for b in bad {
             keep[b] = true;
@@ -310,13 +310,8 @@ pub fn plan(
     let given = poses;
     let poses = poses_k;
     let compute = elapsed();
+    // The proof sets the checks' bounds only: the segments stay those planned.
     prove_minimal(&mut schedule, kin, lim, mt);
-    let segments: Vec<Segment> = schedule
-        .states
-        .windows(2)
-        .zip(&schedule.times)
-        .map(|(w, &t)| Segment::new(&w[0], &w[1], t))
-        .collect();
     let rep = verify(&segments, kin, lim, opts.verify_samples);
     let brep = baseline
         .as_ref()
