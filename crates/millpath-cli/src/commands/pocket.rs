@@ -132,8 +132,9 @@ pub struct CommonArgs {
     /// `harmonic` (stepover held at corners too, more laps)
     #[arg(long)]
     pub morph: Option<String>,
-    /// Spiral laps as tangent-continuous arcs (G2/G3 biarcs within 0.004 mm of the smooth
-    /// curve through the samples) instead of G1 chords
+    /// Spiral laps and adaptive passes as tangent-continuous arcs (G2/G3 biarcs within a few
+    /// microns of the smooth curve through the samples) instead of G1 chords; planned both
+    /// ways, the chords are kept where they are faster
     #[arg(long)]
     pub arcs: bool,
     /// Finishing pass along the walls.

@@ -21,11 +21,15 @@
 //!
 //! Each pass's tool positions are smoothed (they wobble by the grid's count of cells, a few
 //! hundredths of the target's area: Taubin's λ|μ smoothing moves each by at most
-//! [`SMOOTH_RADII`]) and joined by tangent-continuous arcs fitted within [`ARC_FIT`]; the
-//! planner's field keeps the unsmoothed positions' cut, so the engagement of the written path
-//! differs from the planned one by at most about `SMOOTH_RADII·r / s` of the target (2.5 % at
-//! a 40 % stepover) and the verifier measures it. Near the walls a smoothed position that
-//! the tool may not stand at keeps its place.
+//! [`SMOOTH_RADII`]) and written as the chords between them (`δ` long, the path itself, not
+//! an approximation of it); with `--arcs`, as tangent-continuous biarcs fitted within
+//! [`ARC_FIT`], kept only where they are faster (`pocket::arcs_or_chords`). The chords are
+//! the default because the biarcs' curvature steps where two arcs meet, and a jerk-limited
+//! controller slows at every such step. The field is then cleared along the written path, so
+//! the next passes see what the program leaves; the engagement of the written path differs
+//! from the planned one by at most about `SMOOTH_RADII·r / s` of the target (2.5 % at a 40 %
+//! stepover) and the verifier measures it. Near the walls a smoothed position that the tool
+//! may not stand at keeps its place.
 //!
 //! **What is measured, and by whom.** The planner's counts are its own; the stock simulation
 //! (`crate::stock`, another grid, another sweep) measures the engagement of the written path
@@ -113,6 +117,7 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         pos: None,
         tried: Vec::new(),
         fit: ARC_FIT * r,
+        arcs: opts.spiral.arcs,
     };
     let helix = match opts.entry {
         Entry::Helix { radius, .. } => radius,
@@ -190,6 +195,8 @@ struct Planner<'f, 'w> {
     /// Coarse blocks tried as a start that cut nothing.
     tried: Vec<bool>,
     fit: f64,
+    /// Write the smoothed positions as biarcs (`--arcs`) instead of chords.
+    arcs: bool,
 }
 
 impl Planner<'_, '_> {
@@ -268,8 +275,13 @@ impl Planner<'_, '_> {
                         }
                     }
                 }
-                fit_arcs_where(&smooth, self.fit, allowed)
-                    .or_else(|| fit_arcs_where(run, self.fit, allowed))
+                if self.arcs {
+                    fit_arcs_where(&smooth, self.fit, allowed)
+                        .or_else(|| fit_arcs_where(run, self.fit, allowed))
+                } else {
+                    let chords = segs_from_points(&smooth);
+                    chords.iter().all(allowed).then_some(chords)
+                }
             } else {
                 None
             };
