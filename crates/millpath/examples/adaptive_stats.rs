@@ -12,8 +12,15 @@ use std::fmt::Write as _;
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let step: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(0.4);
-    let shape = builtin::aerospace_pocket();
-    let tool = Tool::flat(12.7).expect("tool");
+    let (shape, d) = match std::env::var("SHAPE") {
+        Ok(name) => builtin::shape_suite()
+            .into_iter()
+            .find(|s| s.name == name)
+            .map(|s| (s.shape, s.tool_diameter))
+            .expect("a shape of the suite"),
+        Err(_) => (builtin::aerospace_pocket(), 12.7),
+    };
+    let tool = Tool::flat(d).expect("tool");
     let kind = match std::env::var("KIND").as_deref() {
         Ok("spiral") => StrategyKind::Spiral,
         _ => StrategyKind::Adaptive,
@@ -23,8 +30,8 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(step);
     let opts = PocketOptions::default()
-        .with_depth(5.0)
-        .with_step_down(5.0)
+        .with_depth(3.0)
+        .with_step_down(3.0)
         .with_stepover(millpath::strategy::pocket::Stepover::Fraction(step));
     let tp = toolpath(kind, &shape, &tool, &opts).expect("toolpath");
     let s = bound * tool.diameter;
@@ -50,6 +57,27 @@ fn main() {
         st.max_deg / nominal,
         100.0 * st.share_above_bound
     );
+    let entry = millpath::stock::entry_moves(&tp);
+    let mut top: Vec<(f64, usize)> = sim
+        .samples
+        .iter()
+        .filter(|x| !entry.get(x.move_index).copied().unwrap_or(false))
+        .map(|x| (x.angle.to_degrees(), x.move_index))
+        .collect();
+    top.sort_by(|a, b| b.0.total_cmp(&a.0));
+    top.dedup_by_key(|t| t.1);
+    for (deg, k) in top.iter().take(6) {
+        let from = if *k > 0 { tp.moves[k - 1].to } else { tp.start };
+        println!(
+            "  {deg:.1}° on move {k} of {} ({:.2}, {:.2}) -> ({:.2}, {:.2}), {:?}",
+            tp.moves.len(),
+            from.x,
+            from.y,
+            tp.moves[*k].to.x,
+            tp.moves[*k].to.y,
+            tp.moves[*k].kind
+        );
+    }
     let z0 = tp.levels.first().map_or(0.0, |l| l.z);
     let edges = [0.5, 20.0, 40.0, 60.0, 70.0, 80.0, 90.0, 1000.0];
     let mut bins = [0.0; 8];

@@ -227,7 +227,8 @@ impl Planner<'_, '_> {
         true
     }
 
-    /// Clears the field along the written path (tool positions at most `h` apart), where
+    /// Clears the field along the written path (the band each line sweeps; along an arc, tool
+    /// positions at most `h` apart), where
     /// the stepper cleared it along its own positions: the two differ by the smoothing, and
     /// the next passes, the links and the entries must see the material the program leaves.
     /// The cells cleared.
@@ -235,6 +236,10 @@ impl Planner<'_, '_> {
         let (h, r) = (self.field.h, self.stepper.r);
         let mut n = 0;
         for sg in path {
+            if sg.arc.is_none() {
+                n += u64::from(self.field.clear_capsule(sg.a, sg.b, r));
+                continue;
+            }
             let steps = ((sg.length() / h).ceil() as usize).max(1);
             for k in 0..=steps {
                 let q = sg.point_at(sg.length() * k as f64 / steps as f64);
@@ -425,9 +430,9 @@ impl Planner<'_, '_> {
             let c = c + n * lo;
             // The heading with `n` on the cutting side: `n` turned a quarter the other way.
             let theta = n.y.atan2(n.x) + st.side * std::f64::consts::FRAC_PI_2;
-            let bite = st.first_bite(self.field, c, theta);
             let deep = self.field.wall_distance(c) >= st.walls.clear + st.r;
-            if bite >= pass::MIN_CUT * st.target && (deep || bite >= 0.3 * st.target) {
+            let need = if deep { pass::MIN_CUT } else { 0.3 } * st.target;
+            if st.first_bite_reaches(self.field, c, theta, need) {
                 return Some((c, theta, k));
             }
             self.tried[k] = true;

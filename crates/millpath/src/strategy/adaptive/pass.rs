@@ -36,6 +36,9 @@ pub(crate) const MIN_CUT: f64 = 0.03;
 /// Travel without a cut that ends a pass, in tool radii.
 pub(crate) const AIR_RADII: f64 = 10.0;
 
+/// Halvings of a step's turn between two grid turns.
+const BISECTIONS: usize = 6;
+
 /// The stepper's settings.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Stepper<'w> {
@@ -74,46 +77,72 @@ impl Stepper<'_> {
         })
     }
 
-    /// The step from `p` heading `theta`, or `None` where the pass must end.
-    fn choose(&self, field: &Field, p: Point, theta: f64) -> Option<Step> {
+    /// The step from `p` heading `theta`, or `None` where the pass must end; with the grid
+    /// index of the turn taken, the next step's `hint`.
+    ///
+    /// The search starts at the grid turn `hint` (the last step's: the path's turn changes
+    /// little from step to step) and walks the grid towards the target: up while the area
+    /// stays at or below it, down while it is above, to the first crossing, then bisects
+    /// between the two turns. Only where no turn of the walk is at or below the target is the
+    /// whole grid scanned, as a pass's first step is.
+    fn choose(&self, field: &Field, p: Point, theta: f64, hint: usize) -> Option<(Step, usize)> {
         let turn = |k: usize| -MAX_AWAY + (MAX_INTO + MAX_AWAY) * k as f64 / TURNS as f64;
-        let tries: Vec<(f64, Option<Step>)> = (0..=TURNS)
-            .map(|k| (turn(k), self.at(field, p, theta, turn(k))))
-            .collect();
-        // The largest turn at or below the target, and the allowed turn just above it.
-        let mut below: Option<(f64, Step)> = None;
-        let mut above: Option<(f64, Step)> = None;
-        for &(phi, st) in &tries {
-            if let Some(st) = st {
-                if st.area <= self.target {
-                    below = Some((phi, st));
-                    above = None;
-                } else if above.is_none() {
-                    above = Some((phi, st));
-                }
-            }
-        }
-        match (below, above) {
-            (Some((mut lo, mut best)), Some((mut hi, _))) if hi > lo => {
-                for _ in 0..6 {
-                    let mid = 0.5 * (lo + hi);
-                    match self.at(field, p, theta, mid) {
-                        Some(st) if st.area <= self.target => {
-                            lo = mid;
-                            best = st;
-                        }
-                        _ => hi = mid,
+        let eval = |k: usize| self.at(field, p, theta, turn(k));
+        let ok = |st: &Option<Step>| st.is_some_and(|st| st.area <= self.target);
+        let hint = hint.min(TURNS);
+        // `below`: the crossing's turn at or below the target; `above`: the allowed turn
+        // just past it.
+        let mut below: Option<(usize, Step)> = None;
+        let mut above: Option<usize> = None;
+        let first = eval(hint);
+        if ok(&first) {
+            below = first.map(|st| (hint, st));
+            for k in hint + 1..=TURNS {
+                match eval(k) {
+                    None => {}
+                    Some(st) if st.area <= self.target => below = Some((k, st)),
+                    Some(_) => {
+                        above = Some(k);
+                        break;
                     }
                 }
-                Some(best)
             }
-            (Some((_, best)), _) => Some(best),
-            (None, _) => tries
-                .iter()
-                .filter_map(|t| t.1)
-                .min_by(|a, b| a.area.total_cmp(&b.area))
-                .filter(|st| st.area <= OVERLOAD * self.target),
+        } else {
+            if first.is_some() {
+                above = Some(hint);
+            }
+            for k in (0..hint).rev() {
+                match eval(k) {
+                    None => {}
+                    Some(st) if st.area <= self.target => {
+                        below = Some((k, st));
+                        break;
+                    }
+                    Some(_) => above = Some(k),
+                }
+            }
         }
+        let Some((kb, mut best)) = below else {
+            // No turn at or below the target: the least overloaded allowed one, or none.
+            return (0..=TURNS)
+                .filter_map(|k| eval(k).map(|st| (st, k)))
+                .min_by(|a, b| a.0.area.total_cmp(&b.0.area))
+                .filter(|(st, _)| st.area <= OVERLOAD * self.target);
+        };
+        if let Some(ka) = above {
+            let (mut lo, mut hi) = (turn(kb), turn(ka));
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (lo + hi);
+                match self.at(field, p, theta, mid) {
+                    Some(st) if st.area <= self.target => {
+                        lo = mid;
+                        best = st;
+                    }
+                    _ => hi = mid,
+                }
+            }
+        }
+        Some((best, kb))
     }
 
     /// Runs a pass from `p0` heading `theta0`, clearing the field behind the tool; the tool
@@ -125,10 +154,12 @@ impl Stepper<'_> {
         let mut last_cut = 0;
         let mut air = 0.0;
         let min_cut = MIN_CUT * self.target;
+        let mut hint = TURNS / 2;
         for _ in 0..self.max_steps {
-            let Some(st) = self.choose(field, p, theta) else {
+            let Some((st, k)) = self.choose(field, p, theta, hint) else {
                 break;
             };
+            hint = k;
             if st.area < min_cut {
                 air += self.delta;
                 if air > AIR_RADII * self.r {
@@ -147,15 +178,20 @@ impl Stepper<'_> {
         (pts, removed)
     }
 
-    /// The most cells the first step from `p` heading `theta` can remove.
-    pub(crate) fn first_bite(&self, field: &Field, p: Point, theta: f64) -> f64 {
-        (0..=TURNS)
-            .filter_map(|k| {
-                let phi = -MAX_AWAY + (MAX_INTO + MAX_AWAY) * k as f64 / TURNS as f64;
-                self.at(field, p, theta, phi)
-            })
-            .map(|s| s.area)
-            .fold(0.0, f64::max)
+    /// True when some first step from `p` heading `theta` removes at least `need` cells
+    /// (the turns tried from the one deepest into the material, which usually bites most).
+    pub(crate) fn first_bite_reaches(
+        &self,
+        field: &Field,
+        p: Point,
+        theta: f64,
+        need: f64,
+    ) -> bool {
+        (0..=TURNS).rev().any(|k| {
+            let phi = -MAX_AWAY + (MAX_INTO + MAX_AWAY) * k as f64 / TURNS as f64;
+            self.at(field, p, theta, phi)
+                .is_some_and(|s| s.area >= need)
+        })
     }
 
     /// Where the material's edge that the tool at `p` (heading `theta`, clear of material and
@@ -173,26 +209,56 @@ impl Stepper<'_> {
         let mut travel = 0.0;
         let turns = 16;
         let max_turn = 1.0;
+        let mut hint = turns / 2;
         loop {
-            let mut best: Option<(Point, f64, f64)> = None;
-            let mut most: f64 = 0.0;
-            for k in 0..=turns {
-                let phi = -max_turn + 2.0 * max_turn * k as f64 / turns as f64;
-                let b = beta + self.side * phi;
+            // The largest turn whose disc overlaps the material by at most the goal, found
+            // from the last step's turn as [`Stepper::choose`] does; the whole fan only where
+            // no turn past it overlaps more (then the material must still be beside the walk:
+            // the most any turn overlaps at least 0.3 of the goal).
+            let at = |k: usize| {
+                let b = beta + self.side * (-max_turn + 2.0 * max_turn * k as f64 / turns as f64);
                 let c = q + Vec2::new(b.cos(), b.sin()) * self.delta;
-                if !self.walls.allows(field, c) {
-                    continue;
+                self.walls
+                    .allows(field, c)
+                    .then(|| (c, b, f64::from(field.count_disc(c, big))))
+            };
+            let mut best: Option<(Point, f64, usize)> = None;
+            let mut beyond = false;
+            let first = at(hint);
+            match first {
+                Some((c, b, n)) if n <= goal => {
+                    best = Some((c, b, hint));
+                    for k in hint + 1..=turns {
+                        match at(k) {
+                            None => {}
+                            Some((c, b, n)) if n <= goal => best = Some((c, b, k)),
+                            Some(_) => {
+                                beyond = true;
+                                break;
+                            }
+                        }
+                    }
                 }
-                let n = f64::from(field.count_disc(c, big));
-                most = most.max(n);
-                if n <= goal {
-                    best = Some((c, b, n));
+                _ => {
+                    beyond = first.is_some();
+                    for k in (0..hint).rev() {
+                        match at(k) {
+                            None => {}
+                            Some((c, b, n)) if n <= goal => {
+                                best = Some((c, b, k));
+                                break;
+                            }
+                            Some(_) => beyond = true,
+                        }
+                    }
                 }
             }
+            let enough = beyond || (0..=turns).filter_map(at).any(|(_, _, n)| n >= 0.3 * goal);
             match best {
-                Some((c, b, _)) if most >= 0.3 * goal => {
+                Some((c, b, k)) if enough => {
                     q = c;
                     beta = b;
+                    hint = k;
                     travel += self.delta;
                 }
                 _ => break,
