@@ -1,5 +1,9 @@
-//! Diagnostic: where an adaptive level's length goes, binned by the measured engagement.
-//! `cargo run --release --example adaptive_stats -- [stepover] [out.svg]`
+//! Diagnostic: where an adaptive level's length goes, binned by the measured engagement, and
+//! the moves with the highest engagement (entries aside).
+//! `cargo run --release --example adaptive_stats -- [stepover] [out.svg]`; `SHAPE=dumbbell`
+//! takes a pocket of the suite instead of the aerospace pocket (one 3 mm level),
+//! `KIND=spiral` the spiral instead of adaptive, `BOUND=0.4` the stepover whose straight cut
+//! sets the nominal engagement (default: the stepover).
 #![allow(clippy::print_stdout)]
 use millpath::stock::StockSpec;
 use millpath::stock::{SimOptions, simulate};

@@ -202,29 +202,36 @@ struct Planner<'f, 'w> {
 impl Planner<'_, '_> {
     /// Plans the next pass; false when nothing is left to clear.
     fn next_pass(&mut self, shape: &PocketShape, clear: f64, helix: f64) -> bool {
-        let st = self.stepper;
         let Some((p, theta, block)) = self.start() else {
             return self.new_helix(shape, clear, helix);
         };
+        if let Err(at) = self.pass_from(p, theta) {
+            self.tried[block] = true;
+            self.mark_tried(at);
+        }
+        true
+    }
+
+    /// A pass from `p` heading `theta` (from where the material's edge beside it begins, if
+    /// the walk back finds it), appended to the plan; where it cuts nothing, the point it
+    /// started from.
+    fn pass_from(&mut self, p: Point, theta: f64) -> Result<(), Point> {
+        let st = self.stepper;
         let (p, theta) = st.upstream(self.field, p, theta).unwrap_or((p, theta));
         self.field.record();
         let (pts, removed) = st.run(self.field, p, theta);
         if removed == 0 || pts.len() < 2 {
             self.field.undo();
-            self.tried[block] = true;
-            self.mark_tried(p);
-            return true;
+            return Err(p);
         }
         let path = self.fitted(&pts);
         self.field.undo();
         let from = self.descent_near(&pts);
         if self.cut_along(&path) == 0 {
-            self.tried[block] = true;
-            self.mark_tried(p);
-            return true;
+            return Err(p);
         }
         self.join(&pts, path, from);
-        true
+        Ok(())
     }
 
     /// Clears the field along the written path (the band each line sweeps; along an arc, tool

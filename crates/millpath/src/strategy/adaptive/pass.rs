@@ -8,8 +8,10 @@
 //! (`A(φ)`, counted on the field); a straight cut of radial width `a_e` removes `a_e·δ`, so
 //! holding `A(φ) = a_e·δ` holds the engagement of a straight cut of width `a_e`, which is how
 //! `--stepover` reads for this strategy. `A` grows as the step turns into the material, so
-//! the step taken is the largest turn on a grid of [`TURNS`] whose area is at most the
-//! target, refined by bisection towards the next turn up. Turns are bounded (at most
+//! the step taken is the turn where `A` crosses the target on a grid of [`TURNS`] turns,
+//! found by walking the grid from the last step's turn (the path's turn changes little from
+//! one step to the next: two or three counts instead of the whole grid), refined by
+//! bisection towards the next turn up. Turns are bounded (at most
 //! [`MAX_INTO`] into the material per step, [`MAX_AWAY`] away from it): the path's radius of
 //! curvature stays above `δ / MAX_INTO`.
 //!
