@@ -187,23 +187,31 @@ impl Field {
     pub(crate) fn clear_disc(&mut self, q: Point, r: f64) -> u32 {
         let mut n = 0;
         for (j, i0, i1) in self.disc_spans(q, r) {
-            let base = j * self.words;
-            let (w0, w1) = (i0 / 64, i1 / 64);
-            for w in w0..=w1 {
-                let mut m = u64::MAX;
-                if w == w0 {
-                    m &= u64::MAX << (i0 % 64);
-                }
-                if w == w1 {
-                    m &= u64::MAX >> (63 - i1 % 64);
-                }
-                let bits = self.material[base + w] & m;
-                if bits != 0 {
-                    n += bits.count_ones();
-                    self.material[base + w] &= !m;
-                    if let Some(log) = &mut self.log {
-                        log.push((base + w, bits));
-                    }
+            n += self.clear_span(j, i0, i1);
+        }
+        n
+    }
+
+    /// Clears the cells `i0..=i1` of row `j` (logged while recording); how many held
+    /// material.
+    fn clear_span(&mut self, j: usize, i0: usize, i1: usize) -> u32 {
+        let mut n = 0;
+        let base = j * self.words;
+        let (w0, w1) = (i0 / 64, i1 / 64);
+        for w in w0..=w1 {
+            let mut m = u64::MAX;
+            if w == w0 {
+                m &= u64::MAX << (i0 % 64);
+            }
+            if w == w1 {
+                m &= u64::MAX >> (63 - i1 % 64);
+            }
+            let bits = self.material[base + w] & m;
+            if bits != 0 {
+                n += bits.count_ones();
+                self.material[base + w] &= !m;
+                if let Some(log) = &mut self.log {
+                    log.push((base + w, bits));
                 }
             }
         }
@@ -278,25 +286,7 @@ impl Field {
             if i0 > i1 {
                 continue;
             }
-            let base = j * self.words;
-            let (w0, w1) = (i0 / 64, i1 / 64);
-            for w in w0..=w1 {
-                let mut m = u64::MAX;
-                if w == w0 {
-                    m &= u64::MAX << (i0 % 64);
-                }
-                if w == w1 {
-                    m &= u64::MAX >> (63 - i1 % 64);
-                }
-                let bits = self.material[base + w] & m;
-                if bits != 0 {
-                    n += bits.count_ones();
-                    self.material[base + w] &= !m;
-                    if let Some(log) = &mut self.log {
-                        log.push((base + w, bits));
-                    }
-                }
-            }
+            n += self.clear_span(j, i0, i1);
         }
         n
     }
