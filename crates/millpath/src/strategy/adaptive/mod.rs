@@ -256,10 +256,13 @@ impl Planner<'_, '_> {
         n
     }
 
-    /// The positions joined by arcs: where they stand clear of the walls, smoothed
-    /// ([`smoothed`]) and fitted, each arc kept only where every point of it (at most `h/2`
-    /// apart) is one the tool centre may stand at; chords through the positions near the
-    /// walls and wherever the fit is refused (a fitted curve can swing out at a sharp turn).
+    /// The written path through the positions: each run of them (clear of the walls, or
+    /// near them) smoothed ([`smoothed`]; near the walls a smoothed position the tool may not
+    /// stand at keeps its place), then written as the chords between the smoothed positions
+    /// or, with `--arcs`, as fitted arcs; either kept only where every point of it (at most
+    /// `h/2` apart) is one the tool centre may stand at, else the chords through the raw
+    /// positions (a fitted curve can swing out at a sharp turn, a chord between a smoothed and
+    /// a kept position can cut a corner).
     fn fitted(&self, pts: &[Point]) -> Vec<Seg> {
         let (field, walls) = (&*self.field, self.stepper.walls);
         let h = field.h;
