@@ -138,29 +138,62 @@ impl Field {
         let cx = (q.x - self.x0) * inv - 0.5;
         let cy = (q.y - self.y0) * inv - 0.5;
         let rc = r * inv;
-        let lo = ceil(cy - rc).max(0.0) as usize;
-        let hi = floor(cy + rc);
-        let hi = if hi < 0.0 {
-            0
-        } else {
-            (hi as usize + 1).min(self.ny)
-        };
-        let last = self.nx - 1;
-        (lo..hi.max(lo)).filter_map(move |j| {
+        let (lo, hi) = self.rows(cy - rc, cy + rc);
+        let last = self.nx as i64 - 1;
+        (lo..hi).filter_map(move |j| {
             let dy = j as f64 - cy;
             let half2 = rc * rc - dy * dy;
             if half2 < 0.0 {
                 return None;
             }
             let half = half2.sqrt();
-            let i0 = ceil(cx - half).max(0.0);
-            let i1 = floor(cx + half);
-            if i1 < i0 || i1 < 0.0 {
-                return None;
-            }
-            let (i0, i1) = (i0 as usize, (i1 as usize).min(last));
-            (i0 <= i1).then_some((j, i0, i1))
+            let i0 = ceil_i(cx - half).max(0);
+            let i1 = floor_i(cx + half).min(last);
+            (i0 <= i1).then_some((j, i0 as usize, i1 as usize))
         })
+    }
+
+    /// The rows whose centres lie in `[y0, y1]` (cell units), clipped to the grid.
+    fn rows(&self, y0: f64, y1: f64) -> (usize, usize) {
+        let lo = ceil_i(y0).max(0) as usize;
+        let hi = (floor_i(y1) + 1).clamp(0, self.ny as i64) as usize;
+        (lo, hi.max(lo))
+    }
+
+    /// Whether the cells within `r` of `q` hold more than `k` material cells: the count of
+    /// [`Field::count_disc`] compared with `k`, stopping once it is decided. The square
+    /// around the disc is looked at first, a word at a time: where it holds no material,
+    /// neither does the disc.
+    pub(crate) fn disc_holds_more_than(&self, q: Point, r: f64, k: u32) -> bool {
+        let inv = 1.0 / self.h;
+        let cx = (q.x - self.x0) * inv - 0.5;
+        let cy = (q.y - self.y0) * inv - 0.5;
+        let rc = r * inv;
+        let (lo, hi) = self.rows(cy - rc, cy + rc);
+        let i0 = ceil_i(cx - rc).max(0);
+        let i1 = floor_i(cx + rc).min(self.nx as i64 - 1);
+        if i0 > i1 || lo == hi {
+            return false;
+        }
+        let (i0, i1) = (i0 as usize, i1 as usize);
+        let any = (lo..hi).any(|j| {
+            let base = j * self.words;
+            span_masks(i0, i1).any(|(w, m)| self.material[base + w] & m != 0)
+        });
+        if !any {
+            return false;
+        }
+        let mut n = 0;
+        for (j, i0, i1) in self.disc_spans(q, r) {
+            let base = j * self.words;
+            for (w, m) in span_masks(i0, i1) {
+                n += (self.material[base + w] & m).count_ones();
+            }
+            if n > k {
+                return true;
+            }
+        }
+        false
     }
 
     /// The material cells within `r` of `q`.
@@ -413,6 +446,19 @@ fn ceil(x: f64) -> f64 {
     }
 }
 
+/// `⌊x⌋` as an integer: exact where it fits in an `i64` (cell indices do), saturated beyond,
+/// 0 for NaN.
+fn floor_i(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x { t - 1 } else { t }
+}
+
+/// `⌈x⌉` as an integer (see [`floor_i`]).
+fn ceil_i(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) < x { t + 1 } else { t }
+}
+
 /// The (word, mask) pairs covering bits `i0..=i1`.
 fn span_masks(i0: usize, i1: usize) -> impl Iterator<Item = (usize, u64)> {
     let (w0, w1) = (i0 / 64, i1 / 64);
@@ -600,6 +646,33 @@ mod tests {
             assert!(brute > 0);
             assert_eq!(f.count_disc(q, r), brute, "{q:?} {r}");
         }
+    }
+
+    /// The early-stopping test agrees with the cells counted one by one, on a field with
+    /// holes cleared in it, for thresholds below, at and above each disc's count.
+    #[test]
+    fn disc_thresholds_agree_with_the_cells_one_by_one() {
+        let mut f = Field::new(&square(30.0), 0.1, 1.0);
+        f.clear_disc(Point::new(10.0, 10.0), 6.0);
+        f.clear_capsule(Point::new(3.0, 25.0), Point::new(28.0, 20.0), 2.5);
+        let mut checked = 0;
+        for k in 0..200 {
+            let t = f64::from(k);
+            let q = Point::new(-2.0 + (t * 7.31) % 34.0, -2.0 + (t * 3.77) % 34.0);
+            let r = 0.3 + (t * 1.13) % 7.0;
+            let brute = (0..f.ny)
+                .flat_map(|j| (0..f.nx).map(move |i| (i, j)))
+                .filter(|&(i, j)| f.get(i, j) && f.centre(i, j).distance(q) <= r)
+                .count() as u32;
+            for k in [0, 1, brute.saturating_sub(1), brute, brute + 1, 4] {
+                assert_eq!(f.disc_holds_more_than(q, r, k), brute > k, "{q:?} {r} {k}");
+            }
+            checked += u32::from(brute == 0) + u32::from(brute > 0) * 2;
+        }
+        assert!(
+            checked > 250,
+            "both empty and holding discs are tried: {checked}"
+        );
     }
 
     /// The distance from `p` to the segment `a`–`b`.

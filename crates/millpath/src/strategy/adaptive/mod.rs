@@ -343,7 +343,7 @@ impl Planner<'_, '_> {
         let start = pts[0];
         let reach = st.r + DESCENT_CELLS * field.h;
         let clear = |q: Point| {
-            field.count_disc(q, reach) == 0
+            !field.disc_holds_more_than(q, reach, 0)
                 && st.walls.distance(field, q) >= st.walls.clear + DESCENT_CELLS * field.h
         };
         if clear(start) {
@@ -373,7 +373,9 @@ impl Planner<'_, '_> {
         (0..=n).all(|k| {
             let q = a.lerp(b, k as f64 / n as f64);
             self.stepper.walls.allows(self.field, q)
-                && self.field.count_disc(q, self.stepper.r) <= LINK_CELLS
+                && !self
+                    .field
+                    .disc_holds_more_than(q, self.stepper.r, LINK_CELLS)
         })
     }
 
@@ -419,7 +421,7 @@ impl Planner<'_, '_> {
             let (mut lo, mut hi) = (-3.0 * hc, 3.0 * hc);
             let clear_at = |t: f64| {
                 let q = c + n * t;
-                st.walls.allows(self.field, q) && self.field.count_disc(q, st.r) == 0
+                st.walls.allows(self.field, q) && !self.field.disc_holds_more_than(q, st.r, 0)
             };
             if !clear_at(lo) {
                 self.tried[k] = true;
@@ -467,7 +469,9 @@ impl Planner<'_, '_> {
     fn new_helix(&mut self, shape: &PocketShape, clear: f64, helix: f64) -> bool {
         let st = self.stepper;
         let (nx, ny) = self.field.size();
-        let disc_cells = std::f64::consts::PI * (st.r / self.field.h).powi(2);
+        // At least half of the disc's cells: `n ≥ π r² / 2` for a count `n`.
+        let half_disc =
+            ((0.5 * (std::f64::consts::PI * (st.r / self.field.h).powi(2))).ceil() as u32).max(1);
         // Cells whose disc is at least half material, on a grid of blocks; of those within
         // a block of the largest wall distance, the one nearest their centroid (the middle of
         // a ridge of equal distances, not its end).
@@ -481,7 +485,7 @@ impl Planner<'_, '_> {
                     continue;
                 }
                 let c = self.field.centre(i, j);
-                if f64::from(self.field.count_disc(c, st.r)) >= 0.5 * disc_cells {
+                if self.field.disc_holds_more_than(c, st.r, half_disc - 1) {
                     top = top.max(w);
                     found.push((w, c));
                 }
@@ -596,7 +600,7 @@ impl Planner<'_, '_> {
                 if !st.walls.allows(field, q) {
                     break;
                 }
-                if field.count_disc(q, reach) == 0 {
+                if !field.disc_holds_more_than(q, reach, 0) {
                     return Some(q);
                 }
                 d += field.h;
