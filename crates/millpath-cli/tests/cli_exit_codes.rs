@@ -166,6 +166,24 @@ fn optimize_and_five_axis_tolerances_out_of_range_are_bad_input() {
         assert!(stderr(&o).contains("--min-interval"), "{}", stderr(&o));
         assert!(!dir.path().join("f.csv").exists());
     }
+    for value in ["-1", "16", "nan"] {
+        let o = millpath(
+            &[
+                "five-axis",
+                "--case",
+                "paper",
+                "--no-baseline",
+                "--tilt-tolerance",
+                value,
+                "--csv",
+                "f.csv",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{value}: {}", stderr(&o));
+        assert!(stderr(&o).contains("--tilt-tolerance"), "{}", stderr(&o));
+        assert!(!dir.path().join("f.csv").exists());
+    }
 }
 
 #[test]

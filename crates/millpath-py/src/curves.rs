@@ -266,6 +266,8 @@ pub fn five_axis<'py>(
     k.opt_u32("end_knots", &mut end_knots)?;
     let mut min_interval = None;
     k.opt_f64("min_interval", &mut min_interval)?;
+    let mut tilt_tolerance_deg = None;
+    k.opt_f64("tilt_tolerance", &mut tilt_tolerance_deg)?;
     k.finish()?;
     let case = match (&case, &path) {
         (None, None) => Some("paper".to_owned()),
@@ -280,6 +282,7 @@ pub fn five_axis<'py>(
         no_baseline,
         end_knots: end_knots.map(|k| k as usize),
         min_interval,
+        tilt_tolerance_deg,
         dt,
         ..FiveAxisSettings::default()
     };

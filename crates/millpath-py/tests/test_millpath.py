@@ -436,6 +436,37 @@ def test_five_axis_min_interval_equals_cli_and_is_bounded():
         millpath.five_axis(path=sweep, machine="xyzac-trt", min_interval=-1.0)
 
 
+def test_five_axis_tilt_tolerance_equals_cli_and_is_bounded(tmp_path):
+    """A sweep passing 0.5 degrees beside the pole: within a 1 degree tilt tolerance the axes
+    are moved to pass it (one window reported), and the plan runs close to its length / feed
+    (3.33 s) instead of several times it."""
+    import math
+    path = tmp_path / "beside.csv"
+    c = 1 / math.sqrt(2)
+    e = math.radians(0.5)
+    rows = ["# unit: mm", "x,y,z,i,j,k"]
+    for k in range(200):
+        u = k / 199
+        t = math.radians(-30 + 60 * u)
+        v = [math.sin(t) * c - math.sin(e) * c * math.cos(t),
+             math.sin(t) * c + math.sin(e) * c * math.cos(t), math.cos(t) * math.cos(e)]
+        n = math.sqrt(sum(x * x for x in v))
+        rows.append(f"{-50 + 100 * u:.6f},0,0,{v[0] / n:.6f},{v[1] / n:.6f},{v[2] / n:.6f}")
+    path.write_text("\n".join(rows) + "\n")
+    d = millpath.five_axis(path=path, machine="xyzac-trt", no_baseline=True, tilt_tolerance=1.0,
+                           dt=0.01)
+    js = json.loads(cli("five-axis", str(path), "--machine", "xyzac-trt", "--no-baseline",
+                        "--tilt-tolerance", "1", "--json").stdout)
+    assert d["report"]["total_time_s"] == js["total_time_s"] < 1.1 * 100 / 30
+    assert len(d["report"]["pole_windows"]) == 1
+    assert d["report"]["pole_windows"][0]["max_axis_change_rad"] <= math.radians(1.0) + 1e-12
+    plain = millpath.five_axis(path=path, machine="xyzac-trt", no_baseline=True, dt=0.01)
+    assert plain["report"]["pole_windows"] == []
+    assert plain["report"]["total_time_s"] > 2 * 100 / 30
+    with pytest.raises(millpath.InputError, match="tilt-tolerance"):
+        millpath.five_axis(path=path, machine="xyzac-trt", tilt_tolerance=20.0)
+
+
 def test_machines_equal_cli():
     assert millpath.machines() == json.loads(cli("machines", "--json").stdout)
 

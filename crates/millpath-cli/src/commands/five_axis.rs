@@ -79,6 +79,11 @@ pub struct Args {
     /// of them (0: every pose a knot) [default: 0.01].
     #[arg(long)]
     pub min_interval: Option<f64>,
+    /// Move each tool axis by at most this many degrees where the path passes near the pole
+    /// (the tool along C), so that C does not whip round; where it did is reported
+    /// [default: 0, the axes as given].
+    #[arg(long, value_name = "DEG")]
+    pub tilt_tolerance: Option<f64>,
     /// Print the result as JSON.
     #[arg(long)]
     pub json: bool,
@@ -133,6 +138,7 @@ impl Args {
             no_baseline: self.no_baseline,
             end_knots: self.end_knots,
             min_interval: self.min_interval,
+            tilt_tolerance_deg: self.tilt_tolerance,
             dt: self.dt,
             gcode: self
                 .gcode
@@ -217,6 +223,16 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 d.times_s[0],
                 d.times_s[1],
                 r.deflection_violations.len()
+            ));
+        }
+        for w in &r.pole_windows {
+            print(&format!(
+                "near the pole: poses {}..{} axes moved by at most {:.3} deg (--tilt-tolerance), largest C step {:.1} -> {:.1} deg",
+                w.first_pose,
+                w.last_pose,
+                w.max_axis_change_rad.to_degrees(),
+                w.max_c_step_before_rad.to_degrees(),
+                w.max_c_step_after_rad.to_degrees()
             ));
         }
         for w in &r.ik_warnings {

@@ -330,6 +330,7 @@ def five_axis(
     no_deflection: bool = False,
     end_knots: Optional[int] = None,
     min_interval: Optional[float] = None,
+    tilt_tolerance: Optional[float] = None,
     dt: float = 0.001,
 ) -> Dict[str, Any]:
     """Five-axis minimum-time trajectory: report dict, axes, and sampled arrays t, feed

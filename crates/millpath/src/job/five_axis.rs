@@ -49,6 +49,9 @@ pub struct FiveAxisSettings {
     /// ([`crate::motion::five_axis::MergeOptions::min_interval_s`]); `None` for its default,
     /// 0 to plan every pose as a knot.
     pub min_interval: Option<f64>,
+    /// How far each tool axis may move to pass the pole without C whipping round, degrees
+    /// ([`crate::motion::five_axis::FiveAxisOptions::tilt_tolerance`]); `None`: not at all.
+    pub tilt_tolerance_deg: Option<f64>,
     /// Sample step of [`FiveAxisRun::samples`], s.
     pub dt: f64,
     /// Write a joint program with these settings; `g94` for feeds in mm/min instead of G93.
@@ -68,6 +71,7 @@ impl Default for FiveAxisSettings {
             no_baseline: false,
             end_knots: None,
             min_interval: None,
+            tilt_tolerance_deg: None,
             dt: 0.005,
             gcode: None,
         }
@@ -216,6 +220,17 @@ pub fn run(s: &FiveAxisSettings) -> Result<FiveAxisRun, Error> {
                 .into());
         }
         opts.merge.min_interval_s = t;
+    }
+    if let Some(t) = s.tilt_tolerance_deg {
+        let max = planner::MAX_TILT_TOLERANCE.to_degrees();
+        if !(t.is_finite() && (0.0..=max).contains(&t)) {
+            return Err(InputError::new("--tilt-tolerance", t)
+                .expected(format!(
+                    "an angle from 0 (the axes as given) to {max:.0} degrees"
+                ))
+                .into());
+        }
+        opts.tilt_tolerance = t.to_radians();
     }
     let outcome = planner::plan(kin.as_ref(), &poses, &limits, &opts, deflection)?;
     let gcode = match gcode {

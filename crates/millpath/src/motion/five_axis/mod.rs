@@ -9,7 +9,11 @@
 //!
 //! # Pipeline
 //! 1. Poses (tool tip + axis, workpiece frame, mm) → joints by inverse kinematics, each nearest
-//!    its predecessor ([`crate::machine::kinematics::inverse_path`]); warnings kept.
+//!    its predecessor ([`crate::machine::kinematics::inverse_path`]); warnings kept. With a
+//!    tilt tolerance ([`FiveAxisOptions::tilt_tolerance`]), the axes moved by at most it
+//!    where the path passes beside the pole, so that C does not turn round there (`pole`:
+//!    the straightest C within each pose's tolerance band, checked through the forward
+//!    kinematics; [`PoleWindow`] says where).
 //! 2. One quintic per joint per interval (`quintic`). **Deviation from the paper:** the
 //!    paper interpolates `x_w, y_w, z_w, A, B` and maps to the linear motors through equation
 //!    (6); we interpolate the five *motor* positions, so every motor limit is a polynomial
@@ -42,6 +46,7 @@ pub(crate) mod ends;
 pub(crate) mod knots;
 pub(crate) mod merge;
 pub(crate) mod min_time;
+pub(crate) mod pole;
 pub(crate) mod quintic;
 pub(crate) mod segment;
 pub(crate) mod verify;
@@ -60,11 +65,12 @@ pub use min_time::{
     Binding, Check, FeedCheck, KnotState, Limits, MinTimeOptions, Segment, check, lower_bound,
     max_feed, min_time, min_time_near,
 };
+pub use pole::{MAX_TILT_TOLERANCE, PoleWindow, WINDOW_TOLERANCES};
 pub use verify::{VerifyReport, Violation, verify};
 
 use crate::error::{Error, InputError};
 use crate::geom::Point3;
-use crate::machine::kinematics::{IkOptions, Joints, Kinematics, Pose, PoseWarning, inverse_path};
+use crate::machine::kinematics::{IkOptions, Joints, Kinematics, Pose, PoseWarning};
 use serde::{Deserialize, Serialize};
 
 /// A clock started now: the returned function gives the wall time since, s (the compute-time
@@ -106,6 +112,10 @@ pub struct FiveAxisOptions {
     /// Dense poses merged into longer intervals (`merge`): rounding in the poses costs a
     /// jerk of order `δ/T³`, so intervals shorter than about 10 ms cannot run at the feed.
     pub merge: MergeOptions,
+    /// How far each tool axis may be moved to pass the pole without the free rotary axis
+    /// whipping round, rad (`pole`: the axes within `4·τ` of the pole, C taken as the
+    /// straightest within the tolerance). Default 0: the axes as given.
+    pub tilt_tolerance: f64,
 }
 
 impl Default for FiveAxisOptions {
@@ -117,6 +127,7 @@ impl Default for FiveAxisOptions {
             verify_samples: 400,
             end_knots: None,
             merge: MergeOptions::default(),
+            tilt_tolerance: 0.0,
         }
     }
 }
@@ -135,6 +146,8 @@ option_builders! {
     with_end_knots => end_knots: Option<usize>;
     /// Sets [`FiveAxisOptions::merge`].
     with_merge => merge: MergeOptions;
+    /// Sets [`FiveAxisOptions::tilt_tolerance`].
+    with_tilt_tolerance => tilt_tolerance: f64;
 }
 
 /// The library result (serialised as the CLI's JSON).
@@ -192,6 +205,8 @@ pub struct FiveAxisResult {
     pub baseline_compute_time_s: Option<f64>,
     /// Inverse-kinematics warnings, by pose.
     pub ik_warnings: Vec<PoseWarning>,
+    /// Where the axes were moved within [`FiveAxisOptions::tilt_tolerance`] to pass the pole.
+    pub pole_windows: Vec<PoleWindow>,
     /// The deflection replanning, if asked for.
     pub deflection: Option<Replan>,
     /// Verifier on the replanned intervals.
@@ -242,7 +257,8 @@ pub fn plan(
         .iter()
         .map(|p| Pose::new(p.tip, p.axis))
         .collect::<Result<_, _>>()?;
-    let (joints0, warnings) = inverse_path(kin, &poses, &opts.ik)?;
+    let (poses, joints0, warnings, pole_windows) =
+        pole::straighten(kin, &poses, &opts.ik, opts.tilt_tolerance)?;
     let geo0 = Geometry::new(&joints0);
     let mt = &opts.knots.min_time;
 
@@ -380,6 +396,7 @@ pub fn plan(
                 warning: w.clone(),
             })
             .collect(),
+        pole_windows,
         deflection: replan,
         deflection_violations: dviol,
     };
