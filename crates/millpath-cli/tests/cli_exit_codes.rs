@@ -238,3 +238,23 @@ fn sweep_honours_the_draft() {
     // 0.53 mm smaller all round (27.70 s against 27.79 s with rows up to 0.95 r off the walls).
     assert!(drafted < plain - 0.02, "{drafted} vs {plain}");
 }
+
+/// A drawing at building scale with the default 12.7 mm tool (`ez_insert_bricscad_level_1.dxf`:
+/// six 4.3 × 5.5 m panels, in metres by its header) would plan about 19 km of path per
+/// panel and take tens of gigabytes: refused at once, naming the estimate and the units,
+/// with every strategy, and no file written.
+#[test]
+fn a_building_scale_drawing_with_the_default_tool_is_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = common::real_input("ez_insert_bricscad_level_1.dxf");
+    for strategy in ["spiral", "adaptive"] {
+        let o = millpath(
+            &["pocket", &path, "--strategy", strategy, "-o", "p.ngc"],
+            dir.path(),
+        );
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{strategy}: {e}");
+        assert!(e.contains("km") && e.contains("drawing's units"), "{e}");
+        assert!(!dir.path().join("p.ngc").exists());
+    }
+}
