@@ -324,7 +324,7 @@ fn check_path_size(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Re
                 MAX_PATH_MM / 1.0e6,
                 length / 1.0e6,
                 levels,
-                if levels == 1.0 { "" } else { "s" },
+                if levels < 1.5 { "" } else { "s" },
                 step
             ))
             .into(),
