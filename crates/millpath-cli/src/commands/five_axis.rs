@@ -238,6 +238,27 @@ pub fn run(args: &Args) -> Result<(), Error> {
         for w in &r.ik_warnings {
             print(&format!("warning: {w}"));
         }
+        let near_pole = r.ik_warnings.iter().any(|w| {
+            matches!(
+                w.warning,
+                millpath::machine::kinematics::IkWarning::NearPole { .. }
+            )
+        });
+        // C's largest step between knots: a path through the pole keeps C still.
+        let c_step = job
+            .outcome
+            .schedule
+            .states
+            .windows(2)
+            .map(|w| (w[1].q[4] - w[0].q[4]).abs())
+            .fold(0.0, f64::max);
+        if near_pole && r.pole_windows.is_empty() && c_step > 10f64.to_radians() {
+            print(&format!(
+                "hint: the path passes beside the pole and C turns up to {:.0}° between knots; \
+                 --tilt-tolerance DEG lets the axes move by up to DEG so that it does not",
+                c_step.to_degrees()
+            ));
+        }
     }
     if !r.violations.is_empty() {
         return Err(Error::internal(format!(
