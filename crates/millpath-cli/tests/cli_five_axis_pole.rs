@@ -70,3 +70,39 @@ fn beside_the_pole_the_tilt_tolerance_is_suggested_then_used() {
     let t = v["total_time_s"].as_f64().unwrap();
     assert!(t < 1.1 * 100.0 / 30.0, "{t}");
 }
+
+/// The joint program is not written where the planned tip strays from the path (C turning
+/// 34° between poses swings the tip 0.42 mm off it); with the tilt tolerance it is.
+#[test]
+fn a_joint_program_off_the_path_is_not_written() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("beside.csv"), beside_csv()).unwrap();
+    let base = [
+        "five-axis",
+        "beside.csv",
+        "--machine",
+        "xyzac-trt",
+        "--no-baseline",
+        "--gcode",
+        "p.ngc",
+    ];
+    let o = millpath(&base, dir.path());
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("--gcode") && e.contains("--tilt-tolerance"),
+        "{e}"
+    );
+    assert!(!dir.path().join("p.ngc").exists());
+    let o = millpath(
+        &[&base[..], &["--tilt-tolerance", "1"]].concat(),
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = std::fs::read_to_string(dir.path().join("p.ngc")).unwrap();
+    assert!(
+        text.contains("G93") && text.lines().count() > 50,
+        "{}",
+        text.len()
+    );
+}

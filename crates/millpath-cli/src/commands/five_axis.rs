@@ -244,6 +244,14 @@ pub fn run(args: &Args) -> Result<(), Error> {
                 millpath::machine::kinematics::IkWarning::NearPole { .. }
             )
         });
+        let dev = r.max_path_deviation_mm;
+        if dev > millpath::job::five_axis::MAX_GCODE_PATH_DEVIATION {
+            print(&format!(
+                "warning: the planned tool tip strays up to {dev:.4} mm from the path (the joints \
+                 move together between poses); no --gcode is written beyond {} mm",
+                millpath::job::five_axis::MAX_GCODE_PATH_DEVIATION
+            ));
+        }
         // C's largest step between knots: a path through the pole keeps C still.
         let c_step = job
             .outcome
