@@ -16,15 +16,20 @@
 //! d)`, and with any C at all where `d ≤ τ`.
 //!
 //! # The straightest C
-//! Near each close approach (the poses within [`WINDOW_TOLERANCES`] `τ` of the pole) C is
-//! taken as the *taut string* through these bands: the shortest curve `C(s)` over the path's
-//! arc length `s` from the C before the window to the C after it (the band's centre
-//! nearest the C before: the tilt changes sign instead of C turning round) that stays in
-//! every band ([`taut_string`]: straight lines bent only at band edges). Each pose then takes
-//! its best tilt for that C and the linear axes that keep its tip. A window is kept only if
-//! its largest C step between poses is smaller than before; the axes and tips of the kept
-//! poses are checked through the forward kinematics (angle ≤ `τ`, tip within 1e-6 mm), so the
-//! band's model is never trusted blind: a machine where it does not hold keeps its poses.
+//! Over a window of poses C is taken as the *taut string* through these bands: the shortest
+//! curve `C(s)` over the path's arc length `s` from the C before the window to the C after
+//! it that stays in every band ([`taut_string`]: straight lines bent only at band edges).
+//! The bands' branch (mod π) is placed two ways and the one with the smaller largest C step
+//! kept: each nearest the line between the ends, the end nearest the C before (the tilt
+//! changes sign instead of C turning round), or each nearest the band before it (C turns
+//! with the path, the turn cut short). Each pose then takes its best tilt for that C and the
+//! linear axes that keep its tip. The whole path (its ends fixed) is tried as one window
+//! first: a window's edges bend C where the bands are narrow, and the knot optimiser plans
+//! such a bend badly. Where that is not kept, windows of the poses within
+//! [`WINDOW_TOLERANCES`] `τ` of the pole are tried. A window is kept only if its largest C
+//! step between poses is smaller than before; the axes and tips of the kept poses are
+//! checked through the forward kinematics (angle ≤ `τ`, tip within 1e-6 mm), so the band's
+//! model is never trusted blind: a machine where it does not hold keeps its poses.
 
 use crate::error::InputError;
 use crate::geom::Vec3;
