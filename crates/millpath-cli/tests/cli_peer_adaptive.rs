@@ -58,10 +58,13 @@ fn our_adaptive_beats_freecads_on_linuxcnc_and_on_hsm() {
                 machine,
                 "-o",
                 &ours,
+                "--report",
+                "report.json",
             ],
             dir.path(),
         );
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        report_adds_up(&dir.path().join("report.json"));
         let time = |file: &str| {
             json_cycle_time(&millpath(
                 &["estimate", file, "--machine", machine, "--json"],
@@ -107,4 +110,31 @@ fn adaptive_verified(dir: &Path, name: &str) {
     );
     assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
     verified(dir, "gear.ngc", &drawing);
+}
+
+/// The report's removal figures against the pocket's geometry: the volume the simulation
+/// found removed is the pocket's area times its 5 mm depth (less the four r 6 corners a
+/// 6.35 mm radius cannot reach), the removal rate is that over the cycle time, the time not
+/// cutting is part of the cycle time, the entries aside the engagement stays within
+/// 1.3 × the 78.5° target, and the corners force 65.5° (r 6 < 6.35: square corners of the
+/// tool-centre region).
+fn report_adds_up(path: &Path) {
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(path).expect("report")).expect("JSON");
+    let f = |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("a number: {r}"));
+    let area = f(&r["pockets"][0]["area_mm2"]);
+    let removed = f(&r["verification"]["removed_mm3"]);
+    assert!(
+        (removed - 5.0 * area).abs() < 0.002 * 5.0 * area,
+        "removed {removed:.0} mm³, the pocket holds {:.0}",
+        5.0 * area
+    );
+    let cycle = f(&r["cycle_time_s"]);
+    assert!((f(&r["removal_rate_mm3_s"]) * cycle - removed).abs() < 1e-6 * removed);
+    let (air, rapid) = (f(&r["air_time_s"]), f(&r["rapid_time_s"]));
+    assert!(0.0 < rapid && rapid <= air && air < cycle, "{r}");
+    let e = &r["verification"]["engagement"];
+    assert!(f(&e["max_deg"]) <= 1.3 * 78.463, "{e}");
+    assert!(f(&e["share_above_bound"]) <= 0.01, "{e}");
+    assert!((f(&r["engagement_floor_deg"]) - 65.53).abs() < 0.01, "{r}");
 }

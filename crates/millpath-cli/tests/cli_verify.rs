@@ -113,3 +113,71 @@ fn verify_takes_the_tool_from_the_programs_header() {
         assert_eq!(o.status.code(), Some(0), "{dialect}: {}", stderr(&o));
     }
 }
+
+/// `verify --machine`: the volume removed, the engagement outside the entries, what the
+/// corners force, and the program planned on the machine (its cycle time as `estimate`
+/// plans it, the time not cutting, the removal rate), on the rectangle's offset pocket
+/// (6 mm tool, 2 mm deep: the rectangle less the four corners a round tool cannot reach,
+/// `r²(1 − π/4)` each).
+#[test]
+fn verify_reports_the_removal_the_time_not_cutting_and_the_corners_floor() {
+    let dir = tempfile::tempdir().unwrap();
+    let name = program(dir.path(), "linuxcnc");
+    let o = millpath(
+        &[
+            "verify",
+            &name,
+            "--outline",
+            "box.svg",
+            "--machine",
+            "hsm",
+            "--json",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let f = |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("a number: {r}"));
+    let removed = f(&r["verification"]["removed_mm3"]);
+    let want = (40.0 * 30.0 - 4.0 * 9.0 * (1.0 - std::f64::consts::FRAC_PI_4)) * 2.0;
+    assert!(
+        (removed - want).abs() < 0.005 * want,
+        "removed {removed:.1} mm³ against {want:.1}"
+    );
+    // A square corner: acos(√2 − 1) = 65.53°.
+    assert!((f(&r["engagement_floor_deg"]) - 65.53).abs() < 0.01, "{r}");
+    let e = &r["verification"]["engagement"];
+    assert!(
+        f(&e["cutting_mm"]) > 0.0 && f(&e["p95_deg"]) <= f(&e["max_deg"]),
+        "{r}"
+    );
+    let t = &r["timing"];
+    let (cycle, air, rapid) = (
+        f(&t["cycle_time_s"]),
+        f(&t["air_time_s"]),
+        f(&t["rapid_time_s"]),
+    );
+    let est = millpath(
+        &["estimate", &name, "--machine", "hsm", "--json"],
+        dir.path(),
+    );
+    let est: serde_json::Value = serde_json::from_slice(&est.stdout).expect("estimate JSON");
+    let planned = f(&est["cycle_time_s"]);
+    assert!(
+        (cycle - planned).abs() < 1e-6 * planned,
+        "{cycle} against {planned}"
+    );
+    assert!(0.0 < rapid && rapid <= air && air < cycle, "{t}");
+    assert!((f(&t["removal_rate_mm3_s"]) * cycle - removed).abs() < 1e-6 * removed);
+    // The text says the same on its second line.
+    let o = millpath(
+        &["verify", &name, "--outline", "box.svg", "--machine", "hsm"],
+        dir.path(),
+    );
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with("removal ") && l.contains("the sharpest corner forces 65.5°")),
+        "{text}"
+    );
+}

@@ -4,12 +4,15 @@
 //! largest, per pocket. The tool is sized to the drawing as `cli_real_files` sizes it (a
 //! tenth of the largest pocket's smaller side, from 0.5 to 10 mm); one level 3 mm deep
 //! (at most the tool's diameter).
+//! The last column is the engagement the pocket's sharpest corner forces on any program
+//! (`pocket::engagement_floor`), as a multiple of the stepover's.
 //! `cargo run --release --example adaptive_drawings -- [stepover] FILE...`
 #![allow(clippy::print_stdout)]
 use millpath::io::{ImportSettings, read_outline_file};
 use millpath::stock::{SimOptions, StockSpec, engagement_stats, simulate};
 use millpath::strategy::pocket::{
-    PocketOptions, PocketShape, Stepover, StrategyKind, nominal_engagement, toolpath,
+    PocketOptions, PocketShape, Stepover, StrategyKind, engagement_floor, nominal_engagement,
+    toolpath,
 };
 use millpath::toolpath::Tool;
 
@@ -19,8 +22,8 @@ fn main() {
         Some(s) => (s, &args[1..]),
         None => (0.4, &args[..]),
     };
-    println!("| drawing | pocket | tool | cut | p99 | max | above 1.1 × |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| drawing | pocket | tool | cut | p99 | max | above 1.1 × | corner floor |");
+    println!("|---|---|---|---|---|---|---|---|");
     for f in files {
         let name = f.rsplit('/').next().unwrap_or(f);
         let loops = match read_outline_file(f, &ImportSettings::default()) {
@@ -70,13 +73,15 @@ fn main() {
                 &SimOptions::default().with_record_samples(true),
             );
             let st = engagement_stats(&tp, &sim.samples, 1.1 * nominal);
+            let floor = engagement_floor(&shape, &tool, 0.0).to_degrees();
             println!(
-                "| {name} | {} | {d} | {:.0} mm | {:.2} × | {:.2} × | {:.2} % |",
+                "| {name} | {} | {d} | {:.0} mm | {:.2} × | {:.2} × | {:.2} % | {:.2} × |",
                 k + 1,
                 st.cutting_mm,
                 st.p99_deg / nominal,
                 st.max_deg / nominal,
-                100.0 * st.share_above_bound
+                100.0 * st.share_above_bound,
+                floor / nominal
             );
         }
     }

@@ -1,7 +1,8 @@
 //! Diagnostic: where an adaptive level's length goes, binned by the measured engagement, and
 //! the moves with the highest engagement (entries aside).
 //! `cargo run --release --example adaptive_stats -- [stepover] [out.svg]`; `SHAPE=dumbbell`
-//! takes a pocket of the suite instead of the aerospace pocket (one 3 mm level),
+//! takes a pocket of the suite instead of the aerospace pocket (one 3 mm level), `FILE=F
+//! POCKET=K D=d` the K-th pocket of a drawing with a tool of diameter d,
 //! `KIND=spiral` the spiral instead of adaptive, `BOUND=0.4` the stepover whose straight cut
 //! sets the nominal engagement (default: the stepover).
 #![allow(clippy::print_stdout)]
@@ -22,7 +23,26 @@ fn main() {
             .find(|s| s.name == name)
             .map(|s| (s.shape, s.tool_diameter))
             .expect("a shape of the suite"),
-        Err(_) => (builtin::aerospace_pocket(), 12.7),
+        Err(_) => match std::env::var("FILE") {
+            Ok(f) => {
+                let (loops, _) =
+                    millpath::io::read_outline_file(&f, &millpath::io::ImportSettings::default())
+                        .expect("a drawing");
+                let k: usize = std::env::var("POCKET")
+                    .ok()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or(1);
+                let p = loops.pockets().into_iter().nth(k - 1).expect("pocket");
+                let d: f64 = std::env::var("D")
+                    .ok()
+                    .and_then(|s| s.parse().ok())
+                    .expect("D, the tool diameter");
+                let shape = millpath::strategy::pocket::PocketShape::new(p.outer, p.islands, "f")
+                    .expect("shape");
+                (shape, d)
+            }
+            Err(_) => (builtin::aerospace_pocket(), 12.7),
+        },
     };
     let tool = Tool::flat(d).expect("tool");
     let kind = match std::env::var("KIND").as_deref() {

@@ -292,6 +292,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         }
     }
     super::print(&summary_line(rep));
+    super::print(&removal_line(rep));
     for p in &rep.problems {
         super::eprint(&format!("verification: {p}"));
     }
@@ -323,6 +324,26 @@ fn summary_line(rep: &millpath::job::PocketReport) -> String {
         rep.verification.min_clearance_mm,
         rep.verification.required_clearance_mm,
         rep.verification.uncut_area_mm2,
+    )
+}
+
+/// The second line printed without `--json`: the removal rate, the time not cutting, and
+/// the engagement's distribution outside the entries beside what the corners force.
+fn removal_line(rep: &millpath::job::PocketReport) -> String {
+    let e = &rep.verification.engagement;
+    format!(
+        "removal {:.0} mm³ at {:.0} mm³/s; not cutting {:.2} s (rapids {:.2} s); engagement outside \
+         entries mean {:.1}° p95 {:.1}° max {:.1}°, {:.2}% above 1.1 × nominal; the sharpest corner \
+         forces {:.1}°",
+        rep.verification.removed_mm3,
+        rep.removal_rate_mm3_s,
+        rep.air_time_s,
+        rep.rapid_time_s,
+        e.mean_deg,
+        e.p95_deg,
+        e.max_deg,
+        100.0 * e.share_above_bound,
+        rep.engagement_floor_deg
     )
 }
 

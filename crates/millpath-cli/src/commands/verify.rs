@@ -8,7 +8,7 @@ use std::path::PathBuf;
 /// Arguments of `millpath verify`.
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Examples:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7\n  millpath verify pocket.ngc --outline sample:aerospace   # the tool its header names (millpath's programs)\n  millpath verify pocket.ngc --outline part.dxf --tool-diameter 10 --json --svg pocket.svg --per-level\n  millpath verify pocket.nc --dialect fanuc --outline sample:aerospace --tool-diameter 12.7\n\nExit code 2 when the program fails verification (the findings are printed first)."
+    after_help = "Examples:\n  millpath verify pocket.ngc --outline sample:aerospace --tool-diameter 12.7\n  millpath verify pocket.ngc --outline sample:aerospace   # the tool its header names (millpath's programs)\n  millpath verify pocket.ngc --outline part.dxf --tool-diameter 10 --json --svg pocket.svg --per-level\n  millpath verify other-cam.nc --outline part.dxf --tool-diameter 10 --machine hsm   # removal rate, time not cutting\n  millpath verify pocket.nc --dialect fanuc --outline sample:aerospace --tool-diameter 12.7\n\nExit code 2 when the program fails verification (the findings are printed first)."
 )]
 pub struct Args {
     /// The G-code program.
@@ -66,6 +66,10 @@ pub struct Args {
     /// Check only these pockets of the drawing (as `pocket --select` cut them): `1,3`.
     #[arg(long)]
     pub select: Option<String>,
+    /// Also plan the program on this machine (a preset, `millpath machines`, or a TOML
+    /// file): its cycle time, the time not cutting and the removal rate.
+    #[arg(long)]
+    pub machine: Option<String>,
 }
 
 /// Runs the command.
@@ -92,6 +96,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         tool_table: args.files.tool_table.clone(),
         step_budget: args.files.step_budget,
         dialect: args.dialect.clone(),
+        machine: args.machine.clone(),
     };
     settings.check()?;
     let loops = super::pocket::load_outline(outline, &args.import)?;
@@ -130,6 +135,7 @@ pub fn run(args: &Args) -> Result<(), Error> {
         super::print_json(&j)?;
     } else {
         print_text(tp, &v);
+        print_removal(&v, &job);
         for k in &pv.unreachable {
             super::print(&format!(
                 "pocket {}: not reachable with this tool (no position of a {} mm tool fits \
@@ -206,5 +212,25 @@ fn print_text(tp: &millpath::Toolpath, v: &stock::Verification) {
         v.plunges,
         v.max_engagement_deg,
         v.mean_engagement_deg
+    ));
+}
+
+fn print_removal(v: &stock::Verification, job: &millpath::job::verify::VerifyRun) {
+    let e = &v.engagement;
+    let timing = job.timing.as_ref().map_or(String::new(), |t| {
+        format!(
+            "; on {}: cycle time {:.2} s, not cutting {:.2} s (rapids {:.2} s), removal {:.0} mm³/s",
+            t.machine, t.cycle_time_s, t.air_time_s, t.rapid_time_s, t.removal_rate_mm3_s
+        )
+    });
+    super::print(&format!(
+        "removal {:.0} mm³; engagement outside entries mean {:.1}° p95 {:.1}° max {:.1}°, {:.2}% \
+         above 1.1 × nominal; the sharpest corner forces {:.1}°{timing}",
+        v.removed_mm3,
+        e.mean_deg,
+        e.p95_deg,
+        e.max_deg,
+        100.0 * e.share_above_bound,
+        job.engagement_floor_deg
     ));
 }

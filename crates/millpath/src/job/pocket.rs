@@ -12,7 +12,7 @@
 //! run.report       // the JSON of `--report`
 //! ```
 
-use super::pocket_report::{Report, auto_line, report};
+use super::pocket_report::{Report, air_times, auto_line, report};
 use super::program::{ProgramSettings, program_times};
 use crate::gcode::{WriterOptions, write_program};
 use crate::io::ImportSettings;
@@ -608,6 +608,14 @@ pub fn run(
     )
     .map_err(|e| e.engine_made("timing the written pocket program"))?;
     let mut rep = report(&part, t, programmed);
+    let plan = crate::motion::plan_toolpath(&part.toolpath, &machine)
+        .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
+    (rep.air_time_s, rep.rapid_time_s) = air_times(&plan, &part.verification.cutting_moves);
+    let floor_stock = if opts.finish { 0.0 } else { opts.wall_stock };
+    rep.engagement_floor_deg = shapes
+        .iter()
+        .map(|(_, s)| pocket::engagement_floor(s, &tool, floor_stock).to_degrees())
+        .fold(0.0, f64::max);
     if part.pockets.len() == 1 {
         rep.auto = rep.pockets.first_mut().and_then(|p| p.auto.take());
     }

@@ -38,6 +38,17 @@ pub struct Report {
     pub moves: usize,
     /// The verifier's findings.
     pub verification: crate::stock::Verification,
+    /// Material removed per second of the cycle time, mm³/s (the simulation's volume over
+    /// `cycle_time_s`).
+    pub removal_rate_mm3_s: f64,
+    /// Time in moves that remove no material (links through cleared material, lifts,
+    /// retracts, rapids), s, by the planner on the machine ([`air_times`]).
+    pub air_time_s: f64,
+    /// The rapids' part of `air_time_s`, s.
+    pub rapid_time_s: f64,
+    /// The engagement the sharpest corner of the pockets' tool-centre regions forces on any
+    /// program, degrees (`pocket::engagement_floor`).
+    pub engagement_floor_deg: f64,
     /// Problems found (empty when the path passes).
     pub problems: Vec<String>,
     /// What was changed from the options asked for, and why (a fallback after a gouge).
@@ -223,9 +234,34 @@ pub fn report(part: &PartResult, cycle_time_s: f64, time_at_programmed_feed_s: f
         levels: tp.levels.len(),
         moves: tp.moves.len(),
         verification: v.total.clone(),
+        removal_rate_mm3_s: if cycle_time_s > 0.0 {
+            v.total.removed_mm3 / cycle_time_s
+        } else {
+            0.0
+        },
+        air_time_s: 0.0,
+        rapid_time_s: 0.0,
+        engagement_floor_deg: 0.0,
         problems: v.problems().iter().map(ToString::to_string).collect(),
         notes,
         auto: None,
         pockets,
     }
+}
+
+/// The time `plan` spends in blocks whose move removes no material (`cutting[k]` false for
+/// move `k`, or no flag): all of it, and the rapids' part, s.
+pub fn air_times(plan: &crate::motion::Plan, cutting: &[bool]) -> (f64, f64) {
+    let mut air = 0.0;
+    let mut rapid = 0.0;
+    for b in &plan.blocks {
+        if cutting.get(b.origin).copied().unwrap_or(false) {
+            continue;
+        }
+        air += b.time;
+        if matches!(b.kind, crate::toolpath::MoveKind::Rapid) {
+            rapid += b.time;
+        }
+    }
+    (air, rapid)
 }

@@ -7,7 +7,7 @@ use super::estimate::{Choosing, Failure};
 use crate::gcode::{Dialect, DialectChoice, ReaderOptions, read_str};
 use crate::io::outline_json::Loops;
 use crate::stock::{self, PartVerification, Problem, StockSpec};
-use crate::strategy::pocket::{Stepover, nominal_engagement};
+use crate::strategy::pocket::{PocketShape, Stepover, engagement_floor, nominal_engagement};
 use crate::toolpath::{Tool, Toolpath};
 use crate::{Error, InputError};
 
@@ -38,6 +38,9 @@ pub struct VerifySettings {
     /// its extension and first lines, [`crate::gcode::DialectGuess`], with the fallback to
     /// the next candidate when the first one's reader refuses the program).
     pub dialect: String,
+    /// A machine (preset name or TOML file) to plan the program on, for the cycle time, the
+    /// time not cutting and the removal rate (`None`: not planned).
+    pub machine: Option<String>,
 }
 
 impl Default for VerifySettings {
@@ -53,6 +56,7 @@ impl Default for VerifySettings {
             tool_table: None,
             step_budget: crate::gcode::DEFAULT_STEP_BUDGET,
             dialect: "auto".into(),
+            machine: None,
         }
     }
 }
@@ -74,6 +78,26 @@ pub struct VerifyRun {
     pub selected: Vec<usize>,
     /// The dialect the program was read in, and why.
     pub dialect: DialectChoice,
+    /// The engagement the sharpest corner of the checked pockets' tool-centre regions forces
+    /// on any program, degrees (`pocket::engagement_floor`).
+    pub engagement_floor_deg: f64,
+    /// The program planned on [`VerifySettings::machine`], when one was given.
+    pub timing: Option<VerifyTiming>,
+}
+
+/// A verified program planned on a machine.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct VerifyTiming {
+    /// The machine, as given.
+    pub machine: String,
+    /// Cycle time, s.
+    pub cycle_time_s: f64,
+    /// Time in moves that remove no material, s (`pocket_report::air_times`).
+    pub air_time_s: f64,
+    /// The rapids' part of it, s.
+    pub rapid_time_s: f64,
+    /// Material removed per second of the cycle time, mm³/s.
+    pub removal_rate_mm3_s: f64,
 }
 
 impl VerifyRun {
@@ -89,6 +113,8 @@ impl VerifyRun {
             "unreachable_pockets": self.part.unreachable.iter().map(|k| k + 1).collect::<Vec<_>>(),
             "decimals": self.decimals,
             "gouge_resolution_mm": self.gouge_resolution_mm,
+            "engagement_floor_deg": self.engagement_floor_deg,
+            "timing": self.timing,
         })
     }
 }
@@ -101,6 +127,10 @@ pub fn run(
     settings: &VerifySettings,
 ) -> Result<VerifyRun, Error> {
     let (tool, s) = settings.check()?;
+    let machine = match &settings.machine {
+        Some(m) => Some((m, super::load_machine(m)?)),
+        None => None,
+    };
     let choosing = Choosing::new(&settings.dialect, Some(std::path::Path::new(origin)), text)?;
     let ropts = |d: Dialect| {
         ReaderOptions::default()
@@ -147,7 +177,36 @@ pub fn run(
         &sim,
     );
     let problems = part.problems_within(resolution);
+    let engagement_floor_deg = selected
+        .iter()
+        .filter_map(|&i| {
+            let p = &pockets[i - 1];
+            PocketShape::new(p.outer.clone(), p.islands.clone(), origin).ok()
+        })
+        .map(|sh| engagement_floor(&sh, &tool, settings.wall_stock).to_degrees())
+        .fold(0.0, f64::max);
+    let timing = match machine {
+        Some((name, m)) => {
+            let plan = crate::motion::plan_toolpath(&tp, &m)?;
+            let (air, rapid) = super::pocket_report::air_times(&plan, &part.cutting_moves);
+            let t = plan.total_time;
+            Some(VerifyTiming {
+                machine: name.clone(),
+                cycle_time_s: t,
+                air_time_s: air,
+                rapid_time_s: rapid,
+                removal_rate_mm3_s: if t > 0.0 {
+                    part.total.removed_mm3 / t
+                } else {
+                    0.0
+                },
+            })
+        }
+        None => None,
+    };
     Ok(VerifyRun {
+        engagement_floor_deg,
+        timing,
         toolpath: tp,
         part,
         problems,

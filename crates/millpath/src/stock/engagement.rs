@@ -19,7 +19,7 @@ use crate::geom::Point;
 use crate::toolpath::{MoveKind, Toolpath};
 
 /// The engagement along the cutting path (see the module docs).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct EngagementStats {
     /// Cutting length counted (entries aside), mm.
     pub cutting_mm: f64,
@@ -80,6 +80,106 @@ pub fn entry_moves(tp: &Toolpath) -> Vec<bool> {
     out
 }
 
+/// Width of the tally's bins, degrees: the quantiles are read to it.
+pub const TALLY_BIN_DEG: f64 = 0.05;
+
+/// The engagement's distribution built up sample by sample: the cutting length per
+/// [`TALLY_BIN_DEG`] of engagement, the entries' length aside, the exact mean, maximum and
+/// length above a bound. Tallies of separate pockets merge into the program's.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct EngagementTally {
+    bins: Vec<f64>,
+    bound_deg: f64,
+    entry_mm: f64,
+    total_mm: f64,
+    weighted: f64,
+    above_mm: f64,
+    max_deg: f64,
+}
+
+impl EngagementTally {
+    /// An empty tally counting the length above `bound_deg`.
+    pub fn new(bound_deg: f64) -> Self {
+        EngagementTally {
+            bound_deg,
+            ..EngagementTally::default()
+        }
+    }
+
+    /// Travel `ds` (mm) cutting inside an entry.
+    pub fn entry(&mut self, ds: f64) {
+        if ds > 0.0 {
+            self.entry_mm += ds;
+        }
+    }
+
+    /// Travel `ds` (mm) cutting at `deg` degrees (nothing when either is not positive).
+    pub fn cut(&mut self, deg: f64, ds: f64) {
+        if deg <= 0.0 || ds <= 0.0 {
+            return;
+        }
+        let nbins = (180.0 / TALLY_BIN_DEG).round() as usize + 1;
+        if self.bins.is_empty() {
+            self.bins = vec![0.0; nbins];
+        }
+        let k = ((deg / TALLY_BIN_DEG) as usize).min(nbins - 1);
+        self.bins[k] += ds;
+        self.total_mm += ds;
+        self.weighted += deg * ds;
+        if deg > self.bound_deg {
+            self.above_mm += ds;
+        }
+        self.max_deg = self.max_deg.max(deg);
+    }
+
+    /// Adds `other`'s lengths (its bound is taken as this tally's).
+    pub fn merge(&mut self, other: &EngagementTally) {
+        if self.bins.is_empty() {
+            self.bins.clone_from(&other.bins);
+        } else {
+            for (a, b) in self.bins.iter_mut().zip(&other.bins) {
+                *a += b;
+            }
+        }
+        self.entry_mm += other.entry_mm;
+        self.total_mm += other.total_mm;
+        self.weighted += other.weighted;
+        self.above_mm += other.above_mm;
+        self.max_deg = self.max_deg.max(other.max_deg);
+    }
+
+    /// The distribution: the quantiles are the upper edge of the bin where the cumulative
+    /// length reaches the share (at most the maximum).
+    pub fn stats(&self) -> EngagementStats {
+        let mut st = EngagementStats {
+            entry_mm: self.entry_mm,
+            ..EngagementStats::default()
+        };
+        let total = self.total_mm;
+        if total <= 0.0 {
+            return st;
+        }
+        st.cutting_mm = total;
+        st.mean_deg = self.weighted / total;
+        st.share_above_bound = self.above_mm / total;
+        st.max_deg = self.max_deg;
+        let quantile = |q: f64| {
+            let mut acc = 0.0;
+            for (k, b) in self.bins.iter().enumerate() {
+                acc += b;
+                if acc >= q * total {
+                    return ((k + 1) as f64 * TALLY_BIN_DEG).min(self.max_deg);
+                }
+            }
+            self.max_deg
+        };
+        st.p50_deg = quantile(0.5);
+        st.p95_deg = quantile(0.95);
+        st.p99_deg = quantile(0.99);
+        st
+    }
+}
+
 /// The engagement's distribution over `samples` of `tp` (entries aside), with the share of
 /// the cutting length above `bound_deg`.
 pub fn engagement_stats(
@@ -88,8 +188,7 @@ pub fn engagement_stats(
     bound_deg: f64,
 ) -> EngagementStats {
     let entry = entry_moves(tp);
-    let mut cut: Vec<(f64, f64)> = Vec::with_capacity(samples.len());
-    let mut st = EngagementStats::default();
+    let mut tally = EngagementTally::new(bound_deg);
     let mut prev: Option<(usize, f64)> = None;
     for s in samples {
         let ds = match prev {
@@ -101,39 +200,12 @@ pub fn engagement_stats(
             continue;
         }
         if entry.get(s.move_index).copied().unwrap_or(false) {
-            st.entry_mm += ds;
-            continue;
+            tally.entry(ds);
+        } else {
+            tally.cut(s.angle.to_degrees(), ds);
         }
-        cut.push((s.angle.to_degrees(), ds));
     }
-    let total: f64 = cut.iter().map(|c| c.1).sum();
-    if total <= 0.0 {
-        return st;
-    }
-    st.cutting_mm = total;
-    st.mean_deg = cut.iter().map(|c| c.0 * c.1).sum::<f64>() / total;
-    st.share_above_bound = cut
-        .iter()
-        .filter(|c| c.0 > bound_deg)
-        .map(|c| c.1)
-        .sum::<f64>()
-        / total;
-    cut.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let quantile = |q: f64| {
-        let mut acc = 0.0;
-        for c in &cut {
-            acc += c.1;
-            if acc >= q * total {
-                return c.0;
-            }
-        }
-        cut.last().map_or(0.0, |c| c.0)
-    };
-    st.p50_deg = quantile(0.5);
-    st.p95_deg = quantile(0.95);
-    st.p99_deg = quantile(0.99);
-    st.max_deg = cut.last().map_or(0.0, |c| c.0);
-    st
+    tally.stats()
 }
 
 #[cfg(test)]
@@ -185,5 +257,63 @@ mod tests {
         assert!((st.mean_deg - 75.0).abs() < 1e-9);
         assert!((st.share_above_bound - 0.5).abs() < 1e-9);
         assert!((st.p95_deg - 90.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_tally_reads_the_sorted_quantiles_to_a_bin_and_merges_as_one() {
+        // 2,000 samples of a fixed pseudo-random sequence, weighted by their travel.
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let cuts: Vec<(f64, f64)> = (0..2000).map(|_| (180.0 * next(), 0.01 + next())).collect();
+        let (mut one, mut a, mut b) = (
+            EngagementTally::new(86.3),
+            EngagementTally::new(86.3),
+            EngagementTally::new(86.3),
+        );
+        for (k, &(deg, ds)) in cuts.iter().enumerate() {
+            one.cut(deg, ds);
+            if k % 3 == 0 {
+                a.cut(deg, ds);
+            } else {
+                b.cut(deg, ds);
+            }
+        }
+        a.merge(&b);
+        let (st, merged) = (one.stats(), a.stats());
+        for (x, y) in [
+            (st.p50_deg, merged.p50_deg),
+            (st.p95_deg, merged.p95_deg),
+            (st.max_deg, merged.max_deg),
+            (st.cutting_mm, merged.cutting_mm),
+        ] {
+            assert!((x - y).abs() < 1e-9, "{x} against {y}");
+        }
+        let mut sorted = cuts.clone();
+        sorted.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let total: f64 = sorted.iter().map(|c| c.1).sum();
+        let exact = |q: f64| {
+            let mut acc = 0.0;
+            sorted
+                .iter()
+                .find(|c| {
+                    acc += c.1;
+                    acc >= q * total
+                })
+                .map_or(0.0, |c| c.0)
+        };
+        for (q, got) in [(0.5, st.p50_deg), (0.95, st.p95_deg), (0.99, st.p99_deg)] {
+            let want = exact(q);
+            assert!(
+                got >= want - 1e-9 && got <= want + TALLY_BIN_DEG + 1e-9,
+                "quantile {q}: {got} against {want}"
+            );
+        }
+        let above: f64 = cuts.iter().filter(|c| c.0 > 86.3).map(|c| c.1).sum();
+        assert!((st.share_above_bound - above / total).abs() < 1e-12);
     }
 }

@@ -56,6 +56,7 @@
 //!   the job meant to cut and the part it meant to keep ([`check_field`]).
 
 pub(crate) mod bridges;
+pub(crate) mod corner_floor;
 pub(crate) mod engagement;
 pub(crate) mod field_check;
 pub(crate) mod gouge;
@@ -70,7 +71,10 @@ pub(crate) mod rest_need;
 pub(crate) mod simulate;
 
 pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
-pub use engagement::{EngagementStats, engagement_stats, entry_moves};
+pub use corner_floor::{corner_floor, corner_turn};
+pub use engagement::{
+    EngagementStats, EngagementTally, TALLY_BIN_DEG, engagement_stats, entry_moves,
+};
 pub use field_check::{CheckOptions, Deviation, FieldCheck, Floor, PartTop, check_field};
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use heightfield::{
@@ -85,8 +89,9 @@ pub use rest_need::{
     RestNeed, UncutRegion, floor_cut_length, rest_need,
 };
 pub use simulate::{
-    DEFAULT_CELL, DEFAULT_STEP, DEFAULT_WINDOW, EngagementSample, MAX_CELL_RADII, MoveEngagement,
-    STEP_TIE, SimOptions, Simulation, reachable, sample_count, simulate, simulate_levels,
+    CUTTING_SHARE, DEFAULT_CELL, DEFAULT_STEP, DEFAULT_WINDOW, EngagementSample, MAX_CELL_RADII,
+    MoveEngagement, STEP_TIE, SimOptions, Simulation, cutting_moves, reachable, sample_count,
+    simulate, simulate_levels,
 };
 
 use crate::geom::Outline;
@@ -139,6 +144,11 @@ pub struct Verification {
     /// The uncut area beyond which coverage fails, mm² ([`uncut_area_tolerance`] of the
     /// tool).
     pub uncut_tolerance_mm2: f64,
+    /// The engagement's distribution along the cutting path, the entries aside, with the
+    /// share above 1.1 × the nominal engagement ([`Simulation::engagement`]).
+    pub engagement: EngagementStats,
+    /// Material removed, mm³ ([`Simulation::removed_mm3`]).
+    pub removed_mm3: f64,
 }
 
 /// How much closer than the required clearance the tool centre may come before it is a
@@ -256,6 +266,8 @@ pub fn combine_levels(tp: &Toolpath, specs: &[StockSpec<'_>], s: &Simulation) ->
         raster_cells: s.raster_cells,
         tool_positions: s.tool_positions,
         uncut_tolerance_mm2: uncut_area_tolerance(&tp.tool),
+        engagement: s.engagement.stats(),
+        removed_mm3: s.removed_mm3,
     }
 }
 

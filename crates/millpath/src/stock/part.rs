@@ -10,7 +10,7 @@
 //! Each pocket's chunks, joined in program order by rapids above the stock (their ends are at
 //! or above the top, so the join cannot touch material), are one program for that pocket;
 //! its levels are found from its retracts ([`super::infer_levels`]) and it is verified against
-//! that pocket alone with [`super::verify`]: gouges (a chunk that wanders into another pocket
+//! that pocket alone with the simulation and the gouge check ([`super::verify`]'s): gouges (a chunk that wanders into another pocket
 //! crosses its own pocket's wall, at clearance 0), uncut material, rapids through material and
 //! plunges. The moves between chunks all lie at or above the stock top, so no rapid between
 //! pockets can pass through material. A pocket no chunk cuts is uncut, its whole area
@@ -20,9 +20,14 @@
 //!
 //! The whole program's figures add up (uncut area, rapids, plunges), take the worst
 //! (clearance, largest engagement) or weigh by cutting length (mean engagement, share above
-//! nominal).
+//! nominal); the engagement's distribution (entries aside) is the pockets' tallies merged.
+//! Each move of the program is marked cutting or not from its pocket's simulation
+//! ([`PartVerification::cutting_moves`]: the time a plan spends in the others is the time
+//! not cutting).
 
-use super::{Problem, SimOptions, StockSpec, Verification, infer_levels, verify};
+use super::{
+    EngagementTally, Problem, SimOptions, StockSpec, Verification, combine, infer_levels, simulate,
+};
 use crate::geom::{Point, Point3};
 use crate::toolpath::{Move, MoveKind, Toolpath};
 use rayon::prelude::*;
@@ -35,6 +40,11 @@ pub struct PartVerification {
     pub total: Verification,
     /// Each pocket's, in the order given.
     pub pockets: Vec<Verification>,
+    /// Per move of the program: true where it removed material (in the pocket it belongs
+    /// to); false for rapids, moves in the air or through cleared material, and moves
+    /// outside every pocket.
+    #[serde(skip)]
+    pub cutting_moves: Vec<bool>,
     /// Chunks of the program that cut below the stock top outside every pocket.
     pub cuts_outside: usize,
     /// Pockets (0-based, in the order given) no tool position of this diameter can enter,
@@ -87,6 +97,8 @@ pub fn verify_part(
 ) -> PartVerification {
     // Chunks: (first move, one past the last, the pocket of the first position below 0).
     let mut subs: Vec<Option<Toolpath>> = vec![None; pockets.len()];
+    // Each sub-program's moves' index in `tp` (`None`: a joining rapid).
+    let mut origins: Vec<Vec<Option<usize>>> = vec![Vec::new(); pockets.len()];
     let mut cuts_outside = 0;
     let mut chunk_start = 0;
     let mut chunk_from = tp.start;
@@ -98,8 +110,10 @@ pub fn verify_part(
             let sub = subs[k].get_or_insert_with(|| Toolpath::new(tp.tool, at));
             if sub.end() != at {
                 sub.push(Move::rapid(at));
+                origins[k].push(None);
             }
             sub.moves.extend_from_slice(&tp.moves[start..end]);
+            origins[k].extend((start..end).map(Some));
         }
         Some(None) => cuts_outside += 1,
         None => {}
@@ -130,30 +144,37 @@ pub fn verify_part(
     let mut unreachable = Vec::new();
     let mut lengths = Vec::with_capacity(pockets.len());
     // Each pocket's moves are simulated on their own, side by side.
-    let checked: Vec<Option<(f64, Verification)>> = pockets
+    type Checked = (f64, Verification, EngagementTally, Vec<bool>);
+    let checked: Vec<Option<Checked>> = pockets
         .par_iter()
         .zip(subs)
         .map(|(spec, sub)| {
             sub.map(|mut sub| {
                 infer_levels(&mut sub);
-                let v = verify(&sub, *spec, nominal_deg, sim);
-                (sub.cut_length(), v)
+                let s = simulate(&sub, *spec, nominal_deg, sim);
+                let v = combine(&sub, *spec, &s);
+                let cut = super::cutting_moves(&sub, &s);
+                (sub.cut_length(), v, s.engagement, cut)
             })
         })
         .collect();
-    for (spec, sub) in pockets.iter().zip(checked) {
+    let mut tally = EngagementTally::new(1.1 * nominal_deg);
+    let mut cutting_moves = vec![false; tp.moves.len()];
+    for ((spec, sub), origin) in pockets.iter().zip(checked).zip(&origins) {
         match sub {
-            Some((length, v)) => {
+            Some((length, v, t, cut)) => {
+                tally.merge(&t);
+                for (c, o) in cut.iter().zip(origin) {
+                    if let (true, Some(k)) = (*c, o) {
+                        cutting_moves[*k] = true;
+                    }
+                }
                 lengths.push(length);
                 per.push(v);
             }
             None => {
                 lengths.push(0.0);
-                let area = if super::simulate::reachable(
-                    *spec,
-                    tp.tool.radius(),
-                    sim.cell_for(&tp.tool),
-                ) {
+                let area = if simulate::reachable(*spec, tp.tool.radius(), sim.cell_for(&tp.tool)) {
                     crate::geom::area_less_islands(spec.outer, spec.islands)
                 } else {
                     unreachable.push(per.len());
@@ -175,12 +196,17 @@ pub fn verify_part(
                     raster_cells: 0,
                     tool_positions: 0,
                     uncut_tolerance_mm2: super::uncut_area_tolerance(&tp.tool),
+                    engagement: super::EngagementStats::default(),
+                    removed_mm3: 0.0,
                 });
             }
         }
     }
+    let mut total = combine_all(&per, &lengths, tp.tool.radius());
+    total.engagement = tally.stats();
     PartVerification {
-        total: combine_all(&per, &lengths, tp.tool.radius()),
+        total,
+        cutting_moves,
         pockets: per,
         cuts_outside,
         unreachable,
@@ -228,5 +254,7 @@ fn combine_all(per: &[Verification], lengths: &[f64], r: f64) -> Verification {
             .iter()
             .map(|v| v.uncut_tolerance_mm2)
             .fold(super::UNCUT_AREA_TOLERANCE, f64::max),
+        engagement: super::EngagementStats::default(),
+        removed_mm3: per.iter().map(|v| v.removed_mm3).sum(),
     }
 }

@@ -114,6 +114,8 @@ pub struct MoveEngagement {
     pub max_radial_depth: f64,
     /// Largest engagement angle along the move, rad.
     pub max_angle: f64,
+    /// Area of material the move removed from its slab, mm².
+    pub removed_mm2: f64,
 }
 
 /// The engagement at one tool position of a feed move (see [`SimOptions::record_samples`]).
@@ -164,6 +166,29 @@ pub struct Simulation {
     pub raster_cells: usize,
     /// Tool positions swept along the feed moves (what the sweep costs).
     pub tool_positions: usize,
+    /// The engagement's distribution along the cutting path, the entries aside
+    /// ([`super::entry_moves`]), with the length above 1.1 × the nominal engagement.
+    pub engagement: super::EngagementTally,
+    /// Material removed, mm³: each slab's cells cleared times the slab's thickness (the
+    /// simulation clears a slab's cell whole where the tool passes within it).
+    pub removed_mm3: f64,
+}
+
+/// The share of the tool's diameter a move's mean radial depth of cut (the area it removed
+/// over its length) must reach for [`cutting_moves`] to count it as cutting: a link that
+/// grazes a few cells of material is not a cut.
+pub const CUTTING_SHARE: f64 = 0.02;
+
+/// Per move of `tp`: true where the simulation `sim` of it found the move removing more than
+/// [`CUTTING_SHARE`] of the tool's diameter times its length.
+pub fn cutting_moves(tp: &Toolpath, sim: &Simulation) -> Vec<bool> {
+    let d = tp.tool.diameter;
+    tp.segments()
+        .zip(&sim.per_move)
+        .map(|((from, m), e)| {
+            e.is_some_and(|e| e.removed_mm2 > CUTTING_SHARE * d * m.length_from(from))
+        })
+        .collect()
 }
 
 /// Engagement angle (rad) of a one-sided cut of radial depth `ae` with a tool of radius `r`.
@@ -318,8 +343,10 @@ pub fn simulate_levels(
         reach_cache.push((li, rr.clone()));
         rr
     };
+    let entry = super::entry_moves(tp);
     let mut out = Simulation {
         per_move: vec![None; tp.moves.len()],
+        engagement: super::EngagementTally::new(1.1 * nominal_deg),
         cell_mm: cell,
         raster_cells: {
             let (nx, ny) = Raster::dims_of(bounds, cell);
@@ -375,10 +402,10 @@ pub fn simulate_levels(
             window.clear();
         }
         slab_level = li;
-        let Some((top, _, ras)) = slab.as_mut() else {
+        let Some((top, bottom, ras)) = slab.as_mut() else {
             continue;
         };
-        let top = *top;
+        let (top, thick) = (*top, (*top - *bottom).max(0.0));
         match m.kind {
             MoveKind::Dwell { .. } => {}
             MoveKind::Rapid => {
@@ -440,6 +467,7 @@ pub fn simulate_levels(
                     } else {
                         ras.clear_capsule(from.xy(), p.xy(), r + widen)
                     };
+                    out.removed_mm3 += removed as f64 * cell_area * thick;
                     window.push_back((removed, ds));
                     if window.len() > window_n {
                         window.pop_front();
@@ -454,12 +482,21 @@ pub fn simulate_levels(
                     } else {
                         0.0
                     };
+                    if removed > 0 {
+                        eng.get_or_insert_with(MoveEngagement::default).removed_mm2 +=
+                            removed as f64 * cell_area;
+                    }
                     if removed == 0 && ae <= 0.0 {
                         record(0.0);
                         continue;
                     }
                     let phi = engagement_angle(ae, r);
                     record(phi);
+                    if entry.get(k).copied().unwrap_or(false) {
+                        out.engagement.entry(ds);
+                    } else {
+                        out.engagement.cut(phi.to_degrees(), ds);
+                    }
                     sum_angle += phi * ds;
                     cut_len += ds;
                     if phi > nominal {

@@ -278,6 +278,7 @@ mod tests {
     fn result(uncut: f64) -> Box<PocketResult> {
         Box::new(PocketResult {
             toolpath: Toolpath::new(Tool::default(), crate::geom::Point3::ORIGIN),
+            cutting_moves: Vec::new(),
             verification: Verification {
                 min_clearance_mm: 5.0,
                 required_clearance_mm: 5.0,
@@ -293,6 +294,8 @@ mod tests {
                 raster_cells: 0,
                 tool_positions: 0,
                 uncut_tolerance_mm2: crate::stock::UNCUT_AREA_TOLERANCE,
+                engagement: crate::stock::EngagementStats::default(),
+                removed_mm3: 0.0,
             },
             nominal_engagement_deg: 78.5,
             stepover_mm: 5.0,

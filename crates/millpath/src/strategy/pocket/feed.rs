@@ -157,18 +157,25 @@ impl FeedProfile {
 /// The toolpath with every feed move's feed following the profile of the module docs, from
 /// the simulation's `samples` of `tp` ([`crate::stock::Simulation::samples`], in path
 /// order), nominal engagement `nominal` (rad), slowdown `k`.
-pub fn modulate(tp: &Toolpath, samples: &[EngagementSample], nominal: f64, k: f64) -> Toolpath {
+pub fn modulate(
+    tp: &Toolpath,
+    samples: &[EngagementSample],
+    nominal: f64,
+    k: f64,
+) -> (Toolpath, Vec<usize>) {
     modulate_with(tp, samples, nominal, k, &FeedProfile::default())
 }
 
-/// [`modulate`] with the profile's constants given.
+/// [`modulate`] with the profile's constants given. Move `i` of `tp` becomes the moves
+/// `index[i]..index[i + 1]` of the result (`index`, the second value, has one entry more
+/// than `tp` has moves).
 pub fn modulate_with(
     tp: &Toolpath,
     samples: &[EngagementSample],
     nominal: f64,
     k: f64,
     profile: &FeedProfile,
-) -> Toolpath {
+) -> (Toolpath, Vec<usize>) {
     let moves: Vec<(crate::geom::Point3, &Move)> = tp.segments().collect();
     // Samples of each move: a range of `samples` (they come in move order).
     let mut ranges = vec![(0usize, 0usize); moves.len()];
@@ -246,7 +253,7 @@ pub fn modulate_with(
             ..l.clone()
         })
         .collect();
-    out
+    (out, index)
 }
 
 /// The pieces of each move of one chain (`chain[j]` is move `first + j`).

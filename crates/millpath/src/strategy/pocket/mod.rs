@@ -100,6 +100,8 @@ pub struct PocketResult {
     pub toolpath: Toolpath,
     /// The verifier's findings.
     pub verification: Verification,
+    /// Per move of the toolpath: true where the simulation found it removing material.
+    pub cutting_moves: Vec<bool>,
     /// The nominal engagement the stepover implies, degrees.
     pub nominal_engagement_deg: f64,
     /// The stepover in mm.
@@ -112,6 +114,20 @@ pub struct PocketResult {
 /// The nominal engagement angle (rad) for stepover `s` and tool radius `r`: `arccos(1 − s/r)`.
 pub fn nominal_engagement(s: f64, r: f64) -> f64 {
     (1.0 - (s / r).clamp(0.0, 2.0)).acos()
+}
+
+/// The engagement, radians, that a program clearing `shape` with `tool` (leaving
+/// `wall_stock` on the walls) reaches where it feeds into the sharpest corner of the
+/// tool-centre region (`stock::corner_floor`: `acos(2·sin(α/2) − 1)` for a corner of
+/// interior angle `α`), the region's turn summed over a stretch as long as the smaller of
+/// the stock simulation's averaging window and a tenth of the tool's radius (a corner
+/// rounded by less reads as sharp). 0 when the tool does not fit.
+pub fn engagement_floor(shape: &PocketShape, tool: &Tool, wall_stock: f64) -> f64 {
+    let loops = shape.offset_loops(tool.radius() + wall_stock.max(0.0));
+    let within = SimOptions::default()
+        .window_for(tool)
+        .min(0.1 * tool.radius());
+    stock::corner_floor(&loops, within)
 }
 
 /// Plans one level with `kind` (no feeds, no levels) in the planar `shape` (a level's
@@ -388,13 +404,23 @@ fn generate_unchecked(
         .collect();
     let sim = sim.with_record_samples(opts.modulate_feed);
     let simulation = stock::simulate_levels(&tp, &specs, nominal.to_degrees(), &sim);
+    let mut cutting_moves = stock::cutting_moves(&tp, &simulation);
     if opts.modulate_feed {
-        tp = feed::modulate(&tp, &simulation.samples, nominal, opts.slowdown);
+        let (modulated, index) = feed::modulate(&tp, &simulation.samples, nominal, opts.slowdown);
+        let mut flags = vec![false; modulated.moves.len()];
+        for (i, w) in index.windows(2).enumerate() {
+            let cut = cutting_moves.get(i).copied().unwrap_or(false);
+            for f in flags.iter_mut().take(w[1]).skip(w[0]) {
+                *f = cut;
+            }
+        }
+        (tp, cutting_moves) = (modulated, flags);
     }
     let verification = stock::combine_levels(&tp, &specs, &simulation);
     Ok(PocketResult {
         toolpath: tp,
         verification,
+        cutting_moves,
         nominal_engagement_deg: nominal.to_degrees(),
         stepover_mm: s,
         notes: Vec::new(),

@@ -176,12 +176,16 @@ pub fn generate_part(
     // One pocket: the program is its toolpath, which `generate` verified already (level by
     // level against its sections, inclined walls included).
     let single = match ordered.as_slice() {
-        [only] => only.result.as_ref().map(|r| r.verification.clone()),
+        [only] => only
+            .result
+            .as_ref()
+            .map(|r| (r.verification.clone(), r.cutting_moves.clone())),
         _ => None,
     };
     let verification = match single {
-        Some(v) => PartVerification {
+        Some((v, cutting_moves)) => PartVerification {
             total: v.clone(),
+            cutting_moves,
             pockets: vec![v],
             cuts_outside: 0,
             unreachable: Vec::new(),
