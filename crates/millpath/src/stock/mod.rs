@@ -69,12 +69,11 @@ pub(crate) mod raster;
 pub(crate) mod reach;
 pub(crate) mod rest_need;
 pub(crate) mod simulate;
+pub(crate) mod tally;
 
 pub use bridges::{Bridge, BridgeOptions, BridgeVerdict, CutSide, Hold, Touches, held_by};
 pub use corner_floor::{corner_floor, corner_turn};
-pub use engagement::{
-    EngagementStats, EngagementTally, TALLY_BIN_DEG, engagement_stats, entry_moves,
-};
+pub use engagement::engagement_stats;
 pub use field_check::{CheckOptions, Deviation, FieldCheck, Floor, PartTop, check_field};
 pub use gouge::{Clearance, min_clearance, min_clearance_levels};
 pub use heightfield::{
@@ -93,6 +92,7 @@ pub use simulate::{
     MoveEngagement, STEP_TIE, SimOptions, Simulation, cutting_moves, reachable, sample_count,
     simulate, simulate_levels,
 };
+pub use tally::{EngagementStats, EngagementTally, TALLY_BIN_DEG, entry_moves};
 
 use crate::geom::Outline;
 use crate::toolpath::Toolpath;
