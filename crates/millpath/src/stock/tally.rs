@@ -36,7 +36,7 @@ pub struct EngagementStats {
     pub p99_deg: f64,
     /// Largest, degrees.
     pub max_deg: f64,
-    /// Share of the cutting length above the bound given to [`engagement_stats`].
+    /// Share of the cutting length above the bound given to the tally (or `super::engagement_stats`).
     pub share_above_bound: f64,
 }
 
