@@ -187,8 +187,9 @@ impl VerifyResult {
 }
 
 /// Check a G-code program against a pocket outline: `millpath verify PROGRAM --outline
-/// OUTLINE [--tool-diameter D]`; `program` is a path or the program's text; without
-/// `tool_diameter`, the tool the program's header names. A failing program is a result with
+/// OUTLINE [--tool-diameter D] [--machine M]`; `program` is a path or the program's text;
+/// without `tool_diameter`, the tool the program's header names; with `machine`, the
+/// report's `timing` (cycle time, time not cutting, removal rate). A failing program is a result with
 /// `passed == False`, not an exception.
 #[pyfunction]
 #[pyo3(signature = (program, outline, **kwargs))]
@@ -209,6 +210,7 @@ pub fn verify(
     k.opt_u32("decimals", &mut s.decimals)?;
     k.opt_text("select", &mut s.select)?;
     k.text("dialect", &mut s.dialect)?;
+    k.opt_text("machine", &mut s.machine)?;
     k.finish()?;
     let (loops, _, _) = outline_arg(py, outline, "outline", &import)?;
     let Some((text, name)) = text_or_path(program, "program")? else {

@@ -374,11 +374,15 @@ def test_verify_equals_cli(tmp_path):
     r = millpath.pocket("sample:aerospace", **POCKET_ARGS)
     f = tmp_path / "p.ngc"
     f.write_text(r.gcode)
-    v = millpath.verify(f, "sample:aerospace", tool_diameter=12.7)
+    v = millpath.verify(f, "sample:aerospace", tool_diameter=12.7, machine="hsm")
     js = json.loads(cli("verify", f, "--outline", "sample:aerospace", "--tool-diameter", "12.7",
-                        "--json").stdout)
+                        "--machine", "hsm", "--json").stdout)
     js.pop("pictures")
     assert v.report == js and v.passed
+    t = v.report["timing"]
+    assert t["machine"] == "hsm" and 0 < t["air_time_s"] < t["cycle_time_s"]
+    assert t["removal_rate_mm3_s"] * t["cycle_time_s"] == pytest.approx(
+        v.report["verification"]["removed_mm3"], rel=1e-9)
 
 
 def test_verify_reads_every_dialect_written(tmp_path):
