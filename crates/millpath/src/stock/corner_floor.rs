@@ -12,13 +12,14 @@
 //!
 //! `E(x) = ∫ r·x·cos(|θ| + α/2) dθ over |θ| < π/2 − α/2 = 2·r·x·(1 − sin(α/2))`.
 //!
-//! A tool that feeds into the corner and out again removes `E(x)` over its last `x` of travel
-//! in: an area per travel (the simulation's measure, a radial depth of cut `a_e`) of
+//! A tool that feeds straight into the corner removes `E(x)` over its last `x` of travel
+//! in, an area per travel (the simulation's measure, a radial depth of cut `a_e`) of
 //! `2r·(1 − sin(α/2))`, the engagement `acos(1 − a_e/r) = acos(2·sin(α/2) − 1)`: 65.5° at a
-//! square corner, 90° at 60°, 180° at a cusp (where an island's offset meets a wall's). It is
-//! a floor for a tool that goes straight into the corner, not for every conceivable motion: a
-//! tool that wanders about inside the corner's last fraction of a millimetre spreads the
-//! same area over more travel.
+//! square corner, 90° at 60°, 180° at a cusp (where an island's offset meets a wall's). The
+//! figure is first order in `x` and an estimate for that motion, not a bound on every
+//! conceivable one (a tool that wanders about in the corner's last fraction of a millimetre
+//! spreads the same area over more travel); `tests/pocket_adaptive.rs` checks it against
+//! the simulation of the adaptive toolpath at sharp corners.
 //!
 //! A corner rounded by less than the simulation resolves acts as a sharp one: the turn is
 //! summed over any stretch of a loop no longer than `within` (a vertex's turn, the arcs' turn
