@@ -136,3 +136,41 @@ fn absurd_path_lengths_are_refused_before_planning() {
     let small = PocketShape::simple(builtin::rounded_rectangle(0.0, 0.0, 6.0, 4.0, 1.0));
     assert!(pocket::generate(StrategyKind::Zigzag, &small, &tool, &opts, &sim).is_ok());
 }
+
+/// A pocket whose path would run past `pocket::MAX_PATH_MM` (a 10 m square, as a drawing in
+/// metres read as millimetres gives, with a 12.7 mm tool: about 20 km of path) is refused by
+/// every public way to a toolpath, the library's lower ones included, before anything is
+/// planned.
+#[test]
+fn a_pocket_too_large_to_plan_is_refused_by_every_entry_point() {
+    let side = 10_000.0;
+    let p = [(0.0, 0.0), (side, 0.0), (side, side), (0.0, side)]
+        .map(|(x, y)| millpath::geom::Point::new(x, y));
+    let shape = PocketShape::simple(millpath::geom::Outline::from_points(&p, "huge").unwrap());
+    let tool = Tool::flat(12.7).unwrap();
+    let opts = PocketOptions::default().with_depth(5.0).with_step_down(5.0);
+    for kind in [
+        StrategyKind::Spiral,
+        StrategyKind::Adaptive,
+        StrategyKind::Zigzag,
+    ] {
+        let errors = [
+            input_error(pocket::toolpath(kind, &shape, &tool, &opts)),
+            input_error(pocket::plan_level(kind, &shape, &tool, &opts)),
+            input_error(pocket::plan_levels(kind, &shape, &tool, &opts)),
+            input_error(pocket::generate(
+                kind,
+                &shape,
+                &tool,
+                &opts,
+                &SimOptions::default(),
+            )),
+        ];
+        for e in errors {
+            assert!(
+                e.contains("at most 5 km") && e.contains("drawing's units"),
+                "{e}"
+            );
+        }
+    }
+}

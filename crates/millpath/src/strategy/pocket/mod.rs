@@ -139,6 +139,7 @@ pub fn plan_level(
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<levels::LevelPlan> {
+    check_path_size(shape, tool, opts, 1.0)?;
     let mut plan = match kind {
         StrategyKind::Zigzag => zigzag::plan(shape, tool, opts)?,
         StrategyKind::Offset => offset::plan(shape, tool, opts)?,
@@ -174,6 +175,12 @@ pub fn plan_levels(
     tool: &Tool,
     opts: &PocketOptions,
 ) -> Result<(Vec<PocketShape>, Vec<levels::LevelPlan>)> {
+    let levels = if opts.step_down > 0.0 {
+        (opts.depth / opts.step_down).ceil().max(1.0)
+    } else {
+        1.0
+    };
+    check_path_size(shape, tool, opts, levels)?;
     let sections = level_shapes(shape, opts)?;
     let plans = if shape.is_prismatic() {
         match sections.first() {
@@ -254,7 +261,6 @@ pub fn generate(
     opts: &PocketOptions,
     sim: &SimOptions,
 ) -> Result<PocketResult> {
-    check_path_size(shape, tool, opts)?;
     let attempt = |o: &PocketOptions| generate_unchecked(kind, shape, tool, o, sim);
     let r = match gouge_retry::first_clear(kind, opts, attempt)? {
         gouge_retry::Attempts::Clears(r) => {
@@ -304,7 +310,7 @@ pub fn generate(
     )))
 }
 
-/// The longest cutting path [`generate`] plans, mm (5 km): the pocket's area over the
+/// The longest cutting path planned, mm (5 km): the pocket's area over the
 /// stepover, times the levels. Planning, verifying and modulating take about 0.6 kB of memory
 /// and 5 ms per metre of path, so a pocket at this limit takes about 3 GB and half a minute;
 /// a metre-sized drawing read as millimetres, or a tool far too small for the pocket, would
@@ -312,17 +318,18 @@ pub fn generate(
 /// is about 3.3 km.
 pub const MAX_PATH_MM: f64 = 5.0e6;
 
-/// Refuses a pocket whose path would be longer than [`MAX_PATH_MM`] (area / stepover × levels,
-/// what every strategy cuts within a small factor), naming the pocket, the estimate and what
-/// to check.
-fn check_path_size(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<()> {
+/// Refuses a pocket whose path would be longer than [`MAX_PATH_MM`] (area / stepover ×
+/// `levels`, what every strategy cuts within a small factor), naming the pocket, the estimate
+/// and what to check. [`plan_levels`] asks it for all the levels, [`plan_level`] for one: every
+/// public way to a toolpath passes one of them.
+fn check_path_size(
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+    levels: f64,
+) -> Result<()> {
     let area = crate::geom::area_less_islands(&shape.outer, &shape.islands);
     let step = opts.stepover_mm(tool);
-    let levels = if opts.step_down > 0.0 {
-        (opts.depth / opts.step_down).ceil().max(1.0)
-    } else {
-        1.0
-    };
     let length = area / step.max(f64::MIN_POSITIVE) * levels;
     if length.is_finite() && length <= MAX_PATH_MM {
         return Ok(());
