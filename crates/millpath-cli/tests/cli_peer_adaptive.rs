@@ -60,11 +60,16 @@ fn our_adaptive_beats_freecads_on_linuxcnc_and_on_hsm() {
                 &ours,
                 "--report",
                 "report.json",
+                "--html",
+                "report.html",
             ],
             dir.path(),
         );
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-        report_adds_up(&dir.path().join("report.json"));
+        report_adds_up(
+            &dir.path().join("report.json"),
+            &dir.path().join("report.html"),
+        );
         let time = |file: &str| {
             json_cycle_time(&millpath(
                 &["estimate", file, "--machine", machine, "--json"],
@@ -117,8 +122,8 @@ fn adaptive_verified(dir: &Path, name: &str) {
 /// 6.35 mm radius cannot reach), the removal rate is that over the cycle time, the time not
 /// cutting is part of the cycle time, the entries aside the engagement stays within
 /// 1.3 × the 78.5° target, and the corners force 65.5° (r 6 < 6.35: square corners of the
-/// tool-centre region).
-fn report_adds_up(path: &Path) {
+/// tool-centre region); the `--html` report's summary shows the same removal figures.
+fn report_adds_up(path: &Path, html: &Path) {
     let r: serde_json::Value =
         serde_json::from_slice(&std::fs::read(path).expect("report")).expect("JSON");
     let f = |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("a number: {r}"));
@@ -137,4 +142,11 @@ fn report_adds_up(path: &Path) {
     assert!(f(&e["max_deg"]) <= 1.3 * 78.463, "{e}");
     assert!(f(&e["share_above_bound"]) <= 0.01, "{e}");
     assert!((f(&r["engagement_floor_deg"]) - 65.53).abs() < 0.01, "{r}");
+    // The --html summary says the same.
+    let page = std::fs::read_to_string(html).expect("the HTML report");
+    let row = format!(
+        "{removed:.0} mm³ at {:.0} mm³/s; not cutting {air:.2} s (rapids {rapid:.2} s)",
+        f(&r["removal_rate_mm3_s"])
+    );
+    assert!(page.contains(&row), "no `{row}` in the HTML report");
 }

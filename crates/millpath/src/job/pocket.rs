@@ -467,8 +467,9 @@ impl PocketRun {
     }
 
     /// The `--html` report of the run on `outline` (the drawing's name): summary (machine,
-    /// strategy, cycle time, path, engagement, the verifier's figures, its problems, `auto`'s
-    /// table), the viewer with playback on the machine, the feed plot.
+    /// strategy, cycle time, path, engagement, the removal rate and the time not cutting, the
+    /// verifier's figures, its problems, `auto`'s table), the viewer with playback on the
+    /// machine, the feed plot.
     pub fn html(&self, outline: &str) -> Result<crate::report::html::HtmlReport, Error> {
         let (rep, name, m) = (&self.report, &self.name, &self.machine);
         let plan = self.plan()?;
@@ -495,6 +496,26 @@ impl PocketRun {
                     rep.mean_engagement_deg,
                     rep.nominal_engagement_deg,
                     100.0 * rep.share_above_nominal
+                ),
+            ),
+            (
+                "outside the entries".to_owned(),
+                format!(
+                    "engagement mean {:.1}°, p95 {:.1}°, max {:.1}°; the sharpest corner forces {:.1}°",
+                    rep.verification.engagement.mean_deg,
+                    rep.verification.engagement.p95_deg,
+                    rep.verification.engagement.max_deg,
+                    rep.engagement_floor_deg
+                ),
+            ),
+            (
+                "removal".to_owned(),
+                format!(
+                    "{:.0} mm³ at {:.0} mm³/s; not cutting {:.2} s (rapids {:.2} s)",
+                    rep.verification.removed_mm3,
+                    rep.removal_rate_mm3_s,
+                    rep.air_time_s,
+                    rep.rapid_time_s
                 ),
             ),
             (
