@@ -90,6 +90,20 @@ fn main() {
         .collect();
     top.sort_by(|a, b| b.0.total_cmp(&a.0));
     top.dedup_by_key(|t| t.1);
+    if let (Ok(ctx), Some(&(_, k))) = (std::env::var("CONTEXT"), top.first()) {
+        // The moves round the largest: `CONTEXT=n` of them either side.
+        let n: usize = ctx.parse().unwrap_or(3);
+        for x in sim.samples.iter().filter(|x| x.move_index == k) {
+            println!("    sample at {:.3} mm: {:.1}°", x.at, x.angle.to_degrees());
+        }
+        for j in k.saturating_sub(n)..(k + n + 1).min(tp.moves.len()) {
+            let m = &tp.moves[j];
+            println!(
+                "    move {j}: to ({:.3}, {:.3}, {:.3}) {:?}",
+                m.to.x, m.to.y, m.to.z, m.kind
+            );
+        }
+    }
     for (deg, k) in top.iter().take(6) {
         let from = if *k > 0 { tp.moves[k - 1].to } else { tp.start };
         println!(

@@ -219,3 +219,46 @@ fn adaptive_reaches_what_a_sharp_corner_forces_and_no_more() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A long pocket is entered along its ridge: the aerospace pocket's descent is a racetrack
+/// whose straights run along the long axis over the ridge (the points 50 mm from both long
+/// walls: `x` from −25 to 25 at `y = 0`), so that the passes grow its offsets, not circles.
+/// Checked on the moves: the descending lines, their direction and extent, and every
+/// descending move within the helix radius of the ridge segment.
+#[test]
+fn a_long_pocket_is_entered_along_its_ridge() {
+    use millpath::toolpath::MoveKind;
+    let shape = builtin::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap();
+    let opts = PocketOptions::default()
+        .with_depth(5.0)
+        .with_step_down(5.0)
+        .with_stepover(pocket::Stepover::Fraction(0.4));
+    let tp = pocket::toolpath(StrategyKind::Adaptive, &shape, &tool, &opts).unwrap();
+    let mut straight = 0.0;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut descending = 0;
+    for (from, m) in tp.segments() {
+        if m.kind == MoveKind::Rapid || m.to.z >= from.z - 1e-9 {
+            if descending > 0 {
+                break;
+            }
+            continue;
+        }
+        descending += 1;
+        for q in [from.xy(), m.to.xy()] {
+            let along_ridge = (q.x.clamp(-25.0, 25.0) - q.x).hypot(q.y);
+            assert!(along_ridge <= 6.0 + 1e-6, "{q:?} off the ridge");
+            lo = lo.min(q.x);
+            hi = hi.max(q.x);
+        }
+        if matches!(m.kind, MoveKind::Line) {
+            let d = m.to.xy() - from.xy();
+            assert!(d.y.abs() < 1e-6 * d.length().max(1.0), "{d:?} not along x");
+            straight += d.length();
+        }
+    }
+    assert!(descending >= 4, "{descending} descending moves");
+    assert!(straight >= 90.0, "{straight} mm of straights");
+    assert!(lo <= -24.0 && hi >= 24.0, "{lo} … {hi}");
+}

@@ -40,6 +40,42 @@ mod tests {
     use crate::geom::Point3;
     use crate::toolpath::{Move, Tool};
 
+    /// A racetrack: the ramp round the loop and the flat lap on it are the entry; the first
+    /// move off the loop is not, nor is a move back onto it after that, nor a chord across
+    /// it whose ends lie on it.
+    #[test]
+    fn a_racetrack_and_its_flat_lap_are_the_entry_and_the_cut_after_is_not() {
+        let tool = Tool::flat(6.0).unwrap();
+        let p = Point3::new;
+        let mut tp = Toolpath::new(tool, p(0.0, -4.0, 1.0));
+        let lap = |tp: &mut Toolpath, z: [f64; 4]| {
+            tp.push(Move::line(p(30.0, -4.0, z[0]), 10.0));
+            tp.push(Move::arc_xy(
+                p(30.0, 4.0, z[1]),
+                p(30.0, 0.0, z[1]),
+                true,
+                10.0,
+            ));
+            tp.push(Move::line(p(0.0, 4.0, z[2]), 10.0));
+            tp.push(Move::arc_xy(
+                p(0.0, -4.0, z[3]),
+                p(0.0, 0.0, z[3]),
+                true,
+                10.0,
+            ));
+        };
+        lap(&mut tp, [-1.0, -2.0, -4.0, -5.0]);
+        lap(&mut tp, [-5.0; 4]);
+        tp.push(Move::line(p(5.0, -4.0, -5.0), 10.0));
+        tp.push(Move::line(p(5.0, 4.0, -5.0), 10.0));
+        tp.push(Move::line(p(5.0, -9.0, -5.0), 10.0));
+        tp.push(Move::line(p(10.0, -4.0, -5.0), 10.0));
+        let want = [
+            true, true, true, true, true, true, true, true, true, false, false, false,
+        ];
+        assert_eq!(entry_moves(&tp), want);
+    }
+
     #[test]
     fn a_helix_and_its_flat_turn_are_the_entry_and_the_cut_after_is_not() {
         let tool = Tool::flat(6.0).unwrap();

@@ -10,11 +10,13 @@
 //! (`Simulation::engagement`), `super::engagement_stats` builds one from recorded samples.
 //!
 //! **Entries aside.** A feed move that goes down (a helix's or a ramp's descent, a feed
-//! straight down) starts an entry; the entry lasts while the following moves end within the
-//! circle that holds the descent's points (a helix's flat last turn, a ramp's passes back
-//! along its own path), and ends at the first move that leaves it. What a program cuts while
-//! it gets down is the entry's business, not the strategy's; every CAM program's entries
-//! are found the same way, ours or another's.
+//! straight down) starts an entry; the entry lasts while the following level moves stay on
+//! the descent's track (a helix's flat last turn, a ramp's pass back along its own path, a
+//! racetrack's flat lap): both ends of the move, and a line's middle, within
+//! [`TRACK_TOLERANCE`] of a descent move's line or of a descent arc's circle. It ends at the
+//! first move off the track. What a program cuts while it gets down is the entry's business,
+//! not the strategy's; every CAM program's entries are found the same way, ours or
+//! another's.
 
 use crate::geom::Point;
 use crate::toolpath::{MoveKind, Toolpath};
@@ -40,40 +42,67 @@ pub struct EngagementStats {
     pub share_above_bound: f64,
 }
 
+/// How far a move after a descent may lie from the descent's track and still be its
+/// entry, mm.
+pub const TRACK_TOLERANCE: f64 = 1e-3;
+
+/// One piece of a descent's track, in the plane.
+#[derive(Debug, Clone, Copy)]
+enum Track {
+    Line(Point, Point),
+    Circle(Point, f64),
+}
+
+impl Track {
+    fn distance(&self, q: Point) -> f64 {
+        match *self {
+            Track::Line(a, b) => {
+                let d = b - a;
+                let l2 = d.dot(d);
+                let t = if l2 > 0.0 {
+                    ((q - a).dot(d) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                q.distance(a + d * t)
+            }
+            Track::Circle(c, r) => (q.distance(c) - r).abs(),
+        }
+    }
+}
+
 /// The flags of the moves that belong to an entry (module docs).
 pub fn entry_moves(tp: &Toolpath) -> Vec<bool> {
     let mut out = vec![false; tp.moves.len()];
     let mut from = tp.start;
-    let mut circle: Option<(Point, f64)> = None;
-    let mut descent: Vec<Point> = Vec::new();
+    let mut track: Vec<Track> = Vec::new();
+    let mut descending = false;
+    let on = |track: &[Track], q: Point| track.iter().any(|t| t.distance(q) <= TRACK_TOLERANCE);
     for (k, m) in tp.moves.iter().enumerate() {
         let down = m.kind != MoveKind::Rapid && m.to.z < from.z - 1e-9;
         if down {
-            if descent.is_empty() {
-                descent.push(from.xy());
+            if !descending {
+                track.clear();
             }
-            descent.push(m.to.xy());
-            if let MoveKind::Arc { center, .. } = m.kind {
-                // A helix: its whole circle.
-                descent.push(center.xy());
-                let rr = center.xy().distance(m.to.xy());
-                descent.push(center.xy() + crate::geom::Vec2::new(rr, 0.0));
-                descent.push(center.xy() - crate::geom::Vec2::new(rr, 0.0));
-            }
-            out[k] = true;
-            let n = descent.len() as f64;
-            let c = descent.iter().fold(Point::ORIGIN, |a, p| {
-                Point::new(a.x + p.x / n, a.y + p.y / n)
-            });
-            let rad = descent.iter().map(|p| p.distance(c)).fold(0.0, f64::max);
-            circle = Some((c, rad + 1e-6));
-        } else {
-            descent.clear();
-            match circle {
-                Some((c, rad)) if m.kind != MoveKind::Rapid && m.to.xy().distance(c) <= rad => {
-                    out[k] = true;
+            descending = true;
+            track.push(match m.kind {
+                MoveKind::Arc { center, .. } => {
+                    Track::Circle(center.xy(), center.xy().distance(m.to.xy()))
                 }
-                _ => circle = None,
+                _ => Track::Line(from.xy(), m.to.xy()),
+            });
+            out[k] = true;
+        } else {
+            descending = false;
+            let mid = from.xy().midpoint(m.to.xy());
+            let stays = m.kind != MoveKind::Rapid
+                && on(&track, from.xy())
+                && on(&track, m.to.xy())
+                && (matches!(m.kind, MoveKind::Arc { .. }) || on(&track, mid));
+            if stays {
+                out[k] = true;
+            } else {
+                track.clear();
             }
         }
         from = m.to;

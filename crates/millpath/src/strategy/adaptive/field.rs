@@ -13,7 +13,10 @@
 //! found row by row (the chord of the circle at the row's height), so counting or clearing
 //! them costs one word operation per row and 64 cells.
 
-use crate::geom::Point;
+use crate::geom::{Point, Vec2};
+
+/// Points on a tool's front half its contact arc is read at ([`Field::contact_arc`]).
+pub(crate) const ARC_SAMPLES: usize = 48;
 use crate::strategy::pocket::segments::{Seg, segs_from_vertices};
 use crate::strategy::pocket::shape::{PocketShape, closed_chain};
 
@@ -194,6 +197,32 @@ impl Field {
             }
         }
         false
+    }
+
+    /// Whether the cell that holds `q` holds material (`false` off the grid).
+    pub(crate) fn material_at(&self, q: Point) -> bool {
+        self.cell_of(q)
+            .is_some_and(|(i, j)| self.material[j * self.words + i / 64] >> (i % 64) & 1 == 1)
+    }
+
+    /// The arc of the front half (heading `u`) of the tool of radius `r` at `q` that touches
+    /// material: from the first to the last of [`ARC_SAMPLES`] points half a cell inside the
+    /// tool's circle that lie in a material cell, rad (0 where none does).
+    pub(crate) fn contact_arc(&self, q: Point, u: Vec2, r: f64) -> f64 {
+        let rr = r - 0.5 * self.h;
+        let step = std::f64::consts::PI / ARC_SAMPLES as f64;
+        let mut first = None;
+        let mut last = 0.0;
+        for k in 0..=ARC_SAMPLES {
+            let a = -std::f64::consts::FRAC_PI_2 + step * k as f64;
+            let (sn, cs) = a.sin_cos();
+            let d = Vec2::new(u.x * cs - u.y * sn, u.x * sn + u.y * cs);
+            if self.material_at(q + d * rr) {
+                first.get_or_insert(a);
+                last = a;
+            }
+        }
+        first.map_or(0.0, |f| last - f)
     }
 
     /// The material cells within `r` of `q`.
@@ -614,6 +643,30 @@ mod tests {
         // The wall distance of a centre cell is its distance to the nearest outside centre.
         let d = f.wall_distance(Point::new(15.1, 3.1));
         assert!((d - 3.25).abs() < 0.26, "{d}");
+    }
+
+    /// A tool above a straight edge of material, dipping `s` into it and moving along it,
+    /// touches it over `acos(1 − s/r)` of its front half (the straight cut's engagement), to
+    /// within the arc two cells subtend; over a slot, the whole half.
+    #[test]
+    fn the_contact_arc_is_the_straight_cuts_engagement() {
+        let f = Field::new(&square(40.0), 0.05, 1.0);
+        let r = 5.0;
+        for s in [0.5, 1.0, 2.5, 4.0, 5.0, 7.5] {
+            // Material below y = 40 (the square's top edge); the tool centre `r − s` above.
+            let q = Point::new(20.0, 40.0 + r - s);
+            let want = (1.0 - s / r).acos();
+            let tol = 2.0 * 0.05 / (r * want.sin().max(0.3)) + std::f64::consts::PI / 48.0;
+            let east = f.contact_arc(q, Vec2::new(1.0, 0.0), r);
+            assert!((east - want).abs() <= tol, "s {s}: {east} against {want}");
+            // Heading west the material is on the left: the same arc.
+            let west = f.contact_arc(q, Vec2::new(-1.0, 0.0), r);
+            assert!((west - want).abs() <= tol, "s {s}: {west} against {want}");
+        }
+        let mid = f.contact_arc(Point::new(20.0, 20.0), Vec2::new(0.0, 1.0), r);
+        assert!((mid - std::f64::consts::PI).abs() < 1e-12, "{mid}");
+        let none = f.contact_arc(Point::new(20.0, 60.0), Vec2::new(1.0, 0.0), r);
+        assert!(none.abs() < 1e-12, "{none}");
     }
 
     fn square(side: f64) -> PocketShape {

@@ -2,22 +2,42 @@
 //! cleared from the inside out in passes that follow the material.
 //!
 //! The planner keeps its own picture of the stock ([`field`]: a grid of cells of side
-//! `h = r/32`, one bit per cell of material). It enters with a helix at the point of the
-//! pocket farthest from its walls (the helix clears a disc of its radius plus `r`), then
-//! runs passes ([`pass`]): each step of length `δ = r/8` is turned so that it removes
-//! `TARGET_FILL · s · δ` of material, the area a straight cut of width `s` (`--stepover`)
-//! removes, so the engagement is that of the straight cut at every step, the entry aside.
-//! Each pass starts where the tool, clear of material, touches it (a block of a coarse
-//! distance-to-material map at `r` plus one to three blocks from the nearest material,
-//! the block nearest the tool first); the tool stays down and feeds there in a straight
-//! line when the line's every position is clear of material
-//! ([`LINK_CELLS`] cells at most in the tool's disc) and inside the walls; otherwise the
-//! tool retracts and feeds down there again (a direct entry over cleared material). A region
-//! the passes cannot reach (beyond an island, past a neck narrower than the tool) gets a
-//! helix of its own. The passes keep the tool centre `3h` farther from the walls than the
-//! tool-centre region (the grid's distances hold to `h`); a last pass around each loop of the
-//! exact tool-centre region (`r` plus the wall stock from the walls) cuts the band left
-//! there, whose width is that margin plus the scallops between passes meeting a wall.
+//! `h = r/32`, one bit per cell of material). It enters where the pocket is farthest from
+//! its walls, then runs passes ([`pass`]): each step of length `δ = r/8` is turned so that
+//! it removes `TARGET_FILL · s · δ` of material, the area a straight cut of width `s`
+//! (`--stepover`) removes, so the engagement is that of the straight cut at every step, the
+//! entry aside.
+//!
+//! **The entry.** The cells within a block (`4h`) of the largest wall distance are the
+//! pocket's ridge. Where the ridge's principal axis `AB` is longer than twice the helix
+//! radius `ρ` and every point of it lies `r + stock + ρ` (plus `2h`) from the walls, the
+//! entry is a racetrack: the tool ramps down round the stadium of half-width `ρ` about `AB`
+//! (whole laps at the ramp angle), then runs it once flat, clearing the stadium of
+//! half-width `ρ + r` (`CutEntry::Lap`); elsewhere it is a helix of radius `ρ` at the ridge
+//! cell nearest the ridge's centroid, clearing a disc of radius `ρ + r`. The first pass
+//! starts on that loop. From a point, constant-engagement passes grow circles, which meet
+//! the nearest walls long before the farthest; from the ridge they grow the stadium's
+//! offsets, which meet a long pocket's walls together, leaving only the corners.
+//!
+//! **Passes and links.** Each pass starts where the tool, clear of material, touches it (a
+//! block of a coarse distance-to-material map at `r` plus one to three blocks from the
+//! nearest material, the block nearest the tool first). The tool stays down and feeds there
+//! in a straight line when every position of the line (at most `min(δ, 4h)` apart) is one the
+//! tool centre may stand at, no step of it removes more than the target's share of its
+//! length and no position's contact arc exceeds the target's engagement (mostly it cuts
+//! nothing; a sliver a pass left at a wall), checked before the pass is cut; otherwise the
+//! tool retracts and feeds down over cleared material (beside the pass's start, or on an
+//! earlier cut within [`DIRECT_REACH`] radii) and leads in by a line that meets the same
+//! rule, or, with none, ramps along the pass. (The pocket layer's own direct entries, whose
+//! lead-in only stays inside the walls, are not used: this planner sees the material.) A
+//! region the passes cannot reach (beyond an island, past a neck narrower than the tool)
+//! gets an entry of its own. The
+//! passes keep the tool centre a small margin farther from the walls than the tool-centre
+//! region (the grid's distances hold to `h`); a last pass around each loop of the exact
+//! tool-centre region (`r` plus the wall stock from the walls) cuts the band left there:
+//! that margin, the scallops between passes meeting a wall, and the slivers thinner than
+//! half the stepover that the passes leave along the walls (`pass::NEAR_WALL_CUT`). It is
+//! linked from the last pass by the same rule.
 //!
 //! Each pass's tool positions are smoothed (they wobble by the grid's count of cells, a few
 //! hundredths of the target's area: Taubin's λ|μ smoothing moves each by at most
@@ -35,6 +55,7 @@
 //! (`crate::stock`, another grid, another sweep) measures the engagement of the written path
 //! and checks that nothing is left and nothing gouged, as for every strategy.
 
+mod entry;
 pub(crate) mod field;
 pub(crate) mod pass;
 
@@ -71,8 +92,17 @@ pub const MIN_HELIX_RADII: f64 = 0.1;
 pub const RAMP_REACH: f64 = 4.0;
 /// The margin of material-free cells around a descent, beyond the tool's radius.
 pub const DESCENT_CELLS: f64 = 3.0;
-/// Most material cells a link may pass within the tool's radius of.
-pub const LINK_CELLS: u32 = 4;
+/// The largest contact arc a pass's step may have, as a multiple of the target's
+/// engagement (the cells' count holds the area; the arc holds the angle where a thin sliver
+/// wraps round the tool, in a corner).
+pub const ARC_CAP: f64 = 1.05;
+/// How far from a pass's start a direct entry may come down on an earlier cut, in tool
+/// radii.
+pub const DIRECT_REACH: f64 = 6.0;
+/// Earlier cuts' points tried as a direct entry's descent, nearest first.
+const DIRECT_TRIES: usize = 16;
+/// A turn of the tool-centre region's boundary sharper than this is a corner, rad.
+const SHARP_TURN: f64 = 0.5;
 /// Coarse blocks per side, in cells.
 const BLOCK: usize = 4;
 /// Most cells in the planner's grid; a larger pocket gets larger cells.
@@ -90,7 +120,9 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
     let span = (b.max.x - b.min.x + 4.0 * r) * (b.max.y - b.min.y + 4.0 * r);
     let h = (CELL_RADII * r).max((span / MAX_CELLS).sqrt());
     let mut field = Field::new(shape, h, 2.0 * h);
-    let walls = Walls::new(shape, r + stock, h, 2.0 * ARC_FIT * r);
+    let region = shape.offset(r + stock);
+    let mut walls = Walls::new(shape, r + stock, h, 2.0 * ARC_FIT * r);
+    walls.corners = sharp_corners(&region);
     let delta = STEP_RADII * r;
     let side = if opts.direction == Direction::Climb {
         1.0
@@ -102,11 +134,12 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         delta,
         target: TARGET_FILL * s * delta / (h * h),
         s,
+        target_angle: (1.0 - s / r).clamp(-1.0, 1.0).acos(),
+        arc_cap: ARC_CAP * (1.0 - s / r).clamp(-1.0, 1.0).acos(),
         walls: &walls,
         side,
         max_steps: 10_000_000,
     };
-    let region = shape.offset(r + stock);
     if region.is_empty() {
         return Err(crate::strategy::pocket::offset::too_large(tool).into());
     }
@@ -143,7 +176,10 @@ pub(crate) struct Walls<'a> {
     /// Beyond this grid distance a point is inside for sure.
     sure: f64,
     /// The exact distance a point needs: `clear` plus the margin.
-    need: f64,
+    pub(crate) need: f64,
+    /// The tool-centre region's sharp corners (where its boundary turns by more than
+    /// [`SHARP_TURN`]).
+    corners: Vec<Point>,
 }
 
 impl<'a> Walls<'a> {
@@ -156,7 +192,13 @@ impl<'a> Walls<'a> {
             clear,
             sure: clear + margin + 2.5 * h,
             need: clear + margin,
+            corners: Vec::new(),
         }
+    }
+
+    /// True when `q` lies within `d` of a sharp corner of the tool-centre region.
+    pub(crate) fn near_corner(&self, q: Point, d: f64) -> bool {
+        self.corners.iter().any(|c| c.distance(q) < d)
     }
 
     /// The distance from `q` to the walls: the grid's where it is sure to be beyond
@@ -226,11 +268,24 @@ impl Planner<'_, '_> {
         }
         let path = self.fitted(&pts);
         self.field.undo();
-        let from = self.descent_near(&pts);
+        // The link, and the lead-in from a direct entry's descent, are checked against the
+        // material before the pass cuts; a lead-in that would cut more than a link may is no
+        // lead-in (the pass is ramped into).
+        let linked = self.pos.filter(|&at| self.link_clear(at, pts[0], false));
+        let from = if linked.is_some() {
+            None
+        } else {
+            self.descent_near(&pts)
+                .filter(|&f| self.link_clear(f, pts[0], false))
+                .or_else(|| self.descent_on_earlier(pts[0]))
+        };
         if self.cut_along(&path) == 0 {
             return Err(p);
         }
-        self.join(&pts, path, from);
+        if let Some(at) = linked {
+            self.field.clear_capsule(at, pts[0], self.stepper.r);
+        }
+        self.join(&pts, path, from, linked);
         Ok(())
     }
 
@@ -306,12 +361,11 @@ impl Planner<'_, '_> {
         out
     }
 
-    /// Appends a pass's positions to the plan: linked from where the tool is when the link
-    /// is clear, else as a new cut entered directly, the tool feeding down at `from`, or,
+    /// Appends a pass's positions to the plan: linked from `linked` (where the tool is, when
+    /// the link was found clear), else as a new cut entered directly, the tool feeding down at `from`, or,
     /// with no clear point to feed down at, ramped along the pass itself.
-    fn join(&mut self, pts: &[Point], path: Vec<Seg>, from: Option<Point>) {
+    fn join(&mut self, pts: &[Point], path: Vec<Seg>, from: Option<Point>, linked: Option<Point>) {
         let start = pts[0];
-        let linked = self.pos.filter(|&at| self.link_clear(at, start));
         match (linked, self.cuts.last_mut()) {
             (Some(at), Some(cut)) => {
                 if at.distance(start) > 1e-9 {
@@ -366,17 +420,59 @@ impl Planner<'_, '_> {
         None
     }
 
+    /// A point of an earlier cut of the level (swept at this depth, so the tool feeds down
+    /// through air there) within [`DIRECT_REACH`] tool radii of `start`, whose lead-in to it
+    /// is a clear link: the nearest of the cuts' segments' nearest points, at most
+    /// [`DIRECT_TRIES`] of them tried.
+    fn descent_on_earlier(&mut self, start: Point) -> Option<Point> {
+        let reach = DIRECT_REACH * self.stepper.r;
+        let mut cands: Vec<(f64, Point)> = self
+            .cuts
+            .iter()
+            .flat_map(|c| c.path.iter())
+            .map(|sg| sg.closest_point(start))
+            .map(|q| (q.distance(start), q))
+            .filter(|c| c.0 <= reach)
+            .collect();
+        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
+        cands
+            .into_iter()
+            .take(DIRECT_TRIES)
+            .map(|c| c.1)
+            .find(|&q| self.link_clear(q, start, false))
+    }
+
     /// True when the tool may feed from `a` to `b` at depth: every position along the way
-    /// (at most `h` apart) is inside the planner's reach and meets no material.
-    fn link_clear(&self, a: Point, b: Point) -> bool {
-        let n = ((a.distance(b) / self.field.h).ceil() as usize).max(1);
-        (0..=n).all(|k| {
+    /// (at most `min(δ, h·4)` apart) is one the tool centre may stand at (`b` aside when
+    /// `to_wall`: a walls' loop's start lies on the tool-centre region's edge), and no step
+    /// removes more than the target's share of its length (the link's engagement is bounded
+    /// as a pass's is; mostly it removes nothing, or a sliver the passes left at a wall).
+    fn link_clear(&mut self, a: Point, b: Point, to_wall: bool) -> bool {
+        let st = self.stepper;
+        let len = a.distance(b);
+        let n = ((len / st.delta.min(4.0 * self.field.h)).ceil() as usize).max(1);
+        let per_step = st.target * (len / n as f64) / st.delta;
+        let Some(u) = (b - a).normalize() else {
+            return true;
+        };
+        self.field.record();
+        let mut ok = true;
+        for k in 1..=n {
             let q = a.lerp(b, k as f64 / n as f64);
-            self.stepper.walls.allows(self.field, q)
-                && !self
-                    .field
-                    .disc_holds_more_than(q, self.stepper.r, LINK_CELLS)
-        })
+            let exempt = to_wall && k == n;
+            if !exempt && !st.walls.allows(self.field, q) {
+                ok = false;
+                break;
+            }
+            if f64::from(self.field.clear_disc(q, st.r)) > per_step
+                || self.field.contact_arc(q, u, st.r) > st.target_angle
+            {
+                ok = false;
+                break;
+            }
+        }
+        self.field.undo();
+        ok
     }
 
     /// The start of the next pass: the block nearest the tool that is clear of material by
@@ -464,123 +560,6 @@ impl Planner<'_, '_> {
         }
     }
 
-    /// A helix where material is left that no pass reaches: at the cell farthest from the
-    /// walls whose tool disc is at least half material; false when there is none.
-    fn new_helix(&mut self, shape: &PocketShape, clear: f64, helix: f64) -> bool {
-        let st = self.stepper;
-        let (nx, ny) = self.field.size();
-        // At least half of the disc's cells: `n ≥ π r² / 2` for a count `n`.
-        let half_disc =
-            ((0.5 * (std::f64::consts::PI * (st.r / self.field.h).powi(2))).ceil() as u32).max(1);
-        // Cells whose disc is at least half material, on a grid of blocks; of those within
-        // a block of the largest wall distance, the one nearest their centroid (the middle of
-        // a ridge of equal distances, not its end).
-        let mut found: Vec<(f64, Point)> = Vec::new();
-        let mut top: f64 = 0.0;
-        let hc = self.field.h * BLOCK as f64;
-        for j in (0..ny).step_by(BLOCK) {
-            for i in (0..nx).step_by(BLOCK) {
-                let w = self.field.wall_at(i, j);
-                if w < st.walls.clear || w < top - hc {
-                    continue;
-                }
-                let c = self.field.centre(i, j);
-                if self.field.disc_holds_more_than(c, st.r, half_disc - 1) {
-                    top = top.max(w);
-                    found.push((w, c));
-                }
-            }
-        }
-        found.retain(|f| f.0 >= top - hc);
-        if found.is_empty() {
-            return false;
-        }
-        let n = found.len() as f64;
-        let mid = found.iter().fold(Point::ORIGIN, |a, f| {
-            Point::new(a.x + f.1.x / n, a.y + f.1.y / n)
-        });
-        let c = found
-            .iter()
-            .map(|f| f.1)
-            .min_by(|a, b| a.distance(mid).total_cmp(&b.distance(mid)))
-            .unwrap_or(mid);
-        // The helix must fit: the exact distance to the walls decides.
-        let room = shape.distance_to(c) - clear - 2.0 * self.field.h;
-        let rho = helix.min(room).max(0.0);
-        if rho < MIN_HELIX_RADII * st.r {
-            return self.new_ramp(c);
-        }
-        self.field.clear_disc(c, rho + st.r);
-        let p0 = c + Vec2::new(rho, 0.0);
-        let theta = st.side * std::f64::consts::FRAC_PI_2;
-        self.field.record();
-        let (mut pts, _) = st.run(self.field, p0, theta);
-        if pts.len() < 2 {
-            pts = vec![p0, c + Vec2::new(rho, 1e-3)];
-        }
-        let path = self.fitted(&pts);
-        self.field.undo();
-        self.cut_along(&path);
-        self.cuts.push(Cut {
-            entry: CutEntry::Helix {
-                center: c,
-                radius: rho,
-                flat_turn: true,
-            },
-            path,
-        });
-        self.pos = pts.last().copied();
-        true
-    }
-
-    /// Where there is no room for a helix (a region barely wider than the tool): a ramp
-    /// along the longest straight run of positions the tool centre may stand at on a line
-    /// from `c` (16 headings, at most [`RAMP_REACH`] radii), cleared on the field. The
-    /// material around `c` is marked cleared whatever is found, so the planner moves on (the
-    /// verifier refuses a program that leaves it).
-    fn new_ramp(&mut self, c: Point) -> bool {
-        let (st, h) = (self.stepper, self.field.h);
-        // The longest run of allowed positions (`h` apart) along each heading from `c`.
-        let mut best: Option<(Point, Point, f64)> = None;
-        for k in 0..16 {
-            let a = std::f64::consts::TAU * f64::from(k) / 16.0;
-            let u = Vec2::new(a.cos(), a.sin());
-            let mut run: Option<(f64, f64)> = None;
-            let mut t = 0.0;
-            while t <= RAMP_REACH * st.r {
-                match (st.walls.allows(self.field, c + u * t), run) {
-                    (true, None) => run = Some((t, t)),
-                    (true, Some((t0, _))) => run = Some((t0, t)),
-                    (false, Some(_)) => break,
-                    (false, None) => {}
-                }
-                t += h;
-            }
-            if let Some((t0, t1)) = run
-                && best.is_none_or(|b| t1 - t0 > b.2)
-            {
-                best = Some((c + u * t0, c + u * t1, t1 - t0));
-            }
-        }
-        // Marked cleared whatever is found: what a line cannot reach there is left to the
-        // walls' loops (and the verifier), not tried again.
-        self.field.clear_disc(c, st.r);
-        let Some((from, end, len)) = best.filter(|b| b.2 >= 4.0 * h) else {
-            return true;
-        };
-        let n = (len / st.delta).ceil() as usize;
-        for k in 0..=n {
-            self.field
-                .clear_disc(from.lerp(end, k as f64 / n as f64), st.r);
-        }
-        self.cuts.push(Cut {
-            entry: CutEntry::Ramp,
-            path: vec![Seg::line(from, end)],
-        });
-        self.pos = Some(end);
-        true
-    }
-
     /// Where the tool may feed down for a walls' loop starting at `path[0].a`: the first
     /// point, going in from the loop's start square to it (either side, `h` apart, at most
     /// `2r`), whose disc plus [`DESCENT_CELLS`] cells holds no material on the field and from
@@ -628,10 +607,15 @@ impl Planner<'_, '_> {
                 continue;
             };
             let last = path.last().map_or(first, |s| s.b);
-            match (self.pos, self.cuts.last_mut()) {
-                (Some(at), Some(cut))
-                    if !crosses(region, at, first) && at.distance(first) < 1e-3 =>
-                {
+            let linked = self.pos.filter(|&at| {
+                !crosses(region, at, first)
+                    && (at.distance(first) < 1e-3 || self.link_clear(at, first, true))
+            });
+            match (linked, self.cuts.last_mut()) {
+                (Some(at), Some(cut)) => {
+                    if at.distance(first) > 1e-9 {
+                        cut.path.push(Seg::line(at, first));
+                    }
                     cut.path.extend(path);
                 }
                 _ => {
@@ -678,4 +662,25 @@ fn smoothed(pts: &[Point], within: f64) -> Vec<Point> {
         }
     }
     p
+}
+
+/// The vertices where a loop of `region` turns by more than [`SHARP_TURN`].
+fn sharp_corners(region: &crate::strategy::pocket::shape::OffsetRegion) -> Vec<Point> {
+    let mut out = Vec::new();
+    for lp in region.loops() {
+        let segs = segs_from_vertices(&closed_chain(lp));
+        for (k, sg) in segs.iter().enumerate() {
+            let next = &segs[(k + 1) % segs.len()];
+            let (Some(t0), Some(t1)) = (
+                sg.tangent_at(sg.length()).normalize(),
+                next.tangent_at(0.0).normalize(),
+            ) else {
+                continue;
+            };
+            if t0.cross(t1).atan2(t0.dot(t1)).abs() > SHARP_TURN {
+                out.push(sg.b);
+            }
+        }
+    }
+    out
 }

@@ -7,8 +7,13 @@
 //! material the tool meets between `p` and `q` is the material within `r` of `q`
 //! (`A(φ)`, counted on the field); a straight cut of radial width `a_e` removes `a_e·δ`, so
 //! holding `A(φ) = a_e·δ` holds the engagement of a straight cut of width `a_e`, which is how
-//! `--stepover` reads for this strategy. `A` grows as the step turns into the material, so
-//! the step taken is the turn where `A` crosses the target on a grid of [`TURNS`] turns,
+//! `--stepover` reads for this strategy. The area holds the angle only where the material's
+//! edge is smooth: where a thin sliver wraps round the tool (a corner the passes cut short) a
+//! small area touches a wide arc, so a step must also keep the tool's contact arc (the arc of
+//! its front half over material, `Field::contact_arc`) within `arc_cap` (`ARC_CAP` times the
+//! straight cut's engagement `acos(1 − a_e/r)`). Both grow as the step turns into the
+//! material, so the step taken is the turn where either crosses its bound on a grid of
+//! [`TURNS`] turns,
 //! found by walking the grid from the last step's turn (the path's turn changes little from
 //! one step to the next: two or three counts instead of the whole grid), refined by
 //! bisection towards the next turn up. Turns are bounded (at most
@@ -19,7 +24,10 @@
 //! where every allowed step would cut more than [`OVERLOAD`] times the target (the
 //! material closes in around the tool), where no step is allowed (a wall ahead), or after
 //! [`AIR_RADII`] tool radii of steps that cut less than [`MIN_CUT`] of it (the material ran
-//! out); the steps after its last cut are dropped.
+//! out; within the stepover of the tool-centre region's edge, away from its sharp corners,
+//! a step must cut [`NEAR_WALL_CUT`] of the target to count: the thinner sliver along a wall
+//! is the walls' loop's, while in a corner the loop would meet it head-on); the steps after
+//! its last cut are dropped.
 
 use super::Walls;
 use super::field::Field;
@@ -37,6 +45,9 @@ pub(crate) const OVERLOAD: f64 = 1.15;
 pub(crate) const MIN_CUT: f64 = 0.03;
 /// Travel without a cut that ends a pass, in tool radii.
 pub(crate) const AIR_RADII: f64 = 10.0;
+/// Within the stepover of the tool-centre region's edge, a step cutting less than this share
+/// of the target cuts nothing worth a pass: the sliver is the walls' loop's.
+pub(crate) const NEAR_WALL_CUT: f64 = 0.5;
 
 /// Halvings of a step's turn between two grid turns.
 const BISECTIONS: usize = 6;
@@ -54,6 +65,10 @@ pub(crate) struct Stepper<'w> {
     pub target: f64,
     /// The stepover, mm.
     pub s: f64,
+    /// The engagement of a straight cut of width `s`, rad.
+    pub target_angle: f64,
+    /// The largest contact arc a step may have ([`Field::contact_arc`]), rad.
+    pub arc_cap: f64,
     /// +1: material on the right (climb), −1: on the left.
     pub side: f64,
     /// Most steps in one pass.
@@ -66,6 +81,8 @@ struct Step {
     q: Point,
     heading: f64,
     area: f64,
+    /// The tool's contact arc there, rad.
+    arc: f64,
 }
 
 impl Stepper<'_> {
@@ -76,6 +93,7 @@ impl Stepper<'_> {
             q,
             heading,
             area: f64::from(field.count_disc(q, self.r)),
+            arc: field.contact_arc(q, Vec2::new(heading.cos(), heading.sin()), self.r),
         })
     }
 
@@ -90,7 +108,8 @@ impl Stepper<'_> {
     fn choose(&self, field: &Field, p: Point, theta: f64, hint: usize) -> Option<(Step, usize)> {
         let turn = |k: usize| -MAX_AWAY + (MAX_INTO + MAX_AWAY) * k as f64 / TURNS as f64;
         let eval = |k: usize| self.at(field, p, theta, turn(k));
-        let ok = |st: &Option<Step>| st.is_some_and(|st| st.area <= self.target);
+        let fits = |st: &Step| st.area <= self.target && st.arc <= self.arc_cap;
+        let ok = |st: &Option<Step>| st.is_some_and(|st| fits(&st));
         let hint = hint.min(TURNS);
         // `below`: the crossing's turn at or below the target; `above`: the allowed turn
         // just past it.
@@ -102,7 +121,7 @@ impl Stepper<'_> {
             for k in hint + 1..=TURNS {
                 match eval(k) {
                     None => {}
-                    Some(st) if st.area <= self.target => below = Some((k, st)),
+                    Some(st) if fits(&st) => below = Some((k, st)),
                     Some(_) => {
                         above = Some(k);
                         break;
@@ -116,7 +135,7 @@ impl Stepper<'_> {
             for k in (0..hint).rev() {
                 match eval(k) {
                     None => {}
-                    Some(st) if st.area <= self.target => {
+                    Some(st) if fits(&st) => {
                         below = Some((k, st));
                         break;
                     }
@@ -128,6 +147,7 @@ impl Stepper<'_> {
             // No turn at or below the target: the least overloaded allowed one, or none.
             return (0..=TURNS)
                 .filter_map(|k| eval(k).map(|st| (st, k)))
+                .filter(|(st, _)| st.arc <= OVERLOAD * self.arc_cap)
                 .min_by(|a, b| a.0.area.total_cmp(&b.0.area))
                 .filter(|(st, _)| st.area <= OVERLOAD * self.target);
         };
@@ -136,7 +156,7 @@ impl Stepper<'_> {
             for _ in 0..BISECTIONS {
                 let mid = 0.5 * (lo + hi);
                 match self.at(field, p, theta, mid) {
-                    Some(st) if st.area <= self.target => {
+                    Some(st) if fits(&st) => {
                         lo = mid;
                         best = st;
                     }
@@ -156,13 +176,22 @@ impl Stepper<'_> {
         let mut last_cut = 0;
         let mut air = 0.0;
         let min_cut = MIN_CUT * self.target;
+        let near_cut = NEAR_WALL_CUT * self.target;
+        let near = self.walls.clear + self.s;
         let mut hint = TURNS / 2;
         for _ in 0..self.max_steps {
             let Some((st, k)) = self.choose(field, p, theta, hint) else {
                 break;
             };
             hint = k;
-            if st.area < min_cut {
+            let floor = if field.wall_distance(st.q) < near
+                && !self.walls.near_corner(st.q, self.r + self.s)
+            {
+                near_cut
+            } else {
+                min_cut
+            };
+            if st.area < floor {
                 air += self.delta;
                 if air > AIR_RADII * self.r {
                     break;

@@ -71,6 +71,14 @@ pub enum CutEntry {
         /// The longest head, mm (the first row).
         max_len: f64,
     },
+    /// Ramp forwards round the closed loop that the path's first `len` mm form (a racetrack
+    /// along a long pocket's ridge: an elongated helix), whole laps descending at the ramp
+    /// angle, the last ending at the loop's start at the level; then the path, whose head is
+    /// the flat lap that clears what the slope left under the last one.
+    Lap {
+        /// The loop's length, mm.
+        len: f64,
+    },
     /// Feed down above `from` (already cleared at this level) and lead in to the path.
     Direct {
         /// A cleared point.
@@ -211,14 +219,16 @@ pub fn assemble(
 /// at the plunge feed (114 mm for a 6 mm slab at 3°), so this is both safer for sliver cuts
 /// (a cut too short to ramp along) and faster.
 ///
-/// Cuts too short to ramp into (shorter than `min_ramp_path`) are first moved after the
-/// others, keeping their order, so that an earlier cut has cleared material for them (a
+/// With `only_short`, only the cuts too short to ramp into get one (a strategy that chose
+/// its ramps against the material keeps them). Cuts too short to ramp into (shorter than
+/// `min_ramp_path`) are first moved after the others, keeping their order, so that an earlier cut has cleared material for them (a
 /// zigzag row grazing an island can be a few µm long, and may come first).
 pub fn direct_entries(
     plan: &mut LevelPlan,
     region: &OffsetRegion,
     max_link: f64,
     min_ramp_path: f64,
+    only_short: bool,
 ) {
     let (long, short): (Vec<Cut>, Vec<Cut>) = std::mem::take(&mut plan.cuts)
         .into_iter()
@@ -227,7 +237,10 @@ pub fn direct_entries(
     plan.cuts.extend(short);
     let mut cleared: Vec<Seg> = Vec::new();
     for cut in &mut plan.cuts {
-        if let (CutEntry::Ramp, Some(first)) = (cut.entry, cut.path.first()) {
+        let short = path_length(&cut.path) < min_ramp_path;
+        if let (CutEntry::Ramp, Some(first), true) =
+            (cut.entry, cut.path.first(), short || !only_short)
+        {
             let start = first.a;
             // Every point of an earlier cut's path was swept at this depth; the nearest
             // first (a row grazing an island beside a long straight of the clean-up pass is
@@ -345,6 +358,34 @@ fn emit_cut(
             }
             if end.distance(first.a) > 1e-9 {
                 tp.push(Move::line(Point3::from_xy(first.a, z), opts.feed));
+            }
+        }
+        CutEntry::Lap { len } => {
+            let head = path_head(&cut.path, len);
+            let drop = safe - z;
+            let need = drop / ramp_angle.tan();
+            let laps = (need / len).ceil().max(1.0);
+            let fits = laps <= MAX_RAMP_PASSES; // false for NaN
+            if !fits {
+                return Err(
+                    InputError::new("pocket entry", format!("{len:.4} mm of lap"))
+                        .at(format!("level at z = {z:.3}"))
+                        .expected("a loop long enough to ramp round"),
+                );
+            }
+            let slope = drop / (len * laps);
+            let mut h = safe;
+            for _ in 0..laps as usize {
+                for s in &head {
+                    h = snap_to_level(h - slope * s.length(), z);
+                    tp.push(seg_move(s, h, entry_feed(opts, ramp_angle)));
+                }
+            }
+            if tp.end().z > z + 1e-9 {
+                tp.push(Move::line(
+                    Point3::from_xy(first.a, z),
+                    entry_feed(opts, ramp_angle),
+                ));
             }
         }
         CutEntry::Direct { from } => {

@@ -155,11 +155,15 @@ pub fn plan_level(
         StrategyKind::Adaptive => crate::strategy::adaptive::plan(shape, tool, opts)?,
     };
     let region = shape.offset(tool.radius() + opts.wall_stock.max(0.0));
+    // The adaptive planner chooses its entries against its own picture of the material (a
+    // lead-in from an earlier cut can cross material this rule does not see): only its cuts
+    // too short to ramp along get one here.
     levels::direct_entries(
         &mut plan,
         &region,
         DIRECT_ENTRY_REACH * tool.diameter,
         levels::min_ramp_path(opts),
+        kind == StrategyKind::Adaptive,
     );
     Ok(plan)
 }

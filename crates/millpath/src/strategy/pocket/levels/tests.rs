@@ -35,7 +35,13 @@ fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
     let mut plan = LevelPlan {
         cuts: vec![sliver.clone(), big],
     };
-    direct_entries(&mut plan, &square_region(), 12.0, min_ramp_path(&opts));
+    direct_entries(
+        &mut plan,
+        &square_region(),
+        12.0,
+        min_ramp_path(&opts),
+        false,
+    );
     assert_eq!(plan.cuts[0].entry, CutEntry::Ramp);
     // The nearest point of the big cut's diagonal, (12.25, 12.25), not a segment's end.
     let CutEntry::Direct { from } = plan.cuts[1].entry else {
@@ -153,6 +159,83 @@ fn a_helix_descends_at_the_ramp_angle_and_no_further() {
             end.xy().distance(center + towards * radius) < 1e-9,
             "{end:?}"
         );
+    }
+}
+
+/// A racetrack entry (`CutEntry::Lap`) descends forwards round the loop at the head of the
+/// path at the ramp angle, whole laps, every descending move on the loop and the last
+/// ending at its start at the level; then the path follows at the level, its head the flat
+/// lap. Checked on the moves: the slope of each, the points against the loop's own
+/// geometry (lines and semicircles about the two ends).
+#[test]
+fn a_racetrack_entry_ramps_round_its_loop_then_runs_it_flat() {
+    use super::super::segments::Seg;
+    let p = Point::new;
+    let (a, b, rho) = (p(0.0, 0.0), p(30.0, 0.0), 4.0);
+    let head = vec![
+        Seg::line(p(0.0, -rho), p(30.0, -rho)),
+        Seg::from_bulge(p(30.0, -rho), p(30.0, rho), 1.0),
+        Seg::line(p(30.0, rho), p(0.0, rho)),
+        Seg::from_bulge(p(0.0, rho), p(0.0, -rho), 1.0),
+    ];
+    let len: f64 = head.iter().map(Seg::length).sum();
+    assert!((len - (60.0 + TAU * rho)).abs() < 1e-9, "{len}");
+    let mut path = head.clone();
+    path.push(Seg::line(p(0.0, -rho), p(0.0, -rho - 3.0)));
+    let on_loop = |q: Point| {
+        let d = if q.x <= a.x {
+            q.distance(a)
+        } else if q.x >= b.x {
+            q.distance(b)
+        } else {
+            q.y.abs()
+        };
+        (d - rho).abs() < 1e-9
+    };
+    for angle in [2.0f64, 3.0, 10.0] {
+        let alpha = angle.to_radians();
+        let opts = PocketOptions::default()
+            .with_depth(5.0)
+            .with_step_down(5.0)
+            .with_entry(Entry::Helix {
+                radius: rho,
+                ramp_angle: alpha,
+            });
+        let plan = LevelPlan {
+            cuts: vec![Cut {
+                entry: CutEntry::Lap { len },
+                path: path.clone(),
+            }],
+        };
+        let tool = Tool::flat(6.0).unwrap();
+        let tp = assemble(tool, &opts, &[plan], None, &[]).unwrap();
+        let drop = opts.safe_height + 5.0;
+        let laps = (drop / alpha.tan() / len).ceil();
+        let mut descent = 0.0;
+        let mut flat = 0.0;
+        let mut bottom = None;
+        for (from, m) in tp.segments() {
+            let along = m.length_from(from);
+            let dz = from.z - m.to.z;
+            if dz > 1e-12 && m.kind != crate::toolpath::MoveKind::Rapid {
+                assert!(on_loop(from.xy()) && on_loop(m.to.xy()), "{m:?}");
+                let slope = dz / (along * along - dz * dz).sqrt();
+                assert!(
+                    (slope - drop / (laps * len)).abs() < 1e-6,
+                    "{angle}°: {slope}"
+                );
+                descent += (along * along - dz * dz).sqrt();
+                bottom = Some(m.to);
+            } else if bottom.is_some() && (m.to.z + 5.0).abs() < 1e-12 && flat < len - 1e-9 {
+                assert!(on_loop(m.to.xy()), "the flat lap leaves the loop: {m:?}");
+                flat += along;
+            }
+        }
+        assert!((descent - laps * len).abs() < 1e-6, "{angle}°: {descent}");
+        assert!(drop / (laps * len) <= alpha.tan() + 1e-12);
+        let end = bottom.unwrap();
+        assert!(end.xy().distance(p(0.0, -rho)) < 1e-9 && (end.z + 5.0).abs() < 1e-12);
+        assert!((flat - len).abs() < 1e-6, "{flat}");
     }
 }
 
