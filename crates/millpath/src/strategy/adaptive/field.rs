@@ -210,19 +210,19 @@ impl Field {
     /// tool's circle that lie in a material cell, rad (0 where none does).
     pub(crate) fn contact_arc(&self, q: Point, u: Vec2, r: f64) -> f64 {
         let rr = r - 0.5 * self.h;
-        let step = std::f64::consts::PI / ARC_SAMPLES as f64;
-        let mut first = None;
-        let mut last = 0.0;
-        for k in 0..=ARC_SAMPLES {
-            let a = -std::f64::consts::FRAC_PI_2 + step * k as f64;
-            let (sn, cs) = a.sin_cos();
-            let d = Vec2::new(u.x * cs - u.y * sn, u.x * sn + u.y * cs);
-            if self.material_at(q + d * rr) {
-                first.get_or_insert(a);
-                last = a;
-            }
-        }
-        first.map_or(0.0, |f| last - f)
+        let table = arc_table();
+        let hit = |k: usize| {
+            let (cs, sn) = table[k];
+            self.material_at(q + Vec2::new(u.x * cs - u.y * sn, u.x * sn + u.y * cs) * rr)
+        };
+        let Some(first) = (0..=ARC_SAMPLES).find(|&k| hit(k)) else {
+            return 0.0;
+        };
+        let last = (first..=ARC_SAMPLES)
+            .rev()
+            .find(|&k| hit(k))
+            .unwrap_or(first);
+        std::f64::consts::PI * (last - first) as f64 / ARC_SAMPLES as f64
     }
 
     /// The material cells within `r` of `q`.
@@ -586,6 +586,18 @@ fn edt_1d(f: &[f64], out: &mut [f64]) {
         let d = q as f64 - p as f64;
         *o = d * d + f[p];
     }
+}
+
+/// The cosines and sines of [`Field::contact_arc`]'s sample angles, from −90° to 90°.
+fn arc_table() -> &'static [(f64, f64); ARC_SAMPLES + 1] {
+    static TABLE: std::sync::OnceLock<[(f64, f64); ARC_SAMPLES + 1]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        std::array::from_fn(|k| {
+            let a =
+                -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * k as f64 / ARC_SAMPLES as f64;
+            (a.cos(), a.sin())
+        })
+    })
 }
 
 #[cfg(test)]

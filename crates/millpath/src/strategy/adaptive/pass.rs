@@ -81,8 +81,6 @@ struct Step {
     q: Point,
     heading: f64,
     area: f64,
-    /// The tool's contact arc there, rad.
-    arc: f64,
 }
 
 impl Stepper<'_> {
@@ -93,7 +91,6 @@ impl Stepper<'_> {
             q,
             heading,
             area: f64::from(field.count_disc(q, self.r)),
-            arc: field.contact_arc(q, Vec2::new(heading.cos(), heading.sin()), self.r),
         })
     }
 
@@ -108,7 +105,11 @@ impl Stepper<'_> {
     fn choose(&self, field: &Field, p: Point, theta: f64, hint: usize) -> Option<(Step, usize)> {
         let turn = |k: usize| -MAX_AWAY + (MAX_INTO + MAX_AWAY) * k as f64 / TURNS as f64;
         let eval = |k: usize| self.at(field, p, theta, turn(k));
-        let fits = |st: &Step| st.area <= self.target && st.arc <= self.arc_cap;
+        // The arc is read only where the area passes (it costs more than the count).
+        let arc = |st: &Step| {
+            field.contact_arc(st.q, Vec2::new(st.heading.cos(), st.heading.sin()), self.r)
+        };
+        let fits = |st: &Step| st.area <= self.target && arc(st) <= self.arc_cap;
         let ok = |st: &Option<Step>| st.is_some_and(|st| fits(&st));
         let hint = hint.min(TURNS);
         // `below`: the crossing's turn at or below the target; `above`: the allowed turn
@@ -147,7 +148,7 @@ impl Stepper<'_> {
             // No turn at or below the target: the least overloaded allowed one, or none.
             return (0..=TURNS)
                 .filter_map(|k| eval(k).map(|st| (st, k)))
-                .filter(|(st, _)| st.arc <= OVERLOAD * self.arc_cap)
+                .filter(|(st, _)| arc(st) <= OVERLOAD * self.arc_cap)
                 .min_by(|a, b| a.0.area.total_cmp(&b.0.area))
                 .filter(|(st, _)| st.area <= OVERLOAD * self.target);
         };
