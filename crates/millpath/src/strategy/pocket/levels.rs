@@ -374,19 +374,12 @@ fn emit_cut(
                 );
             }
             let slope = drop / (len * laps);
+            let feed = entry_feed(opts, ramp_angle);
             let mut h = safe;
             for _ in 0..laps as usize {
-                for s in &head {
-                    h = snap_to_level(h - slope * s.length(), z);
-                    tp.push(seg_move(s, h, entry_feed(opts, ramp_angle)));
-                }
+                h = descend(tp, &head, h, slope, z, feed);
             }
-            if tp.end().z > z + 1e-9 {
-                tp.push(Move::line(
-                    Point3::from_xy(first.a, z),
-                    entry_feed(opts, ramp_angle),
-                ));
-            }
+            finish_descent(tp, first.a, z, feed);
         }
         CutEntry::Direct { from } => {
             tp.push(Move::line(Point3::from_xy(from, z), opts.plunge_feed));
@@ -407,10 +400,7 @@ fn emit_cut(
                 } else {
                     head.iter().rev().map(Seg::reversed).collect()
                 };
-                for s in &segs {
-                    h = snap_to_level(h - slope * s.length(), z);
-                    tp.push(seg_move(s, h, entry_feed(opts, ramp_angle)));
-                }
+                h = descend(tp, &segs, h, slope, z, entry_feed(opts, ramp_angle));
             }
             for s in path_tail(&cut.path, head_len) {
                 tp.push(seg_move(&s, z, opts.feed));
@@ -424,6 +414,7 @@ fn emit_cut(
             let drop = safe - z;
             let head_len = path_length(&head);
             let slope = drop / (head_len * passes as f64);
+            let feed = entry_feed(opts, ramp_angle);
             let mut h = safe;
             for p in 0..passes {
                 let segs: Vec<Seg> = if (passes - p) % 2 == 0 {
@@ -431,23 +422,32 @@ fn emit_cut(
                 } else {
                     head.iter().rev().map(Seg::reversed).collect()
                 };
-                for s in &segs {
-                    h = snap_to_level(h - slope * s.length(), z);
-                    tp.push(seg_move(s, h, entry_feed(opts, ramp_angle)));
-                }
+                h = descend(tp, &segs, h, slope, z, feed);
             }
-            if tp.end().z > z + 1e-9 {
-                tp.push(Move::line(
-                    Point3::from_xy(first.a, z),
-                    entry_feed(opts, ramp_angle),
-                ));
-            }
+            finish_descent(tp, first.a, z, feed);
         }
     }
     for s in &cut.path {
         tp.push(seg_move(s, z, opts.feed));
     }
     Ok(())
+}
+
+/// Moves along `segs` at `feed` from the height `h`, dropping `slope` per mm of the plane
+/// (never below the level `z`, snapped to it at the end); the height reached.
+fn descend(tp: &mut Toolpath, segs: &[Seg], mut h: f64, slope: f64, z: f64, feed: f64) -> f64 {
+    for s in segs {
+        h = snap_to_level(h - slope * s.length(), z);
+        tp.push(seg_move(s, h, feed));
+    }
+    h
+}
+
+/// Where a descent ended above the level `z`, the rest of the way down at `to`.
+fn finish_descent(tp: &mut Toolpath, to: Point, z: f64, feed: f64) {
+    if tp.end().z > z + 1e-9 {
+        tp.push(Move::line(Point3::from_xy(to, z), feed));
+    }
 }
 
 /// Where the tool comes down for `cut` at the level from `top` to `z` (the helix's start,
