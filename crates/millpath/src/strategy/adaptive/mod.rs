@@ -269,8 +269,8 @@ impl Planner<'_, '_> {
         let path = self.fitted(&pts);
         self.field.undo();
         // The link, and the lead-in from a direct entry's descent, are checked against the
-        // material before the pass cuts; a lead-in that would cut more than a link may is no
-        // lead-in (the pass is ramped into).
+        // material before the pass cuts; where no descent beside the start has a lead-in that
+        // a link may take, one on an earlier cut is tried, else the pass is ramped into.
         let linked = self.pos.filter(|&at| self.link_clear(at, pts[0], false));
         let from = if linked.is_some() {
             None
@@ -362,8 +362,8 @@ impl Planner<'_, '_> {
     }
 
     /// Appends a pass's positions to the plan: linked from `linked` (where the tool is, when
-    /// the link was found clear), else as a new cut entered directly, the tool feeding down at `from`, or,
-    /// with no clear point to feed down at, ramped along the pass itself.
+    /// the link was found clear), else as a new cut entered directly, the tool feeding down
+    /// at `from`, or, with no clear point to feed down at, ramped along the pass itself.
     fn join(&mut self, pts: &[Point], path: Vec<Seg>, from: Option<Point>, linked: Option<Point>) {
         let start = pts[0];
         match (linked, self.cuts.last_mut()) {
@@ -445,8 +445,10 @@ impl Planner<'_, '_> {
     /// True when the tool may feed from `a` to `b` at depth: every position along the way
     /// (at most `min(δ, h·4)` apart) is one the tool centre may stand at (`b` aside when
     /// `to_wall`: a walls' loop's start lies on the tool-centre region's edge), and no step
-    /// removes more than the target's share of its length (the link's engagement is bounded
-    /// as a pass's is; mostly it removes nothing, or a sliver the passes left at a wall).
+    /// removes more than the target's share of its length, and no position's contact arc
+    /// ([`Field::contact_arc`]) is wider than the target's engagement (the link's engagement
+    /// is bounded as a pass's is; mostly it removes nothing, or a sliver the passes left at
+    /// a wall).
     fn link_clear(&mut self, a: Point, b: Point, to_wall: bool) -> bool {
         let st = self.stepper;
         let len = a.distance(b);
