@@ -45,6 +45,18 @@ impl Point {
         self + (other - self) * t
     }
 
+    /// The distance to the segment `a`–`b` (to `a` where the two coincide).
+    pub fn distance_to_segment(self, a: Point, b: Point) -> f64 {
+        let d = b - a;
+        let l2 = d.dot(d);
+        let t = if l2 > 0.0 {
+            ((self - a).dot(d) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        self.distance(a + d * t)
+    }
+
     /// The midpoint of `self` and `other`.
     pub fn midpoint(self, other: Point) -> Point {
         self.lerp(other, 0.5)
@@ -252,6 +264,32 @@ impl From<kurbo::Vec2> for Vec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn distance_to_segment_is_the_least_over_dense_samples() {
+        let (a, b) = (Point::new(1.0, -2.0), Point::new(7.0, 3.0));
+        for q in [
+            Point::new(0.0, 0.0),
+            Point::new(4.0, 0.5),
+            Point::new(9.0, 5.0),
+            Point::new(-3.0, -4.0),
+            Point::new(3.0, 6.0),
+        ] {
+            let dense = (0..=100_000)
+                .map(|k| q.distance(a.lerp(b, f64::from(k) / 100_000.0)))
+                .fold(f64::INFINITY, f64::min);
+            let d = q.distance_to_segment(a, b);
+            assert!(
+                d <= dense + 1e-12 && dense - d < 1e-4,
+                "{q:?}: {d} against {dense}"
+            );
+        }
+        assert!(
+            (Point::new(3.0, 4.0).distance_to_segment(a, a) - a.distance(Point::new(3.0, 4.0)))
+                .abs()
+                < 1e-12
+        );
+    }
 
     #[test]
     fn point_vector_algebra() {

@@ -338,23 +338,11 @@ impl FloorPath {
             (j0 - 1..=j0 + 1).any(|j| {
                 self.buckets.get(&(i, j)).is_some_and(|ks| {
                     ks.iter()
-                        .any(|&k| segment_distance(q, self.chords[k].0, self.chords[k].1) <= d)
+                        .any(|&k| q.distance_to_segment(self.chords[k].0, self.chords[k].1) <= d)
                 })
             })
         })
     }
-}
-
-/// Distance from `p` to the segment `a`–`b`.
-fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let (dx, dy) = (b.x - a.x, b.y - a.y);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((p.x - a.x) * dx + (p.y - a.y) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(Point::new(a.x + t * dx, a.y + t * dy))
 }
 
 /// The wall contact length of each region at the rest tool's centre (module docs): the walls

@@ -56,16 +56,7 @@ enum Track {
 impl Track {
     fn distance(&self, q: Point) -> f64 {
         match *self {
-            Track::Line(a, b) => {
-                let d = b - a;
-                let l2 = d.dot(d);
-                let t = if l2 > 0.0 {
-                    ((q - a).dot(d) / l2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                q.distance(a + d * t)
-            }
+            Track::Line(a, b) => q.distance_to_segment(a, b),
             Track::Circle(c, r) => (q.distance(c) - r).abs(),
         }
     }
