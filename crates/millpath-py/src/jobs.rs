@@ -68,6 +68,7 @@ pub fn pocket(
     k.f64("min_radius", &mut s.min_radius)?;
     k.opt_text("morph", &mut s.morph)?;
     k.bool("arcs", &mut s.arcs)?;
+    k.bool("both_ways", &mut s.both_ways)?;
     k.bool("finish", &mut s.finish)?;
     k.bool("no_feed_modulation", &mut s.no_feed_modulation)?;
     k.text("machine", &mut s.machine)?;

@@ -49,6 +49,7 @@ pub const FLAGS: &[&str] = &[
     "min-radius",
     "morph",
     "arcs",
+    "both-ways",
     "finish",
     "no-feed-modulation",
     "machine",
@@ -109,6 +110,7 @@ pub fn parse(json: &str) -> Result<Settings, Error> {
     f.f64("min-radius", &mut s.min_radius)?;
     f.opt_text("morph", &mut s.morph)?;
     f.bool("arcs", &mut s.arcs)?;
+    f.bool("both-ways", &mut s.both_ways)?;
     f.bool("finish", &mut s.finish)?;
     f.bool("no-feed-modulation", &mut s.no_feed_modulation)?;
     f.text("machine", &mut s.machine)?;

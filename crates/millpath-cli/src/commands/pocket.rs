@@ -137,6 +137,11 @@ pub struct CommonArgs {
     /// ways, the chords are kept where they are faster
     #[arg(long)]
     pub arcs: bool,
+    /// Adaptive passes may run either way: against the milling direction where that starts
+    /// a pass nearer the tool by more than its radius (short passes in corners cut to and
+    /// fro instead of linking back)
+    #[arg(long)]
+    pub both_ways: bool,
     /// Finishing pass along the walls.
     #[arg(long)]
     pub finish: bool,
@@ -200,6 +205,7 @@ impl CommonArgs {
             min_radius: self.min_radius,
             morph: self.morph.clone(),
             arcs: self.arcs,
+            both_ways: self.both_ways,
             finish: self.finish,
             no_feed_modulation: self.no_feed_modulation,
             machine: self.machine.clone(),

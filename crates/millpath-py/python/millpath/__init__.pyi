@@ -131,6 +131,7 @@ def pocket(
     min_radius: float = 1.0,
     morph: Optional[str] = None,
     arcs: bool = False,
+    both_ways: bool = False,
     finish: bool = False,
     no_feed_modulation: bool = False,
     machine: str = "hsm",

@@ -80,6 +80,9 @@ pub struct PocketSettings {
     pub morph: Option<String>,
     /// Spiral laps as G2/G3 biarcs instead of G1 chords.
     pub arcs: bool,
+    /// Adaptive passes may run either way
+    /// ([`crate::strategy::pocket::AdaptiveOptions::both_ways`]).
+    pub both_ways: bool,
     /// Finishing pass along the walls.
     pub finish: bool,
     /// Keep the programmed feed (no engagement-based modulation).
@@ -133,6 +136,7 @@ impl Default for PocketSettings {
             min_radius: 1.0,
             morph: None,
             arcs: false,
+            both_ways: false,
             finish: false,
             no_feed_modulation: false,
             machine: "hsm".into(),
@@ -241,6 +245,7 @@ impl PocketSettings {
             .with_min_radius(self.min_radius)
             .with_morph(self.morph()?)
             .with_arcs(self.arcs)
+            .with_both_ways(self.both_ways)
             .with_curvature_ramps(true)
             .with_finish(self.finish)
             .with_modulate_feed(!self.no_feed_modulation);

@@ -24,6 +24,7 @@ pub(crate) const KEYS: &[&str] = &[
     "min_radius",
     "morph",
     "arcs",
+    "both_ways",
     "finish",
     "no_feed_modulation",
     "cell",
@@ -85,6 +86,7 @@ pub(crate) fn read(
     s.morph = k.str("morph")?;
     s.conventional = k.bool("conventional")?.unwrap_or(false);
     s.arcs = k.bool("arcs")?.unwrap_or(false);
+    s.both_ways = k.bool("both_ways")?.unwrap_or(false);
     s.finish = k.bool("finish")?.unwrap_or(false);
     s.no_feed_modulation = k.bool("no_feed_modulation")?.unwrap_or(false);
     Ok((s, k.text("select")?))

@@ -39,6 +39,13 @@
 //! half the stepover that the passes leave along the walls (`pass::NEAR_WALL_CUT`). It is
 //! linked from the last pass by the same rule.
 //!
+//! **Both ways** (`AdaptiveOptions::both_ways`). A pass runs with the material on the
+//! cutting side of the chosen direction. Passes that end at a wall (in a corner the grown
+//! loops leave) then need a link back to the far end of the next one. With `both_ways`, a
+//! pass may run the other way, the material on the other side: it does so where its start
+//! is nearer the tool by more than `r`, so such passes are cut to and fro. The engagement's
+//! bound is the same either way.
+//!
 //! Each pass's tool positions are smoothed (they wobble by the grid's count of cells, a few
 //! hundredths of the target's area: Taubin's λ|μ smoothing moves each by at most
 //! [`SMOOTH_RADII`]) and written as the chords between them (`δ` long, the path itself, not
@@ -151,6 +158,7 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         tried: Vec::new(),
         fit: ARC_FIT * r,
         arcs: opts.spiral.arcs,
+        both_ways: opts.adaptive.both_ways,
     };
     let helix = match opts.entry {
         Entry::Helix { radius, .. } => radius,
@@ -239,27 +247,54 @@ struct Planner<'f, 'w> {
     fit: f64,
     /// Write the smoothed positions as biarcs (`--arcs`) instead of chords.
     arcs: bool,
+    /// Passes may run either way ([`crate::strategy::pocket::AdaptiveOptions::both_ways`]).
+    both_ways: bool,
 }
 
-impl Planner<'_, '_> {
+impl<'w> Planner<'_, 'w> {
     /// Plans the next pass; false when nothing is left to clear.
     fn next_pass(&mut self, shape: &PocketShape, clear: f64, helix: f64) -> bool {
         let Some((p, theta, block)) = self.start() else {
             return self.new_helix(shape, clear, helix);
         };
-        if let Err(at) = self.pass_from(p, theta) {
+        let (st, (p, theta)) = self.side_for(p, theta);
+        if let Err(at) = self.pass_from(p, theta, st) {
             self.tried[block] = true;
             self.mark_tried(at);
         }
         true
     }
 
-    /// A pass from `p` heading `theta` (from where the material's edge beside it begins, if
-    /// the walk back finds it), appended to the plan; where it cuts nothing, the point it
-    /// started from.
-    fn pass_from(&mut self, p: Point, theta: f64) -> Result<(), Point> {
-        let st = self.stepper;
-        let (p, theta) = st.upstream(self.field, p, theta).unwrap_or((p, theta));
+    /// The stepper a pass touching the material at `p` (heading `theta` the chosen way) runs
+    /// with, and where it starts: where the material's edge beside it begins, if the walk back
+    /// ([`Stepper::upstream`]) finds it. With `both_ways`, the other way round (material on
+    /// the other side, heading reversed) where its start is nearer the tool by more than
+    /// the tool's radius.
+    fn side_for(&self, p: Point, theta: f64) -> (Stepper<'w>, (Point, f64)) {
+        let (field, st) = (&*self.field, self.stepper);
+        let ahead = (st, st.upstream(field, p, theta).unwrap_or((p, theta)));
+        let Some(here) = self.pos.filter(|_| self.both_ways) else {
+            return ahead;
+        };
+        let mut rev = st;
+        rev.side = -st.side;
+        let back = theta + std::f64::consts::PI;
+        let deep = field.wall_distance(p) >= st.walls.clear + st.r;
+        let need = if deep { pass::MIN_CUT } else { 0.3 } * st.target;
+        if !rev.first_bite_reaches(field, p, back, need) {
+            return ahead;
+        }
+        let other = rev.upstream(field, p, back).unwrap_or((p, back));
+        if other.0.distance(here) + st.r < ahead.1.0.distance(here) {
+            (rev, other)
+        } else {
+            ahead
+        }
+    }
+
+    /// A pass from `p` heading `theta` run by `st`, appended to the plan; where it cuts
+    /// nothing, the point it started from.
+    fn pass_from(&mut self, p: Point, theta: f64, st: Stepper<'w>) -> Result<(), Point> {
         self.field.record();
         let (pts, removed) = st.run(self.field, p, theta);
         if removed == 0 || pts.len() < 2 {

@@ -77,8 +77,8 @@ pub use auto::{Candidate, ORDER as AUTO_ORDER, Outcome, arcs_or_chords, choose, 
 pub use feed::{FeedProfile, factor as feed_factor};
 pub use levels::level_depths;
 pub use options::{
-    Direction, Entry, PocketOptions, SpiralMorph, SpiralOptions, Stepover, StrategyKind,
-    ZigzagOptions,
+    AdaptiveOptions, Direction, Entry, PocketOptions, SpiralMorph, SpiralOptions, Stepover,
+    StrategyKind, ZigzagOptions,
 };
 pub use part::{PartPocket, PartResult, PartStrategy, generate_part};
 pub use segments::ARC_AS_LINE_SAGITTA;

@@ -160,6 +160,8 @@ pub struct PocketOptions {
     pub spiral: SpiralOptions,
     /// The zigzag's own settings.
     pub zigzag: ZigzagOptions,
+    /// The adaptive's own settings.
+    pub adaptive: AdaptiveOptions,
 }
 
 /// The spiral strategy's settings ([`PocketOptions::spiral`]).
@@ -223,6 +225,17 @@ pub struct ZigzagOptions {
     pub ramp_recut: bool,
 }
 
+/// The adaptive strategy's settings ([`PocketOptions::adaptive`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+#[non_exhaustive]
+pub struct AdaptiveOptions {
+    /// Passes may run either way (`--both-ways`): a pass runs against the chosen direction
+    /// ([`PocketOptions::direction`]) where that starts it nearer the tool by more than the
+    /// tool's radius, so that short passes ending at a wall (in a corner) are cut to and
+    /// fro instead of each followed by a link back. The engagement's bound holds either way.
+    pub both_ways: bool,
+}
+
 impl Default for PocketOptions {
     fn default() -> Self {
         PocketOptions {
@@ -245,6 +258,7 @@ impl Default for PocketOptions {
             modulate_feed: true,
             spiral: SpiralOptions::default(),
             zigzag: ZigzagOptions::default(),
+            adaptive: AdaptiveOptions::default(),
         }
     }
 }
@@ -283,6 +297,10 @@ option_builders! {
     with_spiral => spiral: SpiralOptions;
     /// Sets all of [`PocketOptions::zigzag`].
     with_zigzag => zigzag: ZigzagOptions;
+    /// Sets all of [`PocketOptions::adaptive`].
+    with_adaptive => adaptive: AdaptiveOptions;
+    /// Sets [`AdaptiveOptions::both_ways`].
+    with_both_ways => adaptive.both_ways: bool;
     /// Sets [`SpiralOptions::transition`].
     with_transition => spiral.transition: f64;
     /// Sets [`SpiralOptions::min_radius`], mm.
