@@ -258,3 +258,44 @@ fn a_building_scale_drawing_with_the_default_tool_is_refused_at_once() {
         assert!(!dir.path().join("p.ngc").exists());
     }
 }
+
+/// A region only a plunge reaches at the adaptive's full depth (`wro_Plate_2.DXF`: a cut
+/// 0.26 mm long where the tool just fits between the holes) is bad input, exit 2 and no
+/// file; the message says how shallow a level must be to ramp into it, and levels that
+/// shallow give a program, which the engine has verified (it writes none otherwise).
+#[test]
+fn a_cut_only_a_plunge_reaches_names_the_step_down_that_ramps_into_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = common::real_input("wro_Plate_2.DXF");
+    let o = millpath(
+        &["pocket", &path, "--strategy", "adaptive", "-o", "p.ngc"],
+        dir.path(),
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(!dir.path().join("p.ngc").exists());
+    let at_most: f64 = e
+        .split("is at most ")
+        .nth(1)
+        .and_then(|t| t.split(" mm").next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no descent named: {e}"));
+    // The descent is the safe height (1 mm by default) plus the step-down.
+    let step_down = format!("{:.3}", 0.9 * (at_most - 1.0));
+    assert!(at_most > 2.0 && at_most < 25.0, "{e}");
+    let o = millpath(
+        &[
+            "pocket",
+            &path,
+            "--strategy",
+            "adaptive",
+            "--step-down",
+            &step_down,
+            "-o",
+            "p.ngc",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(dir.path().join("p.ngc").exists());
+}

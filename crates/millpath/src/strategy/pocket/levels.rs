@@ -551,10 +551,13 @@ fn ramp_passes(
                     "the cut from ({:.3}, {:.3}), level at z = {z:.3}",
                     first.a.x, first.a.y
                 ))
-                .expected(
+                .expected(format!(
                     "a cut long enough to ramp into, or beside cleared material: only a \
-         plunge reaches this one (a smaller tool, or a pre-drilled entry)",
-                ),
+                     plunge reaches this one (a smaller tool, a pre-drilled entry, or \
+                     levels whose descent, the safe height plus the step-down, is at most \
+                     {:.3} mm)",
+                    total * MAX_RAMP_PASSES * ramp_angle.tan()
+                )),
         );
     }
     Ok((head, passes as usize))
