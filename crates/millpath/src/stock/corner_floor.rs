@@ -26,15 +26,62 @@
 //! `θ = 4·atan(bulge)` spread over their length), and `α = π − τ`. The region's loops run
 //! with the region on their left (counter-clockwise outer loops, clockwise islands), so a
 //! convex corner turns left.
+//!
+//! A neck the tool just fits through (two of the region's loops within `within` of each
+//! other: an island's offset touching a wall's where the gap is the tool's diameter) is cut
+//! as a slot by whatever goes through first, from either side: the material ahead spans the
+//! gap. The floor there is π.
+//!
+//! Where a loop turns back on itself (two walls' offsets meeting
+//! tangent in a notch as wide as the tool), the tangents' cross product is rounding noise:
+//! the turn is `+π` (a spike: the region lies only between the way in and the way out) or
+//! `−π` (a crack: it lies on both sides), read from a point just beside the way in.
 
-use crate::geom::Outline;
+use crate::geom::{Outline, Vec2};
+
+/// A vertex turn within this of π (rad) is a reversal, its sign read from the region.
+const REVERSAL: f64 = 1e-6;
 
 /// The engagement, radians, a tool feeding straight into the sharpest corner of the
 /// tool-centre region reaches (module docs): `acos(2·cos(τ/2) − 1)` for the largest turn `τ`
 /// of [`corner_turn`].
+/// Where two of the region's loops come within `within` of each other (a neck the tool
+/// just fits through), a slot: π.
 pub fn corner_floor(loops: &[Outline], within: f64) -> f64 {
+    if pinched(loops, within) {
+        return std::f64::consts::PI;
+    }
     let tau = corner_turn(loops, within);
     (2.0 * (0.5 * tau).cos() - 1.0).clamp(-1.0, 1.0).acos()
+}
+
+/// True when two of `loops` come within `tol` of each other: points of one, at most `tol/2`
+/// apart along it (those within `tol` of the other's bounds), measured to the other.
+pub fn pinched(loops: &[Outline], tol: f64) -> bool {
+    if tol.is_nan() || tol <= 0.0 {
+        return false;
+    }
+    for (i, a) in loops.iter().enumerate() {
+        for b in &loops[i + 1..] {
+            let near = b.bounds().inflate(tol);
+            let ab = a.bounds();
+            if ab.min.x > near.max.x
+                || ab.max.x < near.min.x
+                || ab.min.y > near.max.y
+                || ab.max.y < near.min.y
+            {
+                continue;
+            }
+            let n = ((a.length() / (0.5 * tol)).ceil() as usize).clamp(16, 1 << 20);
+            if a.sample(n)
+                .into_iter()
+                .any(|p| near.contains(p) && b.distance_to(p) < tol)
+            {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 /// The largest turn of the tool-centre region's loops summed over a stretch at most `within`
@@ -69,9 +116,28 @@ pub fn corner_turn(loops: &[Outline], within: f64) -> f64 {
             (b - a).rotate(if at_end { half } else { -half })
         };
         let vertex_turn = |i: usize| {
-            let inc = tangent((i + n - 1) % n, true);
+            let prev = (i + n - 1) % n;
+            let inc = tangent(prev, true);
             let out = tangent(i, false);
-            inc.cross(out).atan2(inc.dot(out))
+            let turn = inc.cross(out).atan2(inc.dot(out));
+            if std::f64::consts::PI - turn.abs() > REVERSAL {
+                return turn;
+            }
+            // The loop turns back on itself: the sign of the tiny cross product says nothing.
+            // A spike of the region (a cusp where two walls' offsets meet, a hair as wide as
+            // the tool) has no region on the right of the way in; a crack (the outside
+            // reaching in) has the region on both sides.
+            let (Some(u), len) = (inc.normalize(), segs[prev].0) else {
+                return turn;
+            };
+            let back = (1e-3 * len).min(1e-4);
+            let q = v[i].0 - u * back + Vec2::new(u.y, -u.x) * (0.01 * back);
+            let inside: i32 = loops.iter().map(|o| o.winding_number(q)).sum();
+            if inside > 0 {
+                -std::f64::consts::PI
+            } else {
+                std::f64::consts::PI
+            }
         };
         let turns: Vec<f64> = (0..n).map(vertex_turn).collect();
         // Windows starting at each vertex, forward, and ending at each vertex, backward.
@@ -105,7 +171,7 @@ pub fn corner_turn(loops: &[Outline], within: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{corner_floor, corner_turn};
+    use super::{corner_floor, corner_turn, pinched};
     use crate::geom::{Outline, Point};
     use std::f64::consts::PI;
 
@@ -145,6 +211,57 @@ mod tests {
         let hole = poly(&[(0.0, 0.0), (0.0, 10.0), (10.0, 10.0), (10.0, 0.0)]);
         assert!(corner_turn(std::slice::from_ref(&hole), 0.1) < 1e-9);
         assert!(corner_floor(&[hole], 0.1) < 1e-9);
+    }
+
+    /// A 20 × 20 region whose left wall has, at `y = 0`, two quarter arcs of radius 3.175
+    /// meeting tangent at a tip 3.175 from the wall: turning `out` (−1) a spike of the
+    /// region into a notch of the wall as wide as the tool, (+1) a tooth of the wall reaching
+    /// into the region. The loop reverses at the tip either way.
+    fn notched(dir: f64) -> Outline {
+        let (r, b) = (3.175, (PI / 8.0).tan());
+        let v = vec![
+            (Point::new(0.0, -10.0), 0.0),
+            (Point::new(20.0, -10.0), 0.0),
+            (Point::new(20.0, 10.0), 0.0),
+            (Point::new(0.0, 10.0), 0.0),
+            (Point::new(0.0, r), dir * b),
+            (Point::new(dir * r, 0.0), dir * b),
+            (Point::new(0.0, -r), 0.0),
+        ];
+        Outline::new(&v, "test").unwrap()
+    }
+
+    #[test]
+    fn a_reversal_is_a_spike_or_a_crack_as_the_region_lies() {
+        // The spike: a tool in it slots, less what one arc turns back over the window.
+        let spike = corner_turn(&[notched(-1.0)], 0.1);
+        let want = PI - 0.1 / 3.175;
+        assert!((spike - want).abs() < 1e-6, "{}", spike.to_degrees());
+        assert!(corner_floor(&[notched(-1.0)], 0.1) > 140f64.to_radians());
+        // The tooth: the region wraps round it, the square corners are the sharpest.
+        let tooth = corner_turn(&[notched(1.0)], 0.1);
+        assert!((tooth - 0.5 * PI).abs() < 1e-6, "{}", tooth.to_degrees());
+    }
+
+    #[test]
+    fn a_neck_the_tool_just_fits_is_a_slot() {
+        // A 20 × 20 region and a disc island whose edge comes `gap` from the top wall.
+        let outer = poly(&[(0.0, 0.0), (20.0, 0.0), (20.0, 20.0), (0.0, 20.0)]);
+        for (gap, slot) in [(0.0, true), (0.01, true), (0.5, false)] {
+            let c = Point::new(10.0, 20.0 - gap - 3.0);
+            let island = Outline::new(
+                &[
+                    (Point::new(c.x - 3.0, c.y), -1.0),
+                    (Point::new(c.x + 3.0, c.y), -1.0),
+                ],
+                "test",
+            )
+            .unwrap();
+            let loops = [outer.clone(), island];
+            assert_eq!(pinched(&loops, 0.1), slot, "gap {gap}");
+            let f = corner_floor(&loops, 0.1);
+            assert_eq!(f > 0.99 * PI, slot, "gap {gap}: {}", f.to_degrees());
+        }
     }
 
     #[test]
