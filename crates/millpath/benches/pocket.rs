@@ -1,6 +1,6 @@
 //! Criterion benchmarks: planning one level of the built-in aerospace pocket (150 × 100 mm,
 //! 12.7 mm tool, 40% stepover) with each strategy (adaptive in a group of its own, fewer
-//! samples), the spiral with its default morph
+//! samples, climb and both ways), the spiral with its default morph
 //! (`offsets`) and with the paper's (`fronts`) side by side; the spiral on a 200-vertex
 //! non-convex pocket (a wavy five-lobed star, 10 mm tool) with both morphs and `offset`; the
 //! spiral on each pocket of the sample part; the aerospace spiral also with `--arcs`;
@@ -43,6 +43,10 @@ fn plan(c: &mut Criterion) {
     g.sample_size(10);
     g.bench_function("adaptive", |b| {
         b.iter(|| plan_level(StrategyKind::Adaptive, black_box(&shape), &tool, &opts));
+    });
+    let both = opts.clone().with_both_ways(true);
+    g.bench_function("adaptive --both-ways", |b| {
+        b.iter(|| plan_level(StrategyKind::Adaptive, black_box(&shape), &tool, &both));
     });
     g.finish();
     let lobed = PocketShape::simple(lobed_star(200, 60.0));
