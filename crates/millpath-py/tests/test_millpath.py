@@ -59,6 +59,17 @@ def test_pocket_equals_cli(tmp_path, strategy):
     assert r.strategy == strategy
 
 
+def test_pocket_adaptive_both_ways_equals_cli(tmp_path):
+    kw = dict(POCKET_ARGS, strategy="adaptive", stepover="0.4", both_ways=True)
+    r = millpath.pocket("sample:aerospace", **kw)
+    gcode, report = cli_pocket(tmp_path, "sample:aerospace", **kw)
+    assert r.gcode.encode() == gcode
+    assert r.report == report
+    assert report["verification"]["uncut_area_mm2"] <= report["verification"]["uncut_tolerance_mm2"]
+    climb = millpath.pocket("sample:aerospace", **dict(kw, both_ways=False))
+    assert r.gcode != climb.gcode
+
+
 def test_pocket_real_drawing_other_dialect_equals_cli(tmp_path):
     assert REAL.is_dir(), f"real inputs missing: {REAL}"
     kw = dict(strategy="auto", tool_diameter=4, depth=2, step_down=2, dialect="fanuc",
