@@ -101,3 +101,50 @@ fn auto_writes_the_fastest_verified_program_and_reports_all_three() {
         "auto wrote {fastest}'s program, byte for byte"
     );
 }
+
+/// Given the flute length, `auto` tries the adaptive too, at its own defaults (10 %, one level
+/// per flute length): the entry's time is that of `--strategy adaptive` run alone with the
+/// same flags, its program timed by `estimate`, and its verification the same.
+#[test]
+fn auto_tries_the_adaptive_where_the_flute_length_is_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let common = [
+        "pocket",
+        "sample:aerospace",
+        "--depth",
+        "5",
+        "--flute-length",
+        "12",
+        "--machine",
+        "hsm",
+    ];
+    let run = |strategy: &str, out: &str, report: &str| {
+        let mut a = common.to_vec();
+        a.extend(["--strategy", strategy, "-o", out, "--report", report]);
+        ok(&millpath(&a, dir.path()));
+        let text = std::fs::read_to_string(dir.path().join(report)).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()
+    };
+    let rep = run("auto", "auto.ngc", "auto.json");
+    let entries = rep["auto"].as_array().expect("auto entries");
+    let names: Vec<&str> = entries
+        .iter()
+        .map(|e| e["strategy"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["spiral", "offset", "zigzag", "adaptive"]);
+    let own = run("adaptive", "a.ngc", "a.json");
+    assert!((own["stepover_mm"].as_f64().unwrap() - 1.27).abs() < 1e-9);
+    let verified = own["problems"].as_array().unwrap().is_empty();
+    assert_eq!(entries[3]["verified"].as_bool(), Some(verified));
+    let est: serde_json::Value = serde_json::from_str(&ok(&millpath(
+        &["estimate", "a.ngc", "--machine", "hsm", "--json"],
+        dir.path(),
+    )))
+    .unwrap();
+    let t = est["cycle_time_s"].as_f64().unwrap();
+    let planned = entries[3]["cycle_time_s"].as_f64().unwrap();
+    assert!(
+        (t - planned).abs() < 0.01 * t,
+        "{t} s read back, {planned} s"
+    );
+}

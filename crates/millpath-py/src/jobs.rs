@@ -50,6 +50,7 @@ pub fn pocket(
     };
     k.text("strategy", &mut s.strategy)?;
     k.f64("tool_diameter", &mut s.tool_diameter)?;
+    k.opt_f64("flute_length", &mut s.flute_length)?;
     k.text("stepover", &mut s.stepover)?;
     k.f64("depth", &mut s.depth)?;
     k.f64("step_down", &mut s.step_down)?;

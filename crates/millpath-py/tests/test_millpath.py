@@ -70,6 +70,14 @@ def test_pocket_adaptive_both_ways_equals_cli(tmp_path):
     assert r.gcode != climb.gcode
 
 
+def test_pocket_auto_tries_the_adaptive_given_the_flute_length(tmp_path):
+    kw = dict(POCKET_ARGS, strategy="auto", flute_length=12)
+    r = millpath.pocket("sample:aerospace", **kw)
+    gcode, report = cli_pocket(tmp_path, "sample:aerospace", **kw)
+    assert r.gcode.encode() == gcode
+    assert [a["strategy"] for a in report["auto"]] == ["spiral", "offset", "zigzag", "adaptive"]
+
+
 def test_pocket_real_drawing_other_dialect_equals_cli(tmp_path):
     assert REAL.is_dir(), f"real inputs missing: {REAL}"
     kw = dict(strategy="auto", tool_diameter=4, depth=2, step_down=2, dialect="fanuc",

@@ -65,8 +65,9 @@ pub struct CommonArgs {
     #[command(flatten)]
     pub import: super::outline_input::ImportArgs,
     /// Strategy: spiral, offset, zigzag, adaptive (the engagement held at the stepover's at
-    /// every step, full depth), or auto (plan spiral, offset and zigzag, verify and time
-    /// each on --machine, write the fastest verified one).
+    /// every step, full depth), or auto (plan spiral, offset and zigzag, and adaptive at its
+    /// defaults where --flute-length is given, verify and time each on --machine, write the
+    /// fastest verified one).
     #[arg(long, default_value = "spiral")]
     pub strategy: String,
     /// Tool diameter, mm.

@@ -113,6 +113,7 @@ def pocket(
     *,
     strategy: str = "spiral",
     tool_diameter: float = 12.7,
+    flute_length: Optional[float] = None,
     stepover: Union[str, float] = "0.4",
     depth: float = 25.0,
     step_down: float = 6.35,

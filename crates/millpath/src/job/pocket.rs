@@ -246,6 +246,7 @@ impl PocketSettings {
             .with_morph(self.morph()?)
             .with_arcs(self.arcs)
             .with_both_ways(self.both_ways)
+            .with_auto_step_down(self.flute_length.filter(|_| self.strategy == "auto"))
             .with_curvature_ramps(true)
             .with_finish(self.finish)
             .with_modulate_feed(!self.no_feed_modulation);

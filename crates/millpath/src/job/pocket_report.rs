@@ -53,7 +53,8 @@ pub struct Report {
     pub problems: Vec<String>,
     /// What was changed from the options asked for, and why (a fallback after a gouge).
     pub notes: Vec<String>,
-    /// With `--strategy auto`: every strategy tried, in `pocket::auto::ORDER` (on a
+    /// With `--strategy auto`: every strategy tried, in `pocket::auto::ORDER` then the
+    /// adaptive where the flute length was given (on a
     /// drawing of one pocket; each pocket's list is in `pockets`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub auto: Option<Vec<AutoEntry>>,

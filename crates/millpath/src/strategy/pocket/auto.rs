@@ -1,7 +1,9 @@
 //! `--strategy auto`: every strategy planned, verified and timed; the fastest verified one
 //! kept.
 //!
-//! [`plan_all`] plans the spiral, offset and zigzag with [`super::generate`] (in parallel,
+//! [`plan_all`] plans the spiral, offset and zigzag (and the adaptive, at its own stepover
+//! and a level per flute length, where the caller gives the flute length) with
+//! [`super::generate`] (in parallel,
 //! with rayon: each reads only the shared inputs and makes its own toolpath), which also runs
 //! the material-removal verification; a candidate is **verified** when the verifier finds no
 //! problem ([`crate::stock::Verification::problems`]: no gouge, no uncut material beyond
@@ -111,8 +113,10 @@ impl Candidate {
     }
 }
 
-/// Plans, verifies and times every strategy of [`ORDER`] (in parallel); `time` gives a
-/// toolpath's cycle time on the chosen machine. A toolpath `time` refuses is the engine's
+/// Plans, verifies and times every strategy of [`ORDER`] (in parallel), and the adaptive
+/// where `opts.adaptive.auto_step_down` is given (at that step-down and
+/// [`super::AdaptiveOptions::AUTO_STEPOVER`]: one level per flute length, as the adaptive
+/// runs alone); `time` gives a toolpath's cycle time on the chosen machine. A toolpath `time` refuses is the engine's
 /// own, so its refusal is an internal error ([`Error::engine_made`]).
 pub fn plan_all(
     shape: &PocketShape,
@@ -121,9 +125,20 @@ pub fn plan_all(
     sim: &SimOptions,
     time: &(dyn Fn(&Toolpath) -> Result<f64> + Sync),
 ) -> Vec<Candidate> {
-    ORDER
-        .par_iter()
-        .map(|&kind| {
+    let adaptive = opts.adaptive.auto_step_down.map(|d| {
+        opts.clone()
+            .with_stepover(super::Stepover::Fraction(
+                super::AdaptiveOptions::AUTO_STEPOVER,
+            ))
+            .with_step_down(d)
+    });
+    let runs: Vec<(StrategyKind, &PocketOptions)> = ORDER
+        .iter()
+        .map(|&k| (k, opts))
+        .chain(adaptive.as_ref().map(|o| (StrategyKind::Adaptive, o)))
+        .collect();
+    runs.par_iter()
+        .map(|&(kind, opts)| {
             let planned = if opts.spiral.arcs {
                 arcs_or_chords(kind, shape, tool, opts, sim, time).map(|(r, _)| r)
             } else {

@@ -234,6 +234,16 @@ pub struct AdaptiveOptions {
     /// tool's radius, so that short passes ending at a wall (in a corner) are cut to and
     /// fro instead of each followed by a link back. The engagement's bound holds either way.
     pub both_ways: bool,
+    /// With `--strategy auto`: the step-down of the adaptive candidate, mm (the flute length
+    /// the user gave; `None`, the default: `auto` leaves the adaptive out). Its stepover is
+    /// [`AdaptiveOptions::AUTO_STEPOVER`], the adaptive's own default; the other settings are
+    /// the other candidates'.
+    pub auto_step_down: Option<f64>,
+}
+
+impl AdaptiveOptions {
+    /// The stepover of `auto`'s adaptive candidate, a fraction of the tool's diameter.
+    pub const AUTO_STEPOVER: f64 = 0.1;
 }
 
 impl Default for PocketOptions {
@@ -301,6 +311,8 @@ option_builders! {
     with_adaptive => adaptive: AdaptiveOptions;
     /// Sets [`AdaptiveOptions::both_ways`].
     with_both_ways => adaptive.both_ways: bool;
+    /// Sets [`AdaptiveOptions::auto_step_down`], mm.
+    with_auto_step_down => adaptive.auto_step_down: Option<f64>;
     /// Sets [`SpiralOptions::transition`].
     with_transition => spiral.transition: f64;
     /// Sets [`SpiralOptions::min_radius`], mm.
