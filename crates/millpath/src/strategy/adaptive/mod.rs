@@ -279,8 +279,7 @@ impl<'w> Planner<'_, 'w> {
         let mut rev = st;
         rev.side = -st.side;
         let back = theta + std::f64::consts::PI;
-        let deep = field.wall_distance(p) >= st.walls.clear + st.r;
-        let need = if deep { pass::MIN_CUT } else { 0.3 } * st.target;
+        let need = st.first_bite_need(field, p);
         if !rev.first_bite_reaches(field, p, back, need) {
             return ahead;
         }
@@ -575,8 +574,7 @@ impl<'w> Planner<'_, 'w> {
             let c = c + n * lo;
             // The heading with `n` on the cutting side: `n` turned a quarter the other way.
             let theta = n.y.atan2(n.x) + st.side * std::f64::consts::FRAC_PI_2;
-            let deep = self.field.wall_distance(c) >= st.walls.clear + st.r;
-            let need = if deep { pass::MIN_CUT } else { 0.3 } * st.target;
+            let need = st.first_bite_need(self.field, c);
             if st.first_bite_reaches(self.field, c, theta, need) {
                 return Some((c, theta, k));
             }

@@ -210,6 +210,14 @@ impl Stepper<'_> {
         (pts, removed)
     }
 
+    /// The cells a pass's first step from `p` must remove to start there: [`MIN_CUT`] of the
+    /// target, or 0.3 of it within `r` of the tool-centre region's edge (a sliver there is the
+    /// walls' loop's).
+    pub(crate) fn first_bite_need(&self, field: &Field, p: Point) -> f64 {
+        let deep = field.wall_distance(p) >= self.walls.clear + self.r;
+        (if deep { MIN_CUT } else { 0.3 }) * self.target
+    }
+
     /// True when some first step from `p` heading `theta` removes at least `need` cells
     /// (the turns tried from the one deepest into the material, which usually bites most).
     pub(crate) fn first_bite_reaches(
