@@ -53,10 +53,21 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(step);
-    let opts = PocketOptions::default()
-        .with_depth(3.0)
-        .with_step_down(3.0)
-        .with_stepover(millpath::strategy::pocket::Stepover::Fraction(step));
+    // `DEPTH=25 HELIX=5.715`: the CLI's defaults for a 12.7 mm tool (one 25 mm level, a
+    // helix of 0.45 D), to see what `millpath pocket --strategy adaptive` plans.
+    let env = |k: &str| std::env::var(k).ok().and_then(|s| s.parse::<f64>().ok());
+    let depth = env("DEPTH").unwrap_or(3.0);
+    let mut opts = PocketOptions::default()
+        .with_depth(depth)
+        .with_step_down(depth)
+        .with_stepover(millpath::strategy::pocket::Stepover::Fraction(step))
+        .with_both_ways(std::env::var("BOTH").is_ok());
+    if let Some(radius) = env("HELIX") {
+        opts = opts.with_entry(millpath::strategy::pocket::Entry::Helix {
+            radius,
+            ramp_angle: 3f64.to_radians(),
+        });
+    }
     let tp = toolpath(kind, &shape, &tool, &opts).expect("toolpath");
     let s = bound * tool.diameter;
     let nominal = nominal_engagement(s, tool.radius()).to_degrees();

@@ -21,7 +21,10 @@
 //!
 //! **Passes and links.** Each pass starts where the tool, clear of material, touches it (a
 //! block of a coarse distance-to-material map at `r` plus one to three blocks from the
-//! nearest material, the block nearest the tool first). The tool stays down and feeds there
+//! nearest material, the block nearest the tool first), walked back along the material's
+//! edge to where that edge begins; where the walk ends more than [`WALK_RETRY`] radii away at
+//! a place no pass starts from (a narrow corner at the far end of a long edge), at the block
+//! itself. The tool stays down and feeds there
 //! in a straight line when every position of the line (at most `min(δ, 4h)` apart) is one the
 //! tool centre may stand at, no step of it removes more than the target's share of its
 //! length and no position's contact arc exceeds the target's engagement (mostly it cuts
@@ -106,6 +109,9 @@ pub const ARC_CAP: f64 = 1.05;
 /// How far from a pass's start a direct entry may come down on an earlier cut, in tool
 /// radii.
 pub const DIRECT_REACH: f64 = 6.0;
+/// A pass whose walk back along the material's edge ended farther than this from where it
+/// began (in tool radii) and cut nothing there is tried again where the walk began.
+pub const WALK_RETRY: f64 = 4.0;
 /// Earlier cuts' points tried as a direct entry's descent, nearest first.
 const DIRECT_TRIES: usize = 16;
 /// A turn of the tool-centre region's boundary sharper than this is a corner, rad.
@@ -257,8 +263,15 @@ impl<'w> Planner<'_, 'w> {
         let Some((p, theta, block)) = self.start() else {
             return self.new_helix(shape, clear, helix);
         };
-        let (st, (p, theta)) = self.side_for(p, theta);
-        if let Err(at) = self.pass_from(p, theta, st) {
+        let (st, (q, heading), at_p) = self.side_for(p, theta);
+        let mut done = self.pass_from(q, heading, st);
+        // The walk back along the material's edge can end where no pass starts (a narrow
+        // corner far along the edge): from farther than [`WALK_RETRY`] radii, the pass is
+        // then tried where the block touches the material, before the block is given up.
+        if done.is_err() && q.distance(p) > WALK_RETRY * st.r {
+            done = self.pass_from(p, at_p, st);
+        }
+        if let Err(at) = done {
             self.tried[block] = true;
             self.mark_tried(at);
         }
@@ -269,10 +282,14 @@ impl<'w> Planner<'_, 'w> {
     /// with, and where it starts: where the material's edge beside it begins, if the walk back
     /// ([`Stepper::upstream`]) finds it. With `both_ways`, the other way round (material on
     /// the other side, heading reversed) where its start is nearer the tool by more than
-    /// the tool's radius.
-    fn side_for(&self, p: Point, theta: f64) -> (Stepper<'w>, (Point, f64)) {
+    /// the tool's radius. Last, the heading at `p` the way chosen.
+    fn side_for(&self, p: Point, theta: f64) -> (Stepper<'w>, (Point, f64), f64) {
         let (field, st) = (&*self.field, self.stepper);
-        let ahead = (st, st.upstream(field, p, theta).unwrap_or((p, theta)));
+        let ahead = (
+            st,
+            st.upstream(field, p, theta).unwrap_or((p, theta)),
+            theta,
+        );
         let Some(here) = self.pos.filter(|_| self.both_ways) else {
             return ahead;
         };
@@ -285,7 +302,7 @@ impl<'w> Planner<'_, 'w> {
         }
         let other = rev.upstream(field, p, back).unwrap_or((p, back));
         if other.0.distance(here) + st.r < ahead.1.0.distance(here) {
-            (rev, other)
+            (rev, other, back)
         } else {
             ahead
         }
