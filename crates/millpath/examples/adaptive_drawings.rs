@@ -3,9 +3,10 @@
 //! suite): the share of the cutting length above 1.1 × the stepover's engagement and the
 //! largest, per pocket. The tool is sized to the drawing as `cli_real_files` sizes it (a
 //! tenth of the largest pocket's smaller side, from 0.5 to 10 mm); one level 3 mm deep
-//! (at most the tool's diameter).
-//! The last column is the engagement the pocket's sharpest corner forces on any program
-//! (`pocket::engagement_floor`), as a multiple of the stepover's.
+//! (at most the tool's diameter), entered by the CLI's helix (0.45 D).
+//! The last column is the engagement the pocket's sharpest corner (or a neck the tool just
+//! fits) forces on any program (`pocket::engagement_floor`), as a multiple of the
+//! stepover's.
 //! `cargo run --release --example adaptive_drawings -- [stepover] FILE...`
 #![allow(clippy::print_stdout)]
 use millpath::io::{ImportSettings, read_outline_file};
@@ -44,10 +45,16 @@ fn main() {
         let d = ((side / 10.0).clamp(0.5, 10.0) * 100.0).round() / 100.0;
         let tool = Tool::flat(d).expect("tool");
         let depth = d.min(3.0);
+        // The entry as `millpath pocket` makes it: a helix of 0.45 D (the planner is
+        // sensitive to where it starts; the library's default helix is 2.5 mm).
         let opts = PocketOptions::default()
             .with_depth(depth)
             .with_step_down(depth)
-            .with_stepover(Stepover::Fraction(step));
+            .with_stepover(Stepover::Fraction(step))
+            .with_entry(millpath::strategy::pocket::Entry::Helix {
+                radius: millpath::job::pocket::DEFAULT_HELIX_RADIUS_PER_DIAMETER * d,
+                ramp_angle: 3f64.to_radians(),
+            });
         let nominal = nominal_engagement(step * d, 0.5 * d).to_degrees();
         for (k, p) in pockets.into_iter().enumerate() {
             let Ok(shape) = PocketShape::new(p.outer, p.islands, name) else {
