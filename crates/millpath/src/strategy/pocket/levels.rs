@@ -219,10 +219,12 @@ pub fn assemble(
 /// at the plunge feed (114 mm for a 6 mm slab at 3°), so this is both safer for sliver cuts
 /// (a cut too short to ramp along) and faster.
 ///
-/// With `only_short`, only the cuts too short to ramp into get one (a strategy that chose
-/// its ramps against the material keeps them). Cuts too short to ramp into (shorter than
-/// `min_ramp_path`) are first moved after the others, keeping their order, so that an earlier cut has cleared material for them (a
-/// zigzag row grazing an island can be a few µm long, and may come first).
+/// With `only_short`, only the cuts too short to ramp into get one, and the cuts keep their
+/// order (a strategy that chose its ramps against the material it had left, in that order,
+/// keeps both: a cut moved later would meet material the cuts planned after it counted as
+/// gone). Without it, cuts too short to ramp into (shorter than `min_ramp_path`) are first
+/// moved after the others, keeping their order, so that an earlier cut has cleared material
+/// for them (a zigzag row grazing an island can be a few µm long, and may come first).
 pub fn direct_entries(
     plan: &mut LevelPlan,
     region: &OffsetRegion,
@@ -230,11 +232,14 @@ pub fn direct_entries(
     min_ramp_path: f64,
     only_short: bool,
 ) {
-    let (long, short): (Vec<Cut>, Vec<Cut>) = std::mem::take(&mut plan.cuts)
-        .into_iter()
-        .partition(|c| !matches!(c.entry, CutEntry::Ramp) || path_length(&c.path) >= min_ramp_path);
-    plan.cuts = long;
-    plan.cuts.extend(short);
+    if !only_short {
+        let (long, short): (Vec<Cut>, Vec<Cut>) =
+            std::mem::take(&mut plan.cuts).into_iter().partition(|c| {
+                !matches!(c.entry, CutEntry::Ramp) || path_length(&c.path) >= min_ramp_path
+            });
+        plan.cuts = long;
+        plan.cuts.extend(short);
+    }
     let mut cleared: Vec<Seg> = Vec::new();
     for cut in &mut plan.cuts {
         let short = path_length(&cut.path) < min_ramp_path;

@@ -62,6 +62,50 @@ fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
     assert!(e.to_string().contains("entry"), "{e}");
 }
 
+/// With `only_short` (the adaptive planner, which planned every cut against the material
+/// the cuts before it left) the cuts keep their order: the sliver stays first, still a ramp
+/// (no earlier cut to enter from), and the big cut stays second.
+#[test]
+fn a_planner_that_saw_the_material_keeps_its_order() {
+    use super::super::segments::segs_from_points;
+    let p = Point::new;
+    let big = Cut {
+        entry: CutEntry::Ramp,
+        path: segs_from_points(&[p(2.0, 2.0), p(18.0, 2.0), p(18.0, 18.0), p(2.0, 2.0)]),
+    };
+    let sliver = Cut {
+        entry: CutEntry::Ramp,
+        path: segs_from_points(&[p(12.0, 12.5), p(12.001, 12.5)]),
+    };
+    let opts = PocketOptions::default().with_depth(4.0).with_step_down(4.0);
+    let mut plan = LevelPlan {
+        cuts: vec![sliver.clone(), big.clone()],
+    };
+    direct_entries(
+        &mut plan,
+        &square_region(),
+        12.0,
+        min_ramp_path(&opts),
+        true,
+    );
+    assert_eq!(plan.cuts[0].path, sliver.path);
+    assert_eq!(plan.cuts[0].entry, CutEntry::Ramp);
+    assert_eq!(plan.cuts[1].path, big.path);
+    // After the big cut, the sliver is entered from it, in place.
+    let mut plan = LevelPlan {
+        cuts: vec![big.clone(), sliver.clone()],
+    };
+    direct_entries(
+        &mut plan,
+        &square_region(),
+        12.0,
+        min_ramp_path(&opts),
+        true,
+    );
+    assert_eq!(plan.cuts[1].path, sliver.path);
+    assert!(matches!(plan.cuts[1].entry, CutEntry::Direct { .. }));
+}
+
 /// An arc piece whose ends lie a few ulps apart is written as a line, not read back as
 /// the full circle its end and centre alone describe; a true arc stays an arc.
 #[test]
