@@ -135,6 +135,7 @@ impl Planner<'_, '_> {
         // Marked cleared whatever is found: what a line cannot reach there is left to the
         // walls' loops (and the verifier), not tried again.
         self.field.clear_disc(c, st.r);
+        self.given_up.push(c);
         let Some((from, end, len)) = best.filter(|b| b.2 >= 4.0 * h) else {
             return true;
         };

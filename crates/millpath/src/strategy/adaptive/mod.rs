@@ -68,6 +68,7 @@
 mod entry;
 pub(crate) mod field;
 pub(crate) mod pass;
+mod tips;
 
 use crate::error::Result;
 use crate::geom::{Point, Vec2};
@@ -165,6 +166,7 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         fit: ARC_FIT * r,
         arcs: opts.spiral.arcs,
         both_ways: opts.adaptive.both_ways,
+        given_up: Vec::new(),
     };
     let helix = match opts.entry {
         Entry::Helix { radius, .. } => radius,
@@ -175,6 +177,7 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
             break;
         }
     }
+    plan.tips(&region);
     plan.walls(&region, opts.direction);
     Ok(LevelPlan { cuts: plan.cuts })
 }
@@ -255,6 +258,9 @@ struct Planner<'f, 'w> {
     arcs: bool,
     /// Passes may run either way ([`crate::strategy::pocket::AdaptiveOptions::both_ways`]).
     both_ways: bool,
+    /// Where a disc of radius `r` was marked cleared on the field but left to the walls'
+    /// loops (`entry::new_ramp`): the field holds no material there, the stock may.
+    given_up: Vec<Point>,
 }
 
 impl<'w> Planner<'_, 'w> {
