@@ -7,26 +7,32 @@
 //! (`crate::stock::corner_floor`): a tool feeding straight in removes that per unit of
 //! travel once the rest is gone, the engagement `φ_T = acos(2·sin(α/2) − 1)`.
 //!
-//! So before the walls' loop, the tool goes to the point `Q` of the bisector nearest `T`
-//! that it reaches (a clear link from where it is, or a point whose disc holds no material
-//! to feed down at) and works into the corner by *strokes*, straight lines each as deep
-//! (along the bisector) as keeps every step of it within the target's share of material
-//! (bisection on the depth): to the corner's other edge, along the edge it stands on, or to
-//! the bisector, whichever goes deepest, so that the strokes zigzag into the V. Where none
-//! goes [`MIN_ADVANCE`] cells deeper, the strokes start from a point of the bisector up to
-//! `r` behind the deepest point reached (the tool backs off through cleared material and
-//! comes in at a shallower angle, removing less per unit of travel). When a straight feed
-//! to `T` holds the target, or no stroke goes deeper, the tool feeds to `T` if that feed
-//! removes no more per step than the radial depth of `FLOOR_SLACK · φ_T` less
-//! [`GRID_CELLS`] cells (or the target's, where more). A cusp, where `FLOOR_SLACK · φ_T`
-//! reaches a slot, is left to the walls' loop: every program slots there. Every step is checked on the
-//! planner's field (at most `2h` long, allowed [`NOISE_CELLS`] beyond its share), every
-//! position lies in the tool-centre region, and none comes near where the field holds no
-//! material that the stock may (the discs an entry that found no room marks cleared, for
-//! the walls' loops). A corner the tool does not reach is left to the walls' loop, and so
-//! are all of them where the field's cells are coarser than [`MAX_CELL_RADII`] radii. Strokes
-//! spread the corner's material over more travel than one feed, so the engagement they
-//! reach is mostly well under `φ_T`.
+//! **When.** Before the walls' loop, at each such corner (turning by more than
+//! [`ACUTE_TURN`]) where the loop's own run through it (the region's loop from
+//! [`LOOP_RADII`] radii before the corner to as far after, either way) would take a step
+//! above [`LOOP_BOUND`] times the target's engagement on the planner's field. A cusp, where
+//! `FLOOR_SLACK · φ_T` reaches a slot, is left to the loop (every program slots there), and so
+//! is every corner where the field's cells are coarser than [`MAX_CELL_RADII`] radii.
+//!
+//! **How.** The tool goes to the point `Q` of the bisector nearest `T` that it reaches (a
+//! clear link from where it is, or a point whose disc holds no material to feed down at) and
+//! works into the corner by *strokes*: straight lines, each as deep (along the bisector) as
+//! keeps every step of it within the target's share of material (bisection on the depth), to
+//! the corner's other edge, along the edge it stands on, or to the bisector, whichever goes
+//! deepest, so that the strokes zigzag into the V. Where none goes [`MIN_ADVANCE`] cells
+//! deeper, they start from a point of the bisector up to `r` behind the deepest point
+//! reached (the tool backs off through cleared material and comes in at a shallower angle,
+//! removing less per unit of travel). When a straight feed to `T` holds the target, or no
+//! stroke goes deeper, the tool feeds to `T` if no step of that feed removes more than the
+//! radial depth of `FLOOR_SLACK · φ_T` less [`GRID_CELLS`] cells (or the target's, where
+//! more). Strokes spread the corner's material over more travel than one feed, so the
+//! engagement they reach is mostly well under `φ_T`.
+//!
+//! **Checks.** Every step is read on the planner's field (at most `2h` long, allowed
+//! [`NOISE_CELLS`] beyond its share), every position lies in the tool-centre region, and none
+//! comes near where the field holds no material that the stock may (the discs an entry that
+//! found no room marks cleared, for the walls' loops). A corner the tool does not reach is
+//! left to the walls' loop.
 
 use super::{CutEntry, DESCENT_CELLS, Planner};
 use crate::geom::{Point, Vec2};
@@ -54,6 +60,12 @@ const NOISE_CELLS: f64 = 2.0;
 /// against the tool gets cells larger than `r/32` (`MAX_CELLS`), on which a stroke's count
 /// of material is too coarse to hold the target, and its corners are left to the walls' loop.
 const MAX_CELL_RADII: f64 = 1.0 / 16.0;
+/// How far along each edge (tool radii) the walls' loop's run through a corner is read
+/// before the corner is worked into: where it holds the target either way, it is not.
+const LOOP_RADII: f64 = 2.0;
+/// The walls' loop's run through a corner holds the bound where no step's engagement is
+/// above this multiple of the target's (the bound's largest).
+const LOOP_BOUND: f64 = 1.3;
 /// Most strokes into one corner.
 const MAX_STROKES: usize = 128;
 /// The least advance (cells) a stroke makes into the corner.
@@ -67,19 +79,19 @@ impl Planner<'_, '_> {
         if self.field.h > MAX_CELL_RADII * self.stepper.r {
             return;
         }
-        let mut corners = acute_corners(region);
+        let mut corners = acute_corners(region, LOOP_RADII * self.stepper.r);
         while !corners.is_empty() {
-            let here = self.pos.unwrap_or(corners[0].0);
+            let here = self.pos.unwrap_or(corners[0].t);
             let k = (0..corners.len())
                 .min_by(|&a, &b| {
                     corners[a]
-                        .0
+                        .t
                         .distance(here)
-                        .total_cmp(&corners[b].0.distance(here))
+                        .total_cmp(&corners[b].t.distance(here))
                 })
                 .unwrap_or(0);
-            let (t, u, e, alpha) = corners.swap_remove(k);
-            self.feed_into(t, u, e, alpha);
+            let corner = corners.swap_remove(k);
+            self.feed_into(&corner);
         }
     }
 
@@ -89,7 +101,8 @@ impl Planner<'_, '_> {
     /// allows, until a straight feed to `t` holds the corner's own rate (module docs); the
     /// tool then stands at `t`. Nothing is cut where the tool reaches no point of the
     /// bisector within [`REACH_RADII`].
-    fn feed_into(&mut self, t: Point, u: Vec2, e: [Vec2; 2], alpha: f64) {
+    fn feed_into(&mut self, corner: &Corner) {
+        let Corner { t, u, e, alpha, .. } = *corner;
         let st = self.stepper;
         let h = self.field.h;
         let floor = (2.0 * (0.5 * alpha).sin() - 1.0).clamp(-1.0, 1.0).acos();
@@ -100,6 +113,13 @@ impl Planner<'_, '_> {
             return;
         }
         let target = st.target * h * h / st.delta;
+        let back: Vec<Point> = corner.run.iter().rev().copied().collect();
+        let bound = (LOOP_BOUND * st.target_angle).min(std::f64::consts::PI);
+        let loop_rate = target.max(st.r * (1.0 - bound.cos()) - GRID_CELLS * h);
+        if self.run_holds(&corner.run, loop_rate) && self.run_holds(&back, loop_rate) {
+            // The walls' loop runs through the corner, either way, within the bound.
+            return;
+        }
         let corner_rate = target.max(st.r * (1.0 - cap.cos()) - GRID_CELLS * h);
         let Some((q, linked)) = self.reach_bisector(t, u) else {
             return;
@@ -221,6 +241,30 @@ impl Planner<'_, '_> {
         None
     }
 
+    /// True when a tool standing at `run[0]` (its disc cleared first) runs through the rest
+    /// of `run` within `rate`, each line as [`Self::feed_holds`] reads it; the field as it
+    /// was.
+    fn run_holds(&mut self, run: &[Point], rate: f64) -> bool {
+        let Some(&first) = run.first() else {
+            return true;
+        };
+        self.field.record();
+        self.field.clear_disc(first, self.stepper.r);
+        let mut log = self.field.take_log();
+        let mut ok = true;
+        for w in run.windows(2) {
+            if !self.feed_holds(w[0], w[1], rate) {
+                ok = false;
+                break;
+            }
+            self.field.record();
+            self.field.clear_capsule(w[0], w[1], self.stepper.r);
+            log.extend(self.field.take_log());
+        }
+        self.field.restore(log);
+        ok
+    }
+
     /// True when every position from `q` to `t` lies in the tool-centre region (to
     /// [`ON_EDGE`]) and its disc clear of the discs the field marked cleared but left to the
     /// walls' loops, and every step (at most `2h` long) removes at most `rate`
@@ -247,15 +291,29 @@ impl Planner<'_, '_> {
     }
 }
 
-/// The convex corners of `region` that turn by more than [`ACUTE_TURN`]: each corner, the
-/// unit bisector pointing into it, its edges' directions away from it, and its interior
-/// angle.
-fn acute_corners(region: &OffsetRegion) -> Vec<(Point, Vec2, [Vec2; 2], f64)> {
+/// A corner of the tool-centre region to work into.
+struct Corner {
+    /// The corner.
+    t: Point,
+    /// The unit bisector, pointing into the corner.
+    u: Vec2,
+    /// Its edges' directions away from it.
+    e: [Vec2; 2],
+    /// Its interior angle, rad.
+    alpha: f64,
+    /// The region's loop from `reach` before the corner to `reach` after it, at most
+    /// `reach/16` apart: the walls' loop's run through it.
+    run: Vec<Point>,
+}
+
+/// The convex corners of `region` that turn by more than [`ACUTE_TURN`].
+fn acute_corners(region: &OffsetRegion, reach: f64) -> Vec<Corner> {
     let mut out = Vec::new();
     for lp in region.loops() {
         let segs = segs_from_vertices(&closed_chain(lp));
+        let n = segs.len();
         for (k, sg) in segs.iter().enumerate() {
-            let next = &segs[(k + 1) % segs.len()];
+            let next = &segs[(k + 1) % n];
             let (Some(t0), Some(t1)) = (
                 sg.tangent_at(sg.length()).normalize(),
                 next.tangent_at(0.0).normalize(),
@@ -266,10 +324,113 @@ fn acute_corners(region: &OffsetRegion) -> Vec<(Point, Vec2, [Vec2; 2], f64)> {
             if turn <= ACUTE_TURN {
                 continue;
             }
-            if let Some(u) = (t0 - t1).normalize() {
-                out.push((sg.b, u, [-t0, t1], std::f64::consts::PI - turn));
-            }
+            let Some(u) = (t0 - t1).normalize() else {
+                continue;
+            };
+            out.push(Corner {
+                t: sg.b,
+                u,
+                e: [-t0, t1],
+                alpha: std::f64::consts::PI - turn,
+                run: run_through(&segs, k, reach),
+            });
         }
     }
     out
+}
+
+/// Points of the closed chain `segs` from `reach` before the end of `segs[k]` to `reach`
+/// after it (at most `reach/16` apart, the chain's own points between).
+fn run_through(segs: &[Seg], k: usize, reach: f64) -> Vec<Point> {
+    let n = segs.len();
+    let step = reach / 16.0;
+    let sample = |sg: &Seg, from: f64, to: f64| -> Vec<Point> {
+        let m = (((to - from).abs() / step).ceil() as usize).max(1);
+        (0..=m)
+            .map(|j| sg.point_at(from + (to - from) * j as f64 / m as f64))
+            .collect()
+    };
+    let mut back: Vec<Point> = Vec::new();
+    let mut left = reach;
+    for j in 0..n {
+        let sg = &segs[(k + n - j) % n];
+        let len = sg.length();
+        let from = (len - left).max(0.0);
+        let mut pts = sample(sg, len, from);
+        pts.remove(0);
+        back.extend(pts);
+        left -= len - from;
+        if left <= 0.0 {
+            break;
+        }
+    }
+    back.reverse();
+    let mut out = back;
+    out.push(segs[k].b);
+    let mut left = reach;
+    for j in 1..=n {
+        let sg = &segs[(k + j) % n];
+        let len = sg.length();
+        let to = len.min(left);
+        let mut pts = sample(sg, 0.0, to);
+        pts.remove(0);
+        out.extend(pts);
+        left -= to;
+        if left <= 0.0 {
+            break;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The run through a corner lies on the loop (every point within 1e-9 of a segment),
+    /// spans `reach` of the loop's length either side of the corner (summed along the
+    /// points), passes through the corner, and has no gap wider than `reach/16`: on a loop
+    /// of lines and an arc, at corners after a line, after the arc and before it, with a
+    /// reach longer than the segments, so that the run spans several.
+    #[test]
+    fn the_run_through_a_corner_follows_the_loop() {
+        let p = Point::new;
+        // A square of side 4 whose corner at (4, 0) is cut by an arc.
+        let verts = [
+            (p(0.0, 0.0), 0.0),
+            (p(2.0, 0.0), 0.0),
+            (p(4.0, 2.0), -(std::f64::consts::PI / 8.0).tan()),
+            (p(4.0, 4.0), 0.0),
+            (p(0.0, 4.0), 0.0),
+            (p(0.0, 0.0), 0.0),
+        ];
+        let segs = segs_from_vertices(&verts);
+        for (k, reach) in [(0, 1.5), (1, 3.0), (2, 7.0)] {
+            let run = run_through(&segs, k, reach);
+            let at = run
+                .iter()
+                .position(|q| q.distance(segs[k].b) < 1e-12)
+                .expect("the corner on the run");
+            let on_loop = |q: &Point| {
+                segs.iter()
+                    .map(|sg| sg.closest_point(*q).distance(*q))
+                    .fold(f64::INFINITY, f64::min)
+                    < 1e-9
+            };
+            assert!(run.iter().all(on_loop), "{k}: off the loop");
+            let len = |pts: &[Point]| pts.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
+            let (before, after) = (len(&run[..=at]), len(&run[at..]));
+            // Chords of the arc are a little shorter than the arc.
+            assert!(
+                (before - reach).abs() < 0.02 * reach,
+                "{k}: {before} before"
+            );
+            assert!((after - reach).abs() < 0.02 * reach, "{k}: {after} after");
+            let gap = run
+                .windows(2)
+                .map(|w| w[0].distance(w[1]))
+                .fold(0.0, f64::max);
+            assert!(gap <= reach / 16.0 + 1e-9, "{k}: gap {gap}");
+        }
+    }
 }
