@@ -358,19 +358,6 @@ impl Field {
         self.log = Some(Vec::new());
     }
 
-    /// Stops recording and returns what was cleared since [`Field::record`], for
-    /// [`Field::restore`].
-    pub(crate) fn take_log(&mut self) -> Vec<(usize, u64)> {
-        self.log.take().unwrap_or_default()
-    }
-
-    /// Puts back the cells of `log` (from [`Field::take_log`]).
-    pub(crate) fn restore(&mut self, log: Vec<(usize, u64)>) {
-        for (k, bits) in log {
-            self.material[k] |= bits;
-        }
-    }
-
     /// Puts back every cell cleared since [`Field::record`], and stops recording.
     pub(crate) fn undo(&mut self) {
         for (k, bits) in self.log.take().unwrap_or_default() {

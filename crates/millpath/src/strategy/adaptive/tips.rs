@@ -8,11 +8,8 @@
 //! travel once the rest is gone, the engagement `φ_T = acos(2·sin(α/2) − 1)`.
 //!
 //! **When.** Before the walls' loop, at each such corner (turning by more than
-//! [`ACUTE_TURN`]) where the loop's own run through it (the region's loop from
-//! [`LOOP_RADII`] radii before the corner to as far after, either way) would take a step
-//! above [`LOOP_BOUND`] times the target's engagement on the planner's field. A cusp, where
-//! `FLOOR_SLACK · φ_T` reaches a slot, is left to the loop (every program slots there), and so
-//! is every corner where the field's cells are coarser than [`MAX_CELL_RADII`] radii.
+//! [`ACUTE_TURN`]), nearest the tool first; none where the field's cells are coarser than
+//! [`MAX_CELL_RADII`] radii.
 //!
 //! **How.** The tool goes to the point `Q` of the bisector nearest `T` that it reaches (a
 //! clear link from where it is, or a point whose disc holds no material to feed down at) and
@@ -25,7 +22,7 @@
 //! removing less per unit of travel). When a straight feed to `T` holds the target, or no
 //! stroke goes deeper, the tool feeds to `T` if no step of that feed removes more than the
 //! radial depth of `FLOOR_SLACK · φ_T` less [`GRID_CELLS`] cells (or the target's, where
-//! more). Strokes spread the corner's material over more travel than one feed, so the
+//! more; the target's alone at a cusp, where `FLOOR_SLACK · φ_T` is a slot). Strokes spread the corner's material over more travel than one feed, so the
 //! engagement they reach is mostly well under `φ_T`.
 //!
 //! **Checks.** Every step is read on the planner's field (at most `2h` long, allowed
@@ -60,12 +57,6 @@ const NOISE_CELLS: f64 = 2.0;
 /// against the tool gets cells larger than `r/32` (`MAX_CELLS`), on which a stroke's count
 /// of material is too coarse to hold the target, and its corners are left to the walls' loop.
 const MAX_CELL_RADII: f64 = 1.0 / 16.0;
-/// How far along each edge (tool radii) the walls' loop's run through a corner is read
-/// before the corner is worked into: where it holds the target either way, it is not.
-const LOOP_RADII: f64 = 2.0;
-/// The walls' loop's run through a corner holds the bound where no step's engagement is
-/// above this multiple of the target's (the bound's largest).
-const LOOP_BOUND: f64 = 1.3;
 /// Most strokes into one corner.
 const MAX_STROKES: usize = 128;
 /// The least advance (cells) a stroke makes into the corner.
@@ -79,7 +70,7 @@ impl Planner<'_, '_> {
         if self.field.h > MAX_CELL_RADII * self.stepper.r {
             return;
         }
-        let mut corners = acute_corners(region, LOOP_RADII * self.stepper.r);
+        let mut corners = acute_corners(region);
         while !corners.is_empty() {
             let here = self.pos.unwrap_or(corners[0].t);
             let k = (0..corners.len())
@@ -107,20 +98,14 @@ impl Planner<'_, '_> {
         let h = self.field.h;
         let floor = (2.0 * (0.5 * alpha).sin() - 1.0).clamp(-1.0, 1.0).acos();
         let cap = FLOOR_SLACK * floor;
-        if cap >= std::f64::consts::PI {
-            // A cusp (where an island's offset meets a wall's, or a loop turns back): every
-            // program slots there.
-            return;
-        }
         let target = st.target * h * h / st.delta;
-        let back: Vec<Point> = corner.run.iter().rev().copied().collect();
-        let bound = (LOOP_BOUND * st.target_angle).min(std::f64::consts::PI);
-        let loop_rate = target.max(st.r * (1.0 - bound.cos()) - GRID_CELLS * h);
-        if self.run_holds(&corner.run, loop_rate) && self.run_holds(&back, loop_rate) {
-            // The walls' loop runs through the corner, either way, within the bound.
-            return;
-        }
-        let corner_rate = target.max(st.r * (1.0 - cap.cos()) - GRID_CELLS * h);
+        // At a cusp (where an island's offset meets a wall's, or a loop turns back) the cap
+        // is a slot: the last feed, too, holds the target.
+        let corner_rate = if cap < std::f64::consts::PI {
+            target.max(st.r * (1.0 - cap.cos()) - GRID_CELLS * h)
+        } else {
+            target
+        };
         let Some((q, linked)) = self.reach_bisector(t, u) else {
             return;
         };
@@ -241,30 +226,6 @@ impl Planner<'_, '_> {
         None
     }
 
-    /// True when a tool standing at `run[0]` (its disc cleared first) runs through the rest
-    /// of `run` within `rate`, each line as [`Self::feed_holds`] reads it; the field as it
-    /// was.
-    fn run_holds(&mut self, run: &[Point], rate: f64) -> bool {
-        let Some(&first) = run.first() else {
-            return true;
-        };
-        self.field.record();
-        self.field.clear_disc(first, self.stepper.r);
-        let mut log = self.field.take_log();
-        let mut ok = true;
-        for w in run.windows(2) {
-            if !self.feed_holds(w[0], w[1], rate) {
-                ok = false;
-                break;
-            }
-            self.field.record();
-            self.field.clear_capsule(w[0], w[1], self.stepper.r);
-            log.extend(self.field.take_log());
-        }
-        self.field.restore(log);
-        ok
-    }
-
     /// True when every position from `q` to `t` lies in the tool-centre region (to
     /// [`ON_EDGE`]) and its disc clear of the discs the field marked cleared but left to the
     /// walls' loops, and every step (at most `2h` long) removes at most `rate`
@@ -301,13 +262,10 @@ struct Corner {
     e: [Vec2; 2],
     /// Its interior angle, rad.
     alpha: f64,
-    /// The region's loop from `reach` before the corner to `reach` after it, at most
-    /// `reach/16` apart: the walls' loop's run through it.
-    run: Vec<Point>,
 }
 
 /// The convex corners of `region` that turn by more than [`ACUTE_TURN`].
-fn acute_corners(region: &OffsetRegion, reach: f64) -> Vec<Corner> {
+fn acute_corners(region: &OffsetRegion) -> Vec<Corner> {
     let mut out = Vec::new();
     for lp in region.loops() {
         let segs = segs_from_vertices(&closed_chain(lp));
@@ -332,105 +290,8 @@ fn acute_corners(region: &OffsetRegion, reach: f64) -> Vec<Corner> {
                 u,
                 e: [-t0, t1],
                 alpha: std::f64::consts::PI - turn,
-                run: run_through(&segs, k, reach),
             });
         }
     }
     out
-}
-
-/// Points of the closed chain `segs` from `reach` before the end of `segs[k]` to `reach`
-/// after it (at most `reach/16` apart, the chain's own points between).
-fn run_through(segs: &[Seg], k: usize, reach: f64) -> Vec<Point> {
-    let n = segs.len();
-    let step = reach / 16.0;
-    let sample = |sg: &Seg, from: f64, to: f64| -> Vec<Point> {
-        let m = (((to - from).abs() / step).ceil() as usize).max(1);
-        (0..=m)
-            .map(|j| sg.point_at(from + (to - from) * j as f64 / m as f64))
-            .collect()
-    };
-    let mut back: Vec<Point> = Vec::new();
-    let mut left = reach;
-    for j in 0..n {
-        let sg = &segs[(k + n - j) % n];
-        let len = sg.length();
-        let from = (len - left).max(0.0);
-        let mut pts = sample(sg, len, from);
-        pts.remove(0);
-        back.extend(pts);
-        left -= len - from;
-        if left <= 0.0 {
-            break;
-        }
-    }
-    back.reverse();
-    let mut out = back;
-    out.push(segs[k].b);
-    let mut left = reach;
-    for j in 1..=n {
-        let sg = &segs[(k + j) % n];
-        let len = sg.length();
-        let to = len.min(left);
-        let mut pts = sample(sg, 0.0, to);
-        pts.remove(0);
-        out.extend(pts);
-        left -= to;
-        if left <= 0.0 {
-            break;
-        }
-    }
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The run through a corner lies on the loop (every point within 1e-9 of a segment),
-    /// spans `reach` of the loop's length either side of the corner (summed along the
-    /// points), passes through the corner, and has no gap wider than `reach/16`: on a loop
-    /// of lines and an arc, at corners after a line, after the arc and before it, with a
-    /// reach longer than the segments, so that the run spans several.
-    #[test]
-    fn the_run_through_a_corner_follows_the_loop() {
-        let p = Point::new;
-        // A square of side 4 whose corner at (4, 0) is cut by an arc.
-        let verts = [
-            (p(0.0, 0.0), 0.0),
-            (p(2.0, 0.0), 0.0),
-            (p(4.0, 2.0), -(std::f64::consts::PI / 8.0).tan()),
-            (p(4.0, 4.0), 0.0),
-            (p(0.0, 4.0), 0.0),
-            (p(0.0, 0.0), 0.0),
-        ];
-        let segs = segs_from_vertices(&verts);
-        for (k, reach) in [(0, 1.5), (1, 3.0), (2, 7.0)] {
-            let run = run_through(&segs, k, reach);
-            let at = run
-                .iter()
-                .position(|q| q.distance(segs[k].b) < 1e-12)
-                .expect("the corner on the run");
-            let on_loop = |q: &Point| {
-                segs.iter()
-                    .map(|sg| sg.closest_point(*q).distance(*q))
-                    .fold(f64::INFINITY, f64::min)
-                    < 1e-9
-            };
-            assert!(run.iter().all(on_loop), "{k}: off the loop");
-            let len = |pts: &[Point]| pts.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
-            let (before, after) = (len(&run[..=at]), len(&run[at..]));
-            // Chords of the arc are a little shorter than the arc.
-            assert!(
-                (before - reach).abs() < 0.02 * reach,
-                "{k}: {before} before"
-            );
-            assert!((after - reach).abs() < 0.02 * reach, "{k}: {after} after");
-            let gap = run
-                .windows(2)
-                .map(|w| w[0].distance(w[1]))
-                .fold(0.0, f64::max);
-            assert!(gap <= reach / 16.0 + 1e-9, "{k}: gap {gap}");
-        }
-    }
 }
