@@ -14,10 +14,9 @@ fn square_region() -> OffsetRegion {
     }
 }
 
-/// A sliver cut is entered over cleared material, never plunged; alone on its level it
-/// is refused.
-#[test]
-fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
+/// A cut round most of the square region (a triangle) and a sliver cut 1 µm long inside it,
+/// both ramps.
+fn big_and_sliver() -> (Cut, Cut) {
     use super::super::segments::segs_from_points;
     let p = Point::new;
     let big = Cut {
@@ -28,6 +27,15 @@ fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
         entry: CutEntry::Ramp,
         path: segs_from_points(&[p(12.0, 12.5), p(12.001, 12.5)]),
     };
+    (big, sliver)
+}
+
+/// A sliver cut is entered over cleared material, never plunged; alone on its level it
+/// is refused.
+#[test]
+fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
+    let p = Point::new;
+    let (big, sliver) = big_and_sliver();
     let opts = PocketOptions::default().with_depth(4.0).with_step_down(4.0);
     let tool = Tool::flat(4.0).unwrap();
     // The sliver first: it is moved after the big cut and entered from the big cut's
@@ -67,16 +75,7 @@ fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
 /// (no earlier cut to enter from), and the big cut stays second.
 #[test]
 fn a_planner_that_saw_the_material_keeps_its_order() {
-    use super::super::segments::segs_from_points;
-    let p = Point::new;
-    let big = Cut {
-        entry: CutEntry::Ramp,
-        path: segs_from_points(&[p(2.0, 2.0), p(18.0, 2.0), p(18.0, 18.0), p(2.0, 2.0)]),
-    };
-    let sliver = Cut {
-        entry: CutEntry::Ramp,
-        path: segs_from_points(&[p(12.0, 12.5), p(12.001, 12.5)]),
-    };
+    let (big, sliver) = big_and_sliver();
     let opts = PocketOptions::default().with_depth(4.0).with_step_down(4.0);
     let mut plan = LevelPlan {
         cuts: vec![sliver.clone(), big.clone()],
