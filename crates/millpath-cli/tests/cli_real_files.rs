@@ -674,6 +674,20 @@ fn pb_latch_offset_and_spiral_reach_the_arms_end() {
     let _ = std::fs::remove_dir_all(&work);
 }
 
+/// The JSON report of `millpath pocket NAME --strategy adaptive EXTRA --json`, which must
+/// exit 0.
+fn adaptive_report(name: &str, extra: &[&str]) -> serde_json::Value {
+    let work = tempfile::tempdir().expect("work dir");
+    let path = dir().join(name);
+    let path = path.to_str().expect("path");
+    let mut args = vec!["pocket", path, "--strategy", "adaptive"];
+    args.extend_from_slice(extra);
+    args.extend_from_slice(&["--json", "-o", "adaptive.ngc"]);
+    let o = millpath(&args, work.path());
+    assert_eq!(o.status.code(), Some(0), "{name}: {}", text(&o));
+    json(&o.stdout, "pocket")
+}
+
 /// `pb_latch_test.svg` as a user runs the adaptive (`--strategy adaptive`, every default: a
 /// 12.7 mm tool, 10 %, one 25 mm level): passes whose walk back along the material's edge
 /// ended at a corner of the far pocket were given up, and the slot's band was left to the
@@ -682,21 +696,7 @@ fn pb_latch_offset_and_spiral_reach_the_arms_end() {
 #[test]
 #[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
 fn pb_latch_adaptive_at_the_defaults_holds_the_engagement() {
-    let work = tempfile::tempdir().expect("work dir");
-    let path = dir().join("pb_latch_test.svg");
-    let path = path.to_str().expect("path");
-    let args = [
-        "pocket",
-        path,
-        "--strategy",
-        "adaptive",
-        "--json",
-        "-o",
-        "latch.ngc",
-    ];
-    let o = millpath(&args, work.path());
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let rep = json(&o.stdout, "pocket");
+    let rep = adaptive_report("pb_latch_test.svg", &[]);
     let e = &rep["verification"]["engagement"];
     let share = e["share_above_bound"].as_f64().expect("share");
     assert!(share <= 0.01, "{share} above 1.1 ×: {e}");
@@ -715,27 +715,17 @@ fn pb_latch_adaptive_at_the_defaults_holds_the_engagement() {
 #[test]
 #[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
 fn s2g_shapes_adaptive_works_into_its_spike() {
-    let work = tempfile::tempdir().expect("work dir");
-    let path = dir().join("s2g_shapes.svg");
-    let path = path.to_str().expect("path");
-    let args = [
-        "pocket",
-        path,
-        "--strategy",
-        "adaptive",
-        "--tool-diameter",
-        "4.65",
-        "--stepover",
-        "0.4",
-        "--depth",
-        "3",
-        "--json",
-        "-o",
-        "shapes.ngc",
-    ];
-    let o = millpath(&args, work.path());
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let rep = json(&o.stdout, "pocket");
+    let rep = adaptive_report(
+        "s2g_shapes.svg",
+        &[
+            "--tool-diameter",
+            "4.65",
+            "--stepover",
+            "0.4",
+            "--depth",
+            "3",
+        ],
+    );
     let floor = rep["engagement_floor_deg"].as_f64().expect("floor");
     let nominal = rep["nominal_engagement_deg"].as_f64().expect("nominal");
     assert!(floor > 125.0, "the spike's floor {floor}°");
