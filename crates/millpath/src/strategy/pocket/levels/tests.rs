@@ -77,30 +77,23 @@ fn sliver_cuts_enter_over_cleared_material_or_are_refused() {
 fn a_planner_that_saw_the_material_keeps_its_order() {
     let (big, sliver) = big_and_sliver();
     let opts = PocketOptions::default().with_depth(4.0).with_step_down(4.0);
-    let mut plan = LevelPlan {
-        cuts: vec![sliver.clone(), big.clone()],
+    let entered = |cuts: Vec<Cut>| {
+        let mut plan = LevelPlan { cuts };
+        direct_entries(
+            &mut plan,
+            &square_region(),
+            12.0,
+            min_ramp_path(&opts),
+            true,
+        );
+        plan
     };
-    direct_entries(
-        &mut plan,
-        &square_region(),
-        12.0,
-        min_ramp_path(&opts),
-        true,
-    );
+    let plan = entered(vec![sliver.clone(), big.clone()]);
     assert_eq!(plan.cuts[0].path, sliver.path);
     assert_eq!(plan.cuts[0].entry, CutEntry::Ramp);
     assert_eq!(plan.cuts[1].path, big.path);
     // After the big cut, the sliver is entered from it, in place.
-    let mut plan = LevelPlan {
-        cuts: vec![big.clone(), sliver.clone()],
-    };
-    direct_entries(
-        &mut plan,
-        &square_region(),
-        12.0,
-        min_ramp_path(&opts),
-        true,
-    );
+    let plan = entered(vec![big, sliver.clone()]);
     assert_eq!(plan.cuts[1].path, sliver.path);
     assert!(matches!(plan.cuts[1].entry, CutEntry::Direct { .. }));
 }
