@@ -115,8 +115,10 @@ pub const DIRECT_REACH: f64 = 6.0;
 pub const WALK_RETRY: f64 = 4.0;
 /// Earlier cuts' points tried as a direct entry's descent, nearest first.
 const DIRECT_TRIES: usize = 16;
-/// A turn of the tool-centre region's boundary sharper than this is a corner, rad.
-const SHARP_TURN: f64 = 0.5;
+/// A turn of the tool-centre region's boundary sharper than this is an acute corner (an
+/// interior angle under 80°, as [`tips::ACUTE_TURN`]), rad: the passes near it cut the last
+/// slivers (`pass`), which the walls' loop would meet head-on.
+const SHARP_TURN: f64 = 100.0 * std::f64::consts::PI / 180.0;
 /// Coarse blocks per side, in cells.
 const BLOCK: usize = 4;
 /// Most cells in the planner's grid; a larger pocket gets larger cells.
@@ -194,7 +196,7 @@ pub(crate) struct Walls<'a> {
     sure: f64,
     /// The exact distance a point needs: `clear` plus the margin.
     pub(crate) need: f64,
-    /// The tool-centre region's sharp corners (where its boundary turns by more than
+    /// The tool-centre region's acute corners (where its boundary turns by more than
     /// [`SHARP_TURN`]).
     corners: Vec<Point>,
 }
@@ -213,7 +215,7 @@ impl<'a> Walls<'a> {
         }
     }
 
-    /// True when `q` lies within `d` of a sharp corner of the tool-centre region.
+    /// True when `q` lies within `d` of an acute corner of the tool-centre region.
     pub(crate) fn near_corner(&self, q: Point, d: f64) -> bool {
         self.corners.iter().any(|c| c.distance(q) < d)
     }

@@ -24,10 +24,10 @@
 //! where every allowed step would cut more than [`OVERLOAD`] times the target (the
 //! material closes in around the tool), where no step is allowed (a wall ahead), or after
 //! [`AIR_RADII`] tool radii of steps that cut less than [`MIN_CUT`] of it (the material ran
-//! out; within the stepover of the tool-centre region's edge, away from its sharp corners,
+//! out; within the stepover of the tool-centre region's edge, away from its acute corners,
 //! a step must cut [`NEAR_WALL_CUT`] of the target to count: the thinner sliver along a wall
-//! is the walls' loop's, while in a corner the loop would meet it head-on); the steps after
-//! its last cut are dropped.
+//! or in a square corner is the walls' loop's, while in an acute corner the loop would meet
+//! it head-on); the steps after its last cut are dropped.
 
 use super::Walls;
 use super::field::Field;
