@@ -436,7 +436,6 @@ impl Field {
     }
 
     /// Material cells left in the whole field.
-    #[cfg(test)]
     pub(crate) fn material_cells(&self) -> u64 {
         self.material
             .iter()

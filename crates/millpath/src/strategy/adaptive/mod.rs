@@ -81,7 +81,7 @@ use crate::strategy::pocket::shape::{
     IndexedLoop, PocketShape, closed_chain, crosses, restart_near, reversed,
 };
 use crate::toolpath::Tool;
-use field::Field;
+use field::{Coarse, Field};
 use pass::Stepper;
 
 /// Grid cell, in tool radii.
@@ -169,6 +169,7 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         arcs: opts.spiral.arcs,
         both_ways: opts.adaptive.both_ways,
         given_up: Vec::new(),
+        coarse: None,
     };
     let helix = match opts.entry {
         Entry::Helix { radius, .. } => radius,
@@ -263,6 +264,9 @@ struct Planner<'f, 'w> {
     /// Where a disc of radius `r` was marked cleared on the field but left to the walls'
     /// loops (`entry::new_ramp`): the field holds no material there, the stock may.
     given_up: Vec<Point>,
+    /// The last coarse distance-to-material map `start` made, with the field's count of
+    /// material cells then.
+    coarse: Option<(u64, Coarse)>,
 }
 
 impl<'w> Planner<'_, 'w> {
@@ -540,8 +544,21 @@ impl<'w> Planner<'_, 'w> {
     /// one to three blocks' width beyond `r`, inside the reach, not tried before, whose
     /// first step can cut; and the heading with the material on the cutting side.
     fn start(&mut self) -> Option<(Point, f64, usize)> {
+        // The map is the same while the field is (it only loses cells, and an undo restores
+        // what its record removed): a pass that cut nothing leaves it as it was.
+        let cells = self.field.material_cells();
+        let coarse = match self.coarse.take() {
+            Some((n, c)) if n == cells => c,
+            _ => self.field.coarse_distance(BLOCK),
+        };
+        let found = self.start_on(&coarse);
+        self.coarse = Some((cells, coarse));
+        found
+    }
+
+    /// [`Self::start`] on the coarse map `coarse` of the field as it is.
+    fn start_on(&mut self, coarse: &Coarse) -> Option<(Point, f64, usize)> {
         let st = self.stepper;
-        let coarse = self.field.coarse_distance(BLOCK);
         let hc = self.field.h * BLOCK as f64;
         if self.tried.len() != coarse.dist.len() {
             self.tried = vec![false; coarse.dist.len()];
