@@ -116,9 +116,9 @@ pub const WALK_RETRY: f64 = 4.0;
 /// Earlier cuts' points tried as a direct entry's descent, nearest first.
 const DIRECT_TRIES: usize = 16;
 /// A turn of the tool-centre region's boundary sharper than this is an acute corner (an
-/// interior angle under 80°, as [`tips::ACUTE_TURN`]), rad: the passes near it cut the last
-/// slivers (`pass`), which the walls' loop would meet head-on.
-const SHARP_TURN: f64 = 100.0 * std::f64::consts::PI / 180.0;
+/// interior angle under 80°), rad: the passes near it cut the last slivers (`pass`), which
+/// the walls' loop would meet head-on, and `tips` feeds into it.
+pub const ACUTE_TURN: f64 = 100.0 * std::f64::consts::PI / 180.0;
 /// Coarse blocks per side, in cells.
 const BLOCK: usize = 4;
 /// Most cells in the planner's grid; a larger pocket gets larger cells.
@@ -198,7 +198,7 @@ pub(crate) struct Walls<'a> {
     /// The exact distance a point needs: `clear` plus the margin.
     pub(crate) need: f64,
     /// The tool-centre region's acute corners (where its boundary turns by more than
-    /// [`SHARP_TURN`]).
+    /// [`ACUTE_TURN`]).
     corners: Vec<Point>,
 }
 
@@ -741,7 +741,7 @@ fn smoothed(pts: &[Point], within: f64) -> Vec<Point> {
     p
 }
 
-/// The vertices where a loop of `region` turns by more than [`SHARP_TURN`].
+/// The vertices where a loop of `region` turns by more than [`ACUTE_TURN`].
 fn sharp_corners(region: &crate::strategy::pocket::shape::OffsetRegion) -> Vec<Point> {
     let mut out = Vec::new();
     for lp in region.loops() {
@@ -754,7 +754,7 @@ fn sharp_corners(region: &crate::strategy::pocket::shape::OffsetRegion) -> Vec<P
             ) else {
                 continue;
             };
-            if t0.cross(t1).atan2(t0.dot(t1)).abs() > SHARP_TURN {
+            if t0.cross(t1).atan2(t0.dot(t1)).abs() > ACUTE_TURN {
                 out.push(sg.b);
             }
         }

@@ -31,14 +31,12 @@
 //! found no room marks cleared, for the walls' loops). A corner the tool does not reach is
 //! left to the walls' loop.
 
-use super::{CutEntry, DESCENT_CELLS, Planner};
+use super::{ACUTE_TURN, CutEntry, DESCENT_CELLS, Planner};
 use crate::geom::{Point, Vec2};
 use crate::strategy::pocket::levels::Cut;
 use crate::strategy::pocket::segments::{Seg, segs_from_vertices};
 use crate::strategy::pocket::shape::{OffsetRegion, closed_chain};
 
-/// A corner turning by more than this (rad; interior angle under 80°) is fed into.
-pub const ACUTE_TURN: f64 = 100.0 * std::f64::consts::PI / 180.0;
 /// The last feed's engagement may be this multiple of the corner's own (module docs).
 pub const FLOOR_SLACK: f64 = 1.05;
 /// The farthest (tool radii) from the corner that the feed starts.
