@@ -51,9 +51,13 @@ pub fn pocket(
     k.text("strategy", &mut s.strategy)?;
     k.f64("tool_diameter", &mut s.tool_diameter)?;
     k.opt_f64("flute_length", &mut s.flute_length)?;
-    k.text("stepover", &mut s.stepover)?;
+    s.apply_strategy_defaults();
+    let (mut stepover, mut step_down) = (None, None);
+    k.opt_text("stepover", &mut stepover)?;
     k.f64("depth", &mut s.depth)?;
-    k.f64("step_down", &mut s.step_down)?;
+    k.opt_f64("step_down", &mut step_down)?;
+    s.stepover = stepover.unwrap_or(s.stepover);
+    s.step_down = step_down.unwrap_or(s.step_down);
     k.f64("wall_stock", &mut s.wall_stock)?;
     k.f64("floor_stock", &mut s.floor_stock)?;
     k.bool("conventional", &mut s.conventional)?;

@@ -70,6 +70,17 @@ def test_pocket_adaptive_both_ways_equals_cli(tmp_path):
     assert r.gcode != climb.gcode
 
 
+def test_pocket_adaptive_defaults_equal_cli(tmp_path):
+    # Neither stepover nor step_down given: the adaptive's own (10 %, the flute length).
+    kw = dict(strategy="adaptive", tool_diameter=4, depth=2, flute_length=2)
+    r = millpath.pocket(T_PART, **kw)
+    gcode, report = cli_pocket(tmp_path, T_PART, **kw)
+    assert r.gcode.encode() == gcode
+    assert r.report == report
+    assert report["stepover_mm"] == pytest.approx(0.4)
+    assert report["verification"]["uncut_area_mm2"] <= report["verification"]["uncut_tolerance_mm2"]
+
+
 def test_pocket_auto_tries_the_adaptive_given_the_flute_length(tmp_path):
     kw = dict(POCKET_ARGS, strategy="auto", flute_length=12)
     r = millpath.pocket("sample:aerospace", **kw)

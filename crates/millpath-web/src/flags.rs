@@ -31,6 +31,7 @@ pub struct Settings {
 pub const FLAGS: &[&str] = &[
     "strategy",
     "tool-diameter",
+    "flute-length",
     "stepover",
     "depth",
     "step-down",
@@ -92,6 +93,8 @@ pub fn parse(json: &str) -> Result<Settings, Error> {
     let mut s = PocketSettings::default();
     f.text("strategy", &mut s.strategy)?;
     f.f64("tool-diameter", &mut s.tool_diameter)?;
+    f.opt_f64("flute-length", &mut s.flute_length)?;
+    s.apply_strategy_defaults();
     f.text("stepover", &mut s.stepover)?;
     f.f64("depth", &mut s.depth)?;
     f.f64("step-down", &mut s.step_down)?;
@@ -264,6 +267,19 @@ mod tests {
     }
 
     /// Refusals name the flag, the value and what is accepted.
+    #[test]
+    fn adaptive_takes_its_own_defaults_as_the_cli_does() {
+        let s = parse(r#"{"strategy": "adaptive", "tool-diameter": 6}"#).unwrap();
+        assert_eq!(s.pocket.stepover, "0.1");
+        assert!((s.pocket.step_down - 18.0).abs() < 1e-12);
+        let s =
+            parse(r#"{"strategy": "adaptive", "flute-length": 10, "stepover": "0.2"}"#).unwrap();
+        assert_eq!(s.pocket.stepover, "0.2");
+        assert!((s.pocket.step_down - 10.0).abs() < 1e-12);
+        let s = parse(r#"{"strategy": "adaptive", "step-down": 4}"#).unwrap();
+        assert!((s.pocket.step_down - 4.0).abs() < 1e-12);
+    }
+
     #[test]
     fn refusals_name_the_flag() {
         let msg = |j: &str| parse(j).unwrap_err().to_string();

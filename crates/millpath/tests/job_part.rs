@@ -12,6 +12,7 @@ use job_common::{same, spec};
 use millpath::Error;
 use millpath::gcode::Dialect;
 use millpath::job::part;
+use millpath::job::part::OperationKind;
 use millpath::job::program_time;
 
 #[test]
@@ -361,4 +362,30 @@ fn no_tab_sits_in_a_bay_the_tool_cannot_enter() {
     let text = String::from_utf8(run.run.gcode.clone()).unwrap();
     let v = part::verify_program(&s, &text, "bay.ngc", "auto").unwrap();
     assert!(v.problems().is_empty(), "{:?}", v.problems());
+}
+
+#[test]
+fn an_adaptive_pocket_takes_the_adaptive_defaults() {
+    let dir = tempfile::tempdir().unwrap();
+    let pocket = |edit: &str| {
+        let s = spec(dir.path(), |j| {
+            j.replace("depth = 2.0\nstep_down = 2.0", edit)
+        })
+        .unwrap();
+        s.operations
+            .iter()
+            .find_map(|o| match &o.kind {
+                OperationKind::Pocket(p, _) => Some((**p).clone()),
+                _ => None,
+            })
+            .unwrap()
+    };
+    // The adaptive cuts a flute length (18 mm here) per level at a tenth of the diameter;
+    // the other strategies at most a diameter per level, at 0.4.
+    let a = pocket("strategy = \"adaptive\"\ndepth = 12.0");
+    assert_eq!((a.stepover.as_str(), a.step_down), ("0.1", 12.0));
+    let s = pocket("depth = 12.0");
+    assert_eq!((s.stepover.as_str(), s.step_down), ("0.4", 6.0));
+    let given = pocket("strategy = \"adaptive\"\ndepth = 12.0\nstepover = 0.3\nstep_down = 4.0");
+    assert_eq!((given.stepover.as_str(), given.step_down), ("0.3", 4.0));
 }

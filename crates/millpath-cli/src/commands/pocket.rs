@@ -4,6 +4,7 @@
 use millpath::Error;
 use millpath::io::outline_json::Loops;
 use millpath::job::PocketSettings;
+use millpath::job::pocket::{default_step_down, default_stepover};
 use millpath::strategy::pocket::PocketShape;
 use millpath::toolpath::Tool;
 use std::path::PathBuf;
@@ -54,9 +55,6 @@ pub struct Args {
     #[arg(long)]
     pub tolerance: Option<f64>,
 }
-
-/// The step-down when `--step-down` is not given (a quarter inch), mm.
-const DEFAULT_STEP_DOWN: f64 = 6.35;
 
 /// Options shared by `pocket` and `sweep`.
 #[derive(Debug, Clone, clap::Args)]
@@ -174,22 +172,14 @@ impl CommonArgs {
             import: self.import.settings(),
             strategy: self.strategy.clone(),
             tool_diameter: self.tool_diameter,
-            stepover: self.stepover.clone().unwrap_or_else(|| {
-                if self.strategy == "adaptive" {
-                    "0.1"
-                } else {
-                    "0.4"
-                }
-                .to_owned()
-            }),
+            stepover: self
+                .stepover
+                .clone()
+                .unwrap_or_else(|| default_stepover(&self.strategy).to_owned()),
             depth: self.depth,
             flute_length: self.flute_length,
             step_down: self.step_down.unwrap_or_else(|| {
-                if self.strategy == "adaptive" {
-                    self.flute_length.unwrap_or(3.0 * self.tool_diameter)
-                } else {
-                    DEFAULT_STEP_DOWN
-                }
+                default_step_down(&self.strategy, self.tool_diameter, self.flute_length)
             }),
             wall_stock: self.wall_stock,
             floor_stock: self.floor_stock,

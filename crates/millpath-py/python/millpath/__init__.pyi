@@ -114,9 +114,9 @@ def pocket(
     strategy: str = "spiral",
     tool_diameter: float = 12.7,
     flute_length: Optional[float] = None,
-    stepover: Union[str, float] = "0.4",
+    stepover: Union[None, str, float] = None,
     depth: float = 25.0,
-    step_down: float = 6.35,
+    step_down: Optional[float] = None,
     wall_stock: float = 0.0,
     floor_stock: float = 0.0,
     conventional: bool = False,
@@ -158,7 +158,9 @@ def pocket(
     arrays: boundary and islands) as `millpath pocket` does. With `rest_from` (a previous
     program, ours or another CAM's; its tool's diameter from `rest_from_diameter` or our
     header), cut only what it left within this tool's reach, as `millpath pocket
-    --rest-from` does: strategy `"rest"`, its figures as the report."""
+    --rest-from` does: strategy `"rest"`, its figures as the report. `stepover` and
+    `step_down` default as the command's do: 0.4 and 6.35 mm, and for `"adaptive"` 0.1 and
+    the flute length (3 x the diameter where it is not given)."""
 
 def drill(
     drawing: PathLike,

@@ -111,6 +111,33 @@ pub const DEFAULT_PATH_TOLERANCE: f64 = 0.01;
 /// runs faster (the feed a controller holds on a circle of radius ρ grows as √(a·ρ)).
 pub const DEFAULT_HELIX_RADIUS_PER_DIAMETER: f64 = 0.45;
 
+/// The stepover a strategy takes when none is given: `0.1` for `adaptive` (the engagement
+/// of a cut a tenth of the diameter wide, at the whole flute length), else `0.4`.
+pub fn default_stepover(strategy: &str) -> &'static str {
+    if strategy == "adaptive" { "0.1" } else { "0.4" }
+}
+
+/// The step-down a strategy takes when none is given, mm: for `adaptive` the flute length
+/// (one level per flute length), `3·D` where it is not given; else 6.35 mm.
+pub fn default_step_down(strategy: &str, tool_diameter: f64, flute_length: Option<f64>) -> f64 {
+    if strategy == "adaptive" {
+        flute_length.unwrap_or(3.0 * tool_diameter)
+    } else {
+        6.35
+    }
+}
+
+impl PocketSettings {
+    /// Sets the stepover and the step-down to the strategy's defaults ([`default_stepover`],
+    /// [`default_step_down`]) for the strategy, tool and flute length already set: the
+    /// front ends call it before they read the user's stepover and step-down, so that a
+    /// given value wins.
+    pub fn apply_strategy_defaults(&mut self) {
+        self.stepover = default_stepover(&self.strategy).to_owned();
+        self.step_down = default_step_down(&self.strategy, self.tool_diameter, self.flute_length);
+    }
+}
+
 impl Default for PocketSettings {
     fn default() -> Self {
         PocketSettings {

@@ -53,6 +53,7 @@ pub(crate) fn read(
     if let Some(v) = k.str("strategy")? {
         s.strategy = v;
     }
+    s.stepover = crate::job::pocket::default_stepover(&s.strategy).to_owned();
     if let Some(v) = k.text("stepover")? {
         s.stepover = v;
     }
@@ -61,9 +62,13 @@ pub(crate) fn read(
             .at(k.at_line(k.line()))
             .expected("depth = 3.0 (mm below the part's top)")
     })?;
-    s.step_down = k
-        .positive("step_down", "mm")?
-        .unwrap_or_else(|| s.depth.min(tool.flute_length).min(tool.diameter));
+    s.step_down = k.positive("step_down", "mm")?.unwrap_or_else(|| {
+        if s.strategy == "adaptive" {
+            s.depth.min(tool.flute_length)
+        } else {
+            s.depth.min(tool.flute_length).min(tool.diameter)
+        }
+    });
     let set = |x: &mut f64, v: Option<f64>| {
         if let Some(v) = v {
             *x = v;
