@@ -1,6 +1,6 @@
 //! The web page (`web/`, built by `scripts/web` into `target/web`) in headless Chromium,
-//! against the CLI: the page plans the aerospace sample and a real drawing with each of the
-//! three strategies, and the program it offers for download is byte for byte the one
+//! against the CLI: the page plans the aerospace sample with each of the four strategies
+//! (the adaptive at its own defaults) and a real drawing with the other three, and the program it offers for download is byte for byte the one
 //! `millpath pocket` writes with the same flags; a bad drawing shows the CLI's message. The
 //! page's own planning time of the aerospace pocket is printed beside the CLI's (the figure
 //! of BENCHMARKS.md), bounded only loosely; the module's gzipped size is checked; and the
@@ -237,7 +237,7 @@ struct Case {
 
 fn cases() -> Vec<Case> {
     let mut cases = Vec::new();
-    for s in ["spiral", "offset", "zigzag"] {
+    for s in ["spiral", "offset", "zigzag", "adaptive"] {
         cases.push(Case {
             id: format!("aerospace-{s}"),
             name: "sample:aerospace",
