@@ -74,6 +74,7 @@ pub fn pocket(
     k.opt_text("morph", &mut s.morph)?;
     k.bool("arcs", &mut s.arcs)?;
     k.bool("both_ways", &mut s.both_ways)?;
+    k.f64("lift", &mut s.lift)?;
     k.bool("finish", &mut s.finish)?;
     k.bool("no_feed_modulation", &mut s.no_feed_modulation)?;
     k.text("machine", &mut s.machine)?;

@@ -81,6 +81,16 @@ def test_pocket_adaptive_defaults_equal_cli(tmp_path):
     assert report["verification"]["uncut_area_mm2"] <= report["verification"]["uncut_tolerance_mm2"]
 
 
+def test_pocket_adaptive_lift_equals_cli(tmp_path):
+    kw = dict(strategy="adaptive", tool_diameter=4, depth=2, flute_length=2, lift=0.2)
+    r = millpath.pocket(T_PART, **kw)
+    gcode, report = cli_pocket(tmp_path, T_PART, **kw)
+    assert r.gcode.encode() == gcode
+    # Some link rises by the whole lift over the level at z = -2.
+    assert "Z-1.8\n" in r.gcode
+    assert "Z-1.8\n" not in millpath.pocket(T_PART, **dict(kw, lift=0)).gcode
+
+
 def test_pocket_auto_tries_the_adaptive_given_the_flute_length(tmp_path):
     kw = dict(POCKET_ARGS, strategy="auto", flute_length=12)
     r = millpath.pocket("sample:aerospace", **kw)

@@ -51,6 +51,7 @@ pub const FLAGS: &[&str] = &[
     "morph",
     "arcs",
     "both-ways",
+    "lift",
     "finish",
     "no-feed-modulation",
     "machine",
@@ -114,6 +115,7 @@ pub fn parse(json: &str) -> Result<Settings, Error> {
     f.opt_text("morph", &mut s.morph)?;
     f.bool("arcs", &mut s.arcs)?;
     f.bool("both-ways", &mut s.both_ways)?;
+    f.f64("lift", &mut s.lift)?;
     f.bool("finish", &mut s.finish)?;
     f.bool("no-feed-modulation", &mut s.no_feed_modulation)?;
     f.text("machine", &mut s.machine)?;

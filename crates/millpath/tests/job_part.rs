@@ -386,6 +386,9 @@ fn an_adaptive_pocket_takes_the_adaptive_defaults() {
     assert_eq!((a.stepover.as_str(), a.step_down), ("0.1", 12.0));
     let s = pocket("depth = 12.0");
     assert_eq!((s.stepover.as_str(), s.step_down), ("0.4", 6.0));
-    let given = pocket("strategy = \"adaptive\"\ndepth = 12.0\nstepover = 0.3\nstep_down = 4.0");
+    let given = pocket(
+        "strategy = \"adaptive\"\ndepth = 12.0\nstepover = 0.3\nstep_down = 4.0\nlift = 0.2",
+    );
     assert_eq!((given.stepover.as_str(), given.step_down), ("0.3", 4.0));
+    assert_eq!((a.lift, given.lift), (0.0, 0.2));
 }

@@ -324,3 +324,78 @@ fn both_ways_travels_less_in_the_air_and_holds_the_bound() {
         "{both:.0} mm in the air against {climb:.0}"
     );
 }
+
+/// With `lift` the links through cleared material rise over the floor and settle again:
+/// the XY path is the one at the level (its length the same), only moves along links rise
+/// (at most by the lift, some by all of it), and the program verifies and cuts as before
+/// (the verifier's engagement), in about the same time.
+#[test]
+fn lifted_links_keep_the_path_and_cut_as_at_the_level() {
+    use millpath::toolpath::MoveKind;
+    let shape = builtin::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap();
+    let base = PocketOptions::default()
+        .with_depth(5.0)
+        .with_step_down(5.0)
+        .with_stepover(pocket::Stepover::Fraction(0.4));
+    let run = |opts: &PocketOptions| {
+        pocket::generate(
+            StrategyKind::Adaptive,
+            &shape,
+            &tool,
+            opts,
+            &SimOptions::default(),
+        )
+        .unwrap()
+    };
+    let lift = 0.25;
+    let flat = run(&base);
+    let lifted = run(&base.clone().with_lift(lift));
+    let xy_length = |tp: &millpath::toolpath::Toolpath| {
+        tp.segments()
+            .filter(|(_, m)| m.kind != MoveKind::Rapid)
+            .map(|(from, m)| from.xy().distance(m.to.xy()))
+            .sum::<f64>()
+    };
+    let (la, lb) = (xy_length(&flat.toolpath), xy_length(&lifted.toolpath));
+    assert!(
+        (la - lb).abs() < 1e-6 * la,
+        "{la} mm at the level, {lb} mm lifted"
+    );
+    // Moves within the lift over the floor that start or end above it: the links' rises,
+    // runs and descents, besides the last steps of the ramps the programs share.
+    let within = |z: f64| z >= -5.0 - 1e-9 && z <= -5.0 + lift + 1e-9;
+    let raised = |tp: &millpath::toolpath::Toolpath| -> Vec<f64> {
+        tp.segments()
+            .filter(|(from, m)| {
+                within(from.z) && within(m.to.z) && from.z.max(m.to.z) > -5.0 + 1e-9
+            })
+            .map(|(from, m)| from.z.max(m.to.z))
+            .collect()
+    };
+    let whole = |v: &[f64]| {
+        v.iter()
+            .filter(|&&z| (z - (-5.0 + lift)).abs() < 1e-9)
+            .count()
+    };
+    let (before, up) = (raised(&flat.toolpath), raised(&lifted.toolpath));
+    let full = whole(&up) - whole(&before);
+    assert!(
+        up.len() >= before.len() + 6 && full >= 4,
+        "{} raised moves ({} at the level), {full} at the whole lift",
+        up.len(),
+        before.len()
+    );
+    let (sa, sb) = (
+        measured(&flat.toolpath, &shape, flat.nominal_engagement_deg),
+        measured(&lifted.toolpath, &shape, lifted.nominal_engagement_deg),
+    );
+    assert!(
+        (sa.max_deg - sb.max_deg).abs() < 1e-9 && (sa.mean_deg - sb.mean_deg).abs() < 0.5,
+        "{sa:?} against {sb:?}"
+    );
+    let hsm = millpath::machine::Machine::preset("hsm").unwrap();
+    let time = |tp| millpath::motion::cycle_time(tp, &hsm).unwrap();
+    let (ta, tb) = (time(&flat.toolpath), time(&lifted.toolpath));
+    assert!(tb < 1.02 * ta, "{tb:.2} s lifted against {ta:.2} s");
+}

@@ -141,6 +141,10 @@ pub struct CommonArgs {
     /// fro instead of linking back)
     #[arg(long)]
     pub both_ways: bool,
+    /// Adaptive links through cleared material rise this far over the floor, mm (the tool
+    /// stays down; the link rises and settles at the ramp angle) [default: 0, at the level]
+    #[arg(long, default_value_t = 0.0, hide_default_value = true)]
+    pub lift: f64,
     /// Finishing pass along the walls.
     #[arg(long)]
     pub finish: bool,
@@ -197,6 +201,7 @@ impl CommonArgs {
             morph: self.morph.clone(),
             arcs: self.arcs,
             both_ways: self.both_ways,
+            lift: self.lift,
             finish: self.finish,
             no_feed_modulation: self.no_feed_modulation,
             machine: self.machine.clone(),

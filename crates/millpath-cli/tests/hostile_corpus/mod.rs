@@ -237,6 +237,23 @@ pub fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
+            what: "negative adaptive lift",
+            args: &[
+                "pocket",
+                "sq.json",
+                "--tool-diameter",
+                "6",
+                "--strategy",
+                "adaptive",
+                "--lift",
+                "-0.5",
+                "-o",
+                "out.ngc",
+            ],
+            files: &[("sq.json", SQUARE_JSON)],
+            outputs: &["out.ngc"],
+        },
+        Case {
             what: "stepover that is not a number",
             args: &[
                 "pocket",

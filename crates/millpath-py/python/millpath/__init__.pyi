@@ -133,6 +133,7 @@ def pocket(
     morph: Optional[str] = None,
     arcs: bool = False,
     both_ways: bool = False,
+    lift: float = 0.0,
     finish: bool = False,
     no_feed_modulation: bool = False,
     machine: str = "hsm",

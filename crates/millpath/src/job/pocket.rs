@@ -83,6 +83,9 @@ pub struct PocketSettings {
     /// Adaptive passes may run either way
     /// ([`crate::strategy::pocket::AdaptiveOptions::both_ways`]).
     pub both_ways: bool,
+    /// How far adaptive links through cleared material rise over the floor, mm
+    /// ([`crate::strategy::pocket::AdaptiveOptions::lift`]).
+    pub lift: f64,
     /// Finishing pass along the walls.
     pub finish: bool,
     /// Keep the programmed feed (no engagement-based modulation).
@@ -164,6 +167,7 @@ impl Default for PocketSettings {
             morph: None,
             arcs: false,
             both_ways: false,
+            lift: 0.0,
             finish: false,
             no_feed_modulation: false,
             machine: "hsm".into(),
@@ -273,6 +277,7 @@ impl PocketSettings {
             .with_morph(self.morph()?)
             .with_arcs(self.arcs)
             .with_both_ways(self.both_ways)
+            .with_lift(self.lift)
             .with_auto_step_down(self.flute_length.filter(|_| self.strategy == "auto"))
             .with_curvature_ramps(true)
             .with_finish(self.finish)

@@ -25,6 +25,7 @@ pub(crate) const KEYS: &[&str] = &[
     "morph",
     "arcs",
     "both_ways",
+    "lift",
     "finish",
     "no_feed_modulation",
     "cell",
@@ -92,6 +93,7 @@ pub(crate) fn read(
     s.conventional = k.bool("conventional")?.unwrap_or(false);
     s.arcs = k.bool("arcs")?.unwrap_or(false);
     s.both_ways = k.bool("both_ways")?.unwrap_or(false);
+    set(&mut s.lift, k.non_negative("lift", "mm")?);
     s.finish = k.bool("finish")?.unwrap_or(false);
     s.no_feed_modulation = k.bool("no_feed_modulation")?.unwrap_or(false);
     Ok((s, k.text("select")?))

@@ -430,12 +430,15 @@ impl<'w> Planner<'_, 'w> {
     fn join(&mut self, pts: &[Point], path: Vec<Seg>, from: Option<Point>, linked: Option<Point>) {
         let start = pts[0];
         match (linked, self.cuts.last_mut()) {
-            (Some(at), Some(cut)) => {
-                if at.distance(start) > 1e-9 {
-                    cut.path.push(Seg::line(at, start));
-                }
-                cut.path.extend(path);
+            (Some(at), Some(_)) if at.distance(start) > 1e-9 => {
+                let mut linked_path = vec![Seg::line(at, start)];
+                linked_path.extend(path);
+                self.cuts.push(Cut {
+                    entry: CutEntry::Linked,
+                    path: linked_path,
+                });
             }
+            (Some(_), Some(cut)) => cut.path.extend(path),
             _ => {
                 self.cuts.push(Cut {
                     entry: from.map_or(CutEntry::Ramp, |from| CutEntry::Direct { from }),
@@ -689,12 +692,15 @@ impl<'w> Planner<'_, 'w> {
                     && (at.distance(first) < 1e-3 || self.link_clear(at, first, true))
             });
             match (linked, self.cuts.last_mut()) {
-                (Some(at), Some(cut)) => {
-                    if at.distance(first) > 1e-9 {
-                        cut.path.push(Seg::line(at, first));
-                    }
-                    cut.path.extend(path);
+                (Some(at), Some(_)) if at.distance(first) > 1e-9 => {
+                    let mut linked_path = vec![Seg::line(at, first)];
+                    linked_path.extend(path);
+                    self.cuts.push(Cut {
+                        entry: CutEntry::Linked,
+                        path: linked_path,
+                    });
                 }
+                (Some(_), Some(cut)) => cut.path.extend(path),
                 _ => {
                     let entry = match self.loop_descent(&path) {
                         Some(from) => CutEntry::Direct { from },

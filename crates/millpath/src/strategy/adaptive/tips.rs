@@ -108,7 +108,8 @@ impl Planner<'_, '_> {
             return;
         };
         let mut path = vec![];
-        if let Some(at) = linked.filter(|at| at.distance(q) > 1e-9) {
+        let link = linked.filter(|at| at.distance(q) > 1e-9);
+        if let Some(at) = link {
             path.push(Seg::line(at, q));
             self.field.clear_capsule(at, q, st.r);
         }
@@ -186,6 +187,10 @@ impl Planner<'_, '_> {
             return;
         }
         match (linked, self.cuts.last_mut()) {
+            (Some(_), Some(_)) if link.is_some() => self.cuts.push(Cut {
+                entry: CutEntry::Linked,
+                path,
+            }),
             (Some(_), Some(cut)) => cut.path.extend(path),
             _ => self.cuts.push(Cut {
                 entry: CutEntry::Direct { from: q },

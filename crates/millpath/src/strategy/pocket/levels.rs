@@ -84,6 +84,11 @@ pub enum CutEntry {
         /// A cleared point.
         from: Point,
     },
+    /// The tool stays down: the path's first segment is a line from where the cut before it
+    /// (at the same level) ended, through material that cut cleared, written lifted by
+    /// [`super::options::AdaptiveOptions::lift`]. Where the tool is not there (a linked
+    /// cut first in its level), the cut is ramped into.
+    Linked,
 }
 
 /// One continuous cut at a level, after one entry.
@@ -292,6 +297,35 @@ fn emit_cut(
         Entry::Helix { ramp_angle, .. } | Entry::Ramp { ramp_angle } => ramp_angle,
     };
     let here = tp.end();
+    if cut.entry == CutEntry::Linked && here.distance(Point3::from_xy(first.a, z)) <= 1e-9 {
+        let rise = opts
+            .adaptive
+            .lift
+            .min(0.5 * first.length() * ramp_angle.tan());
+        if rise > 0.0 && first.arc.is_none() {
+            let Some(u) = (first.b - first.a).normalize() else {
+                return Ok(());
+            };
+            let run = rise / ramp_angle.tan();
+            tp.push(Move::line(
+                Point3::from_xy(first.a + u * run, z + rise),
+                opts.feed,
+            ));
+            if first.length() - 2.0 * run > 1e-9 {
+                tp.push(Move::line(
+                    Point3::from_xy(first.b - u * run, z + rise),
+                    opts.feed,
+                ));
+            }
+            tp.push(Move::line(Point3::from_xy(first.b, z), opts.feed));
+        } else {
+            tp.push(seg_move(first, z, opts.feed));
+        }
+        for s in &cut.path[1..] {
+            tp.push(seg_move(s, z, opts.feed));
+        }
+        return Ok(());
+    }
     let (approach, ramp) = cut_approach(cut, opts, top, z)?;
     if low_link && (here.z - safe).abs() <= 1e-9 {
         // Over the level above, cleared: straight across at the safe height.
@@ -412,7 +446,7 @@ fn emit_cut(
             }
             return Ok(());
         }
-        CutEntry::Ramp => {
+        CutEntry::Ramp | CutEntry::Linked => {
             let Some((head, passes)) = ramp else {
                 return Ok(());
             };
@@ -476,7 +510,7 @@ fn cut_approach(
     // A ramp: back and forth along the head of the path, descending all the way, ending at
     // the path's start; an odd number of passes starts at the head's far end.
     let ramp = match cut.entry {
-        CutEntry::Ramp => Some(ramp_passes(&cut.path, safe - z, ramp_angle, z)?),
+        CutEntry::Ramp | CutEntry::Linked => Some(ramp_passes(&cut.path, safe - z, ramp_angle, z)?),
         CutEntry::RampAlong { max_len } => {
             // An odd number of passes over a head of at most `max_len`: the first from the
             // path's start, the last ending at the head's far end.
@@ -506,7 +540,7 @@ fn cut_approach(
                 0.0,
             )
         }
-        (CutEntry::Ramp, Some((head, passes))) if passes % 2 == 1 => {
+        (CutEntry::Ramp | CutEntry::Linked, Some((head, passes))) if passes % 2 == 1 => {
             head.last().map_or(first.a, |g| g.b)
         }
         (CutEntry::Direct { from }, _) => from,

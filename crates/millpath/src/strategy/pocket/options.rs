@@ -234,6 +234,11 @@ pub struct AdaptiveOptions {
     /// tool's radius, so that short passes ending at a wall (in a corner) are cut to and
     /// fro instead of each followed by a link back. The engagement's bound holds either way.
     pub both_ways: bool,
+    /// How far the tool rises over the floor on a link through cleared material, mm
+    /// (`--lift`; 0, the default: the link runs at the level). The link rises and settles
+    /// again at the entry's ramp angle, so it stays a smooth move for the controller; a link
+    /// too short to reach the whole lift at that angle rises half its length.
+    pub lift: f64,
     /// With `--strategy auto`: the step-down of the adaptive candidate, mm (the flute length
     /// the user gave; `None`, the default: `auto` leaves the adaptive out). Its stepover is
     /// [`AdaptiveOptions::AUTO_STEPOVER`], the adaptive's own default; the other settings are
@@ -311,6 +316,8 @@ option_builders! {
     with_adaptive => adaptive: AdaptiveOptions;
     /// Sets [`AdaptiveOptions::both_ways`].
     with_both_ways => adaptive.both_ways: bool;
+    /// Sets [`AdaptiveOptions::lift`], mm.
+    with_lift => adaptive.lift: f64;
     /// Sets [`AdaptiveOptions::auto_step_down`], mm.
     with_auto_step_down => adaptive.auto_step_down: Option<f64>;
     /// Sets [`SpiralOptions::transition`].
@@ -385,6 +392,13 @@ impl PocketOptions {
             self.floor_stock >= 0.0 && self.floor_stock < self.depth,
             "--floor-stock",
             "a stock >= 0 mm and below the depth",
+        )?;
+        check(
+            "lift",
+            self.adaptive.lift,
+            self.adaptive.lift >= 0.0 && self.adaptive.lift <= self.safe_height,
+            "--lift",
+            "a lift >= 0 mm and at most the safe height",
         )?;
         check(
             "safe height",

@@ -289,7 +289,10 @@ fn turn_plan(plan: &LevelPlan, a: f64) -> LevelPlan {
                         flat_turn,
                     },
                     CutEntry::Direct { from } => CutEntry::Direct { from: turn(from) },
-                    e @ (CutEntry::Ramp | CutEntry::RampAlong { .. } | CutEntry::Lap { .. }) => e,
+                    e @ (CutEntry::Ramp
+                    | CutEntry::RampAlong { .. }
+                    | CutEntry::Lap { .. }
+                    | CutEntry::Linked) => e,
                 },
                 path: c
                     .path
