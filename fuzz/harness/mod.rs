@@ -273,7 +273,33 @@ pub fn pocket(data: &[u8]) {
     // and no uncut material beyond `UNCUT_AREA_TOLERANCE` (the stock simulation's coverage:
     // material the tool could have reached, the corner cusps aside). The gouge check is
     // geometric (distances to the walls, not the raster).
-    match pocket::generate(kind, &shape, &tool, &opts, &sim) {
+    generated(kind, &shape, &tool, &opts, &sim);
+}
+
+/// `adaptive`: the `pocket` target's pocket, tool and options (its inputs decode here too),
+/// planned by the adaptive strategy, `--both-ways` and `--lift` derived from values the
+/// `pocket` decoding draws (the finishing flag; the zigzag angle's share of the safe
+/// height, which is NaN or out of range where those are), checked as `pocket` checks.
+pub fn adaptive(data: &[u8]) {
+    let Some((_, shape, tool, opts, sim)) = pocket_case(data) else {
+        return;
+    };
+    let lift = opts.safe_height * opts.zigzag.angle.abs() / 3.2;
+    let both = opts.finish;
+    let opts = opts.with_both_ways(both).with_lift(lift);
+    trace(&("adaptive", both, lift));
+    generated(StrategyKind::Adaptive, &shape, &tool, &opts, &sim);
+}
+
+/// [`pocket::generate`] and the checks of the `pocket` and `adaptive` targets.
+fn generated(
+    kind: StrategyKind,
+    shape: &PocketShape,
+    tool: &Tool,
+    opts: &PocketOptions,
+    sim: &SimOptions,
+) {
+    match pocket::generate(kind, shape, tool, opts, sim) {
         Ok(r) => {
             assert_finite(&r.toolpath, "pocket");
             let v = &r.verification;

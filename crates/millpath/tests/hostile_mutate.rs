@@ -213,6 +213,11 @@ fn mutants_pocket() {
 }
 
 #[test]
+fn mutants_adaptive() {
+    pass("adaptive", 7, 96, harness::adaptive);
+}
+
+#[test]
 fn mutants_contour() {
     pass("contour", 5, 120, harness::contour);
 }

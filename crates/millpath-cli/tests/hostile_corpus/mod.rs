@@ -237,6 +237,23 @@ pub fn cases() -> Vec<Case> {
             outputs: &["out.ngc"],
         },
         Case {
+            what: "adaptive stepover of a full slot",
+            args: &[
+                "pocket",
+                "sq.json",
+                "--tool-diameter",
+                "6",
+                "--strategy",
+                "adaptive",
+                "--stepover",
+                "1.0",
+                "-o",
+                "out.ngc",
+            ],
+            files: &[("sq.json", SQUARE_JSON)],
+            outputs: &["out.ngc"],
+        },
+        Case {
             what: "negative adaptive lift",
             args: &[
                 "pocket",

@@ -34,6 +34,10 @@ pub(crate) struct Field {
     words: usize,
     material: Vec<u64>,
     wall: Vec<f32>,
+    /// The distance to the nearest cell a wall thinner than a cell runs through (a slit, a
+    /// needle of an island: no cell centre lies outside the pocket there, and `wall` does
+    /// not see it), mm; empty where the pocket has none.
+    thin: Vec<f32>,
     /// While a pass is tried: the words [`Field::clear_disc`] changed, with the bits it
     /// cleared, so that [`Field::undo`] puts them back.
     log: Option<Vec<(usize, u64)>>,
@@ -57,11 +61,51 @@ impl Field {
             words,
             material: vec![0; words * ny],
             wall: Vec::new(),
+            thin: Vec::new(),
             log: None,
         };
         f.fill(shape);
         f.wall = f.distance_to_outside();
+        f.thin = f.distance_to_thin_walls(shape);
         f
+    }
+
+    /// [`Field::thin`]: the cells the loops (flattened to `h/8`, each piece read every `h/2`)
+    /// run through that lie farther
+    /// than `1.5·h` from every cell outside the pocket (a wall's own cells lie within `√2·h`
+    /// of one), and the distance from each cell to the nearest of them; empty where there
+    /// are none.
+    fn distance_to_thin_walls(&self, shape: &PocketShape) -> Vec<f32> {
+        let mut seeds = Vec::new();
+        for outline in shape.loops() {
+            let pts = flatten_loop(&segs_from_vertices(&closed_chain(outline.polyline())), {
+                self.h / 8.0
+            });
+            for w in pts.windows(2) {
+                let n = (w[0].distance(w[1]) / (0.5 * self.h))
+                    .ceil()
+                    .clamp(1.0, 1e7) as usize;
+                for t in 0..=n {
+                    let Some((i, j)) = self.cell_of(w[0].lerp(w[1], t as f64 / n as f64)) else {
+                        continue;
+                    };
+                    let k = j * self.nx + i;
+                    if f64::from(self.wall[k]) > 1.5 * self.h {
+                        seeds.push(k);
+                    }
+                }
+            }
+        }
+        if seeds.is_empty() {
+            return Vec::new();
+        }
+        let big = ((self.nx + self.ny) as f64).powi(2);
+        let mut d2 = vec![big; self.nx * self.ny];
+        for k in seeds {
+            d2[k] = 0.0;
+        }
+        edt_2d(&mut d2, self.nx, self.ny);
+        d2.iter().map(|&v| (v.sqrt() * self.h) as f32).collect()
     }
 
     /// Sets the cells whose centres lie inside the pocket: each row's crossings with the
@@ -374,6 +418,19 @@ impl Field {
         }
     }
 
+    /// [`Field::wall_distance`], or the distance to the nearest wall thinner than a cell
+    /// ([`Field::thin`]) where that is less: what a point must clear to be inside for sure.
+    pub(crate) fn sure_distance(&self, q: Point) -> f64 {
+        match self.cell_of(q) {
+            Some((i, j)) => {
+                let k = j * self.nx + i;
+                let w = f64::from(self.wall[k]);
+                self.thin.get(k).map_or(w, |&t| w.min(f64::from(t)))
+            }
+            None => 0.0,
+        }
+    }
+
     fn cell_of(&self, q: Point) -> Option<(usize, usize)> {
         let fx = (q.x - self.x0) / self.h;
         let fy = (q.y - self.y0) / self.h;
@@ -678,6 +735,42 @@ mod tests {
         assert!((mid - std::f64::consts::PI).abs() < 1e-12, "{mid}");
         let none = f.contact_arc(Point::new(20.0, 60.0), Vec2::new(1.0, 0.0), r);
         assert!(none.abs() < 1e-12, "{none}");
+    }
+
+    /// A wall thinner than a cell (the outline runs in from the right wall to `x = 10` and
+    /// back, 1 µm apart) is no cell's outside: `wall_distance` does not see it, the
+    /// distance to thin walls does; a pocket without one has none.
+    #[test]
+    fn a_slit_is_a_wall_the_grid_is_not_sure_beside() {
+        let pts = [
+            Point::new(0.0, 0.0),
+            Point::new(40.0, 0.0),
+            Point::new(40.0, 20.0),
+            Point::new(10.0, 20.0),
+            Point::new(40.0, 20.001),
+            Point::new(40.0, 40.0),
+            Point::new(0.0, 40.0),
+        ];
+        let shape = PocketShape::simple(Outline::from_points(&pts, "slit").unwrap());
+        let f = Field::new(&shape, 0.1, 1.0);
+        for q in [
+            Point::new(20.0, 20.5),
+            Point::new(30.0, 19.6),
+            Point::new(9.0, 20.0),
+        ] {
+            assert!(f.wall_distance(q) > 5.0, "{q:?} {}", f.wall_distance(q));
+            let want = if q.x < 10.0 {
+                10.0 - q.x
+            } else {
+                (q.y - 20.0).abs()
+            };
+            let got = f.sure_distance(q);
+            assert!(got <= want + 0.15, "{q:?}: {got} against {want}");
+        }
+        let plain = Field::new(&square(30.0), 0.1, 1.0);
+        assert!(plain.thin.is_empty());
+        let q = Point::new(12.0, 7.0);
+        assert!((plain.sure_distance(q) - plain.wall_distance(q)).abs() < 1e-12);
     }
 
     fn square(side: f64) -> PocketShape {

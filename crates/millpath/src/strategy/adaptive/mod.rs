@@ -84,6 +84,9 @@ use crate::toolpath::Tool;
 use field::{Coarse, Field};
 use pass::Stepper;
 
+/// The widest stepover the adaptive takes, a fraction of the tool's diameter (the straight
+/// cut's engagement is then 143°; wider, the bound approaches a full slot's).
+pub const MAX_STEPOVER: f64 = 0.9;
 /// Grid cell, in tool radii.
 pub const CELL_RADII: f64 = 1.0 / 32.0;
 /// Step length, in tool radii.
@@ -132,6 +135,16 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
     let r = tool.radius();
     let stock = opts.wall_stock.max(0.0);
     let s = opts.stepover_mm(tool).min(tool.diameter);
+    if s > MAX_STEPOVER * tool.diameter {
+        return Err(crate::error::InputError::new("stepover", format!("{s} mm"))
+            .at("--stepover with --strategy adaptive")
+            .expected(format!(
+                "at most {MAX_STEPOVER} of the tool's diameter ({} mm): the adaptive holds the \
+                 engagement of a straight cut that wide, and a full slot bounds nothing",
+                MAX_STEPOVER * tool.diameter
+            ))
+            .into());
+    }
     let b = shape.outer.bounds();
     let span = (b.max.x - b.min.x + 4.0 * r) * (b.max.y - b.min.y + 4.0 * r);
     let h = (CELL_RADII * r).max((span / MAX_CELLS).sqrt());
@@ -225,7 +238,7 @@ impl<'a> Walls<'a> {
     /// `need` by a cell or more, else the loops' exact distance.
     pub(crate) fn distance(&self, field: &Field, q: Point) -> f64 {
         let w = field.wall_distance(q);
-        if w >= self.sure + field.h {
+        if field.sure_distance(q) >= self.sure + field.h {
             return w;
         }
         self.loops
@@ -237,7 +250,7 @@ impl<'a> Walls<'a> {
     /// True when the tool centre may stand at `q`.
     pub(crate) fn allows(&self, field: &Field, q: Point) -> bool {
         let w = field.wall_distance(q);
-        if w >= self.sure {
+        if field.sure_distance(q) >= self.sure {
             return true;
         }
         if w + 2.0 * field.h < self.need {
