@@ -276,6 +276,27 @@ fn a_long_pocket_is_entered_along_its_ridge() {
     assert!(lo <= -24.0 && hi >= 24.0, "{lo} … {hi}");
 }
 
+/// The aerospace pocket 5 mm deep at 40 % with the 12.7 mm tool (Done-when 1's program).
+fn aerospace_5mm() -> (PocketShape, Tool, PocketOptions) {
+    let opts = PocketOptions::default()
+        .with_depth(5.0)
+        .with_step_down(5.0)
+        .with_stepover(pocket::Stepover::Fraction(0.4));
+    (builtin::aerospace_pocket(), Tool::flat(12.7).unwrap(), opts)
+}
+
+/// The adaptive program, verified (`generate` refuses a gouge or uncut material).
+fn adaptive(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> pocket::PocketResult {
+    pocket::generate(
+        StrategyKind::Adaptive,
+        shape,
+        tool,
+        opts,
+        &SimOptions::default(),
+    )
+    .unwrap()
+}
+
 /// With `both_ways` the passes that end at a wall (the aerospace pocket's corners) are cut
 /// to and fro instead of each followed by a link back: the tool's feed travel at depth that
 /// removes nothing (the verifier's cutting flags) is a tenth or more shorter than climb only,
@@ -284,21 +305,9 @@ fn a_long_pocket_is_entered_along_its_ridge() {
 #[test]
 fn both_ways_travels_less_in_the_air_and_holds_the_bound() {
     use millpath::toolpath::MoveKind;
-    let shape = builtin::aerospace_pocket();
-    let tool = Tool::flat(12.7).unwrap();
-    let base = PocketOptions::default()
-        .with_depth(5.0)
-        .with_step_down(5.0)
-        .with_stepover(pocket::Stepover::Fraction(0.4));
+    let (shape, tool, base) = aerospace_5mm();
     let air = |opts: &PocketOptions| {
-        let r = pocket::generate(
-            StrategyKind::Adaptive,
-            &shape,
-            &tool,
-            opts,
-            &SimOptions::default(),
-        )
-        .unwrap();
+        let r = adaptive(&shape, &tool, opts);
         let nominal = r.nominal_engagement_deg;
         let st = measured(&r.toolpath, &shape, nominal);
         assert!(
@@ -332,25 +341,10 @@ fn both_ways_travels_less_in_the_air_and_holds_the_bound() {
 #[test]
 fn lifted_links_keep_the_path_and_cut_as_at_the_level() {
     use millpath::toolpath::MoveKind;
-    let shape = builtin::aerospace_pocket();
-    let tool = Tool::flat(12.7).unwrap();
-    let base = PocketOptions::default()
-        .with_depth(5.0)
-        .with_step_down(5.0)
-        .with_stepover(pocket::Stepover::Fraction(0.4));
-    let run = |opts: &PocketOptions| {
-        pocket::generate(
-            StrategyKind::Adaptive,
-            &shape,
-            &tool,
-            opts,
-            &SimOptions::default(),
-        )
-        .unwrap()
-    };
+    let (shape, tool, base) = aerospace_5mm();
     let lift = 0.25;
-    let flat = run(&base);
-    let lifted = run(&base.clone().with_lift(lift));
+    let flat = adaptive(&shape, &tool, &base);
+    let lifted = adaptive(&shape, &tool, &base.clone().with_lift(lift));
     let xy_length = |tp: &millpath::toolpath::Toolpath| {
         tp.segments()
             .filter(|(_, m)| m.kind != MoveKind::Rapid)
