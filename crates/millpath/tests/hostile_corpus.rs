@@ -213,14 +213,6 @@ fn corpus_pocket() {
     replay("pocket", 50, harness::pocket);
 }
 
-/// Strict, as [`corpus_pocket`]: the adaptive plans of its own corpus (inputs of the
-/// `pocket` decoding), with `--both-ways` and `--lift` drawn.
-#[test]
-fn corpus_adaptive() {
-    harness::STRICT_VERIFY.store(true, std::sync::atomic::Ordering::Relaxed);
-    replay("adaptive", 20, harness::adaptive);
-}
-
 /// Strict: every contour's finishing pass lies within the tolerance band of the exact curve
 /// (dense distances to the curve, not the pass's own measure); no known exceptions since
 /// 2026-11-26 ([`contours_stay_in_the_band_on_fuzz_outlines`]).
@@ -467,29 +459,6 @@ fn finishing_clears_stock_wider_than_the_tool() {
         n += 1;
     }
     assert!(n >= 1);
-}
-
-/// The adaptive crossed walls thinner than a cell until 2026-11-30 (a slit where two edges
-/// of the outline run back along each other, an island drawn as a needle): its grid
-/// measured the distance to the cells outside the pocket, and no cell centre lies outside
-/// there, so it took points beside such a wall for inside for sure (`Field::thin` now sees
-/// them). The `adaptive` fuzz target's first runs found these 41 gouges, each
-/// refused by the verifier (an internal error, nothing written); each now verifies
-/// (`harness::adaptive`, strict: no gouge, nothing uncut, no internal error).
-#[test]
-fn adaptive_keeps_off_walls_thinner_than_a_cell() {
-    harness::STRICT_VERIFY.store(true, std::sync::atomic::Ordering::Relaxed);
-    let dir =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/regressions/adaptive-thin-wall");
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
-        .expect("regressions dir")
-        .map(|e| e.expect("entry").path())
-        .collect();
-    names.sort();
-    assert_eq!(names.len(), 41, "{names:?}");
-    for f in &names {
-        harness::adaptive(&std::fs::read(f).expect("file"));
-    }
 }
 
 fn gouge_cases() -> Vec<(String, millpath::Result<millpath::stock::Verification>)> {

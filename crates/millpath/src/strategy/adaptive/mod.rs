@@ -198,6 +198,18 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
     Ok(LevelPlan { cuts: plan.cuts })
 }
 
+/// A cut the tool reaches staying down ([`CutEntry::Linked`]): the link from `at`, where the
+/// tool is, to `to`, then `path`.
+fn linked_cut(at: Point, to: Point, path: Vec<Seg>) -> Cut {
+    let mut linked = Vec::with_capacity(path.len() + 1);
+    linked.push(Seg::line(at, to));
+    linked.extend(path);
+    Cut {
+        entry: CutEntry::Linked,
+        path: linked,
+    }
+}
+
 /// Where the tool centre may go: at least `clear` (plus a margin) from the pocket's loops.
 /// The grid's distance decides where it is sure (it is within `2.2·h` of the exact one),
 /// the loops' exact distance elsewhere.
@@ -444,12 +456,7 @@ impl<'w> Planner<'_, 'w> {
         let start = pts[0];
         match (linked, self.cuts.last_mut()) {
             (Some(at), Some(_)) if at.distance(start) > 1e-9 => {
-                let mut linked_path = vec![Seg::line(at, start)];
-                linked_path.extend(path);
-                self.cuts.push(Cut {
-                    entry: CutEntry::Linked,
-                    path: linked_path,
-                });
+                self.cuts.push(linked_cut(at, start, path));
             }
             (Some(_), Some(cut)) => cut.path.extend(path),
             _ => {
@@ -706,12 +713,7 @@ impl<'w> Planner<'_, 'w> {
             });
             match (linked, self.cuts.last_mut()) {
                 (Some(at), Some(_)) if at.distance(first) > 1e-9 => {
-                    let mut linked_path = vec![Seg::line(at, first)];
-                    linked_path.extend(path);
-                    self.cuts.push(Cut {
-                        entry: CutEntry::Linked,
-                        path: linked_path,
-                    });
+                    self.cuts.push(linked_cut(at, first, path));
                 }
                 (Some(_), Some(cut)) => cut.path.extend(path),
                 _ => {
