@@ -302,10 +302,10 @@ fn emit_cut(
             .adaptive
             .lift
             .min(0.5 * first.length() * ramp_angle.tan());
-        if rise > 0.0 && first.arc.is_none() {
-            let Some(u) = (first.b - first.a).normalize() else {
-                return Ok(());
-            };
+        let dir = (first.b - first.a)
+            .normalize()
+            .filter(|_| first.arc.is_none());
+        if let (true, Some(u)) = (rise > 0.0, dir) {
             let run = rise / ramp_angle.tan();
             tp.push(Move::line(
                 Point3::from_xy(first.a + u * run, z + rise),
