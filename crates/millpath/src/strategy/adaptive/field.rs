@@ -471,8 +471,14 @@ impl Field {
                 let mut b = bits;
                 while b != 0 {
                     let i = w * 64 + b.trailing_zeros() as usize;
-                    b &= b - 1;
                     d2[(j / k) * cx + i / k] = 0.0;
+                    // The rest of this block's bits in the word say nothing more.
+                    let next = (i / k + 1) * k;
+                    b = if next >= (w + 1) * 64 {
+                        0
+                    } else {
+                        b & (u64::MAX << (next - w * 64))
+                    };
                 }
             }
         }
@@ -588,32 +594,41 @@ fn flatten_loop(segs: &[Seg], tol: f64) -> Vec<Point> {
 /// sources and a large value elsewhere, and is replaced by the squared distance to the
 /// nearest source (Felzenszwalb and Huttenlocher, columns then rows).
 fn edt_2d(d2: &mut [f64], nx: usize, ny: usize) {
-    let mut buf = vec![0.0; nx.max(ny)];
-    let mut out = vec![0.0; nx.max(ny)];
+    let n = nx.max(ny);
+    let mut buf = vec![0.0; n];
+    let mut out = vec![0.0; n];
+    let mut v = vec![0usize; n];
+    let mut z = vec![0.0; n + 1];
+    // A line whose values are all equal is its own transform: `min_p (q − p)² + c = c`.
+    let flat = |b: &[f64]| b.iter().all(|&x| x == b[0]);
     for i in 0..nx {
         for j in 0..ny {
             buf[j] = d2[j * nx + i];
         }
-        edt_1d(&buf[..ny], &mut out[..ny]);
+        if flat(&buf[..ny]) {
+            continue;
+        }
+        edt_1d(&buf[..ny], &mut out[..ny], &mut v, &mut z);
         for j in 0..ny {
             d2[j * nx + i] = out[j];
         }
     }
     for j in 0..ny {
         buf[..nx].copy_from_slice(&d2[j * nx..(j + 1) * nx]);
-        edt_1d(&buf[..nx], &mut out[..nx]);
+        if flat(&buf[..nx]) {
+            continue;
+        }
+        edt_1d(&buf[..nx], &mut out[..nx], &mut v, &mut z);
         d2[j * nx..(j + 1) * nx].copy_from_slice(&out[..nx]);
     }
 }
 
 /// One dimension of [`edt_2d`]: `out[q] = min_p (q − p)² + f[p]`.
-fn edt_1d(f: &[f64], out: &mut [f64]) {
+fn edt_1d(f: &[f64], out: &mut [f64], v: &mut [usize], z: &mut [f64]) {
     let n = f.len();
     if n == 0 {
         return;
     }
-    let mut v = vec![0usize; n];
-    let mut z = vec![0.0f64; n + 1];
     let mut k = 0;
     z[0] = f64::NEG_INFINITY;
     z[1] = f64::INFINITY;
