@@ -600,7 +600,7 @@ fn edt_2d(d2: &mut [f64], nx: usize, ny: usize) {
     let mut v = vec![0usize; n];
     let mut z = vec![0.0; n + 1];
     // A line whose values are all equal is its own transform: `min_p (q − p)² + c = c`.
-    let flat = |b: &[f64]| b.iter().all(|&x| x == b[0]);
+    let flat = |b: &[f64]| b.iter().all(|&x| x.to_bits() == b[0].to_bits());
     for i in 0..nx {
         for j in 0..ny {
             buf[j] = d2[j * nx + i];
