@@ -41,6 +41,9 @@ pub(crate) struct Field {
     /// While a pass is tried: the words [`Field::clear_disc`] changed, with the bits it
     /// cleared, so that [`Field::undo`] puts them back.
     log: Option<Vec<(usize, u64)>>,
+    /// The cells whose material changed since [`Field::take_changed`] last looked, as a box
+    /// `[i0, i1, j0, j1]`.
+    changed: Option<[usize; 4]>,
 }
 
 impl Field {
@@ -63,6 +66,7 @@ impl Field {
             wall: Vec::new(),
             thin: Vec::new(),
             log: None,
+            changed: None,
         };
         f.fill(shape);
         f.wall = f.distance_to_outside();
@@ -314,6 +318,7 @@ impl Field {
             }
             let bits = self.material[base + w] & m;
             if bits != 0 {
+                self.mark_changed(j, w, bits);
                 n += bits.count_ones();
                 self.material[base + w] &= !m;
                 if let Some(log) = &mut self.log {
@@ -406,7 +411,23 @@ impl Field {
     pub(crate) fn undo(&mut self) {
         for (k, bits) in self.log.take().unwrap_or_default() {
             self.material[k] |= bits;
+            self.mark_changed(k / self.words, k % self.words, bits);
         }
+    }
+
+    /// Adds the cells `bits` of word `w` of row `j` to the box of changed cells.
+    fn mark_changed(&mut self, j: usize, w: usize, bits: u64) {
+        let i0 = w * 64 + bits.trailing_zeros() as usize;
+        let i1 = w * 64 + 63 - bits.leading_zeros() as usize;
+        self.changed = Some(match self.changed {
+            Some([a0, a1, b0, b1]) => [a0.min(i0), a1.max(i1), b0.min(j), b1.max(j)],
+            None => [i0, i1, j, j],
+        });
+    }
+
+    /// The box `[i0, i1, j0, j1]` of the cells whose material changed since the last call.
+    pub(crate) fn take_changed(&mut self) -> Option<[usize; 4]> {
+        self.changed.take()
     }
 
     /// The distance from `q` to the walls as the grid knows it: the value of the cell that
@@ -488,6 +509,63 @@ impl Field {
             ny: cy,
             dist: d2.iter().map(|v| v.sqrt() * self.h * k as f64).collect(),
         }
+    }
+
+    /// `old`, the coarse map [`Field::coarse_distance`]`(k)` made of this field before the
+    /// cells in the box `changed` changed, brought up to date: every distance up to `cap`
+    /// (mm) as the whole map has it, the others above `cap`. Only the blocks within `cap`
+    /// (plus two blocks) of the box are computed again, from the material within twice that
+    /// (no block farther from the box has its nearest material within `cap` in the box, and
+    /// the material within `cap` of a block near it lies within the larger window); where
+    /// that window is more than half the map, the whole map is made again.
+    pub(crate) fn coarse_update(
+        &self,
+        k: usize,
+        old: Coarse,
+        changed: [usize; 4],
+        cap: f64,
+    ) -> Coarse {
+        let (cx, cy) = (old.nx, old.ny);
+        let m = (cap / (self.h * k as f64)).ceil().max(0.0) as usize + 2;
+        let [i0, i1, j0, j1] = changed;
+        let grow = |lo: usize, hi: usize, n: usize| (lo.saturating_sub(m), (hi + m).min(n - 1));
+        let (ii0, ii1) = grow(i0 / k, i1 / k, cx);
+        let (ij0, ij1) = grow(j0 / k, j1 / k, cy);
+        let (oi0, oi1) = grow(ii0, ii1, cx);
+        let (oj0, oj1) = grow(ij0, ij1, cy);
+        let (wx, wy) = (oi1 + 1 - oi0, oj1 + 1 - oj0);
+        if 2 * wx * wy > cx * cy || ii0 > ii1 || ij0 > ij1 {
+            return self.coarse_distance(k);
+        }
+        let mut d2 = vec![((cx + cy) as f64).powi(2); wx * wy];
+        let (c0, c1) = (oi0 * k, ((oi1 + 1) * k).min(self.nx) - 1);
+        for j in oj0 * k..((oj1 + 1) * k).min(self.ny) {
+            let row = &self.material[j * self.words..(j + 1) * self.words];
+            for (w, &word) in row.iter().enumerate().take(c1 / 64 + 1).skip(c0 / 64) {
+                let lo = if w == c0 / 64 { c0 % 64 } else { 0 };
+                let hi = if w == c1 / 64 { c1 % 64 } else { 63 };
+                let mut b = word & (u64::MAX << lo) & (u64::MAX >> (63 - hi));
+                while b != 0 {
+                    let i = w * 64 + b.trailing_zeros() as usize;
+                    d2[(j / k - oj0) * wx + i / k - oi0] = 0.0;
+                    let next = (i / k + 1) * k;
+                    b = if next >= (w + 1) * 64 {
+                        0
+                    } else {
+                        b & (u64::MAX << (next - w * 64))
+                    };
+                }
+            }
+        }
+        edt_2d(&mut d2, wx, wy);
+        let mut new = old;
+        for bj in ij0..=ij1 {
+            for bi in ii0..=ii1 {
+                let v = d2[(bj - oj0) * wx + bi - oi0];
+                new.dist[bj * cx + bi] = v.sqrt() * self.h * k as f64;
+            }
+        }
+        new
     }
 
     /// The centre of coarse block `(i, j)` of [`Field::coarse_distance`]`(k)`.

@@ -570,8 +570,13 @@ impl<'w> Planner<'_, 'w> {
         // The map is the same while the field is (it only loses cells, and an undo restores
         // what its record removed): a pass that cut nothing leaves it as it was.
         let cells = self.field.material_cells();
-        let coarse = match self.coarse.take() {
-            Some((n, c)) if n == cells => c,
+        let changed = self.field.take_changed();
+        // The distances `start_on` reads: a candidate's and its neighbours', at most
+        // `r + 3` blocks.
+        let cap = self.stepper.r + 4.0 * self.field.h * BLOCK as f64;
+        let coarse = match (self.coarse.take(), changed) {
+            (Some((n, c)), _) if n == cells => c,
+            (Some((_, c)), Some(changed)) => self.field.coarse_update(BLOCK, c, changed, cap),
             _ => self.field.coarse_distance(BLOCK),
         };
         let found = self.start_on(&coarse);

@@ -220,3 +220,85 @@ fn capsules_clear_the_band_a_segment_sweeps() {
         assert_eq!(n, cleared, "{a:?}-{b:?}");
     }
 }
+
+#[test]
+fn coarse_updates_agree_with_the_blocks_one_by_one() {
+    let rect = Outline::from_points(
+        &[
+            Point::new(0.0, 0.0),
+            Point::new(60.0, 0.0),
+            Point::new(60.0, 40.0),
+            Point::new(0.0, 40.0),
+        ],
+        "t",
+    )
+    .unwrap();
+    let mut f = Field::new(&PocketShape::simple(rect), 0.25, 1.0);
+    let k = 4;
+    let hc = f.h * k as f64;
+    let cap = 1.0 + 4.0 * hc;
+    // The nearest block holding material, each block's cells read one by one.
+    let brute = |f: &Field| -> Vec<f64> {
+        let (cx, cy) = (f.nx.div_ceil(k), f.ny.div_ceil(k));
+        let full: Vec<bool> = (0..cx * cy)
+            .map(|b| {
+                let (bi, bj) = (b % cx, b / cx);
+                (bj * k..((bj + 1) * k).min(f.ny))
+                    .any(|j| (bi * k..((bi + 1) * k).min(f.nx)).any(|i| f.get(i, j)))
+            })
+            .collect();
+        (0..cx * cy)
+            .map(|b| {
+                let (bi, bj) = ((b % cx) as f64, (b / cx) as f64);
+                (0..cx * cy)
+                    .filter(|&m| full[m])
+                    .map(|m| ((m % cx) as f64 - bi).hypot((m / cx) as f64 - bj) * hc)
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect()
+    };
+    let mut map = f.coarse_distance(k);
+    f.take_changed();
+    let mut incremental = 0;
+    let cuts = [
+        (Point::new(10.0, 10.0), Point::new(14.0, 11.0)),
+        (Point::new(30.0, 20.0), Point::new(30.0, 20.0)),
+        (Point::new(31.0, 20.5), Point::new(35.0, 24.0)),
+        (Point::new(50.0, 35.0), Point::new(52.0, 30.0)),
+        (Point::new(12.0, 12.0), Point::new(8.0, 9.0)),
+    ];
+    for (n, &(a, b)) in cuts.iter().enumerate() {
+        if n == 3 {
+            // Cleared, then put back: the map must see the material again.
+            f.record();
+            f.clear_capsule(a, b, 1.0);
+            let changed = f.take_changed().unwrap();
+            map = f.coarse_update(k, map, changed, cap);
+            f.undo();
+        } else {
+            f.clear_capsule(a, b, 1.0);
+        }
+        let changed = f.take_changed().unwrap();
+        let (cx, cy) = (map.nx, map.ny);
+        map = f.coarse_update(k, map, changed, cap);
+        let m = (cap / hc).ceil() as usize + 2;
+        let span = |lo: usize, hi: usize, n: usize| (hi / k - lo / k + 4 * m + 1).min(n);
+        let wide = span(changed[0], changed[1], cx) * span(changed[2], changed[3], cy);
+        incremental += usize::from(2 * wide <= cx * cy);
+        let want = brute(&f);
+        for (b, (&got, &want)) in map.dist.iter().zip(&want).enumerate() {
+            if want <= cap {
+                assert!(
+                    (got - want).abs() < 1e-9,
+                    "cut {n}, block {b}: {got} against {want}"
+                );
+            } else {
+                assert!(
+                    got > cap,
+                    "cut {n}, block {b}: {got} within the cap, {want} is not"
+                );
+            }
+        }
+    }
+    assert!(incremental >= 3, "{incremental} updates were windowed");
+}
