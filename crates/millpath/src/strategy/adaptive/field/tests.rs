@@ -26,17 +26,7 @@ fn edt_matches_brute_force() {
 
 #[test]
 fn disc_counts_agree_with_the_cells_one_by_one() {
-    let sq = Outline::from_points(
-        &[
-            Point::new(0.0, 0.0),
-            Point::new(30.0, 0.0),
-            Point::new(30.0, 20.0),
-            Point::new(0.0, 20.0),
-        ],
-        "t",
-    )
-    .unwrap();
-    let mut f = Field::new(&PocketShape::simple(sq), 0.25, 1.0);
+    let mut f = Field::new(&rect(30.0, 20.0), 0.25, 1.0);
     let total = f.material_cells();
     assert_eq!(total, 120 * 80, "every cell centre inside the square");
     let q = Point::new(10.3, 7.9);
@@ -114,17 +104,18 @@ fn a_slit_is_a_wall_the_grid_is_not_sure_beside() {
 }
 
 fn square(side: f64) -> PocketShape {
-    let sq = Outline::from_points(
-        &[
-            Point::new(0.0, 0.0),
-            Point::new(side, 0.0),
-            Point::new(side, side),
-            Point::new(0.0, side),
-        ],
-        "t",
-    )
-    .unwrap();
-    PocketShape::simple(sq)
+    rect(side, side)
+}
+
+/// The rectangle `[0, w] × [0, h]`.
+fn rect(w: f64, h: f64) -> PocketShape {
+    let pts = [
+        Point::new(0.0, 0.0),
+        Point::new(w, 0.0),
+        Point::new(w, h),
+        Point::new(0.0, h),
+    ];
+    PocketShape::simple(Outline::from_points(&pts, "t").unwrap())
 }
 
 /// Spans over several 64-bit words (a disc 160 cells wide) count as the cells one by one.
@@ -223,17 +214,7 @@ fn capsules_clear_the_band_a_segment_sweeps() {
 
 #[test]
 fn coarse_updates_agree_with_the_blocks_one_by_one() {
-    let rect = Outline::from_points(
-        &[
-            Point::new(0.0, 0.0),
-            Point::new(60.0, 0.0),
-            Point::new(60.0, 40.0),
-            Point::new(0.0, 40.0),
-        ],
-        "t",
-    )
-    .unwrap();
-    let mut f = Field::new(&PocketShape::simple(rect), 0.25, 1.0);
+    let mut f = Field::new(&rect(60.0, 40.0), 0.25, 1.0);
     let k = 4;
     let hc = f.h * k as f64;
     let cap = 1.0 + 4.0 * hc;
