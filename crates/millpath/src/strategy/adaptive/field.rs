@@ -508,6 +508,7 @@ impl Field {
             nx: cx,
             ny: cy,
             dist: d2.iter().map(|v| v.sqrt() * self.h * k as f64).collect(),
+            window: None,
         }
     }
 
@@ -559,6 +560,7 @@ impl Field {
         }
         edt_2d(&mut d2, wx, wy);
         let mut new = old;
+        new.window = Some([ii0, ii1, ij0, ij1]);
         for bj in ij0..=ij1 {
             for bi in ii0..=ii1 {
                 let v = d2[(bj - oj0) * wx + bi - oi0];
@@ -592,6 +594,9 @@ pub(crate) struct Coarse {
     pub ny: usize,
     /// Distance from each block's centre to the nearest block holding material, mm.
     pub dist: Vec<f64>,
+    /// The blocks whose distance [`Field::coarse_update`] recomputed (first and last column,
+    /// first and last row); `None` where the whole map was made.
+    pub window: Option<[usize; 4]>,
 }
 
 /// `x.floor()` without the library call (`f64::floor` is one on x86-64 without SSE 4.1, a

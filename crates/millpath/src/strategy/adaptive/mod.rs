@@ -68,6 +68,7 @@
 mod entry;
 pub(crate) mod field;
 pub(crate) mod pass;
+mod start;
 mod tips;
 
 use crate::error::Result;
@@ -178,6 +179,9 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         cuts: Vec::new(),
         pos: None,
         tried: Vec::new(),
+        block_allowed: Vec::new(),
+        band: Vec::new(),
+        in_band: Vec::new(),
         fit: ARC_FIT * r,
         arcs: opts.spiral.arcs,
         both_ways: opts.adaptive.both_ways,
@@ -281,6 +285,12 @@ struct Planner<'f, 'w> {
     pos: Option<Point>,
     /// Coarse blocks tried as a start that cut nothing.
     tried: Vec<bool>,
+    /// Per coarse block: 0 not yet known, 1 the tool centre may stand at its centre, 2 not.
+    block_allowed: Vec<u8>,
+    /// The blocks a pass may start from, tried or not ([`Planner::refresh_band`]).
+    band: Vec<usize>,
+    /// Per coarse block: in `band`.
+    in_band: Vec<bool>,
     fit: f64,
     /// Write the smoothed positions as biarcs (`--arcs`) instead of chords.
     arcs: bool,
@@ -561,108 +571,6 @@ impl<'w> Planner<'_, 'w> {
         }
         self.field.undo();
         ok
-    }
-
-    /// The start of the next pass: the block nearest the tool that is clear of material by
-    /// one to three blocks' width beyond `r`, inside the reach, not tried before, whose
-    /// first step can cut; and the heading with the material on the cutting side.
-    fn start(&mut self) -> Option<(Point, f64, usize)> {
-        // The map is the same while the field is (it only loses cells, and an undo restores
-        // what its record removed): a pass that cut nothing leaves it as it was.
-        let cells = self.field.material_cells();
-        let changed = self.field.take_changed();
-        // The distances `start_on` reads: a candidate's and its neighbours', at most
-        // `r + 3` blocks.
-        let cap = self.stepper.r + 4.0 * self.field.h * BLOCK as f64;
-        let coarse = match (self.coarse.take(), changed) {
-            (Some((n, c)), _) if n == cells => c,
-            (Some((_, c)), Some(changed)) => self.field.coarse_update(BLOCK, c, changed, cap),
-            _ => self.field.coarse_distance(BLOCK),
-        };
-        let found = self.start_on(&coarse);
-        self.coarse = Some((cells, coarse));
-        found
-    }
-
-    /// [`Self::start`] on the coarse map `coarse` of the field as it is.
-    fn start_on(&mut self, coarse: &Coarse) -> Option<(Point, f64, usize)> {
-        let st = self.stepper;
-        let hc = self.field.h * BLOCK as f64;
-        if self.tried.len() != coarse.dist.len() {
-            self.tried = vec![false; coarse.dist.len()];
-        }
-        let here = self.pos?;
-        let mut cands: Vec<(f64, usize, usize)> = Vec::new();
-        for j in 1..coarse.ny.saturating_sub(1) {
-            for i in 1..coarse.nx.saturating_sub(1) {
-                let k = j * coarse.nx + i;
-                let d = coarse.dist[k];
-                if self.tried[k] || d < st.r - hc || d > st.r + 2.0 * hc {
-                    continue;
-                }
-                let c = self.field.coarse_centre(BLOCK, i, j);
-                if !st.walls.allows(self.field, c) {
-                    continue;
-                }
-                cands.push((c.distance(here), i, j));
-            }
-        }
-        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
-        for &(_, i, j) in &cands {
-            let k = j * coarse.nx + i;
-            let c = self.field.coarse_centre(BLOCK, i, j);
-            // Towards the material: down the distance map's slope.
-            let at = |ii: usize, jj: usize| coarse.dist[jj * coarse.nx + ii];
-            let g = Vec2::new(at(i + 1, j) - at(i - 1, j), at(i, j + 1) - at(i, j - 1));
-            let Some(n) = (-g).normalize() else {
-                self.tried[k] = true;
-                continue;
-            };
-            // The point on the line through the block along `n` nearest the material with
-            // the tool's disc clear of it (bisection between clear and not).
-            let (mut lo, mut hi) = (-3.0 * hc, 3.0 * hc);
-            let clear_at = |t: f64| {
-                let q = c + n * t;
-                st.walls.allows(self.field, q) && !self.field.disc_holds_more_than(q, st.r, 0)
-            };
-            if !clear_at(lo) {
-                self.tried[k] = true;
-                continue;
-            }
-            if clear_at(hi) {
-                lo = hi;
-            } else {
-                for _ in 0..8 {
-                    let mid = 0.5 * (lo + hi);
-                    if clear_at(mid) {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-            }
-            let c = c + n * lo;
-            // The heading with `n` on the cutting side: `n` turned a quarter the other way.
-            let theta = n.y.atan2(n.x) + st.side * std::f64::consts::FRAC_PI_2;
-            let need = st.first_bite_need(self.field, c);
-            if st.first_bite_reaches(self.field, c, theta, need) {
-                return Some((c, theta, k));
-            }
-            self.tried[k] = true;
-        }
-        None
-    }
-
-    fn mark_tried(&mut self, p: Point) {
-        let hc = self.field.h * BLOCK as f64;
-        let (nx, _) = self.field.size();
-        let cx = nx.div_ceil(BLOCK);
-        let o = self.field.centre(0, 0);
-        let i = ((p.x - o.x) / hc + 0.5).floor().max(0.0) as usize;
-        let j = ((p.y - o.y) / hc + 0.5).floor().max(0.0) as usize;
-        if let Some(t) = self.tried.get_mut(j * cx + i) {
-            *t = true;
-        }
     }
 
     /// Where the tool may feed down for a walls' loop starting at `path[0].a`: the first
