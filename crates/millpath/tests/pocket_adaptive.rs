@@ -334,6 +334,29 @@ fn both_ways_travels_less_in_the_air_and_holds_the_bound() {
     );
 }
 
+/// Both ways, the aerospace program as `millpath pocket` makes it (its helix of 0.45 D) leaves
+/// the level once, at its end: the walls' loop is reached at depth, where the tool backs away
+/// from the wall and feeds straight onto the loop's start when a link there directly would
+/// take what the last passes left in one step (it retracted and plunged beside it before).
+/// The program verifies (`generate`).
+#[test]
+fn both_ways_reaches_the_walls_loop_without_a_retract() {
+    use millpath::toolpath::MoveKind;
+    let (shape, tool, base) = aerospace_5mm();
+    let opts = base.with_both_ways(true).with_entry(pocket::Entry::Helix {
+        radius: millpath::job::pocket::DEFAULT_HELIX_RADIUS_PER_DIAMETER * tool.diameter,
+        ramp_angle: 3f64.to_radians(),
+    });
+    let r = adaptive(&shape, &tool, &opts);
+    let retracts: Vec<_> = r
+        .toolpath
+        .segments()
+        .filter(|(from, m)| m.kind == MoveKind::Rapid && from.z < -4.9 && m.to.z > from.z)
+        .map(|(from, _)| from)
+        .collect();
+    assert_eq!(retracts.len(), 1, "retracts from the level at {retracts:?}");
+}
+
 /// With `lift` the links through cleared material rise over the floor and settle again:
 /// the XY path is the one at the level (its length the same), only moves along links rise
 /// (at most by the lift, some by all of it), and the program verifies and cuts as before

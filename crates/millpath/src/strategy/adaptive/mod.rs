@@ -40,7 +40,10 @@
 //! tool-centre region (`r` plus the wall stock from the walls) cuts the band left there:
 //! that margin, the scallops between passes meeting a wall, and the slivers thinner than
 //! half the stepover that the passes leave along the walls (`pass::NEAR_WALL_CUT`). It is
-//! linked from the last pass by the same rule.
+//! linked from the last pass by the same rule; where that link would take in one step what
+//! the last passes left at the loop's start, by the tool backing away from the wall (half a
+//! radius or a radius) and feeding straight onto it, both checked as links; else it is
+//! entered from above.
 //!
 //! **Both ways** (`AdaptiveOptions::both_ways`). A pass runs with the material on the
 //! cutting side of the chosen direction. Passes that end at a wall (in a corner the grown
@@ -601,6 +604,25 @@ impl<'w> Planner<'_, 'w> {
         None
     }
 
+    /// Where the tool at `at` may back away to, straight from `to` (the walls' loop's start),
+    /// half a radius or a radius, so that both the way back and the straight feed from there
+    /// to `to` are links ([`Planner::link_clear`]); `None` where neither is.
+    fn back_off(
+        &mut self,
+        region: &crate::strategy::pocket::shape::OffsetRegion,
+        at: Point,
+        to: Point,
+    ) -> Option<Point> {
+        let u = (at - to).normalize()?;
+        let r = self.stepper.r;
+        [0.5 * r, r].into_iter().map(|d| at + u * d).find(|&b| {
+            !crosses(region, at, b)
+                && !crosses(region, b, to)
+                && self.link_clear(at, b, false)
+                && self.link_clear(b, to, true)
+        })
+    }
+
     /// The last passes: each loop of the tool-centre region, climb or conventional, from its
     /// point nearest the tool.
     fn walls(&mut self, region: &crate::strategy::pocket::shape::OffsetRegion, dir: Direction) {
@@ -624,11 +646,24 @@ impl<'w> Planner<'_, 'w> {
                 !crosses(region, at, first)
                     && (at.distance(first) < 1e-3 || self.link_clear(at, first, true))
             });
+            // Else the tool may back away from the wall and feed straight onto the loop's
+            // start, where a link there directly would take what is left in one step.
+            let dogleg = match (linked, self.pos) {
+                (None, Some(at)) if !self.cuts.is_empty() => self.back_off(region, at, first),
+                _ => None,
+            };
             match (linked, self.cuts.last_mut()) {
                 (Some(at), Some(_)) if at.distance(first) > 1e-9 => {
                     self.cuts.push(linked_cut(at, first, path));
                 }
                 (Some(_), Some(cut)) => cut.path.extend(path),
+                _ if dogleg.is_some() => {
+                    if let (Some(at), Some(b)) = (self.pos, dogleg) {
+                        let mut lead = vec![Seg::line(b, first)];
+                        lead.extend(path);
+                        self.cuts.push(linked_cut(at, b, lead));
+                    }
+                }
                 _ => {
                     let entry = match self.loop_descent(&path) {
                         Some(from) => CutEntry::Direct { from },
