@@ -649,20 +649,20 @@ impl<'w> Planner<'_, 'w> {
             // Else the tool may back away from the wall and feed straight onto the loop's
             // start, where a link there directly would take what is left in one step.
             let dogleg = match (linked, self.pos) {
-                (None, Some(at)) if !self.cuts.is_empty() => self.back_off(region, at, first),
+                (None, Some(at)) if !self.cuts.is_empty() => {
+                    self.back_off(region, at, first).map(|b| (at, b))
+                }
                 _ => None,
             };
-            match (linked, self.cuts.last_mut()) {
-                (Some(at), Some(_)) if at.distance(first) > 1e-9 => {
+            match (linked, dogleg, self.cuts.last_mut()) {
+                (Some(at), _, Some(_)) if at.distance(first) > 1e-9 => {
                     self.cuts.push(linked_cut(at, first, path));
                 }
-                (Some(_), Some(cut)) => cut.path.extend(path),
-                _ if dogleg.is_some() => {
-                    if let (Some(at), Some(b)) = (self.pos, dogleg) {
-                        let mut lead = vec![Seg::line(b, first)];
-                        lead.extend(path);
-                        self.cuts.push(linked_cut(at, b, lead));
-                    }
+                (Some(_), _, Some(cut)) => cut.path.extend(path),
+                (_, Some((at, b)), _) => {
+                    let mut lead = vec![Seg::line(b, first)];
+                    lead.extend(path);
+                    self.cuts.push(linked_cut(at, b, lead));
                 }
                 _ => {
                     let entry = match self.loop_descent(&path) {
