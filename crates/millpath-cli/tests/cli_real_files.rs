@@ -706,6 +706,32 @@ fn pb_latch_adaptive_at_the_defaults_holds_the_engagement() {
     );
 }
 
+/// `pb_latch_test.dxf`'s second pocket at every default (12.7 mm tool, 10 %, one 25 mm
+/// level): where a pass's walk back along the material's edge ended at a sliver (the
+/// island's side, thinner than the walls' loop leaves to itself) and cut nothing there, the
+/// pass was tried where the walk began, at the wall, heading into it: a step or two, then the
+/// next, 0.2 mm along. Its bands along the walls were combed so (24,599 moves, 704 s planned
+/// against 111 s at the programmed feeds, 1.2 % of the path above 1.1 × the engagement). A
+/// pass now starts where the walk first meets a bite.
+#[test]
+#[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
+fn pb_latch_dxf_adaptive_does_not_comb_its_walls() {
+    let rep = adaptive_report("pb_latch_test.dxf", &["--select", "2"]);
+    let planned = rep["cycle_time_s"].as_f64().expect("cycle time");
+    let at_feed = rep["time_at_programmed_feed_s"].as_f64().expect("at feed");
+    assert!(
+        planned <= 3.0 * at_feed,
+        "planned {planned} s against {at_feed} s at the programmed feeds"
+    );
+    let e = &rep["verification"]["engagement"];
+    let share = e["share_above_bound"].as_f64().expect("share");
+    assert!(share <= 0.01, "{share} above 1.1 ×: {e}");
+    assert!(
+        rep["problems"].as_array().is_some_and(Vec::is_empty),
+        "{rep}"
+    );
+}
+
 /// `s2g_shapes.svg`'s fifth pocket ends in a 21° spike (the tool-centre region's corner):
 /// the passes stop short of it, and the walls' loop, running in along one wall, met what
 /// they left head-on at 173° against the 129° a tool feeding straight in reaches there.

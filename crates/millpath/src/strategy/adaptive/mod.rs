@@ -23,8 +23,9 @@
 //! block of a coarse distance-to-material map at `r` plus one to three blocks from the
 //! nearest material, the block nearest the tool first), walked back along the material's
 //! edge to where that edge begins; where the walk ends more than [`WALK_RETRY`] radii away at
-//! a place no pass starts from (a narrow corner at the far end of a long edge), at the block
-//! itself. The tool stays down and feeds there
+//! a place no pass starts from (a narrow corner at the far end of a long edge, a sliver along
+//! a wall too thin to count), at the first points of the walk, from its end, where a first
+//! step bites, else at the block itself. The tool stays down and feeds there
 //! in a straight line when every position of the line (at most `min(δ, 4h)` apart) is one the
 //! tool centre may stand at, no step of it removes more than the target's share of its
 //! length and no position's contact arc exceeds the target's engagement (mostly it cuts
@@ -120,6 +121,10 @@ pub const DIRECT_REACH: f64 = 6.0;
 /// A pass whose walk back along the material's edge ended farther than this from where it
 /// began (in tool radii) and cut nothing there is tried again where the walk began.
 pub const WALK_RETRY: f64 = 4.0;
+
+/// Points of a walk back whose first step bites that are tried as a pass's start before the
+/// block itself ([`WALK_RETRY`]).
+const WALK_BITES: usize = 3;
 /// Earlier cuts' points tried as a direct entry's descent, nearest first.
 const DIRECT_TRIES: usize = 16;
 /// A turn of the tool-centre region's boundary sharper than this is an acute corner (an
@@ -316,10 +321,12 @@ impl<'w> Planner<'_, 'w> {
         let (st, (q, heading), at_p) = self.side_for(p, theta);
         let mut done = self.pass_from(q, heading, st);
         // The walk back along the material's edge can end where no pass starts (a narrow
-        // corner far along the edge): from farther than [`WALK_RETRY`] radii, the pass is
-        // then tried where the block touches the material, before the block is given up.
+        // corner far along the edge, or a sliver the walls' loop takes before the material
+        // thickens): from farther than [`WALK_RETRY`] radii, the pass is then tried where
+        // the walk first met a bite, else where the block touches the material, before the
+        // block is given up.
         if done.is_err() && q.distance(p) > WALK_RETRY * st.r {
-            done = self.pass_from(p, at_p, st);
+            done = self.pass_on_walk(p, at_p, st);
         }
         if let Err(at) = done {
             self.tried[block] = true;
@@ -356,6 +363,28 @@ impl<'w> Planner<'_, 'w> {
         } else {
             ahead
         }
+    }
+
+    /// A pass on the walk back from `p` (heading `theta`) to where the material's edge
+    /// begins, tried from that end towards `p` at the first points whose first step bites
+    /// ([`WALK_BITES`] of them), else at `p` itself.
+    fn pass_on_walk(&mut self, p: Point, theta: f64, st: Stepper<'w>) -> Result<(), Point> {
+        let trail = st.upstream_trail(self.field, p, theta).unwrap_or_default();
+        let mut tries = 0;
+        for &(c, heading) in trail.iter().rev().step_by(2) {
+            if tries == WALK_BITES || c.distance(p) <= WALK_RETRY * st.r {
+                break;
+            }
+            let need = st.first_bite_need(self.field, c);
+            if !st.first_bite_reaches(self.field, c, heading, need) {
+                continue;
+            }
+            tries += 1;
+            if self.pass_from(c, heading, st).is_ok() {
+                return Ok(());
+            }
+        }
+        self.pass_from(p, theta, st)
     }
 
     /// A pass from `p` heading `theta` run by `st`, appended to the plan; where it cuts

@@ -240,6 +240,18 @@ impl Stepper<'_> {
     /// material ends beside it or a wall stops it; the point and the cutting heading there.
     /// `None` when the walk comes back round (a closed edge: start anywhere) or gets lost.
     pub(crate) fn upstream(&self, field: &Field, p: Point, theta: f64) -> Option<(Point, f64)> {
+        self.upstream_trail(field, p, theta)
+            .and_then(|t| t.last().copied())
+    }
+
+    /// The walk of [`Stepper::upstream`], step by step: the points it passed, from the first
+    /// step after `p` to where the edge begins, each with the cutting heading there.
+    pub(crate) fn upstream_trail(
+        &self,
+        field: &Field,
+        p: Point,
+        theta: f64,
+    ) -> Option<Vec<(Point, f64)>> {
         let big = self.r + 0.5 * self.s;
         let depth = 0.5 * self.s;
         let seg = big * big * (1.0 - depth / big).acos()
@@ -247,6 +259,7 @@ impl Stepper<'_> {
         let goal = seg / (field.h * field.h);
         let (mut q, mut beta) = (p, theta + std::f64::consts::PI);
         let mut travel = 0.0;
+        let mut trail = Vec::new();
         let turns = 16;
         let max_turn = 1.0;
         let mut hint = turns / 2;
@@ -300,6 +313,7 @@ impl Stepper<'_> {
                     beta = b;
                     hint = k;
                     travel += self.delta;
+                    trail.push((q, beta + std::f64::consts::PI));
                 }
                 _ => break,
             }
@@ -310,6 +324,6 @@ impl Stepper<'_> {
                 return None;
             }
         }
-        (travel > 0.0).then_some((q, beta + std::f64::consts::PI))
+        (travel > 0.0).then_some(trail)
     }
 }
