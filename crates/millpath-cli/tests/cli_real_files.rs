@@ -688,6 +688,18 @@ fn adaptive_report(name: &str, extra: &[&str]) -> serde_json::Value {
     json(&o.stdout, "pocket")
 }
 
+/// The report's verifier found at most 1 % of the cutting path above 1.1 × the engagement
+/// (what the bound allows) and no problem.
+fn assert_bound_held_and_no_problem(rep: &serde_json::Value) {
+    let e = &rep["verification"]["engagement"];
+    let share = e["share_above_bound"].as_f64().expect("share");
+    assert!(share <= 0.01, "{share} above 1.1 ×: {e}");
+    assert!(
+        rep["problems"].as_array().is_some_and(Vec::is_empty),
+        "{rep}"
+    );
+}
+
 /// `pb_latch_test.svg` as a user runs the adaptive (`--strategy adaptive`, every default: a
 /// 12.7 mm tool, 10 %, one 25 mm level): passes whose walk back along the material's edge
 /// ended at a corner of the far pocket were given up, and the slot's band was left to the
@@ -697,13 +709,7 @@ fn adaptive_report(name: &str, extra: &[&str]) -> serde_json::Value {
 #[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
 fn pb_latch_adaptive_at_the_defaults_holds_the_engagement() {
     let rep = adaptive_report("pb_latch_test.svg", &[]);
-    let e = &rep["verification"]["engagement"];
-    let share = e["share_above_bound"].as_f64().expect("share");
-    assert!(share <= 0.01, "{share} above 1.1 ×: {e}");
-    assert!(
-        rep["problems"].as_array().is_some_and(Vec::is_empty),
-        "{rep}"
-    );
+    assert_bound_held_and_no_problem(&rep);
 }
 
 /// `pb_latch_test.dxf`'s second pocket at every default (12.7 mm tool, 10 %, one 25 mm
@@ -723,13 +729,7 @@ fn pb_latch_dxf_adaptive_does_not_comb_its_walls() {
         planned <= 3.0 * at_feed,
         "planned {planned} s against {at_feed} s at the programmed feeds"
     );
-    let e = &rep["verification"]["engagement"];
-    let share = e["share_above_bound"].as_f64().expect("share");
-    assert!(share <= 0.01, "{share} above 1.1 ×: {e}");
-    assert!(
-        rep["problems"].as_array().is_some_and(Vec::is_empty),
-        "{rep}"
-    );
+    assert_bound_held_and_no_problem(&rep);
 }
 
 /// `s2g_shapes.svg`'s fifth pocket ends in a 21° spike (the tool-centre region's corner):
