@@ -6,13 +6,17 @@
 //! spiral on each pocket of the sample part; the aerospace spiral also with `--arcs`;
 //! and the sections of a pocket with inclined walls (`walls::level_shapes`: a draft, or a
 //! bottom outline with the exact nesting check `PocketShape::within` between levels) on the
-//! aerospace pocket and on a 512-vertex wavy outline.
+//! aerospace pocket and on a 512-vertex wavy outline; and the stock simulation that verifies
+//! a program (`stock::simulate`) on the aerospace pocket's adaptive at full depth (25 mm in
+//! one level, 10 %: 18 km of path).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use millpath::geom::{Outline, Point};
+use millpath::stock::{SimOptions, StockSpec, simulate};
 use millpath::strategy::pocket::{
     PocketOptions, PocketShape, SpiralMorph, StrategyKind, Walls, builtin, level_shapes, plan_level,
 };
+use millpath::strategy::pocket::{Stepover, nominal_engagement, toolpath};
 use millpath::toolpath::Tool;
 use std::hint::black_box;
 
@@ -142,5 +146,29 @@ fn walls(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, plan, walls);
+fn verify(c: &mut Criterion) {
+    let shape = builtin::aerospace_pocket();
+    let tool = Tool::flat(12.7).unwrap_or_default();
+    let opts = PocketOptions::default()
+        .with_depth(25.0)
+        .with_step_down(25.0)
+        .with_stepover(Stepover::Fraction(0.1));
+    let Ok(tp) = toolpath(StrategyKind::Adaptive, &shape, &tool, &opts) else {
+        return;
+    };
+    let spec = StockSpec {
+        outer: &shape.outer,
+        islands: &shape.islands,
+        wall_stock: 0.0,
+    };
+    let nominal = nominal_engagement(1.27, 6.35).to_degrees();
+    let mut g = c.benchmark_group("stock simulation");
+    g.sample_size(10);
+    g.bench_function("aerospace adaptive, 25 mm at 10 %", |b| {
+        b.iter(|| simulate(black_box(&tp), spec, nominal, &SimOptions::default()));
+    });
+    g.finish();
+}
+
+criterion_group!(benches, plan, walls, verify);
 criterion_main!(benches);
