@@ -8,7 +8,8 @@
 //! without them` with N ≥ 1, and the parts it does not profile are those the file names as
 //! too close to another to cut out. A drawing with no closed outline must be refused by
 //! `--init` (exit 2) saying so. Shared by `cli_real_files.rs` (a bounded set, in the release
-//! run of `./scripts/test`) and `cli_job_real.rs` (every drawing, ignored).
+//! run of `./scripts/test`) and `cli_job_real.rs` (every drawing, ignored); its helpers to
+//! run the binary by `cli_real_adaptive.rs` too.
 
 #![allow(dead_code)] // each test binary uses its own share of these
 
