@@ -371,7 +371,7 @@ impl<'w> Planner<'_, 'w> {
     fn pass_on_walk(&mut self, p: Point, theta: f64, st: Stepper<'w>) -> Result<(), Point> {
         let trail = st.upstream_trail(self.field, p, theta).unwrap_or_default();
         let mut tries = 0;
-        for &(c, heading) in trail.iter().rev().step_by(2) {
+        for (k, &(c, heading)) in trail.iter().rev().step_by(2).enumerate() {
             if tries == WALK_BITES || c.distance(p) <= WALK_RETRY * st.r {
                 break;
             }
@@ -380,7 +380,9 @@ impl<'w> Planner<'_, 'w> {
                 continue;
             }
             tries += 1;
-            if self.pass_from(c, heading, st).is_ok() {
+            // The walk's end is where the caller's pass just failed, on the same field: it
+            // counts as tried without running that pass again.
+            if k > 0 && self.pass_from(c, heading, st).is_ok() {
                 return Ok(());
             }
         }
