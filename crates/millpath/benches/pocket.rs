@@ -52,6 +52,10 @@ fn plan(c: &mut Criterion) {
     g.bench_function("adaptive --both-ways", |b| {
         b.iter(|| plan_level(StrategyKind::Adaptive, black_box(&shape), &tool, &both));
     });
+    let thin = opts.clone().with_stepover(Stepover::Fraction(0.1));
+    g.bench_function("adaptive --stepover 0.1", |b| {
+        b.iter(|| plan_level(StrategyKind::Adaptive, black_box(&shape), &tool, &thin));
+    });
     g.finish();
     let lobed = PocketShape::simple(lobed_star(200, 60.0));
     let small = Tool::flat(10.0).unwrap_or_default();

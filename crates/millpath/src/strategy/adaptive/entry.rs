@@ -136,7 +136,9 @@ impl Planner<'_, '_> {
         // walls' loops (and the verifier), not tried again.
         self.field.clear_disc(c, st.r);
         self.given_up.push(c);
-        let Some((from, end, len)) = best.filter(|b| b.2 >= 4.0 * h) else {
+        // At least four cells and a step long (finer cells for a thin stepover do not make
+        // room): shorter, the pocket layer finds none to ramp down a flute length in.
+        let Some((from, end, len)) = best.filter(|b| b.2 >= (4.0 * h).max(st.delta)) else {
             return true;
         };
         let n = (len / st.delta).ceil() as usize;

@@ -2,7 +2,8 @@
 //! cleared from the inside out in passes that follow the material.
 //!
 //! The planner keeps its own picture of the stock ([`field`]: a grid of cells of side
-//! `h = r/32`, one bit per cell of material). It enters where the pocket is farthest from
+//! `h = r/32` at a stepover of 40 % or more, one bit per cell of material; see **Thin
+//! stepovers** below). It enters where the pocket is farthest from
 //! its walls, then runs passes ([`pass`]): each step of length `δ = r/8` is turned so that
 //! it removes `TARGET_FILL · s · δ` of material, the area a straight cut of width `s`
 //! (`--stepover`) removes, so the engagement is that of the straight cut at every step, the
@@ -55,7 +56,7 @@
 //!
 //! Each pass's tool positions are smoothed (they wobble by the grid's count of cells, a few
 //! hundredths of the target's area: Taubin's λ|μ smoothing moves each by at most
-//! [`SMOOTH_RADII`]) and written as the chords between them (`δ` long, the path itself, not
+//! [`SMOOTH_RADII`] radii, scaled as below) and written as the chords between them (`δ` long, the path itself, not
 //! an approximation of it); with `--arcs`, as tangent-continuous biarcs fitted within
 //! [`ARC_FIT`], kept only where they are faster (`pocket::arcs_or_chords`). The chords are
 //! the default because the biarcs' curvature steps where two arcs meet, and a jerk-limited
@@ -64,6 +65,15 @@
 //! from the planned one by at most about `SMOOTH_RADII·r / s` of the target (2.5 % at a 40 %
 //! stepover) and the verifier measures it. Near the walls a smoothed position that the tool
 //! may not stand at keeps its place.
+//!
+//! **Thin stepovers.** A step removes `s·δ/h²` cells. The count is good to a few cells and
+//! the edge the previous pass left to half a cell, so at a fixed `h` the error grows as `1/s`
+//! relative to the target: at 10 % (the CLI's default) a cell of `r/32` is a sixth of the
+//! width cut, and the written path's engagement wandered past 1.1 × the target on up to 5 %
+//! of the path. Below a stepover of [`FULL_CELL_STEPOVER`] of the diameter, with
+//! `f = s / (0.4·D)` ([`thin_factor`]), the cell is `h = f^½·r/32` (at most four times the
+//! cells; at 10 %, `r/64`) and smoothing moves a position by at most `f·`[`SMOOTH_RADII`]`·r`
+//! (2.5 % of `s`, as at 40 %).
 //!
 //! **What is measured, and by whom.** The planner's counts are its own; the stock simulation
 //! (`crate::stock`, another grid, another sweep) measures the engagement of the written path
@@ -92,8 +102,12 @@ use pass::Stepper;
 /// The widest stepover the adaptive takes, a fraction of the tool's diameter (the straight
 /// cut's engagement is then 143°; wider, the bound approaches a full slot's).
 pub const MAX_STEPOVER: f64 = 0.9;
-/// Grid cell, in tool radii.
+/// Grid cell, in tool radii, at a stepover of [`FULL_CELL_STEPOVER`] or more (thinner
+/// stepovers take finer cells, [`thin_factor`]).
 pub const CELL_RADII: f64 = 1.0 / 32.0;
+/// The stepover, as a fraction of the tool's diameter, from which the grid's cell and the
+/// smoothing's reach stay at [`CELL_RADII`] and [`SMOOTH_RADII`].
+pub const FULL_CELL_STEPOVER: f64 = 0.4;
 /// Step length, in tool radii.
 pub const STEP_RADII: f64 = 1.0 / 8.0;
 /// The share of the stepover's area each step aims at (the rest is the margin for the
@@ -101,7 +115,8 @@ pub const STEP_RADII: f64 = 1.0 / 8.0;
 pub const TARGET_FILL: f64 = 0.975;
 /// How far the arcs joining a pass's positions may stray from them, in tool radii.
 pub const ARC_FIT: f64 = 0.003;
-/// How far smoothing may move a pass's positions, in tool radii.
+/// How far smoothing may move a pass's positions, in tool radii, at a stepover of
+/// [`FULL_CELL_STEPOVER`] or more (thinner stepovers in proportion, [`thin_factor`]).
 pub const SMOOTH_RADII: f64 = 0.02;
 /// Smoothing rounds (each a shrinking and an inflating Laplacian step).
 const SMOOTH_ROUNDS: usize = 24;
@@ -156,7 +171,8 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
     }
     let b = shape.outer.bounds();
     let span = (b.max.x - b.min.x + 4.0 * r) * (b.max.y - b.min.y + 4.0 * r);
-    let h = (CELL_RADII * r).max((span / MAX_CELLS).sqrt());
+    let thin = thin_factor(s, tool.diameter);
+    let h = (CELL_RADII * thin.sqrt() * r).max((span / MAX_CELLS).sqrt());
     let mut field = Field::new(shape, h, 2.0 * h);
     let region = shape.offset(r + stock);
     let mut walls = Walls::new(shape, r + stock, h, 2.0 * ARC_FIT * r);
@@ -191,6 +207,7 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
         band: Vec::new(),
         in_band: Vec::new(),
         fit: ARC_FIT * r,
+        smooth: SMOOTH_RADII * thin * r,
         arcs: opts.spiral.arcs,
         both_ways: opts.adaptive.both_ways,
         given_up: Vec::new(),
@@ -208,6 +225,18 @@ pub fn plan(shape: &PocketShape, tool: &Tool, opts: &PocketOptions) -> Result<Le
     plan.tips(&region);
     plan.walls(&region, opts.direction);
     Ok(LevelPlan { cuts: plan.cuts })
+}
+
+/// The stepover `s` over [`FULL_CELL_STEPOVER`] of the tool's diameter `d`, at most 1 (and
+/// exactly 1 within a part in a thousand of it). A step's area is `s·δ`: on a grid of cell
+/// `h` its count is good to a few cells, and the width of the previous pass's edge to half a
+/// cell, so a thin stepover needs finer cells to hold the same share of its target; the cell
+/// shrinks with the square root of this factor (the cells a step removes, `s·δ/h²`, then
+/// stay in proportion to `√s`) and the smoothing's reach with the factor itself (a share of
+/// `s`, as at the full cell).
+pub fn thin_factor(s: f64, d: f64) -> f64 {
+    let f = s / (FULL_CELL_STEPOVER * d);
+    if f >= 0.999 { 1.0 } else { f.max(0.0) }
 }
 
 /// A cut the tool reaches staying down ([`CutEntry::Linked`]): the link from `at`, where the
@@ -300,6 +329,8 @@ struct Planner<'f, 'w> {
     /// Per coarse block: in `band`.
     in_band: Vec<bool>,
     fit: f64,
+    /// How far smoothing may move a position, mm.
+    smooth: f64,
     /// Write the smoothed positions as biarcs (`--arcs`) instead of chords.
     arcs: bool,
     /// Passes may run either way ([`crate::strategy::pocket::AdaptiveOptions::both_ways`]).
@@ -457,7 +488,7 @@ impl<'w> Planner<'_, 'w> {
             let n = ((sg.length() / (0.5 * h)).ceil() as usize).max(1);
             (0..=n).all(|k| walls.allows(field, sg.point_at(sg.length() * k as f64 / n as f64)))
         };
-        let within = SMOOTH_RADII * self.stepper.r;
+        let within = self.smooth;
         let free = |p: Point| field.wall_distance(p) >= walls.sure + within + 2.0 * h;
         let mut out = Vec::new();
         let mut i = 0;
