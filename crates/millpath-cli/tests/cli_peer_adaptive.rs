@@ -119,8 +119,8 @@ fn adaptive_verified(dir: &Path, name: &str) {
 
 /// The report's removal figures against the pocket's geometry: the volume the simulation
 /// found removed is the pocket's area times its 5 mm depth (less the four r 6 corners a
-/// 6.35 mm radius cannot reach), the removal rate is that over the cycle time, the time not
-/// cutting is part of the cycle time, the entries aside the engagement stays within
+/// 6.35 mm radius cannot reach), the removal rate is that over the cycle time, the time in
+/// the entries and the time not cutting beside them are parts of the cycle time, the entries aside the engagement stays within
 /// 1.3 × the 78.5° target, and the corners force 65.5° (r 6 < 6.35: square corners of the
 /// tool-centre region); the `--html` report's summary shows the same removal figures.
 fn report_adds_up(path: &Path, html: &Path) {
@@ -137,7 +137,9 @@ fn report_adds_up(path: &Path, html: &Path) {
     let cycle = f(&r["cycle_time_s"]);
     assert!((f(&r["removal_rate_mm3_s"]) * cycle - removed).abs() < 1e-6 * removed);
     let (air, rapid) = (f(&r["air_time_s"]), f(&r["rapid_time_s"]));
-    assert!(0.0 < rapid && rapid <= air && air < cycle, "{r}");
+    let entry = f(&r["entry_time_s"]);
+    assert!(0.0 < rapid && rapid <= air && air + entry < cycle, "{r}");
+    assert!(entry > 0.0, "{r}");
     let e = &r["verification"]["engagement"];
     assert!(f(&e["max_deg"]) <= 1.3 * 78.463, "{e}");
     assert!(f(&e["share_above_bound"]) <= 0.01, "{e}");
@@ -145,7 +147,8 @@ fn report_adds_up(path: &Path, html: &Path) {
     // The --html summary says the same.
     let page = std::fs::read_to_string(html).expect("the HTML report");
     let row = format!(
-        "{removed:.0} mm³ at {:.0} mm³/s; not cutting {air:.2} s (rapids {rapid:.2} s)",
+        "{removed:.0} mm³ at {:.0} mm³/s; entries {entry:.2} s; not cutting {air:.2} s (rapids \
+         {rapid:.2} s)",
         f(&r["removal_rate_mm3_s"])
     );
     assert!(page.contains(&row), "no `{row}` in the HTML report");

@@ -219,8 +219,14 @@ fn print_removal(v: &stock::Verification, job: &millpath::job::verify::VerifyRun
     let e = &v.engagement;
     let timing = job.timing.as_ref().map_or(String::new(), |t| {
         format!(
-            "; on {}: cycle time {:.2} s, not cutting {:.2} s (rapids {:.2} s), removal {:.0} mm³/s",
-            t.machine, t.cycle_time_s, t.air_time_s, t.rapid_time_s, t.removal_rate_mm3_s
+            "; on {}: cycle time {:.2} s, entries {:.2} s, not cutting {:.2} s (rapids {:.2} s), \
+             removal {:.0} mm³/s",
+            t.machine,
+            t.cycle_time_s,
+            t.entry_time_s,
+            t.air_time_s,
+            t.rapid_time_s,
+            t.removal_rate_mm3_s
         )
     });
     super::print(&format!(

@@ -32,8 +32,8 @@ use std::path::Path;
 pub use drill::{DrillReport, DrillRun, DrillSettings};
 pub use pocket::{PocketRun, PocketSettings};
 pub use pocket_report::{
-    AutoEntry, PocketEntry, REPORT_TIME_MODEL, Report as PocketReport, air_times, auto_entries,
-    auto_line, pocket_line,
+    AirTimes, AutoEntry, PocketEntry, REPORT_TIME_MODEL, Report as PocketReport, air_times,
+    auto_entries, auto_line, pocket_line,
 };
 pub use profile::{ProfileRun, ProfileSettings};
 pub use program::{ProgramSettings, program_time, program_times};

@@ -114,6 +114,10 @@ pub const DEFAULT_PATH_TOLERANCE: f64 = 0.01;
 /// runs faster (the feed a controller holds on a circle of radius ρ grows as √(a·ρ)).
 pub const DEFAULT_HELIX_RADIUS_PER_DIAMETER: f64 = 0.45;
 
+/// Where the entries take more than this share of a pocket program's planned time, the
+/// report says so in a note (what shortens them).
+pub const ENTRY_NOTE_SHARE: f64 = 0.5;
+
 /// The stepover a strategy takes when none is given: `0.1` for `adaptive` (the engagement
 /// of a cut a tenth of the diameter wide, at the whole flute length), else `0.4`.
 pub fn default_stepover(strategy: &str) -> &'static str {
@@ -549,9 +553,11 @@ impl PocketRun {
             (
                 "removal".to_owned(),
                 format!(
-                    "{:.0} mm³ at {:.0} mm³/s; not cutting {:.2} s (rapids {:.2} s)",
+                    "{:.0} mm³ at {:.0} mm³/s; entries {:.2} s; not cutting {:.2} s (rapids \
+                     {:.2} s)",
                     rep.verification.removed_mm3,
                     rep.removal_rate_mm3_s,
+                    rep.entry_time_s,
                     rep.air_time_s,
                     rep.rapid_time_s
                 ),
@@ -669,7 +675,23 @@ pub fn run(
     let mut rep = report(&part, t, programmed);
     let plan = crate::motion::plan_toolpath(&part.toolpath, &machine)
         .map_err(|e| e.engine_made("timing the pocket toolpath"))?;
-    (rep.air_time_s, rep.rapid_time_s) = air_times(&plan, &part.verification.cutting_moves);
+    let entries = crate::stock::entry_moves(&part.toolpath);
+    let times = air_times(&plan, &part.verification.cutting_moves, &entries);
+    (rep.air_time_s, rep.rapid_time_s, rep.entry_time_s) = (times.air, times.rapid, times.entry);
+    if times.entry > ENTRY_NOTE_SHARE * plan.total_time {
+        let descents = entries
+            .iter()
+            .zip(std::iter::once(&false).chain(&entries))
+            .filter(|(now, before)| **now && !**before)
+            .count();
+        rep.notes.push(format!(
+            "the entries take {:.0} s of the {:.0} s planned ({descents} descents at {:.1}° \
+             to the levels, each with the room its region leaves): a smaller tool reaches \
+             more of the pocket from one entry, and pre-drilled holes or a steeper \
+             --ramp-angle shorten each",
+            times.entry, plan.total_time, settings.ramp_angle
+        ));
+    }
     let floor_stock = if opts.finish { 0.0 } else { opts.wall_stock };
     rep.engagement_floor_deg = shapes
         .iter()

@@ -42,10 +42,14 @@ pub struct Report {
     /// `cycle_time_s`).
     pub removal_rate_mm3_s: f64,
     /// Time in moves that remove no material (links through cleared material, lifts,
-    /// retracts, rapids), s, by the planner on the machine ([`air_times`]).
+    /// retracts, rapids), the entries aside, s, by the planner on the machine
+    /// ([`air_times`]).
     pub air_time_s: f64,
     /// The rapids' part of `air_time_s`, s.
     pub rapid_time_s: f64,
+    /// Time in the entries, s ([`air_times`]): the descents by helix or ramp and the flat
+    /// turns on their track (`stock::entry_moves`).
+    pub entry_time_s: f64,
     /// The engagement the sharpest corner of the pockets' tool-centre regions forces on any
     /// program, degrees (`pocket::engagement_floor`).
     pub engagement_floor_deg: f64,
@@ -242,6 +246,7 @@ pub fn report(part: &PartResult, cycle_time_s: f64, time_at_programmed_feed_s: f
         },
         air_time_s: 0.0,
         rapid_time_s: 0.0,
+        entry_time_s: 0.0,
         engagement_floor_deg: 0.0,
         problems: v.problems().iter().map(ToString::to_string).collect(),
         notes,
@@ -250,19 +255,38 @@ pub fn report(part: &PartResult, cycle_time_s: f64, time_at_programmed_feed_s: f
     }
 }
 
-/// The time `plan` spends in blocks whose move removes no material (`cutting[k]` false for
-/// move `k`, or no flag): all of it, and the rapids' part, s.
-pub fn air_times(plan: &crate::motion::Plan, cutting: &[bool]) -> (f64, f64) {
-    let mut air = 0.0;
-    let mut rapid = 0.0;
+/// Where the time of a plan goes, s ([`air_times`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AirTimes {
+    /// In moves that remove no material, the entries aside.
+    pub air: f64,
+    /// The rapids' part of `air`.
+    pub rapid: f64,
+    /// In the entries (`entry[k]` true for move `k`).
+    pub entry: f64,
+}
+
+/// The time `plan` spends in the entries' blocks (`entry[k]` true for move `k`, from
+/// `stock::entry_moves`), and in the other blocks whose move removes no material
+/// (`cutting[k]` false, or no flag), with the rapids' part of those. The entries are apart
+/// because the stock simulation is a stack of 2D slabs: a helix's first turn in a slab
+/// clears it and its other turns there remove nothing it can see, though each cuts its
+/// own layer; counted as not cutting, a full-depth descent made most of a narrow pocket's
+/// program read as air.
+pub fn air_times(plan: &crate::motion::Plan, cutting: &[bool], entry: &[bool]) -> AirTimes {
+    let mut t = AirTimes::default();
     for b in &plan.blocks {
+        if entry.get(b.origin).copied().unwrap_or(false) {
+            t.entry += b.time;
+            continue;
+        }
         if cutting.get(b.origin).copied().unwrap_or(false) {
             continue;
         }
-        air += b.time;
+        t.air += b.time;
         if matches!(b.kind, crate::toolpath::MoveKind::Rapid) {
-            rapid += b.time;
+            t.rapid += b.time;
         }
     }
-    (air, rapid)
+    t
 }

@@ -92,10 +92,13 @@ pub struct VerifyTiming {
     pub machine: String,
     /// Cycle time, s.
     pub cycle_time_s: f64,
-    /// Time in moves that remove no material, s (`pocket_report::air_times`).
+    /// Time in moves that remove no material, the entries aside, s
+    /// (`pocket_report::air_times`).
     pub air_time_s: f64,
     /// The rapids' part of it, s.
     pub rapid_time_s: f64,
+    /// Time in the entries (descents by helix or ramp and the flat turns on their track), s.
+    pub entry_time_s: f64,
     /// Material removed per second of the cycle time, mm³/s.
     pub removal_rate_mm3_s: f64,
 }
@@ -188,13 +191,18 @@ pub fn run(
     let timing = match machine {
         Some((name, m)) => {
             let plan = crate::motion::plan_toolpath(&tp, &m)?;
-            let (air, rapid) = super::pocket_report::air_times(&plan, &part.cutting_moves);
+            let times = super::pocket_report::air_times(
+                &plan,
+                &part.cutting_moves,
+                &stock::entry_moves(&tp),
+            );
             let t = plan.total_time;
             Some(VerifyTiming {
                 machine: name.clone(),
                 cycle_time_s: t,
-                air_time_s: air,
-                rapid_time_s: rapid,
+                air_time_s: times.air,
+                rapid_time_s: times.rapid,
+                entry_time_s: times.entry,
                 removal_rate_mm3_s: if t > 0.0 {
                     part.total.removed_mm3 / t
                 } else {
