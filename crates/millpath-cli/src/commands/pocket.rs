@@ -335,8 +335,8 @@ fn removal_line(rep: &millpath::job::PocketReport) -> String {
     let e = &rep.verification.engagement;
     format!(
         "removal {:.0} mm³ at {:.0} mm³/s; entries {:.2} s; not cutting {:.2} s (rapids {:.2} s); \
-         engagement outside entries mean {:.1}° p95 {:.1}° max {:.1}°, {:.2}% above 1.1 × nominal; the sharpest corner \
-         forces {:.1}°",
+         engagement outside entries mean {:.1}° p95 {:.1}° max {:.1}°, {:.2}% above 1.1 × \
+         nominal; the sharpest corner forces {:.1}°",
         rep.verification.removed_mm3,
         rep.removal_rate_mm3_s,
         rep.entry_time_s,

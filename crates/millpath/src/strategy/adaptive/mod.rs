@@ -3,11 +3,10 @@
 //!
 //! The planner keeps its own picture of the stock ([`field`]: a grid of cells of side
 //! `h = r/32` at a stepover of 40 % or more, one bit per cell of material; see **Thin
-//! stepovers** below). It enters where the pocket is farthest from
-//! its walls, then runs passes ([`pass`]): each step of length `δ = r/8` is turned so that
-//! it removes `TARGET_FILL · s · δ` of material, the area a straight cut of width `s`
-//! (`--stepover`) removes, so the engagement is that of the straight cut at every step, the
-//! entry aside.
+//! stepovers** below). It enters where the pocket is farthest from its walls, then runs
+//! passes ([`pass`]): each step of length `δ = r/8` is turned so that it removes
+//! `TARGET_FILL · s · δ` of material, the area a straight cut of width `s` (`--stepover`)
+//! removes, so the engagement is that of the straight cut at every step, the entry aside.
 //!
 //! **The entry.** The cells within a block (`4h`) of the largest wall distance are the
 //! pocket's ridge. Where the ridge's principal axis `AB` is longer than twice the helix
@@ -56,15 +55,15 @@
 //!
 //! Each pass's tool positions are smoothed (they wobble by the grid's count of cells, a few
 //! hundredths of the target's area: Taubin's λ|μ smoothing moves each by at most
-//! [`SMOOTH_RADII`] radii, scaled as below) and written as the chords between them (`δ` long, the path itself, not
-//! an approximation of it); with `--arcs`, as tangent-continuous biarcs fitted within
-//! [`ARC_FIT`], kept only where they are faster (`pocket::arcs_or_chords`). The chords are
-//! the default because the biarcs' curvature steps where two arcs meet, and a jerk-limited
-//! controller slows at every such step. The field is then cleared along the written path, so
-//! the next passes see what the program leaves; the engagement of the written path differs
-//! from the planned one by at most about `SMOOTH_RADII·r / s` of the target (2.5 % at a 40 %
-//! stepover) and the verifier measures it. Near the walls a smoothed position that the tool
-//! may not stand at keeps its place.
+//! [`SMOOTH_RADII`] radii, scaled as below) and written as the chords between them (`δ` long,
+//! the path itself, not an approximation of it); with `--arcs`, as tangent-continuous biarcs
+//! fitted within [`ARC_FIT`], kept only where they are faster (`pocket::arcs_or_chords`). The
+//! chords are the default because the biarcs' curvature steps where two arcs meet, and a
+//! jerk-limited controller slows at every such step. The field is then cleared along the
+//! written path, so the next passes see what the program leaves; the engagement of the written
+//! path differs from the planned one by at most about `SMOOTH_RADII·r / s` of the target (2.5 %
+//! at a 40 % stepover) and the verifier measures it. Near the walls a smoothed position that
+//! the tool may not stand at keeps its place.
 //!
 //! **Thin stepovers.** A step removes `s·δ/h²` cells. The count is good to a few cells and
 //! the edge the previous pass left to half a cell, so at a fixed `h` the error grows as `1/s`
