@@ -146,8 +146,16 @@ impl Raster {
     /// Clears the cells within `r` of the segment from `a` to `b`; returns how many material
     /// cells it removed.
     pub fn clear_capsule(&mut self, a: Point, b: Point, r: f64) -> u64 {
+        self.clear_capsule_from(a, b, r, false)
+    }
+
+    /// [`Raster::clear_capsule`] when `a_clear` says that the cells within `r` of `a` hold no
+    /// material (an earlier clear of a disc or capsule ending at `a` with a radius of at
+    /// least `r`): those rows' cells inside `a`'s disc are not visited, only the rest of the
+    /// capsule, the crescent a step adds. The cells cleared and the count are the same.
+    pub fn clear_capsule_from(&mut self, a: Point, b: Point, r: f64, a_clear: bool) -> u64 {
         let mut n = 0;
-        self.grid().capsule_spans(a, b, r, |j, i0, i1| {
+        self.grid().capsule_spans(a, b, r, a_clear, |j, i0, i1| {
             n += u64::from(self.set_span(j, i0, i1, false));
         });
         n
@@ -277,9 +285,18 @@ impl Grid {
 
     /// The columns `i0..=i1` of the cells whose centres lie between `x0` and `x1`.
     fn columns(self, x0: f64, x1: f64) -> Option<(usize, usize)> {
-        let i0 = ceil((x0 - self.origin.x) / self.cell - 0.5).max(0.0) as usize;
-        let i1 = floor((x1 - self.origin.x) / self.cell - 0.5);
-        (i1 >= 0.0 && self.nx > 0).then(|| (i0, (i1 as usize).min(self.nx - 1)))
+        self.column_range(
+            ceil((x0 - self.origin.x) / self.cell - 0.5),
+            floor((x1 - self.origin.x) / self.cell - 0.5),
+        )
+    }
+
+    /// [`Grid::columns`] from its rounded ends: the first column at or after `x0` and the
+    /// last at or before `x1`, in cell units (`⌈(x₀ − o)/c − ½⌉`, `⌊(x₁ − o)/c − ½⌋`),
+    /// clamped to the grid; `None` when the last lies before the grid.
+    fn column_range(self, first: f64, last: f64) -> Option<(usize, usize)> {
+        let i0 = first.max(0.0) as usize;
+        (last >= 0.0 && self.nx > 0).then(|| (i0, (last as usize).min(self.nx - 1)))
     }
 
     /// Rows and column ranges of the cells whose centres lie within `r` of the segment from
@@ -288,7 +305,21 @@ impl Grid {
     /// end discs and the band `0 ≤ t ≤ |b − a|`, `|s| ≤ r` (`t` along the segment, `s` across
     /// it, both linear in x). The discs' half-widths are found 64 rows at a time, their
     /// square roots in one loop the compiler vectorises (they are most of the work).
-    fn capsule_spans(self, a: Point, b: Point, r: f64, mut span: impl FnMut(usize, usize, usize)) {
+    ///
+    /// With `a_skip`, a row's cells within `r` of `a` are left out (up to two spans a row):
+    /// the caller knows them clear. Only rows whose centre lies inside `a`'s disc by more
+    /// than a cell's square (`r² − dy² > c²`) skip: there the disc's columns are found by the
+    /// same arithmetic as every disc and capsule ending at `a` with radius `r`, and such a
+    /// clear visited that row (a row at the disc's very edge might have been left out of it
+    /// by the rounding of its row range).
+    fn capsule_spans(
+        self,
+        a: Point,
+        b: Point,
+        r: f64,
+        a_skip: bool,
+        mut span: impl FnMut(usize, usize, usize),
+    ) {
         const CHUNK: usize = 64;
         let d = b - a;
         let len = d.length();
@@ -309,7 +340,11 @@ impl Grid {
             }
         };
         let rows = self.rows(a.y.min(b.y) - r, a.y.max(b.y) + r);
+        let (ox, c) = (self.origin.x, self.cell);
         let (mut w2, mut w) = ([[0.0; CHUNK]; 2], [[0.0; CHUNK]; 2]);
+        let (mut lo, mut hi) = ([0.0; CHUNK], [0.0; CHUNK]);
+        // Per row, as floats: the hull's first and last columns, then `a`'s disc's.
+        let mut cols = [[0.0; CHUNK]; 4];
         let mut j0 = rows.start;
         while j0 < rows.end {
             let n = (rows.end - j0).min(CHUNK);
@@ -323,15 +358,21 @@ impl Grid {
                 }
             }
             for k in 0..n {
-                let j = j0 + k;
-                let y = self.row_y(j);
-                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-                for (e, c) in [a, b].iter().enumerate() {
-                    if w2[e][k] >= 0.0 {
-                        lo = lo.min(c.x - w[e][k]);
-                        hi = hi.max(c.x + w[e][k]);
-                    }
-                }
+                let (la, ha) = if w2[0][k] >= 0.0 {
+                    (a.x - w[0][k], a.x + w[0][k])
+                } else {
+                    (f64::INFINITY, f64::NEG_INFINITY)
+                };
+                let (lb, hb) = if w2[1][k] >= 0.0 {
+                    (b.x - w[1][k], b.x + w[1][k])
+                } else {
+                    (f64::INFINITY, f64::NEG_INFINITY)
+                };
+                lo[k] = la.min(lb);
+                hi[k] = ha.max(hb);
+            }
+            for k in 0..n {
+                let y = self.row_y(j0 + k);
                 if len > 0.0 && crosses_a_side(y) {
                     // t(x) = u.x·(x − a.x) + u.y·(y − a.y) ∈ [0, len];
                     // s(x) = u.y·(x − a.x) − u.x·(y − a.y) ∈ [−r, r].
@@ -348,16 +389,45 @@ impl Grid {
                         },
                     );
                     if let Some((l, h)) = band.filter(|(l, h)| l <= h) {
-                        lo = lo.min(l);
-                        hi = hi.max(h);
+                        lo[k] = lo[k].min(l);
+                        hi[k] = hi[k].max(h);
                     }
                 }
-                if lo > hi {
+            }
+            // [`Grid::columns`]' arithmetic, a chunk at a time (the divisions and roundings
+            // were most of a row's cost one by one).
+            for k in 0..n {
+                cols[0][k] = ((lo[k] - ox) / c - 0.5).ceil();
+                cols[1][k] = ((hi[k] - ox) / c - 0.5).floor();
+            }
+            if a_skip {
+                for k in 0..n {
+                    cols[2][k] = ((a.x - w[0][k] - ox) / c - 0.5).ceil();
+                    cols[3][k] = ((a.x + w[0][k] - ox) / c - 0.5).floor();
+                }
+            }
+            for k in 0..n {
+                let j = j0 + k;
+                if lo[k] > hi[k] {
                     continue;
                 }
-                if let Some((i0, i1)) = self.columns(lo, hi) {
-                    span(j, i0, i1);
+                let Some((i0, i1)) = self.column_range(cols[0][k], cols[1][k]) else {
+                    continue;
+                };
+                if a_skip
+                    && w2[0][k] > c * c
+                    && let Some((d0, d1)) = self.column_range(cols[2][k], cols[3][k])
+                    && d0 <= d1
+                {
+                    if d0 > i0 {
+                        span(j, i0, (d0 - 1).min(i1));
+                    }
+                    if d1 < i1 {
+                        span(j, (d1 + 1).max(i0), i1);
+                    }
+                    continue;
                 }
+                span(j, i0, i1);
             }
             j0 += n;
         }
@@ -389,6 +459,65 @@ mod tests {
         );
         assert_eq!(r.count_disc(Point::ORIGIN, 4.9), 0);
         assert!(r.count_disc(Point::new(7.0, 0.0), 1.0) > 0);
+    }
+
+    /// Steps along random chains, each from where the last one ended: the crescent
+    /// ([`Raster::clear_capsule_from`] told that the start's disc is clear) clears the same
+    /// cells and counts the same as the whole capsule, step by step; a radius growing
+    /// between steps (the arcs' widened capsules) and chains crossing the raster's edges
+    /// included.
+    #[test]
+    fn crescent_steps_clear_what_whole_capsules_clear() {
+        let bounds = Aabb {
+            min: Point::new(-4.0, -3.0),
+            max: Point::new(6.0, 5.0),
+        };
+        let mut full = Raster::new(bounds, 0.05);
+        let (nx, ny) = full.dims();
+        for j in 0..ny {
+            full.set_span(j, 0, nx - 1, true);
+        }
+        let mut seed = 987_654_321u64;
+        let mut next = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut steps = 0;
+        let mut skipped_rows_cut = 0u64;
+        for chain in 0..40 {
+            let (mut whole, mut crescent) = (full.clone(), full.clone());
+            let mut p = Point::new(-5.0 + 12.0 * next(), -4.0 + 10.0 * next());
+            let mut r = 0.2 + 1.5 * next();
+            whole.clear_disc(p, r);
+            crescent.clear_disc(p, r);
+            let mut heading = TAU * next();
+            let mut last_r = r;
+            for _ in 0..60 {
+                heading += 0.6 * (next() - 0.5);
+                let len = if chain % 5 == 0 {
+                    0.0
+                } else {
+                    0.01 + 0.3 * next()
+                };
+                let q = p + crate::geom::Vec2::new(heading.cos(), heading.sin()) * len;
+                if next() < 0.1 {
+                    r += 0.02 * next();
+                }
+                let a = whole.clear_capsule(p, q, r);
+                let b = crescent.clear_capsule_from(p, q, r, last_r >= r);
+                assert_eq!(a, b, "chain {chain}: {p:?} → {q:?}, r {r}");
+                skipped_rows_cut += a;
+                steps += 1;
+                (p, last_r) = (q, r);
+            }
+            assert_eq!(whole.bits, crescent.bits, "chain {chain}");
+        }
+        assert!(
+            steps >= 2000 && skipped_rows_cut > 0,
+            "{steps} {skipped_rows_cut}"
+        );
     }
 
     /// The capsule's cells against the distance from each cell centre to the segment,

@@ -3,7 +3,7 @@
 use super::StockSpec;
 use super::raster::Raster;
 use super::reach::ReachMap;
-use crate::geom::Point3;
+use crate::geom::{Point, Point3};
 use crate::toolpath::{Move, MoveKind, Tool, Toolpath};
 use cavalier_contours::polyline::Polyline;
 use std::collections::VecDeque;
@@ -377,6 +377,10 @@ pub fn simulate_levels(
         }
     }
     let mut window: VecDeque<(u64, f64)> = VecDeque::new();
+    // The last tool position whose disc the slab's raster cleared, and the disc's radius: a
+    // step from there clears only the crescent beyond it (cells are never refilled in a
+    // slab).
+    let mut cleared_at: Option<(Point, f64)> = None;
     let mut from = tp.start;
     for (k, m) in tp.moves.iter().enumerate() {
         let start = from;
@@ -399,6 +403,7 @@ pub fn simulate_levels(
                 .find(|l| (l.z - z).abs() > 1e-9)
                 .map_or(0.0, |l| l.z);
             slab = Some((top, z, fresh(spec_of(li))));
+            cleared_at = None;
             window.clear();
         }
         slab_level = li;
@@ -463,9 +468,13 @@ pub fn simulate_levels(
                     }
                     // From a sample above the slab the tool enters it at this one.
                     let removed = if from.z >= top - 1e-9 {
+                        cleared_at = Some((p.xy(), r));
                         ras.clear_disc(p.xy(), r)
                     } else {
-                        ras.clear_capsule(from.xy(), p.xy(), r + widen)
+                        let rr = r + widen;
+                        let a_clear = cleared_at.is_some_and(|(c, cr)| c == from.xy() && cr >= rr);
+                        cleared_at = Some((p.xy(), rr));
+                        ras.clear_capsule_from(from.xy(), p.xy(), rr, a_clear)
                     };
                     out.removed_mm3 += removed as f64 * cell_area * thick;
                     window.push_back((removed, ds));
@@ -574,7 +583,7 @@ struct Densest {
 impl Densest {
     /// Buckets `cells` (of the slab at `z`) into squares of side `r` and keeps the centroid of
     /// the fullest square when it beats the slabs before.
-    fn add(&mut self, cells: &[crate::geom::Point], r: f64, z: f64) {
+    fn add(&mut self, cells: &[Point], r: f64, z: f64) {
         // Ordered, so that a tie between squares is broken the same way on every run.
         let mut buckets: std::collections::BTreeMap<(i64, i64), (usize, f64, f64)> =
             std::collections::BTreeMap::new();
@@ -598,7 +607,7 @@ impl Densest {
 /// Material cells within `r − 2c` of the reachable region, or in it: material the tool could
 /// have cut. (A cell whose centre the tool centre may visit counts however coarse the cells:
 /// with `c > r/2` the limit is negative, found by the `pocket` fuzzer on 2026-11-25.)
-fn uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> Vec<crate::geom::Point> {
+fn uncut(ras: &Raster, reach: &Reach, r: f64, c: f64) -> Vec<Point> {
     let limit = r - 2.0 * c;
     ras.material_cells()
         .filter(|&p| {
