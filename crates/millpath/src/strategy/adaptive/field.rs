@@ -204,6 +204,44 @@ impl Field {
         })
     }
 
+    /// [`Field::disc_spans`], each passed to `span` until it returns false, the rows'
+    /// half-widths and end columns found 64 rows at a time (loops the compiler vectorises:
+    /// the same arithmetic, the same spans).
+    fn each_disc_span(&self, q: Point, r: f64, mut span: impl FnMut(usize, usize, usize) -> bool) {
+        const CHUNK: usize = 64;
+        let inv = 1.0 / self.h;
+        let cx = (q.x - self.x0) * inv - 0.5;
+        let cy = (q.y - self.y0) * inv - 0.5;
+        let rc = r * inv;
+        let (lo, hi) = self.rows(cy - rc, cy + rc);
+        let last = self.nx as i64 - 1;
+        let (mut half2, mut first, mut end) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
+        let mut j0 = lo;
+        while j0 < hi {
+            let n = (hi - j0).min(CHUNK);
+            for (k, v) in half2[..n].iter_mut().enumerate() {
+                let dy = (j0 + k) as f64 - cy;
+                *v = rc * rc - dy * dy;
+            }
+            for k in 0..n {
+                let half = half2[k].max(0.0).sqrt();
+                first[k] = (cx - half).ceil();
+                end[k] = (cx + half).floor();
+            }
+            for k in 0..n {
+                if half2[k] < 0.0 {
+                    continue;
+                }
+                let i0 = (first[k] as i64).max(0);
+                let i1 = (end[k] as i64).min(last);
+                if i0 <= i1 && !span(j0 + k, i0 as usize, i1 as usize) {
+                    return;
+                }
+            }
+            j0 += n;
+        }
+    }
+
     /// The rows whose centres lie in `[y0, y1]` (cell units), clipped to the grid.
     fn rows(&self, y0: f64, y1: f64) -> (usize, usize) {
         let lo = ceil_i(y0).max(0) as usize;
@@ -235,16 +273,14 @@ impl Field {
             return false;
         }
         let mut n = 0;
-        for (j, i0, i1) in self.disc_spans(q, r) {
+        self.each_disc_span(q, r, |j, i0, i1| {
             let base = j * self.words;
             for (w, m) in span_masks(i0, i1) {
                 n += (self.material[base + w] & m).count_ones();
             }
-            if n > k {
-                return true;
-            }
-        }
-        false
+            n <= k
+        });
+        n > k
     }
 
     /// Whether the cell that holds `q` holds material (`false` off the grid).
@@ -276,7 +312,7 @@ impl Field {
     /// The material cells within `r` of `q`.
     pub(crate) fn count_disc(&self, q: Point, r: f64) -> u32 {
         let mut n = 0;
-        for (j, i0, i1) in self.disc_spans(q, r) {
+        self.each_disc_span(q, r, |j, i0, i1| {
             let row = &self.material[j * self.words..(j + 1) * self.words];
             let (w0, w1) = (i0 / 64, i1 / 64);
             let first = u64::MAX << (i0 % 64);
@@ -289,7 +325,8 @@ impl Field {
                     n += word.count_ones();
                 }
             }
-        }
+            true
+        });
         n
     }
 
