@@ -119,6 +119,22 @@ fn thin_default_stepover_holds_the_engagement_on_small_pockets() {
     }
 }
 
+/// Channels a little wider than the tool at every default (12.7 mm tool, 10 %, one 25 mm
+/// level): `wro_Plate_3.DXF`'s regions beside its holes (about 4 mm of room for the tool
+/// centre) and `s2g_shapes.svg`'s are combed across by short passes bent to a radius of a
+/// few millimetres. Written as chords of `δ`, their sagittas (0.02–0.04 mm) were a share of
+/// the 0.3 mm each pass takes, and the width cut swung from chord to chord: 2.0 % of
+/// `wro_Plate_3`'s path ran above 1.1 × the engagement, 2.7 % of `s2g_shapes`' sixth
+/// pocket. The chords' midpoints are now written where a chord strays that far; each holds
+/// the 1 % the bound allows.
+#[test]
+#[ignore = "the release build: ./scripts/test runs it (cargo test --release ... -- --ignored)"]
+fn combed_channels_hold_the_engagement_between_the_chords() {
+    assert_bound_held_and_no_problem("wro_Plate_3.DXF", &adaptive_report("wro_Plate_3.DXF", &[]));
+    let name = "s2g_shapes.svg";
+    assert_bound_held_and_no_problem(name, &adaptive_report(name, &["--select", "6"]));
+}
+
 /// `wro_Plate_3.DXF` at every default: the 12.7 mm tool fits only in small separate regions
 /// among the plate's holes, each entered by its own 25 mm helix. The report counted a
 /// helix's turns as time not cutting (the stock simulation's slabs see the first turn in a

@@ -56,7 +56,8 @@
 //! Each pass's tool positions are smoothed (they wobble by the grid's count of cells, a few
 //! hundredths of the target's area: Taubin's λ|μ smoothing moves each by at most
 //! [`SMOOTH_RADII`] radii, scaled as below) and written as the chords between them (`δ` long,
-//! the path itself, not an approximation of it); with `--arcs`, as tangent-continuous biarcs
+//! the path itself, not an approximation of it; on a tight curve of a thin cut, with their
+//! midpoints, below); with `--arcs`, as tangent-continuous biarcs
 //! fitted within [`ARC_FIT`], kept only where they are faster (`pocket::arcs_or_chords`). The
 //! chords are the default because the biarcs' curvature steps where two arcs meet, and a
 //! jerk-limited controller slows at every such step. The field is then cleared along the
@@ -74,6 +75,16 @@
 //! cells; at 10 %, `r/64`) and smoothing moves a position by at most `f·`[`SMOOTH_RADII`]`·r`
 //! (2.5 % of `s`, as at 40 %).
 //!
+//! **Chords on tight curves.** A chord of length `δ` on a curve of radius `R` lies `δ²/8R`
+//! inside it. Where a thin cut bends tightly (a channel a little wider than the tool, combed
+//! across by short curved passes), that sagitta is a real share of the width cut, and as two
+//! passes' chords fall in and out of step the width swings from chord to chord: 10–20 % over
+//! the target for a tenth of a millimetre after each vertex, which the verifier's 0.5 mm
+//! window sees. Where the midpoint of the four-point subdivision (`(−a + 9b + 9c − d)/16`)
+//! lies more than [`SAG_SHARE`]`·s` off a chord and the tool centre may stand there, it is
+//! written too, which quarters the sagitta. At 40 % that takes a radius under about `1.6` mm
+//! for this tool; at 10 %, under about `6` mm.
+//!
 //! **What is measured, and by whom.** The planner's counts are its own; the stock simulation
 //! (`crate::stock`, another grid, another sweep) measures the engagement of the written path
 //! and checks that nothing is left and nothing gouged, as for every strategy.
@@ -81,6 +92,7 @@
 mod entry;
 pub(crate) mod field;
 pub(crate) mod pass;
+mod smooth;
 mod start;
 mod tips;
 
@@ -97,6 +109,7 @@ use crate::strategy::pocket::shape::{
 use crate::toolpath::Tool;
 use field::{Coarse, Field};
 use pass::Stepper;
+use smooth::{refined, smoothed};
 
 /// The widest stepover the adaptive takes, a fraction of the tool's diameter (the straight
 /// cut's engagement is then 143°; wider, the bound approaches a full slot's).
@@ -117,6 +130,10 @@ pub const ARC_FIT: f64 = 0.003;
 /// How far smoothing may move a pass's positions, in tool radii, at a stepover of
 /// [`FULL_CELL_STEPOVER`] or more (thinner stepovers in proportion, [`thin_factor`]).
 pub const SMOOTH_RADII: f64 = 0.02;
+/// Where a chord's subdivision midpoint lies farther than this share of the stepover off the
+/// chord, it is written (a thin cut on a tight curve: the chords' sagittas made its width
+/// swing from chord to chord).
+pub const SAG_SHARE: f64 = 0.01;
 /// Smoothing rounds (each a shrinking and an inflating Laplacian step).
 const SMOOTH_ROUNDS: usize = 24;
 /// The smallest helix, in tool radii: where there is less room, the entry is a ramp.
@@ -511,7 +528,9 @@ impl<'w> Planner<'_, 'w> {
                     fit_arcs_where(&smooth, self.fit, allowed)
                         .or_else(|| fit_arcs_where(run, self.fit, allowed))
                 } else {
-                    let chords = segs_from_points(&smooth);
+                    let tau = SAG_SHARE * self.stepper.s;
+                    let fine = refined(&smooth, tau, |q| walls.allows(field, q));
+                    let chords = segs_from_points(&fine);
                     chords.iter().all(allowed).then_some(chords)
                 }
             } else {
@@ -736,39 +755,6 @@ impl<'w> Planner<'_, 'w> {
             self.pos = Some(last);
         }
     }
-}
-
-/// The positions with their wobble smoothed out: Taubin's λ|μ smoothing (a Laplacian step
-/// `λ = 0.5` towards the neighbours' mean, then `μ = −0.53` away from it, which removes the
-/// short wavelengths without shrinking the curve), each position kept within `within` of
-/// where it was; the ends stay. The stepper's turns come from cell counts, so consecutive
-/// positions zigzag by a few hundredths of a millimetre; through them, an interpolating
-/// curve changes its turn at every position, and the arcs fitted to it are as short as the
-/// steps.
-fn smoothed(pts: &[Point], within: f64) -> Vec<Point> {
-    let n = pts.len();
-    if n < 3 || within <= 0.0 {
-        return pts.to_vec();
-    }
-    let mut p = pts.to_vec();
-    let mut next = p.clone();
-    for _ in 0..SMOOTH_ROUNDS {
-        for f in [0.5, -0.53] {
-            for i in 1..n - 1 {
-                let m = p[i - 1].midpoint(p[i + 1]);
-                let q = p[i] + (m - p[i]) * f;
-                let d = q - pts[i];
-                let len = d.length();
-                next[i] = if len > within {
-                    pts[i] + d * (within / len)
-                } else {
-                    q
-                };
-            }
-            std::mem::swap(&mut p, &mut next);
-        }
-    }
-    p
 }
 
 /// The vertices where a loop of `region` turns by more than [`ACUTE_TURN`].
