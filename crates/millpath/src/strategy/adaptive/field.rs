@@ -185,11 +185,7 @@ impl Field {
     /// The cells a disc about `q` of radius `r` covers, row by row: `(j, i0, i1)`, the cells
     /// `i0..=i1` of row `j` (worked in cell units: one square root per row).
     fn disc_spans(&self, q: Point, r: f64) -> impl Iterator<Item = (usize, usize, usize)> + use<> {
-        let inv = 1.0 / self.h;
-        let cx = (q.x - self.x0) * inv - 0.5;
-        let cy = (q.y - self.y0) * inv - 0.5;
-        let rc = r * inv;
-        let (lo, hi) = self.rows(cy - rc, cy + rc);
+        let (cx, cy, rc, lo, hi) = self.disc_in_cells(q, r);
         let last = self.nx as i64 - 1;
         (lo..hi).filter_map(move |j| {
             let dy = j as f64 - cy;
@@ -209,11 +205,7 @@ impl Field {
     /// the same arithmetic, the same spans).
     fn each_disc_span(&self, q: Point, r: f64, mut span: impl FnMut(usize, usize, usize) -> bool) {
         const CHUNK: usize = 64;
-        let inv = 1.0 / self.h;
-        let cx = (q.x - self.x0) * inv - 0.5;
-        let cy = (q.y - self.y0) * inv - 0.5;
-        let rc = r * inv;
-        let (lo, hi) = self.rows(cy - rc, cy + rc);
+        let (cx, cy, rc, lo, hi) = self.disc_in_cells(q, r);
         let last = self.nx as i64 - 1;
         let (mut half2, mut first, mut end) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
         let mut j0 = lo;
@@ -242,6 +234,17 @@ impl Field {
         }
     }
 
+    /// A disc about `q` of radius `r` in cell units (the centre `cx, cy` measured from cell
+    /// `(0, 0)`'s centre, the radius `rc`) and the rows `lo..hi` it covers.
+    fn disc_in_cells(&self, q: Point, r: f64) -> (f64, f64, f64, usize, usize) {
+        let inv = 1.0 / self.h;
+        let cx = (q.x - self.x0) * inv - 0.5;
+        let cy = (q.y - self.y0) * inv - 0.5;
+        let rc = r * inv;
+        let (lo, hi) = self.rows(cy - rc, cy + rc);
+        (cx, cy, rc, lo, hi)
+    }
+
     /// The rows whose centres lie in `[y0, y1]` (cell units), clipped to the grid.
     fn rows(&self, y0: f64, y1: f64) -> (usize, usize) {
         let lo = ceil_i(y0).max(0) as usize;
@@ -254,11 +257,7 @@ impl Field {
     /// around the disc is looked at first, a word at a time: where it holds no material,
     /// neither does the disc.
     pub(crate) fn disc_holds_more_than(&self, q: Point, r: f64, k: u32) -> bool {
-        let inv = 1.0 / self.h;
-        let cx = (q.x - self.x0) * inv - 0.5;
-        let cy = (q.y - self.y0) * inv - 0.5;
-        let rc = r * inv;
-        let (lo, hi) = self.rows(cy - rc, cy + rc);
+        let (cx, _, rc, lo, hi) = self.disc_in_cells(q, r);
         let i0 = ceil_i(cx - rc).max(0);
         let i1 = floor_i(cx + rc).min(self.nx as i64 - 1);
         if i0 > i1 || lo == hi {
