@@ -10,7 +10,11 @@
 //!   0.1 mm apart, at most a quarter of the tool radius), clearing between consecutive
 //!   samples the cells within `r` of the segment joining them (along an arc, within `r` plus
 //!   the sagitta of the arc between them): the swept area itself, with no scallop between
-//!   samples, so that passes exactly one diameter apart leave nothing. A move gets
+//!   samples, so that passes exactly one diameter apart leave nothing. A straight move at
+//!   one height is swept as one capsule, each material cell counted to the first sample
+//!   step whose capsule holds it (the step holding `t − √(r² − s²)`, the cell `t` along the
+//!   move and `s` across it): the steps' counts and the cells left as clearing the steps
+//!   one after the other gives, read in one pass over the capsule's rows. A move gets
 //!   `⌈len/step⌉` evenly spaced positions, a length within [`STEP_TIE`] (10⁻⁹, relative) above
 //!   a whole number of steps counting as that number ([`sample_count`]): the count is a
 //!   discrete decision, and lengths of whole steps (a zigzag's links, one stepover long) would

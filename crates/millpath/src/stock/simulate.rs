@@ -450,6 +450,17 @@ pub fn simulate_levels(
                     }
                     _ => 0.0,
                 };
+                // A straight move at one height inside the slab: its steps' counts from one
+                // sweep of the whole capsule ([`Raster::sweep_steps`]), the same cells.
+                let flat = m.kind == MoveKind::Line
+                    && (start.z - m.to.z).abs() <= 1e-12
+                    && start.z.max(m.to.z) < top - 1e-9
+                    && len > 0.0;
+                let mut swept = Vec::new();
+                if flat {
+                    swept = vec![0; at.len()];
+                    ras.sweep_steps(start.xy(), m.to.xy(), r, &mut swept);
+                }
                 for (j, p) in at.into_iter().enumerate() {
                     let ds = prev.distance(p);
                     let from = std::mem::replace(&mut prev, p);
@@ -467,7 +478,10 @@ pub fn simulate_levels(
                         continue;
                     }
                     // From a sample above the slab the tool enters it at this one.
-                    let removed = if from.z >= top - 1e-9 {
+                    let removed = if flat {
+                        cleared_at = Some((p.xy(), r));
+                        swept[j]
+                    } else if from.z >= top - 1e-9 {
                         cleared_at = Some((p.xy(), r));
                         ras.clear_disc(p.xy(), r)
                     } else {
