@@ -510,6 +510,26 @@ mod tests {
         assert!(r.count_disc(Point::new(7.0, 0.0), 1.0) > 0);
     }
 
+    /// A raster over `bounds` with every cell holding material.
+    fn solid(bounds: Aabb, cell: f64) -> Raster {
+        let mut r = Raster::new(bounds, cell);
+        let (nx, ny) = r.dims();
+        for j in 0..ny {
+            r.set_span(j, 0, nx - 1, true);
+        }
+        r
+    }
+
+    /// Uniform draws in `[0, 1)` from a linear congruential generator seeded with `seed`.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// A straight move cut in `n` steps, each step's capsule cleared in turn (as the
     /// simulation did), against [`Raster::sweep_steps`]: the same count per step, the same
     /// cells left, on stock with holes in it and random moves; on moves whose ends and
@@ -522,18 +542,8 @@ mod tests {
             max: Point::new(6.0, 5.0),
         };
         let cell = 0.05;
-        let mut stock = Raster::new(bounds, cell);
-        let (nx, ny) = stock.dims();
-        for j in 0..ny {
-            stock.set_span(j, 0, nx - 1, true);
-        }
-        let mut seed = 1_234_567_891u64;
-        let mut next = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut stock = solid(bounds, cell);
+        let mut next = uniform(1_234_567_891);
         for _ in 0..30 {
             let c = Point::new(-4.0 + 10.0 * next(), -3.0 + 8.0 * next());
             stock.clear_disc(c, 0.1 + 0.8 * next());
@@ -618,18 +628,8 @@ mod tests {
             min: Point::new(-4.0, -3.0),
             max: Point::new(6.0, 5.0),
         };
-        let mut full = Raster::new(bounds, 0.05);
-        let (nx, ny) = full.dims();
-        for j in 0..ny {
-            full.set_span(j, 0, nx - 1, true);
-        }
-        let mut seed = 987_654_321u64;
-        let mut next = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let full = solid(bounds, 0.05);
+        let mut next = uniform(987_654_321);
         let mut steps = 0;
         let mut skipped_rows_cut = 0u64;
         for chain in 0..40 {
