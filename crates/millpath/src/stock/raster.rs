@@ -113,10 +113,7 @@ impl Raster {
         }
         let row = j * self.words;
         let mut count = 0;
-        for w in i0 / 64..=i1 / 64 {
-            let lo = if w == i0 / 64 { i0 % 64 } else { 0 };
-            let hi = if w == i1 / 64 { i1 % 64 } else { 63 };
-            let mask = (u64::MAX >> (63 - hi)) & (u64::MAX << lo);
+        for (w, mask) in word_masks(i0, i1) {
             let word = &mut self.bits[row + w];
             count += (*word & mask).count_ones();
             if on {
@@ -134,10 +131,7 @@ impl Raster {
         }
         let row = j * self.words;
         let mut count = 0;
-        for w in i0 / 64..=i1 / 64 {
-            let lo = if w == i0 / 64 { i0 % 64 } else { 0 };
-            let hi = if w == i1 / 64 { i1 % 64 } else { 63 };
-            let mask = (u64::MAX >> (63 - hi)) & (u64::MAX << lo);
+        for (w, mask) in word_masks(i0, i1) {
             count += (self.bits[row + w] & mask).count_ones();
         }
         count
@@ -189,10 +183,7 @@ impl Raster {
         grid.capsule_spans(a, b, r, false, |j, i0, i1| {
             let dy = grid.row_y(j) - a.y;
             let row = j * words;
-            for w in i0 / 64..=i1 / 64 {
-                let lo = if w == i0 / 64 { i0 % 64 } else { 0 };
-                let hi = if w == i1 / 64 { i1 % 64 } else { 63 };
-                let mask = (u64::MAX >> (63 - hi)) & (u64::MAX << lo);
+            for (w, mask) in word_masks(i0, i1) {
                 let word = &mut bits[row + w];
                 let mut hit = *word & mask;
                 *word &= !mask;
@@ -285,6 +276,16 @@ struct Grid {
     cell: f64,
     nx: usize,
     ny: usize,
+}
+
+/// The words of a row that cells `i0..=i1` fall in, each with the mask of those cells.
+#[inline]
+fn word_masks(i0: usize, i1: usize) -> impl Iterator<Item = (usize, u64)> {
+    (i0 / 64..=i1 / 64).map(move |w| {
+        let lo = if w == i0 / 64 { i0 % 64 } else { 0 };
+        let hi = if w == i1 / 64 { i1 % 64 } else { 63 };
+        (w, (u64::MAX >> (63 - hi)) & (u64::MAX << lo))
+    })
 }
 
 /// `x.floor()` without a call into libm (the baseline x86-64 target has no rounding
