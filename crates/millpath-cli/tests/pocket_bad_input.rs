@@ -156,3 +156,142 @@ fn bottom_outline_with_another_topology_is_refused() {
     assert!(err.contains("vertex count"), "{err}");
     assert!(!dir.path().join("out.ngc").exists());
 }
+
+/// The largest tool diameter a refusal names ("the largest that fits ... is X mm").
+fn largest_named(err: &str) -> f64 {
+    let at = err
+        .find("the largest that fits")
+        .expect("the largest tool named");
+    let tail = &err[at..];
+    let is = tail.find(" is ").expect("a diameter") + 4;
+    let end = tail[is..].find(" mm").expect("mm") + is;
+    tail[is..end].parse().expect("a number")
+}
+
+/// A tool too large for every pocket is refused with the largest that fits, read from the
+/// verifier's reach map: a 40 mm square takes 40 mm less twice the wall stock, a drawing's
+/// widest pocket names itself, and a tool 3 % under the figure is cut and verified.
+#[test]
+fn tool_too_large_names_the_largest_that_fits() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("square.json"), SQUARE).unwrap();
+    std::fs::write(
+        dir.path().join("two.svg"),
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="60mm" viewBox="0 0 100 60">
+<rect x="5" y="5" width="20" height="20"/><rect x="40" y="5" width="40" height="40"/></svg>"#,
+    )
+    .unwrap();
+    let run = |args: &[&str]| {
+        let o = millpath(args, dir.path());
+        (o.status.code(), common::stderr(&o))
+    };
+    for (stock, want) in [("0", 40.0), ("2", 36.0)] {
+        let (code, err) = run(&[
+            "pocket",
+            "square.json",
+            "--tool-diameter",
+            "50",
+            "--wall-stock",
+            stock,
+            "--depth",
+            "4",
+            "-o",
+            "x.ngc",
+        ]);
+        assert_eq!(code, Some(2), "{err}");
+        let d = largest_named(&err);
+        assert!(
+            d <= want && d >= 0.99 * want,
+            "stock {stock}: {d} against {want}: {err}"
+        );
+    }
+    let (code, err) = run(&[
+        "pocket",
+        "two.svg",
+        "--tool-diameter",
+        "45",
+        "--depth",
+        "3",
+        "-o",
+        "x.ngc",
+    ]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("one of these 2 pockets"), "{err}");
+    let d = largest_named(&err);
+    assert!((39.6..=40.0).contains(&d), "{d}: {err}");
+    let list = millpath(&["pocket", "two.svg", "--list"], dir.path());
+    let listed = String::from_utf8_lossy(&list.stdout).into_owned() + &common::stderr(&list);
+    let widest = listed
+        .lines()
+        .find(|l| l.contains("area 1600"))
+        .and_then(|l| l.strip_prefix("pocket "))
+        .and_then(|l| l.split(':').next())
+        .expect("the 40 mm square listed");
+    assert!(
+        err.contains(&format!("(pocket {widest})")),
+        "{err}\n{listed}"
+    );
+    let fits = format!("{:.2}", 0.97 * d);
+    let (code, err) = run(&[
+        "pocket",
+        "two.svg",
+        "--tool-diameter",
+        &fits,
+        "--depth",
+        "3",
+        "--strategy",
+        "offset",
+        "-o",
+        "fits.ngc",
+    ]);
+    assert_eq!(code, Some(0), "{fits} mm: {err}");
+    let (code, err) = run(&[
+        "verify",
+        "fits.ngc",
+        "--outline",
+        "two.svg",
+        "--select",
+        widest,
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+}
+
+/// Without `--step-down` a level is half the tool's diameter, at most its flute length: a
+/// 1 mm tool cuts 3 mm in six levels and the default tool with 2 mm flutes 4 mm in two (both
+/// verified), where a fixed 6.35 mm refused them for a flag not given; a step-down beyond
+/// the flute length names the flute length.
+#[test]
+fn default_step_down_follows_the_tool() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("square.json"), SQUARE).unwrap();
+    for (args, levels) in [
+        (&["--tool-diameter", "1", "--depth", "3"][..], 6),
+        (&["--flute-length", "2", "--depth", "4"][..], 2),
+    ] {
+        let mut all = vec![
+            "pocket",
+            "square.json",
+            "--strategy",
+            "offset",
+            "-o",
+            "p.ngc",
+        ];
+        all.extend_from_slice(args);
+        let o = millpath(&all, dir.path());
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", common::stderr(&o));
+        let v = millpath(
+            &["verify", "p.ngc", "--outline", "square.json", "--json"],
+            dir.path(),
+        );
+        assert_eq!(v.status.code(), Some(0), "{args:?}: {}", common::stderr(&v));
+        let j: serde_json::Value = serde_json::from_slice(&v.stdout).expect("JSON");
+        assert_eq!(j["levels"].as_u64(), Some(levels), "{args:?}: {j}");
+        assert_eq!(j["passed"].as_bool(), Some(true), "{args:?}: {j}");
+    }
+    refused(
+        "square.json",
+        SQUARE,
+        &["--flute-length", "2"],
+        "at most the flute length, 2 mm",
+    );
+}

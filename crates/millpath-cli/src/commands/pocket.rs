@@ -82,8 +82,8 @@ pub struct CommonArgs {
     /// Pocket depth, mm.
     #[arg(long, default_value_t = 25.0)]
     pub depth: f64,
-    /// Step-down per level, mm [default: 6.35; with --strategy adaptive the flute length, one
-    /// level as deep as the tool cuts]
+    /// Step-down per level, mm [default: half the tool diameter (6.35), at most the flute
+    /// length; with --strategy adaptive the flute length, one level as deep as the tool cuts]
     #[arg(long)]
     pub step_down: Option<f64>,
     /// Wall stock, mm.

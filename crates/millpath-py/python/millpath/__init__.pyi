@@ -160,8 +160,9 @@ def pocket(
     program, ours or another CAM's; its tool's diameter from `rest_from_diameter` or our
     header), cut only what it left within this tool's reach, as `millpath pocket
     --rest-from` does: strategy `"rest"`, its figures as the report. `stepover` and
-    `step_down` default as the command's do: 0.4 and 6.35 mm, and for `"adaptive"` 0.1 and
-    the flute length (3 x the diameter where it is not given)."""
+    `step_down` default as the command's do: 0.4 and half the diameter (at most the flute
+    length), and for `"adaptive"` 0.1 and the flute length (3 x the diameter where it is not
+    given)."""
 
 def drill(
     drawing: PathLike,

@@ -125,12 +125,14 @@ pub fn default_stepover(strategy: &str) -> &'static str {
 }
 
 /// The step-down a strategy takes when none is given, mm: for `adaptive` the flute length
-/// (one level per flute length), `3·D` where it is not given; else 6.35 mm.
+/// (one level per flute length), `3·D` where it is not given; else half the diameter (6.35 mm
+/// for the default 12.7 mm tool), at most the flute length.
 pub fn default_step_down(strategy: &str, tool_diameter: f64, flute_length: Option<f64>) -> f64 {
+    let flutes = flute_length.unwrap_or(3.0 * tool_diameter);
     if strategy == "adaptive" {
-        flute_length.unwrap_or(3.0 * tool_diameter)
+        flutes
     } else {
-        6.35
+        (0.5 * tool_diameter).min(flutes)
     }
 }
 

@@ -377,7 +377,10 @@ impl PocketOptions {
             self.step_down,
             self.step_down > 0.0 && self.step_down <= tool.flute_length,
             "--step-down",
-            "a step-down > 0 mm and at most the flute length",
+            &format!(
+                "a step-down > 0 mm and at most the flute length, {} mm",
+                (tool.flute_length * 1e4).round() / 1e4
+            ),
         )?;
         check(
             "wall stock",

@@ -13,7 +13,8 @@
 //! reason, so the rest of the part is still cut, when the verifier's reach map
 //! ([`stock::reachable`]) finds no place in it for the tool (narrower than the tool, say);
 //! otherwise the refusal is the part's (its program would leave material `verify` finds).
-//! When every pocket is refused the first pocket's error is returned.
+//! When every pocket is refused the first pocket's error is returned, naming the largest
+//! tool diameter that fits the widest pocket (the reach map again, by bisection).
 //!
 //! **Order.** The cost of going from pocket `i` to pocket `j` is the rapid from the end of
 //! `i`'s toolpath to the start of `j`'s (`d(e_i, s_j)`, not symmetric); the tour starts at the
@@ -79,6 +80,7 @@ pub fn generate_part(
     sim: &SimOptions,
     time: &(dyn Fn(&Toolpath) -> Result<f64> + Sync),
 ) -> Result<PartResult> {
+    let stock_left = if opts.finish { 0.0 } else { opts.wall_stock };
     let mut cut: Vec<PartPocket> = Vec::new();
     let mut skipped: Vec<PartPocket> = Vec::new();
     let mut first_error: Option<Error> = None;
@@ -112,17 +114,15 @@ pub fn generate_part(
             // Left out only where the verifier's reach map finds no place for the tool: a
             // pocket the tool could cut and the strategy refused is the whole part's refusal.
             Err(Error::Input(e))
-                if shapes.len() > 1
-                    && !stock::reachable(
-                        StockSpec {
-                            outer: &shape.outer,
-                            islands: &shape.islands,
-                            wall_stock: if opts.finish { 0.0 } else { opts.wall_stock },
-                        },
-                        tool.radius(),
-                        sim.cell_for(tool),
-                    ) =>
+                if !stock::reachable(
+                    spec_of(shape, stock_left),
+                    tool.radius(),
+                    sim.cell_for(tool),
+                ) =>
             {
+                if shapes.len() == 1 {
+                    return Err(largest_tool(e, shapes, stock_left).into());
+                }
                 skipped.push(PartPocket {
                     index: *index,
                     area_mm2: area,
@@ -141,8 +141,11 @@ pub fn generate_part(
         }
     }
     if cut.is_empty() {
-        return Err(first_error
-            .unwrap_or_else(|| Error::internal("a part without pockets reached the planner")));
+        return Err(match first_error {
+            Some(Error::Input(e)) => largest_tool(e, shapes, stock_left).into(),
+            Some(e) => e,
+            None => Error::internal("a part without pockets reached the planner"),
+        });
     }
     let ends: Vec<(Point, Point)> = cut
         .iter()
@@ -163,15 +166,7 @@ pub fn generate_part(
         .iter()
         .filter_map(|p| shapes.iter().find(|(i, _)| *i == p.index).map(|(_, s)| s))
         .collect();
-    let last_stock = if opts.finish { 0.0 } else { opts.wall_stock };
-    let specs: Vec<StockSpec<'_>> = shapes_cut
-        .iter()
-        .map(|s| StockSpec {
-            outer: &s.outer,
-            islands: &s.islands,
-            wall_stock: last_stock,
-        })
-        .collect();
+    let specs: Vec<StockSpec<'_>> = shapes_cut.iter().map(|s| spec_of(s, stock_left)).collect();
     let nominal = super::nominal_engagement(opts.stepover_mm(tool), tool.radius()).to_degrees();
     // One pocket: the program is its toolpath, which `generate` verified already (level by
     // level against its sections, inclined walls included).
@@ -250,5 +245,58 @@ fn plan_one(
                 None => Err(auto::none_verified(&cands)),
             }
         }
+    }
+}
+/// `e` (a tool that fits none of `shapes`) with the largest tool diameter that fits the
+/// widest of them, as the verifier's reach map finds it ([`stock::reachable`], on a grid of
+/// a 400th of the pocket's size, by bisection to 0.5 %), rounded down to 0.01 mm.
+fn largest_tool(
+    e: crate::error::InputError,
+    shapes: &[(usize, PocketShape)],
+    wall_stock: f64,
+) -> crate::error::InputError {
+    let widest = shapes
+        .iter()
+        .map(|(i, shape)| {
+            let spec = spec_of(shape, wall_stock);
+            let b = shape.outer.bounds();
+            let cell = b.width().max(b.height()) / 400.0;
+            let (mut lo, mut hi) = (0.0, 0.5 * b.width().min(b.height()));
+            while hi - lo > 0.005 * hi {
+                let mid = 0.5 * (lo + hi);
+                if stock::reachable(spec, mid, cell) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            (*i, 2.0 * lo)
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1));
+    let Some((index, d)) = widest else {
+        return e;
+    };
+    let d = (d * 100.0).floor() / 100.0;
+    let room = if shapes.len() == 1 {
+        format!("the largest that fits is {d} mm")
+    } else {
+        format!(
+            "the largest that fits one of these {} pockets is {d} mm (pocket {index})",
+            shapes.len()
+        )
+    };
+    let expected = match &e.expected {
+        Some(x) => format!("{x}; {room}"),
+        None => room,
+    };
+    e.expected(expected)
+}
+
+/// The stock simulation's view of `shape`, `wall_stock` left on its walls.
+fn spec_of(shape: &PocketShape, wall_stock: f64) -> StockSpec<'_> {
+    StockSpec {
+        outer: &shape.outer,
+        islands: &shape.islands,
+        wall_stock,
     }
 }
