@@ -169,8 +169,9 @@ fn largest_named(err: &str) -> f64 {
 }
 
 /// A tool too large for every pocket is refused with the largest that fits, read from the
-/// verifier's reach map: a 40 mm square takes 40 mm less twice the wall stock, a drawing's
-/// widest pocket names itself, and a tool 3 % under the figure is cut and verified.
+/// verifier's reach map: a 40 mm square takes 40 mm less twice the wall stock (none with 25
+/// mm of it), a drawing's widest pocket names itself, and a tool 3 % under the figure is cut
+/// and verified.
 #[test]
 fn tool_too_large_names_the_largest_that_fits() {
     let dir = tempfile::tempdir().unwrap();
@@ -205,6 +206,23 @@ fn tool_too_large_names_the_largest_that_fits() {
             "stock {stock}: {d} against {want}: {err}"
         );
     }
+    let (code, err) = run(&[
+        "pocket",
+        "square.json",
+        "--tool-diameter",
+        "10",
+        "--wall-stock",
+        "25",
+        "--depth",
+        "4",
+        "-o",
+        "x.ngc",
+    ]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("no tool fits with a wall stock of 25 mm"),
+        "{err}"
+    );
     let (code, err) = run(&[
         "pocket",
         "two.svg",

@@ -249,7 +249,8 @@ fn plan_one(
 }
 /// `e` (a tool that fits none of `shapes`) with the largest tool diameter that fits the
 /// widest of them, as the verifier's reach map finds it ([`stock::reachable`], on a grid of
-/// a 400th of the pocket's size, by bisection to 0.5 %), rounded down to 0.01 mm.
+/// a 400th of the pocket's size, by bisection to 0.5 % from a thousandth of its width),
+/// rounded down to 0.01 mm; or that none fits with the wall stock.
 fn largest_tool(
     e: crate::error::InputError,
     shapes: &[(usize, PocketShape)],
@@ -261,8 +262,15 @@ fn largest_tool(
             let spec = spec_of(shape, wall_stock);
             let b = shape.outer.bounds();
             let cell = b.width().max(b.height()) / 400.0;
-            let (mut lo, mut hi) = (0.0, 0.5 * b.width().min(b.height()));
-            while hi - lo > 0.005 * hi {
+            let mut hi = 0.5 * b.width().min(b.height());
+            let mut lo = 1e-3 * hi;
+            if !stock::reachable(spec, lo, cell) {
+                return (*i, 0.0);
+            }
+            for _ in 0..40 {
+                if hi - lo <= 0.005 * hi {
+                    break;
+                }
                 let mid = 0.5 * (lo + hi);
                 if stock::reachable(spec, mid, cell) {
                     lo = mid;
@@ -277,7 +285,12 @@ fn largest_tool(
         return e;
     };
     let d = (d * 100.0).floor() / 100.0;
-    let room = if shapes.len() == 1 {
+    let room = if d <= 0.0 {
+        if wall_stock <= 0.0 {
+            return e;
+        }
+        format!("no tool fits with a wall stock of {wall_stock} mm")
+    } else if shapes.len() == 1 {
         format!("the largest that fits is {d} mm")
     } else {
         format!(
