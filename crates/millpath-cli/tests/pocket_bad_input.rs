@@ -170,8 +170,8 @@ fn largest_named(err: &str) -> f64 {
 
 /// A tool too large for every pocket is refused with the largest that fits, read from the
 /// verifier's reach map: a 40 mm square takes 40 mm less twice the wall stock (none with 25
-/// mm of it), a drawing's widest pocket names itself, and a tool 3 % under the figure is cut
-/// and verified.
+/// mm of it), a drawing's widest pocket names itself (the first of like ones), and a tool 3 %
+/// under the figure is cut and verified.
 #[test]
 fn tool_too_large_names_the_largest_that_fits() {
     let dir = tempfile::tempdir().unwrap();
@@ -249,6 +249,30 @@ fn tool_too_large_names_the_largest_that_fits() {
         err.contains(&format!("(pocket {widest})")),
         "{err}\n{listed}"
     );
+    // Thirty like squares: the first of them is named, each read once past the first.
+    let rects: String = (0..30)
+        .map(|k| {
+            format!(
+                r#"<rect x="{}" y="{}" width="5" height="5"/>"#,
+                (k % 6) * 8,
+                (k / 6) * 8
+            )
+        })
+        .collect();
+    std::fs::write(
+        dir.path().join("many.svg"),
+        format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="60mm" height="60mm" viewBox="0 0 60 60">{rects}</svg>"#
+        ),
+    )
+    .unwrap();
+    let (code, many) = run(&["pocket", "many.svg", "--depth", "3", "-o", "x.ngc"]);
+    assert_eq!(code, Some(2), "{many}");
+    assert!(
+        many.contains("one of these 30 pockets") && many.contains("(pocket 1)"),
+        "{many}"
+    );
+    assert!((4.95..=5.0).contains(&largest_named(&many)), "{many}");
     let fits = format!("{:.2}", 0.97 * d);
     let (code, err) = run(&[
         "pocket",

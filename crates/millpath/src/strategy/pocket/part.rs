@@ -249,41 +249,51 @@ fn plan_one(
 }
 /// `e` (a tool that fits none of `shapes`) with the largest tool diameter that fits the
 /// widest of them, as the verifier's reach map finds it ([`stock::reachable`], on a grid of
-/// a 400th of the pocket's size, by bisection to 0.5 % from a thousandth of its width),
+/// a 200th of the pocket's size, by bisection to 0.5 % from a thousandth of its width),
 /// rounded down to 0.01 mm; or that none fits with the wall stock.
 fn largest_tool(
     e: crate::error::InputError,
     shapes: &[(usize, PocketShape)],
     wall_stock: f64,
 ) -> crate::error::InputError {
-    let widest = shapes
+    // Widest box first: a pocket is bisected only when it beats the best so far by the
+    // bisection's own 0.5 % (one reach map for each of many like pockets), and the search
+    // ends at the first box too narrow to beat it.
+    let mut order: Vec<(usize, &PocketShape, f64)> = shapes
         .iter()
         .map(|(i, shape)| {
-            let spec = spec_of(shape, wall_stock);
             let b = shape.outer.bounds();
-            let cell = b.width().max(b.height()) / 400.0;
-            let mut hi = 0.5 * b.width().min(b.height());
-            let mut lo = 1e-3 * hi;
-            if !stock::reachable(spec, lo, cell) {
-                return (*i, 0.0);
-            }
-            for _ in 0..40 {
-                if hi - lo <= 0.005 * hi {
-                    break;
-                }
-                let mid = 0.5 * (lo + hi);
-                if stock::reachable(spec, mid, cell) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            (*i, 2.0 * lo)
+            (*i, shape, 0.5 * b.width().min(b.height()))
         })
-        .max_by(|a, b| a.1.total_cmp(&b.1));
-    let Some((index, d)) = widest else {
-        return e;
-    };
+        .collect();
+    order.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0)));
+    let mut best: Option<(usize, f64)> = None;
+    for (i, shape, bound) in order {
+        let spec = spec_of(shape, wall_stock);
+        let b = shape.outer.bounds();
+        let cell = b.width().max(b.height()) / 200.0;
+        let mut hi = bound;
+        let mut lo = best.map_or(1e-3 * bound, |(_, r)| 1.005 * r);
+        if hi <= lo {
+            break;
+        }
+        if !stock::reachable(spec, lo, cell) {
+            continue;
+        }
+        for _ in 0..40 {
+            if hi - lo <= 0.005 * hi {
+                break;
+            }
+            let mid = 0.5 * (lo + hi);
+            if stock::reachable(spec, mid, cell) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        best = Some((i, lo));
+    }
+    let (index, d) = best.map_or((0, 0.0), |(i, r)| (i, 2.0 * r));
     let d = (d * 100.0).floor() / 100.0;
     let room = if d <= 0.0 {
         if wall_stock <= 0.0 {
