@@ -247,6 +247,7 @@ fn plan_one(
         }
     }
 }
+
 /// `e` (a tool that fits none of `shapes`) with the largest tool diameter that fits the
 /// widest of them, as the verifier's reach map finds it ([`stock::reachable`], on a grid of
 /// a 200th of the pocket's size, by bisection to 0.5 % from a thousandth of its width),
